@@ -1,0 +1,32 @@
+/* ray.h: the AR250 ray record as the device ray pool holds it, structure of arrays: one
+ * buffer per field so a kernel touches only the fields it needs. A pool slot i holds
+ * the ray of sample i (its eye ray, then its continuation through transparent surfaces);
+ * shadow rays live in a second pool, slot i * light_count + light. */
+#ifndef RT_RAY_H
+#define RT_RAY_H
+#include "compat.h"
+
+/* origin: xyz, w = tmin.  direction: xyz (unit), w = tmax.
+ * weight: the N=3 colour channels in xyz; w carries the alpha (coverage) weight. */
+
+typedef struct RayHit {
+    float t, u, v;  /* distance and barycentrics of the closest hit */
+    uint32_t prim;  /* triangle index, RT_NO_HIT on a miss */
+} RayHit;
+
+/* Per-ray state word: alive flag and depth, and fromSurface (the primitive the ray left,
+ * skipped by the intersector so a ray never hits the surface it started on). */
+typedef struct RayState {
+    uint32_t alive;
+    uint32_t depth;
+    uint32_t from_prim; /* RT_NO_HIT for eye rays */
+    uint32_t pad;
+} RayState;
+
+#define RT_NO_HIT 0xffffffffu
+
+#ifndef __OPENCL_C_VERSION__
+RT_ASSERT_SIZE(RayHit, 16);
+RT_ASSERT_SIZE(RayState, 16);
+#endif
+#endif

@@ -1,0 +1,66 @@
+/* scene_types.h: the scene as the device sees it: triangles, their per-triangle attributes,
+ * shader instances ("materials" until rsl2cl lands), lights and the camera. One definition
+ * for OpenCL C and C++; sizes are asserted on the host and offsets probed on the device. */
+#ifndef RT_SCENE_TYPES_H
+#define RT_SCENE_TYPES_H
+#include "compat.h"
+
+/* Vertices in world space; w is unused (0). Kept as vertices, not edges, because the
+ * watertight test shears vertices relative to the ray origin. */
+typedef struct Triangle {
+    rt_float4 v0, v1, v2;
+} Triangle;
+
+typedef struct TriangleAttr {
+    uint32_t material;    /* index into the Material array */
+    uint32_t has_normals; /* 1: smooth normals at index 3*tri in the normals buffer */
+    uint32_t pad[2];
+} TriangleAttr;
+
+/* The built-in stand-in shaders for the standard "constant", "matte" and "plastic". They go
+ * away when rsl2cl compiles the standard .sl files (issue 4). */
+#define RT_SHADER_CONSTANT 0u
+#define RT_SHADER_MATTE 1u
+#define RT_SHADER_PLASTIC 2u
+
+typedef struct Material {
+    rt_float4 cs;            /* Cs, surface colour */
+    rt_float4 os;            /* Os, opacity; w = mean opacity, used for alpha */
+    rt_float4 specularcolor; /* plastic */
+    float ka, kd, ks, roughness;
+    uint32_t shader; /* RT_SHADER_* */
+    uint32_t pad[3];
+} Material;
+
+#define RT_LIGHT_AMBIENT 0u
+#define RT_LIGHT_DISTANT 1u
+#define RT_LIGHT_POINT 2u
+
+typedef struct Light {
+    rt_float4 color;     /* intensity * lightcolor */
+    rt_float4 position;  /* point light: world-space position */
+    rt_float4 direction; /* distant light: world-space unit direction the light travels */
+    uint32_t type;       /* RT_LIGHT_* */
+    uint32_t pad[3];
+} Light;
+
+/* Camera: rays start in camera space (RenderMan: left-handed, looking down +z) and are
+ * moved to world space by the 3x4 matrix camera_to_world (rows, column-vector convention). */
+typedef struct Camera {
+    rt_float4 camera_to_world[3];
+    float screen[4];        /* ScreenWindow left, right, bottom, top */
+    float clip_near, clip_far;
+    float tan_half_fov; /* perspective: scale from screen window to the z=1 plane */
+    uint32_t perspective;   /* 1 perspective, 0 orthographic */
+    int32_t width, height;  /* Format */
+    int32_t spp_x, spp_y;   /* PixelSamples */
+} Camera;
+
+#ifndef __OPENCL_C_VERSION__
+RT_ASSERT_SIZE(Triangle, 48);
+RT_ASSERT_SIZE(TriangleAttr, 16);
+RT_ASSERT_SIZE(Material, 80);
+RT_ASSERT_SIZE(Light, 64);
+RT_ASSERT_SIZE(Camera, 96);
+#endif
+#endif

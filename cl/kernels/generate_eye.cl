@@ -1,0 +1,63 @@
+/* generate_eye.cl: the refill stage. One eye sample per pool slot for the current tile:
+ * slot i is pixel i / spp of the tile, sub-sample i % spp, jittered inside its stratum of
+ * the PixelSamples grid. The sample's running total starts at zero. */
+#include "counters.clh"
+#include "math.clh"
+#include "rng.clh"
+#include "film.h"
+#include "ray.h"
+#include "scene_types.h"
+
+__kernel void generate_eye(__constant Camera* cam,
+                           int tile_x, int tile_y, int tile_w, uint count,
+                           __global float4* origin,      /* xyz, w = tmin */
+                           __global float4* direction,   /* xyz, w = tmax */
+                           __global float4* weight,
+                           __global RayState* state,
+                           __global SampleTotal* total,
+                           __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    uint i = get_global_id(0);
+    RT_COUNT_ACTIVE(active_counter, i < count);
+    if (i >= count) return;
+    int spp = cam->spp_x * cam->spp_y;
+    int local_pixel = (int)i / spp, s = (int)i % spp;
+    int px = tile_x + local_pixel % tile_w, py = tile_y + local_pixel / tile_w;
+    uint pixel = (uint)(py * cam->width + px);
+    float jx = ((float)(s % cam->spp_x) + rt_random(pixel, (uint)s, 0)) / (float)cam->spp_x;
+    float jy = ((float)(s / cam->spp_x) + rt_random(pixel, (uint)s, 1)) / (float)cam->spp_y;
+    /* raster -> screen window: x grows right, y grows up */
+    float sx = cam->screen[0] + ((float)px + jx) / (float)cam->width *
+                                    (cam->screen[1] - cam->screen[0]);
+    float sy = cam->screen[3] - ((float)py + jy) / (float)cam->height *
+                                    (cam->screen[3] - cam->screen[2]);
+    float4 o_cam, d_cam;
+    float tmin, tmax;
+    if (cam->perspective) {
+        o_cam = (float4)(0.0f, 0.0f, 0.0f, 1.0f);
+        d_cam = rt_normalize3(rt_vec(sx * cam->tan_half_fov, sy * cam->tan_half_fov, 1.0f));
+        /* Clipping planes are z distances: convert them to distances along the ray */
+        tmin = cam->clip_near / d_cam.z;
+        tmax = cam->clip_far / d_cam.z;
+    } else {
+        o_cam = (float4)(sx, sy, 0.0f, 1.0f);
+        d_cam = rt_vec(0.0f, 0.0f, 1.0f);
+        tmin = cam->clip_near;
+        tmax = cam->clip_far;
+    }
+    float4 r0 = cam->camera_to_world[0], r1 = cam->camera_to_world[1],
+           r2 = cam->camera_to_world[2];
+    float4 o = (float4)(dot(r0, o_cam), dot(r1, o_cam), dot(r2, o_cam), 0.0f);
+    float4 dw = (float4)(rt_dot3(r0, d_cam), rt_dot3(r1, d_cam), rt_dot3(r2, d_cam), 0.0f);
+    /* the world direction is renormalised, so camera-space distances grow by its length */
+    float len = sqrt(rt_dot3(dw, dw));
+    float4 d = dw / len;
+    o.w = tmin * len;
+    d.w = tmax * len;
+    origin[i] = o;
+    direction[i] = d;
+    weight[i] = (float4)(1.0f);
+    RayState st = {1u, 0u, RT_NO_HIT, 0u};
+    state[i] = st;
+    total[i].value = (float4)(0.0f);
+}

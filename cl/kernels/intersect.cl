@@ -1,0 +1,45 @@
+/* intersect.cl: the trace stage over the resident BVH. intersect_closest finds each live
+ * ray's nearest hit; intersect_shadow kills the shadow rays that meet an occluder. */
+#include "counters.clh"
+#include "traverse.clh"
+
+__kernel void intersect_closest(uint count,
+                                __global const BvhNode* nodes,
+                                __global const uint* prim_index,
+                                __global const Triangle* tris,
+                                __global const float4* origin,
+                                __global const float4* direction,
+                                __global const RayState* state,
+                                __global RayHit* hits,
+                                __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    uint i = get_global_id(0);
+    int active = i < count && state[i].alive;
+    RT_COUNT_ACTIVE(active_counter, active);
+    if (!active) return;
+    float4 o = origin[i], d = direction[i];
+    RayHit h;
+    h.t = d.w;
+    h.u = h.v = 0.0f;
+    rt_traverse(nodes, prim_index, tris, o, d, o.w, d.w, state[i].from_prim, 0, &h);
+    hits[i] = h;
+}
+
+__kernel void intersect_shadow(uint count,
+                               __global const BvhNode* nodes,
+                               __global const uint* prim_index,
+                               __global const Triangle* tris,
+                               __global const float4* origin,
+                               __global const float4* direction,
+                               __global RayState* state,
+                               __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    uint i = get_global_id(0);
+    int active = i < count && state[i].alive;
+    RT_COUNT_ACTIVE(active_counter, active);
+    if (!active) return;
+    float4 o = origin[i], d = direction[i];
+    RayHit h;
+    if (rt_traverse(nodes, prim_index, tris, o, d, o.w, d.w, state[i].from_prim, 1, &h))
+        state[i].alive = 0u;
+}

@@ -1,0 +1,74 @@
+// exr_output.cpp: OpenEXR writing and reading through the OpenEXR library.
+#include "exr_output.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <unistd.h>
+
+namespace rd {
+
+void writeExr(const std::string& path, int width, int height, const std::vector<Rgba>& pixels,
+              const ExrOptions& options) {
+    if (width <= 0 || height <= 0 || pixels.size() != size_t(width) * size_t(height))
+        throw std::runtime_error("cannot write " + path + ": bad image size");
+    std::string tmp = path + ".partial-" + std::to_string(::getpid());
+    try {
+        Imf::Header header(width, height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        for (const auto& [k, v] : options.metadata)
+            header.insert(k, Imf::StringAttribute(v));
+        Imf::PixelType type = options.halfFloat ? Imf::HALF : Imf::FLOAT;
+        const char* names[] = {"R", "G", "B", "A"};
+        int channels = options.alpha ? 4 : 3;
+        for (int c = 0; c < channels; ++c) header.channels().insert(names[c], Imf::Channel(type));
+        // OpenEXR converts our float buffer to half on write when the channel is HALF.
+        Imf::FrameBuffer fb;
+        char* base = reinterpret_cast<char*>(const_cast<Rgba*>(pixels.data()));
+        for (int c = 0; c < channels; ++c)
+            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(Rgba),
+                                           sizeof(Rgba) * size_t(width)));
+        {
+            Imf::OutputFile file(tmp.c_str(), header);
+            file.setFrameBuffer(fb);
+            file.writePixels(height);
+        }
+        std::filesystem::rename(tmp, path);
+    } catch (const std::exception& e) {
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+        throw std::runtime_error("cannot write " + path + ": " + e.what());
+    }
+}
+
+std::vector<Rgba> readExr(const std::string& path, int& width, int& height) {
+    try {
+        Imf::InputFile file(path.c_str());
+        Imath::Box2i dw = file.header().dataWindow();
+        width = dw.max.x - dw.min.x + 1;
+        height = dw.max.y - dw.min.y + 1;
+        std::vector<Rgba> px(size_t(width) * size_t(height), Rgba{0, 0, 0, 1});
+        Imf::FrameBuffer fb;
+        char* base = reinterpret_cast<char*>(px.data()) -
+                     (size_t(dw.min.x) + size_t(dw.min.y) * size_t(width)) * sizeof(Rgba);
+        const char* names[] = {"R", "G", "B", "A"};
+        for (int c = 0; c < 4; ++c)
+            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(Rgba),
+                                           sizeof(Rgba) * size_t(width), 1, 1,
+                                           c == 3 ? 1.0 : 0.0));
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        return px;
+    } catch (const std::exception& e) {
+        throw std::runtime_error("cannot read " + path + ": " + e.what());
+    }
+}
+
+}  // namespace rd

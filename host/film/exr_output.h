@@ -1,0 +1,26 @@
+// exr_output.h: writes the resolved film as an OpenEXR file (RGB or RGBA, half or float).
+// The file is written under a temporary name and renamed into place, so an interrupted
+// or failed write never leaves a file that looks complete.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "film.h"
+
+namespace rd {
+
+struct ExrOptions {
+    bool alpha = true;       // "rgba" vs "rgb"
+    bool halfFloat = false;  // 16-bit half instead of 32-bit float channels
+    std::map<std::string, std::string> metadata;  // string attributes in the header
+};
+
+// Throws std::runtime_error with the file name and the reason on failure.
+void writeExr(const std::string& path, int width, int height, const std::vector<Rgba>& pixels,
+              const ExrOptions& options);
+
+// Reads an RGBA EXR back (for tests and tools); missing channels read as 0 (alpha 1).
+std::vector<Rgba> readExr(const std::string& path, int& width, int& height);
+
+}  // namespace rd

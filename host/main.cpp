@@ -1,0 +1,146 @@
+// main.cpp: the `raydrive` command. Parses the command line, reads the RIB, renders each
+// world block on the chosen OpenCL device and writes the image; it alone picks the exit
+// code: 0 success, 1 bad input (RIB errors, missing file), 2 usage, 3 device or OpenCL
+// failure, 4 output could not be written.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "film/exr_output.h"
+#include "ocl/check.h"
+#include "ocl/device.h"
+#include "render/renderer.h"
+#include "rib/reader.h"
+#include "scene/rib_builder.h"
+#include "stats/stats_report.h"
+
+namespace {
+
+int listDevicesCommand() {
+    auto devices = rd::listDevices();
+    if (devices.empty()) {
+        std::cerr << "raydrive: no OpenCL devices found (is an OpenCL ICD such as "
+                     "pocl-opencl-icd installed?)\n";
+        return 3;
+    }
+    rd::DeviceInfo chosen;
+    try {
+        chosen = rd::selectDevice("");
+    } catch (const std::exception&) {
+    }
+    for (const auto& d : devices) {
+        std::cout << (d.device == chosen.device ? "* " : "  ") << d.index << ": " << d.name
+                  << " [" << d.typeName() << ", " << d.computeUnits << " compute units, "
+                  << (d.globalMemBytes >> 20) << " MiB] platform: " << d.platformName
+                  << ", " << d.version << ", driver " << d.driverVersion << "\n";
+    }
+    std::cout << "(* = default; choose with --device N|NAME or RAYDRIVE_DEVICE)\n";
+    return 0;
+}
+
+std::string outputName(const rd::Scene& scene, const std::string& override, size_t frame,
+                       size_t frames) {
+    std::string name = override;
+    if (name.empty()) name = scene.display.name;
+    if (name.empty())
+        name = std::filesystem::path(scene.sourceFile).stem().string() + ".exr";
+    if (frames > 1 && !override.empty()) {
+        std::filesystem::path p(name);
+        name = (p.parent_path() / (p.stem().string() + "." + std::to_string(frame + 1) +
+                                   p.extension().string()))
+                   .string();
+    }
+    return name;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"RayDrive: a RenderMan renderer on OpenCL, after ART's RenderDrive"};
+    std::string scenePath, output, deviceSpec, statsPath;
+    bool quiet = false, halfFloat = false;
+    app.add_option("scene", scenePath, "RIB file to render, or `devices` to list devices")
+        ->required();
+    app.add_option("-o,--output", output, "output file (overrides the RIB's Display)");
+    app.add_option("--device", deviceSpec,
+                   "OpenCL device: index or name substring (default: RAYDRIVE_DEVICE, "
+                   "else PoCL CPU)");
+    app.add_option("--stats", statsPath, "write statistics as JSON to FILE, or a table to -");
+    app.add_flag("--half", halfFloat, "write 16-bit half-float channels");
+    app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int rc = app.exit(e);
+        return rc == 0 ? 0 : 2;
+    }
+    if (scenePath == "devices") return listDevicesCommand();
+
+    rib::Diagnostics diag(&std::cerr);
+    rd::RibBuilder builder(diag, scenePath);
+    rib::readFile(scenePath, builder, diag);
+    if (diag.errorCount() > 0) {
+        std::cerr << "raydrive: " << diag.errorCount() << " error(s) in " << scenePath
+                  << "; nothing rendered\n";
+        return 1;
+    }
+    auto& scenes = builder.scenes();
+    if (scenes.empty()) {
+        std::cerr << scenePath << ": error: no WorldBegin/WorldEnd block: nothing to render\n";
+        return 1;
+    }
+
+    try {
+        rd::DeviceInfo device = rd::selectDevice(deviceSpec);
+        rd::ClContext ctx(device);
+        rd::Renderer renderer(ctx, rd::RenderSettings{});
+        nlohmann::json allStats = nlohmann::json::array();
+        for (size_t i = 0; i < scenes.size(); ++i) {
+            rd::Film film;
+            rd::RenderStats st = renderer.render(scenes[i], film);
+            std::string out = outputName(scenes[i], output, i, scenes.size());
+            rd::ExrOptions opts;
+            opts.alpha = scenes[i].display.mode != "rgb";
+            opts.halfFloat = halfFloat;
+            opts.metadata["software"] = "RayDrive " RAYDRIVE_VERSION;
+            opts.metadata["raydrive:device"] = st.device;
+            opts.metadata["raydrive:scene"] = scenePath;
+            try {
+                rd::writeExr(out, film.width, film.height, film.resolve(), opts);
+            } catch (const std::exception& e) {
+                std::cerr << "raydrive: error: " << e.what() << "\n";
+                return 4;
+            }
+            if (!quiet)
+                std::cerr << "raydrive: wrote " << out << " (" << film.width << "x"
+                          << film.height << ", " << st.elapsedSec << " s on " << st.device
+                          << ")\n";
+            if (st.nonfiniteSamples > 0 && !quiet)
+                std::cerr << "raydrive: warning: " << st.nonfiniteSamples
+                          << " sample(s) with NaN or Inf were left out of the image\n";
+            allStats.push_back(rd::statsToJson(st, scenePath, out));
+        }
+        if (!statsPath.empty()) {
+            nlohmann::json doc = allStats.size() == 1 ? allStats[0] : allStats;
+            if (statsPath == "-") {
+                for (const auto& s : allStats) rd::printStatsTable(std::cout, s);
+            } else {
+                std::ofstream f(statsPath);
+                f << doc.dump(2) << "\n";
+                if (!f) {
+                    std::cerr << "raydrive: error: cannot write stats to " << statsPath << "\n";
+                    return 4;
+                }
+            }
+        }
+    } catch (const rd::ClError& e) {
+        std::cerr << "raydrive: error: " << e.what() << "\n";
+        return 3;
+    } catch (const std::exception& e) {
+        std::cerr << "raydrive: error: " << e.what() << "\n";
+        return 3;
+    }
+    return 0;
+}

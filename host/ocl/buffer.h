@@ -1,0 +1,81 @@
+// buffer.h: a typed device buffer with RAII release, sized in elements. Transfers are
+// blocking by default: the host needs their data at once, and the in-order queue keeps
+// kernel order anyway.
+#pragma once
+#include <utility>
+#include <vector>
+
+#include "check.h"
+#include "context.h"
+
+namespace rd {
+
+template <typename T>
+class DeviceBuffer {
+public:
+    DeviceBuffer() = default;
+    DeviceBuffer(const ClContext& ctx, size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE)
+        : m_ctx(&ctx), m_count(count) {
+        cl_int err = CL_SUCCESS;
+        // A zero-sized buffer is invalid in OpenCL; keep one element so kernels always
+        // get a valid argument for a feature the scene does not use.
+        m_mem = clCreateBuffer(ctx.context(), flags, sizeof(T) * (count ? count : 1), nullptr,
+                               &err);
+        RD_CL_CHECK(err, ctx.name());
+    }
+    DeviceBuffer(const ClContext& ctx, const std::vector<T>& data,
+                 cl_mem_flags flags = CL_MEM_READ_ONLY)
+        : DeviceBuffer(ctx, data.size(), flags) {
+        if (!data.empty()) upload(data);
+    }
+    ~DeviceBuffer() { release(); }
+    DeviceBuffer(DeviceBuffer&& o) noexcept { *this = std::move(o); }
+    DeviceBuffer& operator=(DeviceBuffer&& o) noexcept {
+        if (this != &o) {
+            release();
+            m_ctx = o.m_ctx;
+            m_mem = std::exchange(o.m_mem, nullptr);
+            m_count = std::exchange(o.m_count, 0);
+        }
+        return *this;
+    }
+    DeviceBuffer(const DeviceBuffer&) = delete;
+    DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+
+    cl_mem mem() const { return m_mem; }
+    size_t size() const { return m_count; }
+    size_t bytes() const { return m_count * sizeof(T); }
+
+    void upload(const std::vector<T>& data) {
+        RD_CL_CHECK(clEnqueueWriteBuffer(m_ctx->queue(), m_mem, CL_TRUE, 0,
+                                         sizeof(T) * data.size(), data.data(), 0, nullptr,
+                                         nullptr),
+                    m_ctx->name());
+    }
+    std::vector<T> download() const {
+        std::vector<T> out(m_count);
+        if (m_count)
+            RD_CL_CHECK(clEnqueueReadBuffer(m_ctx->queue(), m_mem, CL_TRUE, 0, bytes(),
+                                            out.data(), 0, nullptr, nullptr),
+                        m_ctx->name());
+        return out;
+    }
+    void fillZero() {
+        const unsigned char zero = 0;
+        RD_CL_CHECK(clEnqueueFillBuffer(m_ctx->queue(), m_mem, &zero, 1, 0,
+                                        sizeof(T) * (m_count ? m_count : 1), 0, nullptr,
+                                        nullptr),
+                    m_ctx->name());
+    }
+
+private:
+    void release() {
+        if (m_mem) clReleaseMemObject(m_mem);
+        m_mem = nullptr;
+    }
+    const ClContext* m_ctx = nullptr;
+    cl_mem m_mem = nullptr;
+    size_t m_count = 0;
+};
+
+}  // namespace rd

@@ -1,0 +1,33 @@
+// device.h: OpenCL device discovery and selection. `raydrive devices` lists what is here;
+// `--device N|name-substring` or RAYDRIVE_DEVICE picks one; the default is the PoCL CPU
+// device when present (the device every test runs on), else the first GPU, else device 0.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "cl_api.h"
+
+namespace rd {
+
+struct DeviceInfo {
+    int index = 0; // position in the flattened list across platforms
+    cl_platform_id platform = nullptr;
+    cl_device_id device = nullptr;
+    std::string platformName, name, vendor, version, driverVersion;
+    cl_device_type type = 0;
+    cl_uint computeUnits = 0;
+    cl_ulong globalMemBytes = 0, maxAllocBytes = 0;
+    size_t maxWorkGroupSize = 0;
+    bool isPocl() const;
+    std::string typeName() const;
+};
+
+// All devices of all platforms; an empty list when no ICD or platform is installed.
+std::vector<DeviceInfo> listDevices();
+
+// Resolves a user's device choice. `spec` is an index, a case-insensitive substring of the
+// device or platform name, or empty (then RAYDRIVE_DEVICE, then the default rule above).
+// Throws std::runtime_error naming the available devices when nothing matches.
+DeviceInfo selectDevice(const std::string& spec);
+
+}  // namespace rd

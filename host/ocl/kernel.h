@@ -1,0 +1,89 @@
+// kernel.h: named kernel launches with event profiling. Every launch records its event;
+// Profiler::collect() turns events into per-kernel device time and reads each kernel's
+// active-work-item counter, giving the occupancy figure of --stats (active / launched).
+#pragma once
+#include <map>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "buffer.h"
+
+namespace rd {
+
+struct KernelStats {
+    uint64_t launches = 0;
+    uint64_t launchedItems = 0; // global work size, rounded up to the local size
+    uint64_t activeItems = 0;   // work-items that had real work (counted on the device)
+    double deviceMs = 0;
+    double occupancy() const {
+        return launchedItems ? double(activeItems) / double(launchedItems) : 0.0;
+    }
+};
+
+class Profiler {
+public:
+    explicit Profiler(const ClContext& ctx) : m_ctx(ctx) {}
+    ~Profiler();
+    void record(const std::string& kernel, cl_event ev, uint64_t launched);
+    void addActive(const std::string& kernel, uint64_t active) {
+        m_stats[kernel].activeItems += active;
+    }
+    // Waits for the recorded events and adds their device time; cheap to call often.
+    void collect();
+    const std::map<std::string, KernelStats>& stats() const { return m_stats; }
+
+private:
+    struct Pending {
+        std::string kernel;
+        cl_event event;
+    };
+    const ClContext& m_ctx;
+    std::vector<Pending> m_pending;
+    std::map<std::string, KernelStats> m_stats;
+};
+
+class Kernel {
+public:
+    Kernel(const ClContext& ctx, cl_program program, const std::string& name, Profiler& prof);
+    ~Kernel();
+    Kernel(const Kernel&) = delete;
+    Kernel& operator=(const Kernel&) = delete;
+
+    // Sets the arguments in order, appends the kernel's active counter as the last one,
+    // and enqueues `count` work-items rounded up to a multiple of `localSize`.
+    template <typename... Args>
+    void launch(size_t count, const Args&... args) {
+        cl_uint index = 0;
+        (setArg(index++, args), ...);
+        setArg(index, m_active);
+        enqueue(count);
+    }
+    // Reads the device counter into the profiler and zeroes it.
+    void collectActive();
+    // The device counter as it stands (a blocking read), without resetting it.
+    uint64_t peekActive() const;
+    const std::string& name() const { return m_name; }
+    size_t localSize() const { return m_localSize; }
+
+private:
+    template <typename T>
+    void setArg(cl_uint i, const DeviceBuffer<T>& b) {
+        cl_mem m = b.mem();
+        RD_CL_CHECK(clSetKernelArg(m_kernel, i, sizeof(cl_mem), &m), m_ctx.name());
+    }
+    template <typename T, typename = std::enable_if_t<std::is_trivially_copyable_v<T>>>
+    void setArg(cl_uint i, const T& v) {
+        RD_CL_CHECK(clSetKernelArg(m_kernel, i, sizeof(T), &v), m_ctx.name());
+    }
+    void enqueue(size_t count);
+
+    const ClContext& m_ctx;
+    std::string m_name;
+    Profiler& m_profiler;
+    cl_kernel m_kernel = nullptr;
+    size_t m_localSize = 64;
+    DeviceBuffer<cl_uint> m_active;
+};
+
+}  // namespace rd

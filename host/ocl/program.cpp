@@ -1,0 +1,176 @@
+// program.cpp: source assembly, building with the build log on failure, and the on-disk
+// binary cache.
+#include "program.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "check.h"
+
+namespace rd {
+namespace {
+
+void appendWithIncludes(const std::string& name, const std::string& from,
+                        std::set<std::string>& done, std::string& out) {
+    if (!done.insert(name).second) return;
+    const auto& sources = embeddedClSources();
+    auto it = sources.find(name);
+    if (it == sources.end())
+        throw std::runtime_error("OpenCL source '" + name + "' not found" +
+                                 (from.empty() ? std::string() : " (included from " + from + ")"));
+    std::istringstream in(it->second);
+    std::string line;
+    out += "/* ---- " + name + " ---- */\n";
+    while (std::getline(in, line)) {
+        size_t p = line.find_first_not_of(" \t");
+        if (p != std::string::npos && line.compare(p, 8, "#include") == 0) {
+            size_t q0 = line.find('"', p), q1 = line.rfind('"');
+            if (q0 != std::string::npos && q1 > q0) {
+                appendWithIncludes(line.substr(q0 + 1, q1 - q0 - 1), name, done, out);
+                continue;
+            }
+        }
+        out += line;
+        out += '\n';
+    }
+}
+
+uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
+    for (unsigned char c : s) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+        .count();
+}
+
+}  // namespace
+
+std::string assembleClSource(const std::vector<std::string>& files) {
+    std::set<std::string> done;
+    std::string out;
+    for (const std::string& f : files) appendWithIncludes(f, "", done, out);
+    return out;
+}
+
+std::string defaultProgramCacheDir() {
+    if (std::getenv("RAYDRIVE_NO_CACHE")) return {};
+    if (const char* d = std::getenv("RAYDRIVE_CACHE_DIR")) return d;
+    if (const char* x = std::getenv("XDG_CACHE_HOME")) return std::string(x) + "/raydrive";
+    if (const char* h = std::getenv("HOME")) return std::string(h) + "/.cache/raydrive";
+    return {};
+}
+
+Program::Program(const ClContext& ctx, const std::string& source, const std::string& options,
+                 const std::string& cacheDir)
+    : m_ctx(ctx) {
+    auto t0 = std::chrono::steady_clock::now();
+    m_info.options = options;
+    const DeviceInfo& d = ctx.info();
+    uint64_t h = fnv1a(source);
+    h = fnv1a("\n--options--\n" + options, h);
+    h = fnv1a("\n--device--\n" + d.platformName + "|" + d.name + "|" + d.driverVersion, h);
+    char key[17];
+    std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(h));
+    m_info.cacheKey = key;
+    if (!cacheDir.empty()) m_info.cacheFile = cacheDir + "/" + m_info.cacheKey + ".clbin";
+    if (!m_info.cacheFile.empty() && tryBinary(m_info.cacheFile)) {
+        m_info.cacheHit = true;
+    } else {
+        buildFromSource(source);
+        if (!m_info.cacheFile.empty()) saveBinary(m_info.cacheFile);
+    }
+    m_info.buildMs = msSince(t0);
+}
+
+Program::~Program() {
+    if (m_program) clReleaseProgram(m_program);
+}
+
+std::string Program::buildLog() const {
+    size_t n = 0;
+    clGetProgramBuildInfo(m_program, m_ctx.device(), CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
+    std::string log(n, '\0');
+    if (n)
+        clGetProgramBuildInfo(m_program, m_ctx.device(), CL_PROGRAM_BUILD_LOG, n, log.data(),
+                              nullptr);
+    while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+    return log;
+}
+
+bool Program::tryBinary(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    std::string bin((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bin.empty()) return false;
+    const unsigned char* ptr = reinterpret_cast<const unsigned char*>(bin.data());
+    size_t len = bin.size();
+    cl_int status = CL_SUCCESS, err = CL_SUCCESS;
+    cl_device_id dev = m_ctx.device();
+    cl_program p =
+        clCreateProgramWithBinary(m_ctx.context(), 1, &dev, &len, &ptr, &status, &err);
+    if (err != CL_SUCCESS || status != CL_SUCCESS) {
+        if (p) clReleaseProgram(p);
+        return false;  // a stale or foreign binary: rebuild from source
+    }
+    if (clBuildProgram(p, 1, &dev, m_info.options.c_str(), nullptr, nullptr) != CL_SUCCESS) {
+        clReleaseProgram(p);
+        return false;
+    }
+    m_program = p;
+    return true;
+}
+
+void Program::buildFromSource(const std::string& source) {
+    cl_int err = CL_SUCCESS;
+    const char* text = source.c_str();
+    size_t len = source.size();
+    m_program = clCreateProgramWithSource(m_ctx.context(), 1, &text, &len, &err);
+    RD_CL_CHECK(err, m_ctx.name());
+    cl_device_id dev = m_ctx.device();
+    err = clBuildProgram(m_program, 1, &dev, m_info.options.c_str(), nullptr, nullptr);
+    if (err != CL_SUCCESS) {
+        std::string log = buildLog();
+        if (log.size() > 20000) log = log.substr(0, 20000) + "\n... (build log cut)";
+        throw std::runtime_error(std::string("OpenCL program build failed on device '") +
+                                 m_ctx.name() + "' (" + clErrorName(err) +
+                                 ", options: " + m_info.options + "):\n" + log);
+    }
+}
+
+void Program::saveBinary(const std::string& path) const {
+    size_t size = 0;
+    if (clGetProgramInfo(m_program, CL_PROGRAM_BINARY_SIZES, sizeof size, &size, nullptr) !=
+            CL_SUCCESS ||
+        size == 0)
+        return;
+    std::vector<unsigned char> bin(size);
+    unsigned char* ptr = bin.data();
+    if (clGetProgramInfo(m_program, CL_PROGRAM_BINARIES, sizeof ptr, &ptr, nullptr) !=
+        CL_SUCCESS)
+        return;
+    // The cache is an optimisation: failing to write it is never an error.
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+    std::string tmp = path + ".tmp" + std::to_string(reinterpret_cast<uintptr_t>(this));
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        if (!out) return;
+        out.write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(size));
+        if (!out) return;
+    }
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) std::filesystem::remove(tmp, ec);
+}
+
+}  // namespace rd

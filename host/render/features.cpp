@@ -1,0 +1,36 @@
+// features.cpp: scene analysis and kernel specialisation options.
+#include "features.h"
+
+namespace rd {
+
+Features analyse(const Scene& scene) {
+    Features f;
+    f.smoothNormals = scene.anySmoothNormals;
+    for (const Material& m : scene.materials)
+        if (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f) f.transparency = true;
+    f.lightCount = static_cast<uint32_t>(scene.lights.size());
+    for (const Light& l : scene.lights)
+        if (l.type != RT_LIGHT_AMBIENT) f.shadowRays = true;
+    return f;
+}
+
+std::vector<std::string> Features::names() const {
+    std::vector<std::string> n{"triangles"};
+    if (smoothNormals) n.push_back("smooth_normals");
+    if (transparency) n.push_back("transparency");
+    if (shadowRays) n.push_back("shadow_rays");
+    return n;
+}
+
+std::string buildOptions(const Features& f) {
+    // No fast-math: watertight intersection and robust offsets rely on IEEE rounding.
+    std::string o = "-cl-std=CL1.2";
+    if (f.smoothNormals) o += " -DRT_HAS_SMOOTH_NORMALS";
+    if (f.transparency)
+        o += " -DRT_HAS_TRANSPARENCY -DRT_MAX_TRANSPARENT_DEPTH=" +
+             std::to_string(f.maxTransparentDepth);
+    if (f.shadowRays) o += " -DRT_HAS_SHADOW_RAYS";
+    return o;
+}
+
+}  // namespace rd

@@ -1,0 +1,376 @@
+// rib_builder.cpp: the Ri state machine (options, attribute and transform stacks, shader
+// and light binding) turning RIB requests into Scenes.
+#include "rib_builder.h"
+
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "tessellate.h"
+
+namespace rd {
+namespace {
+
+rt_float4 f4(float x, float y, float z, float w = 0.0f) { return {x, y, z, w}; }
+rt_float4 f4(const glm::vec3& v, float w = 0.0f) { return {v.x, v.y, v.z, w}; }
+
+// RIB matrices are written row-major for row vectors (p' = p M); glm uses column vectors,
+// so the same 16 numbers read column-major are already the transposed, glm-ready matrix.
+glm::mat4 ribMatrix(const float m[16]) { return glm::make_mat4(m); }
+
+glm::vec3 xformPoint(const glm::mat4& m, const glm::vec3& p) {
+    return glm::vec3(m * glm::vec4(p, 1.0f));
+}
+
+bool finite3(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+RibBuilder::RibBuilder(rib::Diagnostics& diag, const std::string& sourceFile) : m_diag(diag) {
+    m_options.sourceFile = sourceFile;
+    m_attrStack.emplace_back();
+    Material& s = m_attrStack.back().surface;
+    s.shader = RT_SHADER_MATTE;  // until a Surface is given, as RenderMan's defaultsurface
+    s.ka = 1.0f;
+    s.kd = 1.0f;
+}
+
+bool RibBuilder::inWorld(L loc, const char* request) {
+    if (m_inWorld) return true;
+    m_diag.error(loc, std::string(request) + " is only valid inside WorldBegin/WorldEnd");
+    return false;
+}
+
+void RibBuilder::frameBegin(L, int) { m_attrStack.push_back(m_attrStack.back()); }
+void RibBuilder::frameEnd(L) {
+    if (m_attrStack.size() > 1) m_attrStack.pop_back();
+}
+
+void RibBuilder::worldBegin(L) {
+    // The transform current at WorldBegin is the camera's; world space starts as identity.
+    m_options.camera.worldToCamera = m_attrStack.back().ctm;
+    m_world = m_options;
+    m_inWorld = true;
+    m_materialKeys.clear();
+    m_degenerate = 0;
+    m_attrStack.push_back(m_attrStack.back());
+    m_attrStack.back().ctm = glm::mat4(1.0f);
+}
+
+void RibBuilder::worldEnd(L loc) {
+    if (!m_inWorld) return;
+    if (m_degenerate > 0)
+        m_diag.warning(loc, std::to_string(m_degenerate) +
+                                " degenerate or non-finite triangle(s) left out of this world");
+    m_inWorld = false;
+    if (m_attrStack.size() > 1) m_attrStack.pop_back();
+    m_scenes.push_back(std::move(m_world));
+    m_world = Scene();
+}
+
+void RibBuilder::attributeBegin(L) { m_attrStack.push_back(m_attrStack.back()); }
+void RibBuilder::attributeEnd(L) {
+    if (m_attrStack.size() > 1) m_attrStack.pop_back();
+}
+void RibBuilder::transformBegin(L) { m_xformStack.push_back(m_attrStack.back().ctm); }
+void RibBuilder::transformEnd(L) {
+    if (m_xformStack.empty()) return;
+    m_attrStack.back().ctm = m_xformStack.back();
+    m_xformStack.pop_back();
+}
+
+void RibBuilder::format(L loc, int x, int y, float aspect) {
+    if (x <= 0 || y <= 0 || x > 65536 || y > 65536 || (int64_t)x * y > (int64_t)1 << 28) {
+        m_diag.error(loc, "Format " + std::to_string(x) + " " + std::to_string(y) +
+                              " is out of range (1..65536 per side, 2^28 pixels)");
+        return;
+    }
+    m_options.camera.width = x;
+    m_options.camera.height = y;
+    m_options.camera.pixelAspect = aspect > 0 ? aspect : 1.0f;
+}
+void RibBuilder::frameAspectRatio(L, float a) { m_options.camera.frameAspect = a; }
+void RibBuilder::screenWindow(L, float l, float r, float b, float t) {
+    CameraSpec& c = m_options.camera;
+    c.screenWindowSet = true;
+    c.screen[0] = l;
+    c.screen[1] = r;
+    c.screen[2] = b;
+    c.screen[3] = t;
+}
+void RibBuilder::projection(L loc, const std::string& name, const rib::ParamList& params) {
+    CameraSpec& c = m_options.camera;
+    if (name == "perspective") {
+        c.perspective = true;
+        c.fovDeg = params.getFloat("fov", 90.0f);
+        if (!(c.fovDeg > 0.0f && c.fovDeg < 180.0f)) {
+            m_diag.error(loc, "perspective fov must be in (0, 180) degrees");
+            c.fovDeg = 90.0f;
+        }
+    } else if (name == "orthographic") {
+        c.perspective = false;
+    } else {
+        m_diag.error(loc, "unknown projection \"" + name + "\" (perspective, orthographic)");
+    }
+    // RI: transformations given before Projection are screen space; start camera space.
+    m_attrStack.back().ctm = glm::mat4(1.0f);
+}
+void RibBuilder::clipping(L loc, float n, float f) {
+    if (!(n > 0.0f) || !(f > n)) {
+        m_diag.error(loc, "Clipping needs 0 < near < far");
+        return;
+    }
+    m_options.camera.clipNear = n;
+    m_options.camera.clipFar = f;
+}
+void RibBuilder::pixelSamples(L loc, float x, float y) {
+    if (!(x >= 1.0f && y >= 1.0f && x <= 64.0f && y <= 64.0f)) {
+        m_diag.error(loc, "PixelSamples must be between 1 and 64 per axis");
+        return;
+    }
+    m_options.camera.pixelSamples[0] = std::floor(x);
+    m_options.camera.pixelSamples[1] = std::floor(y);
+}
+void RibBuilder::display(L loc, const std::string& name, const std::string& type,
+                         const std::string& mode, const rib::ParamList&) {
+    if (!name.empty() && name[0] == '+') {
+        m_diag.warning(loc, "additional displays (\"+name\") are not supported yet; ignored");
+        return;
+    }
+    if (type != "file" && type != "openexr" && type != "exr")
+        m_diag.warning(loc, "display type \"" + type + "\" is written as an OpenEXR file");
+    if (mode != "rgb" && mode != "rgba")
+        m_diag.warning(loc, "display mode \"" + mode + "\" is written as rgba");
+    m_options.display = {name, type, mode == "rgb" ? "rgb" : "rgba", loc};
+}
+
+void RibBuilder::color(L loc, const std::vector<float>& c) {
+    if (c.size() != 3) {
+        m_diag.error(loc, "Color needs 3 values (ColorSamples 3)");
+        return;
+    }
+    std::memcpy(m_attrStack.back().color, c.data(), sizeof(float) * 3);
+}
+void RibBuilder::opacity(L loc, const std::vector<float>& c) {
+    if (c.size() != 3) {
+        m_diag.error(loc, "Opacity needs 3 values (ColorSamples 3)");
+        return;
+    }
+    float* o = m_attrStack.back().opacity;
+    for (int i = 0; i < 3; ++i) o[i] = std::fmin(1.0f, std::fmax(0.0f, c[i]));
+}
+
+void RibBuilder::surface(L loc, const std::string& name, const rib::ParamList& params) {
+    Material m{};
+    float white[3] = {1, 1, 1}, spec[3];
+    params.get3("specularcolor", spec, white);
+    m.specularcolor = f4(spec[0], spec[1], spec[2]);
+    if (name == "constant") {
+        m.shader = RT_SHADER_CONSTANT;
+    } else if (name == "matte") {
+        m.shader = RT_SHADER_MATTE;
+        m.ka = params.getFloat("Ka", 1.0f);
+        m.kd = params.getFloat("Kd", 1.0f);
+    } else if (name == "plastic") {
+        m.shader = RT_SHADER_PLASTIC;
+        m.ka = params.getFloat("Ka", 1.0f);
+        m.kd = params.getFloat("Kd", 0.5f);
+        m.ks = params.getFloat("Ks", 0.5f);
+        m.roughness = params.getFloat("roughness", 0.1f);
+        if (!(m.roughness > 0.0f)) m.roughness = 1e-4f;
+    } else {
+        m_diag.warning(loc, "surface shader \"" + name +
+                                "\" is not available (only constant, matte and plastic until "
+                                "RSL shaders are compiled); using matte");
+        m.shader = RT_SHADER_MATTE;
+        m.ka = m.kd = 1.0f;
+    }
+    m_attrStack.back().surface = m;
+}
+
+void RibBuilder::lightSource(L loc, const std::string& name, const std::string&,
+                             const rib::ParamList& params) {
+    if (!inWorld(loc, "LightSource")) return;
+    const glm::mat4& ctm = m_attrStack.back().ctm;
+    float one[3] = {1, 1, 1}, lc[3];
+    params.get3("lightcolor", lc, one);
+    float intensity = params.getFloat("intensity", 1.0f);
+    Light light{};
+    light.color = f4(lc[0] * intensity, lc[1] * intensity, lc[2] * intensity);
+    float zero[3] = {0, 0, 0}, zplus[3] = {0, 0, 1}, from[3], to[3];
+    params.get3("from", from, zero);
+    params.get3("to", to, zplus);
+    glm::vec3 pf = xformPoint(ctm, {from[0], from[1], from[2]});
+    glm::vec3 pt = xformPoint(ctm, {to[0], to[1], to[2]});
+    if (name == "ambientlight") {
+        light.type = RT_LIGHT_AMBIENT;
+    } else if (name == "distantlight") {
+        light.type = RT_LIGHT_DISTANT;
+        glm::vec3 d = pt - pf;
+        if (!(glm::length(d) > 0.0f) || !finite3(d)) {
+            m_diag.error(loc, "distantlight \"from\" and \"to\" must differ");
+            return;
+        }
+        light.direction = f4(glm::normalize(d));
+    } else if (name == "pointlight") {
+        light.type = RT_LIGHT_POINT;
+        light.position = f4(pf, 1.0f);
+    } else {
+        m_diag.warning(loc, "light shader \"" + name +
+                                "\" is not available (only ambientlight, distantlight and "
+                                "pointlight until RSL shaders are compiled); ignored");
+        return;
+    }
+    m_world.lights.push_back(light);
+}
+
+void RibBuilder::illuminate(L loc, const std::string&, bool on) {
+    if (!on)
+        m_diag.warning(loc, "Illuminate off is not supported yet: every light lights "
+                            "every surface");
+}
+
+void RibBuilder::identity(L) {
+    // Inside the world, identity means world space; outside, camera space.
+    m_attrStack.back().ctm = glm::mat4(1.0f);
+}
+void RibBuilder::transform(L, const float m[16]) { m_attrStack.back().ctm = ribMatrix(m); }
+void RibBuilder::concatTransform(L, const float m[16]) {
+    m_attrStack.back().ctm = m_attrStack.back().ctm * ribMatrix(m);
+}
+void RibBuilder::translate(L, float x, float y, float z) {
+    m_attrStack.back().ctm = glm::translate(m_attrStack.back().ctm, {x, y, z});
+}
+void RibBuilder::rotate(L loc, float a, float x, float y, float z) {
+    glm::vec3 axis(x, y, z);
+    if (!(glm::length(axis) > 0.0f)) {
+        m_diag.error(loc, "Rotate axis must not be zero");
+        return;
+    }
+    m_attrStack.back().ctm =
+        glm::rotate(m_attrStack.back().ctm, glm::radians(a), glm::normalize(axis));
+}
+void RibBuilder::scale(L, float x, float y, float z) {
+    m_attrStack.back().ctm = glm::scale(m_attrStack.back().ctm, {x, y, z});
+}
+
+uint32_t RibBuilder::currentMaterial() {
+    const Attributes& a = m_attrStack.back();
+    Material m = a.surface;
+    m.cs = f4(a.color[0], a.color[1], a.color[2]);
+    m.os = f4(a.opacity[0], a.opacity[1], a.opacity[2],
+              (a.opacity[0] + a.opacity[1] + a.opacity[2]) / 3.0f);
+    std::string key(reinterpret_cast<const char*>(&m), sizeof m);
+    for (const auto& [k, index] : m_materialKeys)
+        if (k == key) return index;
+    uint32_t index = static_cast<uint32_t>(m_world.materials.size());
+    m_world.materials.push_back(m);
+    m_materialKeys.emplace_back(key, index);
+    return index;
+}
+
+void RibBuilder::addMesh(L, const std::vector<glm::vec3>& p, const std::vector<glm::vec3>* n,
+                         const std::vector<int>& tris) {
+    const glm::mat4& ctm = m_attrStack.back().ctm;
+    glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
+    uint32_t material = currentMaterial();
+    std::vector<glm::vec3> wp(p.size());
+    for (size_t i = 0; i < p.size(); ++i) wp[i] = xformPoint(ctm, p[i]);
+    bool smooth = n && n->size() == p.size();
+    if (smooth) m_world.anySmoothNormals = true;
+    for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+        int i0 = tris[t], i1 = tris[t + 1], i2 = tris[t + 2];
+        const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
+        glm::vec3 cr = glm::cross(b - a, c - a);
+        if (!finite3(a) || !finite3(b) || !finite3(c) || !(glm::dot(cr, cr) > 0.0f)) {
+            ++m_degenerate;
+            continue;
+        }
+        m_world.triangles.push_back({f4(a), f4(b), f4(c)});
+        m_world.attrs.push_back({material, smooth ? 1u : 0u, {0, 0}});
+        for (int k : {i0, i1, i2})
+            m_world.normals.push_back(smooth ? f4(glm::normalize(nm * (*n)[k])) : f4(0, 0, 0));
+    }
+}
+
+void RibBuilder::polygon(L loc, const rib::ParamList& params) {
+    if (!inWorld(loc, "Polygon")) return;
+    std::vector<int> nverts;
+    const rib::Param* P = params.find("P");
+    if (!P) {
+        m_diag.error(loc, "Polygon needs \"P\"");
+        return;
+    }
+    nverts.push_back(static_cast<int>(P->floats.size() / 3));
+    std::vector<int> verts(nverts[0]);
+    for (int i = 0; i < nverts[0]; ++i) verts[i] = i;
+    pointsPolygons(loc, nverts, verts, params);
+}
+
+void RibBuilder::pointsPolygons(L loc, const std::vector<int>& nverts,
+                                const std::vector<int>& verts, const rib::ParamList& params) {
+    if (!inWorld(loc, "PointsPolygons")) return;
+    const rib::Param* P = params.find("P");
+    if (!P || P->floats.size() % 3 != 0) {
+        m_diag.error(loc, "polygons need \"P\" with 3 floats per point");
+        return;
+    }
+    size_t np = P->floats.size() / 3;
+    std::vector<glm::vec3> p(np), n;
+    for (size_t i = 0; i < np; ++i)
+        p[i] = {P->floats[3 * i], P->floats[3 * i + 1], P->floats[3 * i + 2]};
+    const rib::Param* N = params.find("N");
+    if (N && N->floats.size() == 3 * np) {
+        n.resize(np);
+        for (size_t i = 0; i < np; ++i)
+            n[i] = {N->floats[3 * i], N->floats[3 * i + 1], N->floats[3 * i + 2]};
+    }
+    std::vector<int> tris;
+    size_t offset = 0;
+    for (int count : nverts) {
+        if (count < 3 || offset + count > verts.size()) {
+            m_diag.error(loc, "polygon with " + std::to_string(count) + " vertices skipped");
+            offset += count > 0 ? count : 0;
+            continue;
+        }
+        bool ok = true;
+        for (int k = 0; k < count; ++k)
+            if (verts[offset + k] < 0 || size_t(verts[offset + k]) >= np) ok = false;
+        if (ok) triangulateConvex(&verts[offset], count, tris);
+        else m_diag.error(loc, "polygon vertex index out of range");
+        offset += count;
+    }
+    addMesh(loc, p, n.empty() ? nullptr : &n, tris);
+}
+
+float RibBuilder::pixelsPerUnit(float depth) const {
+    const CameraSpec& c = m_world.camera;
+    Camera dc = m_world.deviceCamera();
+    float unitsAcross = dc.screen[1] - dc.screen[0];
+    float perScreenUnit = float(c.width) / unitsAcross;
+    if (!c.perspective) return perScreenUnit;
+    if (!(depth > 0.0f)) return 1e6f;
+    return perScreenUnit / (dc.tan_half_fov * depth);
+}
+
+void RibBuilder::sphere(L loc, float radius, float zmin, float zmax, float thetamax,
+                        const rib::ParamList&) {
+    if (!inWorld(loc, "Sphere")) return;
+    const glm::mat4& ctm = m_attrStack.back().ctm;
+    // Dice for the sphere's size on screen: chord error under 0.1 pixel.
+    glm::mat4 objToCam = m_world.camera.worldToCamera * ctm;
+    glm::vec3 center = xformPoint(objToCam, glm::vec3(0.0f));
+    float worldRadius = std::fabs(radius) * std::cbrt(std::fabs(glm::determinant(glm::mat3(objToCam))));
+    float depth = center.z - worldRadius;
+    float rpx = worldRadius * pixelsPerUnit(depth > 0 ? center.z : 0.0f);
+    if (depth <= 0.0f) rpx = 1e6f;
+    int nu = circleSegments(rpx, 0.1f);
+    TriMesh m = tessellateSphere(radius, zmin, zmax, thetamax, nu, nu / 2);
+    addMesh(loc, m.p, &m.n, m.tris);
+}
+
+}  // namespace rd

@@ -1,0 +1,88 @@
+// rib_builder.h: the Ri state machine. It implements rib::Target and turns the requests of
+// a RIB stream into Scenes (one per WorldBegin/WorldEnd): it keeps the option state, the
+// attribute and transform stacks, binds shaders and lights, and hands geometry to the
+// tessellator in world space.
+#pragma once
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "rib/target.h"
+#include "scene.h"
+
+namespace rd {
+
+class RibBuilder : public rib::Target {
+public:
+    RibBuilder(rib::Diagnostics& diag, const std::string& sourceFile);
+
+    // Scenes completed so far, in WorldEnd order.
+    std::vector<Scene>& scenes() { return m_scenes; }
+
+    void frameBegin(L, int) override;
+    void frameEnd(L) override;
+    void worldBegin(L) override;
+    void worldEnd(L) override;
+    void attributeBegin(L) override;
+    void attributeEnd(L) override;
+    void transformBegin(L) override;
+    void transformEnd(L) override;
+
+    void format(L, int xres, int yres, float pixelAspect) override;
+    void frameAspectRatio(L, float) override;
+    void screenWindow(L, float, float, float, float) override;
+    void projection(L, const std::string& name, const rib::ParamList&) override;
+    void clipping(L, float, float) override;
+    void pixelSamples(L, float, float) override;
+    void display(L, const std::string& name, const std::string& type,
+                 const std::string& mode, const rib::ParamList&) override;
+
+    void color(L, const std::vector<float>&) override;
+    void opacity(L, const std::vector<float>&) override;
+    void surface(L, const std::string& name, const rib::ParamList&) override;
+    void lightSource(L, const std::string& name, const std::string& handle,
+                     const rib::ParamList&) override;
+    void illuminate(L, const std::string& handle, bool on) override;
+
+    void identity(L) override;
+    void transform(L, const float m[16]) override;
+    void concatTransform(L, const float m[16]) override;
+    void translate(L, float, float, float) override;
+    void rotate(L, float, float, float, float) override;
+    void scale(L, float, float, float) override;
+
+    void polygon(L, const rib::ParamList&) override;
+    void pointsPolygons(L, const std::vector<int>& nverts, const std::vector<int>& verts,
+                        const rib::ParamList&) override;
+    void sphere(L, float radius, float zmin, float zmax, float thetamax,
+                const rib::ParamList&) override;
+
+private:
+    struct Attributes {
+        glm::mat4 ctm{1.0f};  // object to world (camera before WorldBegin)
+        float color[3] = {1, 1, 1};
+        float opacity[3] = {1, 1, 1};
+        Material surface{};   // shader and parameters; cs/os filled at use
+    };
+    enum class Block { Frame, World, Attribute, Transform };
+
+    uint32_t currentMaterial();
+    bool inWorld(L, const char* request);
+    // Adds triangles given world-space positions and optional normals; 3 indices each.
+    void addMesh(L, const std::vector<glm::vec3>& p, const std::vector<glm::vec3>* n,
+                 const std::vector<int>& tris);
+    // Pixels per world unit at distance `depth` in front of the camera.
+    float pixelsPerUnit(float depth) const;
+
+    rib::Diagnostics& m_diag;
+    Scene m_options;               // option state; copied into each new world
+    Scene m_world;                 // the world being built
+    bool m_inWorld = false;
+    std::vector<Attributes> m_attrStack;
+    std::vector<glm::mat4> m_xformStack;
+    std::vector<Scene> m_scenes;
+    std::vector<std::pair<std::string, uint32_t>> m_materialKeys;
+    int m_degenerate = 0;
+};
+
+}  // namespace rd

@@ -1,0 +1,50 @@
+// scene.h: the scene as the host holds it after the RIB is read: world-space triangles with
+// their attributes, shader instances, lights, camera and the output options. The device
+// arrays are built from it (render/scene_upload), the BVH over its triangles.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cl/include/scene_types.h"
+#include "rib/diagnostics.h"
+
+namespace rd {
+
+struct DisplaySpec {
+    std::string name;          // file name ("" = <scene>.exr)
+    std::string type = "file"; // "file", "openexr", "framebuffer", ...
+    std::string mode = "rgba"; // "rgb", "rgba"
+    rib::SourceLoc loc;
+};
+
+struct CameraSpec {
+    int width = 640, height = 480; // Format (RI default)
+    float pixelAspect = 1.0f;
+    float frameAspect = 0.0f;       // 0: from Format
+    bool screenWindowSet = false;
+    float screen[4] = {-1, 1, -1, 1};
+    bool perspective = false;       // RI default projection is orthographic
+    float fovDeg = 90.0f;
+    float clipNear = 1e-10f, clipFar = 1e30f;
+    float pixelSamples[2] = {2, 2}; // RI default PixelSamples 2 2
+    glm::mat4 worldToCamera{1.0f};  // column-vector convention (glm)
+};
+
+struct Scene {
+    std::string sourceFile;
+    std::vector<Triangle> triangles;
+    std::vector<TriangleAttr> attrs;
+    std::vector<rt_float4> normals; // 3 per triangle with has_normals, else unused entries
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    CameraSpec camera;
+    DisplaySpec display;
+    bool anySmoothNormals = false;
+
+    // The device camera: screen window, fov scale and camera-to-world matrix.
+    Camera deviceCamera() const;
+};
+
+}  // namespace rd

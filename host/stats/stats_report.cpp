@@ -1,0 +1,76 @@
+// stats_report.cpp: building the --stats JSON and its table form.
+#include "stats_report.h"
+
+#include <iomanip>
+#include <ostream>
+
+namespace rd {
+
+nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
+                           const std::string& output) {
+    using nlohmann::json;
+    json kernels = json::object();
+    for (const auto& [name, k] : st.kernels) {
+        if (k.launches == 0) continue;
+        kernels[name] = {{"launches", k.launches},
+                         {"device_ms", k.deviceMs},
+                         {"work_items_launched", k.launchedItems},
+                         {"work_items_active", k.activeItems},
+                         {"occupancy", k.occupancy()}};
+    }
+    return json{
+        {"scene", scene},
+        {"output", output},
+        {"elapsed_s", st.elapsedSec},
+        {"device", {{"name", st.device}, {"platform", st.platform}}},
+        {"rays", {{"eye", st.eyeRays},
+                  {"continuation", st.continuationRays},
+                  {"shadow", st.shadowRays},
+                  {"total", st.eyeRays + st.continuationRays + st.shadowRays}}},
+        {"scene_stats", {{"triangles", st.triangles},
+                         {"bvh_nodes", st.bvhNodes},
+                         {"dropped_primitives", st.droppedPrims},
+                         {"bvh_build_ms", st.bvhBuildMs},
+                         {"setup_ms", st.sceneSetupMs},
+                         {"tiles", st.tiles},
+                         {"pool_capacity", st.poolCapacity}}},
+        {"features", st.features.names()},
+        {"program", {{"build_options", st.program.options},
+                     {"cache_hit", st.program.cacheHit},
+                     {"cache_key", st.program.cacheKey},
+                     {"cache_file", st.program.cacheFile},
+                     {"build_ms", st.program.buildMs}}},
+        {"nonfinite_samples", st.nonfiniteSamples},
+        {"kernels", kernels},
+    };
+}
+
+void printStatsTable(std::ostream& out, const nlohmann::json& s) {
+    out << "scene     " << s["scene"].get<std::string>() << " -> "
+        << s["output"].get<std::string>() << "\n";
+    out << "device    " << s["device"]["name"].get<std::string>() << " ("
+        << s["device"]["platform"].get<std::string>() << ")\n";
+    out << std::fixed << std::setprecision(3);
+    out << "elapsed   " << s["elapsed_s"].get<double>() << " s\n";
+    out << "rays      eye " << s["rays"]["eye"] << ", continuation "
+        << s["rays"]["continuation"] << ", shadow " << s["rays"]["shadow"] << "\n";
+    out << "scene     " << s["scene_stats"]["triangles"] << " triangles, "
+        << s["scene_stats"]["bvh_nodes"] << " BVH nodes\n";
+    out << "features ";
+    for (const auto& f : s["features"]) out << " " << f.get<std::string>();
+    out << "\nprogram   " << (s["program"]["cache_hit"].get<bool>() ? "cache hit" : "built")
+        << " in " << s["program"]["build_ms"].get<double>() << " ms, options: "
+        << s["program"]["build_options"].get<std::string>() << "\n";
+    out << std::left << std::setw(20) << "kernel" << std::right << std::setw(9) << "launches"
+        << std::setw(12) << "device ms" << std::setw(14) << "launched" << std::setw(14)
+        << "active" << std::setw(11) << "occupancy\n";
+    for (const auto& [name, k] : s["kernels"].items()) {
+        out << std::left << std::setw(20) << name << std::right << std::setw(9)
+            << k["launches"].get<uint64_t>() << std::setw(12) << k["device_ms"].get<double>()
+            << std::setw(14) << k["work_items_launched"].get<uint64_t>() << std::setw(14)
+            << k["work_items_active"].get<uint64_t>() << std::setw(10)
+            << k["occupancy"].get<double>() << "\n";
+    }
+}
+
+}  // namespace rd

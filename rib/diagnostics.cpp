@@ -1,0 +1,23 @@
+// diagnostics.cpp: formatting and counting of RIB diagnostics.
+#include "diagnostics.h"
+
+#include <iostream>
+
+namespace rib {
+
+void Diagnostics::emit(const SourceLoc& loc, const char* kind, const std::string& msg) {
+    m_last = loc.str() + ": " + kind + ": " + msg;
+    if (m_out) *m_out << m_last << "\n";
+}
+
+void Diagnostics::error(const SourceLoc& loc, const std::string& msg) {
+    ++m_errors;
+    emit(loc, "error", msg);
+}
+
+void Diagnostics::warning(const SourceLoc& loc, const std::string& msg) {
+    ++m_warnings;
+    emit(loc, "warning", msg);
+}
+
+} // namespace rib

@@ -1,0 +1,397 @@
+// reader.cpp: the RIB request parser. Each request is read whole (its name, then every
+// value up to the next request name) before anything is checked, so a bad request can be
+// dropped without losing sync with the stream. Positional arguments are matched against
+// the signatures in requests.def, parameter lists are typed from inline declarations,
+// Declare, the predefined names or the values themselves, and Begin/End nesting is
+// tracked so mismatches are reported where they happen rather than as odd renders.
+#include <zlib.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "reader_impl.h"
+
+namespace rib {
+namespace detail {
+
+namespace {
+
+const RequestInfo kRequests[] = {
+#define RIB_REQUEST(name, sig) {#name, sig, Req::name},
+#include "requests.def"
+#undef RIB_REQUEST
+};
+
+}  // namespace
+
+const RequestInfo* findRequest(const std::string& name) {
+    static const std::unordered_map<std::string, const RequestInfo*> table = [] {
+        std::unordered_map<std::string, const RequestInfo*> t;
+        for (const RequestInfo& r : kRequests) t[r.name] = &r;
+        return t;
+    }();
+    auto it = table.find(name);
+    return it == table.end() ? nullptr : it->second;
+}
+
+Token Reader::nextToken() {
+    if (m_havePending) {
+        m_havePending = false;
+        return m_pending;
+    }
+    Token t = m_lex.next();
+    if (t.kind != TokenKind::Eof)
+        m_lastLine = t.line;  // EOF errors point at the last token
+    return t;
+}
+
+void Reader::run() {
+    int first = m_lex.peekFirstByte();
+    if (first >= 0x80) {
+        m_diag.error(m_lex.loc(1), "binary RIB is not supported yet");
+        return;
+    }
+    bool strayReported = false;
+    while (!m_diag.tooManyErrors()) {
+        Token t = nextToken();
+        if (t.kind == TokenKind::Eof) break;
+        if (t.kind != TokenKind::Word) {
+            // Values with no request before them: say so once per run, then resync at
+            // the next request name.
+            if (t.kind != TokenKind::Error && !strayReported)
+                m_diag.error(m_lex.loc(t.line),
+                             "expected a request name, got \"" + t.text + "\"");
+            strayReported = true;
+            continue;
+        }
+        strayReported = false;
+        SourceLoc loc = m_lex.loc(t.line);
+        std::vector<Value> vals;
+        const RequestInfo* info = findRequest(t.text);
+        if (!info) {
+            // Skip its values quietly: their shape is unknown, so only the lexer speaks.
+            m_diag.error(loc, "unknown request \"" + t.text + "\"");
+            m_quiet = true;
+            collectValues(vals);
+            m_quiet = false;
+            continue;
+        }
+        if (!collectValues(vals)) continue;
+        if (info->sig[0] == '*') {
+            if (m_opts.warnUnsupported)
+                m_diag.warning(loc, std::string("not supported yet: ") + info->name);
+            continue;
+        }
+        if (info->sig[0] == '-') continue;
+        Args args;
+        if (parseArgs(*info, vals, args, loc)) dispatch(*info, args, loc);
+    }
+    if (m_diag.tooManyErrors()) return;
+    SourceLoc end = m_lex.loc(m_lastLine);
+    for (auto it = m_blocks.rbegin(); it != m_blocks.rend(); ++it)
+        m_diag.error(end,
+                     std::string(it->name) + " at " + it->loc.str() + " never closed");
+}
+
+// Reads every value up to the next request name. Returns false when any of them was bad
+// (already reported): the request is then dropped, but the stream stays in sync.
+bool Reader::collectValues(std::vector<Value>& out) {
+    bool ok = true;
+    while (!m_diag.tooManyErrors()) {
+        Token t = nextToken();
+        if (t.kind == TokenKind::Word || t.kind == TokenKind::Eof) {
+            m_pending = t;
+            m_havePending = true;
+            break;
+        }
+        Value v;
+        switch (t.kind) {
+            case TokenKind::Number:
+                v.nums.push_back(t.number);
+                v.allInt = t.isInt;
+                break;
+            case TokenKind::String:
+                v.isString = true;
+                v.strs.push_back(t.text);
+                break;
+            case TokenKind::LBracket:
+                if (!readArray(t, v)) ok = false;
+                break;
+            case TokenKind::RBracket:
+                if (!m_quiet) m_diag.error(m_lex.loc(t.line), "unexpected ']'");
+                ok = false;
+                continue;
+            default:  // Error: already reported by the lexer
+                ok = false;
+                continue;
+        }
+        if (ok) out.push_back(std::move(v));
+    }
+    return ok;
+}
+
+bool Reader::readArray(const Token& open, Value& v) {
+    v.array = true;
+    bool ok = true, tooBig = false;
+    size_t count = 0;
+    while (!m_diag.tooManyErrors()) {
+        Token t = nextToken();
+        if (t.kind == TokenKind::RBracket) return ok;
+        if (t.kind == TokenKind::Word || t.kind == TokenKind::Eof) {
+            m_pending = t;
+            m_havePending = true;
+            if (!m_quiet) m_diag.error(m_lex.loc(open.line), "unterminated '['");
+            return false;
+        }
+        if (t.kind == TokenKind::Error) {
+            ok = false;
+            continue;
+        }
+        if (t.kind == TokenKind::LBracket) {
+            if (!m_quiet) m_diag.error(m_lex.loc(t.line), "nested '[' is not allowed");
+            ok = false;
+            continue;
+        }
+        if (++count > m_opts.maxArrayValues) {
+            // Keep consuming so the stream stays in sync, but store nothing more.
+            if (!tooBig && !m_quiet)
+                m_diag.error(m_lex.loc(open.line),
+                             "array too large (more than " +
+                                 std::to_string(m_opts.maxArrayValues) + " values)");
+            tooBig = true;
+            ok = false;
+            v.nums.clear();
+            v.strs.clear();
+            continue;
+        }
+        bool isStr = t.kind == TokenKind::String;
+        if (count > 1 && isStr != v.isString) {
+            if (ok && !m_quiet)
+                m_diag.error(m_lex.loc(t.line), "array mixes numbers and strings");
+            ok = false;
+            continue;
+        }
+        if (!ok) continue;
+        if (isStr) {
+            v.isString = true;
+            v.strs.push_back(t.text);
+        } else {
+            v.nums.push_back(t.number);
+            v.allInt = v.allInt && t.isInt;
+        }
+    }
+    return false;
+}
+
+bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
+                       Args& args, const SourceLoc& loc) {
+    std::string sig;
+    for (const char* c = info.sig; *c; ++c)
+        sig += *c == 'm' ? std::string(16, 'f') : std::string(1, *c);
+    const std::string req = info.name;
+    auto numeric = [](char c) { return c == 'f' || c == 'i'; };
+    auto isNumberValue = [](const Value& v) { return !v.isString; };
+    size_t vi = 0;
+    bool takesParams = false;
+    for (size_t si = 0; si < sig.size();) {
+        char c = sig[si];
+        std::string argNo = std::to_string(si + 1);
+        if (c == 'p') {
+            takesParams = true;
+            ++si;
+        } else if (numeric(c)) {
+            size_t run = 0;
+            while (si + run < sig.size() && numeric(sig[si + run])) ++run;
+            std::vector<double> got;
+            if (vi < vals.size() && vals[vi].array && isNumberValue(vals[vi])) {
+                got = vals[vi++].nums;  // the bracketed form: the whole run in one array
+            } else {
+                while (vi < vals.size() && !vals[vi].array && isNumberValue(vals[vi]))
+                    got.push_back(vals[vi++].nums.front());
+            }
+            if (got.size() != run) {
+                m_diag.error(loc, req + " expects " + plural(run, "number") + ", got " +
+                                      std::to_string(got.size()));
+                return false;
+            }
+            for (size_t k = 0; k < run; ++k) {
+                if (sig[si + k] == 'i' && !isIntegral(got[k])) {
+                    m_diag.error(loc, req + " expects an integer as argument " +
+                                          std::to_string(si + k + 1));
+                    return false;
+                }
+                args.nums.push_back(got[k]);
+            }
+            si += run;
+        } else if (c == 's' || c == 'h') {
+            const Value* v = vi < vals.size() ? &vals[vi] : nullptr;
+            if (v && v->isString && v->strs.size() == 1) {
+                args.strs.push_back(v->strs.front());
+            } else if (v && c == 'h' && !v->isString && v->nums.size() == 1 &&
+                       isIntegral(v->nums.front())) {
+                args.strs.push_back(std::to_string(static_cast<int>(v->nums.front())));
+            } else {
+                m_diag.error(loc,
+                             req +
+                                 (c == 's' ? " expects a string as argument "
+                                           : " expects a light handle as argument ") +
+                                 argNo);
+                return false;
+            }
+            ++vi;
+            ++si;
+        } else if (c == 'I') {
+            const Value* v = vi < vals.size() ? &vals[vi] : nullptr;
+            if (!v || !v->array || v->isString) {
+                m_diag.error(loc, req + " expects an integer array as argument " + argNo);
+                return false;
+            }
+            std::vector<int> ints;
+            ints.reserve(v->nums.size());
+            for (double d : v->nums) {
+                if (!isIntegral(d)) {
+                    m_diag.error(loc, req + " expects integers in argument " + argNo);
+                    return false;
+                }
+                ints.push_back(static_cast<int>(d));
+            }
+            args.intArrays.push_back(std::move(ints));
+            ++vi;
+            ++si;
+        } else {
+            ++si;  // unknown signature letter: a bug in requests.def, not in the input
+        }
+    }
+    if (takesParams) return parseParams(info, vals, vi, args.params, loc);
+    if (vi < vals.size()) {
+        m_diag.error(loc, req + " has too many arguments");
+        return false;
+    }
+    return true;
+}
+
+bool Reader::parseParams(const RequestInfo& info, const std::vector<Value>& vals,
+                         size_t vi, ParamList& out, const SourceLoc& loc) {
+    for (; vi < vals.size(); vi += 2) {
+        const Value& nameV = vals[vi];
+        if (!nameV.isString || nameV.strs.size() != 1) {
+            std::string got = nameV.array ? "an array" : "a number";
+            if (!nameV.array && !nameV.nums.empty() && !nameV.isString)
+                got = "the number " + std::to_string(nameV.nums.front());
+            m_diag.error(loc, std::string(info.name) +
+                                  ": expected a parameter name, got " +
+                                  (nameV.isString ? "a string array" : got));
+            return false;
+        }
+        if (vi + 1 >= vals.size()) {
+            m_diag.error(loc, std::string(info.name) + ": parameter \"" +
+                                  nameV.strs.front() + "\" has no value");
+            return false;
+        }
+        Param p;
+        if (!buildParam(info, nameV.strs.front(), vals[vi + 1], p, loc)) return false;
+        out.params.push_back(std::move(p));
+    }
+    return true;
+}
+
+bool Reader::buildParam(const RequestInfo& info, const std::string& token, const Value& v,
+                        Param& p, const SourceLoc& loc) {
+    const std::string req = info.name;
+    ParamDecl decl;
+    bool inferred = false;
+    if (token.find_first_of(" \t[") != std::string::npos) {
+        if (!parseParamDecl(token, true, decl, p.name)) {
+            m_diag.error(loc, req + ": bad parameter declaration \"" + token + "\"");
+            return false;
+        }
+    } else {
+        p.name = token;
+        auto it = m_declared.find(token);
+        if (it != m_declared.end()) {
+            decl = it->second;
+        } else if (!predefinedParamDecl(token, decl)) {
+            inferred =
+                true;  // undeclared: the values decide (numbers float, strings string)
+        }
+    }
+    p.type = decl.type;
+    p.storage = decl.storage;
+    p.arraySize = decl.arraySize;
+    const std::string what = req + ": parameter \"" + p.name + "\"";
+    size_t count = 0;
+    if (v.isString) {
+        if (p.type != ParamType::String) {
+            if (!inferred) {
+                m_diag.error(loc, what + " is declared " + paramTypeName(p.type) +
+                                      " but has string values");
+                return false;
+            }
+            p.type = ParamType::String;
+        }
+        p.strings = v.strs;
+        count = p.strings.size();
+    } else if (p.type == ParamType::String) {
+        if (!v.nums.empty()) {
+            m_diag.error(loc, what + " is declared string but has numbers");
+            return false;
+        }
+    } else if (p.type == ParamType::Integer) {
+        p.ints.reserve(v.nums.size());
+        for (double d : v.nums) {
+            if (!isIntegral(d)) {
+                m_diag.error(loc,
+                             what + " is declared integer but has non-integer values");
+                return false;
+            }
+            p.ints.push_back(static_cast<int>(d));
+        }
+        count = p.ints.size();
+    } else {
+        p.floats.reserve(v.nums.size());
+        for (double d : v.nums) p.floats.push_back(static_cast<float>(d));
+        count = p.floats.size();
+    }
+    size_t per = static_cast<size_t>(p.components()) * static_cast<size_t>(p.arraySize);
+    if (per > 1 && count % per != 0) {
+        std::string type = paramTypeName(p.type);
+        if (p.arraySize > 1) type += "[" + std::to_string(p.arraySize) + "]";
+        m_diag.error(loc, what + " (" + type + ") needs a multiple of " +
+                              std::to_string(per) + " values, got " +
+                              std::to_string(count));
+        return false;
+    }
+    return true;
+}
+
+}  // namespace detail
+
+bool readString(const std::string& text, const std::string& name, Target& target,
+                Diagnostics& diag, const ReadOptions& options) {
+    int before = diag.errorCount();
+    Lexer lex(name, diag);
+    lex.setText(text);
+    detail::Reader reader(lex, target, diag, options);
+    reader.run();
+    return diag.errorCount() == before;
+}
+
+bool readFile(const std::string& path, Target& target, Diagnostics& diag,
+              const ReadOptions& options) {
+    int before = diag.errorCount();
+    errno = 0;
+    gzFile file = gzopen(path.c_str(), "rb");
+    if (!file) {
+        diag.error(SourceLoc{path, 0}, std::string("cannot open RIB file: ") +
+                                           std::strerror(errno ? errno : ENOMEM));
+        return false;
+    }
+    Lexer lex(path, diag);
+    lex.setFile(file);
+    detail::Reader reader(lex, target, diag, options);
+    reader.run();
+    gzclose(file);
+    return diag.errorCount() == before;
+}
+
+}  // namespace rib
