@@ -1,0 +1,49 @@
+// render_harness.cpp: the in-process render used by the render tests.
+#include "render_harness.h"
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+#include "ocl/device.h"
+#include "rib/reader.h"
+#include "scene/rib_builder.h"
+
+namespace rd::test {
+
+double Rendered::mean(int channel, int x0, int y0, int x1, int y1) const {
+    double sum = 0;
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x, ++n) {
+            const Rgba& p = at(x, y);
+            sum += channel == 0 ? p.r : channel == 1 ? p.g : channel == 2 ? p.b : p.a;
+        }
+    return n ? sum / n : 0.0;
+}
+
+const ClContext& testContext() {
+    static ClContext ctx(selectDevice(""));
+    return ctx;
+}
+
+Rendered renderRib(const std::string& rib, const RenderSettings& settings) {
+    rib::Diagnostics diag(&std::cerr);
+    RibBuilder builder(diag, "test.rib");
+    rib::readString(rib, "test.rib", builder, diag);
+    EXPECT_EQ(diag.errorCount(), 0) << diag.lastMessage();
+    Rendered out;
+    if (builder.scenes().empty()) {
+        ADD_FAILURE() << "no world block rendered";
+        return out;
+    }
+    Renderer renderer(testContext(), settings);
+    Film film;
+    out.stats = renderer.render(builder.scenes().front(), film);
+    out.width = film.width;
+    out.height = film.height;
+    out.pixels = film.resolve();
+    return out;
+}
+
+}  // namespace rd::test

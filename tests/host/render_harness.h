@@ -1,0 +1,29 @@
+// render_harness.h: renders a RIB string through the real pipeline (reader, Ri state
+// machine, BVH, kernels on the default OpenCL device) and returns the resolved image, for
+// render tests that check pixels against analytic values.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "film/film.h"
+#include "ocl/context.h"
+#include "render/renderer.h"
+
+namespace rd::test {
+
+struct Rendered {
+    int width = 0, height = 0;
+    std::vector<Rgba> pixels;
+    RenderStats stats;
+    const Rgba& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + x]; }
+    // Mean of one channel (0..3) over a rectangle [x0, x1) x [y0, y1).
+    double mean(int channel, int x0, int y0, int x1, int y1) const;
+};
+
+// The context every test shares (building one per test would dominate the run time).
+const ClContext& testContext();
+
+// Fails the calling test (gtest) if the RIB has errors; renders the first world block.
+Rendered renderRib(const std::string& rib, const RenderSettings& settings = {});
+
+}  // namespace rd::test
