@@ -11,6 +11,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <Imath/half.h>
 #include <unistd.h>
 
 namespace rd {
@@ -29,12 +30,23 @@ void writeExr(const std::string& path, int width, int height, const std::vector<
         const char* names[] = {"R", "G", "B", "A"};
         int channels = options.alpha ? 4 : 3;
         for (int c = 0; c < channels; ++c) header.channels().insert(names[c], Imf::Channel(type));
-        // OpenEXR converts our float buffer to half on write when the channel is HALF.
+        // OpenEXR does not convert on write: a HALF channel needs a half buffer.
         Imf::FrameBuffer fb;
-        char* base = reinterpret_cast<char*>(const_cast<Rgba*>(pixels.data()));
+        std::vector<Imath::half> halves;
+        if (options.halfFloat) {
+            halves.resize(pixels.size() * 4);
+            for (size_t i = 0; i < pixels.size(); ++i) {
+                const float* p = &pixels[i].r;
+                for (int c = 0; c < 4; ++c) halves[4 * i + c] = Imath::half(p[c]);
+            }
+        }
+        char* base = options.halfFloat
+                         ? reinterpret_cast<char*>(halves.data())
+                         : reinterpret_cast<char*>(const_cast<Rgba*>(pixels.data()));
+        size_t comp = options.halfFloat ? sizeof(Imath::half) : sizeof(float);
         for (int c = 0; c < channels; ++c)
-            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(Rgba),
-                                           sizeof(Rgba) * size_t(width)));
+            fb.insert(names[c], Imf::Slice(type, base + c * comp, 4 * comp,
+                                           4 * comp * size_t(width)));
         {
             Imf::OutputFile file(tmp.c_str(), header);
             file.setFrameBuffer(fb);
