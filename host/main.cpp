@@ -46,7 +46,9 @@ std::string outputName(const rd::Scene& scene, const std::string& override, size
     if (name.empty()) name = scene.display.name;
     if (name.empty())
         name = std::filesystem::path(scene.sourceFile).stem().string() + ".exr";
-    if (frames > 1 && !override.empty()) {
+    // Several frames sharing one name (-o, or no Display: the scene stem) are numbered,
+    // else each frame would overwrite the one before.
+    if (frames > 1 && (!override.empty() || scene.display.name.empty())) {
         std::filesystem::path p(name);
         name = (p.parent_path() / (p.stem().string() + "." + std::to_string(frame + 1) +
                                    p.extension().string()))
