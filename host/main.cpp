@@ -1,7 +1,9 @@
 // main.cpp: the `raydrive` command. Parses the command line, reads the RIB, renders each
 // world block on the chosen OpenCL device and writes the image; it alone picks the exit
-// code: 0 success, 1 bad input (RIB errors, missing file), 2 usage, 3 device or OpenCL
-// failure, 4 output could not be written.
+// code: 0 success (also a render ended by its time budget or error target), 1 bad input
+// (RIB errors, missing file), 2 usage, 3 device or OpenCL failure, 4 output could not be
+// written, 128 + signal when SIGINT/SIGTERM stopped it (the image is still written).
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -12,6 +14,7 @@
 #include "ocl/check.h"
 #include "ocl/device.h"
 #include "render/renderer.h"
+#include "render/stop.h"
 #include "rib/reader.h"
 #include "scene/rib_builder.h"
 #include "stats/stats_report.h"
@@ -37,6 +40,7 @@ int listDevicesCommand() {
                   << ", " << d.version << ", driver " << d.driverVersion << "\n";
     }
     std::cout << "(* = default; choose with --device N|NAME or RAYDRIVE_DEVICE)\n";
+    if (int sig = rd::stopSignal()) return 128 + sig;
     return 0;
 }
 
@@ -63,6 +67,8 @@ int main(int argc, char** argv) {
     CLI::App app{"RayDrive: a RenderMan renderer on OpenCL, after ART's RenderDrive"};
     std::string scenePath, output, deviceSpec, statsPath;
     bool quiet = false, halfFloat = false;
+    double timeBudget = 0, errorTarget = 0;
+    std::vector<std::string> aovs;
     app.add_option("scene", scenePath, "RIB file to render, or `devices` to list devices")
         ->required();
     app.add_option("-o,--output", output, "output file (overrides the RIB's Display)");
@@ -70,6 +76,12 @@ int main(int argc, char** argv) {
                    "OpenCL device: index or name substring (default: RAYDRIVE_DEVICE, "
                    "else PoCL CPU)");
     app.add_option("--stats", statsPath, "write statistics as JSON to FILE, or a table to -");
+    app.add_option("--time", timeBudget, "stop after SECONDS and write what is done")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--error", errorTarget, "stop at this relative error (e.g. 0.01)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--aov", aovs, "extra EXR channels: z, N, samples, error, filled")
+        ->check(CLI::IsMember({"z", "N", "samples", "error", "filled"}));
     app.add_flag("--half", halfFloat, "write 16-bit half-float channels");
     app.add_flag("-q,--quiet", quiet, "print nothing but errors");
     try {
@@ -97,9 +109,17 @@ int main(int argc, char** argv) {
     try {
         rd::DeviceInfo device = rd::selectDevice(deviceSpec);
         rd::ClContext ctx(device);
-        rd::Renderer renderer(ctx, rd::RenderSettings{});
+        rd::installStopSignals();
         nlohmann::json allStats = nlohmann::json::array();
-        for (size_t i = 0; i < scenes.size(); ++i) {
+        for (size_t i = 0; i < scenes.size() && !rd::stopSignal(); ++i) {
+            std::vector<std::string> wanted = scenes[i].aovs;
+            wanted.insert(wanted.end(), aovs.begin(), aovs.end());
+            rd::RenderSettings settings;
+            settings.timeBudget = timeBudget;
+            settings.errorTarget = errorTarget;
+            settings.progress = !quiet;
+            for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
+            rd::Renderer renderer(ctx, settings);
             rd::Film film;
             rd::RenderStats st = renderer.render(scenes[i], film);
             std::string out = outputName(scenes[i], output, i, scenes.size());
@@ -109,6 +129,15 @@ int main(int argc, char** argv) {
             opts.metadata["software"] = "RayDrive " RAYDRIVE_VERSION;
             opts.metadata["raydrive:device"] = st.device;
             opts.metadata["raydrive:scene"] = scenePath;
+            opts.metadata["raydrive:stop"] = st.stopReason;
+            opts.metadata["raydrive:estimated_error"] = std::to_string(st.estimatedError);
+            opts.metadata["raydrive:samples"] = std::to_string(film.sampleCount());
+            // Pixels never reached are filled from neighbours: say which, always.
+            if (st.unsampledPixels > 0) wanted.push_back("filled");
+            std::sort(wanted.begin(), wanted.end());
+            wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+            for (const std::string& a : wanted)
+                for (rd::Channel& c : film.aovChannels(a)) opts.extra.push_back(std::move(c));
             try {
                 rd::writeExr(out, film.width, film.height, film.resolve(), opts);
             } catch (const std::exception& e) {
@@ -118,7 +147,8 @@ int main(int argc, char** argv) {
             if (!quiet)
                 std::cerr << "raydrive: wrote " << out << " (" << film.width << "x"
                           << film.height << ", " << st.elapsedSec << " s on " << st.device
-                          << ")\n";
+                          << ", stopped by " << st.stopReason << ", estimated error "
+                          << st.estimatedError << ")\n";
             if (st.nonfiniteSamples > 0 && !quiet)
                 std::cerr << "raydrive: warning: " << st.nonfiniteSamples
                           << " sample(s) with NaN or Inf were left out of the image\n";
@@ -144,5 +174,6 @@ int main(int argc, char** argv) {
         std::cerr << "raydrive: error: " << e.what() << "\n";
         return 3;
     }
+    if (int sig = rd::stopSignal()) return 128 + sig;
     return 0;
 }

@@ -17,8 +17,28 @@ typedef struct PixelAccum {
     uint32_t pad[2];
 } PixelAccum;
 
+/* Geometric AOVs of a pixel, summed over the samples whose eye ray hit something
+ * (allocated only when an AOV is asked for). */
+typedef struct AovAccum {
+    rt_float4 normal_sum; /* world-space shading normal of the first hit */
+    float z_sum;          /* camera-space depth of the first hit */
+    uint32_t hits;
+    uint32_t pad[2];
+} AovAccum;
+
+/* Per-sample AOV record: z is the camera depth per unit of ray distance until the eye ray
+ * hits, then the depth; hit = 1 once it has. */
+typedef struct SampleAov {
+    rt_float4 normal;
+    float z;
+    uint32_t hit;
+    uint32_t pad[2];
+} SampleAov;
+
 #ifndef __OPENCL_C_VERSION__
 RT_ASSERT_SIZE(SampleTotal, 16);
 RT_ASSERT_SIZE(PixelAccum, 48);
+RT_ASSERT_SIZE(AovAccum, 32);
+RT_ASSERT_SIZE(SampleAov, 32);
 #endif
 #endif

@@ -1,6 +1,6 @@
-/* generate_eye.cl: the refill stage. One eye sample per pool slot for the current tile:
- * slot i is pixel i / spp of the tile, sub-sample i % spp, jittered inside its stratum of
- * the PixelSamples grid. The sample's running total starts at zero. */
+/* generate_eye.cl: the refill stage. One eye sample per pool slot: slot i is sample
+ * sample_index[i] of pixel sample_pixel[i] (the host's sample plan), placed in the pixel
+ * by the pixel's scrambled Sobol sequence (rng.clh). The running total starts at zero. */
 #include "counters.clh"
 #include "math.clh"
 #include "rng.clh"
@@ -9,23 +9,24 @@
 #include "scene_types.h"
 
 __kernel void generate_eye(__constant Camera* cam,
-                           int tile_x, int tile_y, int tile_w, uint count,
+                           uint count,
+                           __global const uint* sample_pixel,
+                           __global const uint* sample_index,
                            __global float4* origin,      /* xyz, w = tmin */
                            __global float4* direction,   /* xyz, w = tmax */
                            __global float4* weight,
                            __global RayState* state,
                            __global SampleTotal* total,
+                           __global SampleAov* aov, /* used with RT_HAS_AOVS */
                            __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
     RT_COUNT_ACTIVE(active_counter, i < count);
     if (i >= count) return;
-    int spp = cam->spp_x * cam->spp_y;
-    int local_pixel = (int)i / spp, s = (int)i % spp;
-    int px = tile_x + local_pixel % tile_w, py = tile_y + local_pixel / tile_w;
-    uint pixel = (uint)(py * cam->width + px);
-    float jx = ((float)(s % cam->spp_x) + rt_random(pixel, (uint)s, 0)) / (float)cam->spp_x;
-    float jy = ((float)(s / cam->spp_x) + rt_random(pixel, (uint)s, 1)) / (float)cam->spp_y;
+    uint pixel = sample_pixel[i], s = sample_index[i];
+    int px = (int)(pixel % (uint)cam->width), py = (int)(pixel / (uint)cam->width);
+    float2 j = rt_pixel_sample(pixel, s);
+    float jx = j.x, jy = j.y;
     /* raster -> screen window: x grows right, y grows up */
     float sx = cam->screen[0] + ((float)px + jx) / (float)cam->width *
                                     (cam->screen[1] - cam->screen[0]);
@@ -60,4 +61,9 @@ __kernel void generate_eye(__constant Camera* cam,
     RayState st = {1u, 0u, RT_NO_HIT, 0u};
     state[i] = st;
     total[i].value = (float4)(0.0f);
+#ifdef RT_HAS_AOVS
+    /* camera z per unit of world ray distance: the unit camera direction's z over len */
+    SampleAov a = {(float4)(0.0f), d_cam.z / len, 0u, {0u, 0u}};
+    aov[i] = a;
+#endif
 }

@@ -29,6 +29,7 @@ __kernel void shade(uint count,
                     __global float4* shadow_direction,
                     __global float4* shadow_weight,
                     __global RayState* shadow_state,
+                    __global SampleAov* aov, /* used with RT_HAS_AOVS */
                     __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
@@ -60,6 +61,13 @@ __kernel void shade(uint count,
     /* faceforward(N, I) with Ng as reference, as RSL defines it */
     float facing = rt_dot3(d, Ng) < 0.0f ? 1.0f : -1.0f;
     float4 Nf = facing * N, Ngf = facing * Ng;
+#ifdef RT_HAS_AOVS
+    if (!aov[i].hit) {
+        aov[i].z *= h.t;
+        aov[i].normal = Nf;
+        aov[i].hit = 1u;
+    }
+#endif
     float4 V = -d;
     V.w = 0.0f;
     float4 os = m.os, cs = m.cs;

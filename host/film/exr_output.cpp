@@ -47,6 +47,14 @@ void writeExr(const std::string& path, int width, int height, const std::vector<
         for (int c = 0; c < channels; ++c)
             fb.insert(names[c], Imf::Slice(type, base + c * comp, 4 * comp,
                                            4 * comp * size_t(width)));
+        for (const Channel& c : options.extra) {
+            if (c.values.size() != pixels.size())
+                throw std::runtime_error("AOV channel " + c.name + " has the wrong size");
+            header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+            fb.insert(c.name, Imf::Slice(Imf::FLOAT,
+                                         reinterpret_cast<char*>(const_cast<float*>(c.values.data())),
+                                         sizeof(float), sizeof(float) * size_t(width)));
+        }
         {
             Imf::OutputFile file(tmp.c_str(), header);
             file.setFrameBuffer(fb);

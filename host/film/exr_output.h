@@ -14,6 +14,7 @@ struct ExrOptions {
     bool alpha = true;       // "rgba" vs "rgb"
     bool halfFloat = false;  // 16-bit half instead of 32-bit float channels
     std::map<std::string, std::string> metadata;  // string attributes in the header
+    std::vector<Channel> extra;  // AOV channels (always 32-bit float), width*height each
 };
 
 // Throws std::runtime_error with the file name and the reason on failure.

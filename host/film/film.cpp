@@ -1,17 +1,55 @@
-// film.cpp: resolving the accumulated film.
+// film.cpp: resolving the accumulated film, filling unreached pixels, and AOV channels.
 #include "film.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "film_error.h"
 
 namespace rd {
 
+std::vector<int64_t> Film::nearestSampled() const {
+    std::vector<int64_t> src(pixels.size(), -1);
+    std::vector<int64_t> queue;
+    queue.reserve(pixels.size());
+    for (size_t i = 0; i < pixels.size(); ++i)
+        if (pixels[i].count > 0) {
+            src[i] = int64_t(i);
+            queue.push_back(int64_t(i));
+        }
+    for (size_t head = 0; head < queue.size(); ++head) {
+        int64_t i = queue[head];
+        int x = int(i % width), y = int(i / width);
+        const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+        for (int k = 0; k < 4; ++k) {
+            int nx = x + dx[k], ny = y + dy[k];
+            if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+            int64_t j = int64_t(ny) * width + nx;
+            if (src[j] >= 0) continue;
+            src[j] = src[i];
+            queue.push_back(j);
+        }
+    }
+    return src;
+}
+
 std::vector<Rgba> Film::resolve() const {
     std::vector<Rgba> out(pixels.size(), Rgba{0, 0, 0, 0});
+    std::vector<int64_t> src = nearestSampled();
     for (size_t i = 0; i < pixels.size(); ++i) {
-        const PixelAccum& p = pixels[i];
-        if (p.count == 0) continue;
+        if (src[i] < 0) continue;
+        const PixelAccum& p = pixels[size_t(src[i])];
         float inv = 1.0f / float(p.count);
         out[i] = {p.sum.x * inv, p.sum.y * inv, p.sum.z * inv, p.sum.w * inv};
     }
     return out;
+}
+
+std::vector<float> Film::filledMask() const {
+    std::vector<float> m(pixels.size(), 0.0f);
+    for (size_t i = 0; i < pixels.size(); ++i) m[i] = pixels[i].count == 0 ? 1.0f : 0.0f;
+    return m;
 }
 
 uint64_t Film::sampleCount() const {
@@ -24,6 +62,47 @@ uint64_t Film::nonfiniteCount() const {
     uint64_t n = 0;
     for (const PixelAccum& p : pixels) n += p.nonfinite;
     return n;
+}
+
+uint64_t Film::unsampledCount() const {
+    uint64_t n = 0;
+    for (const PixelAccum& p : pixels) n += p.count == 0;
+    return n;
+}
+
+std::vector<Channel> Film::aovChannels(const std::string& name) const {
+    const size_t n = pixels.size();
+    if (name == "samples") {
+        Channel c{"samples", std::vector<float>(n)};
+        for (size_t i = 0; i < n; ++i) c.values[i] = float(pixels[i].count);
+        return {c};
+    }
+    if (name == "error") return {{"error", pixelRelativeErrors(pixels)}};
+    if (name == "filled") return {{"filled", filledMask()}};
+    if (name != "z" && name != "N")
+        throw std::runtime_error("unknown AOV \"" + name +
+                                 "\" (known: z, N, samples, error, filled)");
+    if (aovs.size() != n)
+        throw std::runtime_error("AOV \"" + name + "\" was not rendered");
+    if (name == "z") {
+        // Misses have no depth: +inf, as a depth compositor expects for empty pixels.
+        Channel c{"Z", std::vector<float>(n, std::numeric_limits<float>::infinity())};
+        for (size_t i = 0; i < n; ++i)
+            if (aovs[i].hits) c.values[i] = aovs[i].z_sum / float(aovs[i].hits);
+        return {c};
+    }
+    std::vector<Channel> out{{"N.X", std::vector<float>(n)},
+                             {"N.Y", std::vector<float>(n)},
+                             {"N.Z", std::vector<float>(n)}};
+    for (size_t i = 0; i < n; ++i) {
+        const rt_float4& s = aovs[i].normal_sum;
+        float len = std::sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
+        if (len <= 0) continue;
+        out[0].values[i] = s.x / len;
+        out[1].values[i] = s.y / len;
+        out[2].values[i] = s.z / len;
+    }
+    return out;
 }
 
 }  // namespace rd

@@ -19,6 +19,7 @@ std::vector<std::string> Features::names() const {
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
+    if (aovs) n.push_back("aovs");
     return n;
 }
 
@@ -30,6 +31,7 @@ std::string buildOptions(const Features& f) {
         o += " -DRT_HAS_TRANSPARENCY -DRT_MAX_TRANSPARENT_DEPTH=" +
              std::to_string(f.maxTransparentDepth);
     if (f.shadowRays) o += " -DRT_HAS_SHADOW_RAYS";
+    if (f.aovs) o += " -DRT_HAS_AOVS";
     return o;
 }
 

@@ -13,6 +13,7 @@ struct Features {
     bool smoothNormals = false; // per-vertex normals to interpolate
     bool transparency = false;  // some Os < 1: continuation rays
     bool shadowRays = false;    // some light other than ambient
+    bool aovs = false;          // geometric AOVs (z, N) asked for
     uint32_t lightCount = 0;
     int maxTransparentDepth = 16;
 

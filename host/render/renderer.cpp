@@ -1,26 +1,107 @@
-// renderer.cpp: the render loop. Reads as the algorithm: analyse, build, upload, then per
-// tile: refill (generate_eye), trace (intersect_closest), shade, trace shadows
-// (intersect_shadow), add them (accumulate_shadows), retire (retire_samples).
+// renderer.cpp: the render loop. It reads as the algorithm: analyse the scene, build the
+// BVH and the specialised program, upload; then pass after pass of the sample plan, each
+// in batches that fill the ray pool: refill (generate_eye), trace (intersect_closest),
+// shade, trace shadows (intersect_shadow), add them (accumulate_shadows), retire
+// (retire_samples). Between launches it polls the stop conditions; a batch cut short is
+// dropped whole, so the film holds only whole samples.
 #include "renderer.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
-#include "bvh/sah_builder.h"
 #include "cl/include/ray.h"
-#include "ocl/buffer.h"
+#include "device_scene.h"
+#include "film/film_error.h"
+#include "progress.h"
+#include "stop.h"
 
 namespace rd {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 const std::vector<std::string> kRenderSources = {"generate_eye.cl", "intersect.cl",
                                                  "shade_builtin.cl", "retire.cl"};
+
+// The ray pool: one slot per eye sample of a batch, light_count shadow slots each, and
+// the per-sample AOV record only when AOVs are rendered.
+struct RayPool {
+    RayPool(const ClContext& ctx, size_t capacity, uint32_t shadowLights, bool aovs)
+        : origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity),
+          state(ctx, capacity), hits(ctx, capacity), totals(ctx, capacity),
+          shOrigin(ctx, capacity * shadowLights), shDirection(ctx, capacity * shadowLights),
+          shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
+          aov(ctx, aovs ? capacity : 0), samplePixel(ctx, capacity),
+          sampleIndex(ctx, capacity), batchPixel(ctx, capacity),
+          batchFirst(ctx, capacity + 1) {
+        shState.fillZero();
+    }
+    DeviceBuffer<rt_float4> origin, direction, weight;
+    DeviceBuffer<RayState> state;
+    DeviceBuffer<RayHit> hits;
+    DeviceBuffer<SampleTotal> totals;
+    DeviceBuffer<rt_float4> shOrigin, shDirection, shWeight;
+    DeviceBuffer<RayState> shState;
+    DeviceBuffer<SampleAov> aov;
+    DeviceBuffer<uint32_t> samplePixel, sampleIndex;  // the batch's samples
+    DeviceBuffer<uint32_t> batchPixel, batchFirst;    // its pixels, CSR over the samples
+};
+
+struct RenderKernels {
+    RenderKernels(const ClContext& ctx, cl_program p, Profiler& prof)
+        : generateEye(ctx, p, "generate_eye", prof),
+          intersectClosest(ctx, p, "intersect_closest", prof),
+          shade(ctx, p, "shade", prof),
+          intersectShadow(ctx, p, "intersect_shadow", prof),
+          accumulateShadows(ctx, p, "accumulate_shadows", prof),
+          retire(ctx, p, "retire_samples", prof) {}
+    Kernel generateEye, intersectClosest, shade, intersectShadow, accumulateShadows, retire;
+    std::vector<Kernel*> all() {
+        return {&generateEye, &intersectClosest, &shade, &intersectShadow, &accumulateShadows,
+                &retire};
+    }
+};
+
+// A batch: pixel-major list of samples, at most the pool's capacity.
+struct Batch {
+    std::vector<uint32_t> samplePixel, sampleIndex, pixel, first;
+};
+
+// Cuts a pass into batches of at most `capacity` samples; a pixel's samples stay
+// contiguous within a batch (the retire kernel relies on it).
+std::vector<Batch> makeBatches(const std::vector<PixelRequest>& pass, size_t capacity) {
+    std::vector<Batch> out;
+    Batch b;
+    auto flush = [&] {
+        if (b.samplePixel.empty()) return;
+        b.first.push_back(uint32_t(b.samplePixel.size()));
+        out.push_back(std::move(b));
+        b = Batch();
+    };
+    for (const PixelRequest& r : pass) {
+        uint32_t done = 0;
+        while (done < r.count) {
+            if (b.samplePixel.size() == capacity) flush();
+            uint32_t take = uint32_t(std::min<size_t>(r.count - done,
+                                                      capacity - b.samplePixel.size()));
+            b.pixel.push_back(r.pixel);
+            b.first.push_back(uint32_t(b.samplePixel.size()));
+            for (uint32_t k = 0; k < take; ++k) {
+                b.samplePixel.push_back(r.pixel);
+                b.sampleIndex.push_back(r.first + done + k);
+            }
+            done += take;
+        }
+    }
+    flush();
+    return out;
+}
+
+const char* signalName(int sig) { return sig == 2 ? "SIGINT" : sig == 15 ? "SIGTERM" : "signal"; }
 
 }  // namespace
 
@@ -28,120 +109,203 @@ Renderer::Renderer(const ClContext& ctx, const RenderSettings& settings)
     : m_ctx(ctx), m_settings(settings) {}
 
 RenderStats Renderer::render(const Scene& scene, Film& film) {
-    auto t0 = Clock::now();
+    const auto t0 = Clock::now();
     RenderStats st;
     st.device = m_ctx.name();
     st.platform = m_ctx.info().platformName;
-    st.features = analyse(scene);
-    const Features& f = st.features;
+    Features f = analyse(scene);
+    f.aovs = m_settings.geometricAovs;
+    st.features = f;
 
-    // Scene -> BVH -> device arrays
+    // Budgets: the command line wins over Option "render".
+    const double timeBudget = m_settings.timeBudget > 0 ? m_settings.timeBudget
+                                                        : scene.render.time;
+    const double errorTarget = m_settings.errorTarget > 0 ? m_settings.errorTarget
+                                                          : scene.render.error;
+
+    // Scene -> BVH -> specialised program -> device arrays
     auto tb = Clock::now();
-    std::vector<Aabb> bounds(scene.triangles.size());
-    for (size_t i = 0; i < scene.triangles.size(); ++i) {
-        const Triangle& t = scene.triangles[i];
-        Aabb b;
-        for (const rt_float4* v : {&t.v0, &t.v1, &t.v2}) {
-            const float p[3] = {v->x, v->y, v->z};
-            b.grow(p);
-        }
-        bounds[i] = b;
-    }
-    Bvh bvh = buildBvh(bounds);
-    st.bvhBuildMs = msSince(tb);
+    Bvh bvh = buildBvh(triangleBounds(scene));
+    st.bvhBuildMs = secondsSince(tb) * 1e3;
     st.triangles = scene.triangles.size();
     st.bvhNodes = bvh.nodes.size();
     st.droppedPrims = bvh.droppedPrims;
-
     Program program(m_ctx, assembleClSource(kRenderSources), buildOptions(f));
     st.program = program.info();
     Profiler prof(m_ctx);
-    Kernel generateEye(m_ctx, program.get(), "generate_eye", prof);
-    Kernel intersectClosest(m_ctx, program.get(), "intersect_closest", prof);
-    Kernel shade(m_ctx, program.get(), "shade", prof);
-    Kernel intersectShadow(m_ctx, program.get(), "intersect_shadow", prof);
-    Kernel accumulateShadows(m_ctx, program.get(), "accumulate_shadows", prof);
-    Kernel retire(m_ctx, program.get(), "retire_samples", prof);
+    RenderKernels k(m_ctx, program.get(), prof);
+    DeviceScene ds(m_ctx, scene, bvh, f);
+    const Camera& cam = ds.camera;
 
-    Camera cam = scene.deviceCamera();
-    DeviceBuffer<Camera> camBuf(m_ctx, std::vector<Camera>{cam});
-    DeviceBuffer<BvhNode> nodes(m_ctx, bvh.nodes);
-    DeviceBuffer<uint32_t> primIndex(m_ctx, bvh.primIndices);
-    DeviceBuffer<Triangle> tris(m_ctx, scene.triangles);
-    DeviceBuffer<TriangleAttr> attrs(m_ctx, scene.attrs);
-    DeviceBuffer<rt_float4> normals =
-        f.smoothNormals ? DeviceBuffer<rt_float4>(m_ctx, scene.normals)
-                        : DeviceBuffer<rt_float4>(m_ctx, 0);
-    DeviceBuffer<Material> materials(m_ctx, scene.materials);
-    DeviceBuffer<Light> lights(m_ctx, scene.lights);
-
-    // The pool: one slot per eye sample of a batch, plus light_count shadow slots each.
-    const int spp = cam.spp_x * cam.spp_y;
     const uint32_t nl = f.shadowRays ? f.lightCount : 0;
-    size_t pool = std::max<size_t>(m_settings.poolCapacity, size_t(spp));
-    int tileSide = std::max(1, int(std::sqrt(double(pool / size_t(spp)))));
-    tileSide = std::min(tileSide, std::max(cam.width, cam.height));
-    pool = size_t(tileSide) * size_t(tileSide) * size_t(spp);
+    const size_t pool = std::max<size_t>(64, m_settings.poolCapacity);
     st.poolCapacity = pool;
-    DeviceBuffer<rt_float4> origin(m_ctx, pool), direction(m_ctx, pool), weight(m_ctx, pool);
-    DeviceBuffer<RayState> state(m_ctx, pool);
-    DeviceBuffer<RayHit> hits(m_ctx, pool);
-    DeviceBuffer<SampleTotal> totals(m_ctx, pool);
-    DeviceBuffer<rt_float4> shOrigin(m_ctx, pool * nl), shDirection(m_ctx, pool * nl),
-        shWeight(m_ctx, pool * nl);
-    DeviceBuffer<RayState> shState(m_ctx, pool * nl);
-    shState.fillZero();
+    RayPool rp(m_ctx, pool, nl, f.aovs);
+    const size_t npix = size_t(cam.width) * size_t(cam.height);
     film.width = cam.width;
     film.height = cam.height;
-    DeviceBuffer<PixelAccum> filmBuf(m_ctx, size_t(cam.width) * size_t(cam.height));
+    DeviceBuffer<PixelAccum> filmBuf(m_ctx, npix);
     filmBuf.fillZero();
-    st.sceneSetupMs = msSince(t0);
+    DeviceBuffer<AovAccum> aovBuf(m_ctx, f.aovs ? npix : 0);
+    aovBuf.fillZero();
+    film.pixels.assign(npix, PixelAccum{});
+    st.sceneSetupMs = secondsSince(t0) * 1e3;
 
-    const int rounds = f.transparency ? f.maxTransparentDepth : 1;
-    for (int ty = 0; ty < cam.height; ty += tileSide) {
-        for (int tx = 0; tx < cam.width; tx += tileSide) {
-            const int tw = std::min(tileSide, cam.width - tx);
-            const int th = std::min(tileSide, cam.height - ty);
-            const cl_uint pixels = cl_uint(tw * th), n = pixels * cl_uint(spp);
-            ++st.tiles;
-            st.eyeRays += n;
-            generateEye.launch(n, camBuf, cl_int(tx), cl_int(ty), cl_int(tw), n, origin,
-                               direction, weight, state, totals);
-            uint64_t tracedBefore = 0;
-            for (int round = 0; round < rounds; ++round) {
-                intersectClosest.launch(n, n, nodes, primIndex, tris, origin, direction, state,
-                                        hits);
-                if (rounds > 1) {
-                    // Continuation rounds end when no ray of the batch is left alive.
-                    uint64_t traced = intersectClosest.peekActive();
-                    if (round > 0 && traced == tracedBefore) break;
-                    tracedBefore = traced;
-                }
-                shade.launch(n, n, tris, attrs, normals, materials, lights, f.lightCount,
-                             origin, direction, weight, state, hits, totals, shOrigin,
-                             shDirection, shWeight, shState);
-                if (nl > 0) {
-                    intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), nodes, primIndex,
-                                           tris, shOrigin, shDirection, shState);
-                    accumulateShadows.launch(n, n, nl, shWeight, shState, totals);
-                }
+    SamplingSettings ss;
+    ss.firstPassBlock = m_settings.firstPassBlock > 0 ? m_settings.firstPassBlock
+                                                      : scene.render.firstPassBlock;
+    ss.pixelError = scene.render.pixelError;
+    const bool openEnded = timeBudget > 0 || errorTarget > 0;
+    ss.maxSamples = openEnded ? 1u << 16 : uint32_t(cam.spp_x * cam.spp_y);
+    ss.minSamples = std::min(2u, ss.maxSamples);
+    SamplePlanner planner(cam.width, cam.height, ss);
+    Progress progress(m_settings.progress);
+
+    auto stopNow = [&] {
+        if (int sig = stopSignal()) {
+            st.stopReason = signalName(sig);
+            return true;
+        }
+        // The first batch always completes, so a budget smaller than the set-up time still
+        // yields an image (at the cost of overrunning it by one short batch).
+        if (timeBudget > 0 && st.batches > 0 && secondsSince(t0) >= timeBudget) {
+            st.stopReason = "time budget";
+            return true;
+        }
+        return false;
+    };
+    // Returns false when a stop cut the batch short (its samples are then dropped).
+    auto traceBatch = [&](const Batch& b) {
+        const cl_uint n = cl_uint(b.samplePixel.size()), pixels = cl_uint(b.pixel.size());
+        rp.samplePixel.upload(b.samplePixel);
+        rp.sampleIndex.upload(b.sampleIndex);
+        rp.batchPixel.upload(b.pixel);
+        rp.batchFirst.upload(b.first);
+        k.generateEye.launch(n, ds.cameraBuf, n, rp.samplePixel, rp.sampleIndex, rp.origin,
+                             rp.direction, rp.weight, rp.state, rp.totals, rp.aov);
+        const int rounds = f.transparency ? f.maxTransparentDepth : 1;
+        uint64_t tracedBefore = 0;
+        for (int round = 0; round < rounds; ++round) {
+            if (stopNow()) return false;
+            k.intersectClosest.launch(n, n, ds.nodes, ds.primIndex, ds.triangles, rp.origin,
+                                      rp.direction, rp.state, rp.hits);
+            if (rounds > 1) {
+                // Continuation rounds end when no ray of the batch is left alive.
+                uint64_t traced = k.intersectClosest.peekActive();
+                if (round > 0 && traced == tracedBefore) break;
+                tracedBefore = traced;
             }
-            retire.launch(pixels, cl_int(tx), cl_int(ty), cl_int(tw), pixels,
-                          cl_int(cam.width), cl_int(spp), totals, filmBuf);
-            prof.collect();
+            k.shade.launch(n, n, ds.triangles, ds.attrs, ds.normals, ds.materials, ds.lights,
+                           f.lightCount, rp.origin, rp.direction, rp.weight, rp.state, rp.hits,
+                           rp.totals, rp.shOrigin, rp.shDirection, rp.shWeight, rp.shState,
+                           rp.aov);
+            if (nl > 0) {
+                k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes,
+                                         ds.primIndex, ds.triangles, rp.shOrigin,
+                                         rp.shDirection, rp.shState);
+                k.accumulateShadows.launch(n, n, nl, rp.shWeight, rp.shState, rp.totals);
+            }
+        }
+        if (stopNow()) return false;
+        k.retire.launch(pixels, pixels, rp.batchPixel, rp.batchFirst, rp.totals, filmBuf,
+                        rp.aov, aovBuf);
+        return true;
+    };
+
+    // Batches are sized to about a quarter second once the speed is known, so a stop or
+    // a time budget is honoured promptly and the error series is sampled often.
+    size_t batchCap = std::min<size_t>(pool, 16384);
+    double samplesPerSec = 0;
+    double lastSample = -1;
+    auto sampleError = [&](bool force) {
+        double now = secondsSince(t0);
+        if (!force && now - lastSample < 0.5) return;
+        lastSample = now;
+        film.pixels = filmBuf.download();
+        st.estimatedError = estimateFilmError(film.pixels);
+        prof.collect();
+        uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive();
+        st.errorVsTime.push_back({now, rays, st.estimatedError});
+    };
+
+    bool stopped = false;
+    while (!stopped) {
+        float pixelError = ss.pixelError;
+        if (errorTarget > 0) pixelError = float(errorTarget);
+        else if (timeBudget > 0 && st.estimatedError > 0)
+            pixelError = float(0.5 * st.estimatedError);  // refine the worse half
+        std::vector<PixelRequest> pass = planner.nextPass(film.pixels, pixelError);
+        if (pass.empty()) {
+            st.stopReason = "quality";
+            break;
+        }
+        ++st.passes;
+        size_t done = 0;
+        while (done < pass.size() && !stopped) {
+            // Take pixels until the batch holds batchCap samples (fewer when the time
+            // budget has less than a quarter second left: a batch cut short is wasted).
+            size_t cap = batchCap;
+            if (timeBudget > 0 && samplesPerSec > 0) {
+                double left = timeBudget - secondsSince(t0);
+                cap = std::clamp<size_t>(size_t(samplesPerSec * left * 0.9), 256, batchCap);
+            }
+            size_t end = done, samples = 0;
+            while (end < pass.size() && samples < cap) samples += pass[end++].count;
+            std::vector<PixelRequest> part(pass.begin() + long(done), pass.begin() + long(end));
+            done = end;
+            for (const Batch& b : makeBatches(part, pool)) {
+                auto tBatch = Clock::now();
+                if (!traceBatch(b)) {
+                    st.abortedSamples += b.samplePixel.size();
+                    stopped = true;
+                    break;
+                }
+                m_ctx.finish();
+                ++st.batches;
+                st.eyeRays += b.samplePixel.size();
+                double dt = secondsSince(tBatch);
+                if (dt > 0) samplesPerSec = double(b.samplePixel.size()) / dt;
+                batchCap = std::clamp<size_t>(size_t(samplesPerSec * 0.25), 1024, pool);
+                sampleError(false);
+                double fraction =
+                    timeBudget > 0 ? secondsSince(t0) / timeBudget
+                    : errorTarget > 0 && st.estimatedError > 0
+                        ? std::min(1.0, std::log(1.0 / st.estimatedError) /
+                                            std::log(1.0 / errorTarget))
+                        : double(st.eyeRays) / double(npix * ss.maxSamples);
+                progress.update(fraction, secondsSince(t0), st.eyeRays, st.estimatedError);
+            }
+        }
+        if (stopped) break;
+        sampleError(true);
+        if (errorTarget > 0 && st.estimatedError >= 0 && st.estimatedError <= errorTarget) {
+            st.stopReason = "error target";
+            break;
         }
     }
+    progress.finish();
     m_ctx.finish();
     prof.collect();
-    for (Kernel* k : {&generateEye, &intersectClosest, &shade, &intersectShadow,
-                      &accumulateShadows, &retire})
-        k->collectActive();
+    for (Kernel* kern : k.all()) kern->collectActive();
     st.kernels = prof.stats();
-    st.continuationRays = st.kernels["intersect_closest"].activeItems - st.eyeRays;
-    st.shadowRays = st.kernels["intersect_shadow"].activeItems;
+    auto active = [&](const char* name) {
+        auto it = st.kernels.find(name);
+        return it == st.kernels.end() ? uint64_t(0) : it->second.activeItems;
+    };
+    // Eye rays of dropped batches were traced too; count what the device did.
+    st.eyeRays += st.abortedSamples;
+    st.continuationRays = active("intersect_closest") > st.eyeRays
+                              ? active("intersect_closest") - st.eyeRays
+                              : 0;
+    st.shadowRays = active("intersect_shadow");
     film.pixels = filmBuf.download();
+    if (f.aovs) film.aovs = aovBuf.download();
+    st.estimatedError = estimateFilmError(film.pixels);
     st.nonfiniteSamples = film.nonfiniteCount();
-    st.elapsedSec = msSince(t0) / 1000.0;
+    st.unsampledPixels = film.unsampledCount();
+    st.passes = planner.passes();
+    st.elapsedSec = secondsSince(t0);
+    st.errorVsTime.push_back({st.elapsedSec, st.totalRays(), st.estimatedError});
     return st;
 }
 

@@ -1,22 +1,37 @@
 // renderer.h: the render loop of DESIGN.md section 3 for one Scene on one device: upload
-// the scene and its BVH, then for each tile refill the pool with eye samples, trace and
-// shade in rounds, trace shadow rays, and retire whole samples to the film.
+// the scene and its BVH, then pass after pass of adaptive sampling, in batches that fill
+// the ray pool: refill with eye samples, trace and shade in rounds, trace shadow rays,
+// retire whole samples to the film; stop on quality, error target, time budget or signal.
 #pragma once
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "features.h"
 #include "film/film.h"
 #include "ocl/context.h"
 #include "ocl/kernel.h"
 #include "ocl/program.h"
-#include "features.h"
+#include "sampling.h"
 #include "scene/scene.h"
 
 namespace rd {
 
 struct RenderSettings {
-    size_t poolCapacity = size_t(1) << 18;  // rays in flight per batch
+    size_t poolCapacity = size_t(1) << 18;  // eye samples in flight per batch (at most)
+    double timeBudget = 0;    // seconds; 0 = none (also from Option "render" "time")
+    double errorTarget = 0;   // relative film error; 0 = none ("render" "error")
+    int firstPassBlock = 0;   // 0 = the scene's option (default 2: 1/4 ray per pixel)
+    bool geometricAovs = false;  // render z and N
+    bool progress = false;       // progress bar on stderr (when it is a terminal)
+};
+
+// One point of the error-against-time series in --stats.
+struct ErrorSample {
+    double seconds;
+    uint64_t rays;
+    double estimatedError;  // < 0: not known yet
 };
 
 struct RenderStats {
@@ -24,20 +39,25 @@ struct RenderStats {
     double sceneSetupMs = 0, bvhBuildMs = 0;
     uint64_t eyeRays = 0, continuationRays = 0, shadowRays = 0;
     uint64_t triangles = 0, bvhNodes = 0, droppedPrims = 0;
-    uint64_t nonfiniteSamples = 0;
+    uint64_t nonfiniteSamples = 0, unsampledPixels = 0, abortedSamples = 0;
     size_t poolCapacity = 0;
-    int tiles = 0;
+    int passes = 0, batches = 0;
+    double estimatedError = -1;
+    std::string stopReason;  // "quality", "error target", "time budget", "SIGINT", ...
+    std::vector<ErrorSample> errorVsTime;
     Features features;
     ProgramBuildInfo program;
     std::string device, platform;
     std::map<std::string, KernelStats> kernels;
+    uint64_t totalRays() const { return eyeRays + continuationRays + shadowRays; }
 };
 
 class Renderer {
 public:
     Renderer(const ClContext& ctx, const RenderSettings& settings);
     // Renders `scene` into `film` (sized from the scene's Format) and returns the figures
-    // for --stats. Throws on OpenCL errors.
+    // for --stats. A stop (time, signal) still leaves a valid film of the retired samples.
+    // Throws on OpenCL errors.
     RenderStats render(const Scene& scene, Film& film);
 
 private:

@@ -138,7 +138,15 @@ void RibBuilder::pixelSamples(L loc, float x, float y) {
 void RibBuilder::display(L loc, const std::string& name, const std::string& type,
                          const std::string& mode, const rib::ParamList&) {
     if (!name.empty() && name[0] == '+') {
-        m_diag.warning(loc, "additional displays (\"+name\") are not supported yet; ignored");
+        // A secondary display's mode names AOVs; they become extra channels of the image.
+        static const char* known[] = {"z", "N", "samples", "error", "filled"};
+        for (const char* k : known)
+            if (mode == k) {
+                m_options.aovs.push_back(mode);
+                return;
+            }
+        m_diag.warning(loc, "AOV \"" + mode + "\" is not available (z, N, samples, error, "
+                            "filled); display \"" + name + "\" ignored");
         return;
     }
     if (type != "file" && type != "openexr" && type != "exr")
@@ -146,6 +154,21 @@ void RibBuilder::display(L loc, const std::string& name, const std::string& type
     if (mode != "rgb" && mode != "rgba")
         m_diag.warning(loc, "display mode \"" + mode + "\" is written as rgba");
     m_options.display = {name, type, mode == "rgb" ? "rgb" : "rgba", loc};
+}
+
+void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& params) {
+    if (name != "render") return;
+    RenderOptionsSpec& r = m_options.render;
+    r.time = params.getFloat("time", r.time);
+    r.error = params.getFloat("error", r.error);
+    r.firstPassBlock = params.getInt("firstpassblock", r.firstPassBlock);
+    r.pixelError = params.getFloat("pixelerror", r.pixelError);
+    if (r.time < 0 || r.error < 0 || r.firstPassBlock < 1 || r.firstPassBlock > 64 ||
+        !(r.pixelError > 0)) {
+        m_diag.error(loc, "Option \"render\": time and error must be >= 0, firstpassblock "
+                          "1..64, pixelerror > 0");
+        r = RenderOptionsSpec();
+    }
 }
 
 void RibBuilder::color(L loc, const std::vector<float>& c) {

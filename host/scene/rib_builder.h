@@ -37,6 +37,7 @@ public:
     void display(L, const std::string& name, const std::string& type,
                  const std::string& mode, const rib::ParamList&) override;
 
+    void option(L, const std::string& name, const rib::ParamList&) override;
     void color(L, const std::vector<float>&) override;
     void opacity(L, const std::vector<float>&) override;
     void surface(L, const std::string& name, const rib::ParamList&) override;

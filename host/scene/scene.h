@@ -32,6 +32,14 @@ struct CameraSpec {
     glm::mat4 worldToCamera{1.0f};  // column-vector convention (glm)
 };
 
+// Option "render" ...: budgets and adaptive sampling (the command line overrides).
+struct RenderOptionsSpec {
+    float time = 0;          // "float time": seconds, 0 = none
+    float error = 0;         // "float error": relative film error target, 0 = none
+    int firstPassBlock = 2;  // "int firstpassblock": first pass at 1 ray per N x N pixels
+    float pixelError = 0.01f; // "float pixelerror": per-pixel relative error to refine to
+};
+
 struct Scene {
     std::string sourceFile;
     std::vector<Triangle> triangles;
@@ -41,6 +49,8 @@ struct Scene {
     std::vector<Light> lights;
     CameraSpec camera;
     DisplaySpec display;
+    std::vector<std::string> aovs;  // AOVs the RIB asks for (Display "+name", DisplayChannel)
+    RenderOptionsSpec render;
     bool anySmoothNormals = false;
 
     // The device camera: screen window, fov scale and camera-to-world matrix.

@@ -18,6 +18,9 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                          {"work_items_active", k.activeItems},
                          {"occupancy", k.occupancy()}};
     }
+    json series = json::array();
+    for (const ErrorSample& e : st.errorVsTime)
+        series.push_back({e.seconds, e.rays, e.estimatedError});
     return json{
         {"scene", scene},
         {"output", output},
@@ -32,7 +35,7 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                          {"dropped_primitives", st.droppedPrims},
                          {"bvh_build_ms", st.bvhBuildMs},
                          {"setup_ms", st.sceneSetupMs},
-                         {"tiles", st.tiles},
+
                          {"pool_capacity", st.poolCapacity}}},
         {"features", st.features.names()},
         {"program", {{"build_options", st.program.options},
@@ -41,6 +44,13 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                      {"cache_file", st.program.cacheFile},
                      {"build_ms", st.program.buildMs}}},
         {"nonfinite_samples", st.nonfiniteSamples},
+        {"sampling", {{"passes", st.passes},
+                      {"batches", st.batches},
+                      {"stop_reason", st.stopReason},
+                      {"estimated_error", st.estimatedError},
+                      {"unsampled_pixels", st.unsampledPixels},
+                      {"aborted_samples", st.abortedSamples}}},
+        {"error_vs_time", series},
         {"kernels", kernels},
     };
 }
@@ -54,6 +64,9 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
     out << "elapsed   " << s["elapsed_s"].get<double>() << " s\n";
     out << "rays      eye " << s["rays"]["eye"] << ", continuation "
         << s["rays"]["continuation"] << ", shadow " << s["rays"]["shadow"] << "\n";
+    out << "sampling  " << s["sampling"]["passes"] << " passes, stopped by "
+        << s["sampling"]["stop_reason"].get<std::string>() << ", estimated error "
+        << s["sampling"]["estimated_error"].get<double>() << "\n";
     out << "scene     " << s["scene_stats"]["triangles"] << " triangles, "
         << s["scene_stats"]["bvh_nodes"] << " BVH nodes\n";
     out << "features ";

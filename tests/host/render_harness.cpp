@@ -43,6 +43,7 @@ Rendered renderRib(const std::string& rib, const RenderSettings& settings) {
     out.width = film.width;
     out.height = film.height;
     out.pixels = film.resolve();
+    out.film = std::move(film);
     return out;
 }
 

@@ -14,7 +14,9 @@ namespace rd::test {
 struct Rendered {
     int width = 0, height = 0;
     std::vector<Rgba> pixels;
+    Film film;  // the raw sums: sample counts, AOVs
     RenderStats stats;
+    uint32_t count(int x, int y) const { return film.pixels[size_t(y) * size_t(width) + x].count; }
     const Rgba& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + x]; }
     // Mean of one channel (0..3) over a rectangle [x0, x1) x [y0, y1).
     double mean(int channel, int x0, int y0, int x1, int y1) const;

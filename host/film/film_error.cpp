@@ -1,0 +1,62 @@
+// film_error.cpp: per-pixel and film error estimates.
+#include "film_error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rd {
+
+PixelEstimate estimatePixel(const PixelAccum& p) {
+    PixelEstimate e;
+    if (p.count == 0) return e;
+    double n = p.count;
+    double sum = (double(p.sum.x) + p.sum.y + p.sum.z) / 3.0;
+    e.mean = float(sum / n);
+    if (p.count < 2) return e;
+    // Variance of the mean, per channel, averaged over the three colour channels.
+    double var = 0;
+    const float* s = &p.sum.x;
+    const float* q = &p.sum_sq.x;
+    for (int c = 0; c < 3; ++c) {
+        double m = s[c] / n;
+        double sampleVar = std::max(0.0, (q[c] - n * m * m) / (n - 1));
+        var += sampleVar / n;
+    }
+    e.stdError = float(std::sqrt(var / 3.0));
+    return e;
+}
+
+double estimateFilmError(const std::vector<PixelAccum>& film) {
+    double varSum = 0, meanSum = 0;
+    size_t withVar = 0, withMean = 0;
+    for (const PixelAccum& p : film) {
+        if (p.count == 0) continue;
+        PixelEstimate e = estimatePixel(p);
+        meanSum += e.mean;
+        ++withMean;
+        if (p.count >= 2) {
+            varSum += double(e.stdError) * e.stdError;
+            ++withVar;
+        }
+    }
+    if (withVar == 0 || meanSum <= 0) return -1.0;
+    return std::sqrt(varSum / double(withVar)) / (meanSum / double(withMean));
+}
+
+std::vector<float> pixelRelativeErrors(const std::vector<PixelAccum>& film) {
+    double meanSum = 0;
+    size_t n = 0;
+    for (const PixelAccum& p : film)
+        if (p.count) meanSum += estimatePixel(p).mean, ++n;
+    // Dark pixels are judged against a tenth of the image's brightness: a relative error
+    // of a nearly black pixel is invisible and would otherwise soak up all the samples.
+    float floor = std::max(1e-4f, 0.1f * float(n ? meanSum / double(n) : 0.0));
+    std::vector<float> out(film.size(), 0.0f);
+    for (size_t i = 0; i < film.size(); ++i) {
+        PixelEstimate e = estimatePixel(film[i]);
+        out[i] = e.stdError / std::max(e.mean, floor);
+    }
+    return out;
+}
+
+}  // namespace rd

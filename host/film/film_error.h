@@ -1,0 +1,28 @@
+// film_error.h: error estimates from the film's whole-sample statistics: per pixel (for
+// adaptive sampling and the "error" AOV) and for the whole film (for --stats and the
+// --error target). The film estimate uses the same definition as the true relative RMSE
+// against a converged reference, so the benchmark can compare the two.
+#pragma once
+#include <vector>
+
+#include "cl/include/film.h"
+
+namespace rd {
+
+// Per-pixel statistics derived from the film sums.
+struct PixelEstimate {
+    float mean = 0;     // mean of the colour channels
+    float stdError = 0; // standard error of the mean (0 with fewer than two samples)
+};
+PixelEstimate estimatePixel(const PixelAccum& p);
+
+// The film's relative error: sqrt(mean over pixels of the variance of the pixel mean)
+// divided by the mean pixel value; the same definition as the true relative RMSE against
+// a reference, so the two can be compared. Negative when no pixel has two samples.
+double estimateFilmError(const std::vector<PixelAccum>& film);
+
+// Per-pixel relative error as used for refinement (standard error over a floor of the
+// pixel's and the image's brightness).
+std::vector<float> pixelRelativeErrors(const std::vector<PixelAccum>& film);
+
+}  // namespace rd

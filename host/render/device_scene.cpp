@@ -1,0 +1,31 @@
+// device_scene.cpp: uploading the scene.
+#include "device_scene.h"
+
+namespace rd {
+
+std::vector<Aabb> triangleBounds(const Scene& scene) {
+    std::vector<Aabb> bounds(scene.triangles.size());
+    for (size_t i = 0; i < scene.triangles.size(); ++i) {
+        const Triangle& t = scene.triangles[i];
+        for (const rt_float4* v : {&t.v0, &t.v1, &t.v2}) {
+            const float p[3] = {v->x, v->y, v->z};
+            bounds[i].grow(p);
+        }
+    }
+    return bounds;
+}
+
+DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh& bvh,
+                         const Features& f)
+    : camera(scene.deviceCamera()),
+      cameraBuf(ctx, std::vector<Camera>{camera}),
+      nodes(ctx, bvh.nodes),
+      primIndex(ctx, bvh.primIndices),
+      triangles(ctx, scene.triangles),
+      attrs(ctx, scene.attrs),
+      normals(f.smoothNormals ? DeviceBuffer<rt_float4>(ctx, scene.normals)
+                              : DeviceBuffer<rt_float4>(ctx, 0)),
+      materials(ctx, scene.materials),
+      lights(ctx, scene.lights) {}
+
+}  // namespace rd

@@ -1,0 +1,27 @@
+// device_scene.h: the scene's arrays on the device (camera, BVH, triangles, attributes,
+// normals only when some surface is smooth, materials, lights), built once per render.
+#pragma once
+#include "bvh/sah_builder.h"
+#include "features.h"
+#include "ocl/buffer.h"
+#include "scene/scene.h"
+
+namespace rd {
+
+struct DeviceScene {
+    DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh& bvh, const Features& f);
+    Camera camera;
+    DeviceBuffer<Camera> cameraBuf;
+    DeviceBuffer<BvhNode> nodes;
+    DeviceBuffer<uint32_t> primIndex;
+    DeviceBuffer<Triangle> triangles;
+    DeviceBuffer<TriangleAttr> attrs;
+    DeviceBuffer<rt_float4> normals;
+    DeviceBuffer<Material> materials;
+    DeviceBuffer<Light> lights;
+};
+
+// Bounds of every triangle, for the BVH builder.
+std::vector<Aabb> triangleBounds(const Scene& scene);
+
+}  // namespace rd

@@ -1,0 +1,79 @@
+// sampling.cpp: the sample planner and the error estimates it and --stats use.
+#include "sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rd {
+
+SamplePlanner::SamplePlanner(int width, int height, const SamplingSettings& settings)
+    : m_width(width), m_height(height), m_settings(settings) {
+    m_settings.firstPassBlock = std::max(1, m_settings.firstPassBlock);
+    m_settings.maxSamples = std::max(1u, m_settings.maxSamples);
+    m_settings.minSamples = std::clamp(m_settings.minSamples, 1u, m_settings.maxSamples);
+    const int tile = 16;
+    m_tileOrder.reserve(size_t(width) * size_t(height));
+    for (int ty = 0; ty < height; ty += tile)
+        for (int tx = 0; tx < width; tx += tile)
+            for (int y = ty; y < std::min(ty + tile, height); ++y)
+                for (int x = tx; x < std::min(tx + tile, width); ++x)
+                    m_tileOrder.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
+}
+
+bool SamplePlanner::needsMore(const std::vector<PixelAccum>& film,
+                              const std::vector<float>& relErr, int x, int y,
+                              float pixelError) const {
+    size_t i = size_t(y) * size_t(m_width) + size_t(x);
+    uint32_t n = film[i].count;
+    if (n >= m_settings.maxSamples) return false;
+    if (n < m_settings.minSamples) return true;
+    if (relErr[i] > pixelError) return true;
+    // An edge both of whose samples fell on one side shows no variance: compare with the
+    // neighbours' means instead.
+    float m = estimatePixel(film[i]).mean;
+    const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+    for (int k = 0; k < 4; ++k) {
+        int nx = x + dx[k], ny = y + dy[k];
+        if (nx < 0 || ny < 0 || nx >= m_width || ny >= m_height) continue;
+        const PixelAccum& q = film[size_t(ny) * size_t(m_width) + size_t(nx)];
+        if (q.count == 0) continue;
+        float mq = estimatePixel(q).mean;
+        if (std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq)))
+            return true;
+    }
+    return false;
+}
+
+std::vector<PixelRequest> SamplePlanner::nextPass(const std::vector<PixelAccum>& film,
+                                                  float pixelError) {
+    std::vector<PixelRequest> out;
+    const int b = m_settings.firstPassBlock;
+    if (m_pass == 0 && b > 1) {
+        // One sample per block, at a pixel chosen by a hash so blocks show no pattern.
+        for (uint32_t pixel : m_tileOrder) {
+            int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
+            int bx = x / b, by = y / b;
+            uint32_t h = uint32_t(bx) * 73856093u ^ uint32_t(by) * 19349663u;
+            int w = std::min(b, m_width - bx * b), hgt = std::min(b, m_height - by * b);
+            int px = bx * b + int(h % uint32_t(w)), py = by * b + int((h / 7) % uint32_t(hgt));
+            if (px == x && py == y) out.push_back({pixel, 0, 1});
+        }
+        ++m_pass;
+        return out;
+    }
+    std::vector<float> relErr = pixelRelativeErrors(film);
+    for (uint32_t pixel : m_tileOrder) {
+        int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
+        if (!needsMore(film, relErr, x, y, pixelError)) continue;
+        uint32_t n = film[pixel].count;
+        // Sequence indices already used include samples dropped as NaN/Inf: never reuse.
+        uint32_t used = n + film[pixel].nonfinite;
+        uint32_t target = std::max(m_settings.minSamples, std::max(1u, 2 * n));
+        target = std::min(target, m_settings.maxSamples);
+        if (target > n) out.push_back({pixel, used, target - n});
+    }
+    ++m_pass;
+    return out;
+}
+
+}  // namespace rd

@@ -1,0 +1,47 @@
+// sampling.h: adaptive sampling as RenderDrive did it. A first pass takes one eye sample
+// per block of pixels (2x2: 1/4 ray per pixel); each later pass adds samples where
+// neighbouring pixels disagree (discontinuities) or a pixel's estimated error is high,
+// doubling those pixels' counts, until the final quality: PixelSamples, an error target
+// or a time budget. The film's error is estimated from whole-sample variance.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "cl/include/film.h"
+#include "film/film_error.h"
+
+namespace rd {
+
+struct SamplingSettings {
+    int firstPassBlock = 2;     // first pass: one sample per block x block pixels
+    uint32_t minSamples = 2;    // every pixel gets this many (a variance needs two)
+    uint32_t maxSamples = 4;    // per pixel; PixelSamples x*y unless a target is given
+    float pixelError = 0.01f;   // per-pixel relative standard error to stop refining at
+    float contrast = 0.05f;     // neighbour difference (relative) that marks an edge
+};
+
+// Samples of one pass for one pixel: indices [first, first + count) of its sequence.
+struct PixelRequest {
+    uint32_t pixel, first, count;
+};
+
+class SamplePlanner {
+public:
+    SamplePlanner(int width, int height, const SamplingSettings& settings);
+    // The next pass, pixels in tile order (16x16 tiles, for coherent rays); empty when
+    // every pixel has met the final quality. `pixelError` overrides the setting for this
+    // pass (an error target or a time budget tightens it as the render goes on).
+    std::vector<PixelRequest> nextPass(const std::vector<PixelAccum>& film, float pixelError);
+    int passes() const { return m_pass; }
+    const SamplingSettings& settings() const { return m_settings; }
+
+private:
+    bool needsMore(const std::vector<PixelAccum>& film, const std::vector<float>& relErr,
+                   int x, int y, float pixelError) const;
+    int m_width, m_height;
+    SamplingSettings m_settings;
+    std::vector<uint32_t> m_tileOrder;  // pixel indices in tile order
+    int m_pass = 0;
+};
+
+}  // namespace rd

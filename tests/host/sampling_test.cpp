@@ -1,0 +1,150 @@
+// sampling_test.cpp: adaptive sampling, the error estimate, budgets and fail-soft stops,
+// filling of unreached pixels, and the geometric AOVs. Render tests run on PoCL.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "film/film_error.h"
+#include "render/stop.h"
+#include "render_harness.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+// Orthographic camera with 1 unit = 1 pixel, origin at the image centre.
+std::string orthoCamera(int res, int spp, const std::string& renderOptions = "") {
+    std::string half = std::to_string(res / 2);
+    return "Format " + std::to_string(res) + " " + std::to_string(res) + " 1\nPixelSamples " +
+           std::to_string(spp) + " " + std::to_string(spp) + "\nProjection \"orthographic\"\n" +
+           "ScreenWindow -" + half + " " + half + " -" + half + " " + half + "\n" +
+           renderOptions + "Translate 0 0 5\n";
+}
+
+std::string rect(double x0, double x1, double y0, double y1) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "Polygon \"P\" [%g %g 0  %g %g 0  %g %g 0  %g %g 0]\n", x0,
+                  y0, x1, y0, x1, y1, x0, y1);
+    return buf;
+}
+
+// Thin vertical stripes, 0.3 px wide every 0.713 px: every pixel is partly covered, so
+// each sample is a coin toss and the pixel mean is a plain Monte Carlo estimate.
+std::string stripes(int res) {
+    std::string s = "WorldBegin\nSurface \"constant\"\n";
+    for (double x = -res / 2.0; x < res / 2.0; x += 0.713) s += rect(x, x + 0.3, -res, res);
+    return s + "WorldEnd\n";
+}
+
+}  // namespace
+
+// An edge gets more samples than a flat region: left half covered, right half empty, the
+// edge at x = 0.37 inside a pixel column. PixelSamples 8x8 caps pixels at 64.
+TEST(Sampling, EdgePixelsGetMoreSamplesThanFlatOnes) {
+    Rendered img = renderRib(orthoCamera(32, 8) +
+                             "WorldBegin\nSurface \"constant\"\n" + rect(-40, 0.37, -40, 40) +
+                             "WorldEnd\n");
+    int edgeColumn = 16;  // pixel [16, 17) holds x = 0.37
+    double edge = 0, flat = 0;
+    for (int y = 0; y < 32; ++y) {
+        edge += img.count(edgeColumn, y);
+        flat += img.count(4, y) + img.count(28, y);
+    }
+    edge /= 32;
+    flat /= 64;
+    std::printf("samples per pixel: edge %.1f, flat %.1f\n", edge, flat);
+    EXPECT_GE(edge, 32.0);
+    EXPECT_LE(flat, 2.0);
+    EXPECT_NEAR(img.at(edgeColumn, 10).a, 0.37, 0.05);
+}
+
+// The estimate falls as 1/sqrt(samples) on a noisy scene: 16 -> 256 samples per pixel
+// must shrink it 4x (within 15%).
+TEST(Sampling, ErrorEstimateShrinksAsInverseSqrtOfSamples) {
+    const std::string opts =
+        "Option \"render\" \"int firstpassblock\" [1] \"float pixelerror\" [1e-9]\n";
+    Rendered a = renderRib(orthoCamera(16, 4, opts) + stripes(16));
+    Rendered b = renderRib(orthoCamera(16, 16, opts) + stripes(16));
+    ASSERT_EQ(a.count(5, 5), 16u);
+    ASSERT_EQ(b.count(5, 5), 256u);
+    double ea = a.stats.estimatedError, eb = b.stats.estimatedError;
+    std::printf("estimated error: 16 spp %.4f, 256 spp %.4f, ratio %.2f (expect 4)\n", ea, eb,
+                ea / eb);
+    EXPECT_NEAR(ea / eb, 4.0, 0.6);
+    // The mean itself is right: the stripes' total width over the image width.
+    double covered = 0;
+    for (double x = -8; x < 8; x += 0.713) covered += std::min(0.3, 8 - x);
+    EXPECT_NEAR(b.mean(3, 0, 0, 16, 16), covered / 16, 0.005);
+}
+
+// A time budget ends the render promptly and leaves whole samples only.
+TEST(Sampling, TimeBudgetStopsTheRender) {
+    rd::RenderSettings s;
+    s.timeBudget = 0.3;
+    Rendered img = renderRib(orthoCamera(64, 64) + stripes(64), s);
+    EXPECT_EQ(img.stats.stopReason, "time budget");
+    EXPECT_LT(img.stats.elapsedSec, 1.3);
+    EXPECT_GT(img.film.sampleCount(), 0u);
+    for (const auto& p : img.film.pixels) EXPECT_LE(p.count, 1u << 16);
+}
+
+// A stop request (what SIGINT does) drops the batch in flight and returns at once.
+TEST(Sampling, StopSignalEndsTheRenderFailSoft) {
+    rd::requestStop(2);
+    Rendered img = renderRib(orthoCamera(32, 8) + stripes(32));
+    rd::clearStop();
+    EXPECT_EQ(img.stats.stopReason, "SIGINT");
+    EXPECT_EQ(img.film.sampleCount(), 0u);
+    EXPECT_GT(img.stats.abortedSamples, 0u);
+    EXPECT_EQ(img.stats.unsampledPixels, 32u * 32u);
+}
+
+// Pixels with no sample take their nearest sampled neighbour's value and are flagged.
+TEST(Film, UnreachedPixelsAreFilledAndFlagged) {
+    rd::Film film;
+    film.width = 4;
+    film.height = 1;
+    film.pixels.assign(4, PixelAccum{});
+    film.pixels[0].sum = {2, 4, 6, 2};
+    film.pixels[0].count = 2;
+    film.pixels[3].sum = {9, 9, 9, 1};
+    film.pixels[3].count = 1;
+    auto rgba = film.resolve();
+    EXPECT_EQ(rgba[1].r, 1.0f);  // from pixel 0
+    EXPECT_EQ(rgba[2].r, 9.0f);  // from pixel 3
+    auto mask = film.filledMask();
+    EXPECT_EQ(mask, (std::vector<float>{0, 1, 1, 0}));
+    EXPECT_EQ(film.unsampledCount(), 2u);
+}
+
+// The estimate follows the definition: sqrt(mean variance of the mean) / mean.
+TEST(Film, ErrorEstimateFromWholeSamples) {
+    std::vector<PixelAccum> f(1);
+    // samples 0 and 2 in every channel: mean 1, sample variance 2, variance of mean 1.
+    f[0].sum = {2, 2, 2, 2};
+    f[0].sum_sq = {4, 4, 4, 4};
+    f[0].count = 2;
+    EXPECT_NEAR(rd::estimateFilmError(f), 1.0, 1e-6);
+    f[0].count = 1;
+    EXPECT_LT(rd::estimateFilmError(f), 0.0) << "one sample has no variance";
+}
+
+// z and N AOVs of a plane facing the camera at distance 5.
+TEST(Aov, DepthAndNormalOfAPlane) {
+    rd::RenderSettings s;
+    s.geometricAovs = true;
+    Rendered img = renderRib("Format 16 16 1\nPixelSamples 2 2\n"
+                             "Projection \"perspective\" \"fov\" 60\nWorldBegin\n"
+                             "Surface \"constant\"\n"
+                             "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+                             "WorldEnd\n", s);
+    auto z = img.film.aovChannels("z");
+    auto n = img.film.aovChannels("N");
+    ASSERT_EQ(z.size(), 1u);
+    ASSERT_EQ(n.size(), 3u);
+    for (float v : z[0].values) EXPECT_NEAR(v, 5.0f, 1e-3f);
+    for (size_t i = 0; i < n[2].values.size(); ++i) EXPECT_NEAR(n[2].values[i], -1.0f, 1e-5f);
+    auto samples = img.film.aovChannels("samples");
+    EXPECT_EQ(samples[0].values[0], float(img.count(0, 0)));
+}
