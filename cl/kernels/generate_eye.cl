@@ -1,6 +1,6 @@
 /* generate_eye.cl: the refill stage. One eye sample per pool slot: slot i is sample
  * sample_index[i] of pixel sample_pixel[i] (the host's sample plan), placed in the pixel
- * by the pixel's scrambled Sobol sequence (rng.clh). The running total starts at zero. */
+ * by the pixel's random sequence (rng.clh). The running total starts at zero. */
 #include "counters.clh"
 #include "math.clh"
 #include "rng.clh"
