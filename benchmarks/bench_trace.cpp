@@ -1,0 +1,268 @@
+// bench_trace.cpp: ray throughput (issue 5). Primary, diffuse-bounce and shadow rays on
+// the same procedural meshes, traced by RayDrive's intersect kernels on the chosen OpenCL
+// device and by Embree 3 (rtcIntersect1/rtcOccluded1 over all cores) in the same run,
+// median of several runs, reported as Mrays/s and as the ratio RayDrive / Embree.
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+
+#include "bvh/sah_builder.h"
+#include "cl/include/ray.h"
+#include "ocl/buffer.h"
+#include "ocl/device.h"
+#include "ocl/kernel.h"
+#include "ocl/program.h"
+#include "render/device_scene.h"
+
+using namespace rd;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+struct Mesh {
+    std::vector<Triangle> tris;
+    std::string name;
+};
+
+// A field of `count` spheres, each diced into about `perSphere` triangles, scattered in a
+// 10x10x10 box: many objects, open space between them, as a scene has.
+Mesh sphereField(int count, int perSphere, const std::string& name) {
+    Mesh m{{}, name};
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0, 1);
+    int nu = std::max(4, int(std::sqrt(perSphere / 2.0)) * 1), nv = std::max(3, perSphere / (2 * nu));
+    for (int s = 0; s < count; ++s) {
+        float cx = 10 * u(rng) - 5, cy = 10 * u(rng) - 5, cz = 10 * u(rng) - 5;
+        float r = 0.05f + 0.4f * u(rng) * u(rng);
+        auto P = [&](int i, int j) {
+            float th = 2 * float(M_PI) * i / nu, ph = float(M_PI) * j / nv - float(M_PI) / 2;
+            return rt_float4{cx + r * std::cos(ph) * std::cos(th),
+                             cy + r * std::cos(ph) * std::sin(th), cz + r * std::sin(ph), 0};
+        };
+        for (int j = 0; j < nv; ++j)
+            for (int i = 0; i < nu; ++i) {
+                m.tris.push_back({P(i, j), P(i + 1, j), P(i + 1, j + 1)});
+                m.tris.push_back({P(i, j), P(i + 1, j + 1), P(i, j + 1)});
+            }
+    }
+    return m;
+}
+
+struct Rays {
+    std::vector<rt_float4> org, dir;  // w: tmin, tmax
+};
+
+Rays primaryRays(int side) {
+    Rays r;
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            float sx = (x + 0.5f) / side * 2 - 1, sy = (y + 0.5f) / side * 2 - 1;
+            float len = std::sqrt(sx * sx * 0.36f + sy * sy * 0.36f + 1);
+            r.org.push_back({0, 0, -16, 0});
+            r.dir.push_back({sx * 0.6f / len, sy * 0.6f / len, 1 / len, 1e30f});
+        }
+    return r;
+}
+
+struct EmbreeScene {
+    RTCDevice device;
+    RTCScene scene;
+    explicit EmbreeScene(const Mesh& m) {
+        device = rtcNewDevice(nullptr);
+        scene = rtcNewScene(device);
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        float* v = (float*)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                   RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                   3 * m.tris.size());
+        unsigned* idx = (unsigned*)rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.tris.size());
+        for (size_t t = 0; t < m.tris.size(); ++t) {
+            const rt_float4* p[3] = {&m.tris[t].v0, &m.tris[t].v1, &m.tris[t].v2};
+            for (int k = 0; k < 3; ++k) {
+                v[9 * t + 3 * k] = p[k]->x;
+                v[9 * t + 3 * k + 1] = p[k]->y;
+                v[9 * t + 3 * k + 2] = p[k]->z;
+                idx[3 * t + k] = unsigned(3 * t + k);
+            }
+        }
+        rtcCommitGeometry(g);
+        rtcAttachGeometry(scene, g);
+        rtcReleaseGeometry(g);
+        rtcCommitScene(scene);
+    }
+    ~EmbreeScene() {
+        rtcReleaseScene(scene);
+        rtcReleaseDevice(device);
+    }
+    // Closest hits (t, prim) or occlusion, over all hardware threads.
+    void trace(const Rays& r, bool shadow, std::vector<RayHit>& out) const {
+        out.resize(r.org.size());
+        unsigned nt = std::max(1u, std::thread::hardware_concurrency());
+        std::vector<std::thread> th;
+        for (unsigned t = 0; t < nt; ++t)
+            th.emplace_back([&, t] {
+                RTCIntersectContext ctx;
+                rtcInitIntersectContext(&ctx);
+                for (size_t i = t; i < r.org.size(); i += nt) {
+                    RTCRayHit rh;
+                    rh.ray.org_x = r.org[i].x, rh.ray.org_y = r.org[i].y, rh.ray.org_z = r.org[i].z;
+                    rh.ray.dir_x = r.dir[i].x, rh.ray.dir_y = r.dir[i].y, rh.ray.dir_z = r.dir[i].z;
+                    rh.ray.tnear = r.org[i].w, rh.ray.tfar = r.dir[i].w;
+                    rh.ray.mask = ~0u, rh.ray.flags = 0, rh.ray.time = 0;
+                    if (shadow) {
+                        rtcOccluded1(scene, &ctx, &rh.ray);
+                        out[i].prim = rh.ray.tfar < 0 ? 0 : RT_NO_HIT;
+                    } else {
+                        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                        rtcIntersect1(scene, &ctx, &rh);
+                        out[i].t = rh.ray.tfar;
+                        out[i].prim = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RT_NO_HIT
+                                                                                : rh.hit.primID;
+                    }
+                }
+            });
+        for (auto& t : th) t.join();
+    }
+};
+
+// Secondary rays from the primary hits: cosine-ish random directions (diffuse) or toward
+// a point light (shadow). Rays whose primary ray missed are left out.
+Rays secondaryRays(const Mesh& m, const Rays& prim, const std::vector<RayHit>& hits,
+                   bool shadow) {
+    Rays r;
+    std::mt19937 rng(11);
+    std::normal_distribution<float> g;
+    const rt_float4 light{20, 30, -20, 0};
+    for (size_t i = 0; i < hits.size(); ++i) {
+        if (hits[i].prim == RT_NO_HIT) continue;
+        const Triangle& t = m.tris[hits[i].prim];
+        float px = prim.org[i].x + hits[i].t * prim.dir[i].x;
+        float py = prim.org[i].y + hits[i].t * prim.dir[i].y;
+        float pz = prim.org[i].z + hits[i].t * prim.dir[i].z;
+        float ex = t.v1.x - t.v0.x, ey = t.v1.y - t.v0.y, ez = t.v1.z - t.v0.z;
+        float fx = t.v2.x - t.v0.x, fy = t.v2.y - t.v0.y, fz = t.v2.z - t.v0.z;
+        float nx = ey * fz - ez * fy, ny = ez * fx - ex * fz, nz = ex * fy - ey * fx;
+        float nl = std::sqrt(nx * nx + ny * ny + nz * nz);
+        nx /= nl, ny /= nl, nz /= nl;
+        if (nx * prim.dir[i].x + ny * prim.dir[i].y + nz * prim.dir[i].z > 0)
+            nx = -nx, ny = -ny, nz = -nz;
+        float dx, dy, dz, tmax = 1e30f;
+        if (shadow) {
+            dx = light.x - px, dy = light.y - py, dz = light.z - pz;
+            tmax = std::sqrt(dx * dx + dy * dy + dz * dz);
+            dx /= tmax, dy /= tmax, dz /= tmax;
+            tmax *= 0.9999f;
+        } else {
+            dx = nx + g(rng), dy = ny + g(rng), dz = nz + g(rng);  // ~cosine lobe
+            float l = std::sqrt(dx * dx + dy * dy + dz * dz);
+            dx /= l, dy /= l, dz /= l;
+        }
+        r.org.push_back({px + 1e-4f * nx, py + 1e-4f * ny, pz + 1e-4f * nz, 0});
+        r.dir.push_back({dx, dy, dz, tmax});
+    }
+    return r;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"RayDrive vs Embree: Mrays/s for primary, diffuse and shadow rays"};
+    int runs = 5, side = 1024;
+    std::string device;
+    app.add_option("--runs", runs, "timed runs per measurement (median reported)");
+    app.add_option("--side", side, "primary rays: side x side");
+    app.add_option("--device", device, "OpenCL device (index or name)");
+    CLI11_PARSE(app, argc, argv);
+
+    ClContext ctx(selectDevice(device));
+    std::printf("device: %s | Embree %d.%d.%d on %u threads | median of %d runs\n",
+                ctx.name().c_str(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
+                std::thread::hardware_concurrency(), runs);
+    Program program(ctx, assembleClSource({"intersect.cl"}), "-cl-std=CL1.2");
+    std::printf("%-14s %-8s %10s %10s %10s %8s %9s\n", "scene", "rays", "count",
+                "RayDrive", "Embree", "ratio", "agree");
+    for (const Mesh& mesh : {sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")}) {
+        Bvh bvh = buildBvh([&] {
+            Scene s;
+            s.triangles = mesh.tris;
+            return triangleBounds(s);
+        }());
+        EmbreeScene emb(mesh);
+        DeviceBuffer<BvhNode> nodes(ctx, bvh.nodes);
+        DeviceBuffer<uint32_t> primIndex(ctx, bvh.primIndices);
+        DeviceBuffer<Triangle> tris(ctx, mesh.tris);
+        Rays primary = primaryRays(side);
+        std::vector<RayHit> primHits;
+        emb.trace(primary, false, primHits);
+        Rays diffuse = secondaryRays(mesh, primary, primHits, false);
+        Rays shadow = secondaryRays(mesh, primary, primHits, true);
+        struct Kind {
+            const char* name;
+            const Rays* rays;
+            bool shadow;
+        } kinds[] = {{"primary", &primary, false}, {"diffuse", &diffuse, false},
+                     {"shadow", &shadow, true}};
+        for (const Kind& k : kinds) {
+            size_t n = k.rays->org.size();
+            DeviceBuffer<rt_float4> org(ctx, k.rays->org), dir(ctx, k.rays->dir);
+            std::vector<RayState> st(n, RayState{1u, 0u, RT_NO_HIT, 0u});
+            DeviceBuffer<RayState> state(ctx, st, CL_MEM_READ_WRITE);
+            DeviceBuffer<RayHit> hits(ctx, n);
+            Profiler prof(ctx);
+            Kernel kc(ctx, program.get(), "intersect_closest", prof);
+            Kernel ks(ctx, program.get(), "intersect_shadow", prof);
+            auto runDevice = [&] {
+                if (k.shadow) {
+                    state.upload(st);
+                    auto t0 = Clock::now();
+                    ks.launch(n, cl_uint(n), nodes, primIndex, tris, org, dir, state);
+                    ctx.finish();
+                    return std::chrono::duration<double>(Clock::now() - t0).count();
+                }
+                auto t0 = Clock::now();
+                kc.launch(n, cl_uint(n), nodes, primIndex, tris, org, dir, state, hits);
+                ctx.finish();
+                return std::chrono::duration<double>(Clock::now() - t0).count();
+            };
+            runDevice();  // first launch compiles the kernel on PoCL
+            std::vector<double> td, te;
+            std::vector<RayHit> eh;
+            for (int r = 0; r < runs; ++r) {
+                td.push_back(runDevice());
+                auto t0 = Clock::now();
+                emb.trace(*k.rays, k.shadow, eh);
+                te.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+            }
+            // Agreement: same hit / same occlusion as Embree.
+            size_t same = 0;
+            if (k.shadow) {
+                auto s2 = state.download();
+                for (size_t i = 0; i < n; ++i)
+                    same += (s2[i].alive == 0) == (eh[i].prim != RT_NO_HIT);
+            } else {
+                auto h2 = hits.download();
+                for (size_t i = 0; i < n; ++i)
+                    same += (h2[i].prim == RT_NO_HIT) == (eh[i].prim == RT_NO_HIT) &&
+                            (h2[i].prim == RT_NO_HIT || std::fabs(h2[i].t - eh[i].t) <=
+                                                             1e-3f * std::max(1.0f, eh[i].t));
+            }
+            double md = n / median(td) * 1e-6, me = n / median(te) * 1e-6;
+            std::printf("%-14s %-8s %10zu %10.2f %10.2f %8.3f %8.4f%%\n", mesh.name.c_str(),
+                        k.name, n, md, me, md / me, 100.0 * double(same) / double(n));
+        }
+    }
+    std::printf("(Mrays/s, wall time of one launch over all rays incl. launch overhead)\n");
+    return 0;
+}

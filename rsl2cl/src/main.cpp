@@ -1,0 +1,85 @@
+// main.cpp: the rsl2cl command. For now the front end only:
+//   rsl2cl [-I DIR] [-D NAME[=VALUE]] [--info | --ast] [-o OUT] shader.sl
+// exit 0 on success, 1 on compile errors, 2 on usage errors.
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+#include "compiler.h"
+
+namespace {
+
+void usage(std::ostream& os) {
+    os << "usage: rsl2cl [-I DIR] [-D NAME[=VALUE]] [--info | --ast] [-o OUT] shader.sl\n"
+          "  --info   print shader metadata (kind, parameters, globals, services)\n"
+          "  --ast    print the typed syntax tree\n"
+          "  -o OUT   write the output to OUT instead of standard output\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    rsl::PreprocessOptions pp;
+    std::string input, output;
+    bool info = false, ast = false;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        auto value = [&](const std::string& flag) -> std::string {
+            if (a.size() > flag.size()) return a.substr(flag.size());
+            if (i + 1 >= argc) {
+                std::cerr << "rsl2cl: " << flag << " needs a value\n";
+                std::exit(2);
+            }
+            return argv[++i];
+        };
+        if (a == "--info") info = true;
+        else if (a == "--ast") ast = true;
+        else if (a == "-h" || a == "--help") {
+            usage(std::cout);
+            return 0;
+        } else if (a.rfind("-I", 0) == 0) pp.includeDirs.push_back(value("-I"));
+        else if (a.rfind("-D", 0) == 0) {
+            std::string d = value("-D");
+            size_t eq = d.find('=');
+            if (eq == std::string::npos) pp.defines.emplace_back(d, "1");
+            else pp.defines.emplace_back(d.substr(0, eq), d.substr(eq + 1));
+        } else if (a.rfind("-o", 0) == 0) output = value("-o");
+        else if (!a.empty() && a[0] == '-') {
+            std::cerr << "rsl2cl: unknown option '" << a << "'\n";
+            usage(std::cerr);
+            return 2;
+        } else if (!input.empty()) {
+            std::cerr << "rsl2cl: only one input file may be given\n";
+            return 2;
+        } else {
+            input = a;
+        }
+    }
+    if (input.empty()) {
+        std::cerr << "rsl2cl: no input file\n";
+        usage(std::cerr);
+        return 2;
+    }
+    rsl::Diagnostics diag(&std::cerr);
+    rsl::Program prog;
+    bool ok = rsl::compileFile(input, pp, prog, diag);
+    if (!ok) {
+        std::cerr << diag.errorCount() << " error(s) in " << input << "\n";
+        return 1;
+    }
+    std::string text;
+    if (ast) text += rsl::dumpAst(prog);
+    if (info || !ast)
+        for (const auto& sh : prog.shaders) text += rsl::formatInfo(rsl::collectInfo(*sh));
+    if (output.empty()) {
+        std::cout << text;
+    } else {
+        std::ofstream out(output);
+        out << text;
+        if (!out) {
+            std::cerr << "rsl2cl: cannot write " << output << "\n";
+            return 1;
+        }
+    }
+    return 0;
+}
