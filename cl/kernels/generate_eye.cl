@@ -16,6 +16,7 @@ __kernel void generate_eye(__constant Camera* cam,
                            __global float4* direction,   /* xyz, w = tmax */
                            __global float4* weight,
                            __global RayState* state,
+                           __global uint* ray_sample,
                            __global SampleTotal* total,
                            __global SampleAov* aov, /* used with RT_HAS_AOVS */
                            __global uint* active_counter) {
@@ -60,6 +61,7 @@ __kernel void generate_eye(__constant Camera* cam,
     weight[i] = (float4)(1.0f);
     RayState st = {1u, 0u, RT_NO_HIT, 0u};
     state[i] = st;
+    ray_sample[i] = i; /* eye ray i belongs to sample i of the batch */
     total[i].value = (float4)(0.0f);
 #ifdef RT_HAS_AOVS
     /* camera z per unit of world ray distance: the unit camera direction's z over len */

@@ -5,6 +5,7 @@
  * coefficient times Cl becomes the weight of a shadow ray, added only if the ray reaches
  * the light; Oi < 1 continues the ray straight on with weight (1 - Oi). rsl2cl output
  * replaces this file (issue 4); it must not grow. */
+#include "atomics.clh"
 #include "counters.clh"
 #include "math.clh"
 #include "film.h"
@@ -19,13 +20,19 @@ __kernel void shade(uint count,
                     __global const Material* materials,
                     __global const Light* lights,
                     uint light_count,
-                    __global float4* origin,
-                    __global float4* direction,
-                    __global float4* weight,
-                    __global RayState* state,
+                    __global const float4* origin,
+                    __global const float4* direction,
+                    __global const float4* weight,
+                    __global const RayState* state,
+                    __global const uint* ray_sample,
                     __global const RayHit* hits,
                     __global SampleTotal* total,
-                    __global float4* shadow_origin,
+                    __global float4* next_origin, /* the ray's continuation, slot i */
+                    __global float4* next_direction,
+                    __global float4* next_weight,
+                    __global RayState* next_state,
+                    __global uint* next_sample,
+                    __global float4* shadow_origin, /* slot i * light_count + light */
                     __global float4* shadow_direction,
                     __global float4* shadow_weight,
                     __global RayState* shadow_state,
@@ -35,12 +42,13 @@ __kernel void shade(uint count,
     uint i = get_global_id(0);
     int alive = i < count && state[i].alive;
     RT_COUNT_ACTIVE(active_counter, alive && hits[i].prim != RT_NO_HIT);
+    if (i >= count) return;
+    next_state[i].alive = 0u;
+    for (uint l = 0; l < light_count; ++l) shadow_state[i * light_count + l].alive = 0u;
     if (!alive) return;
     RayHit h = hits[i];
-    if (h.prim == RT_NO_HIT) {
-        state[i].alive = 0u;
-        return;
-    }
+    if (h.prim == RT_NO_HIT) return;
+    uint sample = ray_sample[i];
     float4 d = direction[i], w = weight[i];
     __global const Triangle* tri = &tris[h.prim];
     TriangleAttr attr = attrs[h.prim];
@@ -62,10 +70,10 @@ __kernel void shade(uint count,
     float facing = rt_dot3(d, Ng) < 0.0f ? 1.0f : -1.0f;
     float4 Nf = facing * N, Ngf = facing * Ng;
 #ifdef RT_HAS_AOVS
-    if (!aov[i].hit) {
-        aov[i].z *= h.t;
-        aov[i].normal = Nf;
-        aov[i].hit = 1u;
+    if (!aov[sample].hit) {
+        aov[sample].z *= h.t;
+        aov[sample].normal = Nf;
+        aov[sample].hit = 1u;
     }
 #endif
     float4 V = -d;
@@ -82,7 +90,7 @@ __kernel void shade(uint count,
     }
     float4 add = w * emitted;
     add.w = w.w * os.w; /* coverage: what this surface hides of what lies behind it */
-    total[i].value += add;
+    rt_atomic_add_float4(&total[sample].value, add);
 
 #ifdef RT_HAS_SHADOW_RAYS
     if (m.shader != RT_SHADER_CONSTANT) {
@@ -137,23 +145,21 @@ __kernel void shade(uint count,
     if (rt_max3(wt) > 1e-6f && depth < RT_MAX_TRANSPARENT_DEPTH) {
         float4 o = rt_offset_ray(P, -Ngf);
         o.w = 0.0f;
-        origin[i] = o;
+        next_origin[i] = o;
         d.w = d.w - h.t;
-        direction[i] = d;
-        weight[i] = wt;
+        next_direction[i] = d;
+        next_weight[i] = wt;
         RayState st = {1u, depth, h.prim, 0u};
-        state[i] = st;
-    } else {
-        state[i].alive = 0u;
+        next_state[i] = st;
+        next_sample[i] = sample;
     }
-#else
-    state[i].alive = 0u;
 #endif
 }
 
-/* Adds every shadow ray that reached its light into its sample: slot i * light_count + l
- * belongs to sample i, so no two work-items write the same sample. */
+/* Adds every shadow ray that reached its light into its sample: ray i owns the slots
+ * i * light_count + l and adds their sum once (one atomic per ray, not per light). */
 __kernel void accumulate_shadows(uint count, uint light_count,
+                                 __global const uint* ray_sample,
                                  __global const float4* shadow_weight,
                                  __global RayState* shadow_state,
                                  __global SampleTotal* total,
@@ -170,5 +176,5 @@ __kernel void accumulate_shadows(uint count, uint light_count,
             shadow_state[j].alive = 0u;
         }
     }
-    total[i].value += sum;
+    rt_atomic_add_float4(&total[ray_sample[i]].value, sum);
 }

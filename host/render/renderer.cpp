@@ -24,15 +24,19 @@ double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-const std::vector<std::string> kRenderSources = {"generate_eye.cl", "intersect.cl",
-                                                 "shade_builtin.cl", "retire.cl"};
+const std::vector<std::string> kRenderSources = {
+    "generate_eye.cl", "intersect.cl", "shade_builtin.cl", "compact.cl", "retire.cl"};
 
-// The ray pool: one slot per eye sample of a batch, light_count shadow slots each, and
-// the per-sample AOV record only when AOVs are rendered.
+// The ray pool. The current round's rays (each knows its sample), the rays the shade
+// stage spawns (slot i: ray i's continuation), light_count shadow slots per ray, the
+// compaction's per-group counts, and the per-sample AOV record only when AOVs are on.
 struct RayPool {
     RayPool(const ClContext& ctx, size_t capacity, uint32_t shadowLights, bool aovs)
         : origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity),
-          state(ctx, capacity), hits(ctx, capacity), totals(ctx, capacity),
+          state(ctx, capacity), sample(ctx, capacity), hits(ctx, capacity),
+          totals(ctx, capacity), nextOrigin(ctx, capacity), nextDirection(ctx, capacity),
+          nextWeight(ctx, capacity), nextState(ctx, capacity), nextSample(ctx, capacity),
+          groupLive(ctx, capacity / 64 + 1), groupOffset(ctx, capacity / 64 + 1),
           shOrigin(ctx, capacity * shadowLights), shDirection(ctx, capacity * shadowLights),
           shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
           aov(ctx, aovs ? capacity : 0), samplePixel(ctx, capacity),
@@ -42,8 +46,13 @@ struct RayPool {
     }
     DeviceBuffer<rt_float4> origin, direction, weight;
     DeviceBuffer<RayState> state;
+    DeviceBuffer<uint32_t> sample;
     DeviceBuffer<RayHit> hits;
     DeviceBuffer<SampleTotal> totals;
+    DeviceBuffer<rt_float4> nextOrigin, nextDirection, nextWeight;
+    DeviceBuffer<RayState> nextState;
+    DeviceBuffer<uint32_t> nextSample;
+    DeviceBuffer<uint32_t> groupLive, groupOffset;
     DeviceBuffer<rt_float4> shOrigin, shDirection, shWeight;
     DeviceBuffer<RayState> shState;
     DeviceBuffer<SampleAov> aov;
@@ -58,11 +67,14 @@ struct RenderKernels {
           shade(ctx, p, "shade", prof),
           intersectShadow(ctx, p, "intersect_shadow", prof),
           accumulateShadows(ctx, p, "accumulate_shadows", prof),
+          compactCount(ctx, p, "compact_count", prof),
+          compactScatter(ctx, p, "compact_scatter", prof),
           retire(ctx, p, "retire_samples", prof) {}
-    Kernel generateEye, intersectClosest, shade, intersectShadow, accumulateShadows, retire;
+    Kernel generateEye, intersectClosest, shade, intersectShadow, accumulateShadows,
+        compactCount, compactScatter, retire;
     std::vector<Kernel*> all() {
         return {&generateEye, &intersectClosest, &shade, &intersectShadow, &accumulateShadows,
-                &retire};
+                &compactCount, &compactScatter, &retire};
     }
 };
 
@@ -175,36 +187,52 @@ RenderStats Renderer::render(const Scene& scene, Film& film) {
         return false;
     };
     // Returns false when a stop cut the batch short (its samples are then dropped).
+    // Compacts the rays the shade stage spawned into the current round's buffers and
+    // returns how many there are: group counts on the device, their prefix on the host.
+    auto compactSpawned = [&](cl_uint n) {
+        k.compactCount.launch(n, n, rp.nextState, rp.groupLive);
+        const size_t groups = (n + 63) / 64;
+        std::vector<uint32_t> live = rp.groupLive.download();
+        std::vector<uint32_t> offset(live.size(), 0);
+        uint32_t total = 0;
+        for (size_t g = 0; g < groups; ++g) offset[g] = total, total += live[g];
+        if (total == 0) return cl_uint(0);
+        rp.groupOffset.upload(offset);
+        k.compactScatter.launch(n, n, rp.groupOffset, rp.nextOrigin, rp.nextDirection,
+                                rp.nextWeight, rp.nextState, rp.nextSample, rp.origin,
+                                rp.direction, rp.weight, rp.state, rp.sample);
+        return cl_uint(total);
+    };
+    // Returns false when a stop cut the batch short (its samples are then dropped).
     auto traceBatch = [&](const Batch& b) {
-        const cl_uint n = cl_uint(b.samplePixel.size()), pixels = cl_uint(b.pixel.size());
+        cl_uint n = cl_uint(b.samplePixel.size());
+        const cl_uint pixels = cl_uint(b.pixel.size());
         rp.samplePixel.upload(b.samplePixel);
         rp.sampleIndex.upload(b.sampleIndex);
         rp.batchPixel.upload(b.pixel);
         rp.batchFirst.upload(b.first);
         k.generateEye.launch(n, ds.cameraBuf, n, rp.samplePixel, rp.sampleIndex, rp.origin,
-                             rp.direction, rp.weight, rp.state, rp.totals, rp.aov);
-        const int rounds = f.transparency ? f.maxTransparentDepth : 1;
-        uint64_t tracedBefore = 0;
-        for (int round = 0; round < rounds; ++round) {
+                             rp.direction, rp.weight, rp.state, rp.sample, rp.totals, rp.aov);
+        // Rounds: trace, shade, shadows; then the spawned rays (continuations through
+        // Opacity < 1) are compacted and traced in the next round, until none is left.
+        const int rounds = f.transparency ? f.maxTransparentDepth + 1 : 1;
+        for (int round = 0; round < rounds && n > 0; ++round) {
             if (stopNow()) return false;
             k.intersectClosest.launch(n, n, ds.nodes, ds.primIndex, ds.triangles, rp.origin,
                                       rp.direction, rp.state, rp.hits);
-            if (rounds > 1) {
-                // Continuation rounds end when no ray of the batch is left alive.
-                uint64_t traced = k.intersectClosest.peekActive();
-                if (round > 0 && traced == tracedBefore) break;
-                tracedBefore = traced;
-            }
             k.shade.launch(n, n, ds.triangles, ds.attrs, ds.normals, ds.materials, ds.lights,
-                           f.lightCount, rp.origin, rp.direction, rp.weight, rp.state, rp.hits,
-                           rp.totals, rp.shOrigin, rp.shDirection, rp.shWeight, rp.shState,
-                           rp.aov);
+                           f.lightCount, rp.origin, rp.direction, rp.weight, rp.state,
+                           rp.sample, rp.hits, rp.totals, rp.nextOrigin, rp.nextDirection,
+                           rp.nextWeight, rp.nextState, rp.nextSample, rp.shOrigin,
+                           rp.shDirection, rp.shWeight, rp.shState, rp.aov);
             if (nl > 0) {
                 k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes,
                                          ds.primIndex, ds.triangles, rp.shOrigin,
                                          rp.shDirection, rp.shState);
-                k.accumulateShadows.launch(n, n, nl, rp.shWeight, rp.shState, rp.totals);
+                k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
+                                           rp.totals);
             }
+            if (round + 1 < rounds) n = compactSpawned(n);
         }
         if (stopNow()) return false;
         k.retire.launch(pixels, pixels, rp.batchPixel, rp.batchFirst, rp.totals, filmBuf,

@@ -1,0 +1,58 @@
+/* compact.cl: stream compaction of the rays the shade stage spawned (the AR250's "rays
+ * that hit are compacted onto a stack"). compact_count sums live rays per work-group;
+ * the host turns the group sums into offsets (a few thousand numbers); compact_scatter
+ * moves each live ray to its offset, keeping their order, so the image does not depend
+ * on scheduling. Work-groups are RT_COMPACT_GROUP wide. */
+#include "counters.clh"
+#include "ray.h"
+
+#define RT_COMPACT_GROUP 64
+
+__kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
+void compact_count(uint count, __global const RayState* state, __global uint* group_live,
+                   __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    __local uint live[RT_COMPACT_GROUP];
+    uint i = get_global_id(0), lid = get_local_id(0);
+    RT_COUNT_ACTIVE(active_counter, i < count);
+    live[lid] = (i < count && state[i].alive) ? 1u : 0u;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (lid == 0) {
+        uint sum = 0;
+        for (int k = 0; k < RT_COMPACT_GROUP; ++k) sum += live[k];
+        group_live[get_group_id(0)] = sum;
+    }
+}
+
+__kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
+void compact_scatter(uint count,
+                     __global const uint* group_offset, /* exclusive prefix of group_live */
+                     __global const float4* src_origin,
+                     __global const float4* src_direction,
+                     __global const float4* src_weight,
+                     __global const RayState* src_state,
+                     __global const uint* src_sample,
+                     __global float4* dst_origin,
+                     __global float4* dst_direction,
+                     __global float4* dst_weight,
+                     __global RayState* dst_state,
+                     __global uint* dst_sample,
+                     __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    __local uint live[RT_COMPACT_GROUP];
+    uint i = get_global_id(0), lid = get_local_id(0);
+    uint alive = (i < count && src_state[i].alive) ? 1u : 0u;
+    RT_COUNT_ACTIVE(active_counter, alive);
+    live[lid] = alive;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (!alive) return;
+    /* position among the group's live rays: a fixed-length loop PoCL can vectorise */
+    uint before = 0;
+    for (uint k = 0; k < RT_COMPACT_GROUP; ++k) before += (k < lid) ? live[k] : 0u;
+    uint j = group_offset[get_group_id(0)] + before;
+    dst_origin[j] = src_origin[i];
+    dst_direction[j] = src_direction[i];
+    dst_weight[j] = src_weight[i];
+    dst_state[j] = src_state[i];
+    dst_sample[j] = src_sample[i];
+}
