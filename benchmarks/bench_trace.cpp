@@ -13,7 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bvh/sah_builder.h"
+#include "bvh/collapse4.h"
 #include "cl/include/ray.h"
 #include "ocl/buffer.h"
 #include "ocl/device.h"
@@ -200,7 +200,7 @@ int main(int argc, char** argv) {
             return triangleBounds(s);
         }());
         EmbreeScene emb(mesh);
-        DeviceBuffer<BvhNode> nodes(ctx, bvh.nodes);
+        DeviceBuffer<Bvh4Node> nodes(ctx, collapseToBvh4(bvh));
         DeviceBuffer<uint32_t> primIndex(ctx, bvh.primIndices);
         DeviceBuffer<Triangle> tris(ctx, mesh.tris);
         Rays primary = primaryRays(side);

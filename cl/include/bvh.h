@@ -13,7 +13,20 @@ typedef struct BvhNode {
     int32_t count; /* 0 for an interior node, number of primitives for a leaf */
 } BvhNode;
 
+/* Four-wide node, the layout traversal uses: the four children's boxes as structure of
+ * arrays, so one float4 operation tests all four (SIMD within a work-item, which is what
+ * a per-ray traversal on a CPU device can use). child[k] is a node index for an interior
+ * child; for a leaf child, child[k] is its first primitive and count[k] > 0; an unused
+ * slot has count[k] = -1 (and an empty box). 128 bytes, two cache lines. */
+typedef struct Bvh4Node {
+    rt_float4 lo_x, lo_y, lo_z;
+    rt_float4 hi_x, hi_y, hi_z;
+    int32_t child[4];
+    int32_t count[4]; /* 0 interior, > 0 leaf primitive count, -1 unused */
+} Bvh4Node;
+
 #ifndef __OPENCL_C_VERSION__
 RT_ASSERT_SIZE(BvhNode, 32);
+RT_ASSERT_SIZE(Bvh4Node, 128);
 #endif
 #endif

@@ -4,7 +4,7 @@
 #include "traverse.clh"
 
 __kernel void intersect_closest(uint count,
-                                __global const BvhNode* nodes,
+                                __global const Bvh4Node* nodes,
                                 __global const uint* prim_index,
                                 __global const Triangle* tris,
                                 __global const float4* origin,
@@ -26,7 +26,7 @@ __kernel void intersect_closest(uint count,
 }
 
 __kernel void intersect_shadow(uint count,
-                               __global const BvhNode* nodes,
+                               __global const Bvh4Node* nodes,
                                __global const uint* prim_index,
                                __global const Triangle* tris,
                                __global const float4* origin,

@@ -19,7 +19,7 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh& bv
                          const Features& f)
     : camera(scene.deviceCamera()),
       cameraBuf(ctx, std::vector<Camera>{camera}),
-      nodes(ctx, bvh.nodes),
+      nodes(ctx, collapseToBvh4(bvh)),
       primIndex(ctx, bvh.primIndices),
       triangles(ctx, scene.triangles),
       attrs(ctx, scene.attrs),

@@ -1,7 +1,7 @@
 // device_scene.h: the scene's arrays on the device (camera, BVH, triangles, attributes,
 // normals only when some surface is smooth, materials, lights), built once per render.
 #pragma once
-#include "bvh/sah_builder.h"
+#include "bvh/collapse4.h"
 #include "features.h"
 #include "ocl/buffer.h"
 #include "scene/scene.h"
@@ -12,7 +12,7 @@ struct DeviceScene {
     DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh& bvh, const Features& f);
     Camera camera;
     DeviceBuffer<Camera> cameraBuf;
-    DeviceBuffer<BvhNode> nodes;
+    DeviceBuffer<Bvh4Node> nodes;  // the four-wide layout the kernels traverse
     DeviceBuffer<uint32_t> primIndex;
     DeviceBuffer<Triangle> triangles;
     DeviceBuffer<TriangleAttr> attrs;

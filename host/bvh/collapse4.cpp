@@ -1,0 +1,90 @@
+// collapse4.cpp: binary to four-wide BVH.
+#include "collapse4.h"
+
+#include <cfloat>
+
+namespace rd {
+namespace {
+
+double area(const BvhNode& n) {
+    double dx = double(n.bmax[0]) - n.bmin[0], dy = double(n.bmax[1]) - n.bmin[1],
+           dz = double(n.bmax[2]) - n.bmin[2];
+    return dx < 0 ? 0 : 2 * (dx * dy + dy * dz + dz * dx);
+}
+
+void setSlot(Bvh4Node& w, int k, const BvhNode& n) {
+    float* lo[3] = {&w.lo_x.x, &w.lo_y.x, &w.lo_z.x};
+    float* hi[3] = {&w.hi_x.x, &w.hi_y.x, &w.hi_z.x};
+    for (int a = 0; a < 3; ++a) {
+        lo[a][k] = n.bmin[a];
+        hi[a][k] = n.bmax[a];
+    }
+}
+
+void clearSlot(Bvh4Node& w, int k) {
+    float* lo[3] = {&w.lo_x.x, &w.lo_y.x, &w.lo_z.x};
+    float* hi[3] = {&w.hi_x.x, &w.hi_y.x, &w.hi_z.x};
+    for (int a = 0; a < 3; ++a) {
+        // lo > hi: the near/far slab test rejects it however the ray points
+        lo[a][k] = FLT_MAX;
+        hi[a][k] = -FLT_MAX;
+    }
+    w.child[k] = 0;
+    w.count[k] = -1;
+}
+
+}  // namespace
+
+std::vector<Bvh4Node> collapseToBvh4(const Bvh& bvh) {
+    std::vector<Bvh4Node> out(1);
+    for (int k = 0; k < 4; ++k) clearSlot(out[0], k);
+    if (bvh.empty()) return out;
+    const std::vector<BvhNode>& b = bvh.nodes;
+    // Work list: (wide node index, binary node whose children it holds).
+    std::vector<std::pair<size_t, int>> work;
+    if (b[0].count > 0) {
+        // A single leaf: the root holds it in slot 0.
+        setSlot(out[0], 0, b[0]);
+        out[0].child[0] = b[0].left_or_first;
+        out[0].count[0] = b[0].count;
+        return out;
+    }
+    work.push_back({0, 0});
+    while (!work.empty()) {
+        auto [wi, bi] = work.back();
+        work.pop_back();
+        std::vector<int> kids{b[bi].left_or_first, b[bi].left_or_first + 1};
+        while (kids.size() < 4) {
+            int best = -1;
+            double bestArea = -1;
+            for (size_t k = 0; k < kids.size(); ++k)
+                if (b[kids[k]].count == 0 && area(b[kids[k]]) > bestArea)
+                    best = int(k), bestArea = area(b[kids[k]]);
+            if (best < 0) break;
+            int open = kids[best];
+            kids.erase(kids.begin() + best);
+            kids.push_back(b[open].left_or_first);
+            kids.push_back(b[open].left_or_first + 1);
+        }
+        for (int k = 0; k < 4; ++k) {
+            if (k >= int(kids.size())) {
+                clearSlot(out[wi], k);
+                continue;
+            }
+            const BvhNode& n = b[kids[k]];
+            setSlot(out[wi], k, n);
+            if (n.count > 0) {
+                out[wi].child[k] = n.left_or_first;
+                out[wi].count[k] = n.count;
+            } else {
+                out[wi].child[k] = int(out.size());
+                out[wi].count[k] = 0;
+                out.emplace_back();
+                work.push_back({out.size() - 1, kids[k]});
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace rd

@@ -1,0 +1,15 @@
+// collapse4.h: turns the binary SAH BVH into the four-wide layout the kernels traverse
+// (cl/include/bvh.h, Bvh4Node): each wide node takes a binary node's children and keeps
+// opening its largest interior child until it has four (the usual BVH2 -> BVH4 collapse;
+// leaves and primitive order are those of the binary tree).
+#pragma once
+#include <vector>
+
+#include "sah_builder.h"
+
+namespace rd {
+
+// nodes[0] is the root. An empty tree gives one node with four unused slots.
+std::vector<Bvh4Node> collapseToBvh4(const Bvh& bvh);
+
+}  // namespace rd
