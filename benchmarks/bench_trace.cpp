@@ -200,9 +200,9 @@ int main(int argc, char** argv) {
             return triangleBounds(s);
         }());
         EmbreeScene emb(mesh);
-        DeviceBuffer<Bvh4Node> nodes(ctx, collapseToBvh4(bvh));
-        DeviceBuffer<uint32_t> primIndex(ctx, bvh.primIndices);
-        DeviceBuffer<Triangle> tris(ctx, mesh.tris);
+        Bvh4 bvh4 = collapseToBvh4(bvh, mesh.tris);
+        DeviceBuffer<Bvh4Node> nodes(ctx, bvh4.nodes);
+        DeviceBuffer<Triangle4> blocks(ctx, bvh4.blocks);
         Rays primary = primaryRays(side);
         std::vector<RayHit> primHits;
         emb.trace(primary, false, primHits);
@@ -227,12 +227,12 @@ int main(int argc, char** argv) {
                 if (k.shadow) {
                     state.upload(st);
                     auto t0 = Clock::now();
-                    ks.launch(n, cl_uint(n), nodes, primIndex, tris, org, dir, state);
+                    ks.launch(n, cl_uint(n), nodes, blocks, org, dir, state);
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
                 }
                 auto t0 = Clock::now();
-                kc.launch(n, cl_uint(n), nodes, primIndex, tris, org, dir, state, hits);
+                kc.launch(n, cl_uint(n), nodes, blocks, org, dir, state, hits);
                 ctx.finish();
                 return std::chrono::duration<double>(Clock::now() - t0).count();
             };

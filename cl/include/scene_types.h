@@ -11,6 +11,16 @@ typedef struct Triangle {
     rt_float4 v0, v1, v2;
 } Triangle;
 
+/* Four triangles of a BVH leaf as structure of arrays, the layout intersection uses:
+ * one float4 operation tests all four against a ray (the watertight test's shear is the
+ * same for every lane). prim[k] is the triangle's index in the Triangle array, or
+ * RT_EMPTY_LANE for an unused lane. 160 bytes. */
+typedef struct Triangle4 {
+    rt_float4 v0x, v0y, v0z, v1x, v1y, v1z, v2x, v2y, v2z;
+    uint32_t prim[4];
+} Triangle4;
+#define RT_EMPTY_LANE 0xffffffffu
+
 typedef struct TriangleAttr {
     uint32_t material;    /* index into the Material array */
     uint32_t has_normals; /* 1: smooth normals at index 3*tri in the normals buffer */
@@ -58,6 +68,7 @@ typedef struct Camera {
 
 #ifndef __OPENCL_C_VERSION__
 RT_ASSERT_SIZE(Triangle, 48);
+RT_ASSERT_SIZE(Triangle4, 160);
 RT_ASSERT_SIZE(TriangleAttr, 16);
 RT_ASSERT_SIZE(Material, 80);
 RT_ASSERT_SIZE(Light, 64);

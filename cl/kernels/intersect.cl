@@ -5,8 +5,7 @@
 
 __kernel void intersect_closest(uint count,
                                 __global const Bvh4Node* nodes,
-                                __global const uint* prim_index,
-                                __global const Triangle* tris,
+                                __global const Triangle4* blocks,
                                 __global const float4* origin,
                                 __global const float4* direction,
                                 __global const RayState* state,
@@ -21,14 +20,13 @@ __kernel void intersect_closest(uint count,
     RayHit h;
     h.t = d.w;
     h.u = h.v = 0.0f;
-    rt_traverse(nodes, prim_index, tris, o, d, o.w, d.w, state[i].from_prim, 0, &h);
+    rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 0, &h);
     hits[i] = h;
 }
 
 __kernel void intersect_shadow(uint count,
                                __global const Bvh4Node* nodes,
-                               __global const uint* prim_index,
-                               __global const Triangle* tris,
+                               __global const Triangle4* blocks,
                                __global const float4* origin,
                                __global const float4* direction,
                                __global RayState* state,
@@ -40,6 +38,6 @@ __kernel void intersect_shadow(uint count,
     if (!active) return;
     float4 o = origin[i], d = direction[i];
     RayHit h;
-    if (rt_traverse(nodes, prim_index, tris, o, d, o.w, d.w, state[i].from_prim, 1, &h))
+    if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, &h))
         state[i].alive = 0u;
 }

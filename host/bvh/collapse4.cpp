@@ -1,4 +1,4 @@
-// collapse4.cpp: binary to four-wide BVH.
+// collapse4.cpp: binary to four-wide BVH, leaves packed into four-triangle blocks.
 #include "collapse4.h"
 
 #include <cfloat>
@@ -35,19 +35,51 @@ void clearSlot(Bvh4Node& w, int k) {
 
 }  // namespace
 
-std::vector<Bvh4Node> collapseToBvh4(const Bvh& bvh) {
-    std::vector<Bvh4Node> out(1);
+namespace {
+
+// Packs a leaf's primitives into blocks of four; returns the first block's index.
+int packLeaf(const Bvh& bvh, const std::vector<Triangle>& tris, int first, int count,
+             std::vector<Triangle4>& blocks, int& blockCount) {
+    int start = int(blocks.size());
+    for (int p = 0; p < count; p += 4) {
+        Triangle4 b{};
+        float* dst[9] = {&b.v0x.x, &b.v0y.x, &b.v0z.x, &b.v1x.x, &b.v1y.x,
+                         &b.v1z.x, &b.v2x.x, &b.v2y.x, &b.v2z.x};
+        for (int lane = 0; lane < 4; ++lane) {
+            if (p + lane >= count) {
+                b.prim[lane] = RT_EMPTY_LANE;
+                continue;
+            }
+            uint32_t prim = bvh.primIndices[size_t(first + p + lane)];
+            const Triangle& t = tris[prim];
+            const float src[9] = {t.v0.x, t.v0.y, t.v0.z, t.v1.x, t.v1.y,
+                                  t.v1.z, t.v2.x, t.v2.y, t.v2.z};
+            for (int c = 0; c < 9; ++c) dst[c][lane] = src[c];
+            b.prim[lane] = prim;
+        }
+        blocks.push_back(b);
+    }
+    blockCount = int(blocks.size()) - start;
+    return start;
+}
+
+}  // namespace
+
+Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris) {
+    Bvh4 result;
+    std::vector<Bvh4Node>& out = result.nodes;
+    out.resize(1);
     for (int k = 0; k < 4; ++k) clearSlot(out[0], k);
-    if (bvh.empty()) return out;
+    if (bvh.empty()) return result;
     const std::vector<BvhNode>& b = bvh.nodes;
     // Work list: (wide node index, binary node whose children it holds).
     std::vector<std::pair<size_t, int>> work;
     if (b[0].count > 0) {
         // A single leaf: the root holds it in slot 0.
         setSlot(out[0], 0, b[0]);
-        out[0].child[0] = b[0].left_or_first;
-        out[0].count[0] = b[0].count;
-        return out;
+        out[0].child[0] = packLeaf(bvh, tris, b[0].left_or_first, b[0].count, result.blocks,
+                                   out[0].count[0]);
+        return result;
     }
     work.push_back({0, 0});
     while (!work.empty()) {
@@ -74,8 +106,10 @@ std::vector<Bvh4Node> collapseToBvh4(const Bvh& bvh) {
             const BvhNode& n = b[kids[k]];
             setSlot(out[wi], k, n);
             if (n.count > 0) {
-                out[wi].child[k] = n.left_or_first;
-                out[wi].count[k] = n.count;
+                int blocks = 0;
+                out[wi].child[k] =
+                    packLeaf(bvh, tris, n.left_or_first, n.count, result.blocks, blocks);
+                out[wi].count[k] = blocks;
             } else {
                 out[wi].child[k] = int(out.size());
                 out[wi].count[k] = 0;
@@ -84,7 +118,7 @@ std::vector<Bvh4Node> collapseToBvh4(const Bvh& bvh) {
             }
         }
     }
-    return out;
+    return result;
 }
 
 }  // namespace rd

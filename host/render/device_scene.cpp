@@ -15,12 +15,12 @@ std::vector<Aabb> triangleBounds(const Scene& scene) {
     return bounds;
 }
 
-DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh& bvh,
+DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh,
                          const Features& f)
     : camera(scene.deviceCamera()),
       cameraBuf(ctx, std::vector<Camera>{camera}),
-      nodes(ctx, collapseToBvh4(bvh)),
-      primIndex(ctx, bvh.primIndices),
+      nodes(ctx, bvh.nodes),
+      blocks(ctx, bvh.blocks),
       triangles(ctx, scene.triangles),
       attrs(ctx, scene.attrs),
       normals(f.smoothNormals ? DeviceBuffer<rt_float4>(ctx, scene.normals)

@@ -9,12 +9,12 @@
 namespace rd {
 
 struct DeviceScene {
-    DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh& bvh, const Features& f);
+    DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh, const Features& f);
     Camera camera;
     DeviceBuffer<Camera> cameraBuf;
-    DeviceBuffer<Bvh4Node> nodes;  // the four-wide layout the kernels traverse
-    DeviceBuffer<uint32_t> primIndex;
-    DeviceBuffer<Triangle> triangles;
+    DeviceBuffer<Bvh4Node> nodes;     // the four-wide layout the kernels traverse
+    DeviceBuffer<Triangle4> blocks;   // leaf triangles, four to a block, for intersection
+    DeviceBuffer<Triangle> triangles; // by primitive index, for shading
     DeviceBuffer<TriangleAttr> attrs;
     DeviceBuffer<rt_float4> normals;
     DeviceBuffer<Material> materials;

@@ -138,15 +138,16 @@ RenderStats Renderer::render(const Scene& scene, Film& film) {
     // Scene -> BVH -> specialised program -> device arrays
     auto tb = Clock::now();
     Bvh bvh = buildBvh(triangleBounds(scene));
+    Bvh4 bvh4 = collapseToBvh4(bvh, scene.triangles);
     st.bvhBuildMs = secondsSince(tb) * 1e3;
     st.triangles = scene.triangles.size();
-    st.bvhNodes = bvh.nodes.size();
+    st.bvhNodes = bvh4.nodes.size();
     st.droppedPrims = bvh.droppedPrims;
     Program program(m_ctx, assembleClSource(kRenderSources), buildOptions(f));
     st.program = program.info();
     Profiler prof(m_ctx);
     RenderKernels k(m_ctx, program.get(), prof);
-    DeviceScene ds(m_ctx, scene, bvh, f);
+    DeviceScene ds(m_ctx, scene, bvh4, f);
     const Camera& cam = ds.camera;
 
     const uint32_t nl = f.shadowRays ? f.lightCount : 0;
@@ -218,7 +219,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film) {
         const int rounds = f.transparency ? f.maxTransparentDepth + 1 : 1;
         for (int round = 0; round < rounds && n > 0; ++round) {
             if (stopNow()) return false;
-            k.intersectClosest.launch(n, n, ds.nodes, ds.primIndex, ds.triangles, rp.origin,
+            k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin,
                                       rp.direction, rp.state, rp.hits);
             k.shade.launch(n, n, ds.triangles, ds.attrs, ds.normals, ds.materials, ds.lights,
                            f.lightCount, rp.origin, rp.direction, rp.weight, rp.state,
@@ -226,9 +227,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film) {
                            rp.nextWeight, rp.nextState, rp.nextSample, rp.shOrigin,
                            rp.shDirection, rp.shWeight, rp.shState, rp.aov);
             if (nl > 0) {
-                k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes,
-                                         ds.primIndex, ds.triangles, rp.shOrigin,
-                                         rp.shDirection, rp.shState);
+                k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
+                                         rp.shOrigin, rp.shDirection, rp.shState);
                 k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
                                            rp.totals);
             }
