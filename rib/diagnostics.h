@@ -7,6 +7,11 @@
 
 namespace rib {
 
+// RiErrorHandler semantics: print each error (the default), ignore errors (neither
+// printed nor counted; ignoredCount() says how many), or abort: the first error is
+// printed and tooManyErrors() turns true, so readers stop there.
+enum class ErrorMode { Print, Ignore, Abort };
+
 struct SourceLoc {
     std::string file;
     int line = 0;
@@ -23,8 +28,12 @@ public:
     int warningCount() const { return m_warnings; }
     // After this many errors a reader stops: a corrupt or binary file read as text
     // would otherwise print one message per token.
-    bool tooManyErrors() const { return m_errors >= m_maxErrors; }
+    bool tooManyErrors() const { return m_errors >= m_maxErrors || m_aborted; }
     const std::string& lastMessage() const { return m_last; }
+    void setMode(ErrorMode mode) { m_mode = mode; }
+    ErrorMode mode() const { return m_mode; }
+    int ignoredCount() const { return m_ignored; }
+    bool aborted() const { return m_aborted; }
 
 private:
     void emit(const SourceLoc& loc, const char* kind, const std::string& msg);
@@ -32,6 +41,9 @@ private:
     int m_maxErrors;
     int m_errors = 0;
     int m_warnings = 0;
+    int m_ignored = 0;
+    bool m_aborted = false;
+    ErrorMode m_mode = ErrorMode::Print;
     std::string m_last;
 };
 

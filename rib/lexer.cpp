@@ -1,4 +1,4 @@
-// lexer.cpp: ASCII RIB tokenization. Input is buffered in chunks so large (possibly
+// lexer.cpp: ASCII RIB tokenization (binary tokens are in lexer_binary.cpp). Input is buffered in chunks so large (possibly
 // gzip-compressed) files stream instead of being loaded whole. Numbers are checked
 // against a strict grammar before conversion so typos like "1.2.3" or "3e" are errors
 // rather than silently truncated values.
@@ -131,7 +131,8 @@ int Lexer::peekFirstByte() {
 }
 
 bool Lexer::isDelimiter(int c) {
-    return c < 0 || isSpace(c) || c == '[' || c == ']' || c == '"' || c == '#';
+    return c < 0 || isSpace(c) || c == '[' || c == ']' || c == '"' || c == '#' ||
+           c >= 0x80;  // a binary token may follow ASCII with no space between
 }
 
 std::string Lexer::readRun(int first) {
@@ -149,6 +150,7 @@ Token Lexer::error(int line, const std::string& msg) {
 }
 
 Token Lexer::next() {
+    if (m_inBinArray) return nextBinaryArrayElement();
     for (;;) {
         int c = get();
         if (c < 0) {
@@ -158,6 +160,11 @@ Token Lexer::next() {
         }
         if (isSpace(c)) continue;
         int line = m_line;
+        if (c >= 0x80) {
+            Token b;
+            if (lexBinary(c, line, b)) return b;
+            continue;
+        }
         if (c == '#') {
             // Comments and "##" structural comments alike carry nothing the reader needs.
             while (peek() >= 0 && peek() != '\n') get();

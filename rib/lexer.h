@@ -1,9 +1,12 @@
-// lexer.h: the tokenizer for ASCII RIB. It turns a byte stream (a string, or a file read
+// lexer.h: the tokenizer for RIB. It turns a byte stream (a string, or a file read
 // through zlib so gzip-compressed and plain RIB both work) into words, strings, numbers
-// and brackets, with line numbers. Malformed tokens are reported to Diagnostics at their
+// and brackets, with line numbers. Bytes 0200-0377 are binary-encoded tokens (RI 3.2
+// appendix C), decoded into the same kinds of tokens, so ASCII and binary may mix. Malformed tokens are reported to Diagnostics at their
 // own line and come back as TokenKind::Error so the reader can drop just that request.
 #pragma once
+#include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "diagnostics.h"
@@ -48,6 +51,13 @@ private:
     Token lexString(int startLine);
     Token lexNumber(std::string text, int line);
     Token error(int line, const std::string& msg);
+    // lexer_binary.cpp
+    bool lexBinary(int c, int line, Token& out);  // false: a definition, no token
+    bool rawBytes(size_t n, uint8_t* out);        // no line counting
+    bool rawUint(size_t n, uint32_t& out);
+    Token binaryNumber(double v, bool isInt, int line);
+    Token binaryString(size_t length, int line);
+    Token nextBinaryArrayElement();
 
     std::string m_name;
     Diagnostics& m_diag;
@@ -57,6 +67,11 @@ private:
     size_t m_len = 0;
     bool m_eof = false;
     int m_line = 1;
+    // Binary RIB state: encoded request and string tables, and a float array being read.
+    std::string m_binRequests[256];
+    std::unordered_map<uint32_t, std::string> m_binStrings;
+    bool m_inBinArray = false;
+    uint32_t m_binArrayLeft = 0;
 };
 
 }  // namespace rib

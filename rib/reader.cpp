@@ -2,11 +2,13 @@
 // value up to the next request name) before anything is checked, so a bad request can be
 // dropped without losing sync with the stream. Positional arguments are matched against
 // the signatures in requests.def, parameter lists are typed from inline declarations,
-// Declare, the predefined names or the values themselves, and Begin/End nesting is
-// tracked so mismatches are reported where they happen rather than as odd renders.
+// Declare, the predefined names or the values themselves. The token source is the file
+// being read, an archive it reads (ReadArchive swaps the lexer and recurses), or the
+// recorded tokens of an inline archive.
 #include <zlib.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 
 #include "reader_impl.h"
@@ -17,7 +19,7 @@ namespace detail {
 namespace {
 
 const RequestInfo kRequests[] = {
-#define RIB_REQUEST(name, sig) {#name, sig, Req::name},
+#define RIB_REQUEST(name, sig, kind, motion) {#name, sig, Req::name, Kind::kind, motion != 0},
 #include "requests.def"
 #undef RIB_REQUEST
 };
@@ -34,23 +36,44 @@ const RequestInfo* findRequest(const std::string& name) {
     return it == table.end() ? nullptr : it->second;
 }
 
+Reader::Reader(Lexer& lex, Target& target, Diagnostics& diag, const ReadOptions& opts)
+    : m_lex(&lex), m_target(target), m_diag(diag), m_opts(opts) {
+    size_t slash = lex.name().rfind('/');
+    if (slash != std::string::npos) m_dir = lex.name().substr(0, slash + 1);
+    m_archivePath = opts.archiveSearchPath;
+}
+
 Token Reader::nextToken() {
     if (m_havePending) {
         m_havePending = false;
         return m_pending;
     }
-    Token t = m_lex.next();
+    if (m_replay) {
+        if (m_replayPos < m_replay->size()) return (*m_replay)[m_replayPos++];
+        Token eof;
+        eof.line = m_lastLine;
+        return eof;
+    }
+    Token t = m_lex->next();
     if (t.kind != TokenKind::Eof)
         m_lastLine = t.line;  // EOF errors point at the last token
     return t;
 }
 
+SourceLoc Reader::loc(int line) const {
+    return m_replay ? SourceLoc{m_replayFile, line} : m_lex->loc(line);
+}
+
 void Reader::run() {
-    int first = m_lex.peekFirstByte();
-    if (first >= 0x80) {
-        m_diag.error(m_lex.loc(1), "binary RIB is not supported yet");
-        return;
-    }
+    readStream();
+    if (m_diag.tooManyErrors()) return;
+    SourceLoc end = loc(m_lastLine);
+    for (auto it = m_blocks.rbegin(); it != m_blocks.rend(); ++it)
+        error(end, std::string(it->name) + " at " + it->loc.str() + " never closed");
+}
+
+// Reads requests until the current source ends.
+void Reader::readStream() {
     bool strayReported = false;
     while (!m_diag.tooManyErrors()) {
         Token t = nextToken();
@@ -59,38 +82,29 @@ void Reader::run() {
             // Values with no request before them: say so once per run, then resync at
             // the next request name.
             if (t.kind != TokenKind::Error && !strayReported)
-                m_diag.error(m_lex.loc(t.line),
-                             "expected a request name, got \"" + t.text + "\"");
+                error(loc(t.line), "expected a request name, got \"" + t.text + "\"");
             strayReported = true;
             continue;
         }
         strayReported = false;
-        SourceLoc loc = m_lex.loc(t.line);
+        SourceLoc here = loc(t.line);
         std::vector<Value> vals;
         const RequestInfo* info = findRequest(t.text);
         if (!info) {
             // Skip its values quietly: their shape is unknown, so only the lexer speaks.
-            m_diag.error(loc, "unknown request \"" + t.text + "\"");
+            error(here, "unknown request \"" + t.text + "\"");
             m_quiet = true;
             collectValues(vals);
             m_quiet = false;
             continue;
         }
         if (!collectValues(vals)) continue;
-        if (info->sig[0] == '*') {
-            if (m_opts.warnUnsupported)
-                m_diag.warning(loc, std::string("not supported yet: ") + info->name);
-            continue;
-        }
         if (info->sig[0] == '-') continue;
         Args args;
-        if (parseArgs(*info, vals, args, loc)) dispatch(*info, args, loc);
+        if (!parseArgs(*info, vals, args, here)) continue;
+        if (!checkScope(*info, here)) continue;
+        dispatch(*info, args, here);
     }
-    if (m_diag.tooManyErrors()) return;
-    SourceLoc end = m_lex.loc(m_lastLine);
-    for (auto it = m_blocks.rbegin(); it != m_blocks.rend(); ++it)
-        m_diag.error(end,
-                     std::string(it->name) + " at " + it->loc.str() + " never closed");
 }
 
 // Reads every value up to the next request name. Returns false when any of them was bad
@@ -118,7 +132,7 @@ bool Reader::collectValues(std::vector<Value>& out) {
                 if (!readArray(t, v)) ok = false;
                 break;
             case TokenKind::RBracket:
-                if (!m_quiet) m_diag.error(m_lex.loc(t.line), "unexpected ']'");
+                if (!m_quiet) error(loc(t.line), "unexpected ']'");
                 ok = false;
                 continue;
             default:  // Error: already reported by the lexer
@@ -140,7 +154,7 @@ bool Reader::readArray(const Token& open, Value& v) {
         if (t.kind == TokenKind::Word || t.kind == TokenKind::Eof) {
             m_pending = t;
             m_havePending = true;
-            if (!m_quiet) m_diag.error(m_lex.loc(open.line), "unterminated '['");
+            if (!m_quiet) error(loc(open.line), "unterminated '['");
             return false;
         }
         if (t.kind == TokenKind::Error) {
@@ -148,14 +162,14 @@ bool Reader::readArray(const Token& open, Value& v) {
             continue;
         }
         if (t.kind == TokenKind::LBracket) {
-            if (!m_quiet) m_diag.error(m_lex.loc(t.line), "nested '[' is not allowed");
+            if (!m_quiet) error(loc(t.line), "nested '[' is not allowed");
             ok = false;
             continue;
         }
         if (++count > m_opts.maxArrayValues) {
             // Keep consuming so the stream stays in sync, but store nothing more.
             if (!tooBig && !m_quiet)
-                m_diag.error(m_lex.loc(open.line),
+                error(loc(open.line),
                              "array too large (more than " +
                                  std::to_string(m_opts.maxArrayValues) + " values)");
             tooBig = true;
@@ -167,7 +181,7 @@ bool Reader::readArray(const Token& open, Value& v) {
         bool isStr = t.kind == TokenKind::String;
         if (count > 1 && isStr != v.isString) {
             if (ok && !m_quiet)
-                m_diag.error(m_lex.loc(t.line), "array mixes numbers and strings");
+                error(loc(t.line), "array mixes numbers and strings");
             ok = false;
             continue;
         }
@@ -191,6 +205,17 @@ bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
     const std::string req = info.name;
     auto numeric = [](char c) { return c == 'f' || c == 'i'; };
     auto isNumberValue = [](const Value& v) { return !v.isString; };
+    auto bareNumber = [&](size_t i) {
+        return i < vals.size() && !vals[i].array && isNumberValue(vals[i]);
+    };
+    // A bracketed numeric array, or else a run of bare numbers (`limit` at most).
+    auto numbers = [&](size_t& vi, size_t limit, std::vector<double>& got) {
+        if (vi < vals.size() && vals[vi].array && isNumberValue(vals[vi])) {
+            got = vals[vi++].nums;
+            return;
+        }
+        while (got.size() < limit && bareNumber(vi)) got.push_back(vals[vi++].nums.front());
+    };
     size_t vi = 0;
     bool takesParams = false;
     for (size_t si = 0; si < sig.size();) {
@@ -199,30 +224,62 @@ bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
         if (c == 'p') {
             takesParams = true;
             ++si;
+        } else if (c == '?') {
+            ++si;
+            if (vi >= vals.size() || (!vals[vi].array && vals[vi].isString)) {
+                args.optionalMissing = true;
+                while (si < sig.size() && sig[si] != 'p') ++si;
+            }
         } else if (numeric(c)) {
             size_t run = 0;
             while (si + run < sig.size() && numeric(sig[si + run])) ++run;
             std::vector<double> got;
-            if (vi < vals.size() && vals[vi].array && isNumberValue(vals[vi])) {
-                got = vals[vi++].nums;  // the bracketed form: the whole run in one array
-            } else {
-                while (vi < vals.size() && !vals[vi].array && isNumberValue(vals[vi]))
-                    got.push_back(vals[vi++].nums.front());
-            }
+            numbers(vi, SIZE_MAX, got);  // greedy, so a surplus is reported as such
             if (got.size() != run) {
-                m_diag.error(loc, req + " expects " + plural(run, "number") + ", got " +
-                                      std::to_string(got.size()));
+                error(loc, req + " expects " + plural(run, "number") + ", got " +
+                               std::to_string(got.size()));
                 return false;
             }
             for (size_t k = 0; k < run; ++k) {
                 if (sig[si + k] == 'i' && !isIntegral(got[k])) {
-                    m_diag.error(loc, req + " expects an integer as argument " +
-                                          std::to_string(si + k + 1));
+                    error(loc, req + " expects an integer as argument " +
+                                   std::to_string(si + k + 1));
                     return false;
                 }
                 args.nums.push_back(got[k]);
             }
             si += run;
+        } else if (c == 'F' || c == 'C') {
+            std::vector<double> got;
+            size_t start = vi;
+            numbers(vi, SIZE_MAX, got);
+            if (c == 'C' && got.size() != static_cast<size_t>(m_nColor)) {
+                error(loc, req + " expects " + plural(m_nColor, "number") +
+                               " (ColorSamples), got " + std::to_string(got.size()));
+                return false;
+            }
+            if (c == 'F' && vi == start) {
+                error(loc, req + " expects a numeric array as argument " + argNo);
+                return false;
+            }
+            args.floatArrays.emplace_back(got.begin(), got.end());
+            ++si;
+        } else if (c == 'B') {
+            if (vi < vals.size() && !vals[vi].array && vals[vi].isString) {
+                args.strs.push_back(vals[vi++].strs.front());
+                args.nums.insert(args.nums.end(), 16, 0.0);
+            } else {
+                std::vector<double> got;
+                numbers(vi, 16, got);
+                if (got.size() != 16) {
+                    error(loc, req + " expects a basis name or 16 numbers as argument " +
+                                   argNo);
+                    return false;
+                }
+                args.strs.emplace_back();
+                args.nums.insert(args.nums.end(), got.begin(), got.end());
+            }
+            ++si;
         } else if (c == 's' || c == 'h') {
             const Value* v = vi < vals.size() ? &vals[vi] : nullptr;
             if (v && v->isString && v->strs.size() == 1) {
@@ -231,26 +288,34 @@ bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
                        isIntegral(v->nums.front())) {
                 args.strs.push_back(std::to_string(static_cast<int>(v->nums.front())));
             } else {
-                m_diag.error(loc,
-                             req +
-                                 (c == 's' ? " expects a string as argument "
-                                           : " expects a light handle as argument ") +
-                                 argNo);
+                error(loc, req +
+                               (c == 's' ? " expects a string as argument "
+                                         : " expects a handle as argument ") +
+                               argNo);
                 return false;
             }
+            ++vi;
+            ++si;
+        } else if (c == 'S') {
+            const Value* v = vi < vals.size() ? &vals[vi] : nullptr;
+            if (!v || !v->array || (!v->isString && !v->nums.empty())) {
+                error(loc, req + " expects a string array as argument " + argNo);
+                return false;
+            }
+            args.strArrays.push_back(v->strs);
             ++vi;
             ++si;
         } else if (c == 'I') {
             const Value* v = vi < vals.size() ? &vals[vi] : nullptr;
             if (!v || !v->array || v->isString) {
-                m_diag.error(loc, req + " expects an integer array as argument " + argNo);
+                error(loc, req + " expects an integer array as argument " + argNo);
                 return false;
             }
             std::vector<int> ints;
             ints.reserve(v->nums.size());
             for (double d : v->nums) {
                 if (!isIntegral(d)) {
-                    m_diag.error(loc, req + " expects integers in argument " + argNo);
+                    error(loc, req + " expects integers in argument " + argNo);
                     return false;
                 }
                 ints.push_back(static_cast<int>(d));
@@ -264,7 +329,7 @@ bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
     }
     if (takesParams) return parseParams(info, vals, vi, args.params, loc);
     if (vi < vals.size()) {
-        m_diag.error(loc, req + " has too many arguments");
+        error(loc, req + " has too many arguments");
         return false;
     }
     return true;
@@ -278,13 +343,13 @@ bool Reader::parseParams(const RequestInfo& info, const std::vector<Value>& vals
             std::string got = nameV.array ? "an array" : "a number";
             if (!nameV.array && !nameV.nums.empty() && !nameV.isString)
                 got = "the number " + std::to_string(nameV.nums.front());
-            m_diag.error(loc, std::string(info.name) +
+            error(loc, std::string(info.name) +
                                   ": expected a parameter name, got " +
                                   (nameV.isString ? "a string array" : got));
             return false;
         }
         if (vi + 1 >= vals.size()) {
-            m_diag.error(loc, std::string(info.name) + ": parameter \"" +
+            error(loc, std::string(info.name) + ": parameter \"" +
                                   nameV.strs.front() + "\" has no value");
             return false;
         }
@@ -302,11 +367,16 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
     bool inferred = false;
     if (token.find_first_of(" \t[") != std::string::npos) {
         if (!parseParamDecl(token, true, decl, p.name)) {
-            m_diag.error(loc, req + ": bad parameter declaration \"" + token + "\"");
+            error(loc, req + ": bad parameter declaration \"" + token + "\"");
             return false;
         }
     } else {
         p.name = token;
+        // A name must survive being written back inside a declaration.
+        if (token.empty() || token.find_first_of("]\n\r\f\v") != std::string::npos) {
+            error(loc, req + ": bad parameter name \"" + token + "\"");
+            return false;
+        }
         auto it = m_declared.find(token);
         if (it != m_declared.end()) {
             decl = it->second;
@@ -323,7 +393,7 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
     if (v.isString) {
         if (p.type != ParamType::String) {
             if (!inferred) {
-                m_diag.error(loc, what + " is declared " + paramTypeName(p.type) +
+                error(loc, what + " is declared " + paramTypeName(p.type) +
                                       " but has string values");
                 return false;
             }
@@ -333,14 +403,14 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
         count = p.strings.size();
     } else if (p.type == ParamType::String) {
         if (!v.nums.empty()) {
-            m_diag.error(loc, what + " is declared string but has numbers");
+            error(loc, what + " is declared string but has numbers");
             return false;
         }
     } else if (p.type == ParamType::Integer) {
         p.ints.reserve(v.nums.size());
         for (double d : v.nums) {
             if (!isIntegral(d)) {
-                m_diag.error(loc,
+                error(loc,
                              what + " is declared integer but has non-integer values");
                 return false;
             }
@@ -356,7 +426,7 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
     if (per > 1 && count % per != 0) {
         std::string type = paramTypeName(p.type);
         if (p.arraySize > 1) type += "[" + std::to_string(p.arraySize) + "]";
-        m_diag.error(loc, what + " (" + type + ") needs a multiple of " +
+        error(loc, what + " (" + type + ") needs a multiple of " +
                               std::to_string(per) + " values, got " +
                               std::to_string(count));
         return false;
@@ -369,10 +439,13 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
 bool readString(const std::string& text, const std::string& name, Target& target,
                 Diagnostics& diag, const ReadOptions& options) {
     int before = diag.errorCount();
+    ErrorMode mode = diag.mode();
+    diag.setMode(options.errorHandler);
     Lexer lex(name, diag);
     lex.setText(text);
     detail::Reader reader(lex, target, diag, options);
     reader.run();
+    diag.setMode(mode);
     return diag.errorCount() == before;
 }
 
@@ -386,10 +459,13 @@ bool readFile(const std::string& path, Target& target, Diagnostics& diag,
                                            std::strerror(errno ? errno : ENOMEM));
         return false;
     }
+    ErrorMode mode = diag.mode();
+    diag.setMode(options.errorHandler);
     Lexer lex(path, diag);
     lex.setFile(file);
     detail::Reader reader(lex, target, diag, options);
     reader.run();
+    diag.setMode(mode);
     gzclose(file);
     return diag.errorCount() == before;
 }

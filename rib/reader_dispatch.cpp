@@ -1,92 +1,62 @@
-// reader_dispatch.cpp: the last step of reading a request: geometry consistency checks
-// (vertex counts and indices against "P"), Begin/End nesting, Declare bookkeeping, and
-// the call of the matching Target virtual. A request that fails a check is reported and
-// not forwarded, so a Target only ever sees well-formed data.
+// reader_dispatch.cpp: the last step of reading a request: hand it to the family that
+// owns it (blocks in reader_scope.cpp, geometry in reader_geometry.cpp), or here for
+// options, attributes, shaders, transformations and declarations, with their own checks
+// (Format limits, ColorSamples shapes, Basis names). A request that fails a check is
+// reported and not forwarded, so a Target only ever sees well-formed data.
 #include "reader_impl.h"
 
 namespace rib {
 namespace detail {
 
-// The vertex positions of a primitive: "P" (3 floats a point) or "Pw" (4). Returns the
-// number of points, or -1 after reporting why there are none.
-long long Reader::countPoints(const char* req, const ParamList& params,
-                              const SourceLoc& loc) {
-    const Param* P = params.find("P");
-    size_t per = 3;
-    if (!P || P->floats.empty()) {
-        P = params.find("Pw");
-        per = 4;
-    }
-    if (!P || P->floats.empty()) {
-        m_diag.error(loc, std::string(req) + " requires \"P\"");
-        return -1;
-    }
-    if (P->floats.size() % per != 0) {
-        m_diag.error(loc, std::string(req) + " \"" + P->name + "\" needs a multiple of " +
-                              std::to_string(per) + " values, got " +
-                              std::to_string(P->floats.size()));
-        return -1;
-    }
-    return static_cast<long long>(P->floats.size() / per);
-}
+namespace {
 
-bool Reader::checkPointsPolygons(const Args& a, const SourceLoc& loc) {
-    if (a.intArrays.size() != 2) return false;
-    const std::vector<int>& nverts = a.intArrays[0];
-    const std::vector<int>& verts = a.intArrays[1];
-    long long sum = 0;
-    for (size_t i = 0; i < nverts.size(); ++i) {
-        if (nverts[i] < 3) {
-            m_diag.error(loc, "PointsPolygons polygon " + std::to_string(i) + " has " +
-                                  std::to_string(nverts[i]) +
-                                  " vertices (needs at least 3)");
-            return false;
-        }
-        sum += nverts[i];
+struct NamedBasis {
+    const char* name;
+    float m[16];
+    int step;
+};
+
+const float kSixth = 1.0f / 6.0f;
+const NamedBasis kBases[] = {
+    {"bezier", {-1, 3, -3, 1, 3, -6, 3, 0, -3, 3, 0, 0, 1, 0, 0, 0}, 3},
+    {"b-spline",
+     {-kSixth, 3 * kSixth, -3 * kSixth, kSixth, 3 * kSixth, -6 * kSixth, 3 * kSixth, 0,
+      -3 * kSixth, 0, 3 * kSixth, 0, kSixth, 4 * kSixth, kSixth, 0},
+     1},
+    {"catmull-rom",
+     {-0.5f, 1.5f, -1.5f, 0.5f, 1, -2.5f, 2, -0.5f, -0.5f, 0, 0.5f, 0, 0, 1, 0, 0},
+     1},
+    {"hermite", {2, 1, -2, 1, -3, -2, 3, -1, 0, 1, 0, 0, 1, 0, 0, 0}, 2},
+    {"power", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, 4},
+};
+
+}  // namespace
+
+bool Reader::basisMatrix(const std::string& name, const double* nums, float m[16],
+                         const SourceLoc& loc) {
+    if (name.empty()) {
+        for (int i = 0; i < 16; ++i) m[i] = static_cast<float>(nums[i]);
+        return true;
     }
-    if (sum != static_cast<long long>(verts.size())) {
-        m_diag.error(loc, "PointsPolygons nverts add up to " + std::to_string(sum) +
-                              " but verts has " + std::to_string(verts.size()) +
-                              " entries");
-        return false;
-    }
-    long long npoints = countPoints("PointsPolygons", a.params, loc);
-    if (npoints < 0) return false;
-    for (int v : verts) {
-        if (v < 0 || v >= npoints) {
-            m_diag.error(loc, "PointsPolygons vertex index " + std::to_string(v) +
-                                  " out of range (" +
-                                  plural(static_cast<size_t>(npoints), "point") +
-                                  " in \"P\")");
-            return false;
+    for (const NamedBasis& b : kBases) {
+        if (name == b.name) {
+            for (int i = 0; i < 16; ++i) m[i] = b.m[i];
+            return true;
         }
     }
-    return true;
-}
-
-void Reader::beginBlock(Req begin, const char* name, const SourceLoc& loc) {
-    m_blocks.push_back(OpenBlock{begin, name, loc});
-}
-
-bool Reader::endBlock(Req begin, const char* beginName, const char* endName,
-                      const SourceLoc& loc) {
-    bool open = false;
-    for (const OpenBlock& b : m_blocks) open = open || b.begin == begin;
-    if (!open) {
-        m_diag.error(loc, std::string(endName) + " without " + beginName);
-        return false;
-    }
-    const OpenBlock& top = m_blocks.back();
-    if (top.begin != begin) {
-        m_diag.error(loc, std::string("unbalanced ") + endName +
-                              " (open block: " + top.name + " at " + top.loc.str() + ")");
-        return false;
-    }
-    m_blocks.pop_back();
-    return true;
+    error(loc, "Basis: unknown basis \"" + name +
+                   "\" (bezier, b-spline, catmull-rom, hermite, power)");
+    return false;
 }
 
 void Reader::dispatch(const RequestInfo& info, const Args& a, const SourceLoc& loc) {
+    if (dispatchBlock(info, a, loc)) return;
+    if (dispatchGeometry(info, a, loc)) return;
+    dispatchOptionOrAttribute(info, a, loc);
+}
+
+bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
+                                       const SourceLoc& loc) {
     // parseArgs guarantees the counts; the accessors are checked anyway so a table typo
     // can never index out of range.
     auto f = [&](size_t i) {
@@ -96,44 +66,24 @@ void Reader::dispatch(const RequestInfo& info, const Args& a, const SourceLoc& l
         return i < a.nums.size() ? static_cast<int>(a.nums[i]) : 0;
     };
     auto s = [&](size_t i) { return i < a.strs.size() ? a.strs[i] : std::string(); };
-    auto matrix = [&](float m[16]) {
-        for (size_t i = 0; i < 16; ++i) m[i] = f(i);
+    auto fa = [&](size_t i) {
+        return i < a.floatArrays.size() ? a.floatArrays[i] : std::vector<float>();
     };
+    const std::string req = info.name;
     const ParamList& P = a.params;
     Target& t = m_target;
-    float m[16];
+    float m[16], m2[16];
     switch (info.req) {
-        case Req::FrameBegin:
-            beginBlock(Req::FrameBegin, info.name, loc);
-            t.frameBegin(loc, n(0));
-            break;
-        case Req::WorldBegin:
-            beginBlock(Req::WorldBegin, info.name, loc);
-            t.worldBegin(loc);
-            break;
-        case Req::AttributeBegin:
-            beginBlock(Req::AttributeBegin, info.name, loc);
-            t.attributeBegin(loc);
-            break;
-        case Req::TransformBegin:
-            beginBlock(Req::TransformBegin, info.name, loc);
-            t.transformBegin(loc);
-            break;
-        case Req::FrameEnd:
-            if (endBlock(Req::FrameBegin, "FrameBegin", info.name, loc)) t.frameEnd(loc);
-            break;
-        case Req::WorldEnd:
-            if (endBlock(Req::WorldBegin, "WorldBegin", info.name, loc)) t.worldEnd(loc);
-            break;
-        case Req::AttributeEnd:
-            if (endBlock(Req::AttributeBegin, "AttributeBegin", info.name, loc))
-                t.attributeEnd(loc);
-            break;
-        case Req::TransformEnd:
-            if (endBlock(Req::TransformBegin, "TransformBegin", info.name, loc))
-                t.transformEnd(loc);
-            break;
+        // Options
         case Req::Format:
+            if (n(0) < 1 || n(1) < 1 || n(0) > m_opts.maxResolution ||
+                n(1) > m_opts.maxResolution || !(f(2) > 0)) {
+                error(loc, "Format " + std::to_string(n(0)) + "x" + std::to_string(n(1)) +
+                               " is out of range (1.." +
+                               std::to_string(m_opts.maxResolution) +
+                               " pixels, positive pixel aspect)");
+                break;
+            }
             t.format(loc, n(0), n(1), f(2));
             break;
         case Req::FrameAspectRatio:
@@ -142,35 +92,123 @@ void Reader::dispatch(const RequestInfo& info, const Args& a, const SourceLoc& l
         case Req::ScreenWindow:
             t.screenWindow(loc, f(0), f(1), f(2), f(3));
             break;
+        case Req::CropWindow:
+            t.cropWindow(loc, f(0), f(1), f(2), f(3));
+            break;
         case Req::Projection:
             t.projection(loc, s(0), P);
             break;
         case Req::Clipping:
             t.clipping(loc, f(0), f(1));
             break;
+        case Req::DepthOfField:
+            if (a.optionalMissing)
+                t.depthOfField(loc, HUGE_VALF, 0.f, 0.f);
+            else
+                t.depthOfField(loc, f(0), f(1), f(2));
+            break;
+        case Req::Shutter:
+            t.shutter(loc, f(0), f(1));
+            break;
+        case Req::PixelVariance:
+            t.pixelVariance(loc, f(0));
+            break;
         case Req::PixelSamples:
             t.pixelSamples(loc, f(0), f(1));
+            break;
+        case Req::PixelFilter:
+            t.pixelFilter(loc, s(0), f(0), f(1));
+            break;
+        case Req::Exposure:
+            t.exposure(loc, f(0), f(1));
+            break;
+        case Req::Imager:
+            t.imager(loc, s(0), P);
+            break;
+        case Req::Quantize:
+            t.quantize(loc, s(0), n(0), n(1), n(2), f(3));
             break;
         case Req::Display:
             t.display(loc, s(0), s(1), s(2), P);
             break;
+        case Req::Hider:
+            t.hider(loc, s(0), P);
+            break;
+        case Req::ColorSamples: {
+            const std::vector<float> nRGB = fa(0), RGBn = fa(1);
+            if (nRGB.empty() || nRGB.size() % 3 != 0 || nRGB.size() != RGBn.size()) {
+                error(loc, "ColorSamples needs two arrays of 3n numbers (nRGB, RGBn), got " +
+                               std::to_string(nRGB.size()) + " and " +
+                               std::to_string(RGBn.size()));
+                break;
+            }
+            m_nColor = static_cast<int>(nRGB.size() / 3);
+            t.colorSamples(loc, nRGB, RGBn);
+            break;
+        }
+        case Req::RelativeDetail:
+            t.relativeDetail(loc, f(0));
+            break;
         case Req::Option:
+            noteOption(s(0), P);
             t.option(loc, s(0), P);
             break;
+        case Req::ErrorHandler: {
+            const std::string h = s(0);
+            if (h == "print" || h == "ignore" || h == "abort") {
+                t.errorHandler(loc, h);
+                m_diag.setMode(h == "print"    ? ErrorMode::Print
+                               : h == "ignore" ? ErrorMode::Ignore
+                                               : ErrorMode::Abort);
+            } else {
+                error(loc, "ErrorHandler: unknown handler \"" + h +
+                               "\" (print, ignore, abort)");
+            }
+            break;
+        }
+        case Req::ReadArchive:
+            if (m_opts.expandArchives)
+                readArchive(s(0), P, loc);
+            else
+                t.readArchive(loc, s(0), P);
+            break;
+
+        // Attributes
         case Req::Attribute:
             t.attribute(loc, s(0), P);
             break;
         case Req::Color:
-            t.color(loc, {f(0), f(1), f(2)});
+            t.color(loc, fa(0));
             break;
         case Req::Opacity:
-            t.opacity(loc, {f(0), f(1), f(2)});
+            t.opacity(loc, fa(0));
+            break;
+        case Req::TextureCoordinates:
+            t.textureCoordinates(loc, f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7));
             break;
         case Req::Surface:
             t.surface(loc, s(0), P);
             break;
+        case Req::Displacement:
+            t.displacement(loc, s(0), P);
+            break;
+        case Req::Atmosphere:
+            t.atmosphere(loc, s(0), P);
+            break;
+        case Req::Interior:
+            t.interior(loc, s(0), P);
+            break;
+        case Req::Exterior:
+            t.exterior(loc, s(0), P);
+            break;
+        case Req::Deformation:
+            t.deformation(loc, s(0), P);
+            break;
         case Req::LightSource:
             t.lightSource(loc, s(0), s(1), P);
+            break;
+        case Req::AreaLightSource:
+            t.areaLightSource(loc, s(0), s(1), P);
             break;
         case Req::Illuminate:
             t.illuminate(loc, s(0), n(0) != 0);
@@ -178,7 +216,36 @@ void Reader::dispatch(const RequestInfo& info, const Args& a, const SourceLoc& l
         case Req::ShadingRate:
             t.shadingRate(loc, f(0));
             break;
+        case Req::ShadingInterpolation:
+            if (s(0) != "constant" && s(0) != "smooth") {
+                error(loc, "ShadingInterpolation: expected \"constant\" or \"smooth\", got \"" +
+                               s(0) + "\"");
+                break;
+            }
+            t.shadingInterpolation(loc, s(0));
+            break;
+        case Req::Matte:
+            t.matte(loc, n(0) != 0);
+            break;
+        case Req::Bound:
+        case Req::Detail:
+            for (size_t i = 0; i < 6; ++i) m[i] = f(i);
+            if (info.req == Req::Bound)
+                t.bound(loc, m);
+            else
+                t.detail(loc, m);
+            break;
+        case Req::DetailRange:
+            t.detailRange(loc, f(0), f(1), f(2), f(3));
+            break;
+        case Req::GeometricApproximation:
+            t.geometricApproximation(loc, s(0), f(0));
+            break;
         case Req::Sides:
+            if (n(0) != 1 && n(0) != 2) {
+                error(loc, "Sides must be 1 or 2, got " + std::to_string(n(0)));
+                break;
+            }
             t.sides(loc, n(0));
             break;
         case Req::Orientation:
@@ -187,28 +254,48 @@ void Reader::dispatch(const RequestInfo& info, const Args& a, const SourceLoc& l
         case Req::ReverseOrientation:
             t.reverseOrientation(loc);
             break;
+        case Req::Basis: {
+            // nums: 16 (u basis), ustep, 16 (v basis), vstep; strs: the two names.
+            if (a.nums.size() != 34 || a.strs.size() != 2) break;
+            if (!basisMatrix(s(0), &a.nums[0], m, loc) ||
+                !basisMatrix(s(1), &a.nums[17], m2, loc))
+                break;
+            if (n(16) < 1 || n(33) < 1) {
+                error(loc, "Basis steps must be at least 1");
+                break;
+            }
+            m_ustep = n(16);
+            m_vstep = n(33);
+            t.basis(loc, s(0), m, n(16), s(1), m2, n(33));
+            break;
+        }
         case Req::Declare: {
             ParamDecl decl;
             std::string unused;
             if (!parseParamDecl(s(1), false, decl, unused)) {
-                m_diag.error(loc, "Declare: bad declaration \"" + s(1) + "\" for \"" +
-                                      s(0) + "\"");
+                error(loc, "Declare: bad declaration \"" + s(1) + "\" for \"" + s(0) +
+                               "\"");
                 break;
             }
             m_declared[s(0)] = decl;
             t.declare(loc, s(0), s(1));
             break;
         }
+
+        // Transformations
         case Req::Identity:
             t.identity(loc);
             break;
         case Req::Transform:
-            matrix(m);
-            t.transform(loc, m);
-            break;
         case Req::ConcatTransform:
-            matrix(m);
-            t.concatTransform(loc, m);
+            for (size_t i = 0; i < 16; ++i) m[i] = f(i);
+            if (info.req == Req::Transform)
+                t.transform(loc, m);
+            else
+                t.concatTransform(loc, m);
+            break;
+        case Req::Perspective:
+            t.perspective(loc, f(0));
             break;
         case Req::Translate:
             t.translate(loc, f(0), f(1), f(2));
@@ -219,23 +306,37 @@ void Reader::dispatch(const RequestInfo& info, const Args& a, const SourceLoc& l
         case Req::Scale:
             t.scale(loc, f(0), f(1), f(2));
             break;
-        case Req::Polygon:
-            if (countPoints("Polygon", P, loc) >= 0) t.polygon(loc, P);
+        case Req::Skew:
+            t.skew(loc, f(0), f(1), f(2), f(3), f(4), f(5), f(6));
             break;
-        case Req::PointsPolygons:
-            if (checkPointsPolygons(a, loc))
-                t.pointsPolygons(loc, a.intArrays[0], a.intArrays[1], P);
+        case Req::CoordinateSystem:
+            t.coordinateSystem(loc, s(0));
             break;
-        case Req::Sphere:
-            t.sphere(loc, f(0), f(1), f(2), f(3), P);
+        case Req::CoordSysTransform:
+            t.coordSysTransform(loc, s(0));
             break;
-        case Req::Exposure:
-        case Req::Quantize:
-        case Req::PixelFilter:
-        case Req::Hider:
-        case Req::version:
+
+        // Texture making: strs and nums in signature order
+        case Req::MakeTexture:
+            t.makeTexture(loc, s(0), s(1), s(2), s(3), s(4), f(0), f(1), P);
             break;
+        case Req::MakeBump:
+            t.makeBump(loc, s(0), s(1), s(2), s(3), s(4), f(0), f(1), P);
+            break;
+        case Req::MakeLatLongEnvironment:
+            t.makeLatLongEnvironment(loc, s(0), s(1), s(2), f(0), f(1), P);
+            break;
+        case Req::MakeCubeFaceEnvironment:
+            t.makeCubeFaceEnvironment(loc, {s(0), s(1), s(2), s(3), s(4), s(5)}, s(6), f(0),
+                                      s(7), f(1), f(2), P);
+            break;
+        case Req::MakeShadow:
+            t.makeShadow(loc, s(0), s(1), P);
+            break;
+        default:
+            return false;
     }
+    return true;
 }
 
 }  // namespace detail

@@ -1,10 +1,14 @@
-// reader_impl.h: internals of the RIB reader shared by reader.cpp (tokens to values to
-// arguments) and reader_dispatch.cpp (checks, block nesting, Target calls). Not part of
-// the library's API; only the reader's own sources include it.
+// reader_impl.h: internals of the RIB reader shared by its sources: reader.cpp (tokens to
+// values to arguments), reader_dispatch.cpp (options, attributes, transforms),
+// reader_geometry.cpp (primitives and their array-length checks), reader_scope.cpp
+// (blocks, valid scopes, motion blocks) and reader_archive.cpp (ReadArchive, inline
+// archives). Not part of the library's API; only the reader's own sources include it.
 #pragma once
 #include <cmath>
+#include <memory>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "lexer.h"
@@ -15,15 +19,20 @@ namespace rib {
 namespace detail {
 
 enum class Req {
-#define RIB_REQUEST(name, sig) name,
+#define RIB_REQUEST(name, sig, kind, motion) name,
 #include "requests.def"
 #undef RIB_REQUEST
 };
+
+// Where a request may appear (the third column of requests.def).
+enum class Kind { Any, Opt, Attr, Xform, Geom, Light, Tex, Block };
 
 struct RequestInfo {
     const char* name;
     const char* sig;
     Req req;
+    Kind kind;
+    bool motion;  // may appear inside MotionBegin/MotionEnd
 };
 
 const RequestInfo* findRequest(const std::string& name);
@@ -38,17 +47,32 @@ struct Value {
     std::vector<std::string> strs;
 };
 
+// A request's positional arguments by kind, in signature order within each kind.
 struct Args {
-    std::vector<double> nums;
-    std::vector<std::string> strs;
-    std::vector<std::vector<int>> intArrays;
+    std::vector<double> nums;                    // f, i, m, and a B's sixteen numbers
+    std::vector<std::string> strs;               // s, h, and a B's name ("" for numbers)
+    std::vector<std::vector<int>> intArrays;     // I
+    std::vector<std::vector<float>> floatArrays; // F, C
+    std::vector<std::vector<std::string>> strArrays;  // S
+    bool optionalMissing = false;                // the '?' group was left out
     ParamList params;
 };
 
 struct OpenBlock {
-    Req begin;
-    const char* name;
+    Req begin = Req::version;
+    const char* name = "";
     SourceLoc loc;
+    int ustep = 3, vstep = 3;  // Basis steps to restore when an attribute block ends
+    std::string solidOp;       // SolidBegin's operation
+    size_t motionTimes = 0;    // MotionBegin: number of times
+    size_t motionCount = 0;    // MotionBegin: requests seen so far
+    const char* motionReq = nullptr;  // MotionBegin: the request being sampled
+};
+
+// An inline archive (ArchiveBegin "name" ... ArchiveEnd) kept as tokens for ReadArchive.
+struct InlineArchive {
+    std::string file;
+    std::vector<Token> tokens;
 };
 
 inline bool isIntegral(double v) {
@@ -60,14 +84,24 @@ inline std::string plural(size_t n, const char* what) {
     return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
 }
 
+// Shared by the geometry checks (reader_geometry.cpp).
+long long sum(const std::vector<int>& v);
+// Patches along one direction of a patch mesh (or segments of a curve) and the number of
+// varying values along it; false with `why` set when n does not fit the rules.
+bool spanCount(bool cubic, bool periodic, long long n, int step, long long& patches,
+               long long& varying, std::string& why);
+bool wrapMode(const std::string& w, bool& periodic);
+
 class Reader {
 public:
-    Reader(Lexer& lex, Target& target, Diagnostics& diag, const ReadOptions& opts)
-        : m_lex(lex), m_target(target), m_diag(diag), m_opts(opts) {}
+    Reader(Lexer& lex, Target& target, Diagnostics& diag, const ReadOptions& opts);
     void run();
 
 private:
+    // reader.cpp
+    void readStream();
     Token nextToken();
+    SourceLoc loc(int line) const;
     bool collectValues(std::vector<Value>& out);
     bool readArray(const Token& open, Value& v);
     bool parseArgs(const RequestInfo& info, const std::vector<Value>& vals, Args& args,
@@ -76,14 +110,48 @@ private:
                      ParamList& out, const SourceLoc& loc);
     bool buildParam(const RequestInfo& info, const std::string& token, const Value& v,
                     Param& out, const SourceLoc& loc);
-    long long countPoints(const char* req, const ParamList& params, const SourceLoc& loc);
-    bool checkPointsPolygons(const Args& a, const SourceLoc& loc);
+    void error(const SourceLoc& loc, const std::string& msg) { m_diag.error(loc, msg); }
+
+    // reader_dispatch.cpp
     void dispatch(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    bool dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
+                                   const SourceLoc& loc);
+    bool basisMatrix(const std::string& name, const double* nums, float m[16],
+                     const SourceLoc& loc);
+
+    // reader_geometry.cpp
+    bool dispatchGeometry(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    long long countPoints(const char* req, const ParamList& params, const SourceLoc& loc);
+    bool checkVaryingCounts(const char* req, const ParamList& params, long long uniform,
+                            long long varying, long long vertex, long long faceVarying,
+                            const SourceLoc& loc);
+    bool checkPointsPolygons(const Args& a, const SourceLoc& loc);
+    bool checkPointsGeneralPolygons(const Args& a, const SourceLoc& loc);
+    bool checkPatchMesh(const Args& a, const SourceLoc& loc);
+    bool checkNuPatch(const Args& a, const SourceLoc& loc);
+    bool checkTrimCurve(const Args& a, const SourceLoc& loc);
+    bool checkSubdivisionMesh(const Args& a, const SourceLoc& loc);
+    bool checkCurves(const Args& a, const SourceLoc& loc);
+    bool checkBlobby(const Args& a, const SourceLoc& loc);
+    bool checkIndices(const char* req, const std::vector<int>& idx, long long n,
+                      const char* what, const SourceLoc& loc);
+
+    // reader_scope.cpp
+    bool checkScope(const RequestInfo& info, const SourceLoc& loc);
+    bool dispatchBlock(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    bool has(Req begin) const;
     void beginBlock(Req begin, const char* name, const SourceLoc& loc);
     bool endBlock(Req begin, const char* beginName, const char* endName,
                   const SourceLoc& loc);
 
-    Lexer& m_lex;
+    // reader_archive.cpp
+    void readArchive(const std::string& name, const ParamList& params,
+                     const SourceLoc& loc);
+    void recordInlineArchive(const std::string& name, const SourceLoc& loc);
+    std::string resolveArchive(const std::string& name) const;
+    void noteOption(const std::string& name, const ParamList& params);
+
+    Lexer* m_lex;
     Target& m_target;
     Diagnostics& m_diag;
     const ReadOptions& m_opts;
@@ -93,6 +161,18 @@ private:
     int m_lastLine = 1;
     std::unordered_map<std::string, ParamDecl> m_declared;
     std::vector<OpenBlock> m_blocks;
+
+    int m_nColor = 3;               // ColorSamples
+    int m_ustep = 3, m_vstep = 3;   // Basis steps (bezier by default)
+    int m_archiveDepth = 0;
+    std::string m_dir;              // the directory of the file being read ("" or ".../")
+    std::string m_archivePath;      // Option "searchpath" "archive", ':'-separated
+    std::unordered_map<std::string, std::shared_ptr<const InlineArchive>> m_inlineArchives;
+    std::shared_ptr<const InlineArchive> m_replayHold;  // keeps a replayed archive alive
+    const std::vector<Token>* m_replay = nullptr;       // replaying an inline archive
+    size_t m_replayPos = 0;
+    std::string m_replayFile;
+    std::unordered_set<std::string> m_objects;  // ObjectBegin handles seen
 };
 
 }  // namespace detail

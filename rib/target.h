@@ -69,6 +69,127 @@ public:
     // Declarations: the reader resolves parameter types itself; this only tells a target
     // (a RIB writer, say) that `Declare "name" "decl"` was seen.
     virtual void declare(L, const std::string& /*name*/, const std::string& /*decl*/) {}
+
+    // ---- The rest of RI 3.2 (added later; same conventions). Vectors are passed as
+    // written; the reader has already checked their lengths against each other.
+    using S = const std::string&;
+    using P = const ParamList&;
+    using Floats = const std::vector<float>&;
+    using Ints = const std::vector<int>&;
+    using Strings = const std::vector<std::string>&;
+
+    // Options
+    virtual void exposure(L, float /*gain*/, float /*gamma*/) {}
+    virtual void imager(L, S /*name*/, P) {}
+    virtual void quantize(L, S /*type*/, int /*one*/, int /*min*/, int /*max*/,
+                          float /*ditherAmplitude*/) {}
+    virtual void pixelVariance(L, float) {}
+    // `filter` is the RI name: "box", "triangle", "catmull-rom", "gaussian", "sinc" (or a
+    // renderer-specific one; the reader does not restrict it).
+    virtual void pixelFilter(L, S /*filter*/, float /*xwidth*/, float /*ywidth*/) {}
+    virtual void hider(L, S /*type*/, P) {}
+    // nRGB is n*3 floats (n rows of RGB), RGBn is 3*n; both row-major.
+    virtual void colorSamples(L, Floats /*nRGB*/, Floats /*RGBn*/) {}
+    virtual void relativeDetail(L, float) {}
+    virtual void cropWindow(L, float /*xmin*/, float /*xmax*/, float /*ymin*/,
+                            float /*ymax*/) {}
+    // A bare `DepthOfField` (pinhole) arrives as fstop = +infinity, the others 0.
+    virtual void depthOfField(L, float /*fstop*/, float /*focalLength*/,
+                              float /*focalDistance*/) {}
+    virtual void shutter(L, float /*open*/, float /*close*/) {}
+    virtual void errorHandler(L, S /*"print" | "ignore" | "abort"*/) {}
+
+    // Attributes and shaders
+    virtual void matte(L, bool) {}
+    virtual void shadingInterpolation(L, S /*"constant" | "smooth"*/) {}
+    virtual void textureCoordinates(L, float /*s1*/, float /*t1*/, float /*s2*/,
+                                    float /*t2*/, float /*s3*/, float /*t3*/,
+                                    float /*s4*/, float /*t4*/) {}
+    virtual void bound(L, const float /*xmin xmax ymin ymax zmin zmax*/[6]) {}
+    virtual void detail(L, const float /*bound*/[6]) {}
+    virtual void detailRange(L, float /*minVisible*/, float /*lowerTransition*/,
+                             float /*upperTransition*/, float /*maxVisible*/) {}
+    virtual void geometricApproximation(L, S /*type*/, float /*value*/) {}
+    virtual void displacement(L, S /*name*/, P) {}
+    virtual void atmosphere(L, S /*name*/, P) {}
+    virtual void interior(L, S /*name*/, P) {}
+    virtual void exterior(L, S /*name*/, P) {}
+    virtual void deformation(L, S /*name*/, P) {}
+    virtual void areaLightSource(L, S /*name*/, S /*handle*/, P) {}
+    // ubasisName/vbasisName are the names when written by name ("bezier"...), else "";
+    // the matrices are always filled in (row-major).
+    virtual void basis(L, S /*ubasisName*/, const float /*ubasis*/[16], int /*ustep*/,
+                       S /*vbasisName*/, const float /*vbasis*/[16], int /*vstep*/) {}
+    virtual void trimCurve(L, Ints /*ncurves per loop*/, Ints /*order*/, Floats /*knot*/,
+                           Floats /*min*/, Floats /*max*/, Ints /*n*/, Floats /*u*/,
+                           Floats /*v*/, Floats /*w*/) {}
+
+    // Transformations and coordinate systems
+    virtual void perspective(L, float /*fovDeg*/) {}
+    virtual void skew(L, float /*angleDeg*/, float /*dx*/, float /*dy*/, float /*dz*/,
+                      float /*ax*/, float /*ay*/, float /*az*/) {}
+    virtual void coordinateSystem(L, S) {}
+    virtual void coordSysTransform(L, S) {}
+
+    // Blocks
+    virtual void motionBegin(L, Floats /*times*/) {}
+    virtual void motionEnd(L) {}
+    virtual void solidBegin(L, S /*"primitive" | "union" | "intersection" | "difference"*/) {}
+    virtual void solidEnd(L) {}
+    // Object handles are integers or strings in RIB; both arrive as strings.
+    virtual void objectBegin(L, S /*handle*/) {}
+    virtual void objectEnd(L) {}
+    virtual void objectInstance(L, S /*handle*/) {}
+    virtual void archiveBegin(L, S /*name*/, P) {}
+    virtual void archiveEnd(L) {}
+    // Only called when ReadOptions::expandArchives is false; by default the reader reads
+    // the archive itself and the target sees its requests.
+    virtual void readArchive(L, S /*file*/, P) {}
+
+    // Geometry
+    virtual void generalPolygon(L, Ints /*nverts per loop*/, P) {}
+    virtual void pointsGeneralPolygons(L, Ints /*nloops*/, Ints /*nverts*/, Ints /*verts*/,
+                                       P) {}
+    virtual void patch(L, S /*"bilinear" | "bicubic"*/, P) {}
+    virtual void patchMesh(L, S /*type*/, int /*nu*/, S /*uwrap*/, int /*nv*/,
+                           S /*vwrap*/, P) {}
+    virtual void nuPatch(L, int /*nu*/, int /*uorder*/, Floats /*uknot*/, float /*umin*/,
+                         float /*umax*/, int /*nv*/, int /*vorder*/, Floats /*vknot*/,
+                         float /*vmin*/, float /*vmax*/, P) {}
+    virtual void subdivisionMesh(L, S /*scheme*/, Ints /*nverts*/, Ints /*verts*/,
+                                 Strings /*tags*/, Ints /*nargs*/, Ints /*intargs*/,
+                                 Floats /*floatargs*/, P) {}
+    virtual void cylinder(L, float /*radius*/, float /*zmin*/, float /*zmax*/,
+                          float /*thetamaxDeg*/, P) {}
+    virtual void cone(L, float /*height*/, float /*radius*/, float /*thetamaxDeg*/, P) {}
+    virtual void disk(L, float /*height*/, float /*radius*/, float /*thetamaxDeg*/, P) {}
+    virtual void torus(L, float /*majorRadius*/, float /*minorRadius*/, float /*phiMinDeg*/,
+                       float /*phiMaxDeg*/, float /*thetamaxDeg*/, P) {}
+    virtual void paraboloid(L, float /*rmax*/, float /*zmin*/, float /*zmax*/,
+                            float /*thetamaxDeg*/, P) {}
+    virtual void hyperboloid(L, const float /*point1*/[3], const float /*point2*/[3],
+                             float /*thetamaxDeg*/, P) {}
+    virtual void curves(L, S /*"linear" | "cubic"*/, Ints /*nvertices*/,
+                        S /*"periodic" | "nonperiodic"*/, P) {}
+    virtual void points(L, P) {}
+    virtual void blobby(L, int /*nleaf*/, Ints /*code*/, Floats /*floats*/,
+                        Strings /*strings*/, P) {}
+    virtual void geometry(L, S /*type*/, P) {}
+    // "DelayedReadArchive" | "RunProgram" | "DynamicLoad"; bound is 6 floats.
+    virtual void procedural(L, S /*name*/, Strings /*args*/, const float /*bound*/[6]) {}
+
+    // Texture making (outside World)
+    virtual void makeTexture(L, S /*picture*/, S /*texture*/, S /*swrap*/, S /*twrap*/,
+                             S /*filter*/, float /*swidth*/, float /*twidth*/, P) {}
+    virtual void makeBump(L, S /*picture*/, S /*texture*/, S /*swrap*/, S /*twrap*/,
+                          S /*filter*/, float /*swidth*/, float /*twidth*/, P) {}
+    virtual void makeLatLongEnvironment(L, S /*picture*/, S /*texture*/, S /*filter*/,
+                                        float /*swidth*/, float /*twidth*/, P) {}
+    // faces: px nx py ny pz nz
+    virtual void makeCubeFaceEnvironment(L, Strings /*faces (6)*/, S /*texture*/,
+                                         float /*fov*/, S /*filter*/, float /*swidth*/,
+                                         float /*twidth*/, P) {}
+    virtual void makeShadow(L, S /*picture*/, S /*texture*/, P) {}
 };
 
 } // namespace rib

@@ -1,0 +1,155 @@
+// reader_archive.cpp: archives. ReadArchive reads another RIB file (found next to the
+// file being read, then along the archive search path) through a fresh lexer, so it may
+// be binary or gzip-compressed whatever its parent is; inline archives (ArchiveBegin
+// "name" ... ArchiveEnd) are kept as tokens and replayed by ReadArchive "name". Nesting
+// is limited so an archive that reads itself is an error, not a stack overflow.
+#include <zlib.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "reader_impl.h"
+
+namespace rib {
+namespace detail {
+
+namespace {
+
+bool fileExists(const std::string& path) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return false;
+    std::fclose(f);
+    return true;
+}
+
+}  // namespace
+
+void Reader::noteOption(const std::string& name, const ParamList& params) {
+    if (name != "searchpath") return;
+    for (const char* key : {"archive", "resource"}) {
+        const Param* p = params.find(key);
+        if (!p || p->strings.empty()) continue;
+        std::string path = p->strings[0], out;
+        for (char c : path) {
+            if (c == '&')
+                out += m_archivePath;
+            else
+                out += c;
+        }
+        m_archivePath = out;
+    }
+}
+
+std::string Reader::resolveArchive(const std::string& name) const {
+    if (name.empty()) return std::string();
+    if (name[0] == '/') return fileExists(name) ? name : std::string();
+    if (fileExists(m_dir + name)) return m_dir + name;
+    size_t start = 0;
+    while (start <= m_archivePath.size()) {
+        size_t end = m_archivePath.find(':', start);
+        if (end == std::string::npos) end = m_archivePath.size();
+        std::string dir = m_archivePath.substr(start, end - start);
+        if (!dir.empty()) {
+            std::string path = dir + (dir.back() == '/' ? "" : "/") + name;
+            if (fileExists(path)) return path;
+        }
+        start = end + 1;
+    }
+    return std::string();
+}
+
+void Reader::readArchive(const std::string& name, const ParamList& params,
+                         const SourceLoc& loc) {
+    (void)params;
+    if (m_archiveDepth >= m_opts.maxArchiveDepth) {
+        error(loc, "ReadArchive \"" + name + "\": archives nested more than " +
+                       std::to_string(m_opts.maxArchiveDepth) +
+                       " deep (does an archive read itself?)");
+        return;
+    }
+    // Everything below is restored when the archive ends.
+    Token pending = m_pending;
+    bool havePending = m_havePending;
+    m_havePending = false;
+    auto hold = m_replayHold;
+    const std::vector<Token>* replay = m_replay;
+    size_t replayPos = m_replayPos;
+    std::string replayFile = m_replayFile;
+    Lexer* lex = m_lex;
+    std::string dir = m_dir;
+    int lastLine = m_lastLine;
+    ++m_archiveDepth;
+
+    auto inl = m_inlineArchives.find(name);
+    if (inl != m_inlineArchives.end()) {
+        m_replayHold = inl->second;
+        m_replay = &m_replayHold->tokens;
+        m_replayPos = 0;
+        m_replayFile = m_replayHold->file;
+        readStream();
+    } else {
+        std::string path = resolveArchive(name);
+        gzFile file = path.empty() ? nullptr : gzopen(path.c_str(), "rb");
+        if (!file) {
+            error(loc, "ReadArchive: cannot open \"" + name + "\"" +
+                           (path.empty() ? std::string(" (not found)")
+                                         : ": " + std::string(std::strerror(errno))));
+        } else {
+            Lexer archiveLex(path, m_diag);
+            archiveLex.setFile(file);
+            m_lex = &archiveLex;
+            m_replay = nullptr;
+            size_t slash = path.rfind('/');
+            m_dir = slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+            readStream();
+            gzclose(file);
+        }
+    }
+
+    --m_archiveDepth;
+    m_pending = pending;
+    m_havePending = havePending;
+    m_replayHold = hold;
+    m_replay = replay;
+    m_replayPos = replayPos;
+    m_replayFile = replayFile;
+    m_lex = lex;
+    m_dir = dir;
+    m_lastLine = lastLine;
+}
+
+void Reader::recordInlineArchive(const std::string& name, const SourceLoc& loc) {
+    auto archive = std::make_shared<InlineArchive>();
+    archive->file = loc.file;
+    int depth = 0;
+    bool tooBig = false;
+    while (!m_diag.tooManyErrors()) {
+        Token t = nextToken();
+        if (t.kind == TokenKind::Eof) {
+            error(loc, "ArchiveBegin \"" + name + "\" never closed");
+            return;
+        }
+        if (t.kind == TokenKind::Word) {
+            if (t.text == "ArchiveBegin") {
+                ++depth;
+            } else if (t.text == "ArchiveEnd") {
+                if (depth == 0) break;
+                --depth;
+            }
+        }
+        if (archive->tokens.size() >= m_opts.maxArrayValues) {
+            if (!tooBig)
+                error(loc, "ArchiveBegin \"" + name + "\" is too large (more than " +
+                               std::to_string(m_opts.maxArrayValues) + " tokens)");
+            tooBig = true;
+            continue;
+        }
+        archive->tokens.push_back(std::move(t));
+    }
+    if (tooBig) return;
+    m_inlineArchives[name] = std::move(archive);
+}
+
+}  // namespace detail
+}  // namespace rib

@@ -1,0 +1,249 @@
+// reader_scope.cpp: block structure and valid scopes. Begin/End requests are matched on a
+// stack; every other request is checked against the scope its requests.def row allows
+// (options before WorldBegin, geometry inside World or an object definition, lights in
+// World, only motion-capable requests inside MotionBegin, all of the same request and as
+// many as there are times). A request in the wrong place is reported and not forwarded.
+#include "reader_impl.h"
+
+namespace rib {
+namespace detail {
+
+bool Reader::has(Req begin) const {
+    for (const OpenBlock& b : m_blocks)
+        if (b.begin == begin) return true;
+    return false;
+}
+
+void Reader::beginBlock(Req begin, const char* name, const SourceLoc& loc) {
+    OpenBlock b;
+    b.begin = begin;
+    b.name = name;
+    b.loc = loc;
+    b.ustep = m_ustep;
+    b.vstep = m_vstep;
+    m_blocks.push_back(std::move(b));
+}
+
+bool Reader::endBlock(Req begin, const char* beginName, const char* endName,
+                      const SourceLoc& loc) {
+    if (!has(begin)) {
+        error(loc, std::string(endName) + " without " + beginName);
+        return false;
+    }
+    const OpenBlock& top = m_blocks.back();
+    if (top.begin != begin) {
+        error(loc, std::string("unbalanced ") + endName + " (open block: " + top.name +
+                       " at " + top.loc.str() + ")");
+        return false;
+    }
+    if (begin == Req::AttributeBegin || begin == Req::WorldBegin ||
+        begin == Req::FrameBegin) {
+        m_ustep = top.ustep;  // Basis is an attribute: restored with the others
+        m_vstep = top.vstep;
+    }
+    m_blocks.pop_back();
+    return true;
+}
+
+bool Reader::checkScope(const RequestInfo& info, const SourceLoc& loc) {
+    const std::string req = info.name;
+    if (!m_blocks.empty() && m_blocks.back().begin == Req::MotionBegin &&
+        info.req != Req::MotionEnd) {
+        OpenBlock& mb = m_blocks.back();
+        if (!info.motion) {
+            error(loc, req + " is not allowed inside MotionBegin/MotionEnd");
+            return false;
+        }
+        if (mb.motionReq && req != mb.motionReq) {
+            error(loc, "MotionBegin at " + mb.loc.str() + " mixes " + mb.motionReq +
+                           " and " + req);
+            return false;
+        }
+        if (mb.motionCount >= mb.motionTimes) {
+            error(loc, "MotionBegin at " + mb.loc.str() + " has " +
+                           plural(mb.motionTimes, "time") + " but more requests");
+            return false;
+        }
+        mb.motionReq = info.name;
+        ++mb.motionCount;
+    }
+    // The contents of an archive definition are checked where the archive is read.
+    if (has(Req::ArchiveBegin)) return true;
+    bool world = has(Req::WorldBegin), object = has(Req::ObjectBegin);
+    switch (info.kind) {
+        case Kind::Opt:
+            if (world || object) {
+                error(loc, req + " is an option: not allowed inside " +
+                               (object ? "ObjectBegin/ObjectEnd" : "WorldBegin/WorldEnd"));
+                return false;
+            }
+            break;
+        case Kind::Tex:
+            if (world) {
+                error(loc, req + " is not allowed inside WorldBegin/WorldEnd");
+                return false;
+            }
+            break;
+        case Kind::Geom:
+            if (!world && !object) {
+                error(loc, req + " outside WorldBegin/WorldEnd");
+                return false;
+            }
+            break;
+        case Kind::Light:
+            if (!world) {
+                error(loc, req + " outside WorldBegin/WorldEnd");
+                return false;
+            }
+            if (object) {
+                error(loc, req + " is not allowed inside ObjectBegin/ObjectEnd");
+                return false;
+            }
+            break;
+        case Kind::Any:
+        case Kind::Attr:
+        case Kind::Xform:
+        case Kind::Block:
+            break;
+    }
+    return true;
+}
+
+bool Reader::dispatchBlock(const RequestInfo& info, const Args& a, const SourceLoc& loc) {
+    Target& t = m_target;
+    const std::string req = info.name;
+    auto s = [&](size_t i) { return i < a.strs.size() ? a.strs[i] : std::string(); };
+    bool world = has(Req::WorldBegin), object = has(Req::ObjectBegin);
+    switch (info.req) {
+        case Req::FrameBegin:
+            if (has(Req::FrameBegin) || world || object) {
+                error(loc, req + " is not allowed inside " +
+                               (object ? "ObjectBegin" : world ? "WorldBegin" : "FrameBegin"));
+                break;
+            }
+            beginBlock(Req::FrameBegin, info.name, loc);
+            t.frameBegin(loc, a.nums.empty() ? 0 : static_cast<int>(a.nums[0]));
+            break;
+        case Req::WorldBegin:
+            if (world || object) {
+                error(loc, req + " is not allowed inside " +
+                               (object ? "ObjectBegin" : "WorldBegin"));
+                break;
+            }
+            beginBlock(Req::WorldBegin, info.name, loc);
+            t.worldBegin(loc);
+            break;
+        case Req::AttributeBegin:
+            beginBlock(Req::AttributeBegin, info.name, loc);
+            t.attributeBegin(loc);
+            break;
+        case Req::TransformBegin:
+            beginBlock(Req::TransformBegin, info.name, loc);
+            t.transformBegin(loc);
+            break;
+        case Req::MotionBegin: {
+            const std::vector<float>& times = a.floatArrays.at(0);
+            if (times.empty()) {
+                error(loc, "MotionBegin needs at least one time");
+                break;
+            }
+            for (size_t i = 1; i < times.size(); ++i) {
+                if (!(times[i] >= times[i - 1])) {
+                    error(loc, "MotionBegin times must not decrease");
+                    return true;
+                }
+            }
+            beginBlock(Req::MotionBegin, info.name, loc);
+            m_blocks.back().motionTimes = times.size();
+            t.motionBegin(loc, times);
+            break;
+        }
+        case Req::SolidBegin: {
+            const std::string op = s(0);
+            if (op != "primitive" && op != "union" && op != "intersection" &&
+                op != "difference") {
+                error(loc, "SolidBegin: unknown operation \"" + op +
+                               "\" (primitive, union, intersection, difference)");
+                break;
+            }
+            if (!world && !object && !has(Req::ArchiveBegin)) {
+                error(loc, req + " outside WorldBegin/WorldEnd");
+                break;
+            }
+            for (auto it = m_blocks.rbegin(); it != m_blocks.rend(); ++it) {
+                if (it->begin != Req::SolidBegin) continue;
+                if (it->solidOp == "primitive") {
+                    error(loc, "SolidBegin inside a primitive solid (at " +
+                                   it->loc.str() + ")");
+                    return true;
+                }
+                break;
+            }
+            beginBlock(Req::SolidBegin, info.name, loc);
+            m_blocks.back().solidOp = op;
+            t.solidBegin(loc, op);
+            break;
+        }
+        case Req::ObjectBegin:
+            if (object) {
+                error(loc, "ObjectBegin is not allowed inside ObjectBegin");
+                break;
+            }
+            beginBlock(Req::ObjectBegin, info.name, loc);
+            m_objects.insert(s(0));
+            t.objectBegin(loc, s(0));
+            break;
+        case Req::ArchiveBegin:
+            if (m_opts.expandArchives) {
+                recordInlineArchive(s(0), loc);
+                break;
+            }
+            beginBlock(Req::ArchiveBegin, info.name, loc);
+            t.archiveBegin(loc, s(0), a.params);
+            break;
+        case Req::FrameEnd:
+            if (endBlock(Req::FrameBegin, "FrameBegin", info.name, loc)) t.frameEnd(loc);
+            break;
+        case Req::WorldEnd:
+            if (endBlock(Req::WorldBegin, "WorldBegin", info.name, loc)) t.worldEnd(loc);
+            break;
+        case Req::AttributeEnd:
+            if (endBlock(Req::AttributeBegin, "AttributeBegin", info.name, loc))
+                t.attributeEnd(loc);
+            break;
+        case Req::TransformEnd:
+            if (endBlock(Req::TransformBegin, "TransformBegin", info.name, loc))
+                t.transformEnd(loc);
+            break;
+        case Req::MotionEnd: {
+            if (m_blocks.empty() || m_blocks.back().begin != Req::MotionBegin) {
+                endBlock(Req::MotionBegin, "MotionBegin", info.name, loc);
+                break;
+            }
+            OpenBlock mb = m_blocks.back();
+            endBlock(Req::MotionBegin, "MotionBegin", info.name, loc);
+            if (mb.motionCount != mb.motionTimes)
+                error(loc, "MotionBegin at " + mb.loc.str() + " has " +
+                               plural(mb.motionTimes, "time") + " but " +
+                               plural(mb.motionCount, "request"));
+            t.motionEnd(loc);  // still closed, so the target's nesting stays balanced
+            break;
+        }
+        case Req::SolidEnd:
+            if (endBlock(Req::SolidBegin, "SolidBegin", info.name, loc)) t.solidEnd(loc);
+            break;
+        case Req::ObjectEnd:
+            if (endBlock(Req::ObjectBegin, "ObjectBegin", info.name, loc)) t.objectEnd(loc);
+            break;
+        case Req::ArchiveEnd:
+            if (endBlock(Req::ArchiveBegin, "ArchiveBegin", info.name, loc))
+                t.archiveEnd(loc);
+            break;
+        default:
+            return false;
+    }
+    return true;
+}
+
+}  // namespace detail
+}  // namespace rib
