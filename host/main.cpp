@@ -137,9 +137,18 @@ int main(int argc, char** argv) {
             std::sort(wanted.begin(), wanted.end());
             wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
             for (const std::string& a : wanted)
-                for (rd::Channel& c : film.aovChannels(a)) opts.extra.push_back(std::move(c));
+                for (rd::Channel& c : film.aovChannels(a)) {
+                    c.values = film.crop(c.values);
+                    opts.extra.push_back(std::move(c));
+                }
+            int outW = film.width, outH = film.height;
+            if (film.cropped()) {
+                opts.dataX = film.cropX0, opts.dataY = film.cropY0;
+                opts.displayWidth = film.width, opts.displayHeight = film.height;
+                outW = film.cropX1 - film.cropX0, outH = film.cropY1 - film.cropY0;
+            }
             try {
-                rd::writeExr(out, film.width, film.height, film.resolve(), opts);
+                rd::writeExr(out, outW, outH, film.crop(film.resolve()), opts);
             } catch (const std::exception& e) {
                 std::cerr << "raydrive: error: " << e.what() << "\n";
                 return 4;

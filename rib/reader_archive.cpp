@@ -7,7 +7,9 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <unistd.h>
 
 #include "reader_impl.h"
 
@@ -57,6 +59,54 @@ std::string Reader::resolveArchive(const std::string& name) const {
         start = end + 1;
     }
     return std::string();
+}
+
+void Reader::expandProcedural(const std::string& name, const std::vector<std::string>& args,
+                              const SourceLoc& loc) {
+    std::string file = args[0];
+    std::string temp;
+    if (name == "RunProgram") {
+        // RI protocol: the program reads "detail datablock" and answers with RIB ended
+        // by a 0377 byte. One run per request; its output goes through a temporary file
+        // so it is read like any archive (and may itself be gzip or binary).
+        char tmpl[] = "/tmp/raydrive-runprogram-XXXXXX";
+        int fd = mkstemp(tmpl);
+        if (fd < 0) {
+            error(loc, "RunProgram: cannot create a temporary file");
+            return;
+        }
+        close(fd);
+        temp = tmpl;
+        auto quote = [](const std::string& v) {
+            std::string q = "'";
+            for (char c : v) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+            return q + "'";
+        };
+        std::string cmd = "printf '%s\\n' " + quote("1000000 " + args[1]) + " | " +
+                          args[0] + " > " + quote(temp);
+        int rc = std::system(cmd.c_str());
+        if (rc != 0) {
+            error(loc, "RunProgram \"" + args[0] + "\" failed (exit status " +
+                           std::to_string(rc) + ")");
+            std::remove(temp.c_str());
+            return;
+        }
+        // Cut the output at the 0377 end marker.
+        std::FILE* in = std::fopen(temp.c_str(), "rb");
+        std::string text;
+        for (int c; in && (c = std::fgetc(in)) != EOF && c != 0377;) text += char(c);
+        if (in) std::fclose(in);
+        std::FILE* out = std::fopen(temp.c_str(), "wb");
+        if (out) {
+            std::fwrite(text.data(), 1, text.size(), out);
+            std::fclose(out);
+        }
+        file = temp;
+    }
+    m_target.attributeBegin(loc);
+    readArchive(file, ParamList(), loc);
+    m_target.attributeEnd(loc);
+    if (!temp.empty()) std::remove(temp.c_str());
 }
 
 void Reader::readArchive(const std::string& name, const ParamList& params,

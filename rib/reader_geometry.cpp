@@ -425,7 +425,10 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
             }
             float bound[6];
             for (size_t i = 0; i < 6; ++i) bound[i] = f(i);
-            t.procedural(loc, name, a.strArrays[0], bound);
+            if (m_opts.expandArchives && name != "DynamicLoad")
+                expandProcedural(name, a.strArrays[0], loc);
+            else
+                t.procedural(loc, name, a.strArrays[0], bound);
             break;
         }
         case Req::ObjectInstance:

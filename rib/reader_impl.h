@@ -145,6 +145,10 @@ private:
                   const SourceLoc& loc);
 
     // reader_archive.cpp
+    // DelayedReadArchive and RunProgram, expanded at once inside an attribute block (the
+    // renderer does not yet defer them until a ray reaches their bound).
+    void expandProcedural(const std::string& name, const std::vector<std::string>& args,
+                          const SourceLoc& loc);
     void readArchive(const std::string& name, const ParamList& params,
                      const SourceLoc& loc);
     void recordInlineArchive(const std::string& name, const SourceLoc& loc);

@@ -39,8 +39,12 @@ typedef struct Material {
     rt_float4 specularcolor; /* plastic */
     float ka, kd, ks, roughness;
     uint32_t shader; /* RT_SHADER_* */
-    uint32_t pad[3];
+    uint32_t flags;  /* RT_MATERIAL_* */
+    uint32_t pad[2];
 } Material;
+
+/* Matte 1: a holdout. It hides what is behind it but adds neither colour nor alpha. */
+#define RT_MATERIAL_MATTE 1u
 
 #define RT_LIGHT_AMBIENT 0u
 #define RT_LIGHT_DISTANT 1u
@@ -64,6 +68,9 @@ typedef struct Camera {
     uint32_t perspective;   /* 1 perspective, 0 orthographic */
     int32_t width, height;  /* Format */
     int32_t spp_x, spp_y;   /* PixelSamples */
+    float lens_radius;      /* DepthOfField: focallength / (2 fstop); 0 = pinhole */
+    float focal_distance;   /* camera-space z of the plane in focus */
+    float pad[2];
 } Camera;
 
 #ifndef __OPENCL_C_VERSION__
@@ -72,6 +79,6 @@ RT_ASSERT_SIZE(Triangle4, 160);
 RT_ASSERT_SIZE(TriangleAttr, 16);
 RT_ASSERT_SIZE(Material, 80);
 RT_ASSERT_SIZE(Light, 64);
-RT_ASSERT_SIZE(Camera, 96);
+RT_ASSERT_SIZE(Camera, 112);
 #endif
 #endif

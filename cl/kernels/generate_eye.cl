@@ -38,6 +38,15 @@ __kernel void generate_eye(__constant Camera* cam,
     if (cam->perspective) {
         o_cam = (float4)(0.0f, 0.0f, 0.0f, 1.0f);
         d_cam = rt_normalize3(rt_vec(sx * cam->tan_half_fov, sy * cam->tan_half_fov, 1.0f));
+#ifdef RT_HAS_DEPTH_OF_FIELD
+        /* thin lens: start on the lens disc, aim at where the pinhole ray meets the plane
+         * in focus (uniform disc sampling by the square-root map) */
+        float r = cam->lens_radius * sqrt(rt_random(pixel, s, 2));
+        float phi = 6.28318531f * rt_random(pixel, s, 3);
+        float4 focus = d_cam * (cam->focal_distance / d_cam.z);
+        o_cam = (float4)(r * cos(phi), r * sin(phi), 0.0f, 1.0f);
+        d_cam = rt_normalize3(focus - o_cam);
+#endif
         /* Clipping planes are z distances: convert them to distances along the ray */
         tmin = cam->clip_near / d_cam.z;
         tmax = cam->clip_far / d_cam.z;

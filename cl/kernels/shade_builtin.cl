@@ -78,6 +78,7 @@ __kernel void shade(uint count,
 #endif
     float4 V = -d;
     V.w = 0.0f;
+    if (m.flags & RT_MATERIAL_MATTE) return; /* holdout: opaque, black, no alpha */
     float4 os = m.os, cs = m.cs;
     float4 emitted = (float4)(0.0f);
     if (m.shader == RT_SHADER_CONSTANT) {

@@ -22,7 +22,13 @@ void writeExr(const std::string& path, int width, int height, const std::vector<
         throw std::runtime_error("cannot write " + path + ": bad image size");
     std::string tmp = path + ".partial-" + std::to_string(::getpid());
     try {
-        Imf::Header header(width, height);
+        Imath::Box2i display(Imath::V2i(0, 0),
+                             Imath::V2i((options.displayWidth ? options.displayWidth : width) - 1,
+                                        (options.displayHeight ? options.displayHeight : height) -
+                                            1));
+        Imath::Box2i data(Imath::V2i(options.dataX, options.dataY),
+                          Imath::V2i(options.dataX + width - 1, options.dataY + height - 1));
+        Imf::Header header(display, data);
         header.compression() = Imf::ZIP_COMPRESSION;
         for (const auto& [k, v] : options.metadata)
             header.insert(k, Imf::StringAttribute(v));
@@ -40,10 +46,13 @@ void writeExr(const std::string& path, int width, int height, const std::vector<
                 for (int c = 0; c < 4; ++c) halves[4 * i + c] = Imath::half(p[c]);
             }
         }
-        char* base = options.halfFloat
-                         ? reinterpret_cast<char*>(halves.data())
-                         : reinterpret_cast<char*>(const_cast<Rgba*>(pixels.data()));
         size_t comp = options.halfFloat ? sizeof(Imath::half) : sizeof(float);
+        // OpenEXR addresses pixel (x, y) of the data window at base + x*xs + y*ys.
+        const ptrdiff_t origin = ptrdiff_t(options.dataX) + ptrdiff_t(options.dataY) * width;
+        char* base = (options.halfFloat
+                          ? reinterpret_cast<char*>(halves.data())
+                          : reinterpret_cast<char*>(const_cast<Rgba*>(pixels.data()))) -
+                     origin * ptrdiff_t(4 * comp);
         for (int c = 0; c < channels; ++c)
             fb.insert(names[c], Imf::Slice(type, base + c * comp, 4 * comp,
                                            4 * comp * size_t(width)));
@@ -51,9 +60,11 @@ void writeExr(const std::string& path, int width, int height, const std::vector<
             if (c.values.size() != pixels.size())
                 throw std::runtime_error("AOV channel " + c.name + " has the wrong size");
             header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
-            fb.insert(c.name, Imf::Slice(Imf::FLOAT,
-                                         reinterpret_cast<char*>(const_cast<float*>(c.values.data())),
-                                         sizeof(float), sizeof(float) * size_t(width)));
+            fb.insert(c.name,
+                      Imf::Slice(Imf::FLOAT,
+                                 reinterpret_cast<char*>(const_cast<float*>(c.values.data())) -
+                                     origin * ptrdiff_t(sizeof(float)),
+                                 sizeof(float), sizeof(float) * size_t(width)));
         }
         {
             Imf::OutputFile file(tmp.c_str(), header);

@@ -15,6 +15,9 @@ struct ExrOptions {
     bool halfFloat = false;  // 16-bit half instead of 32-bit float channels
     std::map<std::string, std::string> metadata;  // string attributes in the header
     std::vector<Channel> extra;  // AOV channels (always 32-bit float), width*height each
+    // A crop window: the pixels given are the data window at (dataX, dataY) of a frame of
+    // displayWidth x displayHeight (0: the data is the whole frame).
+    int dataX = 0, dataY = 0, displayWidth = 0, displayHeight = 0;
 };
 
 // Throws std::runtime_error with the file name and the reason on failure.

@@ -14,7 +14,7 @@ std::vector<int64_t> Film::nearestSampled() const {
     std::vector<int64_t> queue;
     queue.reserve(pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i)
-        if (pixels[i].count > 0) {
+        if (pixels[i].count > 0 && inCrop(i)) {
             src[i] = int64_t(i);
             queue.push_back(int64_t(i));
         }
@@ -48,7 +48,8 @@ std::vector<Rgba> Film::resolve() const {
 
 std::vector<float> Film::filledMask() const {
     std::vector<float> m(pixels.size(), 0.0f);
-    for (size_t i = 0; i < pixels.size(); ++i) m[i] = pixels[i].count == 0 ? 1.0f : 0.0f;
+    for (size_t i = 0; i < pixels.size(); ++i)
+        m[i] = pixels[i].count == 0 && inCrop(i) ? 1.0f : 0.0f;
     return m;
 }
 
@@ -66,7 +67,7 @@ uint64_t Film::nonfiniteCount() const {
 
 uint64_t Film::unsampledCount() const {
     uint64_t n = 0;
-    for (const PixelAccum& p : pixels) n += p.count == 0;
+    for (size_t i = 0; i < pixels.size(); ++i) n += pixels[i].count == 0 && inCrop(i);
     return n;
 }
 

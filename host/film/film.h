@@ -24,6 +24,31 @@ struct Film {
     int width = 0, height = 0;
     std::vector<PixelAccum> pixels;
     std::vector<AovAccum> aovs;  // empty unless an AOV was asked for
+    // The crop window: the pixels rendered and written, [x0, x1) x [y0, y1).
+    int cropX0 = 0, cropX1 = 0, cropY0 = 0, cropY1 = 0;
+    // (cropX1 == 0: no crop window was set, the whole frame counts)
+    bool cropped() const {
+        return cropX1 > 0 && (cropX0 > 0 || cropY0 > 0 || cropX1 < width || cropY1 < height);
+    }
+    size_t cropPixelCount() const {
+        return cropX1 > 0 ? size_t(cropX1 - cropX0) * size_t(cropY1 - cropY0)
+                          : size_t(width) * size_t(height);
+    }
+    bool inCrop(size_t i) const {
+        if (cropX1 == 0) return true;
+        int x = int(i % size_t(width)), y = int(i / size_t(width));
+        return x >= cropX0 && x < cropX1 && y >= cropY0 && y < cropY1;
+    }
+    // Cuts a full-frame channel down to the crop window.
+    template <typename T>
+    std::vector<T> crop(const std::vector<T>& full) const {
+        if (!cropped()) return full;
+        std::vector<T> out;
+        out.reserve(cropPixelCount());
+        for (int y = cropY0; y < cropY1; ++y)
+            for (int x = cropX0; x < cropX1; ++x) out.push_back(full[size_t(y) * width + x]);
+        return out;
+    }
 
     // Mean of each pixel's samples; a pixel with none takes its nearest sampled
     // neighbour's value (all transparent black if nothing was sampled).

@@ -9,6 +9,7 @@ Features analyse(const Scene& scene) {
     for (const Material& m : scene.materials)
         if (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f) f.transparency = true;
     f.lightCount = static_cast<uint32_t>(scene.lights.size());
+    f.depthOfField = scene.deviceCamera().lens_radius > 0;
     for (const Light& l : scene.lights)
         if (l.type != RT_LIGHT_AMBIENT) f.shadowRays = true;
     return f;
@@ -20,6 +21,7 @@ std::vector<std::string> Features::names() const {
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
     if (aovs) n.push_back("aovs");
+    if (depthOfField) n.push_back("depth_of_field");
     return n;
 }
 
@@ -32,6 +34,7 @@ std::string buildOptions(const Features& f) {
              std::to_string(f.maxTransparentDepth);
     if (f.shadowRays) o += " -DRT_HAS_SHADOW_RAYS";
     if (f.aovs) o += " -DRT_HAS_AOVS";
+    if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
     return o;
 }
 

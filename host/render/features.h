@@ -14,6 +14,7 @@ struct Features {
     bool transparency = false;  // some Os < 1: continuation rays
     bool shadowRays = false;    // some light other than ambient
     bool aovs = false;          // geometric AOVs (z, N) asked for
+    bool depthOfField = false;  // a thin-lens camera
     uint32_t lightCount = 0;
     int maxTransparentDepth = 16;
 

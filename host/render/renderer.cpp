@@ -171,7 +171,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film) {
     const bool openEnded = timeBudget > 0 || errorTarget > 0;
     ss.maxSamples = openEnded ? 1u << 16 : uint32_t(cam.spp_x * cam.spp_y);
     ss.minSamples = std::min(2u, ss.maxSamples);
-    SamplePlanner planner(cam.width, cam.height, ss);
+    scene.camera.cropPixels(film.cropX0, film.cropX1, film.cropY0, film.cropY1);
+    SamplePlanner planner(cam.width, cam.height, film.cropX0, film.cropX1, film.cropY0,
+                          film.cropY1, ss);
     Progress progress(m_settings.progress);
 
     auto stopNow = [&] {
@@ -300,7 +302,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film) {
                     : errorTarget > 0 && st.estimatedError > 0
                         ? std::min(1.0, std::log(1.0 / st.estimatedError) /
                                             std::log(1.0 / errorTarget))
-                        : double(st.eyeRays) / double(npix * ss.maxSamples);
+                        : double(st.eyeRays) / double(film.cropPixelCount() * ss.maxSamples);
                 progress.update(fraction, secondsSince(t0), st.eyeRays, st.estimatedError);
             }
         }

@@ -6,17 +6,18 @@
 
 namespace rd {
 
-SamplePlanner::SamplePlanner(int width, int height, const SamplingSettings& settings)
+SamplePlanner::SamplePlanner(int width, int height, int x0, int x1, int y0, int y1,
+                             const SamplingSettings& settings)
     : m_width(width), m_height(height), m_settings(settings) {
     m_settings.firstPassBlock = std::max(1, m_settings.firstPassBlock);
     m_settings.maxSamples = std::max(1u, m_settings.maxSamples);
     m_settings.minSamples = std::clamp(m_settings.minSamples, 1u, m_settings.maxSamples);
     const int tile = 16;
     m_tileOrder.reserve(size_t(width) * size_t(height));
-    for (int ty = 0; ty < height; ty += tile)
-        for (int tx = 0; tx < width; tx += tile)
-            for (int y = ty; y < std::min(ty + tile, height); ++y)
-                for (int x = tx; x < std::min(tx + tile, width); ++x)
+    for (int ty = y0; ty < y1; ty += tile)
+        for (int tx = x0; tx < x1; tx += tile)
+            for (int y = ty; y < std::min(ty + tile, y1); ++y)
+                for (int x = tx; x < std::min(tx + tile, x1); ++x)
                     m_tileOrder.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
 }
 

@@ -27,7 +27,9 @@ struct PixelRequest {
 
 class SamplePlanner {
 public:
-    SamplePlanner(int width, int height, const SamplingSettings& settings);
+    // Only the pixels in [x0, x1) x [y0, y1) (the crop window) are sampled.
+    SamplePlanner(int width, int height, int x0, int x1, int y0, int y1,
+                  const SamplingSettings& settings);
     // The next pass, pixels in tile order (16x16 tiles, for coherent rays); empty when
     // every pixel has met the final quality. `pixelError` overrides the setting for this
     // pass (an error target or a time budget tightens it as the render goes on).

@@ -171,6 +171,35 @@ void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& pa
     }
 }
 
+void RibBuilder::cropWindow(L loc, float x0, float x1, float y0, float y1) {
+    if (!(0 <= x0 && x0 < x1 && x1 <= 1 && 0 <= y0 && y0 < y1 && y1 <= 1)) {
+        m_diag.error(loc, "CropWindow needs 0 <= xmin < xmax <= 1 and 0 <= ymin < ymax <= 1");
+        return;
+    }
+    float* c = m_options.camera.crop;
+    c[0] = x0, c[1] = x1, c[2] = y0, c[3] = y1;
+}
+
+void RibBuilder::depthOfField(L loc, float fstop, float focalLength, float focalDistance) {
+    CameraSpec& c = m_options.camera;
+    if (std::isinf(fstop)) {  // a bare DepthOfField: back to a pinhole
+        c.fstop = 0;
+        return;
+    }
+    if (!(fstop > 0 && focalLength > 0 && focalDistance > 0)) {
+        m_diag.error(loc, "DepthOfField needs fstop, focallength and focaldistance > 0");
+        return;
+    }
+    c.fstop = fstop, c.focalLength = focalLength, c.focalDistance = focalDistance;
+}
+
+void RibBuilder::matte(L, bool on) { m_attrStack.back().matte = on; }
+
+void RibBuilder::procedural(L loc, const std::string& name, const std::vector<std::string>&,
+                            const float*) {
+    m_diag.warning(loc, "Procedural \"" + name + "\" is not supported; skipped");
+}
+
 void RibBuilder::color(L loc, const std::vector<float>& c) {
     if (c.size() != 3) {
         m_diag.error(loc, "Color needs 3 values (ColorSamples 3)");
@@ -287,6 +316,10 @@ uint32_t RibBuilder::currentMaterial() {
     m.cs = f4(a.color[0], a.color[1], a.color[2]);
     m.os = f4(a.opacity[0], a.opacity[1], a.opacity[2],
               (a.opacity[0] + a.opacity[1] + a.opacity[2]) / 3.0f);
+    if (a.matte) {
+        m.flags |= RT_MATERIAL_MATTE;
+        m_world.anyMatte = true;
+    }
     std::string key(reinterpret_cast<const char*>(&m), sizeof m);
     for (const auto& [k, index] : m_materialKeys)
         if (k == key) return index;

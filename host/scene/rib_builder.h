@@ -38,6 +38,11 @@ public:
                  const std::string& mode, const rib::ParamList&) override;
 
     void option(L, const std::string& name, const rib::ParamList&) override;
+    void cropWindow(L, float, float, float, float) override;
+    void depthOfField(L, float fstop, float focalLength, float focalDistance) override;
+    void matte(L, bool) override;
+    void procedural(L, const std::string& name, const std::vector<std::string>& args,
+                    const float bound[6]) override;
     void color(L, const std::vector<float>&) override;
     void opacity(L, const std::vector<float>&) override;
     void surface(L, const std::string& name, const rib::ParamList&) override;
@@ -64,6 +69,7 @@ private:
         float color[3] = {1, 1, 1};
         float opacity[3] = {1, 1, 1};
         Material surface{};   // shader and parameters; cs/os filled at use
+        bool matte = false;
     };
     enum class Block { Frame, World, Attribute, Transform };
 

@@ -2,6 +2,7 @@
 // the RenderMan camera options.
 #include "scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -28,11 +29,31 @@ Camera Scene::deviceCamera() const {
     d.height = c.height;
     d.spp_x = static_cast<int32_t>(c.pixelSamples[0]);
     d.spp_y = static_cast<int32_t>(c.pixelSamples[1]);
+    if (c.perspective && c.fstop > 0 && std::isfinite(c.fstop) && c.focalLength > 0 &&
+        c.focalDistance > 0) {
+        d.lens_radius = c.focalLength / (2.0f * c.fstop);
+        d.focal_distance = c.focalDistance;
+    }
     glm::mat4 camToWorld = glm::inverse(c.worldToCamera);
     for (int r = 0; r < 3; ++r)
         d.camera_to_world[r] = {camToWorld[0][r], camToWorld[1][r], camToWorld[2][r],
                                 camToWorld[3][r]};
     return d;
+}
+
+void CameraSpec::cropPixels(int& x0, int& x1, int& y0, int& y1) const {
+    // RI: the pixels whose centres fall inside the window (at least one pixel).
+    auto edge = [](float f, int res) {
+        return std::clamp(int(std::ceil(f * float(res) - 0.5f)), 0, res);
+    };
+    x0 = edge(crop[0], width);
+    x1 = std::max(x0 + 1, edge(crop[1], width));
+    y0 = edge(crop[2], height);
+    y1 = std::max(y0 + 1, edge(crop[3], height));
+    x1 = std::min(x1, width);
+    y1 = std::min(y1, height);
+    x0 = std::min(x0, x1 - 1);
+    y0 = std::min(y0, y1 - 1);
 }
 
 }  // namespace rd

@@ -30,6 +30,10 @@ struct CameraSpec {
     float clipNear = 1e-10f, clipFar = 1e30f;
     float pixelSamples[2] = {2, 2}; // RI default PixelSamples 2 2
     glm::mat4 worldToCamera{1.0f};  // column-vector convention (glm)
+    float fstop = 0, focalLength = 0, focalDistance = 0;  // DepthOfField; fstop 0 = pinhole
+    float crop[4] = {0, 1, 0, 1};   // CropWindow xmin xmax ymin ymax (NDC)
+    // The pixels the crop window covers: [x0, x1) x [y0, y1).
+    void cropPixels(int& x0, int& x1, int& y0, int& y1) const;
 };
 
 // Option "render" ...: budgets and adaptive sampling (the command line overrides).
@@ -52,6 +56,7 @@ struct Scene {
     std::vector<std::string> aovs;  // AOVs the RIB asks for (Display "+name", DisplayChannel)
     RenderOptionsSpec render;
     bool anySmoothNormals = false;
+    bool anyMatte = false;
 
     // The device camera: screen window, fov scale and camera-to-world matrix.
     Camera deviceCamera() const;

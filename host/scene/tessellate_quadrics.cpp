@@ -31,7 +31,7 @@ SurfaceSample revolve(float u, float tm, float rho, float z, float drho, float d
     return r;
 }
 
-bool finish(SurfaceMesh& out, bool ok, std::string* err) {
+bool finish(bool ok, std::string* err) {
     if (!ok && err) *err = "quadric: mesh too large";
     return ok;
 }
@@ -45,7 +45,7 @@ bool tessellateCylinder(float radius, float zmin, float zmax, float thetamaxDeg,
     auto eval = [=](float u, float v) {
         return revolve(u, tm, radius, zmin + v * (zmax - zmin), 0.0f, zmax - zmin);
     };
-    return finish(out, appendGrid(out, nu, nv, eval, 0), err);
+    return finish(appendGrid(out, nu, nv, eval, 0), err);
 }
 
 bool tessellateCone(float height, float radius, float thetamaxDeg, int nu, int nv,
@@ -55,7 +55,7 @@ bool tessellateCone(float height, float radius, float thetamaxDeg, int nu, int n
     auto eval = [=](float u, float v) {
         return revolve(u, tm, radius * (1.0f - v), v * height, -radius, height);
     };
-    return finish(out, appendGrid(out, nu, nv, eval, 0), err);
+    return finish(appendGrid(out, nu, nv, eval, 0), err);
 }
 
 bool tessellateDisk(float height, float radius, float thetamaxDeg, int nu, int nv,
@@ -65,7 +65,7 @@ bool tessellateDisk(float height, float radius, float thetamaxDeg, int nu, int n
     auto eval = [=](float u, float v) {
         return revolve(u, tm, radius * (1.0f - v), height, -radius, 0.0f);
     };
-    return finish(out, appendGrid(out, nu, nv, eval, 0), err);
+    return finish(appendGrid(out, nu, nv, eval, 0), err);
 }
 
 bool tessellateTorus(float majorrad, float minorrad, float phiminDeg, float phimaxDeg,
@@ -81,7 +81,7 @@ bool tessellateTorus(float majorrad, float minorrad, float phiminDeg, float phim
         return revolve(u, tm, majorrad + minorrad * c, minorrad * s, -minorrad * s * dp,
                        minorrad * c * dp);
     };
-    return finish(out, appendGrid(out, nu, nv, eval, 0), err);
+    return finish(appendGrid(out, nu, nv, eval, 0), err);
 }
 
 bool tessellateParaboloid(float rmax, float zmin, float zmax, float thetamaxDeg, int nu,
@@ -101,7 +101,7 @@ bool tessellateParaboloid(float rmax, float zmin, float zmax, float thetamaxDeg,
         float drho = q > 0.0f ? rmax * (zmax - zmin) / (2.0f * zmax * std::sqrt(q)) : 0.0f;
         return revolve(u, tm, rho, z, drho, q > 0.0f ? zmax - zmin : 0.0f);
     };
-    return finish(out, appendGrid(out, nu, nv, eval, 0), err);
+    return finish(appendGrid(out, nu, nv, eval, 0), err);
 }
 
 bool tessellateHyperboloid(glm::vec3 point1, glm::vec3 point2, float thetamaxDeg, int nu,
@@ -120,7 +120,7 @@ bool tessellateHyperboloid(glm::vec3 point1, glm::vec3 point2, float thetamaxDeg
         r.dpdv = glm::vec3(d.x * c - d.y * s, d.x * s + d.y * c, d.z);
         return r;
     };
-    return finish(out, appendGrid(out, nu, nv, eval, 0), err);
+    return finish(appendGrid(out, nu, nv, eval, 0), err);
 }
 
 }  // namespace rd

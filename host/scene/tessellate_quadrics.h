@@ -2,8 +2,14 @@
 // (Cylinder, Cone, Disk, Torus, Paraboloid, Hyperboloid) into SurfaceMeshes, with the
 // spec's parameterisations: u in [0,1] sweeps theta = u*thetamax (degrees, clamped to
 // [-360,360]), v in [0,1] as given per primitive below. st = (u,v), faceIndex = 0.
-// Normals are normalize(dP/du x dP/dv) (see tessellate_types.h): outward for positive
-// radius/height and thetamax; a negative radius or thetamax turns them inward.
+// Normals are normalize(dP/du x dP/dv) literally (RI 3.2 section 5; tessellate_types.h):
+// outward ("away from the z axis") for positive parameters; a negative thetamax reverses
+// dP/du and so turns the surface inside out. A negative radius is taken as written: the
+// points are mirrored through the axis and the normal is whatever the cross product
+// gives (still away from the axis for Cylinder/Cone/Disk, as their dP/du flips with the
+// radius; the sphere of tessellate.h, quadratic in the radius, turns inward).
+// Paraboloid uses z = zmin + v (zmax - zmin) (the 3.2 text's "v (zmax - zmin)" is a
+// typo every implementation corrects).
 // nu, nv are the segment counts over the whole u and v ranges (clamped to [1, 4096]);
 // the caller picks them from screen size (e.g. circleSegments scaled by |thetamax|/360).
 // All functions return false with a message for unusable input (non-finite numbers).

@@ -74,3 +74,21 @@ TEST(ExrOutput, FailureLeavesNoFile) {
     EXPECT_FALSE(std::filesystem::exists(dir));
     EXPECT_THROW(writeExr(tempPath("bad"), 3, 3, gradient(2, 2), {}), std::runtime_error);
 }
+
+// A crop window is written as the data window inside the full display window.
+TEST(ExrOutput, CropWindowIsTheDataWindow) {
+    std::string path = tempPath("crop");
+    ExrOptions o;
+    o.dataX = 3, o.dataY = 2, o.displayWidth = 10, o.displayHeight = 8;
+    writeExr(path, 4, 3, gradient(4, 3), o);
+    Imf::InputFile f(path.c_str());
+    EXPECT_EQ(f.header().dataWindow().min.x, 3);
+    EXPECT_EQ(f.header().dataWindow().max.y, 4);
+    EXPECT_EQ(f.header().displayWindow().max.x, 9);
+    int w, h;
+    auto back = readExr(path, w, h);
+    ASSERT_EQ(w, 4);
+    ASSERT_EQ(h, 3);
+    EXPECT_EQ(back[5].r, gradient(4, 3)[5].r);
+    std::filesystem::remove(path);
+}

@@ -4,6 +4,8 @@
 // forwarded (each violation is a file:line error and the request is skipped).
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "rib_corpus.h"
 
 namespace {
@@ -56,20 +58,39 @@ TEST(RibNewRequests, BasisByNameOrMatrix) {
 TEST(RibNewRequests, QuadricsAndProcedurals) {
     ribtest::ReadResult r = world(
         "Cylinder [1 -1 1 360] Cone 2 1 90 Disk 0.5 1 360 Torus 1 .2 0 360 180 "
-        "Paraboloid 1 0 2 360 Hyperboloid 1 0 0 0 1 1 360 "
-        "Procedural \"DelayedReadArchive\" [\"a.rib\"] [-1 1 -1 1 -1 1]");
+        "Paraboloid 1 0 2 360 Hyperboloid 1 0 0 0 1 1 360");
     EXPECT_EQ(r.msgs, Lines{});
     EXPECT_EQ(r.target.calls,
               (Lines{"cylinder 1 -1 1 360 { }", "cone 2 1 90 { }", "disk 0.5 1 360 { }",
                      "torus 1 0.200000003 0 360 180 { }", "paraboloid 1 0 2 360 { }",
-                     "hyperboloid [ 1 0 0 ] [ 0 1 1 ] 360 { }",
-                     "procedural \"DelayedReadArchive\" [ \"a.rib\" ] [ -1 1 -1 1 -1 1 ]"}));
-    r = world("Procedural \"Magic\" [] [0 1 0 1 0 1]\nProcedural \"RunProgram\" [\"x\"] "
-              "[0 1 0 1 0 1]");
-    EXPECT_EQ(r.msgs,
-              (Lines{"t.rib:1: error: Procedural: unknown procedural \"Magic\" "
-                     "(DelayedReadArchive, RunProgram, DynamicLoad)",
-                     "t.rib:2: error: Procedural \"RunProgram\" needs 2 arguments, got 1"}));
+                     "hyperboloid [ 1 0 0 ] [ 0 1 1 ] 360 { }"}));
+    // Not expanding (what a RIB writer wants): the procedural reaches the target.
+    rib::ReadOptions keep;
+    keep.expandArchives = false;
+    ribtest::ReadResult p = ribtest::readRib(
+        "WorldBegin Procedural \"DelayedReadArchive\" [\"a.rib\"] [-1 1 -1 1 -1 1]\nWorldEnd",
+        keep);
+    EXPECT_EQ(p.msgs, Lines{});
+    ASSERT_EQ(p.target.calls.size(), 3u);
+    EXPECT_EQ(p.target.calls[1],
+              "procedural \"DelayedReadArchive\" [ \"a.rib\" ] [ -1 1 -1 1 -1 1 ]");
+}
+
+// DelayedReadArchive and RunProgram are expanded in place, inside an attribute block.
+TEST(RibNewRequests, ProceduralsAreExpanded) {
+    std::string dir = ::testing::TempDir();
+    {
+        std::ofstream(dir + "/delayed.rib") << "Sphere 1 -1 1 360\n";
+        std::ofstream prog(dir + "/prog.sh");
+        prog << "#!/bin/sh\nread detail data\nprintf \"Disk 0 $data 360\\n\\377\"\n";
+    }
+    std::string run = "sh " + dir + "/prog.sh";
+    ribtest::ReadResult r = world(
+        "Procedural \"DelayedReadArchive\" [\"" + dir + "/delayed.rib\"] [-1 1 -1 1 -1 1] "
+        "Procedural \"RunProgram\" [\"" + run + "\" \"2.5\"] [-1 1 -1 1 -1 1]");
+    EXPECT_EQ(r.msgs, Lines{});
+    EXPECT_EQ(r.target.calls, (Lines{"attributeBegin", "sphere 1 -1 1 360 { }", "attributeEnd",
+                                     "attributeBegin", "disk 0 2.5 360 { }", "attributeEnd"}));
 }
 
 TEST(RibNewRequests, PolygonFamilyChecks) {

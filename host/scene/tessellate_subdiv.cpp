@@ -1,0 +1,208 @@
+// tessellate_subdiv.cpp: SubdivisionMesh through OpenSubdiv's Far API (uniform
+// refinement + limit projection).
+#include "host/scene/tessellate_subdiv.h"
+
+#include <algorithm>
+#include <cmath>
+
+#ifdef RD_HAVE_OPENSUBDIV
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+#endif
+
+namespace rd {
+namespace {
+
+bool fail(std::string* err, const std::string& msg) {
+    if (err) *err = msg;
+    return false;
+}
+
+#ifdef RD_HAVE_OPENSUBDIV
+struct Vtx {
+    glm::vec3 p{0.0f};
+    void Clear(void* = nullptr) { p = glm::vec3(0.0f); }
+    void AddWithWeight(const Vtx& s, float w) { p += w * s.p; }
+};
+#endif
+
+}  // namespace
+
+bool validateSubdiv(const SubdivInput& in, std::string* err) {
+    if (in.scheme != "catmull-clark")
+        return fail(err, "SubdivisionMesh: only \"catmull-clark\" is supported");
+    size_t total = 0;
+    for (int n : in.nvertices) {
+        if (n < 3) return fail(err, "SubdivisionMesh: a face needs at least 3 vertices");
+        total += size_t(n);
+    }
+    if (in.nvertices.empty()) return fail(err, "SubdivisionMesh: no faces");
+    if (total != in.vertices.size())
+        return fail(err, "SubdivisionMesh: vertices does not match sum(nvertices)");
+    for (int v : in.vertices)
+        if (v < 0 || size_t(v) >= in.P.size())
+            return fail(err, "SubdivisionMesh: vertex index out of range");
+    for (const auto& p : in.P)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            return fail(err, "SubdivisionMesh: non-finite position");
+    if (in.nargs.size() != 2 * in.tags.size())
+        return fail(err, "SubdivisionMesh: nargs must hold 2 values per tag");
+    size_t ni = 0, nf = 0;
+    for (size_t t = 0; t < in.tags.size(); ++t) {
+        int a = in.nargs[2 * t], b = in.nargs[2 * t + 1];
+        if (a < 0 || b < 0) return fail(err, "SubdivisionMesh: negative nargs");
+        const std::string& tag = in.tags[t];
+        if (ni + a > in.intargs.size() || nf + b > in.floatargs.size())
+            return fail(err, "SubdivisionMesh: tag arguments run past intargs/floatargs");
+        if (tag == "crease" || tag == "corner") {
+            for (int k = 0; k < a; ++k)
+                if (in.intargs[ni + k] < 0 || size_t(in.intargs[ni + k]) >= in.P.size())
+                    return fail(err, "SubdivisionMesh: " + tag + " vertex out of range");
+            if (b < 1) return fail(err, "SubdivisionMesh: " + tag + " needs a sharpness");
+            if (tag == "crease" && a < 2) return fail(err, "SubdivisionMesh: crease needs 2+ vertices");
+        } else if (tag == "hole") {
+            for (int k = 0; k < a; ++k)
+                if (in.intargs[ni + k] < 0 || size_t(in.intargs[ni + k]) >= in.nvertices.size())
+                    return fail(err, "SubdivisionMesh: hole face out of range");
+        }
+        ni += size_t(a);
+        nf += size_t(b);
+    }
+    if (ni != in.intargs.size() || nf != in.floatargs.size())
+        return fail(err, "SubdivisionMesh: nargs do not account for all tag arguments");
+    return true;
+}
+
+#ifdef RD_HAVE_OPENSUBDIV
+bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
+                               std::string* err) {
+    using namespace OpenSubdiv;
+    if (!validateSubdiv(in, err)) return false;
+    level = std::clamp(level, 0, kMaxSubdivLevel);
+    // Refined vertex count grows ~4x per level (one quad per n-gon corner at level 1).
+    double estimate = double(in.vertices.size()) + in.P.size();
+    for (int l = 1; l <= level; ++l) estimate *= 4.0;
+    while (level > 0 && estimate + double(out.mesh.p.size()) > double(kMaxMeshVertices)) {
+        --level;
+        estimate /= 4.0;
+    }
+
+    Sdc::Options opts;
+    opts.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_NONE);
+    opts.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_ALL);
+    std::vector<int> creasePairs, corners, holes;
+    std::vector<float> creaseW, cornerW;
+    size_t ni = 0, nf = 0;
+    for (size_t t = 0; t < in.tags.size(); ++t) {
+        int a = in.nargs[2 * t], b = in.nargs[2 * t + 1];
+        const int* ia = in.intargs.data() + ni;
+        const float* fa = in.floatargs.data() + nf;
+        const std::string& tag = in.tags[t];
+        if (tag == "crease") {
+            for (int k = 0; k + 1 < a; ++k) {
+                creasePairs.insert(creasePairs.end(), {ia[k], ia[k + 1]});
+                creaseW.push_back(fa[std::min(k, b - 1)]);
+            }
+        } else if (tag == "corner") {
+            for (int k = 0; k < a; ++k) {
+                corners.push_back(ia[k]);
+                cornerW.push_back(fa[std::min(k, b - 1)]);
+            }
+        } else if (tag == "hole") {
+            holes.insert(holes.end(), ia, ia + a);
+        } else if (tag == "interpolateboundary") {
+            opts.SetVtxBoundaryInterpolation(a >= 1 && ia[0] == 2
+                                                 ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                                 : a >= 1 && ia[0] == 0
+                                                       ? Sdc::Options::VTX_BOUNDARY_NONE
+                                                       : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+        }  // other tags are ignored
+        ni += size_t(a);
+        nf += size_t(b);
+    }
+    std::sort(holes.begin(), holes.end());
+    holes.erase(std::unique(holes.begin(), holes.end()), holes.end());
+
+    Far::TopologyDescriptor desc;
+    desc.numVertices = int(in.P.size());
+    desc.numFaces = int(in.nvertices.size());
+    desc.numVertsPerFace = in.nvertices.data();
+    desc.vertIndicesPerFace = in.vertices.data();
+    desc.numCreases = int(creaseW.size());
+    desc.creaseVertexIndexPairs = creasePairs.data();
+    desc.creaseWeights = creaseW.data();
+    desc.numCorners = int(cornerW.size());
+    desc.cornerVertexIndices = corners.data();
+    desc.cornerWeights = cornerW.data();
+    desc.numHoles = int(holes.size());
+    desc.holeIndices = holes.data();
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    Far::TopologyRefiner* refiner =
+        Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, opts));
+    if (!refiner) return fail(err, "SubdivisionMesh: OpenSubdiv rejected the topology");
+    // Level 0 has no limit projection for n-gons: always refine at least once.
+    level = std::max(level, 1);
+    Far::TopologyRefiner::UniformOptions uniform(level);
+    uniform.fullTopologyInLastLevel = true;  // needed by PrimvarRefiner::Limit
+    refiner->RefineUniform(uniform);
+
+    std::vector<Vtx> buf(refiner->GetNumVerticesTotal());
+    for (size_t i = 0; i < in.P.size(); ++i) buf[i].p = in.P[i];
+    Far::PrimvarRefiner primvar(*refiner);
+    Vtx* src = buf.data();
+    for (int l = 1; l <= level; ++l) {
+        Vtx* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
+        primvar.Interpolate(l, src, dst);
+        src = dst;
+    }
+    const Far::TopologyLevel& last = refiner->GetLevel(level);
+    int nv = last.GetNumVertices();
+    std::vector<Vtx> lim(nv), t1(nv), t2(nv);
+    primvar.Limit(src, lim, t1, t2);
+
+    // Parent base face of each refined face: uniform Catmull-Clark refinement emits a
+    // face's children consecutively (n for an n-gon at level 1, then 4 per quad).
+    std::vector<int> parent;
+    for (size_t f = 0; f < in.nvertices.size(); ++f)
+        parent.insert(parent.end(), size_t(in.nvertices[f]), int(f));
+    for (int l = 2; l <= level; ++l) {
+        std::vector<int> next(parent.size() * 4);
+        for (size_t f = 0; f < parent.size(); ++f)
+            std::fill_n(next.begin() + 4 * f, 4, parent[f]);
+        parent.swap(next);
+    }
+    if (int(parent.size()) != last.GetNumFaces()) {
+        delete refiner;
+        return fail(err, "SubdivisionMesh: unexpected refined face count");
+    }
+
+    int base = int(out.mesh.p.size());
+    bool wantN = out.mesh.n.size() == out.mesh.p.size();
+    for (int i = 0; i < nv; ++i) {
+        out.mesh.p.push_back(lim[i].p);
+        glm::vec3 c = glm::cross(t1[i].p, t2[i].p);
+        if (wantN) out.mesh.n.push_back(glm::length(c) > 0.0f ? glm::normalize(c) : glm::vec3(0, 0, 1));
+        out.st.emplace_back(0.0f);
+    }
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+        if (last.IsFaceHole(f)) continue;
+        auto fv = last.GetFaceVertices(f);
+        for (int k = 1; k + 1 < fv.size(); ++k) {
+            out.mesh.tris.insert(out.mesh.tris.end(),
+                                 {base + fv[0], base + fv[k], base + fv[k + 1]});
+            out.faceIndex.push_back(parent[f]);
+        }
+    }
+    delete refiner;
+    return true;
+}
+#else
+bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
+                               std::string* err) {
+    if (!validateSubdiv(in, err)) return false;
+    return fail(err, "SubdivisionMesh: built without OpenSubdiv");
+}
+#endif
+
+}  // namespace rd

@@ -1,0 +1,40 @@
+// tessellate_subdiv.h: RI 3.2 SubdivisionMesh "catmull-clark" with the tags "crease",
+// "corner", "hole" and "interpolateboundary", through OpenSubdiv (Far): the control cage
+// is refined uniformly to `level`, every refined vertex is projected to the limit
+// surface (Far::PrimvarRefiner::Limit) with limit tangents, and the refined quads are
+// split into triangles. faceIndex = the base (control) face each triangle descends
+// from; normals = normalize(limit dP/du x dP/dv), wound like the face's vertex order.
+// Subdivision surfaces have no global (u,v): st is left at (0,0) (facevarying "st" is
+// not interpolated yet). Without "interpolateboundary" the boundary follows OpenSubdiv's
+// VTX_BOUNDARY_NONE rule; "interpolateboundary" [1] (or no int arg) = edges and
+// corners, [2] = edges only. Built without OpenSubdiv (RD_HAVE_OPENSUBDIV undefined)
+// the function returns false with an error.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "host/scene/tessellate_types.h"
+
+namespace rd {
+
+struct SubdivInput {
+    std::string scheme = "catmull-clark";
+    std::vector<int> nvertices, vertices;  // per face: vertex count; concatenated indices
+    std::vector<std::string> tags;
+    std::vector<int> nargs;                // 2 per tag: int count, float count
+    std::vector<int> intargs;
+    std::vector<float> floatargs;
+    std::vector<glm::vec3> P;
+};
+
+constexpr int kMaxSubdivLevel = 8;
+
+// Checks the topology and tag arguments (sizes, index ranges).
+bool validateSubdiv(const SubdivInput& in, std::string* err);
+
+// `level` is clamped to [0, kMaxSubdivLevel] and lowered further when the refined mesh
+// would exceed kMaxMeshVertices.
+bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
+                               std::string* err = nullptr);
+
+}  // namespace rd

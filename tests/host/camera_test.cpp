@@ -1,0 +1,72 @@
+// camera_test.cpp: depth of field, crop windows and matte (holdout) objects, rendered on
+// PoCL and checked against what the RI spec says they do.
+#include <gtest/gtest.h>
+
+#include "render_harness.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+// A constant white half-plane (x < 0) at depth 5 seen by a 60-degree camera with the
+// given DepthOfField line; returns the number of pixels of row 16 whose alpha is
+// strictly between 0.05 and 0.95 (the width of the blurred edge).
+int edgeWidth(const std::string& dof) {
+    Rendered img = renderRib("Format 32 32 1\nPixelSamples 8 8\n"
+                             "Option \"render\" \"float pixelerror\" [1e-9]\n"
+                             "Projection \"perspective\" \"fov\" 60\n" + dof +
+                             "WorldBegin\nSurface \"constant\"\n"
+                             "Polygon \"P\" [-50 -50 5  0 -50 5  0 50 5  -50 50 5]\n"
+                             "WorldEnd\n");
+    int n = 0;
+    for (int x = 0; x < 32; ++x) n += img.at(x, 16).a > 0.05f && img.at(x, 16).a < 0.95f;
+    return n;
+}
+
+}  // namespace
+
+// In focus, the edge stays as sharp as a pinhole's (one pixel of partial coverage); with
+// the focus at 1 instead of 5 and a lens of radius 0.25 the blur circle on the plane is
+// 0.25 * (5 - 1) / 1 = 1 unit across ... about 9 pixels at this scale: the edge spreads.
+TEST(Camera, DepthOfFieldBlursOnlyWhatIsOutOfFocus) {
+    int pinhole = edgeWidth("");
+    int inFocus = edgeWidth("DepthOfField 2 1 5\n");   // lens radius 1 / (2*2) = 0.25
+    int outOfFocus = edgeWidth("DepthOfField 2 1 1\n");
+    std::printf("edge width in pixels: pinhole %d, in focus %d, out of focus %d\n", pinhole,
+                inFocus, outOfFocus);
+    EXPECT_LE(pinhole, 1);
+    EXPECT_LE(inFocus, 1);
+    EXPECT_GE(outOfFocus, 5);
+}
+
+// CropWindow renders only the pixels whose centres fall inside it.
+TEST(Camera, CropWindowRendersOnlyItsPixels) {
+    Rendered img = renderRib("Format 40 40 1\nPixelSamples 1 1\nCropWindow 0.25 0.75 0 0.5\n"
+                             "Projection \"orthographic\"\nWorldBegin\nSurface \"constant\"\n"
+                             "Polygon \"P\" [-5 -5 1  5 -5 1  5 5 1  -5 5 1]\nWorldEnd\n");
+    EXPECT_EQ(img.film.cropX0, 10);
+    EXPECT_EQ(img.film.cropX1, 30);
+    EXPECT_EQ(img.film.cropY0, 0);
+    EXPECT_EQ(img.film.cropY1, 20);
+    for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 40; ++x) {
+            bool inside = x >= 10 && x < 30 && y < 20;
+            EXPECT_EQ(img.count(x, y) > 0, inside) << x << "," << y;
+        }
+    EXPECT_EQ(img.stats.unsampledPixels, 0u);
+}
+
+// Matte 1: a holdout hides the plane behind it and adds neither colour nor alpha.
+TEST(Camera, MatteObjectIsAHoldout) {
+    Rendered img = renderRib("Format 20 20 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
+                             "WorldBegin\nSurface \"constant\"\nColor [1 1 1]\n"
+                             "Polygon \"P\" [-5 -5 2  5 -5 2  5 5 2  -5 5 2]\n"
+                             "AttributeBegin\nMatte 1\n"
+                             "Polygon \"P\" [-0.5 -0.5 1  0.5 -0.5 1  0.5 0.5 1  -0.5 0.5 1]\n"
+                             "AttributeEnd\nWorldEnd\n");
+    EXPECT_EQ(img.at(10, 10).a, 0.0f);
+    EXPECT_EQ(img.at(10, 10).r, 0.0f);
+    EXPECT_EQ(img.at(1, 1).a, 1.0f);
+    EXPECT_EQ(img.at(1, 1).r, 1.0f);
+}

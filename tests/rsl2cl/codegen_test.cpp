@@ -1,0 +1,376 @@
+// codegen_test.cpp: the code generator end to end on PoCL: every standard shader builds,
+// the classic surfaces give their closed forms in base and light modes, the ray-traced
+// ones record the right rays and coefficients, and the lights give the expected Cl, L.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "testshade.h"
+
+namespace {
+
+using V3 = std::array<float, 3>;
+V3 v3(const float* p) { return {p[0], p[1], p[2]}; }
+float dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 add(V3 a, V3 b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 mul(V3 a, float s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+V3 mulv(V3 a, V3 b) { return {a[0] * b[0], a[1] * b[1], a[2] * b[2]}; }
+V3 norm(V3 a) { return mul(a, 1.0f / std::sqrt(dot(a, a))); }
+
+void expectNear(const float* got, V3 want, float tol, const std::string& what) {
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(got[c], want[c], tol * std::max(1.0f, std::fabs(want[c])))
+            << what << " channel " << c;
+}
+
+std::string shaderPath(const std::string& n) {
+    if (n == "spd") return std::string(RSL2CL_TEST_DATA) + "/spd.sl";
+    return std::string(RSL2CL_SHADER_DIR) + "/" + n + ".sl";
+}
+
+#define REQUIRE_DEVICE() \
+    if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device"
+
+// ---- (b) every standard shader compiles to OpenCL C that builds ---------------------
+class CodegenShader : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CodegenShader, BuildsOnDevice) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath(GetParam()), &err)) << err;
+    EXPECT_EQ(sh.shader.functionName, "rsl_" + sh.shader.kind + "_" + GetParam());
+    ts::Scene sc;
+    sc.lights.push_back({{0, 0, 1}, {1, 1, 1}});
+    std::string log;
+    ASSERT_TRUE(sh.buildOnDevice(sc, &log)) << log;
+    auto out = sh.run(ts::grid(4), sc);
+    ASSERT_EQ(out.size(), 16u);
+    for (const ts::Out& o : out)
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_TRUE(std::isfinite(o.Ci[c]));
+            EXPECT_TRUE(std::isfinite(o.Cl[c]));
+        }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    All, CodegenShader,
+    ::testing::Values("ambientlight", "arealight", "bumpy", "constant", "depthcue", "distantlight",
+                      "fog", "glass", "matte", "metal", "mirror", "paintedplastic", "plastic",
+                      "pointlight", "shadowdistant", "shadowpoint", "shadowspot", "shinymetal",
+                      "spotlight", "spd"));
+
+TEST(Codegen, ParamLayoutAndMetadata) {
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath("spotlight"), &err)) << err;
+    const auto& p = sh.shader.params;
+    ASSERT_EQ(p.size(), 7u);
+    EXPECT_EQ(p[1].name, "lightcolor");
+    EXPECT_EQ(p[1].offset, 1);
+    EXPECT_EQ(p[1].size, 3);
+    EXPECT_EQ(p[4].name, "coneangle");
+    EXPECT_EQ(p[4].offset, 10);
+    EXPECT_NEAR(p[4].defaults[0], 30 * M_PI / 180, 1e-6);
+    EXPECT_EQ(p[3].space, "shader");
+    EXPECT_EQ(sh.shader.paramFloats, 13);
+    EXPECT_FALSE(sh.shader.ambientLight);
+    ASSERT_TRUE(sh.compileFile(shaderPath("ambientlight"), &err)) << err;
+    EXPECT_TRUE(sh.shader.ambientLight);
+    ASSERT_TRUE(sh.compileFile(shaderPath("glass"), &err)) << err;
+    EXPECT_TRUE(sh.shader.usesTrace);
+    ASSERT_TRUE(sh.compileFile(shaderPath("paintedplastic"), &err));
+    EXPECT_NE(err.find("warning: texture() returns its default until textures land (issue 9)"),
+              std::string::npos) << err;
+    ASSERT_TRUE(sh.compileSource("surface s(string tex = \"grid.tx\"; color c = Cs;) { Ci = c; }",
+                                 "s.sl", &err)) << err;
+    EXPECT_EQ(sh.shader.params[0].defaults[0], float(rsl::stringId("grid.tx")));
+    EXPECT_FALSE(sh.shader.params[1].constantDefault);
+}
+
+TEST(Codegen, NonConstantDefaultIsComputedUnlessOverridden) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource("surface s(color c = Cs * 0.5;) { Ci = c; Oi = 1; }", "s.sl", &err))
+        << err;
+    ts::Scene sc;
+    auto pts = ts::grid(2);
+    for (auto& p : pts) p.Cs[0] = 0.8f, p.Cs[1] = 0.4f, p.Cs[2] = 0.2f;
+    auto out = sh.run(pts, sc);
+    ASSERT_EQ(out.size(), 4u);
+    expectNear(out[0].Ci, {0.4f, 0.2f, 0.1f}, 1e-6f, "default");
+    sh.setParam("c", {1, 2, 3});
+    out = sh.run(pts, sc);
+    expectNear(out[0].Ci, {1, 2, 3}, 1e-6f, "override");
+}
+
+// ---- (c) closed forms with one distant light ------------------------------------------
+struct Closed {
+    ts::Scene sc;
+    std::vector<ts::Point> pts;
+    V3 Ln, Cl, amb;
+    Closed() {
+        Ln = norm({0.3f, 0.4f, 1.0f});
+        Cl = {0.8f, 0.6f, 0.4f};
+        amb = {0.1f, 0.2f, 0.3f};
+        sc.lights.push_back({{Ln[0] * 5, Ln[1] * 5, Ln[2] * 5}, {Cl[0], Cl[1], Cl[2]}});
+        for (int c = 0; c < 3; ++c) sc.ambient[c] = amb[c];
+        pts = ts::grid(3);
+        for (auto& p : pts) {
+            p.Cs[0] = 0.9f, p.Cs[1] = 0.5f, p.Cs[2] = 0.3f;
+            p.Os[0] = 0.8f, p.Os[1] = 0.9f, p.Os[2] = 1.0f;
+        }
+    }
+    // Blinn specular of RI 3.2 for point p
+    float spec(const ts::Point& p, float roughness) const {
+        V3 V = mul(norm(v3(p.I)), -1);
+        V3 H = norm(add(Ln, V));
+        return std::pow(std::max(0.0f, dot({0, 0, 1}, H)), 1.0f / roughness);
+    }
+};
+
+struct SurfaceCase {
+    const char* name;
+    // Ci in base mode and Ci - E in light mode 0
+    V3 (*base)(const Closed&, const ts::Point&);
+    V3 (*light)(const Closed&, const ts::Point&);
+};
+
+V3 baseAmb(const Closed& k, const ts::Point& p) {  // Os * Cs * Ka(1) * ambient
+    return mulv(mulv(v3(p.Os), v3(p.Cs)), k.amb);
+}
+V3 plasticLight(const Closed& k, const ts::Point& p) {  // Kd .5, Ks .5, roughness .1
+    V3 d = mul(mulv(v3(p.Cs), k.Cl), 0.5f * k.Ln[2]);
+    V3 s = mul(k.Cl, 0.5f * k.spec(p, 0.1f));
+    return mulv(v3(p.Os), add(d, s));
+}
+V3 metalLight(const Closed& k, const ts::Point& p) {  // Ks 1, roughness .1
+    return mulv(mulv(v3(p.Os), v3(p.Cs)), mul(k.Cl, k.spec(p, 0.1f)));
+}
+
+const SurfaceCase kSurfaces[] = {
+    {"constant", [](const Closed&, const ts::Point& p) { return mulv(v3(p.Os), v3(p.Cs)); },
+     [](const Closed&, const ts::Point&) { return V3{0, 0, 0}; }},
+    {"matte", baseAmb,
+     [](const Closed& k, const ts::Point& p) {
+         return mul(mulv(mulv(v3(p.Os), v3(p.Cs)), k.Cl), k.Ln[2]);
+     }},
+    {"plastic", baseAmb, plasticLight},
+    {"paintedplastic", baseAmb, plasticLight},
+    {"metal", baseAmb, metalLight},
+    {"shinymetal", baseAmb, metalLight},
+};
+
+class CodegenClosedForm : public ::testing::TestWithParam<SurfaceCase> {};
+
+TEST_P(CodegenClosedForm, BaseAndLightModes) {
+    REQUIRE_DEVICE();
+    const SurfaceCase& c = GetParam();
+    Closed k;
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath(c.name), &err)) << err;
+    auto base = sh.run(k.pts, k.sc, -1, -1);
+    auto lit = sh.run(k.pts, k.sc, 0, -1);
+    ASSERT_EQ(base.size(), k.pts.size());
+    ASSERT_EQ(lit.size(), k.pts.size());
+    for (size_t i = 0; i < k.pts.size(); ++i) {
+        expectNear(base[i].Ci, c.base(k, k.pts[i]), 1e-4f, std::string(c.name) + " base");
+        expectNear(base[i].Oi, v3(k.pts[i].Os), 1e-6f, std::string(c.name) + " Oi");
+        EXPECT_EQ(base[i].traceCount, 0);
+        V3 diff = sub(v3(lit[i].Ci), v3(base[i].Ci));
+        expectNear(diff.data(), c.light(k, k.pts[i]), 1e-4f, std::string(c.name) + " light");
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Std, CodegenClosedForm, ::testing::ValuesIn(kSurfaces),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Codegen, LightModeOfAnotherLightIsZero) {
+    REQUIRE_DEVICE();
+    Closed k;
+    k.sc.lights.push_back({{0, 0, 1}, {5, 5, 5}});
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath("matte"), &err)) << err;
+    auto base = sh.run(k.pts, k.sc, -1, -1);
+    auto l1 = sh.run(k.pts, k.sc, 1, -1);
+    for (size_t i = 0; i < k.pts.size(); ++i) {
+        V3 want = mulv(mulv(v3(k.pts[i].Os), v3(k.pts[i].Cs)), {5, 5, 5});
+        V3 diff = sub(v3(l1[i].Ci), v3(base[i].Ci));
+        expectNear(diff.data(), want, 1e-4f, "light 1");
+    }
+}
+
+// ---- (d) trace() requests and coefficients ---------------------------------------------
+V3 reflectv(V3 i, V3 n) { return sub(i, mul(n, 2 * dot(i, n))); }
+
+TEST(Codegen, MirrorRecordsReflectionRay) {
+    REQUIRE_DEVICE();
+    Closed k;
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath("mirror"), &err)) << err;
+    auto base = sh.run(k.pts, k.sc, -1, -1);
+    auto tr = sh.run(k.pts, k.sc, -1, 0);
+    auto tr1 = sh.run(k.pts, k.sc, -1, 1);
+    for (size_t i = 0; i < k.pts.size(); ++i) {
+        const ts::Point& p = k.pts[i];
+        ASSERT_EQ(base[i].traceCount, 1);
+        expectNear(base[i].Ci, {0, 0, 0}, 1e-6f, "mirror base");
+        expectNear(base[i].org[0], v3(p.P), 1e-6f, "org");
+        expectNear(base[i].dir[0], reflectv(norm(v3(p.I)), {0, 0, 1}), 1e-5f, "dir");
+        expectNear(tr[i].Ci, v3(p.Os), 1e-5f, "mirror trace coefficient");
+        expectNear(tr1[i].Ci, {0, 0, 0}, 1e-6f, "no second trace");
+    }
+}
+
+// independent unpolarised Fresnel (Snell + the two Fresnel amplitude terms)
+void fresnelRef(V3 I, V3 N, float eta, float& kr, float& kt, V3& R, V3& T) {
+    float cosi = -dot(I, N);
+    R = add(I, mul(N, 2 * cosi));
+    float sint2 = eta * eta * (1 - cosi * cosi);
+    float cost = std::sqrt(1 - sint2);
+    float n1 = 1, n2 = 1 / eta;
+    float rs = (n1 * cosi - n2 * cost) / (n1 * cosi + n2 * cost);
+    float rp = (n2 * cosi - n1 * cost) / (n2 * cosi + n1 * cost);
+    kr = 0.5f * (rs * rs + rp * rp);
+    kt = 1 - kr;
+    T = add(mul(I, eta), mul(N, eta * cosi - cost));
+}
+
+TEST(Codegen, GlassRecordsReflectionAndRefraction) {
+    REQUIRE_DEVICE();
+    Closed k;
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath("glass"), &err)) << err;
+    auto base = sh.run(k.pts, k.sc, -1, -1);
+    auto t0 = sh.run(k.pts, k.sc, -1, 0);
+    auto t1 = sh.run(k.pts, k.sc, -1, 1);
+    for (size_t i = 0; i < k.pts.size(); ++i) {
+        const ts::Point& p = k.pts[i];
+        V3 In = norm(v3(p.I));
+        float kr, kt;
+        V3 R, T;
+        fresnelRef(In, {0, 0, 1}, 1 / 1.5f, kr, kt, R, T);
+        ASSERT_EQ(base[i].traceCount, 2);
+        expectNear(base[i].dir[0], R, 1e-4f, "R");
+        expectNear(base[i].dir[1], T, 1e-4f, "T");
+        expectNear(base[i].org[1], v3(p.P), 1e-6f, "org");
+        expectNear(base[i].Oi, {1, 1, 1}, 1e-6f, "Oi");
+        V3 c0 = sub(v3(t0[i].Ci), v3(base[i].Ci)), c1 = sub(v3(t1[i].Ci), v3(base[i].Ci));
+        expectNear(c0.data(), {kr, kr, kr}, 1e-4f, "Kr * kr");
+        expectNear(c1.data(), {kt, kt, kt}, 1e-4f, "Kt * kt * transmitcolor");
+    }
+}
+
+TEST(Codegen, SpdTracesOnlyWhenAsked) {
+    REQUIRE_DEVICE();
+    Closed k;
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath("spd"), &err)) << err;
+    auto base = sh.run(k.pts, k.sc, -1, -1);
+    for (const auto& o : base) EXPECT_EQ(o.traceCount, 0);
+    sh.setParam("reflected", {0.5f});
+    base = sh.run(k.pts, k.sc, -1, -1);
+    auto t0 = sh.run(k.pts, k.sc, -1, 0);
+    for (size_t i = 0; i < k.pts.size(); ++i) {
+        const ts::Point& p = k.pts[i];
+        ASSERT_EQ(base[i].traceCount, 1);
+        expectNear(base[i].dir[0], norm(reflectv(norm(v3(p.I)), {0, 0, 1})), 1e-5f, "dir");
+        V3 c = sub(v3(t0[i].Ci), v3(base[i].Ci));
+        expectNear(c.data(), mul(mulv(v3(p.Os), v3(p.Cs)), 0.5f), 1e-5f, "coefficient");
+    }
+}
+
+// ---- (f) light shaders -------------------------------------------------------------------
+ts::Point at(float x, float y, float z) {
+    ts::Point p;
+    p.P[0] = p.Ps[0] = x, p.P[1] = p.Ps[1] = y, p.P[2] = p.Ps[2] = z;
+    return p;
+}
+
+TEST(Codegen, PointLight) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath("pointlight"), &err)) << err;
+    sh.setParam("intensity", {2});
+    sh.setParam("from", {0, 0, 3});
+    sh.setParam("lightcolor", {1, 0.5f, 0.25f});
+    ts::Scene sc;
+    auto out = sh.run({at(1, 0, 0), at(0, 2, 1)}, sc);
+    ASSERT_EQ(out.size(), 2u);
+    expectNear(out[0].L, {1, 0, -3}, 1e-6f, "L");
+    expectNear(out[0].Cl, {0.2f, 0.1f, 0.05f}, 1e-5f, "Cl");
+    expectNear(out[1].L, {0, 2, -2}, 1e-6f, "L");
+    expectNear(out[1].Cl, {0.25f, 0.125f, 0.0625f}, 1e-5f, "Cl");
+}
+
+TEST(Codegen, SpotLightConeAndFalloff) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath("spotlight"), &err)) << err;
+    sh.setParam("from", {0, 0, 3});
+    sh.setParam("to", {0, 0, 0});
+    ts::Scene sc;
+    auto out = sh.run({at(0, 0, 0), at(0.5f, 0, 0), at(5, 0, 0), at(1.6f, 0, 0)}, sc);
+    ASSERT_EQ(out.size(), 4u);
+    float cosout = std::cos(30 * M_PI / 180), cosin = std::cos(25 * M_PI / 180);
+    auto want = [&](float x) {
+        V3 L = {x, 0, -3};
+        float cosang = -L[2] / std::sqrt(dot(L, L));
+        float t = std::min(1.0f, std::max(0.0f, (cosang - cosout) / (cosin - cosout)));
+        float ss = cosang < cosout ? 0 : (cosang >= cosin ? 1 : t * t * (3 - 2 * t));
+        return std::pow(cosang, 2.0f) / dot(L, L) * ss;
+    };
+    expectNear(out[0].Cl, {want(0), want(0), want(0)}, 1e-5f, "centre");
+    EXPECT_NEAR(out[0].Cl[0], 1.0f / 9, 1e-5f);
+    expectNear(out[0].L, {0, 0, -3}, 1e-6f, "L");
+    expectNear(out[1].Cl, {want(0.5f), want(0.5f), want(0.5f)}, 1e-5f, "inside");
+    expectNear(out[2].Cl, {0, 0, 0}, 0, "outside the cone");
+    float w = want(1.6f);  // 28 degrees: in the penumbra
+    EXPECT_GT(w, 0);
+    EXPECT_LT(w, 1.6f * 1.6f);
+    expectNear(out[3].Cl, {w, w, w}, 1e-5f, "penumbra");
+}
+
+TEST(Codegen, DistantAndAmbientLights) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath("distantlight"), &err)) << err;
+    sh.setParam("intensity", {3});
+    sh.setParam("from", {0, 0, 2});
+    sh.setParam("to", {0, 1, 2});
+    ts::Scene sc;
+    auto out = sh.run({at(1, 2, 3)}, sc);
+    ASSERT_EQ(out.size(), 1u);
+    expectNear(out[0].L, {0, 1, 0}, 1e-6f, "L = to - from");
+    expectNear(out[0].Cl, {3, 3, 3}, 1e-6f, "Cl");
+    ASSERT_TRUE(sh.compileFile(shaderPath("ambientlight"), &err)) << err;
+    sh.setParam("intensity", {0.5f});
+    out = sh.run({at(1, 2, 3)}, sc);
+    expectNear(out[0].Cl, {0.5f, 0.5f, 0.5f}, 1e-6f, "ambient Cl");
+}
+
+TEST(Codegen, ShadowLightsAreUnshadowed) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileFile(shaderPath("shadowpoint"), &err)) << err;
+    EXPECT_EQ(err, "");  // shadow() of a parameter in a light: the shadow ray's job
+    sh.setParam("from", {0, 0, 2});
+    sh.setParam("shadowname", {float(rsl::stringId("raytrace"))});
+    ts::Scene sc;
+    auto out = sh.run({at(0, 0, 0)}, sc);
+    ASSERT_EQ(out.size(), 1u);
+    expectNear(out[0].Cl, {0.25f, 0.25f, 0.25f}, 1e-6f, "Cl");
+}
+
+}  // namespace

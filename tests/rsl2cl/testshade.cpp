@@ -1,0 +1,257 @@
+// testshade.cpp: the OpenCL side of the rsl2cl test harness (see testshade.h).
+#define CL_TARGET_OPENCL_VERSION 120
+#include "testshade.h"
+
+#include <CL/cl.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "compiler.h"
+
+namespace ts {
+namespace {
+
+struct Cl {
+    cl_context ctx = nullptr;
+    cl_command_queue q = nullptr;
+    cl_device_id dev = nullptr;
+    bool ok = false;
+    Cl() {
+        cl_uint np = 0;
+        if (clGetPlatformIDs(0, nullptr, &np) != CL_SUCCESS || np == 0) return;
+        std::vector<cl_platform_id> ps(np);
+        clGetPlatformIDs(np, ps.data(), nullptr);
+        for (cl_platform_id p : ps) {
+            if (clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, 1, &dev, nullptr) == CL_SUCCESS) break;
+            dev = nullptr;
+        }
+        if (!dev) return;
+        cl_int err;
+        ctx = clCreateContext(nullptr, 1, &dev, nullptr, nullptr, &err);
+        if (err != CL_SUCCESS) return;
+        q = clCreateCommandQueue(ctx, dev, 0, &err);
+        ok = err == CL_SUCCESS;
+    }
+};
+
+Cl& cl() {
+    static Cl c;
+    return c;
+}
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+const int kGlobalFloats = 68;           // RslGlobals: 15 float4 + 8 floats
+const int kEvalFloats = 4 + 2 * 8 * 4;  // 3 ints (+pad to 16 bytes) + 2 x 8 float4
+// field order of RslGlobals
+enum { fP, fN, fNg, fI, fE, fdPdu, fdPdv, fCs, fOs, fCi, fOi, fL, fCl, fOl, fPs };
+
+std::string fl(float x) {
+    std::ostringstream s;
+    s.precision(9);
+    s << x << "f";
+    std::string r = s.str();
+    if (r.find_first_of(".e") == std::string::npos) r.insert(r.size() - 1, ".0");
+    return r;
+}
+
+std::string sceneKey(const Scene& sc) {
+    std::ostringstream s;
+    s.precision(9);
+    for (const Light& l : sc.lights)
+        s << l.L[0] << "," << l.L[1] << "," << l.L[2] << "," << l.Cl[0] << "," << l.Cl[1] << ","
+          << l.Cl[2] << ";";
+    s << sc.ambient[0] << "," << sc.ambient[1] << "," << sc.ambient[2] << ";" << sc.shaderOffset[0]
+      << "," << sc.shaderOffset[1] << "," << sc.shaderOffset[2];
+    return s.str();
+}
+
+}  // namespace
+
+bool deviceAvailable() { return cl().ok; }
+
+std::vector<Point> grid(int n) {
+    std::vector<Point> pts;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            Point p;
+            p.s = p.u = n > 1 ? float(i) / float(n - 1) : 0.5f;
+            p.t = p.v = n > 1 ? float(j) / float(n - 1) : 0.5f;
+            p.P[0] = 4 * p.s - 2;
+            p.P[1] = 4 * p.t - 2;
+            p.E[2] = 5;
+            for (int k = 0; k < 3; ++k) p.I[k] = p.P[k] - p.E[k];
+            for (int k = 0; k < 3; ++k) p.Ps[k] = p.P[k] + (k == 2 ? 1.0f : 0.0f);
+            pts.push_back(p);
+        }
+    return pts;
+}
+
+bool Shade::compileSource(const std::string& rsl, const std::string& name, std::string* err) {
+    rsl::Diagnostics diag;
+    auto prog = std::make_unique<rsl::Program>();
+    bool ok = rsl::compileSource(rsl, name, {}, *prog, diag);
+    if (ok && !prog->shaders.empty()) {
+        shader = rsl::emitOpenCL(*prog->shaders[0], *prog, diag);
+        ok = shader.ok;
+    } else {
+        ok = false;
+    }
+    diagnostics = diag.text();
+    if (err) *err = diagnostics;
+    if (ok) {
+        params.assign(shader.paramFloats, 0.0f);
+        for (const rsl::ParamSlot& p : shader.params)
+            for (int i = 0; i < p.size; ++i) params[p.offset + i] = p.defaults[i];
+    }
+    m_builtFor.clear();
+    return ok;
+}
+
+bool Shade::compileFile(const std::string& path, std::string* err) {
+    std::string name = path.substr(path.find_last_of('/') + 1);
+    return compileSource(slurp(path), name, err);
+}
+
+void Shade::setParam(const std::string& name, const std::vector<float>& values) {
+    for (const rsl::ParamSlot& p : shader.params)
+        if (p.name == name)
+            for (size_t i = 0; i < values.size() && int(i) < p.size; ++i) params[p.offset + i] = values[i];
+}
+
+bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
+    if (!cl().ok) {
+        if (log) *log = "no OpenCL device";
+        return false;
+    }
+    std::string key = sceneKey(sc);
+    if (m_program && m_builtFor == key) return true;
+    std::string rt = rsl::runtimeDir();
+    std::ostringstream src;
+    src << slurp(rt + "/rsl_abi.h") << "\n" << slurp(rt + "/rsl_stdlib.clh") << "\n";
+    // the fake renderer services
+    src << "__constant float ts_lights[] = {0";
+    for (const Light& l : sc.lights)
+        for (int k = 0; k < 3; ++k) src << ", " << fl(l.L[k]) << ", " << fl(l.Cl[k]);
+    src << "};\n#define TS_NLIGHTS " << sc.lights.size() << "\n";
+    src << "int rsl_light_count(void) { return TS_NLIGHTS; }\n"
+           "int rsl_light(int l, const RslGlobals* g, float4 Ps, float4* L, float4* Cl) {\n"
+           "  (void)g; (void)Ps; if (l < 0 || l >= TS_NLIGHTS) return 0;\n"
+           "  __constant float* x = ts_lights + 1 + 6 * l;\n"
+           "  *L = (float4)(x[0], x[2], x[4], 0.0f); *Cl = (float4)(x[1], x[3], x[5], 0.0f);\n"
+           "  return 1;\n}\n";
+    src << "float4 rsl_ambient(const RslGlobals* g) { (void)g; return (float4)(" << fl(sc.ambient[0])
+        << ", " << fl(sc.ambient[1]) << ", " << fl(sc.ambient[2]) << ", 0.0f); }\n";
+    src << "RslMatrix rsl_space_matrix(int space) {\n  RslMatrix m = rsl_mscalar(1.0f);\n"
+           "  if (space == RSL_SPACE_SHADER) m.r[3] = (float4)("
+        << fl(sc.shaderOffset[0]) << ", " << fl(sc.shaderOffset[1]) << ", " << fl(sc.shaderOffset[2])
+        << ", 1.0f);\n  return m;\n}\n";
+    src << shader.source << "\n";
+    bool light = shader.kind == "light";
+    src << "__kernel void ts_main(__global const float* gin, __global const float* params,\n"
+           "                      int mode_light, int mode_trace, __global float* out) {\n"
+           "  int i = get_global_id(0);\n"
+           "  RslGlobals g; float* gp = (float*)&g;\n"
+           "  for (int k = 0; k < "
+        << kGlobalFloats << "; ++k) gp[k] = gin[i * " << kGlobalFloats << " + k];\n"
+        << "  RslEval ev; ev.mode_light = mode_light; ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
+           "  for (int k = 0; k < RSL_MAX_TRACE; ++k) { ev.trace_org[k] = (float4)(0); ev.trace_dir[k] = (float4)(0); }\n"
+        << (light ? "  (void)ev; " + shader.functionName + "(&g, params);\n"
+                  : "  " + shader.functionName + "(&g, params, &ev);\n")
+        << "  __global float* o = out + i * " << (kGlobalFloats + kEvalFloats) << ";\n"
+        << "  for (int k = 0; k < " << kGlobalFloats << "; ++k) o[k] = gp[k];\n"
+        << "  o += " << kGlobalFloats << "; o[0] = (float)ev.trace_count;\n"
+           "  for (int k = 0; k < RSL_MAX_TRACE; ++k) {\n"
+           "    vstore4(ev.trace_org[k], 0, o + 4 + 4 * k); vstore4(ev.trace_dir[k], 0, o + 36 + 4 * k);\n"
+           "  }\n}\n";
+    std::string text = src.str();
+    const char* p = text.c_str();
+    cl_int err;
+    cl_program prog = clCreateProgramWithSource(cl().ctx, 1, &p, nullptr, &err);
+    err = clBuildProgram(prog, 1, &cl().dev, "-cl-std=CL1.2", nullptr, nullptr);
+    if (err != CL_SUCCESS) {
+        size_t n = 0;
+        clGetProgramBuildInfo(prog, cl().dev, CL_PROGRAM_BUILD_LOG, 0, nullptr, &n);
+        std::string b(n, '\0');
+        clGetProgramBuildInfo(prog, cl().dev, CL_PROGRAM_BUILD_LOG, n, &b[0], nullptr);
+        if (log) *log = b + "\n---- source ----\n" + shader.source;
+        clReleaseProgram(prog);
+        return false;
+    }
+    if (m_program) clReleaseProgram(static_cast<cl_program>(m_program));
+    m_program = prog;
+    m_builtFor = key;
+    return true;
+}
+
+std::vector<Out> Shade::run(const std::vector<Point>& pts, const Scene& sc, int modeLight,
+                            int modeTrace) {
+    std::vector<Out> res;
+    std::string log;
+    if (!buildOnDevice(sc, &log) || pts.empty()) return res;
+    size_t n = pts.size();
+    std::vector<float> gin(n * kGlobalFloats, 0.0f);
+    for (size_t i = 0; i < n; ++i) {
+        float* g = &gin[i * kGlobalFloats];
+        const Point& p = pts[i];
+        auto set = [&](int f, const float* v) {
+            for (int k = 0; k < 3; ++k) g[4 * f + k] = v[k];
+        };
+        set(fP, p.P); set(fN, p.N); set(fNg, p.Ng); set(fI, p.I); set(fE, p.E);
+        set(fCs, p.Cs); set(fOs, p.Os); set(fPs, p.Ps);
+        float one[3] = {1, 0, 0}, two[3] = {0, 1, 0};
+        set(fdPdu, one); set(fdPdv, two);
+        float* sc2 = g + 60;  // u v s t du dv ncomps time
+        sc2[0] = p.u; sc2[1] = p.v; sc2[2] = p.s; sc2[3] = p.t; sc2[6] = 3;
+    }
+    cl_int err;
+    size_t outFloats = n * (kGlobalFloats + kEvalFloats);
+    std::vector<float> pv = params.empty() ? std::vector<float>{0.0f} : params;
+    cl_mem bg = clCreateBuffer(cl().ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, gin.size() * 4, gin.data(), &err);
+    cl_mem bp = clCreateBuffer(cl().ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, pv.size() * 4, pv.data(), &err);
+    cl_mem bo = clCreateBuffer(cl().ctx, CL_MEM_WRITE_ONLY, outFloats * 4, nullptr, &err);
+    cl_kernel k = clCreateKernel(static_cast<cl_program>(m_program), "ts_main", &err);
+    clSetKernelArg(k, 0, sizeof(cl_mem), &bg);
+    clSetKernelArg(k, 1, sizeof(cl_mem), &bp);
+    clSetKernelArg(k, 2, sizeof(int), &modeLight);
+    clSetKernelArg(k, 3, sizeof(int), &modeTrace);
+    clSetKernelArg(k, 4, sizeof(cl_mem), &bo);
+    std::vector<float> out(outFloats);
+    err = clEnqueueNDRangeKernel(cl().q, k, 1, nullptr, &n, nullptr, 0, nullptr, nullptr);
+    if (err == CL_SUCCESS)
+        err = clEnqueueReadBuffer(cl().q, bo, CL_TRUE, 0, outFloats * 4, out.data(), 0, nullptr, nullptr);
+    clReleaseKernel(k);
+    clReleaseMemObject(bg);
+    clReleaseMemObject(bp);
+    clReleaseMemObject(bo);
+    if (err != CL_SUCCESS) return res;
+    for (size_t i = 0; i < n; ++i) {
+        const float* o = &out[i * (kGlobalFloats + kEvalFloats)];
+        Out r;
+        for (int c = 0; c < 3; ++c) {
+            r.Ci[c] = o[4 * fCi + c];
+            r.Oi[c] = o[4 * fOi + c];
+            r.L[c] = o[4 * fL + c];
+            r.Cl[c] = o[4 * fCl + c];
+        }
+        const float* e = o + kGlobalFloats;
+        r.traceCount = int(e[0]);
+        for (int t = 0; t < 8; ++t)
+            for (int c = 0; c < 3; ++c) {
+                r.org[t][c] = e[4 + 4 * t + c];
+                r.dir[t][c] = e[36 + 4 * t + c];
+            }
+        res.push_back(r);
+    }
+    return res;
+}
+
+}  // namespace ts
