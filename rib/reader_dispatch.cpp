@@ -131,6 +131,9 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
         case Req::Display:
             t.display(loc, s(0), s(1), s(2), P);
             break;
+        case Req::DisplayChannel:
+            t.displayChannel(loc, s(0), P);
+            break;
         case Req::Hider:
             t.hider(loc, s(0), P);
             break;

@@ -37,6 +37,8 @@ public:
     virtual void display(L, const std::string& /*name*/, const std::string& /*type*/,
                          const std::string& /*mode*/, const ParamList&) {}
     virtual void option(L, const std::string& /*name*/, const ParamList&) {}
+    // PRMan's DisplayChannel "type name": declares an output channel (an AOV).
+    virtual void displayChannel(L, const std::string& /*channel*/, const ParamList&) {}
 
     // Attributes
     virtual void attribute(L, const std::string& /*name*/, const ParamList&) {}

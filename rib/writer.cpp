@@ -139,6 +139,12 @@ void RibWriter::display(L, const std::string& a1, const std::string& a2, const s
     params(a4);
 }
 
+void RibWriter::displayChannel(L, const std::string& a1, const ParamList& a2) {
+    req("DisplayChannel");
+    m_e->string(a1);
+    params(a2);
+}
+
 void RibWriter::option(L, const std::string& a1, const ParamList& a2) {
     req("Option");
     m_e->string(a1);

@@ -35,6 +35,7 @@ public:
     void clipping(L, float, float) override;
     void pixelSamples(L, float, float) override;
     void display(L, const std::string&, const std::string&, const std::string&, const ParamList&) override;
+    void displayChannel(L, const std::string&, const ParamList&) override;
     void option(L, const std::string&, const ParamList&) override;
     void attribute(L, const std::string&, const ParamList&) override;
     void color(L, const std::vector<float>&) override;

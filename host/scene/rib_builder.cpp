@@ -139,14 +139,7 @@ void RibBuilder::display(L loc, const std::string& name, const std::string& type
                          const std::string& mode, const rib::ParamList&) {
     if (!name.empty() && name[0] == '+') {
         // A secondary display's mode names AOVs; they become extra channels of the image.
-        static const char* known[] = {"z", "N", "samples", "error", "filled"};
-        for (const char* k : known)
-            if (mode == k) {
-                m_options.aovs.push_back(mode);
-                return;
-            }
-        m_diag.warning(loc, "AOV \"" + mode + "\" is not available (z, N, samples, error, "
-                            "filled); display \"" + name + "\" ignored");
+        addAov(loc, mode);
         return;
     }
     if (type != "file" && type != "openexr" && type != "exr")
@@ -154,6 +147,24 @@ void RibBuilder::display(L loc, const std::string& name, const std::string& type
     if (mode != "rgb" && mode != "rgba")
         m_diag.warning(loc, "display mode \"" + mode + "\" is written as rgba");
     m_options.display = {name, type, mode == "rgb" ? "rgb" : "rgba", loc};
+}
+
+bool RibBuilder::addAov(L loc, const std::string& name) {
+    static const char* known[] = {"z", "N", "samples", "error", "filled"};
+    for (const char* k : known)
+        if (name == k) {
+            m_options.aovs.push_back(name);
+            return true;
+        }
+    m_diag.warning(loc, "AOV \"" + name +
+                            "\" is not available (z, N, samples, error, filled); ignored");
+    return false;
+}
+
+void RibBuilder::displayChannel(L loc, const std::string& channel, const rib::ParamList&) {
+    // "float z", "varying normal N": the channel's name is the last word.
+    size_t sp = channel.find_last_of(' ');
+    addAov(loc, sp == std::string::npos ? channel : channel.substr(sp + 1));
 }
 
 void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& params) {

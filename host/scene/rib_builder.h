@@ -38,6 +38,7 @@ public:
                  const std::string& mode, const rib::ParamList&) override;
 
     void option(L, const std::string& name, const rib::ParamList&) override;
+    void displayChannel(L, const std::string& channel, const rib::ParamList&) override;
     void cropWindow(L, float, float, float, float) override;
     void depthOfField(L, float fstop, float focalLength, float focalDistance) override;
     void matte(L, bool) override;
@@ -74,6 +75,7 @@ private:
     enum class Block { Frame, World, Attribute, Transform };
 
     uint32_t currentMaterial();
+    bool addAov(L, const std::string& name);
     bool inWorld(L, const char* request);
     // Adds triangles given world-space positions and optional normals; 3 indices each.
     void addMesh(L, const std::vector<glm::vec3>& p, const std::vector<glm::vec3>* n,

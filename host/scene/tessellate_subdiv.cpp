@@ -200,6 +200,8 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
 #else
 bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
                                std::string* err) {
+    (void)level;
+    (void)out;
     if (!validateSubdiv(in, err)) return false;
     return fail(err, "SubdivisionMesh: built without OpenSubdiv");
 }

@@ -1,11 +1,13 @@
-// main.cpp: the rsl2cl command. For now the front end only:
+// main.cpp: the rsl2cl command:
 //   rsl2cl [-I DIR] [-D NAME[=VALUE]] [--info | --ast] [-o OUT] shader.sl
+// Without --info/--ast it writes the generated OpenCL C (see runtime/rsl_abi.h).
 // exit 0 on success, 1 on compile errors, 2 on usage errors.
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
 
 #include "compiler.h"
+#include "emit_cl.h"
 
 namespace {
 
@@ -13,7 +15,8 @@ void usage(std::ostream& os) {
     os << "usage: rsl2cl [-I DIR] [-D NAME[=VALUE]] [--info | --ast] [-o OUT] shader.sl\n"
           "  --info   print shader metadata (kind, parameters, globals, services)\n"
           "  --ast    print the typed syntax tree\n"
-          "  -o OUT   write the output to OUT instead of standard output\n";
+          "  -o OUT   write the output to OUT instead of standard output\n"
+          "  (default: the shader compiled to OpenCL C; see rsl2cl/runtime/rsl_abi.h)\n";
 }
 
 }  // namespace
@@ -69,8 +72,18 @@ int main(int argc, char** argv) {
     }
     std::string text;
     if (ast) text += rsl::dumpAst(prog);
-    if (info || !ast)
+    if (info)
         for (const auto& sh : prog.shaders) text += rsl::formatInfo(rsl::collectInfo(*sh));
+    if (!info && !ast) {
+        for (const auto& sh : prog.shaders) {
+            rsl::EmittedShader em = rsl::emitOpenCL(*sh, prog, diag);
+            text += em.source;
+        }
+        if (diag.hasErrors()) {
+            std::cerr << diag.errorCount() << " error(s) in " << input << "\n";
+            return 1;
+        }
+    }
     if (output.empty()) {
         std::cout << text;
     } else {

@@ -72,6 +72,7 @@ public:
     void projection(L l, const std::string& a1, const ParamList& a2) override { add(l, std::string("projection") + " " + str(a1) + " " + str(a2)); }
     void clipping(L l, float a1, float a2) override { add(l, std::string("clipping") + " " + str(a1) + " " + str(a2)); }
     void pixelSamples(L l, float a1, float a2) override { add(l, std::string("pixelSamples") + " " + str(a1) + " " + str(a2)); }
+    void displayChannel(L l, const std::string& a1, const ParamList& a2) override { add(l, std::string("displayChannel") + " " + str(a1) + " " + str(a2)); }
     void display(L l, const std::string& a1, const std::string& a2, const std::string& a3, const ParamList& a4) override { add(l, std::string("display") + " " + str(a1) + " " + str(a2) + " " + str(a3) + " " + str(a4)); }
     void option(L l, const std::string& a1, const ParamList& a2) override { add(l, std::string("option") + " " + str(a1) + " " + str(a2)); }
     void attribute(L l, const std::string& a1, const ParamList& a2) override { add(l, std::string("attribute") + " " + str(a1) + " " + str(a2)); }

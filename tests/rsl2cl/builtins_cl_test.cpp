@@ -154,6 +154,9 @@ std::vector<Case> cases() {
              V3 a = hsv2rgb({s * .99, .8, .6}), b = hsv2rgb({s * .99, t, 1});
              return V3{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
          }, 1e-5},
+        {"Ci = ctransform(\"hsl\", \"rgb\", ctransform(\"hsl\", color(s, t, 0.3))) + "
+         "ctransform(\"xyz\", \"rgb\", ctransform(\"xyz\", color(t, 0.2, s)));",
+         [](double, double, double s, double t) { return V3{s + t, t + .2, .3 + s}; }, 1e-4},
         {"Ci = ctransform(\"xyz\", color(s, t, 0.3));",
          [](double, double, double s, double t) {  // Rec. 709 / sRGB primaries, D65
              return V3{.412453 * s + .357580 * t + .180423 * .3, .212671 * s + .715160 * t + .072169 * .3,

@@ -374,3 +374,121 @@ TEST(Codegen, ShadowLightsAreUnshadowed) {
 }
 
 }  // namespace
+
+namespace {
+
+// user functions (output parameters, loops, break, arrays, illuminance inside a
+// function, extern globals) and the light mode through them
+const char* kUserFunctions =
+    "float accum(float n; output color c) {\n"
+    "  float i;\n"
+    "  for (i = 0; i < n; i += 1) { c += color(i); if (i > 2) break; }\n"
+    "  return i;\n"
+    "}\n"
+    "color mydiffuse(normal Nn) {\n"
+    "  extern point P;\n"
+    "  color C = 0;\n"
+    "  illuminance(P, Nn, 1.5707963) { C += Cl * (normalize(L) . Nn); }\n"
+    "  return C;\n"
+    "}\n"
+    "surface uf(float n = 5;) {\n"
+    "  color c = 0;\n"
+    "  float arr[3] = {1, 2, 3};\n"
+    "  float k = accum(n, c);\n"
+    "  float j = 0;\n"
+    "  while (j < 2) { j += 1; }\n"
+    "  Ci = c + color(k, arr[1], j) + 2 * mydiffuse(normalize(N));\n"
+    "  Oi = 1;\n"
+    "}\n";
+
+TEST(Codegen, UserFunctionsAndControlFlow) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource(kUserFunctions, "uf.sl", &err)) << err;
+    EXPECT_NE(sh.shader.source.find("static float rsl_uf_accum_"), std::string::npos);
+    ts::Scene sc;
+    sc.lights.push_back({{0, 0, 2}, {0.5f, 0.25f, 1}});
+    auto pts = ts::grid(2);
+    auto base = sh.run(pts, sc);
+    auto lit = sh.run(pts, sc, 0, -1);
+    ASSERT_EQ(base.size(), 4u);
+    ASSERT_EQ(lit.size(), 4u);
+    for (size_t i = 0; i < 4; ++i) {
+        expectNear(base[i].Ci, {9, 8, 8}, 1e-6f, "base");
+        V3 d = sub(v3(lit[i].Ci), v3(base[i].Ci));
+        expectNear(d.data(), {1, 0.5f, 2}, 1e-5f, "light through a user function");
+    }
+    sh.setParam("n", {2});
+    base = sh.run(pts, sc);
+    ASSERT_EQ(base.size(), 4u);
+    expectNear(base[0].Ci, {1 + 2, 1 + 2, 1 + 2}, 1e-6f, "n = 2");
+}
+
+TEST(Codegen, UnsupportedConstructsAreErrorsNotBadOpenCL) {
+    ts::Shade sh;
+    std::string err;
+    EXPECT_FALSE(sh.compileSource("surface x() {\n  float a = 1;\n  float f() { extern float a; "
+                                  "return a; }\n  Ci = f();\n}\n",
+                                  "x.sl", &err));
+    EXPECT_NE(err.find("x.sl:2:9: error: 'a' of an enclosing scope used (extern) in function 'f'"),
+              std::string::npos)
+        << err;
+}
+
+}  // namespace
+
+namespace {
+
+// every less common path of the generator at once: it must build on the device
+const char* kKitchenSink =
+    "float twice(float x) { return 2 * x; }\n"
+    "surface sink(float knots[4] = {0, 1, 0.5, 1}; matrix m = 1; string space = \"shader\";\n"
+    "             string map = \"\"; point pts[2] = {(0, 0, 0), (1, 1, 1)};\n"
+    "             output varying color extra = 0;)\n"
+    "{\n"
+    "  uniform float i;\n"
+    "  varying float acc = 0;\n"
+    "  for (i = 0; i < 4; i += 1) { acc += knots[i]; if (acc > 10) continue; }\n"
+    "  point q = transform(space, P) + transform(space, \"world\", P) + transform(m, P);\n"
+    "  vector w = vtransform(\"camera\", m, vector(1, 0, 0)) + ntransform(m, N);\n"
+    "  normal nn = calculatenormal(P) + bump(map, N, dPdu, dPdv);\n"
+    "  color h = color \"hsl\" (0.5, 0.5, 0.5) + ctransform(map, \"rgb\", Cs);\n"
+    "  float f = filterstep(0.5, s) + Deriv(s, t) + random() + depth(P) + ptlined(P, q, E);\n"
+    "  f += spline(\"linear\", s, knots) + float spline(t, 0, 1, 2, 3) + pnoise(P, t, point(2, 2, 2), 3);\n"
+    "  point sp = spline(s, pts[0], pts[1], pts[0], pts[1]);\n"
+    "  float c = cellnoise(s, t) + float noise(s, t) + float cellnoise(P, t) + twice(f);\n"
+    "  color tex = texture(map[1], s, t, \"blur\", 0.1) + color environment(map, I) + "
+    "color shadow(map, P);\n"
+    "  float tinfo = 0;\n"
+    "  f += textureinfo(map, \"resolution\", tinfo) + attribute(\"identifier:name\", tinfo) +\n"
+    "       option(\"Format\", tinfo) + lightsource(\"foo\", tinfo) + match(map, \"abc\");\n"
+    "  string cc = concat(map, \"x\");\n"
+    "  printf(\"%f\\n\", f);\n"
+    "  setxcomp(q, 1); setcomp(m, 0, 1, 2);\n"
+    "  matrix r = rotate(m, 0.5, vector(0, 0, 1)) * determinant(m) / m;\n"
+    "  illuminance(\"ambient\", P) { if (comp(Cs, 0) > 2) extra += 1; extra += Cl; }\n"
+    "  extra += phong(N, -I, 20) + specularbrdf(vector(0, 0, 1), N, -I, 0.2) * Cs;\n"
+    "  Ci = color(c) + h + tex + color(comp(r, 0, 0)) + (cc == \"x\" ? 1 : 0) + color(sp) + "
+    "color(nn) + color(w) + extra + transmission(P, E);\n"
+    "  Oi = 1;\n"
+    "}\n";
+
+TEST(Codegen, KitchenSinkBuilds) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource(kKitchenSink, "sink.sl", &err)) << err;
+    EXPECT_TRUE(sh.shader.usesDerivatives);
+    EXPECT_EQ(sh.shader.paramFloats, 4 + 16 + 1 + 1 + 6 + 3);
+    ts::Scene sc;
+    sc.lights.push_back({{0, 0, 1}, {1, 1, 1}});
+    std::string log;
+    ASSERT_TRUE(sh.buildOnDevice(sc, &log)) << log;
+    auto out = sh.run(ts::grid(3), sc);
+    ASSERT_EQ(out.size(), 9u);
+    for (const auto& o : out)
+        for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isfinite(o.Ci[c]));
+}
+
+}  // namespace

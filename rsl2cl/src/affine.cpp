@@ -1,0 +1,262 @@
+// affine.cpp: the static check that Ci is affine in every trace() result and every
+// light's Cl (DESIGN.md section 4), per colour channel. Values derived from trace() and
+// from Cl (and diffuse/specular/phong) are tainted; the allowed operations keep a value
+// affine and channel-wise: + - negation, * and / by untainted values, assignment,
+// casts, ?: with an untainted condition, mix() with an untainted weight. Anything else
+// touching a tainted value is an error naming file:line:col and the expression.
+// Taint is flow-insensitive per variable and iterated to a fixed point.
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "builtins.h"
+#include "emit_cl.h"
+
+namespace rsl {
+namespace {
+
+enum : unsigned { T_TRACE = 1, T_LIGHT = 2 };
+
+std::string unknowns(unsigned m) {
+    if (m == T_TRACE) return "trace()";
+    if (m == T_LIGHT) return "Cl";
+    return "trace() and Cl";
+}
+std::string describe(unsigned m) {
+    if (m == T_TRACE) return "a trace() result";
+    if (m == T_LIGHT) return "a light's Cl";
+    return "a value depending on trace() and Cl";
+}
+
+class Affine {
+public:
+    Affine(const ShaderDecl& sh, Diagnostics& diag) : m_sh(sh), m_diag(diag) {}
+
+    bool run() {
+        for (int pass = 0; pass < 32; ++pass) {
+            m_changed = false;
+            walk();
+            if (!m_changed) break;
+        }
+        m_report = true;
+        walk();
+        for (const auto& kv : m_taint) {
+            if (kv.first->kind == SymbolKind::Global && kv.first->name == "Oi" && kv.second) {
+                report(m_oiLoc, "Oi must not depend on " + unknowns(kv.second) +
+                                    " (opacity is needed before any ray is cast)");
+            }
+        }
+        // in source order (the walk visits call arguments before the call)
+        std::stable_sort(m_errors.begin(), m_errors.end(), [](const auto& a, const auto& b) {
+            if (a.first.file != b.first.file) return a.first.file < b.first.file;
+            if (a.first.line != b.first.line) return a.first.line < b.first.line;
+            return a.first.col < b.first.col;
+        });
+        for (const auto& e : m_errors) m_diag.error(e.first, e.second);
+        return !m_failed;
+    }
+
+private:
+    void walk() {
+        m_visited.clear();
+        m_fn = nullptr;
+        stmt(*m_sh.body);
+    }
+
+    void report(const SourceLoc& loc, const std::string& msg) {
+        if (!m_report) return;
+        m_failed = true;
+        if (m_reported.insert(loc.str() + msg).second) m_errors.push_back({loc, msg});
+    }
+    void fail(const Expr& e, unsigned m, const std::string& what) {
+        report(e.loc, "Ci is not affine in " + unknowns(m) + ": " + what + " in '" +
+                          exprToString(e) + "'");
+    }
+
+    void taintSym(const Symbol* s, unsigned m, const SourceLoc& loc) {
+        if (!s || !m) return;
+        unsigned& t = m_taint[s];
+        if ((t | m) != t) {
+            t |= m;
+            m_changed = true;
+        }
+        if (s->kind == SymbolKind::Global && s->name == "Oi" && m_oiLoc.line == 0) m_oiLoc = loc;
+    }
+
+    static const Symbol* target(const Expr& e) {
+        const Expr* t = &e;
+        while (t->kind == ExprKind::Index) t = t->args[0].get();
+        return t->kind == ExprKind::Ident ? t->symbol : nullptr;
+    }
+
+    unsigned binary(const Expr& e, const std::string& op, unsigned a, unsigned b) {
+        if (op == "+" || op == "-") return a | b;
+        if (op == "*") {
+            if (a && b) {
+                fail(e, a | b, a == b ? (a == T_TRACE ? "product of two trace() results"
+                                         : a == T_LIGHT ? "product of two Cl values"
+                                                        : "product of two tainted values")
+                                      : "product of " + describe(a) + " and " + describe(b));
+            }
+            return a | b;
+        }
+        if (op == "/") {
+            if (b) fail(e, b, "division by " + describe(b));
+            return a | b;
+        }
+        if (a | b) {
+            if (op == "." || op == "^") fail(e, a | b, describe(a | b) + " used in a dot or cross product");
+            else fail(e, a | b, describe(a | b) + " used in a comparison");
+        }
+        return 0;
+    }
+
+    void condition(const Expr& e, const char* what) {
+        unsigned m = expr(e);
+        if (m) fail(e, m, describe(m) + " used in the condition of " + what);
+    }
+
+    unsigned call(const Expr& e) {
+        std::vector<unsigned> a;
+        for (const ExprPtr& x : e.args) a.push_back(expr(*x));
+        if (e.function) {
+            for (size_t i = 0; i < a.size(); ++i)
+                if (a[i]) fail(e, a[i], describe(a[i]) + " passed to function '" + e.text + "'");
+            return function(*e.function);
+        }
+        const std::string& n = e.text;
+        if (n == "mix" && a.size() == 3) {
+            if (a[2]) fail(e, a[2], describe(a[2]) + " used as the weight of mix()");
+            return a[0] | a[1];
+        }
+        for (size_t i = 0; i < a.size(); ++i)
+            if (a[i]) fail(e, a[i], describe(a[i]) + " passed to " + n + "()");
+        if (n == "trace") return T_TRACE;
+        if (n == "diffuse" || n == "specular" || n == "phong") return T_LIGHT;
+        return 0;
+    }
+
+    unsigned function(const FunctionDecl& f) {
+        if (!m_visited.count(&f)) {
+            m_visited.insert(&f);
+            const FunctionDecl* saved = m_fn;
+            m_fn = &f;
+            stmt(*f.body);
+            m_fn = saved;
+        }
+        return m_fnRet[&f];
+    }
+
+    unsigned expr(const Expr& e) {
+        switch (e.kind) {
+        case ExprKind::Number:
+        case ExprKind::String: return 0;
+        case ExprKind::Ident: {
+            if (!e.symbol) return 0;
+            if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") return T_LIGHT;
+            auto it = m_taint.find(e.symbol);
+            return it == m_taint.end() ? 0 : it->second;
+        }
+        case ExprKind::Unary: {
+            unsigned a = expr(*e.args[0]);
+            if (a && e.text == "!") fail(e, a, describe(a) + " used in a comparison");
+            return e.text == "!" ? 0 : a;
+        }
+        case ExprKind::Binary:
+            return binary(e, e.text, expr(*e.args[0]), expr(*e.args[1]));
+        case ExprKind::Ternary: {
+            condition(*e.args[0], "?:");
+            return expr(*e.args[1]) | expr(*e.args[2]);
+        }
+        case ExprKind::Assign: {
+            unsigned l = expr(*e.args[0]);
+            unsigned r = expr(*e.args[1]);
+            unsigned v = e.text == "=" ? r : binary(e, e.text.substr(0, 1), l, r);
+            taintSym(target(*e.args[0]), v, e.loc);
+            return v;
+        }
+        case ExprKind::Call: return call(e);
+        case ExprKind::Cast: return expr(*e.args[0]);
+        case ExprKind::Tuple: {
+            unsigned m = 0;
+            for (const ExprPtr& a : e.args) m |= expr(*a);
+            return m;
+        }
+        case ExprKind::Index: {
+            unsigned ix = expr(*e.args[1]);
+            if (ix) fail(e, ix, describe(ix) + " used as an array index");
+            return expr(*e.args[0]);
+        }
+        }
+        return 0;
+    }
+
+    void stmt(const Stmt& s) {
+        switch (s.kind) {
+        case StmtKind::Expr: expr(*s.expr); break;
+        case StmtKind::Decl:
+            for (const VarDecl& d : s.decls)
+                if (d.init) taintSym(d.symbol, expr(*d.init), d.loc);
+            break;
+        case StmtKind::Block:
+            for (const StmtPtr& c : s.stmts) stmt(*c);
+            break;
+        case StmtKind::If:
+            condition(*s.expr, "if");
+            stmt(*s.body);
+            if (s.elseBody) stmt(*s.elseBody);
+            break;
+        case StmtKind::While:
+            condition(*s.expr, "while");
+            stmt(*s.body);
+            break;
+        case StmtKind::For:
+            if (s.init) stmt(*s.init);
+            if (s.expr) condition(*s.expr, "for");
+            if (s.step) expr(*s.step);
+            stmt(*s.body);
+            break;
+        case StmtKind::Return:
+            if (s.expr) {
+                unsigned m = expr(*s.expr);
+                if (m_fn && m) {
+                    unsigned& r = m_fnRet[m_fn];
+                    if ((r | m) != r) {
+                        r |= m;
+                        m_changed = true;
+                    }
+                }
+            }
+            break;
+        case StmtKind::Illuminance:
+        case StmtKind::Illuminate:
+        case StmtKind::Solar:
+            for (const ExprPtr& a : s.args) {
+                unsigned m = expr(*a);
+                if (m) fail(*a, m, describe(m) + " used as an argument of a light loop");
+            }
+            stmt(*s.body);
+            break;
+        default: break;
+        }
+    }
+
+    const ShaderDecl& m_sh;
+    Diagnostics& m_diag;
+    std::map<const Symbol*, unsigned> m_taint;
+    std::map<const FunctionDecl*, unsigned> m_fnRet;
+    std::set<const FunctionDecl*> m_visited;
+    std::set<std::string> m_reported;
+    std::vector<std::pair<SourceLoc, std::string>> m_errors;
+    const FunctionDecl* m_fn = nullptr;
+    SourceLoc m_oiLoc;
+    bool m_changed = false, m_report = false, m_failed = false;
+};
+
+}  // namespace
+
+bool checkAffine(const ShaderDecl& shader, const Program&, Diagnostics& diag) {
+    return Affine(shader, diag).run();
+}
+
+}  // namespace rsl

@@ -1,0 +1,219 @@
+// emit_builtins.cpp: OpenCL C for calls of RSL builtins (runtime/rsl_stdlib.clh).
+#include "emit_internal.h"
+
+namespace rsl {
+
+std::string Emitter::spaceArg(const Expr& e) {
+    if (e.kind == ExprKind::String) {
+        int sp = spaceIdOf(e.text);
+        if (sp < 0) {
+            error(e.loc, "unknown coordinate system \"" + e.text + "\"");
+            return "RSL_SPACE_CURRENT";
+        }
+        return std::to_string(sp);
+    }
+    return "rsl_space_from_id(" + expr(e) + ")";
+}
+
+std::string Emitter::colorSpaceArg(const Expr& e) {
+    if (e.kind == ExprKind::String) {
+        int c = colorIdOf(e.text);
+        if (c < 0) {
+            error(e.loc, "unknown colour space \"" + e.text + "\"");
+            return "RSL_COLOR_RGB";
+        }
+        return std::to_string(c);
+    }
+    return "rsl_color_from_id(" + expr(e) + ")";
+}
+
+std::string Emitter::builtin(const Expr& e) {
+    const std::string& n = e.text;
+    const BuiltinSig* sig = e.sig;
+    if (!sig) {
+        error(e.loc, "unresolved builtin '" + n + "'");
+        return "0";
+    }
+    const std::string& code = sig->code;
+    TypeSpec ret = sig->ret;
+    bool vret = ret.isTriple();
+    std::string vf = vret ? "_v" : "_f";
+    auto argType = [&](size_t i) -> TypeSpec {
+        if (i < sig->args.size()) return sig->args[i].anyType ? e.args[i]->type : sig->args[i].type;
+        if (sig->repeatLast && !sig->args.empty()) return sig->args.back().type;
+        return e.args[i]->type;
+    };
+    auto A = [&](size_t i) { return exprAs(*e.args[i], argType(i)); };
+    auto I = [&](size_t i) { return "(int)(" + A(i) + ")"; };
+    auto call = [&](const std::string& fn, size_t from = 0, size_t to = size_t(-1)) {
+        std::string s = fn + "(";
+        for (size_t i = from; i < e.args.size() && i < to; ++i) s += (i > from ? ", " : "") + A(i);
+        return s + ")";
+    };
+    size_t na = e.args.size();
+    // argument codes only (after the return code, without & markers)
+    std::string ac;
+    for (size_t i = 1; i < code.size(); ++i)
+        if (code[i] != '&') ac += code[i];
+
+    // ---- math ----
+    static const std::set<std::string> direct = {"sin", "asin", "cos", "acos", "tan", "exp",
+                                                 "sqrt", "floor", "ceil", "round", "pow"};
+    if (direct.count(n)) return call(n);
+    if (n == "abs") return call("fabs");
+    if (n == "inversesqrt") return call("rsqrt");
+    if (n == "radians" || n == "degrees" || n == "mod" || n == "sign" || n == "step" ||
+        n == "smoothstep")
+        return call("rsl_" + n);
+    if (n == "atan") return call(na == 2 ? "atan2" : "atan");
+    if (n == "log") return call(na == 2 ? "rsl_log2b" : "log");
+    if (n == "min" || n == "max") {
+        std::string s = A(0);
+        for (size_t i = 1; i < na; ++i) s = "rsl_" + n + vf + "(" + s + ", " + A(i) + ")";
+        return s;
+    }
+    if (n == "clamp" || n == "mix") return call("rsl_" + n + vf);
+    if (n == "filterstep") {
+        m_out.usesDerivatives = true;
+        return "rsl_step(" + A(0) + ", " + A(1) + ")";
+    }
+    if (n == "spline") {
+        size_t k = 0;
+        std::string basis = "0";
+        if (e.args[0]->type.isString()) {
+            k = 1;
+            const Expr& b = *e.args[0];
+            if (b.kind == ExprKind::String && b.text == "linear") basis = "1";
+            else if (b.kind != ExprKind::String || b.text != "catmull-rom")
+                m_diag.warning(b.loc, "spline basis other than \"catmull-rom\" and \"linear\" "
+                                      "is evaluated as catmull-rom");
+        }
+        std::string t = exprAs(*e.args[k], BaseType::Float);  // the def types t loosely
+        std::string fn = "rsl_spline" + vf + "(" + basis + ", " + t + ", ";
+        if (na == k + 2 && e.args[k + 1]->type.isArray())
+            return fn + expr(*e.args[k + 1]) + ", " + std::to_string(e.args[k + 1]->type.arraySize) + ")";
+        // the knots go into a temporary array declared before the statement
+        std::string tmp = "_knots" + std::to_string(m_tmp++);
+        std::string lst = std::string(vret ? "float4 " : "float ") + tmp + "[] = {";
+        for (size_t i = k + 1; i < na; ++i) lst += (i > k + 1 ? ", " : "") + A(i);
+        m_pre.push_back(lst + "};");
+        return fn + tmp + ", " + std::to_string(na - k - 1) + ")";
+    }
+    if (n == "Du" || n == "Dv" || n == "Deriv" || n == "area") {
+        m_out.usesDerivatives = true;
+        return clZero(ret);
+    }
+    if (n == "calculatenormal") {
+        m_out.usesDerivatives = true;
+        return "g->N";
+    }
+    if (n == "random") return "rsl_random" + vf + "(g, " + std::to_string(m_randomSite++) + ")";
+    if (n == "noise" || n == "pnoise" || n == "cellnoise") {
+        std::string dims = n == "pnoise" ? ac.substr(0, ac.size() / 2) : ac;
+        int d = dims == "f" ? 1 : dims == "ff" ? 2 : (dims == "p" || dims == "v") ? 3 : 4;
+        return call("rsl_" + n + std::to_string(d) + vf);
+    }
+    // ---- geometry ----
+    if (n == "xcomp") return "(" + A(0) + ").x";
+    if (n == "ycomp") return "(" + A(0) + ").y";
+    if (n == "zcomp") return "(" + A(0) + ").z";
+    if (n == "setxcomp" || n == "setycomp" || n == "setzcomp")
+        return "(" + lvalue(*e.args[0]) + "." + n.substr(3, 1) + " = " + A(1) + ")";
+    if (n == "length" || n == "normalize" || n == "distance" || n == "ptlined" ||
+        n == "reflect" || n == "refract" || n == "depth" || n == "determinant" ||
+        n == "translate" || n == "scale" || n == "specularbrdf")
+        return call("rsl_" + n);
+    if (n == "rotate") return call(ret.isMatrix() ? "rsl_mrotate" : "rsl_rotate");
+    if (n == "faceforward")
+        return "rsl_faceforward(" + A(0) + ", " + A(1) + ", " + (na > 2 ? A(2) : "g->Ng") + ")";
+    if (n == "fresnel") {
+        std::string s = std::string(na > 5 ? "rsl_fresnel(" : "rsl_fresnel5(") + A(0) + ", " +
+                        A(1) + ", " + A(2);
+        for (size_t i = 3; i < na; ++i) s += ", &" + lvalue(*e.args[i]);
+        return s + ")";
+    }
+    if (n == "transform" || n == "vtransform" || n == "ntransform") {
+        char kc = n[0] == 't' ? 'p' : n[0];
+        std::string fn = std::string("rsl_transform_") + kc;
+        std::string xf = kc == 'p' ? "rsl_xpoint" : kc == 'v' ? "rsl_xvector" : "rsl_xnormal";
+        if (ac.size() == 2 && ac[0] == 's')
+            return fn + "(RSL_SPACE_CURRENT, " + spaceArg(*e.args[0]) + ", " + A(1) + ")";
+        if (ac.size() == 3 && ac[0] == 's' && ac[1] == 's')
+            return fn + "(" + spaceArg(*e.args[0]) + ", " + spaceArg(*e.args[1]) + ", " + A(2) + ")";
+        if (ac.size() == 2 && ac[0] == 'm') return xf + "(" + A(0) + ", " + A(1) + ")";
+        if (ac.size() == 3 && ac[0] == 's' && ac[1] == 'm')
+            return xf + "(" + A(1) + ", " + fn + "(" + spaceArg(*e.args[0]) +
+                   ", RSL_SPACE_CURRENT, " + A(2) + "))";
+    }
+    // ---- colour and matrix components ----
+    if (n == "comp") {
+        if (ac == "mff") return "rsl_mget(" + A(0) + ", " + I(1) + ", " + I(2) + ")";
+        return "rsl_comp(" + A(0) + ", " + I(1) + ")";
+    }
+    if (n == "setcomp") {
+        if (ac == "mfff")
+            return "rsl_mset(&" + lvalue(*e.args[0]) + ", " + I(1) + ", " + I(2) + ", " + A(3) + ")";
+        return "rsl_setcomp(&" + lvalue(*e.args[0]) + ", " + I(1) + ", " + A(2) + ")";
+    }
+    if (n == "ctransform") {
+        if (na == 2) return "rsl_ctransform(RSL_COLOR_RGB, " + colorSpaceArg(*e.args[0]) + ", " + A(1) + ")";
+        return "rsl_ctransform(" + colorSpaceArg(*e.args[0]) + ", " + colorSpaceArg(*e.args[1]) +
+               ", " + A(2) + ")";
+    }
+    // ---- strings (uniform, minimal) ----
+    if (n == "concat" || n == "format") {
+        std::string all;
+        bool literal = true;
+        for (size_t i = 0; i < (n == "format" ? size_t(1) : na); ++i) {
+            literal = literal && e.args[i]->kind == ExprKind::String;
+            all += e.args[i]->text;
+        }
+        if (literal && (n == "concat" || na == 1)) return stringLiteral(all);
+        m_diag.warning(e.loc, n + "() of non-literal strings returns its first argument");
+        return A(0);
+    }
+    if (n == "match") {
+        if (e.args[0]->kind == ExprKind::String && e.args[1]->kind == ExprKind::String)
+            return e.args[1]->text.find(e.args[0]->text) != std::string::npos ? "1.0f" : "0.0f";
+        return "0.0f";
+    }
+    if (n == "printf") return "((void)0)";
+    // ---- shading and lighting ----
+    if (n == "ambient") {
+        m_out.usesLighting = true;
+        return "rsl_w0(rsl_ambient(g))";
+    }
+    if (n == "diffuse" || n == "specular" || n == "phong") {
+        m_out.usesLighting = true;
+        std::string s = "rsl_" + n + "(g, ev";
+        for (size_t i = 0; i < na; ++i) s += ", " + A(i);
+        return s + ")";
+    }
+    if (n == "trace") {
+        m_out.usesTrace = true;
+        return "rsl_trace(ev, " + A(0) + ", " + A(1) + ")";
+    }
+    if (n == "transmission") return "rsl_f2v(1.0f)";
+    if (n == "shadow") {
+        const Expr& m = *e.args[0];
+        if (m_sh.kind != ShaderKind::Light || (m.kind == ExprKind::String && m.text != "raytrace"))
+            m_diag.warning(e.loc, "shadow() returns 0 (unoccluded) until shadow maps land (issue 9)");
+        return vret ? "rsl_f2v(0.0f)" : "0.0f";
+    }
+    if (n == "texture" || n == "environment") {
+        m_out.usesTexture = true;
+        m_diag.warning(e.loc, n + "() returns its default until textures land (issue 9)");
+        return vret ? "rsl_f2v(0.0f)" : "0.0f";
+    }
+    if (n == "bump") {
+        m_out.usesTexture = true;
+        m_diag.warning(e.loc, "bump() returns its default until textures land (issue 9)");
+        return A(1);
+    }
+    if (n == "textureinfo") return "0.0f";
+    if (e.builtin->flags & BF_MESSAGE) return "0.0f";  // message passing: not found
+    error(e.loc, "builtin '" + n + "' is not supported by the code generator yet");
+    return clZero(ret);
+}
+
+}  // namespace rsl

@@ -1,0 +1,371 @@
+// emit_cl.cpp: the code generator driver: parameter layout, user functions, shader
+// function, statements and the light loops (illuminance, illuminate, solar).
+#include "emit_cl.h"
+
+#include <cmath>
+
+#include "constfold.h"
+#include "emit_internal.h"
+
+namespace rsl {
+
+std::string runtimeDir() {
+#ifdef RSL2CL_RUNTIME_DIR
+    return RSL2CL_RUNTIME_DIR;
+#else
+    return "rsl2cl/runtime";
+#endif
+}
+
+static int slotsOf(BaseType b) {
+    switch (b) {
+    case BaseType::Point:
+    case BaseType::Vector:
+    case BaseType::Normal:
+    case BaseType::Color: return 3;
+    case BaseType::Matrix: return 16;
+    default: return 1;
+    }
+}
+
+void Emitter::collectCalls(const Expr& e) {
+    if (e.kind == ExprKind::Call && e.function && !m_fnNames.count(e.function)) {
+        const FunctionDecl* f = e.function;
+        m_fnNames[f] = "";  // mark before recursing (RSL has no recursion; be safe)
+        collectCallsStmt(*f->body);
+        int idx = static_cast<int>(m_fnOrder.size());
+        m_fnNames[f] = "rsl_" + m_sh.name + "_" + f->name + "_" + std::to_string(idx);
+        m_fnOrder.push_back(f);  // callees first
+    }
+    for (const ExprPtr& a : e.args) collectCalls(*a);
+    if (e.channel) collectCalls(*e.channel);
+}
+
+void Emitter::collectCallsStmt(const Stmt& s) {
+    if (s.expr) collectCalls(*s.expr);
+    for (const VarDecl& d : s.decls)
+        if (d.init) collectCalls(*d.init);
+    for (const StmtPtr& c : s.stmts) collectCallsStmt(*c);
+    if (s.init) collectCallsStmt(*s.init);
+    if (s.step) collectCalls(*s.step);
+    for (const ExprPtr& a : s.args) collectCalls(*a);
+    if (s.body) collectCallsStmt(*s.body);
+    if (s.elseBody) collectCallsStmt(*s.elseBody);
+}
+
+void Emitter::layoutParams() {
+    int offset = 0;
+    for (const VarDecl& p : m_sh.params) {
+        ParamSlot slot;
+        slot.name = p.name;
+        slot.type = p.type;
+        slot.typeName = baseTypeName(p.type.base);
+        slot.output = p.output;
+        int n = p.type.arraySize;
+        if (n < 0) n = p.init && p.init->kind == ExprKind::Tuple ? int(p.init->args.size()) : 0;
+        if (p.type.isArray() && n <= 0)
+            error(p.loc, "array parameter '" + p.name + "' needs a size or a default");
+        slot.arraySize = p.type.isArray() ? n : 0;
+        slot.type.arraySize = slot.arraySize;
+        int elem = slotsOf(p.type.base);
+        slot.size = elem * (p.type.isArray() ? std::max(n, 0) : 1);
+        slot.offset = offset;
+        offset += slot.size;
+        slot.defaults.assign(slot.size, 0.0f);
+        ConstValue cv;
+        if (p.init && evalConst(*p.init, cv)) {
+            slot.space = cv.space;
+            if (p.type.base == BaseType::String) {
+                slot.stringDefaults.push_back(cv.str);
+                if (slot.size > 0) slot.defaults[0] = float(stringId(cv.str));
+            } else {
+                size_t total = size_t(slot.size);
+                // a float default of a triple/matrix fills (matrix: diagonal)
+                if (cv.values.size() == 1 && elem > 1) {
+                    for (size_t i = 0; i < total; ++i)
+                        slot.defaults[i] = elem == 16 ? ((i % 16) % 5 == 0 ? float(cv.values[0]) : 0.0f)
+                                                      : float(cv.values[0]);
+                } else {
+                    for (size_t i = 0; i < total && i < cv.values.size(); ++i)
+                        slot.defaults[i] = float(cv.values[i]);
+                }
+            }
+        } else if (p.init) {
+            slot.constantDefault = false;
+            if (slot.size > 0) slot.defaults[0] = std::nanf("");
+        }
+        m_out.params.push_back(slot);
+    }
+    m_out.paramFloats = offset;
+}
+
+static void collectDecls(const Stmt& s, std::set<const Symbol*>& out) {
+    for (const VarDecl& d : s.decls)
+        if (!d.isExtern && d.symbol) out.insert(d.symbol);
+    for (const StmtPtr& c : s.stmts) collectDecls(*c, out);
+    if (s.init) collectDecls(*s.init, out);
+    if (s.body) collectDecls(*s.body, out);
+    if (s.elseBody) collectDecls(*s.elseBody, out);
+}
+
+void Emitter::emitFunction(const FunctionDecl& f, bool prototypeOnly) {
+    std::string sig = std::string("static ") + clType(f.returnType) + " " + m_fnNames[&f] +
+                      "(RslGlobals* g, RslEval* ev";
+    m_pointerParams.clear();
+    for (const VarDecl& p : f.params) {
+        bool ptr = p.output || p.type.isArray();
+        sig += std::string(", ") + clType(p.type) + (ptr ? "* v_" : " v_") + p.name;
+        if (p.output && !p.type.isArray()) m_pointerParams.insert(p.symbol);
+    }
+    sig += ")";
+    if (prototypeOnly) {
+        m_body << sig << ";\n";
+        return;
+    }
+    m_body << sig << " {\n";
+    m_func = &f;
+    m_fnLocals.clear();
+    for (const VarDecl& p : f.params) m_fnLocals.insert(p.symbol);
+    collectDecls(*f.body, m_fnLocals);
+    m_indent = 1;
+    line("float _g_alpha = 0.0f, _g_dtime = 0.0f; float4 _g_dPdtime = rsl_f2v(0.0f);");
+    line("(void)g; (void)ev; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
+    for (const StmtPtr& s : f.body->stmts) stmt(*s);
+    if (!f.returnType.isVoid()) line("return " + clZero(f.returnType) + ";");
+    m_body << "}\n\n";
+    m_func = nullptr;
+    m_pointerParams.clear();
+}
+
+static bool hasLightStatement(const Stmt& s) {
+    if (s.kind == StmtKind::Illuminate || s.kind == StmtKind::Solar) return true;
+    for (const StmtPtr& c : s.stmts)
+        if (hasLightStatement(*c)) return true;
+    if (s.body && hasLightStatement(*s.body)) return true;
+    if (s.elseBody && hasLightStatement(*s.elseBody)) return true;
+    return false;
+}
+
+void Emitter::emitShader() {
+    bool light = m_sh.kind == ShaderKind::Light;
+    std::string fn = m_out.functionName;
+    if (light)
+        m_body << "void " << fn << "(RslGlobals* g, __global const float* params) {\n";
+    else
+        m_body << "void " << fn << "(RslGlobals* g, __global const float* params, RslEval* ev) {\n";
+    m_indent = 1;
+    if (light) {
+        line("RslEval _ev; _ev.mode_light = -1; _ev.mode_trace = -1; _ev.trace_count = 0;");
+        line("RslEval* ev = &_ev;");
+        line("g->Cl = rsl_f2v(0.0f);");
+    } else {
+        line("ev->trace_count = 0;");
+    }
+    line("float _g_alpha = 0.0f, _g_dtime = 0.0f; float4 _g_dPdtime = rsl_f2v(0.0f);");
+    line("(void)params; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
+    for (size_t i = 0; i < m_sh.params.size(); ++i) {
+        const VarDecl& p = m_sh.params[i];
+        const ParamSlot& slot = m_out.params[i];
+        std::string name = "p_" + p.name, o = std::to_string(slot.offset);
+        auto read = [&](const std::string& off) -> std::string {
+            switch (slotsOf(p.type.base)) {
+            case 3: return "rsl_param3(params, " + off + ")";
+            case 16: return "rsl_param16(params, " + off + ")";
+            default:
+                return p.type.base == BaseType::String ? "(int)params[" + off + "]"
+                                                       : "params[" + off + "]";
+            }
+        };
+        if (slot.arraySize > 0) {
+            line(std::string(clType(p.type)) + " " + name + "[" + std::to_string(slot.arraySize) + "];");
+            line("for (int _i = 0; _i < " + std::to_string(slot.arraySize) + "; ++_i) " + name +
+                 "[_i] = " + read(o + " + " + std::to_string(slotsOf(p.type.base)) + " * _i") + ";");
+            continue;
+        }
+        line(std::string(clType(p.type)) + " " + name + " = " + read(o) + ";");
+        if (!slot.constantDefault && p.init)
+            line("if (isnan(params[" + o + "])) " + name + " = " + exprAs(*p.init, p.type) + ";");
+    }
+    for (const StmtPtr& s : m_sh.body->stmts) stmt(*s);
+    m_body << "}\n";
+}
+
+void Emitter::decl(const VarDecl& d) {
+    if (d.isExtern) return;
+    std::string t = clType(d.type), name = "v_" + d.name;
+    if (d.type.isArray()) {
+        int n = d.type.arraySize;
+        if (n <= 0) {
+            error(d.loc, "local array '" + d.name + "' needs a size");
+            return;
+        }
+        if (d.init && d.init->kind == ExprKind::Tuple) {
+            std::string s = t + " " + name + "[" + std::to_string(n) + "] = {";
+            for (size_t i = 0; i < d.init->args.size(); ++i)
+                s += (i ? ", " : "") + exprAs(*d.init->args[i], d.type.element());
+            line(s + "};");
+            return;
+        }
+        line(t + " " + name + "[" + std::to_string(n) + "];");
+        line("for (int _i = 0; _i < " + std::to_string(n) + "; ++_i) " + name + "[_i] = " +
+             clZero(d.type) + ";");
+        if (d.init) error(d.loc, "array initialisers other than {...} lists are not supported");
+        return;
+    }
+    line(t + " " + name + " = " + (d.init ? exprAs(*d.init, d.type) : clZero(d.type)) + ";");
+}
+
+void Emitter::lightLoop(const Stmt& s) {
+    int id = m_tmp++;
+    std::string k = std::to_string(id);
+    if (s.kind == StmtKind::Illuminance) {
+        size_t first = (!s.args.empty() && s.args[0]->type.isString()) ? 1 : 0;
+        line("{");
+        ++m_indent;
+        line("float4 _ilP" + k + " = " + exprAs(*s.args[first], BaseType::Point) + ";");
+        bool cone = s.args.size() - first == 3;
+        line("float4 _ilA" + k + " = " +
+             (cone ? exprAs(*s.args[first + 1], BaseType::Vector) : "rsl_f2v(0.0f)") + ";");
+        line("float _ilT" + k + " = " + (cone ? exprAs(*s.args[first + 2], BaseType::Float) : "RSL_PI") +
+             ";");
+        line("int _nl" + k + " = rsl_light_count();");
+        line("for (int _l" + k + " = 0; _l" + k + " < _nl" + k + "; ++_l" + k + ") {");
+        ++m_indent;
+        line("float4 _L" + k + ", _Cl" + k + ";");
+        line("if (!rsl_light_eval(_l" + k + ", g, ev, _ilP" + k + ", _ilA" + k + ", _ilT" + k +
+             ", &_L" + k + ", &_Cl" + k + ")) continue;");
+        line("g->L = _L" + k + "; g->Cl = _Cl" + k + ";");
+        stmt(*s.body);
+        --m_indent;
+        line("}");
+        --m_indent;
+        line("}");
+        return;
+    }
+    line("{");
+    ++m_indent;
+    if (s.kind == StmtKind::Illuminate) {
+        line("g->L = rsl_w0(g->Ps - " + exprAs(*s.args[0], BaseType::Point) + ");");
+        if (s.args.size() == 3) {
+            line("if (rsl_in_cone(g->L, " + exprAs(*s.args[1], BaseType::Vector) + ", " +
+                 exprAs(*s.args[2], BaseType::Float) + "))");
+        }
+    } else {
+        line("g->L = " + (s.args.size() == 2 ? "rsl_w0(" + exprAs(*s.args[0], BaseType::Vector) + ")"
+                                              : std::string("rsl_f2v(0.0f)")) + ";");
+    }
+    line("{");
+    ++m_indent;
+    stmt(*s.body);
+    --m_indent;
+    line("}");
+    --m_indent;
+    line("}");
+}
+
+void Emitter::stmt(const Stmt& s) {
+    switch (s.kind) {
+    case StmtKind::Empty: break;
+    case StmtKind::Expr: line(expr(*s.expr) + ";"); break;
+    case StmtKind::Decl:
+        for (const VarDecl& d : s.decls) decl(d);
+        break;
+    case StmtKind::Block:
+        line("{");
+        ++m_indent;
+        for (const StmtPtr& c : s.stmts) stmt(*c);
+        --m_indent;
+        line("}");
+        break;
+    case StmtKind::If:
+        line("if ((" + expr(*s.expr) + ") != 0.0f) {");
+        ++m_indent;
+        stmt(*s.body);
+        --m_indent;
+        if (s.elseBody) {
+            line("} else {");
+            ++m_indent;
+            stmt(*s.elseBody);
+            --m_indent;
+        }
+        line("}");
+        break;
+    case StmtKind::While:
+        line("while ((" + expr(*s.expr) + ") != 0.0f) {");
+        ++m_indent;
+        stmt(*s.body);
+        --m_indent;
+        line("}");
+        break;
+    case StmtKind::For: {
+        line("{");
+        ++m_indent;
+        if (s.init) stmt(*s.init);
+        line("for (; " + (s.expr ? "(" + expr(*s.expr) + ") != 0.0f" : std::string("1")) + "; " +
+             (s.step ? expr(*s.step) : std::string()) + ") {");
+        ++m_indent;
+        stmt(*s.body);
+        --m_indent;
+        line("}");
+        --m_indent;
+        line("}");
+        break;
+    }
+    case StmtKind::Break:
+    case StmtKind::Continue:
+        if (s.level > 1) error(s.loc, "break/continue with a level is not supported yet");
+        line(s.kind == StmtKind::Break ? "break;" : "continue;");
+        break;
+    case StmtKind::Return:
+        if (m_func && s.expr) line("return " + exprAs(*s.expr, m_func->returnType) + ";");
+        else line("return;");
+        break;
+    case StmtKind::Illuminance:
+    case StmtKind::Illuminate:
+    case StmtKind::Solar: lightLoop(s); break;
+    case StmtKind::Function: break;  // emitted before the shader when called
+    }
+}
+
+void Emitter::run() {
+    const char* kind = shaderKindName(m_sh.kind);
+    m_out.name = m_sh.name;
+    m_out.kind = kind;
+    m_out.functionName = std::string("rsl_") + kind + "_" + m_sh.name;
+    m_out.ambientLight = m_sh.kind == ShaderKind::Light && !hasLightStatement(*m_sh.body);
+    layoutParams();
+    for (const VarDecl& p : m_sh.params)
+        if (p.init) collectCalls(*p.init);
+    collectCallsStmt(*m_sh.body);
+    for (const FunctionDecl* f : m_fnOrder) emitFunction(*f, true);
+    if (!m_fnOrder.empty()) m_body << "\n";
+    for (const FunctionDecl* f : m_fnOrder) emitFunction(*f, false);
+    emitShader();
+}
+
+EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnostics& diag) {
+    EmittedShader out;
+    int before = diag.errorCount();
+    bool affine = shader.kind == ShaderKind::Light || checkAffine(shader, prog, diag);
+    Emitter em(shader, prog, diag, out);
+    em.run();
+    std::ostringstream src;
+    src << "/* Generated by rsl2cl from " << shader.loc.file << ": " << out.kind << " "
+        << out.name << ".\n   Compile after rsl2cl/runtime/rsl_abi.h and rsl_stdlib.clh; "
+        << "the contract is in rsl_abi.h.\n   Parameters (" << out.paramFloats
+        << " floats):\n";
+    for (const ParamSlot& p : out.params) {
+        src << "     " << p.offset << ": " << (p.output ? "output " : "") << p.typeName
+            << (p.arraySize ? "[" + std::to_string(p.arraySize) + "]" : "") << " " << p.name
+            << (p.constantDefault ? "" : " (computed default when NaN)") << "\n";
+    }
+    src << "   Services:" << (out.usesTrace ? " trace" : "") << (out.usesLighting ? " lighting" : "")
+        << (out.usesTexture ? " texture" : "") << (out.usesDerivatives ? " derivatives" : "")
+        << (out.ambientLight ? " ambient-light" : "") << "\n*/\n";
+    src << em.m_body.str();
+    out.source = src.str();
+    out.ok = affine && diag.errorCount() == before;
+    return out;
+}
+
+}  // namespace rsl

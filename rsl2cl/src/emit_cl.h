@@ -1,0 +1,54 @@
+// emit_cl.h: the OpenCL C code generator of rsl2cl. One typed shader in, one OpenCL C
+// function (rsl_surface_<name>, rsl_light_<name>, ...) plus its parameter layout out.
+// The generated code includes nothing: compile it after rsl2cl/runtime/rsl_abi.h and
+// rsl_stdlib.clh (see rsl_abi.h for the contract with the renderer).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "ast.h"
+#include "diagnostics.h"
+
+namespace rsl {
+
+// One parameter's place in the float block `params`.
+struct ParamSlot {
+    std::string name;
+    TypeSpec type;           // element type + arraySize (resolved for unsized arrays)
+    std::string typeName;    // "float", "color", "string", ...
+    int arraySize = 0;       // 0: not an array
+    int offset = 0;          // first float slot
+    int size = 0;            // slots in all
+    bool output = false;
+    bool constantDefault = true;     // false: the host leaves slot `offset` NaN
+    std::vector<float> defaults;     // `size` values (string ids for strings)
+    std::vector<std::string> stringDefaults;  // string parameters: the text
+    std::string space;       // space/colour space the default is written in ("" none)
+};
+
+struct EmittedShader {
+    std::string name, kind, functionName, source;
+    std::vector<ParamSlot> params;
+    int paramFloats = 0;
+    bool usesTrace = false, usesDerivatives = false, usesTexture = false;
+    bool usesLighting = false;  // illuminance, diffuse, specular, phong, ambient
+    bool ambientLight = false;  // a light shader with no illuminate/solar
+    bool ok = false;            // false when errors were reported
+    std::vector<std::string> strings;  // string literals used (id = stringId(text))
+};
+
+// The id a string has in generated code and parameter blocks (see rsl_abi.h).
+int stringId(const std::string& s);
+
+// Generates OpenCL C for `shader` (of prog, already type-checked without errors).
+// Errors (non-affine Ci, unsupported constructs) and warnings go to diag.
+EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnostics& diag);
+
+// Static affinity check of Ci in trace() results and light Cl (affine.cpp); reports
+// errors to diag and returns false when the shader is not affine.
+bool checkAffine(const ShaderDecl& shader, const Program& prog, Diagnostics& diag);
+
+// Directory of rsl_abi.h and rsl_stdlib.clh in the source tree (for tests/tools).
+std::string runtimeDir();
+
+}  // namespace rsl

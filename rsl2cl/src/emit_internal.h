@@ -1,0 +1,78 @@
+// emit_internal.h: the Emitter shared by emit_cl.cpp (driver, statements),
+// emit_expr.cpp (expressions) and emit_builtins.cpp (builtin calls).
+#pragma once
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "builtins.h"
+#include "emit_cl.h"
+
+namespace rsl {
+
+const char* clType(const TypeSpec& t);         // element C type: float, float4, RslMatrix, int
+std::string clZero(const TypeSpec& t);          // zero of the element type
+std::string clNumber(double v);                 // 1.0f
+int spaceIdOf(const std::string& name);         // RSL_SPACE_* value or -1
+int colorIdOf(const std::string& name);         // RSL_COLOR_* value or -1
+
+class Emitter {
+public:
+    Emitter(const ShaderDecl& sh, const Program& prog, Diagnostics& diag, EmittedShader& out)
+        : m_sh(sh), m_prog(prog), m_diag(diag), m_out(out) {}
+    void run();
+
+    // ---- expressions (emit_expr.cpp) ----
+    std::string expr(const Expr& e);
+    std::string exprAs(const Expr& e, const TypeSpec& to);
+    std::string coerce(const std::string& code, const TypeSpec& from, const TypeSpec& to);
+    std::string binop(const std::string& op, const std::string& a, const TypeSpec& ta,
+                      const std::string& b, const TypeSpec& tb, const SourceLoc& loc);
+    std::string lvalue(const Expr& e);
+    std::string varName(const Symbol* s);
+    std::string userCall(const Expr& e);
+    std::string stringLiteral(const std::string& s);
+    // ---- builtins (emit_builtins.cpp) ----
+    std::string builtin(const Expr& e);
+    std::string spaceArg(const Expr& e);
+    std::string colorSpaceArg(const Expr& e);
+
+    void error(const SourceLoc& loc, const std::string& msg) { m_diag.error(loc, msg); }
+
+private:
+    // ---- driver and statements (emit_cl.cpp) ----
+    void collectFunctions(const Stmt& s);
+    void collectCalls(const Expr& e);
+    void collectCallsStmt(const Stmt& s);
+    void layoutParams();
+    void emitFunction(const FunctionDecl& f, bool prototypeOnly);
+    void emitShader();
+    void stmt(const Stmt& s);
+    void decl(const VarDecl& d);
+    void lightLoop(const Stmt& s);
+    void line(const std::string& s) {
+        for (const std::string& p : m_pre) m_body << std::string(2 * m_indent, ' ') << p << "\n";
+        m_pre.clear();
+        m_body << std::string(2 * m_indent, ' ') << s << "\n";
+    }
+
+public:
+    const ShaderDecl& m_sh;
+    const Program& m_prog;
+    Diagnostics& m_diag;
+    EmittedShader& m_out;
+    std::ostringstream m_body;
+    int m_indent = 1;
+    int m_tmp = 0;
+    int m_randomSite = 0;
+    const FunctionDecl* m_func = nullptr;                    // function being emitted
+    std::map<const FunctionDecl*, std::string> m_fnNames;    // reachable user functions
+    std::vector<const FunctionDecl*> m_fnOrder;
+    std::set<const Symbol*> m_pointerParams;                 // output params: (*v_x)
+    std::set<const Symbol*> m_fnLocals;  // symbols declared in the function being emitted
+    std::vector<std::string> m_pre;  // temporaries declared before the current line
+};
+
+}  // namespace rsl

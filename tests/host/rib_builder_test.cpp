@@ -1,0 +1,67 @@
+// rib_builder_test.cpp: the Ri state machine: options that reach the Scene (AOV
+// requests, render budgets, camera) and the errors it reports with their locations.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "rib/reader.h"
+#include "scene/rib_builder.h"
+
+using namespace rd;
+
+namespace {
+struct Built {
+    std::vector<Scene> scenes;
+    std::string messages;
+    int errors = 0;
+};
+Built build(const std::string& rib) {
+    std::ostringstream out;
+    rib::Diagnostics diag(&out);
+    RibBuilder b(diag, "t.rib");
+    rib::readString(rib, "t.rib", b, diag);
+    return {b.scenes(), out.str(), diag.errorCount()};
+}
+const char* kWorld = "WorldBegin\nWorldEnd\n";
+}  // namespace
+
+TEST(RibBuilder, AovsFromDisplayChannelAndSecondaryDisplays) {
+    Built r = build(std::string("DisplayChannel \"float z\"\nDisplay \"+n.exr\" \"file\" \"N\"\n"
+                                "Display \"+x.exr\" \"file\" \"bogus\"\n") + kWorld);
+    ASSERT_EQ(r.scenes.size(), 1u);
+    EXPECT_EQ(r.scenes[0].aovs, (std::vector<std::string>{"z", "N"}));
+    EXPECT_NE(r.messages.find("t.rib:3: warning: AOV \"bogus\""), std::string::npos)
+        << r.messages;
+}
+
+TEST(RibBuilder, RenderOptionsAndTheirErrors) {
+    Built r = build(std::string("Option \"render\" \"float time\" [2.5] \"float error\" [0.02] "
+                                "\"int firstpassblock\" [4]\n") + kWorld);
+    ASSERT_EQ(r.scenes.size(), 1u);
+    EXPECT_FLOAT_EQ(r.scenes[0].render.time, 2.5f);
+    EXPECT_FLOAT_EQ(r.scenes[0].render.error, 0.02f);
+    EXPECT_EQ(r.scenes[0].render.firstPassBlock, 4);
+    Built bad = build(std::string("Option \"render\" \"float time\" [-1]\n") + kWorld);
+    EXPECT_EQ(bad.errors, 1);
+    EXPECT_NE(bad.messages.find("t.rib:1: error: Option \"render\""), std::string::npos);
+}
+
+TEST(RibBuilder, CameraOptions) {
+    Built r = build(std::string("Format 200 100 1\nCropWindow 0.5 1 0 0.5\n"
+                                "Projection \"perspective\" \"fov\" 45\n"
+                                "DepthOfField 4 0.5 10\n") + kWorld);
+    ASSERT_EQ(r.scenes.size(), 1u);
+    const CameraSpec& c = r.scenes[0].camera;
+    int x0, x1, y0, y1;
+    c.cropPixels(x0, x1, y0, y1);
+    EXPECT_EQ(x0, 100);
+    EXPECT_EQ(x1, 200);
+    EXPECT_EQ(y0, 0);
+    EXPECT_EQ(y1, 50);
+    Camera d = r.scenes[0].deviceCamera();
+    EXPECT_FLOAT_EQ(d.lens_radius, 0.5f / 8.0f);
+    EXPECT_FLOAT_EQ(d.focal_distance, 10.0f);
+    EXPECT_FLOAT_EQ(d.screen[0], -2.0f);  // frame aspect 2: screen window [-2, 2] x [-1, 1]
+    Built bad = build(std::string("CropWindow 0.5 0.2 0 1\n") + kWorld);
+    EXPECT_EQ(bad.errors, 1);
+}
