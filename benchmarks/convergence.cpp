@@ -95,7 +95,8 @@ int main(int argc, char** argv) {
             rs.render.firstPassBlock = 1;
             rs.render.pixelError = 1e-9f;  // every pixel gets all the samples
             Film film;
-            RenderStats st = Renderer(ctx, RenderSettings{}).render(rs, film);
+            rib::Diagnostics rdiag(&std::cerr);
+            RenderStats st = Renderer(ctx, RenderSettings{}).render(rs, film, rdiag);
             ref = film.resolve();
             refError = st.estimatedError;
             writeExr(refPath, film.width, film.height, ref, {});
@@ -120,7 +121,8 @@ int main(int argc, char** argv) {
                 RenderSettings s;
                 s.timeBudget = budget;
                 Film film;
-                RenderStats st = Renderer(ctx, s).render(scene, film);
+                rib::Diagnostics rdiag(&std::cerr);
+                RenderStats st = Renderer(ctx, s).render(scene, film, rdiag);
                 double measured = relativeRmse(film.resolve(), ref);
                 double truth = std::sqrt(std::max(0.0, measured * measured - refError * refError));
                 runs.push_back({st.elapsedSec, truth, st.estimatedError, st.totalRays()});

@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
             rd::Renderer renderer(ctx, settings);
             rd::Film film;
-            rd::RenderStats st = renderer.render(scenes[i], film);
+            rd::RenderStats st = renderer.render(scenes[i], film, diag);
             std::string out = outputName(scenes[i], output, i, scenes.size());
             rd::ExrOptions opts;
             opts.alpha = scenes[i].display.mode != "rgb";

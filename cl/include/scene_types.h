@@ -27,36 +27,20 @@ typedef struct TriangleAttr {
     uint32_t pad[2];
 } TriangleAttr;
 
-/* The built-in stand-in shaders for the standard "constant", "matte" and "plastic". They go
- * away when rsl2cl compiles the standard .sl files (issue 4). */
-#define RT_SHADER_CONSTANT 0u
-#define RT_SHADER_MATTE 1u
-#define RT_SHADER_PLASTIC 2u
-
+/* A shader instance as the device sees it: which compiled surface shader runs (its shade
+ * kernel), where its parameter block starts in the parameter buffer, and the colour and
+ * opacity attributes current when the geometry was declared. */
 typedef struct Material {
-    rt_float4 cs;            /* Cs, surface colour */
-    rt_float4 os;            /* Os, opacity; w = mean opacity, used for alpha */
-    rt_float4 specularcolor; /* plastic */
-    float ka, kd, ks, roughness;
-    uint32_t shader; /* RT_SHADER_* */
-    uint32_t flags;  /* RT_MATERIAL_* */
-    uint32_t pad[2];
+    rt_float4 cs;      /* Cs */
+    rt_float4 os;      /* Os; w = mean opacity */
+    uint32_t shader;   /* index of the compiled surface shader (its shade kernel) */
+    uint32_t params;   /* first float of its parameter block */
+    uint32_t flags;    /* RT_MATERIAL_* */
+    uint32_t pad;
 } Material;
 
 /* Matte 1: a holdout. It hides what is behind it but adds neither colour nor alpha. */
 #define RT_MATERIAL_MATTE 1u
-
-#define RT_LIGHT_AMBIENT 0u
-#define RT_LIGHT_DISTANT 1u
-#define RT_LIGHT_POINT 2u
-
-typedef struct Light {
-    rt_float4 color;     /* intensity * lightcolor */
-    rt_float4 position;  /* point light: world-space position */
-    rt_float4 direction; /* distant light: world-space unit direction the light travels */
-    uint32_t type;       /* RT_LIGHT_* */
-    uint32_t pad[3];
-} Light;
 
 /* Camera: rays start in camera space (RenderMan: left-handed, looking down +z) and are
  * moved to world space by the 3x4 matrix camera_to_world (rows, column-vector convention). */
@@ -77,8 +61,7 @@ typedef struct Camera {
 RT_ASSERT_SIZE(Triangle, 48);
 RT_ASSERT_SIZE(Triangle4, 160);
 RT_ASSERT_SIZE(TriangleAttr, 16);
-RT_ASSERT_SIZE(Material, 80);
-RT_ASSERT_SIZE(Light, 64);
+RT_ASSERT_SIZE(Material, 48);
 RT_ASSERT_SIZE(Camera, 112);
 #endif
 #endif

@@ -17,14 +17,17 @@ namespace rd {
 namespace {
 
 void appendWithIncludes(const std::string& name, const std::string& from,
+                        const std::map<std::string, std::string>& generated,
                         std::set<std::string>& done, std::string& out) {
     if (!done.insert(name).second) return;
-    const auto& sources = embeddedClSources();
-    auto it = sources.find(name);
-    if (it == sources.end())
+    const auto& embedded = embeddedClSources();
+    const std::string* text = nullptr;
+    if (auto g = generated.find(name); g != generated.end()) text = &g->second;
+    else if (auto e = embedded.find(name); e != embedded.end()) text = &e->second;
+    if (!text)
         throw std::runtime_error("OpenCL source '" + name + "' not found" +
                                  (from.empty() ? std::string() : " (included from " + from + ")"));
-    std::istringstream in(it->second);
+    std::istringstream in(*text);
     std::string line;
     out += "/* ---- " + name + " ---- */\n";
     while (std::getline(in, line)) {
@@ -32,7 +35,7 @@ void appendWithIncludes(const std::string& name, const std::string& from,
         if (p != std::string::npos && line.compare(p, 8, "#include") == 0) {
             size_t q0 = line.find('"', p), q1 = line.rfind('"');
             if (q0 != std::string::npos && q1 > q0) {
-                appendWithIncludes(line.substr(q0 + 1, q1 - q0 - 1), name, done, out);
+                appendWithIncludes(line.substr(q0 + 1, q1 - q0 - 1), name, generated, done, out);
                 continue;
             }
         }
@@ -56,11 +59,16 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-std::string assembleClSource(const std::vector<std::string>& files) {
+std::string assembleClSource(const std::vector<std::string>& files,
+                             const std::map<std::string, std::string>& generated) {
     std::set<std::string> done;
     std::string out;
-    for (const std::string& f : files) appendWithIncludes(f, "", done, out);
+    for (const std::string& f : files) appendWithIncludes(f, "", generated, done, out);
     return out;
+}
+
+std::string assembleClSource(const std::vector<std::string>& files) {
+    return assembleClSource(files, {});
 }
 
 std::string defaultProgramCacheDir() {

@@ -18,6 +18,9 @@ const std::map<std::string, std::string>& embeddedClSources();
 // Concatenates `files` with every `#include "x"` replaced by x's text, once per file.
 // Throws std::runtime_error naming the including file for an unknown include.
 std::string assembleClSource(const std::vector<std::string>& files);
+// The same, with generated sources (by name) that may be listed or included too.
+std::string assembleClSource(const std::vector<std::string>& files,
+                             const std::map<std::string, std::string>& generated);
 
 // $RAYDRIVE_CACHE_DIR, else $XDG_CACHE_HOME/raydrive, else ~/.cache/raydrive; empty when
 // caching is off (RAYDRIVE_NO_CACHE set, or no home directory).

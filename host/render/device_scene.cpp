@@ -16,7 +16,7 @@ std::vector<Aabb> triangleBounds(const Scene& scene) {
 }
 
 DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh,
-                         const Features& f)
+                         const Features& f, const ShadingSetup& shading)
     : camera(scene.deviceCamera()),
       cameraBuf(ctx, std::vector<Camera>{camera}),
       nodes(ctx, bvh.nodes),
@@ -25,7 +25,7 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
       attrs(ctx, scene.attrs),
       normals(f.smoothNormals ? DeviceBuffer<rt_float4>(ctx, scene.normals)
                               : DeviceBuffer<rt_float4>(ctx, 0)),
-      materials(ctx, scene.materials),
-      lights(ctx, scene.lights) {}
+      materials(ctx, shading.materials),
+      params(ctx, shading.params) {}
 
 }  // namespace rd

@@ -5,11 +5,13 @@
 #include "features.h"
 #include "ocl/buffer.h"
 #include "scene/scene.h"
+#include "shaders/shader_set.h"
 
 namespace rd {
 
 struct DeviceScene {
-    DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh, const Features& f);
+    DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh, const Features& f,
+                const ShadingSetup& shading);
     Camera camera;
     DeviceBuffer<Camera> cameraBuf;
     DeviceBuffer<Bvh4Node> nodes;     // the four-wide layout the kernels traverse
@@ -17,8 +19,8 @@ struct DeviceScene {
     DeviceBuffer<Triangle> triangles; // by primitive index, for shading
     DeviceBuffer<TriangleAttr> attrs;
     DeviceBuffer<rt_float4> normals;
-    DeviceBuffer<Material> materials;
-    DeviceBuffer<Light> lights;
+    DeviceBuffer<Material> materials;  // bound to compiled shaders and parameter blocks
+    DeviceBuffer<float> params;        // every surface instance's parameter block
 };
 
 // Bounds of every triangle, for the BVH builder.

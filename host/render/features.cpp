@@ -3,15 +3,16 @@
 
 namespace rd {
 
-Features analyse(const Scene& scene) {
+Features analyse(const Scene& scene, const ShadingSetup& shading) {
     Features f;
     f.smoothNormals = scene.anySmoothNormals;
     for (const Material& m : scene.materials)
         if (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f) f.transparency = true;
-    f.lightCount = static_cast<uint32_t>(scene.lights.size());
+    f.lightCount = shading.lightCount;
+    f.shadowRays = shading.shadowRays;
+    f.trace = shading.usesTrace;
+    f.maxSpecularDepth = scene.maxSpecularDepth;
     f.depthOfField = scene.deviceCamera().lens_radius > 0;
-    for (const Light& l : scene.lights)
-        if (l.type != RT_LIGHT_AMBIENT) f.shadowRays = true;
     return f;
 }
 
@@ -20,6 +21,7 @@ std::vector<std::string> Features::names() const {
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
+    if (trace) n.push_back("trace");
     if (aovs) n.push_back("aovs");
     if (depthOfField) n.push_back("depth_of_field");
     return n;
@@ -27,11 +29,12 @@ std::vector<std::string> Features::names() const {
 
 std::string buildOptions(const Features& f) {
     // No fast-math: watertight intersection and robust offsets rely on IEEE rounding.
-    std::string o = "-cl-std=CL1.2";
+    std::string o = "-cl-std=CL1.2 -DRT_SPAWN_SLOTS=" + std::to_string(f.spawnSlots()) +
+                    " -DRT_MAX_SPECULAR_DEPTH=" + std::to_string(f.maxSpecularDepth);
     if (f.smoothNormals) o += " -DRT_HAS_SMOOTH_NORMALS";
     if (f.transparency)
         o += " -DRT_HAS_TRANSPARENCY -DRT_MAX_TRANSPARENT_DEPTH=" +
-             std::to_string(f.maxTransparentDepth);
+             std::to_string(f.maxTransparentDepth) + "u";
     if (f.shadowRays) o += " -DRT_HAS_SHADOW_RAYS";
     if (f.aovs) o += " -DRT_HAS_AOVS";
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "shaders/shader_set.h"
 
 namespace rd {
 
@@ -13,15 +14,19 @@ struct Features {
     bool smoothNormals = false; // per-vertex normals to interpolate
     bool transparency = false;  // some Os < 1: continuation rays
     bool shadowRays = false;    // some light other than ambient
+    bool trace = false;         // some surface shader calls trace()
+    int maxSpecularDepth = 2;   // trace() recursion limit
     bool aovs = false;          // geometric AOVs (z, N) asked for
     bool depthOfField = false;  // a thin-lens camera
     uint32_t lightCount = 0;
     int maxTransparentDepth = 16;
 
     std::vector<std::string> names() const;
+    // Rays a shaded hit may spawn: its continuation, plus RSL_MAX_TRACE traced rays.
+    int spawnSlots() const { return trace ? 1 + 8 : 1; }
 };
 
-Features analyse(const Scene& scene);
+Features analyse(const Scene& scene, const ShadingSetup& shading);
 std::string buildOptions(const Features& f);
 
 }  // namespace rd

@@ -9,11 +9,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "cl/include/ray.h"
 #include "device_scene.h"
 #include "film/film_error.h"
 #include "progress.h"
+#include "shaders/shader_set.h"
 #include "stop.h"
 
 namespace rd {
@@ -25,24 +27,30 @@ double secondsSince(Clock::time_point t0) {
 }
 
 const std::vector<std::string> kRenderSources = {
-    "generate_eye.cl", "intersect.cl", "shade_builtin.cl", "compact.cl", "retire.cl"};
+    "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "accumulate.cl", "compact.cl",
+    "retire.cl"};
 
 // The ray pool. The current round's rays (each knows its sample), the rays the shade
 // stage spawns (slot i: ray i's continuation), light_count shadow slots per ray, the
 // compaction's per-group counts, and the per-sample AOV record only when AOVs are on.
 struct RayPool {
-    RayPool(const ClContext& ctx, size_t capacity, uint32_t shadowLights, bool aovs)
+    RayPool(const ClContext& ctx, size_t capacity, size_t spawn, uint32_t shadowLights,
+            bool aovs, size_t shaderKeys)
         : origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity),
           state(ctx, capacity), sample(ctx, capacity), hits(ctx, capacity),
-          totals(ctx, capacity), nextOrigin(ctx, capacity), nextDirection(ctx, capacity),
-          nextWeight(ctx, capacity), nextState(ctx, capacity), nextSample(ctx, capacity),
-          groupLive(ctx, capacity / 64 + 1), groupOffset(ctx, capacity / 64 + 1),
+          totals(ctx, capacity), nextOrigin(ctx, capacity * spawn),
+          nextDirection(ctx, capacity * spawn), nextWeight(ctx, capacity * spawn),
+          nextState(ctx, capacity * spawn), nextSample(ctx, capacity * spawn),
+          groupLive(ctx, capacity * spawn / 64 + 1), groupOffset(ctx, capacity * spawn / 64 + 1),
+          key(ctx, capacity), keyCount(ctx, shaderKeys), keyCursor(ctx, shaderKeys),
+          sorted(ctx, capacity),
           shOrigin(ctx, capacity * shadowLights), shDirection(ctx, capacity * shadowLights),
           shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
           aov(ctx, aovs ? capacity : 0), samplePixel(ctx, capacity),
           sampleIndex(ctx, capacity), batchPixel(ctx, capacity),
           batchFirst(ctx, capacity + 1) {
         shState.fillZero();
+        nextState.fillZero();
     }
     DeviceBuffer<rt_float4> origin, direction, weight;
     DeviceBuffer<RayState> state;
@@ -53,6 +61,7 @@ struct RayPool {
     DeviceBuffer<RayState> nextState;
     DeviceBuffer<uint32_t> nextSample;
     DeviceBuffer<uint32_t> groupLive, groupOffset;
+    DeviceBuffer<uint32_t> key, keyCount, keyCursor, sorted;  // the sort by shader
     DeviceBuffer<rt_float4> shOrigin, shDirection, shWeight;
     DeviceBuffer<RayState> shState;
     DeviceBuffer<SampleAov> aov;
@@ -61,20 +70,29 @@ struct RayPool {
 };
 
 struct RenderKernels {
-    RenderKernels(const ClContext& ctx, cl_program p, Profiler& prof)
+    RenderKernels(const ClContext& ctx, cl_program p, Profiler& prof,
+                  const std::vector<std::string>& shadeKernels)
         : generateEye(ctx, p, "generate_eye", prof),
           intersectClosest(ctx, p, "intersect_closest", prof),
-          shade(ctx, p, "shade", prof),
+          classify(ctx, p, "classify_hits", prof),
+          scatter(ctx, p, "scatter_by_shader", prof),
           intersectShadow(ctx, p, "intersect_shadow", prof),
           accumulateShadows(ctx, p, "accumulate_shadows", prof),
           compactCount(ctx, p, "compact_count", prof),
           compactScatter(ctx, p, "compact_scatter", prof),
-          retire(ctx, p, "retire_samples", prof) {}
-    Kernel generateEye, intersectClosest, shade, intersectShadow, accumulateShadows,
-        compactCount, compactScatter, retire;
+          retire(ctx, p, "retire_samples", prof) {
+        for (const std::string& name : shadeKernels)
+            shade.push_back(std::make_unique<Kernel>(ctx, p, name, prof));
+    }
+    Kernel generateEye, intersectClosest, classify, scatter, intersectShadow,
+        accumulateShadows, compactCount, compactScatter, retire;
+    std::vector<std::unique_ptr<Kernel>> shade;  // one per compiled surface shader
     std::vector<Kernel*> all() {
-        return {&generateEye, &intersectClosest, &shade, &intersectShadow, &accumulateShadows,
-                &compactCount, &compactScatter, &retire};
+        std::vector<Kernel*> v{&generateEye, &intersectClosest, &classify, &scatter,
+                               &intersectShadow, &accumulateShadows, &compactCount,
+                               &compactScatter, &retire};
+        for (auto& s : shade) v.push_back(s.get());
+        return v;
     }
 };
 
@@ -120,12 +138,14 @@ const char* signalName(int sig) { return sig == 2 ? "SIGINT" : sig == 15 ? "SIGT
 Renderer::Renderer(const ClContext& ctx, const RenderSettings& settings)
     : m_ctx(ctx), m_settings(settings) {}
 
-RenderStats Renderer::render(const Scene& scene, Film& film) {
+RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& diag) {
     const auto t0 = Clock::now();
     RenderStats st;
     st.device = m_ctx.name();
     st.platform = m_ctx.info().platformName;
-    Features f = analyse(scene);
+    // The scene's RSL shaders, compiled and bound: they decide lights, trace and more.
+    ShadingSetup shading = ShaderSet(scene, diag).prepare();
+    Features f = analyse(scene, shading);
     f.aovs = m_settings.geometricAovs;
     st.features = f;
 
@@ -143,17 +163,25 @@ RenderStats Renderer::render(const Scene& scene, Film& film) {
     st.triangles = scene.triangles.size();
     st.bvhNodes = bvh4.nodes.size();
     st.droppedPrims = bvh.droppedPrims;
-    Program program(m_ctx, assembleClSource(kRenderSources), buildOptions(f));
+    std::vector<std::string> sources = kRenderSources;
+    sources.insert(sources.end(), shading.sourceOrder.begin(), shading.sourceOrder.end());
+    Program program(m_ctx, assembleClSource(sources, shading.generated), buildOptions(f));
     st.program = program.info();
     Profiler prof(m_ctx);
-    RenderKernels k(m_ctx, program.get(), prof);
-    DeviceScene ds(m_ctx, scene, bvh4, f);
+    RenderKernels k(m_ctx, program.get(), prof, shading.shadeKernels);
+    DeviceScene ds(m_ctx, scene, bvh4, f, shading);
     const Camera& cam = ds.camera;
 
     const uint32_t nl = f.shadowRays ? f.lightCount : 0;
-    const size_t pool = std::max<size_t>(64, m_settings.poolCapacity);
+    const size_t spawn = size_t(f.spawnSlots());
+    const cl_uint shaderCount = cl_uint(shading.shadeKernels.size());
+    // The pool holds a batch's rays and what they spawn: keep it within a memory budget.
+    const size_t bytesPerRay = 128 + spawn * 72 + size_t(nl) * 64;
+    const size_t pool = std::clamp<size_t>(std::min(m_settings.poolCapacity,
+                                                    (size_t(512) << 20) / bytesPerRay),
+                                           64, std::max<size_t>(64, m_settings.poolCapacity));
     st.poolCapacity = pool;
-    RayPool rp(m_ctx, pool, nl, f.aovs);
+    RayPool rp(m_ctx, pool, spawn, nl, f.aovs, shaderCount + 1);
     const size_t npix = size_t(cam.width) * size_t(cam.height);
     film.width = cam.width;
     film.height = cam.height;
@@ -218,23 +246,37 @@ RenderStats Renderer::render(const Scene& scene, Film& film) {
                              rp.direction, rp.weight, rp.state, rp.sample, rp.totals, rp.aov);
         // Rounds: trace, shade, shadows; then the spawned rays (continuations through
         // Opacity < 1) are compacted and traced in the next round, until none is left.
-        const int rounds = f.transparency ? f.maxTransparentDepth + 1 : 1;
+        const int rounds = 1 + (f.transparency ? f.maxTransparentDepth : 0) +
+                           (f.trace ? f.maxSpecularDepth : 0);
         for (int round = 0; round < rounds && n > 0; ++round) {
             if (stopNow()) return false;
             k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin,
                                       rp.direction, rp.state, rp.hits);
-            k.shade.launch(n, n, ds.triangles, ds.attrs, ds.normals, ds.materials, ds.lights,
-                           f.lightCount, rp.origin, rp.direction, rp.weight, rp.state,
-                           rp.sample, rp.hits, rp.totals, rp.nextOrigin, rp.nextDirection,
-                           rp.nextWeight, rp.nextState, rp.nextSample, rp.shOrigin,
-                           rp.shDirection, rp.shWeight, rp.shState, rp.aov);
+            // Sort the hits by shader, then run each shader over its own run of rays.
+            rp.keyCount.fillZero();
+            k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, rp.key,
+                              rp.keyCount, rp.nextState, rp.shState);
+            std::vector<uint32_t> counts = rp.keyCount.download(), offsets(counts.size(), 0);
+            for (size_t s = 1; s < counts.size(); ++s) offsets[s] = offsets[s - 1] + counts[s - 1];
+            rp.keyCursor.upload(offsets);
+            k.scatter.launch(n, n, shaderCount, rp.key, rp.keyCursor, rp.sorted);
+            for (cl_uint s = 0; s < shaderCount; ++s) {
+                if (counts[s] == 0) continue;
+                k.shade[s]->launch(counts[s], cl_uint(offsets[s]), cl_uint(counts[s]),
+                                   rp.sorted, ds.triangles, ds.attrs, ds.normals, ds.materials,
+                                   ds.params, rp.origin, rp.direction, rp.weight, rp.state,
+                                   rp.sample, rp.hits, rp.totals, rp.nextOrigin,
+                                   rp.nextDirection, rp.nextWeight, rp.nextState,
+                                   rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,
+                                   rp.shState, rp.aov, nl);
+            }
             if (nl > 0) {
                 k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
                                          rp.shOrigin, rp.shDirection, rp.shState);
                 k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
                                            rp.totals);
             }
-            if (round + 1 < rounds) n = compactSpawned(n);
+            if (round + 1 < rounds) n = compactSpawned(cl_uint(n * spawn));
         }
         if (stopNow()) return false;
         k.retire.launch(pixels, pixels, rp.batchPixel, rp.batchFirst, rp.totals, filmBuf,

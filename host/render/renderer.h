@@ -58,7 +58,9 @@ public:
     // Renders `scene` into `film` (sized from the scene's Format) and returns the figures
     // for --stats. A stop (time, signal) still leaves a valid film of the retired samples.
     // Throws on OpenCL errors.
-    RenderStats render(const Scene& scene, Film& film);
+    // Shader problems (not found, compile errors) are reported to `diag` and the
+    // render goes on with defaultsurface.
+    RenderStats render(const Scene& scene, Film& film, rib::Diagnostics& diag);
 
 private:
     const ClContext& m_ctx;

@@ -33,10 +33,8 @@ bool finite3(const glm::vec3& v) {
 RibBuilder::RibBuilder(rib::Diagnostics& diag, const std::string& sourceFile) : m_diag(diag) {
     m_options.sourceFile = sourceFile;
     m_attrStack.emplace_back();
-    Material& s = m_attrStack.back().surface;
-    s.shader = RT_SHADER_MATTE;  // until a Surface is given, as RenderMan's defaultsurface
-    s.ka = 1.0f;
-    s.kd = 1.0f;
+    // Until a Surface is given: RenderMan's defaultsurface.
+    m_attrStack.back().surface.name = "defaultsurface";
 }
 
 bool RibBuilder::inWorld(L loc, const char* request) {
@@ -56,6 +54,7 @@ void RibBuilder::worldBegin(L) {
     m_world = m_options;
     m_inWorld = true;
     m_materialKeys.clear();
+    m_surfaceKeys.clear();
     m_degenerate = 0;
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
@@ -70,6 +69,19 @@ void RibBuilder::worldEnd(L loc) {
     if (m_attrStack.size() > 1) m_attrStack.pop_back();
     m_scenes.push_back(std::move(m_world));
     m_world = Scene();
+}
+
+void RibBuilder::attribute(L, const std::string& name, const rib::ParamList& params) {
+    if (name == "trace") {
+        // Outside the world it sets the default; inside, the deepest limit any object
+        // asks for holds for all (per-object limits are not carried yet).
+        int depth = std::min(params.getInt("maxspeculardepth", -1), 64);
+        if (depth < 0) return;
+        if (m_inWorld)
+            m_world.maxSpecularDepth = std::max(m_world.maxSpecularDepth, depth);
+        else
+            m_options.maxSpecularDepth = depth;
+    }
 }
 
 void RibBuilder::attributeBegin(L) { m_attrStack.push_back(m_attrStack.back()); }
@@ -168,6 +180,26 @@ void RibBuilder::displayChannel(L loc, const std::string& channel, const rib::Pa
 }
 
 void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& params) {
+    if (name == "searchpath") {
+        // "shader" ["dir:dir:&"]: '&' stands for the path so far (the default one).
+        std::string path = params.getString("shader", "");
+        if (path.empty()) return;
+        std::vector<std::string> out;
+        size_t start = 0;
+        while (start <= path.size()) {
+            size_t end = path.find(':', start);
+            if (end == std::string::npos) end = path.size();
+            std::string dir = path.substr(start, end - start);
+            if (dir == "&")
+                out.insert(out.end(), m_options.shaderSearchPath.begin(),
+                           m_options.shaderSearchPath.end());
+            else if (!dir.empty())
+                out.push_back(dir);
+            start = end + 1;
+        }
+        m_options.shaderSearchPath = out;
+        return;
+    }
     if (name != "render") return;
     RenderOptionsSpec& r = m_options.render;
     r.time = params.getFloat("time", r.time);
@@ -228,67 +260,16 @@ void RibBuilder::opacity(L loc, const std::vector<float>& c) {
 }
 
 void RibBuilder::surface(L loc, const std::string& name, const rib::ParamList& params) {
-    Material m{};
-    float white[3] = {1, 1, 1}, spec[3];
-    params.get3("specularcolor", spec, white);
-    m.specularcolor = f4(spec[0], spec[1], spec[2]);
-    if (name == "constant") {
-        m.shader = RT_SHADER_CONSTANT;
-    } else if (name == "matte") {
-        m.shader = RT_SHADER_MATTE;
-        m.ka = params.getFloat("Ka", 1.0f);
-        m.kd = params.getFloat("Kd", 1.0f);
-    } else if (name == "plastic") {
-        m.shader = RT_SHADER_PLASTIC;
-        m.ka = params.getFloat("Ka", 1.0f);
-        m.kd = params.getFloat("Kd", 0.5f);
-        m.ks = params.getFloat("Ks", 0.5f);
-        m.roughness = params.getFloat("roughness", 0.1f);
-        if (!(m.roughness > 0.0f)) m.roughness = 1e-4f;
-    } else {
-        m_diag.warning(loc, "surface shader \"" + name +
-                                "\" is not available (only constant, matte and plastic until "
-                                "RSL shaders are compiled); using matte");
-        m.shader = RT_SHADER_MATTE;
-        m.ka = m.kd = 1.0f;
-    }
-    m_attrStack.back().surface = m;
+    // The shader is compiled and its parameters bound when the world is rendered; here
+    // the call is kept with the transform that defines "shader" space.
+    m_attrStack.back().surface = {name, params, m_attrStack.back().ctm, loc};
+    m_attrStack.back().surfaceKey = ++m_surfaceCalls;
 }
 
 void RibBuilder::lightSource(L loc, const std::string& name, const std::string&,
                              const rib::ParamList& params) {
     if (!inWorld(loc, "LightSource")) return;
-    const glm::mat4& ctm = m_attrStack.back().ctm;
-    float one[3] = {1, 1, 1}, lc[3];
-    params.get3("lightcolor", lc, one);
-    float intensity = params.getFloat("intensity", 1.0f);
-    Light light{};
-    light.color = f4(lc[0] * intensity, lc[1] * intensity, lc[2] * intensity);
-    float zero[3] = {0, 0, 0}, zplus[3] = {0, 0, 1}, from[3], to[3];
-    params.get3("from", from, zero);
-    params.get3("to", to, zplus);
-    glm::vec3 pf = xformPoint(ctm, {from[0], from[1], from[2]});
-    glm::vec3 pt = xformPoint(ctm, {to[0], to[1], to[2]});
-    if (name == "ambientlight") {
-        light.type = RT_LIGHT_AMBIENT;
-    } else if (name == "distantlight") {
-        light.type = RT_LIGHT_DISTANT;
-        glm::vec3 d = pt - pf;
-        if (!(glm::length(d) > 0.0f) || !finite3(d)) {
-            m_diag.error(loc, "distantlight \"from\" and \"to\" must differ");
-            return;
-        }
-        light.direction = f4(glm::normalize(d));
-    } else if (name == "pointlight") {
-        light.type = RT_LIGHT_POINT;
-        light.position = f4(pf, 1.0f);
-    } else {
-        m_diag.warning(loc, "light shader \"" + name +
-                                "\" is not available (only ambientlight, distantlight and "
-                                "pointlight until RSL shaders are compiled); ignored");
-        return;
-    }
-    m_world.lights.push_back(light);
+    m_world.lights.push_back({name, params, m_attrStack.back().ctm, loc});
 }
 
 void RibBuilder::illuminate(L loc, const std::string&, bool on) {
@@ -323,7 +304,16 @@ void RibBuilder::scale(L, float x, float y, float z) {
 
 uint32_t RibBuilder::currentMaterial() {
     const Attributes& a = m_attrStack.back();
-    Material m = a.surface;
+    // One surface reference per distinct Surface call (same name, parameters, space).
+    uint32_t surface = 0;
+    for (; surface < m_world.surfaceRefs.size(); ++surface)
+        if (m_surfaceKeys[surface] == a.surfaceKey) break;
+    if (surface == m_world.surfaceRefs.size()) {
+        m_world.surfaceRefs.push_back(a.surface);
+        m_surfaceKeys.push_back(a.surfaceKey);
+    }
+    Material m{};
+    m.shader = surface;
     m.cs = f4(a.color[0], a.color[1], a.color[2]);
     m.os = f4(a.opacity[0], a.opacity[1], a.opacity[2],
               (a.opacity[0] + a.opacity[1] + a.opacity[2]) / 3.0f);

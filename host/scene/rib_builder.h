@@ -24,6 +24,7 @@ public:
     void worldBegin(L) override;
     void worldEnd(L) override;
     void attributeBegin(L) override;
+    void attribute(L, const std::string& name, const rib::ParamList&) override;
     void attributeEnd(L) override;
     void transformBegin(L) override;
     void transformEnd(L) override;
@@ -69,7 +70,8 @@ private:
         glm::mat4 ctm{1.0f};  // object to world (camera before WorldBegin)
         float color[3] = {1, 1, 1};
         float opacity[3] = {1, 1, 1};
-        Material surface{};   // shader and parameters; cs/os filled at use
+        ShaderRef surface;    // the current Surface call
+        uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;
     };
     enum class Block { Frame, World, Attribute, Transform };
@@ -91,6 +93,8 @@ private:
     std::vector<glm::mat4> m_xformStack;
     std::vector<Scene> m_scenes;
     std::vector<std::pair<std::string, uint32_t>> m_materialKeys;
+    std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
+    uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
 };
 

@@ -9,6 +9,7 @@
 
 #include "cl/include/scene_types.h"
 #include "rib/diagnostics.h"
+#include "rib/param_list.h"
 
 namespace rd {
 
@@ -36,6 +37,15 @@ struct CameraSpec {
     void cropPixels(int& x0, int& x1, int& y0, int& y1) const;
 };
 
+// A Surface or LightSource as the RIB gave it: the shader's name, its parameter list and
+// the transform current when it was declared ("shader" space to world).
+struct ShaderRef {
+    std::string name;
+    rib::ParamList params;
+    glm::mat4 shaderToWorld{1.0f};
+    rib::SourceLoc loc;
+};
+
 // Option "render" ...: budgets and adaptive sampling (the command line overrides).
 struct RenderOptionsSpec {
     float time = 0;          // "float time": seconds, 0 = none
@@ -49,8 +59,12 @@ struct Scene {
     std::vector<Triangle> triangles;
     std::vector<TriangleAttr> attrs;
     std::vector<rt_float4> normals; // 3 per triangle with has_normals, else unused entries
+    // Materials: Material::shader indexes surfaceRefs until the shader set compiles them.
     std::vector<Material> materials;
-    std::vector<Light> lights;
+    std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
+    std::vector<ShaderRef> lights;       // every LightSource, in order
+    std::vector<std::string> shaderSearchPath;  // Option "searchpath" "shader", split
+    int maxSpecularDepth = 2;  // Attribute "trace" "maxspeculardepth" (the largest given)
     CameraSpec camera;
     DisplaySpec display;
     std::vector<std::string> aovs;  // AOVs the RIB asks for (Display "+name", DisplayChannel)

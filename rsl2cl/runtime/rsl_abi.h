@@ -38,7 +38,11 @@
  *     count in execution order) returns color(1), all else 0: Ci - E = the weight of
  *     the ray trace_org/dir[i] recorded in base mode.
  *   Each evaluation resets ev->trace_count to 0 first.
- * LIGHT SHADERS: void rsl_light_<name>(RslGlobals* g, __global const float* params);
+ * LIGHT SHADERS: void rsl_light_<name>(RslGlobals* g, RSL_LIGHT_PARAMS params);
+ *   RSL_LIGHT_PARAMS is `__global const float*` unless the renderer defines it first
+ *   (RayDrive bakes light parameters into __constant arrays). A solar statement also
+ *   sets g->Ol.w = 1 so the renderer knows the light is infinitely far (its shadow ray
+ *   has no end).
  *   g->Ps is the surface point. On return g->Cl is the unshadowed light colour (0 when
  *   the body of illuminate/solar did not run: outside the cone) and g->L is the
  *   light-side L: illuminate(from) -> Ps - from; solar(axis) -> axis; an ambient light
@@ -63,6 +67,10 @@
 #define RSL_ABI_H
 
 #define RSL_MAX_TRACE 8
+
+#ifndef RSL_LIGHT_PARAMS
+#define RSL_LIGHT_PARAMS __global const float*
+#endif
 
 typedef struct RslGlobals {
     float4 P, N, Ng, I, E, dPdu, dPdv, Cs, Os, Ci, Oi, L, Cl, Ol, Ps;

@@ -150,7 +150,7 @@ void Emitter::emitShader() {
     bool light = m_sh.kind == ShaderKind::Light;
     std::string fn = m_out.functionName;
     if (light)
-        m_body << "void " << fn << "(RslGlobals* g, __global const float* params) {\n";
+        m_body << "void " << fn << "(RslGlobals* g, RSL_LIGHT_PARAMS params) {\n";
     else
         m_body << "void " << fn << "(RslGlobals* g, __global const float* params, RslEval* ev) {\n";
     m_indent = 1;
@@ -253,6 +253,7 @@ void Emitter::lightLoop(const Stmt& s) {
     } else {
         line("g->L = " + (s.args.size() == 2 ? "rsl_w0(" + exprAs(*s.args[0], BaseType::Vector) + ")"
                                               : std::string("rsl_f2v(0.0f)")) + ";");
+        line("g->Ol.w = 1.0f; /* solar: the light is infinitely far (RSL_SOLAR_FLAG) */");
     }
     line("{");
     ++m_indent;

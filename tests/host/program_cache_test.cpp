@@ -63,7 +63,7 @@ TEST(ProgramCache, BuildFailureShowsTheLog) {
 }
 
 TEST(ProgramCache, IncludesAreResolvedOnce) {
-    std::string src = assembleClSource({"intersect.cl", "shade_builtin.cl"});
+    std::string src = assembleClSource({"intersect.cl", "sort_by_shader.cl"});
     EXPECT_EQ(src.find("#include \""), std::string::npos);
     size_t first = src.find("typedef struct BvhNode");
     ASSERT_NE(first, std::string::npos);

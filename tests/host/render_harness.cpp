@@ -39,7 +39,7 @@ Rendered renderRib(const std::string& rib, const RenderSettings& settings) {
     }
     Renderer renderer(testContext(), settings);
     Film film;
-    out.stats = renderer.render(builder.scenes().front(), film);
+    out.stats = renderer.render(builder.scenes().front(), film, diag);
     out.width = film.width;
     out.height = film.height;
     out.pixels = film.resolve();

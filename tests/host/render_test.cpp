@@ -149,7 +149,8 @@ TEST(Render, KernelStatsAreConsistent) {
                              "WorldBegin\nLightSource \"distantlight\" 1\n"
                              "Surface \"matte\"\n" + std::string(kPlaneAt5) + "WorldEnd\n");
     const auto& k = img.stats.kernels;
-    for (const char* name : {"generate_eye", "intersect_closest", "shade", "intersect_shadow",
+    for (const char* name : {"generate_eye", "intersect_closest", "classify_hits",
+                             "scatter_by_shader", "shade_matte", "intersect_shadow",
                              "accumulate_shadows", "retire_samples"}) {
         ASSERT_TRUE(k.count(name)) << name;
         EXPECT_GT(k.at(name).launches, 0u) << name;

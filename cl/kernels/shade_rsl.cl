@@ -1,0 +1,149 @@
+/* shade_rsl.cl: the shade stage for one compiled surface shader; the host makes one copy
+ * per shader, with the shader's name in place of the word SURFACE. Fire and forget
+ * (DESIGN.md section 4): the shader runs in base mode for its emission E and opacity Oi,
+ * which go to the sample at once; once per light, whose coefficient times the light's
+ * Cl becomes the weight of a shadow ray toward it; once per trace() it asked for, whose
+ * coefficient becomes the weight of the traced ray. Oi < 1 continues the ray straight on
+ * with weight (1 - Oi). The kernel runs over this shader's run of the sorted ray list. */
+__kernel void shade_SURFACE(uint begin, uint count,
+                            __global const uint* sorted,  /* ray indices, by shader */
+                            __global const Triangle* tris,
+                            __global const TriangleAttr* attrs,
+                            __global const float4* normals,
+                            __global const Material* materials,
+                            __global const float* params,
+                            __global const float4* origin,
+                            __global const float4* direction,
+                            __global const float4* weight,
+                            __global const RayState* state,
+                            __global const uint* ray_sample,
+                            __global const RayHit* hits,
+                            __global SampleTotal* total,
+                            __global float4* next_origin, /* slot r * RT_SPAWN_SLOTS + k */
+                            __global float4* next_direction,
+                            __global float4* next_weight,
+                            __global RayState* next_state,
+                            __global uint* next_sample,
+                            __global float4* shadow_origin, /* slot r * light_count + l */
+                            __global float4* shadow_direction,
+                            __global float4* shadow_weight,
+                            __global RayState* shadow_state,
+                            __global SampleAov* aov,
+                            uint light_count,
+                            __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    uint j = get_global_id(0);
+    RT_COUNT_ACTIVE(active_counter, j < count);
+    if (j >= count) return;
+    uint r = sorted[begin + j];
+    RayHit h = hits[r];
+    float4 org = origin[r], dir = direction[r], w = weight[r];
+    RayState rs = state[r];
+    uint sample = ray_sample[r];
+    TriangleAttr attr = attrs[h.prim];
+    Material m = materials[attr.material];
+    RslGlobals g;
+    rd_hit_globals(&g, &tris[h.prim], h, org, dir, normals, attr.has_normals, h.prim, m);
+    float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */
+#ifdef RT_HAS_AOVS
+    if (!aov[sample].hit) {
+        aov[sample].z *= h.t;
+        aov[sample].normal = rt_dot3(dir, g.N) < 0.0f ? g.N : -g.N;
+        aov[sample].hit = 1u;
+    }
+#endif
+    if (m.flags & RT_MATERIAL_MATTE) return; /* holdout: opaque, black, no alpha */
+    __global const float* p = params + m.params;
+    RslEval ev;
+    ev.mode_light = -1;
+    ev.mode_trace = -1;
+    ev.trace_count = 0;
+    RslGlobals base = g;
+    rsl_surface_SURFACE(&base, p, &ev);
+    float4 E = base.Ci, Oi = base.Oi;
+    E.w = 0.0f;
+    float4 add = w * E;
+    add.w = w.w * (Oi.x + Oi.y + Oi.z) * (1.0f / 3.0f); /* coverage */
+    rt_atomic_add_float4(&total[sample].value, add);
+
+#ifdef RT_HAS_SHADOW_RAYS
+    float4 Pl = rt_offset_ray(g.P, Ngf);
+    for (uint l = 0; l < light_count; ++l) {
+        RslGlobals lg;
+        int solar = rd_run_light((int)l, &g, g.P, &lg);
+        if (rd_light_is_ambient((int)l) || !rd_nonzero3(lg.Cl)) continue;
+        RslEval le;
+        le.mode_light = (int)l;
+        le.mode_trace = -1;
+        le.trace_count = 0;
+        RslGlobals lgl = g;
+        rsl_surface_SURFACE(&lgl, p, &le);
+        float4 coef = lgl.Ci - base.Ci;
+        float4 sw = w * coef;
+        sw.w = 0.0f;
+        if (!rd_nonzero3(sw)) continue;
+        float4 toward = (float4)(-lg.L.x, -lg.L.y, -lg.L.z, 0.0f);
+        float dist = sqrt(rt_dot3(toward, toward));
+        if (!(dist > 0.0f)) continue;
+        float4 sd = toward / dist;
+        /* leave from the side of the surface the light is on */
+        float4 so = rt_dot3(sd, Ngf) >= 0.0f ? Pl : rt_offset_ray(g.P, -Ngf);
+        so.w = 0.0f;
+        sd.w = solar ? INFINITY : dist * (1.0f - 1e-5f);
+        uint s = r * light_count + l;
+        shadow_origin[s] = so;
+        shadow_direction[s] = sd;
+        shadow_weight[s] = sw;
+        RayState ss = {1u, 0u, h.prim, 0u};
+        shadow_state[s] = ss;
+    }
+#endif
+
+#if RT_SPAWN_SLOTS > 1
+    /* trace(): one ray per call the base evaluation recorded */
+    int traces = min(ev.trace_count, RSL_MAX_TRACE);
+    for (int i = 0; i < traces && rs.depth < RT_MAX_SPECULAR_DEPTH; ++i) {
+        RslEval te;
+        te.mode_light = -1;
+        te.mode_trace = i;
+        te.trace_count = 0;
+        RslGlobals tg = g;
+        rsl_surface_SURFACE(&tg, p, &te);
+        float4 tw = w * (tg.Ci - base.Ci);
+        tw.w = 0.0f;
+        if (rt_max3(fabs(tw)) < 1e-6f) continue;
+        float4 td = rt_normalize3(ev.trace_dir[i]);
+        float4 tp = ev.trace_org[i];
+        tp.w = 0.0f;
+        float4 to = rt_offset_ray(tp, rt_dot3(td, Ngf) >= 0.0f ? Ngf : -Ngf);
+        to.w = 0.0f;
+        td.w = INFINITY;
+        uint s = r * RT_SPAWN_SLOTS + 1 + (uint)i;
+        next_origin[s] = to;
+        next_direction[s] = td;
+        next_weight[s] = tw;
+        RayState ts = {1u, rs.depth + 1u, h.prim, rs.pad};
+        next_state[s] = ts;
+        next_sample[s] = sample;
+    }
+#endif
+
+#ifdef RT_HAS_TRANSPARENCY
+    /* Oi < 1: the same ray continues behind the surface with the transmitted weight */
+    float4 wt = w * ((float4)(1.0f) - Oi);
+    wt.w = w.w * (1.0f - (Oi.x + Oi.y + Oi.z) * (1.0f / 3.0f));
+    if (rt_max3(wt) > 1e-6f && rs.pad < RT_MAX_TRANSPARENT_DEPTH) {
+        float4 o = rt_offset_ray(g.P, -Ngf);
+        o.w = 0.0f;
+        float4 d = dir;
+        d.w = dir.w - h.t;
+        uint s = r * RT_SPAWN_SLOTS;
+        next_origin[s] = o;
+        next_direction[s] = d;
+        next_weight[s] = wt;
+        RayState cs = {1u, rs.depth, h.prim, rs.pad + 1u};
+        next_state[s] = cs;
+        next_sample[s] = sample;
+    }
+#endif
+}

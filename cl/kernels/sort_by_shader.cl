@@ -1,0 +1,51 @@
+/* sort_by_shader.cl: the sort stage. Hit rays are sorted by the compiled surface shader of
+ * what they hit (a counting sort: classify counts rays per shader, the host turns counts
+ * into offsets, scatter writes ray indices into each shader's run), so each shade kernel
+ * runs over its own contiguous run with no idle work-items; misses are left out. Classify
+ * also clears the spawn and shadow slots the shade stage may fill this round. */
+#include "counters.clh"
+#include "ray.h"
+#include "scene_types.h"
+
+#define RT_MAX_SHADER_KEYS 65 /* 64 shaders + the miss key */
+
+__kernel void classify_hits(uint count, uint shader_count, uint light_count,
+                            __global const RayHit* hits,
+                            __global const TriangleAttr* attrs,
+                            __global const Material* materials,
+                            __global uint* key,          /* per ray: shader, or shader_count */
+                            __global uint* key_count,    /* shader_count + 1 counters */
+                            __global RayState* next_state,
+                            __global RayState* shadow_state,
+                            __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    __local uint hist[RT_MAX_SHADER_KEYS];
+    uint r = get_global_id(0), lid = get_local_id(0);
+    RT_COUNT_ACTIVE(active_counter, r < count);
+    for (uint k = lid; k <= shader_count; k += get_local_size(0)) hist[k] = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (r < count) {
+        uint prim = hits[r].prim;
+        uint k = prim == RT_NO_HIT ? shader_count : materials[attrs[prim].material].shader;
+        key[r] = k;
+        atomic_inc(&hist[k]);
+        for (uint s = 0; s < RT_SPAWN_SLOTS; ++s) next_state[r * RT_SPAWN_SLOTS + s].alive = 0u;
+        for (uint l = 0; l < light_count; ++l) shadow_state[r * light_count + l].alive = 0u;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint k = lid; k <= shader_count; k += get_local_size(0))
+        if (hist[k]) atomic_add(&key_count[k], hist[k]);
+}
+
+__kernel void scatter_by_shader(uint count, uint shader_count,
+                                __global const uint* key,
+                                __global uint* key_cursor, /* starts at each run's offset */
+                                __global uint* sorted,
+                                __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    uint r = get_global_id(0);
+    int hit = r < count && key[r] < shader_count;
+    RT_COUNT_ACTIVE(active_counter, hit);
+    if (!hit) return;
+    sorted[atomic_inc(&key_cursor[key[r]])] = r;
+}

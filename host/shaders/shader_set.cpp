@@ -1,0 +1,257 @@
+// shader_set.cpp: finding, compiling and binding the scene's RSL shaders, and writing the
+// generated part of the shade stage's OpenCL source.
+#include "shader_set.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include <glm/glm.hpp>
+
+#include "compiler.h"
+#include "emit_cl.h"
+#include "ocl/program.h"
+
+namespace rd {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string fmt(float v) {
+    if (std::isnan(v)) return "NAN";
+    if (std::isinf(v)) return v > 0 ? "INFINITY" : "-INFINITY";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9gf", v);
+    std::string s = buf;
+    if (s.find_first_of(".en") == std::string::npos) s.insert(s.size() - 1, ".0");
+    return s;
+}
+
+// Moves a triple of a point/vector/normal parameter from a space to world space.
+void toWorld(rsl::BaseType base, const glm::mat4& m, float* v) {
+    glm::vec3 p(v[0], v[1], v[2]), out;
+    if (base == rsl::BaseType::Point) out = glm::vec3(m * glm::vec4(p, 1.0f));
+    else if (base == rsl::BaseType::Vector) out = glm::mat3(m) * p;
+    else out = glm::transpose(glm::inverse(glm::mat3(m))) * p;  // normal
+    v[0] = out.x, v[1] = out.y, v[2] = out.z;
+}
+
+bool isTripleType(rib::ParamType t) {
+    return t == rib::ParamType::Point || t == rib::ParamType::Vector ||
+           t == rib::ParamType::Normal || t == rib::ParamType::Color;
+}
+
+}  // namespace
+
+std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef& call,
+                                  rib::Diagnostics& diag) {
+    std::vector<float> block(size_t(sh.paramFloats), 0.0f);
+    for (const rsl::ParamSlot& slot : sh.params) {
+        const rsl::BaseType base = slot.type.base;
+        const bool pointLike = base == rsl::BaseType::Point || base == rsl::BaseType::Vector ||
+                               base == rsl::BaseType::Normal;
+        const int elem = std::max(1, slot.arraySize);
+        const int per = slot.size / elem;
+        // Defaults, moved out of the space they were written in.
+        for (int i = 0; i < slot.size && i < int(slot.defaults.size()); ++i)
+            block[size_t(slot.offset + i)] = slot.defaults[size_t(i)];
+        if (!slot.constantDefault) block[size_t(slot.offset)] = NAN;
+        if (pointLike && slot.constantDefault && slot.space == "shader")
+            for (int e = 0; e < elem; ++e)
+                toWorld(base, call.shaderToWorld, &block[size_t(slot.offset + e * per)]);
+        // The RIB's value, if it gives one.
+        const rib::Param* p = call.params.find(slot.name);
+        if (!p) continue;
+        const std::string what = "parameter \"" + slot.name + "\" of shader \"" + call.name + "\"";
+        if (base == rsl::BaseType::String) {
+            if (p->type != rib::ParamType::String || p->strings.size() != size_t(elem)) {
+                diag.warning(call.loc, what + " wants " + std::to_string(elem) + " string(s); ignored");
+                continue;
+            }
+            for (int e = 0; e < elem; ++e)
+                block[size_t(slot.offset + e)] = float(rsl::stringId(p->strings[size_t(e)]));
+            continue;
+        }
+        bool numeric = p->type == rib::ParamType::Float || p->type == rib::ParamType::Integer ||
+                       isTripleType(p->type) || p->type == rib::ParamType::Matrix;
+        std::vector<float> values = p->floats;
+        if (p->type == rib::ParamType::Integer) values.assign(p->ints.begin(), p->ints.end());
+        // A single number for a colour or point fills all three components (RSL promotion).
+        if (numeric && values.size() == 1 && per == 3) values.assign(3, values[0]);
+        if (!numeric || values.size() != size_t(slot.size)) {
+            diag.warning(call.loc, what + " is a " + slot.typeName + " of " +
+                                       std::to_string(slot.size) + " float(s), got " +
+                                       std::to_string(values.size()) + "; ignored");
+            continue;
+        }
+        for (int i = 0; i < slot.size; ++i) block[size_t(slot.offset + i)] = values[size_t(i)];
+        // RIB values are in the coordinate system current at the call: "shader" space.
+        if (pointLike)
+            for (int e = 0; e < elem; ++e)
+                toWorld(base, call.shaderToWorld, &block[size_t(slot.offset + e * per)]);
+    }
+    return block;
+}
+
+ShaderSet::ShaderSet(const Scene& scene, rib::Diagnostics& diag) : m_scene(scene), m_diag(diag) {
+    // Option "searchpath" "shader" first, then the RIB's folder, the current folder,
+    // $RAYDRIVE_SHADER_PATH, and the standard shaders RayDrive ships.
+    m_path = scene.shaderSearchPath;
+    std::string ribDir = fs::path(scene.sourceFile).parent_path().string();
+    m_path.push_back(ribDir.empty() ? "." : ribDir);
+    m_path.push_back(".");
+    if (const char* env = std::getenv("RAYDRIVE_SHADER_PATH")) {
+        std::stringstream ss(env);
+        for (std::string d; std::getline(ss, d, ':');)
+            if (!d.empty()) m_path.push_back(d);
+    }
+    m_path.push_back(RAYDRIVE_SHADER_DIR);
+}
+
+ShaderSet::~ShaderSet() = default;
+
+const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::string& kind,
+                                          const rib::SourceLoc& loc) {
+    auto it = m_cache.find(name);
+    if (it != m_cache.end()) return it->second.get();
+    std::unique_ptr<rsl::EmittedShader>& slot = m_cache[name];
+    std::string file;
+    for (const std::string& dir : m_path) {
+        fs::path candidate = fs::path(dir) / (name + ".sl");
+        if (fs::exists(candidate)) {
+            file = candidate.string();
+            break;
+        }
+    }
+    if (file.empty()) {
+        m_diag.error(loc, kind + " shader \"" + name + "\" not found (" + name +
+                              ".sl on the shader search path)");
+        return nullptr;
+    }
+    std::ostringstream messages;
+    rsl::Diagnostics rd(&messages);
+    rsl::Program prog;
+    rsl::PreprocessOptions opts;
+    opts.includeDirs = m_path;
+    const rsl::ShaderDecl* decl = nullptr;
+    if (rsl::compileFile(file, opts, prog, rd))
+        for (const auto& sh : prog.shaders)
+            if (sh->name == name || prog.shaders.size() == 1) decl = sh.get();
+    rsl::EmittedShader emitted;
+    if (decl) emitted = rsl::emitOpenCL(*decl, prog, rd);
+    // The compiler's own messages carry the shader file's line and column.
+    std::istringstream lines(messages.str());
+    for (std::string l; std::getline(lines, l);)
+        if (l.find(": warning: ") == std::string::npos)
+            m_diag.error(loc, "in " + kind + " shader \"" + name + "\": " + l);
+    if (!decl || !emitted.ok || rd.hasErrors()) return nullptr;
+    if (emitted.kind != kind) {
+        m_diag.error(loc, "shader \"" + name + "\" is a " + emitted.kind + " shader, not a " +
+                              kind + " shader");
+        return nullptr;
+    }
+    slot = std::make_unique<rsl::EmittedShader>(std::move(emitted));
+    return slot.get();
+}
+
+ShadingSetup ShaderSet::prepare() {
+    ShadingSetup out;
+    std::ostringstream lights, shaders;
+    // --- light instances: parameters baked into constants, one switch case each
+    std::vector<std::string> lightCalls;
+    std::vector<bool> lightAmbient;
+    std::map<std::string, bool> lightEmitted;
+    for (const ShaderRef& l : m_scene.lights) {
+        const rsl::EmittedShader* sh = find(l.name, "light", l.loc);
+        if (!sh) continue;
+        int index = int(lightCalls.size());
+        std::vector<float> block = bindParameters(*sh, l, m_diag);
+        lights << "__constant float rd_light_params_" << index << "[] = {";
+        for (size_t i = 0; i < block.size(); ++i) lights << (i ? ", " : "") << fmt(block[i]);
+        if (block.empty()) lights << "0.0f";
+        lights << "};\n";
+        lightCalls.push_back(sh->functionName + "(&lg, rd_light_params_" +
+                             std::to_string(index) + ")");
+        lightAmbient.push_back(sh->ambientLight);
+        if (!lightEmitted[sh->name]) shaders << sh->source << "\n";
+        lightEmitted[sh->name] = true;
+        out.shadowRays |= !sh->ambientLight;
+    }
+    out.lightCount = uint32_t(lightCalls.size());
+    // --- services the generated code calls (rsl_abi.h)
+    std::ostringstream svc;
+    svc << "int rsl_light_count(void) { return " << out.lightCount << "; }\n";
+    svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar light */\n"
+           "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* out) {\n"
+           "    RslGlobals lg = *g;\n    lg.Ps = Ps;\n    lg.L = (float4)(0.0f);\n"
+           "    lg.Cl = (float4)(0.0f);\n    lg.Ol = (float4)(0.0f);\n    switch (l) {\n";
+    for (size_t i = 0; i < lightCalls.size(); ++i)
+        svc << "    case " << i << ": " << lightCalls[i] << "; break;\n";
+    svc << "    default: break;\n    }\n    *out = lg;\n    return lg.Ol.w == 1.0f;\n}\n";
+    svc << "static int rd_light_is_ambient(int l) {\n    switch (l) {\n";
+    for (size_t i = 0; i < lightAmbient.size(); ++i)
+        if (lightAmbient[i]) svc << "    case " << i << ": return 1;\n";
+    svc << "    default: return 0;\n    }\n}\n";
+    svc << "int rsl_light(int l, const RslGlobals* g, float4 Ps, float4* L, float4* Cl) {\n"
+           "    if (rd_light_is_ambient(l)) return 0;\n    RslGlobals lg;\n"
+           "    rd_run_light(l, g, Ps, &lg);\n"
+           "    *L = (float4)(-lg.L.x, -lg.L.y, -lg.L.z, 0.0f);\n    *Cl = lg.Cl;\n"
+           "    return lg.Cl.x != 0.0f || lg.Cl.y != 0.0f || lg.Cl.z != 0.0f;\n}\n"
+           "float4 rsl_ambient(const RslGlobals* g) {\n    float4 sum = (float4)(0.0f);\n"
+           "    for (int l = 0; l < rsl_light_count(); ++l) {\n"
+           "        if (!rd_light_is_ambient(l)) continue;\n        RslGlobals lg;\n"
+           "        rd_run_light(l, g, g->P, &lg);\n        sum += lg.Cl;\n    }\n"
+           "    sum.w = 0.0f;\n    return sum;\n}\n"
+           "/* Object and shader spaces are per instance and not carried yet: identity. */\n"
+           "RslMatrix rsl_space_matrix(int space) {\n    RslMatrix m;\n"
+           "    m.r[0] = (float4)(1.0f, 0.0f, 0.0f, 0.0f);\n"
+           "    m.r[1] = (float4)(0.0f, 1.0f, 0.0f, 0.0f);\n"
+           "    m.r[2] = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n"
+           "    m.r[3] = (float4)(0.0f, 0.0f, 0.0f, 1.0f);\n    return m;\n}\n";
+    // --- surfaces: one compiled shader per name, one parameter block per call
+    std::map<std::string, uint32_t> surfaceIndex;
+    std::vector<uint32_t> refBlock(m_scene.surfaceRefs.size());
+    std::vector<uint32_t> refShader(m_scene.surfaceRefs.size());
+    std::ostringstream kernels;
+    const std::string& kernelTemplate = embeddedClSources().at("shade_rsl.cl");
+    for (size_t r = 0; r < m_scene.surfaceRefs.size(); ++r) {
+        const ShaderRef& ref = m_scene.surfaceRefs[r];
+        const rsl::EmittedShader* sh = find(ref.name, "surface", ref.loc);
+        ShaderRef fallback{"defaultsurface", {}, ref.shaderToWorld, ref.loc};
+        if (!sh) sh = find("defaultsurface", "surface", ref.loc);
+        const ShaderRef& call = sh && sh->name == ref.name ? ref : fallback;
+        if (!sh) continue;
+        auto [it, fresh] = surfaceIndex.emplace(sh->name, uint32_t(out.surfaceNames.size()));
+        if (fresh) {
+            out.surfaceNames.push_back(sh->name);
+            out.shadeKernels.push_back("shade_" + sh->name);
+            shaders << sh->source << "\n";
+            std::string k = kernelTemplate;
+            for (size_t p = k.find("SURFACE"); p != std::string::npos; p = k.find("SURFACE", p))
+                k.replace(p, 7, sh->name);
+            kernels << k << "\n";
+            out.usesTrace |= sh->usesTrace;
+        }
+        refShader[r] = it->second;
+        refBlock[r] = uint32_t(out.params.size());
+        std::vector<float> block = bindParameters(*sh, call, m_diag);
+        out.params.insert(out.params.end(), block.begin(), block.end());
+    }
+    out.materials = m_scene.materials;
+    for (Material& m : out.materials) {
+        uint32_t r = m.shader;
+        m.shader = r < refShader.size() ? refShader[r] : 0;
+        m.params = r < refBlock.size() ? refBlock[r] : 0;
+    }
+    out.traceSlots = out.usesTrace ? 8 : 0;  // RSL_MAX_TRACE
+    out.generated["rd_shading.cl"] = "#define RSL_LIGHT_PARAMS __constant float*\n"
+                                     "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n" +
+                                     lights.str() + shaders.str() + svc.str();
+    out.generated["rd_shade_kernels.cl"] = "#include \"shade_common.clh\"\n" + kernels.str();
+    out.sourceOrder = {"rd_shading.cl", "rd_shade_kernels.cl"};
+    return out;
+}
+
+}  // namespace rd

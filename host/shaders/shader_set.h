@@ -1,0 +1,63 @@
+// shader_set.h: the scene's RSL shaders, compiled by rsl2cl for this render. It finds each
+// shader on the search path (Option "searchpath" "shader", the RIB's folder, the current
+// folder, RayDrive's standard shaders), compiles it once, binds every Surface and
+// LightSource call's parameters into float blocks (RIB values over the shader's defaults,
+// points moved from "shader" space to world space), and assembles the OpenCL source of
+// the shade stage: the RSL runtime, the light instances baked in as constants, the
+// services the generated code calls, the shaders, and one shade kernel per surface shader.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rib/diagnostics.h"
+#include "scene/scene.h"
+
+namespace rsl {
+struct EmittedShader;
+}
+
+namespace rd {
+
+struct ShadingSetup {
+    // Extra OpenCL sources by name (generated), and the kernel files to assemble.
+    std::map<std::string, std::string> generated;
+    std::vector<std::string> sourceOrder;
+    std::vector<std::string> shadeKernels;  // per compiled surface shader
+    std::vector<std::string> surfaceNames;  // the shaders themselves, same order
+    std::vector<Material> materials;        // Material::shader/params filled in
+    std::vector<float> params;              // every surface instance's block
+    uint32_t lightCount = 0;                // LightSource instances (ambient included)
+    bool shadowRays = false;                // some light is not ambient
+    bool usesTrace = false;                 // some surface calls trace()
+    int traceSlots = 0;                     // rays a hit may spawn with trace()
+};
+
+class ShaderSet {
+public:
+    ShaderSet(const Scene& scene, rib::Diagnostics& diag);
+    ~ShaderSet();
+    // Compiles what the scene uses. Shaders that cannot be found or compiled are
+    // reported (file:line of the request, then the compiler's own file:line:col) and
+    // replaced: surfaces by defaultsurface, lights dropped.
+    ShadingSetup prepare();
+
+    // Directories searched for NAME.sl, in order.
+    const std::vector<std::string>& searchPath() const { return m_path; }
+
+private:
+    const rsl::EmittedShader* find(const std::string& name, const std::string& kind,
+                                   const rib::SourceLoc& loc);
+    const Scene& m_scene;
+    rib::Diagnostics& m_diag;
+    std::vector<std::string> m_path;
+    std::map<std::string, std::unique_ptr<rsl::EmittedShader>> m_cache;  // null: failed
+};
+
+// Binds a shader call's parameters: defaults, then the RIB's values (by name, checked
+// against the declared type), points/vectors/normals moved to world space.
+std::vector<float> bindParameters(const rsl::EmittedShader& shader, const ShaderRef& call,
+                                  rib::Diagnostics& diag);
+
+}  // namespace rd
