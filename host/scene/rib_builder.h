@@ -7,8 +7,13 @@
 
 #include <glm/glm.hpp>
 
+#include <memory>
+
 #include "rib/target.h"
 #include "scene.h"
+#include "tessellate_nurbs.h"
+#include "tessellate_patches.h"
+#include "tessellate_types.h"
 
 namespace rd {
 
@@ -64,6 +69,29 @@ public:
                         const rib::ParamList&) override;
     void sphere(L, float radius, float zmin, float zmax, float thetamax,
                 const rib::ParamList&) override;
+    // The other surfaces (rib_builder_geometry.cpp), tessellated for their size on screen.
+    void cylinder(L, float radius, float zmin, float zmax, float thetamax, P) override;
+    void cone(L, float height, float radius, float thetamax, P) override;
+    void disk(L, float height, float radius, float thetamax, P) override;
+    void torus(L, float majorRadius, float minorRadius, float phiMin, float phiMax,
+               float thetamax, P) override;
+    void paraboloid(L, float rmax, float zmin, float zmax, float thetamax, P) override;
+    void hyperboloid(L, const float point1[3], const float point2[3], float thetamax,
+                     P) override;
+    void generalPolygon(L, Ints nverts, P) override;
+    void pointsGeneralPolygons(L, Ints nloops, Ints nverts, Ints verts, P) override;
+    void basis(L, S, const float ubasis[16], int ustep, S, const float vbasis[16],
+               int vstep) override;
+    void patch(L, S type, P) override;
+    void patchMesh(L, S type, int nu, S uwrap, int nv, S vwrap, P) override;
+    void trimCurve(L, Ints ncurves, Ints order, Floats knot, Floats min, Floats max, Ints n,
+                   Floats u, Floats v, Floats w) override;
+    void nuPatch(L, int nu, int uorder, Floats uknot, float umin, float umax, int nv,
+                 int vorder, Floats vknot, float vmin, float vmax, P) override;
+    void subdivisionMesh(L, S scheme, Ints nverts, Ints verts, Strings tags, Ints nargs,
+                         Ints intargs, Floats floatargs, P) override;
+    void curves(L, S type, Ints nvertices, S wrap, P) override;
+    void points(L, P) override;
 
 private:
     struct Attributes {
@@ -73,6 +101,8 @@ private:
         ShaderRef surface;    // the current Surface call
         uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;
+        CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
+        std::shared_ptr<const TrimCurves> trim;  // TrimCurve applies to later NuPatches
     };
     enum class Block { Frame, World, Attribute, Transform };
 
@@ -84,6 +114,12 @@ private:
                  const std::vector<int>& tris);
     // Pixels per world unit at distance `depth` in front of the camera.
     float pixelsPerUnit(float depth) const;
+    // Screen size in pixels of an object-space sphere (centre, radius), for dicing rates.
+    float screenRadius(const glm::vec3& centre, float radius) const;
+    // Screen size of the bounding sphere of object-space points.
+    float screenRadius(const std::vector<glm::vec3>& points) const;
+    // Adds a tessellated surface, or reports why the tessellator refused it.
+    void addSurface(L, const char* what, bool ok, const SurfaceMesh& m, const std::string& err);
 
     rib::Diagnostics& m_diag;
     Scene m_options;               // option state; copied into each new world

@@ -1,0 +1,292 @@
+// rib_builder_geometry.cpp: the RenderMan surfaces other than polygons and spheres. Each
+// is tessellated in object space at a density chosen from its size on screen (chord
+// error about a tenth of a pixel for quadrics, a few pixels per patch segment), then
+// added as triangles in world space like any mesh.
+#include <algorithm>
+#include <cmath>
+
+#include "rib_builder.h"
+#include "tessellate_curves_points.h"
+#include "tessellate_polygons.h"
+#include "tessellate_quadrics.h"
+#include "tessellate_subdiv.h"
+
+namespace rd {
+namespace {
+
+std::vector<glm::vec3> points3(const std::vector<float>& f) {
+    std::vector<glm::vec3> p(f.size() / 3);
+    for (size_t i = 0; i < p.size(); ++i) p[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+    return p;
+}
+
+// Segments for a quadric of screen radius rpx around a full turn: 0.1 pixel chord error.
+int turnSegments(float rpx) { return circleSegments(rpx, 0.1f); }
+
+// Segments per patch: about one per 4 pixels of its size, within [4, 64].
+int patchSegments(float rpx) { return std::clamp(int(std::ceil(rpx / 2.0f)), 4, 64); }
+
+}  // namespace
+
+float RibBuilder::screenRadius(const glm::vec3& centre, float radius) const {
+    const glm::mat4 objToCam = m_world.camera.worldToCamera * m_attrStack.back().ctm;
+    glm::vec3 c = glm::vec3(objToCam * glm::vec4(centre, 1.0f));
+    float scale = std::cbrt(std::fabs(glm::determinant(glm::mat3(objToCam))));
+    float r = std::fabs(radius) * scale;
+    if (c.z - r <= 0.0f) return 1e6f;  // reaches the camera plane: the finest dicing
+    return r * pixelsPerUnit(c.z);
+}
+
+float RibBuilder::screenRadius(const std::vector<glm::vec3>& pts) const {
+    if (pts.empty()) return 0.0f;
+    glm::vec3 lo = pts[0], hi = pts[0];
+    for (const glm::vec3& p : pts) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    return screenRadius(0.5f * (lo + hi), 0.5f * glm::length(hi - lo));
+}
+
+void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh& m,
+                            const std::string& err) {
+    if (!ok) {
+        m_diag.error(loc, std::string(what) + ": " + err);
+        return;
+    }
+    addMesh(loc, m.mesh.p, m.mesh.n.empty() ? nullptr : &m.mesh.n, m.mesh.tris);
+}
+
+void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float thetamax, P) {
+    if (!inWorld(loc, "Cylinder")) return;
+    SurfaceMesh m;
+    std::string err;
+    float rpx = screenRadius({0, 0, 0.5f * (zmin + zmax)},
+                             std::max(std::fabs(radius), 0.5f * std::fabs(zmax - zmin)));
+    bool ok = tessellateCylinder(radius, zmin, zmax, thetamax, turnSegments(rpx), 1, m, &err);
+    addSurface(loc, "Cylinder", ok, m, err);
+}
+
+void RibBuilder::cone(L loc, float height, float radius, float thetamax, P) {
+    if (!inWorld(loc, "Cone")) return;
+    SurfaceMesh m;
+    std::string err;
+    float rpx = screenRadius({0, 0, 0.5f * height}, std::max(std::fabs(radius), std::fabs(height)));
+    int nu = turnSegments(rpx);
+    bool ok = tessellateCone(height, radius, thetamax, nu, std::max(1, nu / 8), m, &err);
+    addSurface(loc, "Cone", ok, m, err);
+}
+
+void RibBuilder::disk(L loc, float height, float radius, float thetamax, P) {
+    if (!inWorld(loc, "Disk")) return;
+    SurfaceMesh m;
+    std::string err;
+    int nu = turnSegments(screenRadius({0, 0, height}, radius));
+    bool ok = tessellateDisk(height, radius, thetamax, nu, 1, m, &err);
+    addSurface(loc, "Disk", ok, m, err);
+}
+
+void RibBuilder::torus(L loc, float majorRadius, float minorRadius, float phiMin, float phiMax,
+                       float thetamax, P) {
+    if (!inWorld(loc, "Torus")) return;
+    SurfaceMesh m;
+    std::string err;
+    float rpx = screenRadius({0, 0, 0}, std::fabs(majorRadius) + std::fabs(minorRadius));
+    int nu = turnSegments(rpx);
+    int nv = turnSegments(rpx * std::fabs(minorRadius) /
+                          std::max(1e-20f, std::fabs(majorRadius) + std::fabs(minorRadius)));
+    bool ok = tessellateTorus(majorRadius, minorRadius, phiMin, phiMax, thetamax, nu, nv, m, &err);
+    addSurface(loc, "Torus", ok, m, err);
+}
+
+void RibBuilder::paraboloid(L loc, float rmax, float zmin, float zmax, float thetamax, P) {
+    if (!inWorld(loc, "Paraboloid")) return;
+    SurfaceMesh m;
+    std::string err;
+    int nu = turnSegments(screenRadius({0, 0, 0.5f * (zmin + zmax)},
+                                       std::max(std::fabs(rmax), std::fabs(zmax - zmin))));
+    bool ok = tessellateParaboloid(rmax, zmin, zmax, thetamax, nu, std::max(2, nu / 4), m, &err);
+    addSurface(loc, "Paraboloid", ok, m, err);
+}
+
+void RibBuilder::hyperboloid(L loc, const float p1[3], const float p2[3], float thetamax, P) {
+    if (!inWorld(loc, "Hyperboloid")) return;
+    SurfaceMesh m;
+    std::string err;
+    glm::vec3 a(p1[0], p1[1], p1[2]), b(p2[0], p2[1], p2[2]);
+    float r = std::max(glm::length(glm::vec2(a)), glm::length(glm::vec2(b)));
+    int nu = turnSegments(screenRadius(0.5f * (a + b), std::max(r, 0.5f * glm::length(b - a))));
+    bool ok = tessellateHyperboloid(a, b, thetamax, nu, std::max(2, nu / 4), m, &err);
+    addSurface(loc, "Hyperboloid", ok, m, err);
+}
+
+void RibBuilder::generalPolygon(L loc, Ints nverts, P params) {
+    if (!inWorld(loc, "GeneralPolygon")) return;
+    const rib::Param* Pp = params.find("P");
+    if (!Pp) return m_diag.error(loc, "GeneralPolygon needs \"P\"");
+    SurfaceMesh m;
+    std::string err;
+    bool ok = tessellateGeneralPolygon(nverts, points3(Pp->floats), m, &err);
+    addSurface(loc, "GeneralPolygon", ok, m, err);
+}
+
+void RibBuilder::pointsGeneralPolygons(L loc, Ints nloops, Ints nverts, Ints verts, P params) {
+    if (!inWorld(loc, "PointsGeneralPolygons")) return;
+    const rib::Param* Pp = params.find("P");
+    if (!Pp) return m_diag.error(loc, "PointsGeneralPolygons needs \"P\"");
+    SurfaceMesh m;
+    std::string err;
+    bool ok = tessellatePointsGeneralPolygons(nloops, nverts, verts, points3(Pp->floats), m, &err);
+    addSurface(loc, "PointsGeneralPolygons", ok, m, err);
+}
+
+void RibBuilder::basis(L loc, S, const float ubasis[16], int ustep, S, const float vbasis[16],
+                       int vstep) {
+    std::string err;
+    Attributes& a = m_attrStack.back();
+    if (!basisFromMatrix(ubasis, ustep, a.ubasis, &err) ||
+        !basisFromMatrix(vbasis, vstep, a.vbasis, &err))
+        m_diag.error(loc, "Basis: " + err);
+}
+
+namespace {
+// "P" (3 floats), "Pz" (1) or "Pw" (4): the positions a patch was given.
+bool patchPositions(const rib::ParamList& params, PositionKind& kind, std::vector<float>& pos) {
+    if (const rib::Param* p = params.find("P")) kind = PositionKind::P, pos = p->floats;
+    else if (const rib::Param* pw = params.find("Pw")) kind = PositionKind::Pw, pos = pw->floats;
+    else if (const rib::Param* pz = params.find("Pz")) kind = PositionKind::Pz, pos = pz->floats;
+    else return false;
+    return true;
+}
+std::vector<glm::vec3> controlHull(PositionKind kind, const std::vector<float>& pos) {
+    if (kind == PositionKind::P) return points3(pos);
+    std::vector<glm::vec3> out;
+    if (kind == PositionKind::Pw)
+        for (size_t i = 0; i + 3 < pos.size(); i += 4)
+            out.push_back(glm::vec3(pos[i], pos[i + 1], pos[i + 2]) / (pos[i + 3] ? pos[i + 3] : 1));
+    else
+        for (size_t i = 0; i < pos.size(); ++i) out.push_back({0, 0, pos[i]});
+    return out;
+}
+}  // namespace
+
+void RibBuilder::patch(L loc, S type, P params) {
+    if (!inWorld(loc, "Patch")) return;
+    PositionKind kind;
+    std::vector<float> pos;
+    if (!patchPositions(params, kind, pos)) return m_diag.error(loc, "Patch needs \"P\"");
+    SurfaceMesh m;
+    std::string err;
+    int seg = patchSegments(screenRadius(controlHull(kind, pos)));
+    const Attributes& a = m_attrStack.back();
+    bool ok = tessellatePatch(type, kind, pos, a.ubasis, a.vbasis, seg, seg, m, &err);
+    addSurface(loc, "Patch", ok, m, err);
+}
+
+void RibBuilder::patchMesh(L loc, S type, int nu, S uwrap, int nv, S vwrap, P params) {
+    if (!inWorld(loc, "PatchMesh")) return;
+    PatchMeshInput in;
+    if (!patchPositions(params, in.kind, in.positions))
+        return m_diag.error(loc, "PatchMesh needs \"P\"");
+    in.bicubic = type == "bicubic";
+    in.nu = nu, in.nv = nv;
+    in.uperiodic = uwrap == "periodic", in.vperiodic = vwrap == "periodic";
+    in.ubasis = m_attrStack.back().ubasis, in.vbasis = m_attrStack.back().vbasis;
+    int patches = std::max(1, patchCount(in.bicubic, nu, in.uperiodic, in.ubasis.step) *
+                                  patchCount(in.bicubic, nv, in.vperiodic, in.vbasis.step));
+    int seg = std::max(2, int(patchSegments(screenRadius(controlHull(in.kind, in.positions))) /
+                              std::sqrt(float(patches))));
+    SurfaceMesh m;
+    std::string err;
+    bool ok = tessellatePatchMesh(in, seg, seg, m, &err);
+    addSurface(loc, "PatchMesh", ok, m, err);
+}
+
+void RibBuilder::trimCurve(L loc, Ints ncurves, Ints order, Floats knot, Floats min, Floats max,
+                           Ints n, Floats u, Floats v, Floats w) {
+    auto t = std::make_shared<TrimCurves>();
+    t->ncurves = ncurves, t->order = order, t->knot = knot, t->min = min, t->max = max;
+    t->n = n, t->u = u, t->v = v, t->w = w;
+    std::string err;
+    if (!validateTrimCurves(*t, &err)) return m_diag.error(loc, "TrimCurve: " + err);
+    m_attrStack.back().trim = t;
+}
+
+void RibBuilder::nuPatch(L loc, int nu, int uorder, Floats uknot, float umin, float umax,
+                         int nv, int vorder, Floats vknot, float vmin, float vmax, P params) {
+    if (!inWorld(loc, "NuPatch")) return;
+    NuPatchInput in;
+    in.nu = nu, in.uorder = uorder, in.uknot = uknot, in.umin = umin, in.umax = umax;
+    in.nv = nv, in.vorder = vorder, in.vknot = vknot, in.vmin = vmin, in.vmax = vmax;
+    PositionKind kind;
+    if (!patchPositions(params, kind, in.positions) || kind == PositionKind::Pz)
+        return m_diag.error(loc, "NuPatch needs \"P\" or \"Pw\"");
+    in.rational = kind == PositionKind::Pw;
+    int seg = std::clamp(int(std::ceil(screenRadius(controlHull(kind, in.positions)) / 2.0f)),
+                         8, 256);
+    SurfaceMesh m;
+    std::string err;
+    bool ok = tessellateNuPatch(in, seg, seg, m_attrStack.back().trim.get(), m, &err);
+    addSurface(loc, "NuPatch", ok, m, err);
+}
+
+void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strings tags,
+                                 Ints nargs, Ints intargs, Floats floatargs, P params) {
+    if (!inWorld(loc, "SubdivisionMesh")) return;
+    const rib::Param* Pp = params.find("P");
+    if (!Pp) return m_diag.error(loc, "SubdivisionMesh needs \"P\"");
+    SubdivInput in;
+    in.scheme = scheme, in.nvertices = nverts, in.vertices = verts, in.tags = tags;
+    in.nargs = nargs, in.intargs = intargs, in.floatargs = floatargs;
+    in.P = points3(Pp->floats);
+    // One refinement level per halving of the faces' size on screen, down to ~4 pixels.
+    float faces = float(std::max<size_t>(1, nverts.size()));
+    float facePx = 2.0f * screenRadius(in.P) / std::sqrt(faces);
+    int level = std::clamp(int(std::ceil(std::log2(std::max(1.0f, facePx / 4.0f)))), 1, 5);
+    SurfaceMesh m;
+    std::string err;
+    bool ok = tessellateSubdivisionMesh(in, level, m, &err);
+    addSurface(loc, "SubdivisionMesh", ok, m, err);
+}
+
+void RibBuilder::curves(L loc, S type, Ints nvertices, S wrap, P params) {
+    if (!inWorld(loc, "Curves")) return;
+    const rib::Param* Pp = params.find("P");
+    if (!Pp) return m_diag.error(loc, "Curves needs \"P\"");
+    CurvesInput in;
+    in.cubic = type == "cubic";
+    in.periodic = wrap == "periodic";
+    in.nvertices = nvertices;
+    in.P = points3(Pp->floats);
+    in.vbasis = m_attrStack.back().vbasis;
+    if (const rib::Param* w = params.find("width")) in.width = w->floats;
+    in.constantWidth = params.getFloat("constantwidth", 1.0f);
+    if (const rib::Param* n = params.find("N")) in.N = points3(n->floats);
+    // Ribbons face the camera: its direction seen from the curves, in object space.
+    glm::mat4 worldToObj = glm::inverse(m_attrStack.back().ctm);
+    glm::vec3 eye = glm::vec3(worldToObj * glm::inverse(m_world.camera.worldToCamera) *
+                              glm::vec4(0, 0, 0, 1));
+    glm::vec3 centre(0.0f);
+    for (const glm::vec3& p : in.P) centre += p / float(std::max<size_t>(1, in.P.size()));
+    SurfaceMesh m;
+    std::string err;
+    bool ok = tessellateCurves(in, glm::normalize(centre - eye), 8, m, &err);
+    addSurface(loc, "Curves", ok, m, err);
+}
+
+void RibBuilder::points(L loc, P params) {
+    if (!inWorld(loc, "Points")) return;
+    const rib::Param* Pp = params.find("P");
+    if (!Pp) return m_diag.error(loc, "Points needs \"P\"");
+    std::vector<glm::vec3> P = points3(Pp->floats);
+    std::vector<float> width;
+    if (const rib::Param* w = params.find("width")) width = w->floats;
+    glm::mat4 worldToObj = glm::inverse(m_attrStack.back().ctm);
+    glm::vec3 eye = glm::vec3(worldToObj * glm::inverse(m_world.camera.worldToCamera) *
+                              glm::vec4(0, 0, 0, 1));
+    glm::vec3 centre(0.0f);
+    for (const glm::vec3& p : P) centre += p / float(std::max<size_t>(1, P.size()));
+    SurfaceMesh m;
+    std::string err;
+    bool ok = tessellatePoints(P, width, params.getFloat("constantwidth", 1.0f),
+                               glm::normalize(centre - eye), 12, m, &err);
+    addSurface(loc, "Points", ok, m, err);
+}
+
+}  // namespace rd
