@@ -126,8 +126,9 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
         }
     }
     if (file.empty()) {
-        m_diag.error(loc, kind + " shader \"" + name + "\" not found (" + name +
-                              ".sl on the shader search path)");
+        m_diag.warning(loc, kind + " shader \"" + name + "\" not found (" + name +
+                                ".sl on the shader search path); " +
+                                (kind == "light" ? "light left out" : "using defaultsurface"));
         return nullptr;
     }
     std::ostringstream messages;
@@ -145,11 +146,13 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
     std::istringstream lines(messages.str());
     for (std::string l; std::getline(lines, l);)
         if (l.find(": warning: ") == std::string::npos)
-            m_diag.error(loc, "in " + kind + " shader \"" + name + "\": " + l);
+            m_diag.warning(loc, "in " + kind + " shader \"" + name + "\": " + l +
+                                    (kind == "light" ? " (light left out)"
+                                                     : " (using defaultsurface)"));
     if (!decl || !emitted.ok || rd.hasErrors()) return nullptr;
     if (emitted.kind != kind) {
-        m_diag.error(loc, "shader \"" + name + "\" is a " + emitted.kind + " shader, not a " +
-                              kind + " shader");
+        m_diag.warning(loc, "shader \"" + name + "\" is a " + emitted.kind +
+                                " shader, not a " + kind + " shader; not used");
         return nullptr;
     }
     slot = std::make_unique<rsl::EmittedShader>(std::move(emitted));

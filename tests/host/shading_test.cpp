@@ -1,0 +1,96 @@
+// shading_test.cpp: the standard RSL shaders rendered through the whole pipeline (rsl2cl
+// output in the shade kernels) against closed forms: trace() through a mirror, a spot
+// light's cone, shadows through shadowspot, a user shader from a searchpath folder, and
+// the fallback when a shader is missing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "render_harness.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+const char* kCamera = "Format 32 32 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" 40\n";
+}
+
+// A mirror facing the camera reflects a constant plane behind the camera: the pixel is
+// Kr * Os * (the plane's colour) exactly (one bounce of trace()).
+TEST(Shading, MirrorTracesTheReflectedRay) {
+    Rendered img = renderRib(std::string(kCamera) +
+                             "WorldBegin\n"
+                             "AttributeBegin\nSurface \"mirror\" \"Kr\" 0.8\n"
+                             "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+                             "AttributeEnd\n"
+                             "AttributeBegin\nColor [0.2 0.4 1]\nSurface \"constant\"\n"
+                             "Polygon \"P\" [-50 -50 -5  50 -50 -5  50 50 -5  -50 50 -5]\n"
+                             "AttributeEnd\nWorldEnd\n");
+    const rd::Rgba& c = img.at(16, 16);
+    EXPECT_NEAR(c.r, 0.8 * 0.2, 1e-4);
+    EXPECT_NEAR(c.g, 0.8 * 0.4, 1e-4);
+    EXPECT_NEAR(c.b, 0.8 * 1.0, 1e-4);
+    EXPECT_GT(img.stats.continuationRays, 0u) << "the traced rays are counted with the spawned";
+    EXPECT_NE(std::find(img.stats.features.names().begin(), img.stats.features.names().end(),
+                        std::string("trace")),
+              img.stats.features.names().end());
+}
+
+// spotlight: inside the cone a matte plane gets intensity * cos^beam / d^2 * N.L; outside
+// the cone (coneangle 10 degrees, plane corners) nothing.
+TEST(Shading, SpotlightConeAndFalloff) {
+    Rendered img = renderRib(std::string(kCamera) +
+                             "WorldBegin\nLightSource \"spotlight\" 1 \"from\" [0 0 0] "
+                             "\"to\" [0 0 1] \"intensity\" 25 \"coneangle\" [0.1745]\n"
+                             "Surface \"matte\"\n"
+                             "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+                             "WorldEnd\n");
+    EXPECT_NEAR(img.mean(0, 15, 15, 17, 17), 25.0 / 25.0, 0.02);  // on axis: Cl = 1, N.L = 1
+    EXPECT_EQ(img.at(1, 1).r, 0.0f);
+}
+
+// shadowspot with shadowname "raytrace": a spot at (0, 3, 2) aimed at the plane's centre
+// (0, 0, 5); a sphere of radius 0.3 half way, (0, 1.5, 3.5), shadows the centre (shadow
+// radius about 0.6 on the plane), which the eye sees unobstructed (the sphere is above
+// the frame). Next to the shadow the plane is lit: Cl = 25 / 18, N.L = cos 45.
+TEST(Shading, ShadowspotCastsRayTracedShadows) {
+    Rendered img = renderRib(std::string(kCamera) +
+                             "WorldBegin\nLightSource \"shadowspot\" 1 \"from\" [0 3 2] "
+                             "\"to\" [0 0 5] \"intensity\" 25 \"shadowname\" [\"raytrace\"]\n"
+                             "Surface \"matte\"\n"
+                             "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+                             "AttributeBegin\nTranslate 0 1.5 3.5\nSphere 0.3 -0.3 0.3 360\n"
+                             "AttributeEnd\nWorldEnd\n");
+    EXPECT_LT(img.mean(0, 15, 15, 17, 17), 0.01) << "shadow centre";
+    EXPECT_GT(img.at(26, 16).r, 0.5) << "lit beside the shadow";
+    EXPECT_GT(img.stats.shadowRays, 0u);
+}
+
+// A user shader found through Option "searchpath" "shader", with a parameter override.
+TEST(Shading, UserShaderOnTheSearchPath) {
+    std::string dir = ::testing::TempDir() + "/raydrive_shaders";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/tint.sl") << "surface tint(color tint = 1; float gain = 1;) {\n"
+                                       "    Oi = Os;\n    Ci = Os * tint * gain;\n}\n";
+    Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
+                             std::string(kCamera) +
+                             "WorldBegin\nSurface \"tint\" \"color tint\" [0.5 0.25 1] "
+                             "\"gain\" 2\n"
+                             "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+                             "WorldEnd\n");
+    EXPECT_NEAR(img.at(16, 16).r, 1.0, 1e-5);
+    EXPECT_NEAR(img.at(16, 16).g, 0.5, 1e-5);
+    EXPECT_NEAR(img.at(16, 16).b, 2.0, 1e-5);
+}
+
+// A shader that is not found is reported and the surface renders with defaultsurface.
+TEST(Shading, MissingShaderFallsBackToDefaultsurface) {
+    Rendered img = renderRib(std::string(kCamera) +
+                             "WorldBegin\nSurface \"no_such_shader\"\n"
+                             "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+                             "WorldEnd\n");
+    // defaultsurface: Ka + Kd * (I.N)^2 = 0.2 + 0.8 on the axis
+    EXPECT_NEAR(img.at(16, 16).r, 1.0, 0.01);
+}
