@@ -38,7 +38,7 @@ RibBuilder::RibBuilder(rib::Diagnostics& diag, const std::string& sourceFile) : 
 }
 
 bool RibBuilder::inWorld(L loc, const char* request) {
-    if (m_inWorld) return true;
+    if (m_inWorld || m_defining) return true;
     m_diag.error(loc, std::string(request) + " is only valid inside WorldBegin/WorldEnd");
     return false;
 }
@@ -330,8 +330,20 @@ uint32_t RibBuilder::currentMaterial() {
     return index;
 }
 
-void RibBuilder::addMesh(L, const std::vector<glm::vec3>& p, const std::vector<glm::vec3>* n,
-                         const std::vector<int>& tris) {
+void RibBuilder::addMesh(L loc, const std::vector<glm::vec3>& p,
+                         const std::vector<glm::vec3>* n, const std::vector<int>& tris) {
+    if (m_defining) {
+        // Inside ObjectBegin: keep the piece in the object's own space; instances place it.
+        glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
+        glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(toObject)));
+        ObjectPiece piece{{}, {}, tris};
+        for (const glm::vec3& v : p) piece.p.push_back(xformPoint(toObject, v));
+        if (n && n->size() == p.size())
+            for (const glm::vec3& v : *n) piece.n.push_back(nm * v);
+        m_defining->push_back(std::move(piece));
+        return;
+    }
+    (void)loc;
     const glm::mat4& ctm = m_attrStack.back().ctm;
     glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
     uint32_t material = currentMaterial();
@@ -352,6 +364,31 @@ void RibBuilder::addMesh(L, const std::vector<glm::vec3>& p, const std::vector<g
         for (int k : {i0, i1, i2})
             m_world.normals.push_back(smooth ? f4(glm::normalize(nm * (*n)[k])) : f4(0, 0, 0));
     }
+}
+
+void RibBuilder::objectBegin(L loc, const std::string& handle) {
+    if (m_defining) {
+        m_diag.error(loc, "ObjectBegin inside ObjectBegin");
+        return;
+    }
+    m_defining = &m_objects[handle];
+    m_defining->clear();
+    m_definingCtm = m_attrStack.back().ctm;
+}
+
+void RibBuilder::objectEnd(L) { m_defining = nullptr; }
+
+void RibBuilder::objectInstance(L loc, const std::string& handle) {
+    auto it = m_objects.find(handle);
+    if (it == m_objects.end() || m_defining) {
+        m_diag.error(loc, m_defining ? "ObjectInstance inside ObjectBegin"
+                                     : "ObjectInstance of undefined object \"" + handle + "\"");
+        return;
+    }
+    // Each instance is placed by the current transform with the current shading
+    // attributes. The pieces are copied: a two-level BVH that shares them is to come.
+    for (const ObjectPiece& piece : it->second)
+        addMesh(loc, piece.p, piece.n.empty() ? nullptr : &piece.n, piece.tris);
 }
 
 void RibBuilder::polygon(L loc, const rib::ParamList& params) {

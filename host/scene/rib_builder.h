@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <map>
 #include <memory>
 
 #include "rib/target.h"
@@ -64,6 +65,9 @@ public:
     void rotate(L, float, float, float, float) override;
     void scale(L, float, float, float) override;
 
+    void objectBegin(L, const std::string& handle) override;
+    void objectEnd(L) override;
+    void objectInstance(L, const std::string& handle) override;
     void polygon(L, const rib::ParamList&) override;
     void pointsPolygons(L, const std::vector<int>& nverts, const std::vector<int>& verts,
                         const rib::ParamList&) override;
@@ -132,6 +136,14 @@ private:
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
+    // Object definitions (ObjectBegin/End): tessellated pieces in the object's space.
+    struct ObjectPiece {
+        std::vector<glm::vec3> p, n;
+        std::vector<int> tris;
+    };
+    std::map<std::string, std::vector<ObjectPiece>> m_objects;
+    std::vector<ObjectPiece>* m_defining = nullptr;
+    glm::mat4 m_definingCtm{1.0f};
 };
 
 }  // namespace rd

@@ -90,3 +90,16 @@ TEST(Geometry, CurvesAndPoints) {
                          "\"constantwidth\" [0.8]\n"),
                 4 * kPi * 0.16, 0.1);
 }
+
+// ObjectBegin/End defines geometry that is not drawn itself; each ObjectInstance draws it
+// under the transform current at the instance.
+TEST(Geometry, ObjectInstances) {
+    EXPECT_NEAR(coverage("ObjectBegin \"square\"\n"
+                         "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\n"
+                         "ObjectEnd\n"
+                         "AttributeBegin\nTranslate -1 0 0\nObjectInstance \"square\"\n"
+                         "AttributeEnd\n"
+                         "AttributeBegin\nTranslate 1 0 0\nScale 2 1 1\n"
+                         "ObjectInstance \"square\"\nAttributeEnd\n"),
+                1.0 + 2.0, 0.06);
+}
