@@ -24,8 +24,15 @@ typedef struct Triangle4 {
 typedef struct TriangleAttr {
     uint32_t material;    /* index into the Material array */
     uint32_t has_normals; /* 1: smooth normals at index 3*tri in the normals buffer */
-    uint32_t pad[2];
+    uint32_t primvars;    /* RT_PRIMVAR_*: per-vertex values at 3*tri in their buffers */
+    uint32_t pad;
 } TriangleAttr;
+
+/* Per-vertex primitive variables a triangle carries (else s,t = u,v; Cs, Os from the
+ * attributes). Their buffers exist only when some triangle of the scene has them. */
+#define RT_PRIMVAR_ST 1u
+#define RT_PRIMVAR_CS 2u
+#define RT_PRIMVAR_OS 4u
 
 /* A shader instance as the device sees it: which compiled surface shader runs (its shade
  * kernel), where its parameter block starts in the parameter buffer, and the colour and

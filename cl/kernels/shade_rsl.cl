@@ -10,6 +10,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const Triangle* tris,
                             __global const TriangleAttr* attrs,
                             __global const float4* normals,
+                            __global const float4* vertex_st, /* RT_HAS_VERTEX_* only */
+                            __global const float4* vertex_cs,
+                            __global const float4* vertex_os,
                             __global const Material* materials,
                             __global const float* params,
                             __global const float4* origin,
@@ -43,7 +46,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
     TriangleAttr attr = attrs[h.prim];
     Material m = materials[attr.material];
     RslGlobals g;
-    rd_hit_globals(&g, &tris[h.prim], h, org, dir, normals, attr.has_normals, h.prim, m);
+    rd_hit_globals(&g, &tris[h.prim], h, org, dir, normals, attr, h.prim, m, vertex_st,
+                   vertex_cs, vertex_os);
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */
 #ifdef RT_HAS_AOVS
     if (!aov[sample].hit) {

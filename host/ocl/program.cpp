@@ -92,6 +92,14 @@ Program::Program(const ClContext& ctx, const std::string& source, const std::str
     std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(h));
     m_info.cacheKey = key;
     if (!cacheDir.empty()) m_info.cacheFile = cacheDir + "/" + m_info.cacheKey + ".clbin";
+    // RAYDRIVE_DUMP_KERNELS=DIR writes the assembled source with its options as defines,
+    // for reading or for building with another compiler.
+    if (const char* dump = std::getenv("RAYDRIVE_DUMP_KERNELS")) {
+        std::error_code ec;
+        std::filesystem::create_directories(dump, ec);
+        std::ofstream(std::string(dump) + "/" + m_info.cacheKey + ".cl")
+            << "/* options: " << options << " */\n" << source;
+    }
     if (!m_info.cacheFile.empty() && tryBinary(m_info.cacheFile)) {
         m_info.cacheHit = true;
     } else {

@@ -25,6 +25,9 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
       attrs(ctx, scene.attrs),
       normals(f.smoothNormals ? DeviceBuffer<rt_float4>(ctx, scene.normals)
                               : DeviceBuffer<rt_float4>(ctx, 0)),
+      vertexSt(ctx, scene.vertexSt),
+      vertexCs(ctx, scene.vertexCs),
+      vertexOs(ctx, scene.vertexOs),
       materials(ctx, shading.materials),
       params(ctx, shading.params) {}
 

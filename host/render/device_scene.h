@@ -19,6 +19,7 @@ struct DeviceScene {
     DeviceBuffer<Triangle> triangles; // by primitive index, for shading
     DeviceBuffer<TriangleAttr> attrs;
     DeviceBuffer<rt_float4> normals;
+    DeviceBuffer<rt_float4> vertexSt, vertexCs, vertexOs;  // only when the scene has them
     DeviceBuffer<Material> materials;  // bound to compiled shaders and parameter blocks
     DeviceBuffer<float> params;        // every surface instance's parameter block
 };

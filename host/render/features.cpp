@@ -8,6 +8,9 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.smoothNormals = scene.anySmoothNormals;
     for (const Material& m : scene.materials)
         if (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f) f.transparency = true;
+    for (const rt_float4& o : scene.vertexOs)
+        if (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f) f.transparency = true;
+    f.primvars = scene.primvarsUsed;
     f.lightCount = shading.lightCount;
     f.shadowRays = shading.shadowRays;
     f.trace = shading.usesTrace;
@@ -24,6 +27,9 @@ std::vector<std::string> Features::names() const {
     if (trace) n.push_back("trace");
     if (aovs) n.push_back("aovs");
     if (depthOfField) n.push_back("depth_of_field");
+    if (primvars & RT_PRIMVAR_ST) n.push_back("vertex_st");
+    if (primvars & RT_PRIMVAR_CS) n.push_back("vertex_Cs");
+    if (primvars & RT_PRIMVAR_OS) n.push_back("vertex_Os");
     return n;
 }
 
@@ -38,6 +44,9 @@ std::string buildOptions(const Features& f) {
     if (f.shadowRays) o += " -DRT_HAS_SHADOW_RAYS";
     if (f.aovs) o += " -DRT_HAS_AOVS";
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
+    if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";
+    if (f.primvars & RT_PRIMVAR_CS) o += " -DRT_HAS_VERTEX_CS";
+    if (f.primvars & RT_PRIMVAR_OS) o += " -DRT_HAS_VERTEX_OS";
     return o;
 }
 

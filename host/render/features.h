@@ -17,6 +17,7 @@ struct Features {
     bool trace = false;         // some surface shader calls trace()
     int maxSpecularDepth = 2;   // trace() recursion limit
     bool aovs = false;          // geometric AOVs (z, N) asked for
+    uint32_t primvars = 0;      // RT_PRIMVAR_* some triangle carries per vertex
     bool depthOfField = false;  // a thin-lens camera
     uint32_t lightCount = 0;
     int maxTransparentDepth = 16;

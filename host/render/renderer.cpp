@@ -263,7 +263,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             for (cl_uint s = 0; s < shaderCount; ++s) {
                 if (counts[s] == 0) continue;
                 k.shade[s]->launch(counts[s], cl_uint(offsets[s]), cl_uint(counts[s]),
-                                   rp.sorted, ds.triangles, ds.attrs, ds.normals, ds.materials,
+                                   rp.sorted, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
+                                   ds.vertexCs, ds.vertexOs, ds.materials,
                                    ds.params, rp.origin, rp.direction, rp.weight, rp.state,
                                    rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                                    rp.nextDirection, rp.nextWeight, rp.nextState,

@@ -330,16 +330,15 @@ uint32_t RibBuilder::currentMaterial() {
     return index;
 }
 
-void RibBuilder::addMesh(L loc, const std::vector<glm::vec3>& p,
-                         const std::vector<glm::vec3>* n, const std::vector<int>& tris) {
+void RibBuilder::addMesh(L loc, const VertexData& mesh) {
+    const size_t np = mesh.p.size();
     if (m_defining) {
         // Inside ObjectBegin: keep the piece in the object's own space; instances place it.
         glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
         glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(toObject)));
-        ObjectPiece piece{{}, {}, tris};
-        for (const glm::vec3& v : p) piece.p.push_back(xformPoint(toObject, v));
-        if (n && n->size() == p.size())
-            for (const glm::vec3& v : *n) piece.n.push_back(nm * v);
+        VertexData piece = mesh;
+        for (glm::vec3& v : piece.p) v = xformPoint(toObject, v);
+        for (glm::vec3& v : piece.n) v = nm * v;
         m_defining->push_back(std::move(piece));
         return;
     }
@@ -347,12 +346,25 @@ void RibBuilder::addMesh(L loc, const std::vector<glm::vec3>& p,
     const glm::mat4& ctm = m_attrStack.back().ctm;
     glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
     uint32_t material = currentMaterial();
-    std::vector<glm::vec3> wp(p.size());
-    for (size_t i = 0; i < p.size(); ++i) wp[i] = xformPoint(ctm, p[i]);
-    bool smooth = n && n->size() == p.size();
+    std::vector<glm::vec3> wp(np);
+    for (size_t i = 0; i < np; ++i) wp[i] = xformPoint(ctm, mesh.p[i]);
+    const bool smooth = mesh.n.size() == np;
+    uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
+                        (mesh.cs.size() == np ? RT_PRIMVAR_CS : 0u) |
+                        (mesh.os.size() == np ? RT_PRIMVAR_OS : 0u);
     if (smooth) m_world.anySmoothNormals = true;
-    for (size_t t = 0; t + 2 < tris.size(); t += 3) {
-        int i0 = tris[t], i1 = tris[t + 1], i2 = tris[t + 2];
+    // A primitive variable first seen now: earlier triangles get placeholder entries.
+    auto start = [&](uint32_t bit, std::vector<rt_float4>& buf) {
+        if ((primvars & bit) && !(m_world.primvarsUsed & bit)) {
+            buf.assign(3 * m_world.triangles.size(), f4(0, 0, 0));
+            m_world.primvarsUsed |= bit;
+        }
+    };
+    start(RT_PRIMVAR_ST, m_world.vertexSt);
+    start(RT_PRIMVAR_CS, m_world.vertexCs);
+    start(RT_PRIMVAR_OS, m_world.vertexOs);
+    for (size_t t = 0; t + 2 < mesh.tris.size(); t += 3) {
+        int i0 = mesh.tris[t], i1 = mesh.tris[t + 1], i2 = mesh.tris[t + 2];
         const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
         glm::vec3 cr = glm::cross(b - a, c - a);
         if (!finite3(a) || !finite3(b) || !finite3(c) || !(glm::dot(cr, cr) > 0.0f)) {
@@ -360,9 +372,41 @@ void RibBuilder::addMesh(L loc, const std::vector<glm::vec3>& p,
             continue;
         }
         m_world.triangles.push_back({f4(a), f4(b), f4(c)});
-        m_world.attrs.push_back({material, smooth ? 1u : 0u, {0, 0}});
-        for (int k : {i0, i1, i2})
-            m_world.normals.push_back(smooth ? f4(glm::normalize(nm * (*n)[k])) : f4(0, 0, 0));
+        m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars, 0u});
+        for (int k : {i0, i1, i2}) {
+            m_world.normals.push_back(smooth ? f4(glm::normalize(nm * mesh.n[k])) : f4(0, 0, 0));
+            if (m_world.primvarsUsed & RT_PRIMVAR_ST)
+                m_world.vertexSt.push_back((primvars & RT_PRIMVAR_ST)
+                                               ? f4(mesh.st[k].x, mesh.st[k].y, 0)
+                                               : f4(0, 0, 0));
+            if (m_world.primvarsUsed & RT_PRIMVAR_CS)
+                m_world.vertexCs.push_back((primvars & RT_PRIMVAR_CS) ? f4(mesh.cs[k]) : f4(0, 0, 0));
+            if (m_world.primvarsUsed & RT_PRIMVAR_OS)
+                m_world.vertexOs.push_back((primvars & RT_PRIMVAR_OS) ? f4(mesh.os[k]) : f4(0, 0, 0));
+        }
+    }
+}
+
+void RibBuilder::readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh) {
+    auto triples = [&](const char* name, std::vector<glm::vec3>& out) {
+        const rib::Param* q = params.find(name);
+        if (!q || q->floats.size() != 3 * np) return;
+        out.resize(np);
+        for (size_t i = 0; i < np; ++i)
+            out[i] = {q->floats[3 * i], q->floats[3 * i + 1], q->floats[3 * i + 2]};
+    };
+    triples("N", mesh.n);
+    triples("Cs", mesh.cs);
+    triples("Os", mesh.os);
+    const rib::Param* st = params.find("st");
+    const rib::Param* s = params.find("s");
+    const rib::Param* t = params.find("t");
+    if (st && st->floats.size() == 2 * np) {
+        mesh.st.resize(np);
+        for (size_t i = 0; i < np; ++i) mesh.st[i] = {st->floats[2 * i], st->floats[2 * i + 1]};
+    } else if (s && t && s->floats.size() == np && t->floats.size() == np) {
+        mesh.st.resize(np);
+        for (size_t i = 0; i < np; ++i) mesh.st[i] = {s->floats[i], t->floats[i]};
     }
 }
 
@@ -387,8 +431,7 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
     }
     // Each instance is placed by the current transform with the current shading
     // attributes. The pieces are copied: a two-level BVH that shares them is to come.
-    for (const ObjectPiece& piece : it->second)
-        addMesh(loc, piece.p, piece.n.empty() ? nullptr : &piece.n, piece.tris);
+    for (const VertexData& piece : it->second) addMesh(loc, piece);
 }
 
 void RibBuilder::polygon(L loc, const rib::ParamList& params) {
@@ -414,16 +457,12 @@ void RibBuilder::pointsPolygons(L loc, const std::vector<int>& nverts,
         return;
     }
     size_t np = P->floats.size() / 3;
-    std::vector<glm::vec3> p(np), n;
+    VertexData mesh;
+    mesh.p.resize(np);
     for (size_t i = 0; i < np; ++i)
-        p[i] = {P->floats[3 * i], P->floats[3 * i + 1], P->floats[3 * i + 2]};
-    const rib::Param* N = params.find("N");
-    if (N && N->floats.size() == 3 * np) {
-        n.resize(np);
-        for (size_t i = 0; i < np; ++i)
-            n[i] = {N->floats[3 * i], N->floats[3 * i + 1], N->floats[3 * i + 2]};
-    }
-    std::vector<int> tris;
+        mesh.p[i] = {P->floats[3 * i], P->floats[3 * i + 1], P->floats[3 * i + 2]};
+    readVertexPrimvars(params, np, mesh);
+    std::vector<int>& tris = mesh.tris;
     size_t offset = 0;
     for (int count : nverts) {
         if (count < 3 || offset + count > verts.size()) {
@@ -438,7 +477,7 @@ void RibBuilder::pointsPolygons(L loc, const std::vector<int>& nverts,
         else m_diag.error(loc, "polygon vertex index out of range");
         offset += count;
     }
-    addMesh(loc, p, n.empty() ? nullptr : &n, tris);
+    addMesh(loc, mesh);
 }
 
 float RibBuilder::pixelsPerUnit(float depth) const {
@@ -463,8 +502,10 @@ void RibBuilder::sphere(L loc, float radius, float zmin, float zmax, float theta
     float rpx = worldRadius * pixelsPerUnit(depth > 0 ? center.z : 0.0f);
     if (depth <= 0.0f) rpx = 1e6f;
     int nu = circleSegments(rpx, 0.1f);
-    TriMesh m = tessellateSphere(radius, zmin, zmax, thetamax, nu, nu / 2);
-    addMesh(loc, m.p, &m.n, m.tris);
+    VertexData mesh;
+    TriMesh m = tessellateSphere(radius, zmin, zmax, thetamax, nu, nu / 2, &mesh.st);
+    mesh.p = std::move(m.p), mesh.n = std::move(m.n), mesh.tris = std::move(m.tris);
+    addMesh(loc, mesh);
 }
 
 }  // namespace rd

@@ -113,9 +113,11 @@ private:
     uint32_t currentMaterial();
     bool addAov(L, const std::string& name);
     bool inWorld(L, const char* request);
-    // Adds triangles given world-space positions and optional normals; 3 indices each.
-    void addMesh(L, const std::vector<glm::vec3>& p, const std::vector<glm::vec3>* n,
-                 const std::vector<int>& tris);
+    // Adds an object-space mesh (placed by the current transform) with its primitive
+    // variables; degenerate and non-finite triangles are counted and left out.
+    void addMesh(L, const VertexData& mesh);
+    // Per-vertex "N", "Cs", "Os", "st" or "s"+"t" of a polygon mesh with np points.
+    void readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh);
     // Pixels per world unit at distance `depth` in front of the camera.
     float pixelsPerUnit(float depth) const;
     // Screen size in pixels of an object-space sphere (centre, radius), for dicing rates.
@@ -137,12 +139,8 @@ private:
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
     // Object definitions (ObjectBegin/End): tessellated pieces in the object's space.
-    struct ObjectPiece {
-        std::vector<glm::vec3> p, n;
-        std::vector<int> tris;
-    };
-    std::map<std::string, std::vector<ObjectPiece>> m_objects;
-    std::vector<ObjectPiece>* m_defining = nullptr;
+    std::map<std::string, std::vector<VertexData>> m_objects;
+    std::vector<VertexData>* m_defining = nullptr;
     glm::mat4 m_definingCtm{1.0f};
 };
 

@@ -50,7 +50,10 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
         m_diag.error(loc, std::string(what) + ": " + err);
         return;
     }
-    addMesh(loc, m.mesh.p, m.mesh.n.empty() ? nullptr : &m.mesh.n, m.mesh.tris);
+    VertexData mesh;
+    mesh.p = m.mesh.p, mesh.n = m.mesh.n, mesh.tris = m.mesh.tris;
+    if (m.st.size() == m.mesh.p.size()) mesh.st = m.st;
+    addMesh(loc, mesh);
 }
 
 void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float thetamax, P) {

@@ -59,6 +59,9 @@ struct Scene {
     std::vector<Triangle> triangles;
     std::vector<TriangleAttr> attrs;
     std::vector<rt_float4> normals; // 3 per triangle with has_normals, else unused entries
+    // Per-vertex primitive variables, 3 per triangle, filled only when some geometry gives
+    // them (RT_PRIMVAR_* in TriangleAttr says which triangles do): (s, t, 0, 0), Cs, Os.
+    std::vector<rt_float4> vertexSt, vertexCs, vertexOs;
     // Materials: Material::shader indexes surfaceRefs until the shader set compiles them.
     std::vector<Material> materials;
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
@@ -71,6 +74,7 @@ struct Scene {
     RenderOptionsSpec render;
     bool anySmoothNormals = false;
     bool anyMatte = false;
+    uint32_t primvarsUsed = 0;  // RT_PRIMVAR_* bits some triangle carries
 
     // The device camera: screen window, fov scale and camera-to-world matrix.
     Camera deviceCamera() const;

@@ -15,7 +15,7 @@ int circleSegments(float radiusPixels, float tolPixels) {
 }
 
 TriMesh tessellateSphere(float radius, float zmin, float zmax, float thetamaxDeg, int nu,
-                         int nv) {
+                         int nv, std::vector<glm::vec2>* st) {
     TriMesh m;
     float r = std::fabs(radius);
     if (r == 0.0f) return m;
@@ -34,6 +34,7 @@ TriMesh tessellateSphere(float radius, float zmin, float zmax, float thetamaxDeg
                           std::sin(phi));
             m.p.push_back(radius * dir);
             m.n.push_back(radius < 0 ? -dir : dir);
+            if (st) st->push_back({float(i) / float(su), float(j) / float(sv)});
         }
     }
     auto idx = [&](int i, int j) { return j * (su + 1) + i; };

@@ -14,14 +14,24 @@ struct TriMesh {
     std::vector<int> tris;       // 3 indices per triangle
 };
 
+// A mesh with the per-vertex primitive variables shading can use; every vector other
+// than p and tris may be empty (then: faceted, s,t = u,v, the attribute Cs and Os).
+struct VertexData {
+    std::vector<glm::vec3> p, n;
+    std::vector<glm::vec2> st;
+    std::vector<glm::vec3> cs, os;
+    std::vector<int> tris;
+};
+
 // Segment count for a full circle of radius `radiusPixels` on screen so that the chord
 // error stays below `tolPixels`; clamped to [8, 1024].
 int circleSegments(float radiusPixels, float tolPixels);
 
 // RI Sphere: radius, zmin, zmax, thetamax (degrees), with `nu` segments around a full
 // turn and `nv` from pole to pole; partial sweeps get proportionally fewer.
+// `st`, when given, receives the RI parametric (u, v) of every vertex.
 TriMesh tessellateSphere(float radius, float zmin, float zmax, float thetamaxDeg, int nu,
-                         int nv);
+                         int nv, std::vector<glm::vec2>* st = nullptr);
 
 // Fan triangulation of a convex polygon given by vertex indices.
 void triangulateConvex(const int* verts, int count, std::vector<int>& tris);

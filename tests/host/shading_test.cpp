@@ -94,3 +94,28 @@ TEST(Shading, MissingShaderFallsBackToDefaultsurface) {
     // defaultsurface: Ka + Kd * (I.N)^2 = 0.2 + 0.8 on the axis
     EXPECT_NEAR(img.at(16, 16).r, 1.0, 0.01);
 }
+
+// Per-vertex primitive variables reach the shader interpolated: "Cs" on a polygon
+// (constant shades with Cs), and "st" read by a shader as s and t.
+TEST(Shading, VertexPrimitiveVariables) {
+    // Orthographic over [-1, 1]^2; a square with Cs red at x = -1 and blue at x = 1.
+    const std::string cam = "Format 16 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\n";
+    Rendered cs = renderRib(cam + "WorldBegin\nSurface \"constant\"\n"
+                            "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1] "
+                            "\"Cs\" [1 0 0  0 0 1  0 0 1  1 0 0]\nWorldEnd\n");
+    // pixel column 4 of 16 has centre x = -0.4375: red 0.72, blue 0.28 (mean over it)
+    EXPECT_NEAR(cs.mean(0, 4, 0, 5, 16), (1 - (-0.4375)) / 2, 0.02);
+    EXPECT_NEAR(cs.mean(2, 4, 0, 5, 16), (1 + (-0.4375)) / 2, 0.02);
+
+    std::string dir = ::testing::TempDir() + "/raydrive_st";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/showst.sl") << "surface showst() {\n    Oi = 1;\n"
+                                         "    Ci = color(s, t, 0);\n}\n";
+    Rendered st = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" + cam +
+                            "WorldBegin\nSurface \"showst\"\n"
+                            "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1] "
+                            "\"st\" [0 0  2 0  2 4  0 4]\nWorldEnd\n");
+    // s = x + 1 across [0, 2]; t = 2 (y + 1) with y up: row 4 has centre y = 0.4375.
+    EXPECT_NEAR(st.mean(0, 12, 0, 13, 16), 0.5625 + 1, 0.03);
+    EXPECT_NEAR(st.mean(1, 0, 4, 16, 5), 2 * (0.4375 + 1), 0.05);
+}
