@@ -92,6 +92,16 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
             for (int e = 0; e < elem; ++e)
                 toWorld(base, call.shaderToWorld, &block[size_t(slot.offset + e * per)]);
     }
+    // After the parameters: the instance's "shader" and "object" spaces (rsl_abi.h,
+    // SPACES), RSL row-vector matrices, which are glm's column-major arrays as they are.
+    // Object space is taken as the space the shader was declared in: per-primitive
+    // object spaces are not carried to the shade stage yet.
+    const float* m = &call.shaderToWorld[0][0];
+    block.resize(size_t(sh.spaceOffset) + 32);
+    for (int i = 0; i < 16; ++i) {
+        block[size_t(sh.spaceOffset + i)] = m[i];
+        block[size_t(sh.spaceOffset + 16 + i)] = m[i];
+    }
     return block;
 }
 
@@ -165,6 +175,7 @@ ShadingSetup ShaderSet::prepare() {
     // --- light instances: parameters baked into constants, one switch case each
     std::vector<std::string> lightCalls;
     std::vector<bool> lightAmbient;
+    std::vector<const rsl::EmittedShader*> lightShaders;
     std::map<std::string, bool> lightEmitted;
     for (const ShaderRef& l : m_scene.lights) {
         const rsl::EmittedShader* sh = find(l.name, "light", l.loc);
@@ -178,6 +189,7 @@ ShadingSetup ShaderSet::prepare() {
         lightCalls.push_back(sh->functionName + "(&lg, rd_light_params_" +
                              std::to_string(index) + ")");
         lightAmbient.push_back(sh->ambientLight);
+        lightShaders.push_back(sh);
         if (!lightEmitted[sh->name]) shaders << sh->source << "\n";
         lightEmitted[sh->name] = true;
         out.shadowRays |= !sh->ambientLight;
@@ -185,6 +197,26 @@ ShadingSetup ShaderSet::prepare() {
     out.lightCount = uint32_t(lightCalls.size());
     // --- services the generated code calls (rsl_abi.h)
     std::ostringstream svc;
+    // lightsource("name", var): the light instance's parameter, matched by name id and size.
+    svc << "int rsl_lightsource_param(int light, int nameId, float* out, int n) {\n"
+           "    switch (light) {\n";
+    for (size_t i = 0; i < lightShaders.size(); ++i) {
+        svc << "    case " << i << ":\n";
+        for (const rsl::ParamSlot& slot : lightShaders[i]->params)
+            svc << "        if (nameId == " << rsl::stringId(slot.name) << " && n == " << slot.size
+                << ") { for (int k = 0; k < n; ++k) out[k] = rd_light_params_" << i << "["
+                << slot.offset << " + k]; return 1; }\n";
+        svc << "        return 0;\n";
+    }
+    svc << "    default: return 0;\n    }\n}\n";
+    // attribute() knows nothing yet; option("Format", f[3]) is the image size.
+    svc << "int rsl_attribute(int nameId, float* out, int n) { return 0; }\n"
+           "int rsl_option(int nameId, float* out, int n) {\n"
+           "    if (nameId == " << rsl::stringId("Format") << " && n == 3) {\n"
+           "        out[0] = " << fmt(float(m_scene.camera.width)) << "; out[1] = "
+        << fmt(float(m_scene.camera.height)) << "; out[2] = "
+        << fmt(m_scene.camera.pixelAspect) << ";\n        return 1;\n    }\n"
+           "    return 0;\n}\n";
     svc << "int rsl_light_count(void) { return " << out.lightCount << "; }\n";
     svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar light */\n"
            "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* out) {\n"
@@ -207,12 +239,23 @@ ShadingSetup ShaderSet::prepare() {
            "        if (!rd_light_is_ambient(l)) continue;\n        RslGlobals lg;\n"
            "        rd_run_light(l, g, g->P, &lg);\n        sum += lg.Cl;\n    }\n"
            "    sum.w = 0.0f;\n    return sum;\n}\n"
-           "/* Object and shader spaces are per instance and not carried yet: identity. */\n"
+           "/* Camera space (to world); screen, raster and NDC are not provided: identity. */\n"
            "RslMatrix rsl_space_matrix(int space) {\n    RslMatrix m;\n"
            "    m.r[0] = (float4)(1.0f, 0.0f, 0.0f, 0.0f);\n"
            "    m.r[1] = (float4)(0.0f, 1.0f, 0.0f, 0.0f);\n"
            "    m.r[2] = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n"
-           "    m.r[3] = (float4)(0.0f, 0.0f, 0.0f, 1.0f);\n    return m;\n}\n";
+           "    m.r[3] = (float4)(0.0f, 0.0f, 0.0f, 1.0f);\n"
+           "    if (space == RSL_SPACE_CAMERA) {\n";
+    {
+        // RSL row-vector matrices are glm's column-major arrays as they are.
+        glm::mat4 camToWorld = glm::inverse(m_scene.camera.worldToCamera);
+        const float* c = &camToWorld[0][0];
+        for (int r = 0; r < 4; ++r)
+            svc << "        m.r[" << r << "] = (float4)(" << fmt(c[4 * r]) << ", "
+                << fmt(c[4 * r + 1]) << ", " << fmt(c[4 * r + 2]) << ", " << fmt(c[4 * r + 3])
+                << ");\n";
+    }
+    svc << "    }\n    return m;\n}\n";
     // --- surfaces: one compiled shader per name, one parameter block per call
     std::map<std::string, uint32_t> surfaceIndex;
     std::vector<uint32_t> refBlock(m_scene.surfaceRefs.size());

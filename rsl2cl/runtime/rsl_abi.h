@@ -19,6 +19,34 @@
  * generated code when the host leaves its first slot NaN (ParamSlot::constantDefault
  * false); the host writes a value there to override it.
  *
+ * SPACES. Every parameter block (surface, light and the other kinds alike) is followed
+ * by 32 floats at EmittedShader::spaceOffset (== paramFloats): the instance's
+ * "shader"-to-current matrix, then its "object"-to-current matrix, 16 floats each,
+ * row-major in the RSL row-vector convention (p_current = (p, 1) * M, translation in
+ * floats 12..14 of each). The host must always write them (identity when it has
+ * nothing better). Generated code reads them (rsl_param16) for every use of "shader"
+ * and "object" space: transform(), vtransform(), ntransform(), point "shader" (...)
+ * casts, matrix casts. "camera", "screen", "raster" and "NDC" still go through the
+ * service rsl_space_matrix(); "current" and "world" are the identity.
+ *
+ * OUTPUT PARAMETERS. Surface, displacement, volume and imager functions write the final
+ * value of every output parameter into ev->outputs at ParamSlot::outputOffset (-1 for
+ * non-output parameters, and for outputs that do not fit in RSL_MAX_OUTPUT_FLOATS,
+ * which is reported as a warning), laid out like the parameter block (float 1 slot,
+ * triples 3, matrix 16, string id 1). The values are those at the end of the shader
+ * (or at its `return`), so read them after the base-mode evaluation. Light shaders
+ * write none (they get no RslEval).
+ *
+ * MESSAGE PASSING. `lightsource("name", var)` inside an illuminance loop calls
+ * rsl_lightsource_param(l, stringId("name"), buf, n) with the loop's current light l
+ * and n = the float slots of var (its parameter-block size); `attribute("name", var)`
+ * and `option("name", var)` call rsl_attribute / rsl_option the same way. A service
+ * returns nonzero and fills buf[0..n) when it has a value of exactly that size, else
+ * returns 0 and var is left unchanged; the RSL call returns 1.0 / 0.0 accordingly.
+ * lightsource() outside an illuminance loop (including inside user functions),
+ * surface() from a light, and atmosphere(), displacement(), incident(), opposite(),
+ * rendererinfo() return 0 without calling anything.
+ *
  * STRINGS. A string's id is FNV-1a (32 bit) of its bytes masked to 24 bits, with the
  * empty string 0 (exactly representable in a float slot). rsl::stringId() in
  * emit_cl.h computes the same value; texture/shadow map names reach the host that way.
@@ -60,6 +88,17 @@
  *   float4 rsl_ambient(const RslGlobals* g);  sum of the ambient lights' Cl
  *   RslMatrix rsl_space_matrix(int space);    maps points of `space` (RSL_SPACE_*) to
  *          current space (p_current = (p,1) * M); RSL_SPACE_CURRENT/WORLD: identity.
+ *          Only called for CAMERA, SCREEN, RASTER and NDC: SHADER and OBJECT come from
+ *          the matrices after the parameter block (SPACES above).
+ *   int    rsl_lightsource_param(int light, int nameId, float* out, int n);
+ *          light `light`'s parameter named nameId (rsl::stringId of the name): nonzero
+ *          and out[0..n) written when that light's shader has such a parameter of n
+ *          float slots (its value in the light's parameter block), else 0.
+ *   int    rsl_attribute(int nameId, float* out, int n);  attribute("name", var) of
+ *          the object being shaded, e.g. "identifier:name" (a string: its id as float)
+ *   int    rsl_option(int nameId, float* out, int n);     option("name", var), e.g.
+ *          "Format" (float[3]: x resolution, y resolution, pixel aspect)
+ *          Both: nonzero and out[0..n) written when known with exactly n slots, else 0.
  * Define RSL_NO_SERVICE_PROTOTYPES before including rsl_stdlib.clh to skip the
  * prototypes (e.g. when the definitions come first).
  */
@@ -67,6 +106,8 @@
 #define RSL_ABI_H
 
 #define RSL_MAX_TRACE 8
+#define RSL_MAX_OUTPUT_FLOATS 32  /* RslEval::outputs: output parameters' final values */
+#define RSL_SPACE_FLOATS 32       /* after each parameter block: shader, object matrices */
 
 #ifndef RSL_LIGHT_PARAMS
 #define RSL_LIGHT_PARAMS __global const float*
@@ -83,6 +124,7 @@ typedef struct RslEval {
     int trace_count;  /* trace() calls made in this evaluation */
     float4 trace_org[RSL_MAX_TRACE];  /* base mode: the rays trace() asked for */
     float4 trace_dir[RSL_MAX_TRACE];
+    float outputs[RSL_MAX_OUTPUT_FLOATS];  /* output parameters at ParamSlot::outputOffset */
 } RslEval;
 
 typedef struct RslMatrix {

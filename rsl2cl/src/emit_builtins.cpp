@@ -27,6 +27,38 @@ std::string Emitter::colorSpaceArg(const Expr& e) {
     return "rsl_color_from_id(" + expr(e) + ")";
 }
 
+// lightsource() in an illuminance loop, attribute() and option() ask the renderer
+// (rsl_abi.h, MESSAGE PASSING); every other message call is "not found" (0).
+std::string Emitter::message(const Expr& e) {
+    const std::string& n = e.text;
+    std::string svc;
+    if (n == "lightsource" && !m_func && !m_lightVars.empty())
+        svc = "rsl_lightsource_param(" + m_lightVars.back() + ", ";
+    else if (n == "attribute") svc = "rsl_attribute(";
+    else if (n == "option") svc = "rsl_option(";
+    if (svc.empty() || e.args.size() != 2) return "0.0f";
+    const Expr& var = *e.args[1];
+    const TypeSpec& t = var.type;
+    int count = t.isArray() ? t.arraySize : 1;
+    TypeSpec el = t.element();
+    if (count <= 0 || (t.isArray() && el.isMatrix())) {
+        error(e.loc, n + "() into an unsized array or a matrix array is not supported");
+        return "0.0f";
+    }
+    int slots = slotsOf(t.base) * count;
+    std::string buf = "_msg" + std::to_string(m_tmp++);
+    m_pre.push_back("float " + buf + "[" + std::to_string(slots) + "];");
+    std::string found = svc + exprAs(*e.args[0], BaseType::String) + ", " + buf + ", " +
+                        std::to_string(slots) + ")";
+    std::string kc = el.isMatrix() ? "m" : el.isTriple() ? "v" : el.isString() ? "s" : "f";
+    if (t.isArray()) {
+        kc[0] = char(kc[0] - 'a' + 'A');
+        return "rsl_msg_" + kc + "(" + found + ", " + buf + ", " + lvalue(var) + ", " +
+               std::to_string(count) + ")";
+    }
+    return "rsl_msg_" + kc + "(" + found + ", " + buf + ", &" + lvalue(var) + ")";
+}
+
 std::string Emitter::builtin(const Expr& e) {
     const std::string& n = e.text;
     const BuiltinSig* sig = e.sig;
@@ -136,13 +168,14 @@ std::string Emitter::builtin(const Expr& e) {
         char kc = n[0] == 't' ? 'p' : n[0];
         std::string fn = std::string("rsl_transform_") + kc;
         std::string xf = kc == 'p' ? "rsl_xpoint" : kc == 'v' ? "rsl_xvector" : "rsl_xnormal";
+        m_usesSpaces = true;
         if (ac.size() == 2 && ac[0] == 's')
-            return fn + "(RSL_SPACE_CURRENT, " + spaceArg(*e.args[0]) + ", " + A(1) + ")";
+            return fn + "(sp, RSL_SPACE_CURRENT, " + spaceArg(*e.args[0]) + ", " + A(1) + ")";
         if (ac.size() == 3 && ac[0] == 's' && ac[1] == 's')
-            return fn + "(" + spaceArg(*e.args[0]) + ", " + spaceArg(*e.args[1]) + ", " + A(2) + ")";
+            return fn + "(sp, " + spaceArg(*e.args[0]) + ", " + spaceArg(*e.args[1]) + ", " + A(2) + ")";
         if (ac.size() == 2 && ac[0] == 'm') return xf + "(" + A(0) + ", " + A(1) + ")";
         if (ac.size() == 3 && ac[0] == 's' && ac[1] == 'm')
-            return xf + "(" + A(1) + ", " + fn + "(" + spaceArg(*e.args[0]) +
+            return xf + "(" + A(1) + ", " + fn + "(sp, " + spaceArg(*e.args[0]) +
                    ", RSL_SPACE_CURRENT, " + A(2) + "))";
     }
     // ---- colour and matrix components ----
@@ -211,7 +244,7 @@ std::string Emitter::builtin(const Expr& e) {
         return A(1);
     }
     if (n == "textureinfo") return "0.0f";
-    if (e.builtin->flags & BF_MESSAGE) return "0.0f";  // message passing: not found
+    if (e.builtin->flags & BF_MESSAGE) return message(e);
     error(e.loc, "builtin '" + n + "' is not supported by the code generator yet");
     return clZero(ret);
 }

@@ -17,7 +17,7 @@ std::string runtimeDir() {
 #endif
 }
 
-static int slotsOf(BaseType b) {
+int slotsOf(BaseType b) {
     switch (b) {
     case BaseType::Point:
     case BaseType::Vector:
@@ -94,9 +94,42 @@ void Emitter::layoutParams() {
             slot.constantDefault = false;
             if (slot.size > 0) slot.defaults[0] = std::nanf("");
         }
+        if (slot.output && m_sh.kind != ShaderKind::Light) {
+            if (m_out.outputFloats + slot.size <= 32) {  // RSL_MAX_OUTPUT_FLOATS
+                slot.outputOffset = m_out.outputFloats;
+                m_out.outputFloats += slot.size;
+            } else {
+                m_diag.warning(p.loc, "output parameter '" + p.name + "' does not fit in " +
+                                          "RslEval::outputs (32 floats): not written back");
+            }
+        }
         m_out.params.push_back(slot);
     }
     m_out.paramFloats = offset;
+    m_out.spaceOffset = offset;
+}
+
+void Emitter::writeOutputs() {
+    for (size_t i = 0; i < m_sh.params.size() && i < m_out.params.size(); ++i) {
+        const ParamSlot& slot = m_out.params[i];
+        if (slot.outputOffset < 0) continue;
+        std::string name = "p_" + slot.name, o = std::to_string(slot.outputOffset);
+        int elem = slotsOf(slot.type.base);
+        auto one = [&](const std::string& v, const std::string& off) {
+            if (elem == 3)
+                return "ev->outputs[" + off + "] = " + v + ".x; ev->outputs[" + off + " + 1] = " + v +
+                       ".y; ev->outputs[" + off + " + 2] = " + v + ".z;";
+            if (elem == 16)
+                return "for (int _k = 0; _k < 16; ++_k) ev->outputs[" + off +
+                       " + _k] = rsl_mget(" + v + ", _k / 4, _k % 4);";
+            return "ev->outputs[" + off + "] = (float)" + v + ";";
+        };
+        if (slot.arraySize > 0)
+            line("for (int _i = 0; _i < " + std::to_string(slot.arraySize) + "; ++_i) { " +
+                 one(name + "[_i]", o + " + " + std::to_string(elem) + " * _i") + " }");
+        else
+            line(one(name, o));
+    }
 }
 
 static void collectDecls(const Stmt& s, std::set<const Symbol*>& out) {
@@ -110,7 +143,7 @@ static void collectDecls(const Stmt& s, std::set<const Symbol*>& out) {
 
 void Emitter::emitFunction(const FunctionDecl& f, bool prototypeOnly) {
     std::string sig = std::string("static ") + clType(f.returnType) + " " + m_fnNames[&f] +
-                      "(RslGlobals* g, RslEval* ev";
+                      "(RslGlobals* g, RslEval* ev, const RslSpaces* sp";
     m_pointerParams.clear();
     for (const VarDecl& p : f.params) {
         bool ptr = p.output || p.type.isArray();
@@ -128,11 +161,14 @@ void Emitter::emitFunction(const FunctionDecl& f, bool prototypeOnly) {
     for (const VarDecl& p : f.params) m_fnLocals.insert(p.symbol);
     collectDecls(*f.body, m_fnLocals);
     m_indent = 1;
+    m_usesSpaces = false;
     line("float _g_alpha = 0.0f, _g_dtime = 0.0f; float4 _g_dPdtime = rsl_f2v(0.0f);");
-    line("(void)g; (void)ev; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
+    line("(void)g; (void)ev; (void)sp; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
     for (const StmtPtr& s : f.body->stmts) stmt(*s);
     if (!f.returnType.isVoid()) line("return " + clZero(f.returnType) + ";");
     m_body << "}\n\n";
+    if (m_usesSpaces) m_fnUsesSpaces.insert(&f);
+    m_usesSpaces = false;
     m_func = nullptr;
     m_pointerParams.clear();
 }
@@ -163,6 +199,10 @@ void Emitter::emitShader() {
     }
     line("float _g_alpha = 0.0f, _g_dtime = 0.0f; float4 _g_dPdtime = rsl_f2v(0.0f);");
     line("(void)params; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
+    // the spaces are read only when used: insert them here once the body is emitted
+    std::string head = m_body.str();
+    m_body.str("");
+    m_usesSpaces = false;
     for (size_t i = 0; i < m_sh.params.size(); ++i) {
         const VarDecl& p = m_sh.params[i];
         const ParamSlot& slot = m_out.params[i];
@@ -187,7 +227,16 @@ void Emitter::emitShader() {
             line("if (isnan(params[" + o + "])) " + name + " = " + exprAs(*p.init, p.type) + ";");
     }
     for (const StmtPtr& s : m_sh.body->stmts) stmt(*s);
+    if (!light) writeOutputs();
     m_body << "}\n";
+    std::string body = m_body.str(), so = std::to_string(m_out.spaceOffset);
+    m_body.str("");
+    m_body << head;
+    if (m_usesSpaces)
+        line("RslSpaces _sp; _sp.shader = rsl_param16(params, " + so +
+             "); _sp.object = rsl_param16(params, " + so + " + 16);");
+    line(m_usesSpaces ? "const RslSpaces* sp = &_sp;" : "const RslSpaces* sp = 0; (void)sp;");
+    m_body << body;
 }
 
 void Emitter::decl(const VarDecl& d) {
@@ -235,7 +284,9 @@ void Emitter::lightLoop(const Stmt& s) {
         line("if (!rsl_light_eval(_l" + k + ", g, ev, _ilP" + k + ", _ilA" + k + ", _ilT" + k +
              ", &_L" + k + ", &_Cl" + k + ")) continue;");
         line("g->L = _L" + k + "; g->Cl = _Cl" + k + ";");
+        m_lightVars.push_back("_l" + k);
         stmt(*s.body);
+        m_lightVars.pop_back();
         --m_indent;
         line("}");
         --m_indent;
@@ -319,7 +370,15 @@ void Emitter::stmt(const Stmt& s) {
         break;
     case StmtKind::Return:
         if (m_func && s.expr) line("return " + exprAs(*s.expr, m_func->returnType) + ";");
-        else line("return;");
+        else if (m_func || m_sh.kind == ShaderKind::Light || m_out.outputFloats == 0) line("return;");
+        else {
+            line("{");
+            ++m_indent;
+            writeOutputs();
+            line("return;");
+            --m_indent;
+            line("}");
+        }
         break;
     case StmtKind::Illuminance:
     case StmtKind::Illuminate:
@@ -354,11 +413,13 @@ EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnost
     src << "/* Generated by rsl2cl from " << shader.loc.file << ": " << out.kind << " "
         << out.name << ".\n   Compile after rsl2cl/runtime/rsl_abi.h and rsl_stdlib.clh; "
         << "the contract is in rsl_abi.h.\n   Parameters (" << out.paramFloats
-        << " floats):\n";
+        << " floats, then the shader and object matrices at " << out.spaceOffset << "):\n";
     for (const ParamSlot& p : out.params) {
         src << "     " << p.offset << ": " << (p.output ? "output " : "") << p.typeName
             << (p.arraySize ? "[" + std::to_string(p.arraySize) + "]" : "") << " " << p.name
-            << (p.constantDefault ? "" : " (computed default when NaN)") << "\n";
+            << (p.constantDefault ? "" : " (computed default when NaN)")
+            << (p.outputOffset >= 0 ? " -> ev->outputs[" + std::to_string(p.outputOffset) + "]" : "")
+            << "\n";
     }
     src << "   Services:" << (out.usesTrace ? " trace" : "") << (out.usesLighting ? " lighting" : "")
         << (out.usesTexture ? " texture" : "") << (out.usesDerivatives ? " derivatives" : "")

@@ -20,6 +20,7 @@ struct ParamSlot {
     int offset = 0;          // first float slot
     int size = 0;            // slots in all
     bool output = false;
+    int outputOffset = -1;   // output params: first float of RslEval::outputs, else -1
     bool constantDefault = true;     // false: the host leaves slot `offset` NaN
     std::vector<float> defaults;     // `size` values (string ids for strings)
     std::vector<std::string> stringDefaults;  // string parameters: the text
@@ -30,6 +31,10 @@ struct EmittedShader {
     std::string name, kind, functionName, source;
     std::vector<ParamSlot> params;
     int paramFloats = 0;
+    // The 32 floats of the "shader" then "object" to current matrices follow the
+    // parameters at this offset (== paramFloats); the host writes them (rsl_abi.h).
+    int spaceOffset = 0;
+    int outputFloats = 0;       // RslEval::outputs used by output parameters
     bool usesTrace = false, usesDerivatives = false, usesTexture = false;
     bool usesLighting = false;  // illuminance, diffuse, specular, phong, ambient
     bool ambientLight = false;  // a light shader with no illuminate/solar

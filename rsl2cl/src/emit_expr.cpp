@@ -164,8 +164,9 @@ std::string Emitter::binop(const std::string& op, const std::string& a, const Ty
 
 std::string Emitter::userCall(const Expr& e) {
     const FunctionDecl* f = e.function;
+    if (m_fnUsesSpaces.count(f)) m_usesSpaces = true;
     auto it = m_fnNames.find(f);
-    std::string s = (it == m_fnNames.end() ? "rsl_missing_" + e.text : it->second) + "(g, ev";
+    std::string s = (it == m_fnNames.end() ? "rsl_missing_" + e.text : it->second) + "(g, ev, sp";
     for (size_t i = 0; i < e.args.size() && i < f->params.size(); ++i) {
         const VarDecl& p = f->params[i];
         if (p.output && !p.type.isArray()) s += ", &" + lvalue(*e.args[i]);
@@ -229,11 +230,12 @@ std::string Emitter::expr(const Expr& e) {
         }
         if (sp <= 1) return a;
         std::string spc = std::to_string(sp);
-        if (to.isMatrix()) return "rsl_mmul(" + a + ", rsl_space_to_space(" + spc + ", RSL_SPACE_CURRENT))";
+        m_usesSpaces = true;
+        if (to.isMatrix()) return "rsl_mmul(" + a + ", rsl_space_to_space(sp, " + spc + ", RSL_SPACE_CURRENT))";
         const char* fn = to.base == BaseType::Point    ? "rsl_transform_p"
                          : to.base == BaseType::Normal ? "rsl_transform_n"
                                                        : "rsl_transform_v";
-        return std::string(fn) + "(" + spc + ", RSL_SPACE_CURRENT, " + a + ")";
+        return std::string(fn) + "(sp, " + spc + ", RSL_SPACE_CURRENT, " + a + ")";
     }
     case ExprKind::Tuple: {
         if (e.type.isArray()) {

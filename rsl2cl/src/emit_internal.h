@@ -17,6 +17,7 @@ std::string clZero(const TypeSpec& t);          // zero of the element type
 std::string clNumber(double v);                 // 1.0f
 int spaceIdOf(const std::string& name);         // RSL_SPACE_* value or -1
 int colorIdOf(const std::string& name);         // RSL_COLOR_* value or -1
+int slotsOf(BaseType b);                        // float slots of one value in a block
 
 class Emitter {
 public:
@@ -38,6 +39,7 @@ public:
     std::string builtin(const Expr& e);
     std::string spaceArg(const Expr& e);
     std::string colorSpaceArg(const Expr& e);
+    std::string message(const Expr& e);  // lightsource(), attribute(), option(), ...
 
     void error(const SourceLoc& loc, const std::string& msg) { m_diag.error(loc, msg); }
 
@@ -52,6 +54,7 @@ private:
     void stmt(const Stmt& s);
     void decl(const VarDecl& d);
     void lightLoop(const Stmt& s);
+    void writeOutputs();  // output parameters -> ev->outputs (shader body only)
     void line(const std::string& s) {
         for (const std::string& p : m_pre) m_body << std::string(2 * m_indent, ' ') << p << "\n";
         m_pre.clear();
@@ -73,6 +76,9 @@ public:
     std::set<const Symbol*> m_pointerParams;                 // output params: (*v_x)
     std::set<const Symbol*> m_fnLocals;  // symbols declared in the function being emitted
     std::vector<std::string> m_pre;  // temporaries declared before the current line
+    std::vector<std::string> m_lightVars;  // light index of each enclosing illuminance
+    bool m_usesSpaces = false;  // the code being emitted uses sp (shader/object spaces)
+    std::set<const FunctionDecl*> m_fnUsesSpaces;
 };
 
 }  // namespace rsl

@@ -2,6 +2,7 @@
 // filling of unreached pixels, and the geometric AOVs. Render tests run on PoCL.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "film/film_error.h"
@@ -85,7 +86,8 @@ TEST(Sampling, TimeBudgetStopsTheRender) {
     s.timeBudget = 0.3;
     Rendered img = renderRib(orthoCamera(64, 64) + stripes(64), s);
     EXPECT_EQ(img.stats.stopReason, "time budget");
-    EXPECT_LT(img.stats.elapsedSec, 1.3);
+    // The budget counts set-up (a cold OpenCL build included); past it, one short batch.
+    EXPECT_LT(img.stats.elapsedSec, std::max(0.3, img.stats.sceneSetupMs / 1000.0) + 1.0);
     EXPECT_GT(img.film.sampleCount(), 0u);
     for (const auto& p : img.film.pixels) EXPECT_LE(p.count, 1u << 16);
 }

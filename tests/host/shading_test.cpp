@@ -119,3 +119,20 @@ TEST(Shading, VertexPrimitiveVariables) {
     EXPECT_NEAR(st.mean(0, 12, 0, 13, 16), 0.5625 + 1, 0.03);
     EXPECT_NEAR(st.mean(1, 0, 4, 16, 5), 2 * (0.4375 + 1), 0.05);
 }
+
+// "shader" space is the coordinate system current at the Surface call: a shader that
+// prints transform("shader", P) sees world x shifted by the Translate before Surface.
+TEST(Shading, ShaderSpaceIsWhereTheSurfaceWasDeclared) {
+    std::string dir = ::testing::TempDir() + "/raydrive_space";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/showspace.sl") << "surface showspace() {\n    Oi = 1;\n"
+                                            "    Ci = color(xcomp(transform(\"shader\", P)) + 2, 0, 0);\n}\n";
+    Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
+                             "Format 16 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
+                             "WorldBegin\nAttributeBegin\nTranslate 0.5 0 0\n"
+                             "Surface \"showspace\"\nTranslate -0.5 0 0\n"
+                             "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1]\n"
+                             "AttributeEnd\nWorldEnd\n");
+    // world x at the centre of column 8 is 0.0625: shader x = 0.0625 - 0.5
+    EXPECT_NEAR(img.mean(0, 8, 0, 9, 16), 0.0625 - 0.5 + 2, 0.02);
+}

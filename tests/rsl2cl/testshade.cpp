@@ -50,7 +50,7 @@ std::string slurp(const std::string& path) {
 }
 
 const int kGlobalFloats = 68;           // RslGlobals: 15 float4 + 8 floats
-const int kEvalFloats = 4 + 2 * 8 * 4;  // 3 ints (+pad to 16 bytes) + 2 x 8 float4
+const int kEvalFloats = 4 + 2 * 8 * 4 + 32;  // 3 ints (+pad) + 2 x 8 float4 + outputs
 // field order of RslGlobals
 enum { fP, fN, fNg, fI, fE, fdPdu, fdPdv, fCs, fOs, fCi, fOi, fL, fCl, fOl, fPs };
 
@@ -69,8 +69,29 @@ std::string sceneKey(const Scene& sc) {
     for (const Light& l : sc.lights)
         s << l.L[0] << "," << l.L[1] << "," << l.L[2] << "," << l.Cl[0] << "," << l.Cl[1] << ","
           << l.Cl[2] << ";";
-    s << sc.ambient[0] << "," << sc.ambient[1] << "," << sc.ambient[2] << ";" << sc.shaderOffset[0]
-      << "," << sc.shaderOffset[1] << "," << sc.shaderOffset[2];
+    s << sc.ambient[0] << "," << sc.ambient[1] << "," << sc.ambient[2] << ";" << sc.cameraOffset[0]
+      << "," << sc.cameraOffset[1] << "," << sc.cameraOffset[2] << ";";
+    for (const std::vector<Message>* ms : {&sc.lightParams, &sc.attributes, &sc.options}) {
+        for (const Message& m : *ms) {
+            s << m.light << ":" << m.name << "=";
+            for (float v : m.values) s << v << ",";
+        }
+        s << "|";
+    }
+    return s.str();
+}
+
+// One fake message service: answers (light,) name, n from `ms`.
+std::string messageService(const std::string& sig, const std::vector<Message>& ms, bool byLight) {
+    std::ostringstream s;
+    s << sig << " {\n";
+    for (const Message& m : ms) {
+        s << "  if (" << (byLight ? "light == " + std::to_string(m.light) + " && " : "")
+          << "nameId == " << rsl::stringId(m.name) << " && n == " << m.values.size() << ") {";
+        for (size_t i = 0; i < m.values.size(); ++i) s << " out[" << i << "] = " << fl(m.values[i]) << ";";
+        s << " return 1; }\n";
+    }
+    s << "  (void)nameId; (void)out; (void)n;" << (byLight ? " (void)light;" : "") << "\n  return 0;\n}\n";
     return s.str();
 }
 
@@ -150,10 +171,15 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  return 1;\n}\n";
     src << "float4 rsl_ambient(const RslGlobals* g) { (void)g; return (float4)(" << fl(sc.ambient[0])
         << ", " << fl(sc.ambient[1]) << ", " << fl(sc.ambient[2]) << ", 0.0f); }\n";
+    // shader and object space come from the block; the service only knows camera
     src << "RslMatrix rsl_space_matrix(int space) {\n  RslMatrix m = rsl_mscalar(1.0f);\n"
-           "  if (space == RSL_SPACE_SHADER) m.r[3] = (float4)("
-        << fl(sc.shaderOffset[0]) << ", " << fl(sc.shaderOffset[1]) << ", " << fl(sc.shaderOffset[2])
+           "  if (space == RSL_SPACE_CAMERA) m.r[3] = (float4)("
+        << fl(sc.cameraOffset[0]) << ", " << fl(sc.cameraOffset[1]) << ", " << fl(sc.cameraOffset[2])
         << ", 1.0f);\n  return m;\n}\n";
+    src << messageService("int rsl_lightsource_param(int light, int nameId, float* out, int n)",
+                          sc.lightParams, true)
+        << messageService("int rsl_attribute(int nameId, float* out, int n)", sc.attributes, false)
+        << messageService("int rsl_option(int nameId, float* out, int n)", sc.options, false);
     src << shader.source << "\n";
     bool light = shader.kind == "light";
     src << "__kernel void ts_main(__global const float* gin, __global const float* params,\n"
@@ -164,6 +190,7 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
         << kGlobalFloats << "; ++k) gp[k] = gin[i * " << kGlobalFloats << " + k];\n"
         << "  RslEval ev; ev.mode_light = mode_light; ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
            "  for (int k = 0; k < RSL_MAX_TRACE; ++k) { ev.trace_org[k] = (float4)(0); ev.trace_dir[k] = (float4)(0); }\n"
+           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) ev.outputs[k] = -12345.0f;\n"
         << (light ? "  (void)ev; " + shader.functionName + "(&g, params);\n"
                   : "  " + shader.functionName + "(&g, params, &ev);\n")
         << "  __global float* o = out + i * " << (kGlobalFloats + kEvalFloats) << ";\n"
@@ -171,7 +198,8 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
         << "  o += " << kGlobalFloats << "; o[0] = (float)ev.trace_count;\n"
            "  for (int k = 0; k < RSL_MAX_TRACE; ++k) {\n"
            "    vstore4(ev.trace_org[k], 0, o + 4 + 4 * k); vstore4(ev.trace_dir[k], 0, o + 36 + 4 * k);\n"
-           "  }\n}\n";
+           "  }\n"
+           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) o[68 + k] = ev.outputs[k];\n}\n";
     std::string text = src.str();
     const char* p = text.c_str();
     cl_int err;
@@ -214,7 +242,13 @@ std::vector<Out> Shade::run(const std::vector<Point>& pts, const Scene& sc, int 
     }
     cl_int err;
     size_t outFloats = n * (kGlobalFloats + kEvalFloats);
-    std::vector<float> pv = params.empty() ? std::vector<float>{0.0f} : params;
+    // the block, then the shader and object matrices (rsl_abi.h, SPACES)
+    std::vector<float> pv = params;
+    pv.resize(size_t(shader.spaceOffset) + 32, 0.0f);
+    for (int k = 0; k < 16; ++k) {
+        pv[shader.spaceOffset + k] = sc.shaderMatrix[k] + (k >= 12 && k < 15 ? sc.shaderOffset[k - 12] : 0.0f);
+        pv[shader.spaceOffset + 16 + k] = sc.objectMatrix[k];
+    }
     cl_mem bg = clCreateBuffer(cl().ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, gin.size() * 4, gin.data(), &err);
     cl_mem bp = clCreateBuffer(cl().ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, pv.size() * 4, pv.data(), &err);
     cl_mem bo = clCreateBuffer(cl().ctx, CL_MEM_WRITE_ONLY, outFloats * 4, nullptr, &err);
@@ -249,6 +283,7 @@ std::vector<Out> Shade::run(const std::vector<Point>& pts, const Scene& sc, int 
                 r.org[t][c] = e[4 + 4 * t + c];
                 r.dir[t][c] = e[36 + 4 * t + c];
             }
+        for (int k = 0; k < 32; ++k) r.outputs[k] = e[68 + k];
         res.push_back(r);
     }
     return res;

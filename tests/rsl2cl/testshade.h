@@ -13,10 +13,24 @@ struct Light {
     float Cl[3];  // unshadowed colour
 };
 
+// A value the fake renderer services answer with (rsl_abi.h, MESSAGE PASSING).
+struct Message {
+    int light = -1;             // rsl_lightsource_param: the light index; else unused
+    std::string name;
+    std::vector<float> values;  // answered only when the caller asks for this many
+};
+
 struct Scene {
     std::vector<Light> lights;
     float ambient[3] = {0, 0, 0};
-    float shaderOffset[3] = {0, 0, 0};  // "shader" space = world translated by this
+    // Written after the parameter block (EmittedShader::spaceOffset): "shader" and
+    // "object" to current, row-major, RSL row-vector convention. shaderOffset, when
+    // not zero, is added to shaderMatrix's translation row (world translated by it).
+    float shaderMatrix[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    float objectMatrix[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    float shaderOffset[3] = {0, 0, 0};
+    float cameraOffset[3] = {0, 0, 0};  // rsl_space_matrix(RSL_SPACE_CAMERA): translation
+    std::vector<Message> lightParams, attributes, options;
 };
 
 struct Point {
@@ -30,6 +44,7 @@ struct Out {
     float Ci[3], Oi[3], L[3], Cl[3];
     int traceCount = 0;
     float org[8][3], dir[8][3];
+    float outputs[32];  // RslEval::outputs after the evaluation
 };
 
 // n x n points: s, t, u, v in [0, 1]; P = (4s - 2, 4t - 2, 0); E = (0, 0, 5);
