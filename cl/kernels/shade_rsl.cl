@@ -58,6 +58,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #endif
     if (m.flags & RT_MATERIAL_MATTE) return; /* holdout: opaque, black, no alpha */
     __global const float* p = params + m.params;
+    rd_fill_light_cache(&g);
     RslEval ev;
     ev.mode_light = -1;
     ev.mode_trace = -1;
@@ -73,9 +74,10 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #ifdef RT_HAS_SHADOW_RAYS
     float4 Pl = rt_offset_ray(g.P, Ngf);
     for (uint l = 0; l < light_count; ++l) {
-        RslGlobals lg;
-        int solar = rd_run_light((int)l, &g, g.P, &lg);
-        if (rd_light_is_ambient((int)l) || !rd_nonzero3(lg.Cl)) continue;
+        float4 toward, lcl;
+        rd_light_at((int)l, &g, g.P, &toward, &lcl);
+        int solar = lcl.w == 1.0f;
+        if (rd_light_is_ambient((int)l) || !rd_nonzero3(lcl)) continue;
         RslEval le;
         le.mode_light = (int)l;
         le.mode_trace = -1;
@@ -86,7 +88,6 @@ __kernel void shade_SURFACE(uint begin, uint count,
         float4 sw = w * coef;
         sw.w = 0.0f;
         if (!rd_nonzero3(sw)) continue;
-        float4 toward = (float4)(-lg.L.x, -lg.L.y, -lg.L.z, 0.0f);
         float dist = sqrt(rt_dot3(toward, toward));
         if (!(dist > 0.0f)) continue;
         float4 sd = toward / dist;

@@ -113,9 +113,18 @@
 #define RSL_LIGHT_PARAMS __global const float*
 #endif
 
+#define RSL_LIGHT_CACHE 8
+
 typedef struct RslGlobals {
     float4 P, N, Ng, I, E, dPdu, dPdv, Cs, Os, Ci, Oi, L, Cl, Ol, Ps;
     float u, v, s, t, du, dv, ncomps, time;
+    /* Renderer-owned, after every standard global: the first RSL_LIGHT_CACHE lights'
+     * surface-side L and unshadowed Cl at P, computed once per shading point and read by
+     * the renderer's rsl_light() in every evaluation mode. Generated code never touches
+     * them; copies of the globals carry them along. */
+    int light_cache_count;
+    float4 light_cache_L[RSL_LIGHT_CACHE];
+    float4 light_cache_Cl[RSL_LIGHT_CACHE]; /* w: 1 for a solar light */
 } RslGlobals;
 
 typedef struct RslEval {
