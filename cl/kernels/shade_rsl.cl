@@ -118,6 +118,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
         tw.w = 0.0f;
         if (rt_max3(fabs(tw)) < 1e-6f) continue;
         float4 td = rt_normalize3(ev.trace_dir[i]);
+        /* a zero direction (refract() under total internal reflection) traces nothing */
+        if (!(rt_dot3(td, td) > 0.5f)) continue;
         float4 tp = ev.trace_org[i];
         tp.w = 0.0f;
         float4 to = rt_offset_ray(tp, rt_dot3(td, Ngf) >= 0.0f ? Ngf : -Ngf);
