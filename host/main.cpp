@@ -66,7 +66,7 @@ std::string outputName(const rd::Scene& scene, const std::string& override, size
 int main(int argc, char** argv) {
     CLI::App app{"RayDrive: a RenderMan renderer on OpenCL, after ART's RenderDrive"};
     std::string scenePath, output, deviceSpec, statsPath;
-    bool quiet = false, halfFloat = false;
+    bool quiet = false, halfFloat = false, tessellateQuadrics = false;
     double timeBudget = 0, errorTarget = 0;
     std::vector<std::string> aovs;
     app.add_option("scene", scenePath, "RIB file to render, or `devices` to list devices")
@@ -84,6 +84,8 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"z", "N", "samples", "error", "filled"}));
     app.add_flag("--half", halfFloat, "write 16-bit half-float channels");
     app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+    app.add_flag("--tessellate-quadrics", tessellateQuadrics,
+                 "dice quadrics into triangles instead of intersecting them exactly");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -94,6 +96,7 @@ int main(int argc, char** argv) {
 
     rib::Diagnostics diag(&std::cerr);
     rd::RibBuilder builder(diag, scenePath);
+    builder.setTessellateQuadrics(tessellateQuadrics);
     rib::readFile(scenePath, builder, diag);
     if (diag.errorCount() > 0) {
         std::cerr << "raydrive: " << diag.errorCount() << " error(s) in " << scenePath

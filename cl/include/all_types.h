@@ -3,6 +3,7 @@
 #define RT_ALL_TYPES_H
 #include "bvh.h"
 #include "film.h"
+#include "quadric.h"
 #include "ray.h"
 #include "scene_types.h"
 #endif

@@ -25,7 +25,7 @@ typedef struct TriangleAttr {
     uint32_t material;    /* index into the Material array */
     uint32_t has_normals; /* 1: smooth normals at index 3*tri in the normals buffer */
     uint32_t primvars;    /* RT_PRIMVAR_*: per-vertex values at 3*tri in their buffers */
-    uint32_t pad;
+    uint32_t flags;       /* RT_QF_* (quadric.h): triangles that belong to a CSG solid */
 } TriangleAttr;
 
 /* Per-vertex primitive variables a triangle carries (else s,t = u,v; Cs, Os from the

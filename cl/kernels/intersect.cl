@@ -1,7 +1,17 @@
 /* intersect.cl: the trace stage over the resident BVH. intersect_closest finds each live
  * ray's nearest hit; intersect_shadow kills the shadow rays that meet an occluder. */
 #include "counters.clh"
+#include "quadric.h"
 #include "traverse.clh"
+
+/* The object scene a kernel's traversal sees: its quadric, CSG and triangle buffers. */
+#ifdef RT_HAS_QUADRICS
+#define RT_OBJECT_SCENE_ARG , &objs
+#define RT_DECLARE_OBJECT_SCENE const ObjectScene objs = {quadrics, csg, tris}
+#else
+#define RT_OBJECT_SCENE_ARG
+#define RT_DECLARE_OBJECT_SCENE
+#endif
 
 __kernel void intersect_closest(uint count,
                                 __global const Bvh4Node* nodes,
@@ -10,17 +20,21 @@ __kernel void intersect_closest(uint count,
                                 __global const float4* direction,
                                 __global const RayState* state,
                                 __global RayHit* hits,
+                                __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
+                                __global const uint* csg,
+                                __global const Triangle* tris,
                                 __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
     RT_COUNT_ACTIVE(active_counter, active);
     if (!active) return;
+    RT_DECLARE_OBJECT_SCENE;
     float4 o = origin[i], d = direction[i];
     RayHit h;
     h.t = d.w;
     h.u = h.v = 0.0f;
-    rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 0, &h);
+    rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 0, &h RT_OBJECT_SCENE_ARG);
     hits[i] = h;
 }
 
@@ -30,14 +44,18 @@ __kernel void intersect_shadow(uint count,
                                __global const float4* origin,
                                __global const float4* direction,
                                __global RayState* state,
+                               __global const Quadric* quadrics,
+                               __global const uint* csg,
+                               __global const Triangle* tris,
                                __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
     RT_COUNT_ACTIVE(active_counter, active);
     if (!active) return;
+    RT_DECLARE_OBJECT_SCENE;
     float4 o = origin[i], d = direction[i];
     RayHit h;
-    if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, &h))
+    if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, &h RT_OBJECT_SCENE_ARG))
         state[i].alive = 0u;
 }

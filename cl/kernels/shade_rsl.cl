@@ -14,6 +14,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const float4* vertex_cs,
                             __global const float4* vertex_os,
                             __global const Material* materials,
+                            __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
                             __global const float* params,
                             __global const float4* origin,
                             __global const float4* direction,
@@ -43,11 +44,21 @@ __kernel void shade_SURFACE(uint begin, uint count,
     float4 org = origin[r], dir = direction[r], w = weight[r];
     RayState rs = state[r];
     uint sample = ray_sample[r];
-    TriangleAttr attr = attrs[h.prim];
-    Material m = materials[attr.material];
+    Material m;
     RslGlobals g;
-    rd_hit_globals(&g, &tris[h.prim], h, org, dir, normals, attr, h.prim, m, vertex_st,
-                   vertex_cs, vertex_os);
+#ifdef RT_HAS_QUADRICS
+    if (h.prim & RT_OBJECT_BIT) {
+        __global const Quadric* q = &quadrics[h.prim & RT_OBJECT_MASK];
+        m = materials[q->material];
+        rd_quadric_hit_globals(&g, q, h, org, m);
+    } else
+#endif
+    {
+        TriangleAttr attr = attrs[h.prim];
+        m = materials[attr.material];
+        rd_hit_globals(&g, &tris[h.prim], h, org, dir, normals, attr, h.prim, m, vertex_st,
+                       vertex_cs, vertex_os);
+    }
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */
 #ifdef RT_HAS_AOVS
     if (!aov[sample].hit) {

@@ -5,6 +5,7 @@
  * also clears the spawn and shadow slots the shade stage may fill this round. */
 #include "counters.clh"
 #include "ray.h"
+#include "quadric.h"
 #include "scene_types.h"
 
 #define RT_MAX_SHADER_KEYS 65 /* 64 shaders + the miss key */
@@ -13,6 +14,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count,
                             __global const RayHit* hits,
                             __global const TriangleAttr* attrs,
                             __global const Material* materials,
+                            __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
                             __global uint* key,          /* per ray: shader, or shader_count */
                             __global uint* key_count,    /* shader_count + 1 counters */
                             __global RayState* next_state,
@@ -26,7 +28,16 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count,
     barrier(CLK_LOCAL_MEM_FENCE);
     if (r < count) {
         uint prim = hits[r].prim;
-        uint k = prim == RT_NO_HIT ? shader_count : materials[attrs[prim].material].shader;
+        uint k = shader_count;
+        if (prim != RT_NO_HIT) {
+#ifdef RT_HAS_QUADRICS
+            uint mat = (prim & RT_OBJECT_BIT) ? quadrics[prim & RT_OBJECT_MASK].material
+                                              : attrs[prim].material;
+#else
+            uint mat = attrs[prim].material;
+#endif
+            k = materials[mat].shader;
+        }
         key[r] = k;
         atomic_inc(&hist[k]);
         for (uint s = 0; s < RT_SPAWN_SLOTS; ++s) next_state[r * RT_SPAWN_SLOTS + s].alive = 0u;

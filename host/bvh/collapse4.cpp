@@ -1,4 +1,5 @@
-// collapse4.cpp: binary to four-wide BVH, leaves packed into four-triangle blocks.
+// collapse4.cpp: binary to four-wide BVH, leaves packed into blocks of four triangles or
+// four objects.
 #include "collapse4.h"
 
 #include <cfloat>
@@ -37,25 +38,46 @@ void clearSlot(Bvh4Node& w, int k) {
 
 namespace {
 
-// Packs a leaf's primitives into blocks of four; returns the first block's index.
-int packLeaf(const Bvh& bvh, const std::vector<Triangle>& tris, int first, int count,
-             std::vector<Triangle4>& blocks, int& blockCount) {
+// Packs a leaf's primitives into blocks of four, triangles first, then objects (quadrics
+// and CSG solids: prim lanes with RT_OBJECT_BIT, v0 = box minimum, v1 = box maximum);
+// returns the first block's index.
+int packLeaf(const Bvh& bvh, const std::vector<Triangle>& tris, const BvhPrimitives* prims,
+             int first, int count, std::vector<Triangle4>& blocks, int& blockCount) {
     int start = int(blocks.size());
-    for (int p = 0; p < count; p += 4) {
+    std::vector<uint32_t> triangles, objects;  // leaf slots
+    for (int j = first; j < first + count; ++j) {
+        uint32_t slot = bvh.primIndices[size_t(j)];
+        uint32_t id = prims ? prims->ids[slot] : slot;
+        ((id & RT_OBJECT_BIT) ? objects : triangles).push_back(slot);
+    }
+    for (size_t p = 0; p < triangles.size(); p += 4) {
         Triangle4 b{};
         float* dst[9] = {&b.v0x.x, &b.v0y.x, &b.v0z.x, &b.v1x.x, &b.v1y.x,
                          &b.v1z.x, &b.v2x.x, &b.v2y.x, &b.v2z.x};
-        for (int lane = 0; lane < 4; ++lane) {
-            if (p + lane >= count) {
+        for (size_t lane = 0; lane < 4; ++lane) {
+            if (p + lane >= triangles.size()) {
                 b.prim[lane] = RT_EMPTY_LANE;
                 continue;
             }
-            uint32_t prim = bvh.primIndices[size_t(first + p + lane)];
+            uint32_t slot = triangles[p + lane];
+            uint32_t prim = prims ? prims->ids[slot] : slot;
             const Triangle& t = tris[prim];
             const float src[9] = {t.v0.x, t.v0.y, t.v0.z, t.v1.x, t.v1.y,
                                   t.v1.z, t.v2.x, t.v2.y, t.v2.z};
             for (int c = 0; c < 9; ++c) dst[c][lane] = src[c];
             b.prim[lane] = prim;
+        }
+        blocks.push_back(b);
+    }
+    for (size_t p = 0; p < objects.size(); p += 4) {
+        Triangle4 b{};
+        float* lo[3] = {&b.v0x.x, &b.v0y.x, &b.v0z.x};
+        float* hi[3] = {&b.v1x.x, &b.v1y.x, &b.v1z.x};
+        for (size_t lane = 0; lane < 4; ++lane) {
+            bool used = p + lane < objects.size();
+            const Aabb box = used ? prims->bounds[objects[p + lane]] : Aabb();
+            for (int a = 0; a < 3; ++a) lo[a][lane] = box.lo[a], hi[a][lane] = box.hi[a];
+            b.prim[lane] = used ? prims->ids[objects[p + lane]] : RT_EMPTY_LANE;
         }
         blocks.push_back(b);
     }
@@ -65,7 +87,8 @@ int packLeaf(const Bvh& bvh, const std::vector<Triangle>& tris, int first, int c
 
 }  // namespace
 
-Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris) {
+Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
+                    const BvhPrimitives* prims) {
     Bvh4 result;
     std::vector<Bvh4Node>& out = result.nodes;
     out.resize(1);
@@ -77,7 +100,7 @@ Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris) {
     if (b[0].count > 0) {
         // A single leaf: the root holds it in slot 0.
         setSlot(out[0], 0, b[0]);
-        out[0].child[0] = packLeaf(bvh, tris, b[0].left_or_first, b[0].count, result.blocks,
+        out[0].child[0] = packLeaf(bvh, tris, prims, b[0].left_or_first, b[0].count, result.blocks,
                                    out[0].count[0]);
         return result;
     }
@@ -108,7 +131,7 @@ Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris) {
             if (n.count > 0) {
                 int blocks = 0;
                 out[wi].child[k] =
-                    packLeaf(bvh, tris, n.left_or_first, n.count, result.blocks, blocks);
+                    packLeaf(bvh, tris, prims, n.left_or_first, n.count, result.blocks, blocks);
                 out[wi].count[k] = blocks;
             } else {
                 out[wi].child[k] = int(out.size());

@@ -5,19 +5,30 @@
 #pragma once
 #include <vector>
 
+#include "cl/include/quadric.h"
 #include "cl/include/scene_types.h"
 #include "sah_builder.h"
 
 namespace rd {
 
 // nodes[0] is the root. An empty tree gives one node with four unused slots. A leaf
-// child refers to triangle blocks: child = first block, count = number of blocks.
+// child refers to blocks (of triangles, or of objects): child = first block, count =
+// number of blocks.
 struct Bvh4 {
     std::vector<Bvh4Node> nodes;
     std::vector<Triangle4> blocks;
 };
 
-// `tris` are the primitives the binary tree was built over.
-Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris);
+// What the binary tree was built over when it is not just `tris`: ids[i] is primitive
+// i's triangle index, or RT_OBJECT_BIT | its quadric index (cl/include/quadric.h), and
+// bounds[i] its box.
+struct BvhPrimitives {
+    std::vector<uint32_t> ids;
+    std::vector<Aabb> bounds;
+};
+
+// Without `prims`, the tree was built over `tris` themselves.
+Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
+                    const BvhPrimitives* prims = nullptr);
 
 }  // namespace rd

@@ -15,6 +15,22 @@ std::vector<Aabb> triangleBounds(const Scene& scene) {
     return bounds;
 }
 
+BvhPrimitives bvhPrimitives(const Scene& scene) {
+    BvhPrimitives p;
+    std::vector<Aabb> tb = triangleBounds(scene);
+    for (size_t i = 0; i < tb.size(); ++i) {
+        if (scene.attrs[i].flags & RT_QF_CSG_MEMBER) continue;
+        p.ids.push_back(uint32_t(i));
+        p.bounds.push_back(tb[i]);
+    }
+    for (size_t i = 0; i < scene.quadrics.size(); ++i) {
+        if (scene.quadrics[i].flags & RT_QF_CSG_MEMBER) continue;
+        p.ids.push_back(RT_OBJECT_BIT | uint32_t(i));
+        p.bounds.push_back(scene.quadricBounds[i]);
+    }
+    return p;
+}
+
 DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh,
                          const Features& f, const ShadingSetup& shading)
     : camera(scene.deviceCamera()),
@@ -28,6 +44,8 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
       vertexSt(ctx, scene.vertexSt),
       vertexCs(ctx, scene.vertexCs),
       vertexOs(ctx, scene.vertexOs),
+      quadrics(ctx, scene.quadrics),
+      csg(ctx, scene.csg),
       materials(ctx, shading.materials),
       params(ctx, shading.params) {}
 

@@ -20,11 +20,17 @@ struct DeviceScene {
     DeviceBuffer<TriangleAttr> attrs;
     DeviceBuffer<rt_float4> normals;
     DeviceBuffer<rt_float4> vertexSt, vertexCs, vertexOs;  // only when the scene has them
+    DeviceBuffer<Quadric> quadrics;    // exact quadrics and CSG solids (placeholder if none)
+    DeviceBuffer<uint32_t> csg;        // CSG member lists and programs
     DeviceBuffer<Material> materials;  // bound to compiled shaders and parameter blocks
     DeviceBuffer<float> params;        // every surface instance's parameter block
 };
 
 // Bounds of every triangle, for the BVH builder.
 std::vector<Aabb> triangleBounds(const Scene& scene);
+
+// What the BVH is built over: the triangles and quadrics that are not members of a CSG
+// solid, and the solids.
+BvhPrimitives bvhPrimitives(const Scene& scene);
 
 }  // namespace rd

@@ -16,11 +16,15 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.trace = shading.usesTrace;
     f.maxSpecularDepth = scene.maxSpecularDepth;
     f.depthOfField = scene.deviceCamera().lens_radius > 0;
+    f.quadrics = !scene.quadrics.empty();
+    f.csg = !scene.csg.empty();
     return f;
 }
 
 std::vector<std::string> Features::names() const {
     std::vector<std::string> n{"triangles"};
+    if (quadrics) n.push_back("quadrics");
+    if (csg) n.push_back("csg");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
@@ -44,6 +48,7 @@ std::string buildOptions(const Features& f) {
     if (f.shadowRays) o += " -DRT_HAS_SHADOW_RAYS";
     if (f.aovs) o += " -DRT_HAS_AOVS";
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
+    if (f.quadrics) o += " -DRT_HAS_QUADRICS";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";
     if (f.primvars & RT_PRIMVAR_CS) o += " -DRT_HAS_VERTEX_CS";
     if (f.primvars & RT_PRIMVAR_OS) o += " -DRT_HAS_VERTEX_OS";

@@ -19,6 +19,8 @@ struct Features {
     bool aovs = false;          // geometric AOVs (z, N) asked for
     uint32_t primvars = 0;      // RT_PRIMVAR_* some triangle carries per vertex
     bool depthOfField = false;  // a thin-lens camera
+    bool quadrics = false;      // exact quadrics (RT_HAS_QUADRICS)
+    bool csg = false;           // some of them CSG solids
     uint32_t lightCount = 0;
     int maxTransparentDepth = 16;
 

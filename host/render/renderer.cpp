@@ -157,10 +157,16 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
 
     // Scene -> BVH -> specialised program -> device arrays
     auto tb = Clock::now();
-    Bvh bvh = buildBvh(triangleBounds(scene));
-    Bvh4 bvh4 = collapseToBvh4(bvh, scene.triangles);
+    BvhPrimitives prims = bvhPrimitives(scene);
+    Bvh bvh = buildBvh(prims.bounds);
+    Bvh4 bvh4 = collapseToBvh4(bvh, scene.triangles, &prims);
     st.bvhBuildMs = secondsSince(tb) * 1e3;
     st.triangles = scene.triangles.size();
+    for (const Quadric& q : scene.quadrics) (q.kind == RT_Q_CSG ? st.csgSolids : st.quadrics)++;
+    st.sceneBytes = bvh4.nodes.size() * sizeof(Bvh4Node) + bvh4.blocks.size() * sizeof(Triangle4) +
+                    scene.triangles.size() * (sizeof(Triangle) + sizeof(TriangleAttr)) +
+                    scene.normals.size() * sizeof(rt_float4) +
+                    scene.quadrics.size() * sizeof(Quadric) + scene.csg.size() * 4;
     st.bvhNodes = bvh4.nodes.size();
     st.droppedPrims = bvh.droppedPrims;
     std::vector<std::string> sources = kRenderSources;
@@ -250,11 +256,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                            (f.trace ? f.maxSpecularDepth : 0);
         for (int round = 0; round < rounds && n > 0; ++round) {
             if (stopNow()) return false;
-            k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin,
-                                      rp.direction, rp.state, rp.hits);
+            k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
+                                      rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles);
             // Sort the hits by shader, then run each shader over its own run of rays.
             rp.keyCount.fillZero();
-            k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, rp.key,
+            k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics, rp.key,
                               rp.keyCount, rp.nextState, rp.shState);
             std::vector<uint32_t> counts = rp.keyCount.download(), offsets(counts.size(), 0);
             for (size_t s = 1; s < counts.size(); ++s) offsets[s] = offsets[s - 1] + counts[s - 1];
@@ -264,7 +270,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 if (counts[s] == 0) continue;
                 k.shade[s]->launch(counts[s], cl_uint(offsets[s]), cl_uint(counts[s]),
                                    rp.sorted, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
-                                   ds.vertexCs, ds.vertexOs, ds.materials,
+                                   ds.vertexCs, ds.vertexOs, ds.materials, ds.quadrics,
                                    ds.params, rp.origin, rp.direction, rp.weight, rp.state,
                                    rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                                    rp.nextDirection, rp.nextWeight, rp.nextState,
@@ -273,7 +279,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             }
             if (nl > 0) {
                 k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
-                                         rp.shOrigin, rp.shDirection, rp.shState);
+                                         rp.shOrigin, rp.shDirection, rp.shState,
+                                         ds.quadrics, ds.csg, ds.triangles);
                 k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
                                            rp.totals);
             }

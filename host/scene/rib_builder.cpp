@@ -56,6 +56,8 @@ void RibBuilder::worldBegin(L) {
     m_materialKeys.clear();
     m_surfaceKeys.clear();
     m_degenerate = 0;
+    m_solidNodes.clear();
+    m_solidStack.clear();
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
 }
@@ -206,6 +208,7 @@ void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& pa
     r.error = params.getFloat("error", r.error);
     r.firstPassBlock = params.getInt("firstpassblock", r.firstPassBlock);
     r.pixelError = params.getFloat("pixelerror", r.pixelError);
+    r.exactQuadrics = params.getInt("exactquadrics", r.exactQuadrics ? 1 : 0) != 0;
     if (r.time < 0 || r.error < 0 || r.firstPassBlock < 1 || r.firstPassBlock > 64 ||
         !(r.pixelError > 0)) {
         m_diag.error(loc, "Option \"render\": time and error must be >= 0, firstpassblock "
@@ -339,10 +342,10 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
         VertexData piece = mesh;
         for (glm::vec3& v : piece.p) v = xformPoint(toObject, v);
         for (glm::vec3& v : piece.n) v = nm * v;
-        m_defining->push_back(std::move(piece));
+        m_defining->meshes.push_back(std::move(piece));
         return;
     }
-    (void)loc;
+    const int leaf = solidLeafForSurface(loc, "mesh");
     const glm::mat4& ctm = m_attrStack.back().ctm;
     glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
     uint32_t material = currentMaterial();
@@ -371,8 +374,13 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
             ++m_degenerate;
             continue;
         }
+        if (leaf >= 0) {
+            m_solidNodes[leaf].members.push_back(uint32_t(m_world.triangles.size()));
+            m_solidNodes[leaf].memberWhat.push_back("mesh at " + loc.str());
+        }
         m_world.triangles.push_back({f4(a), f4(b), f4(c)});
-        m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars, 0u});
+        m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars,
+                                 leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u});
         for (int k : {i0, i1, i2}) {
             m_world.normals.push_back(smooth ? f4(glm::normalize(nm * mesh.n[k])) : f4(0, 0, 0));
             if (m_world.primvarsUsed & RT_PRIMVAR_ST)
@@ -416,7 +424,7 @@ void RibBuilder::objectBegin(L loc, const std::string& handle) {
         return;
     }
     m_defining = &m_objects[handle];
-    m_defining->clear();
+    *m_defining = ObjectDef();
     m_definingCtm = m_attrStack.back().ctm;
 }
 
@@ -431,7 +439,9 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
     }
     // Each instance is placed by the current transform with the current shading
     // attributes. The pieces are copied: a two-level BVH that shares them is to come.
-    for (const VertexData& piece : it->second) addMesh(loc, piece);
+    for (const VertexData& piece : it->second.meshes) addMesh(loc, piece);
+    for (const QuadricShape& q : it->second.quadrics)
+        addQuadric(loc, quadricKindName(q.q.kind), q, {}, quadricPlacement(q.q));
 }
 
 void RibBuilder::polygon(L loc, const rib::ParamList& params) {
@@ -491,8 +501,12 @@ float RibBuilder::pixelsPerUnit(float depth) const {
 }
 
 void RibBuilder::sphere(L loc, float radius, float zmin, float zmax, float thetamax,
-                        const rib::ParamList&) {
+                        const rib::ParamList& params) {
     if (!inWorld(loc, "Sphere")) return;
+    if (exactQuadrics()) {
+        addQuadric(loc, "Sphere", makeSphere(radius, zmin, zmax, thetamax), params);
+        return;
+    }
     const glm::mat4& ctm = m_attrStack.back().ctm;
     // Dice for the sphere's size on screen: chord error under 0.1 pixel.
     glm::mat4 objToCam = m_world.camera.worldToCamera * ctm;

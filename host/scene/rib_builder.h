@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "rib/target.h"
+#include "quadric_shapes.h"
 #include "scene.h"
 #include "tessellate_nurbs.h"
 #include "tessellate_patches.h"
@@ -96,6 +97,13 @@ public:
                          Ints intargs, Floats floatargs, P) override;
     void curves(L, S type, Ints nvertices, S wrap, P) override;
     void points(L, P) override;
+    // CSG (rib_builder_solids.cpp)
+    void solidBegin(L, S op) override;
+    void solidEnd(L) override;
+
+    // Quadrics are tessellated instead of intersected exactly (for comparisons).
+    // (The command line's choice wins over Option "render" "exactquadrics".)
+    void setTessellateQuadrics(bool on) { m_forceTessellate = on; }
 
 private:
     struct Attributes {
@@ -126,11 +134,25 @@ private:
     float screenRadius(const std::vector<glm::vec3>& points) const;
     // Adds a tessellated surface, or reports why the tessellator refused it.
     void addSurface(L, const char* what, bool ok, const SurfaceMesh& m, const std::string& err);
+    // Adds an exact quadric placed by the current transform (or keeps it in the object
+    // being defined, or in the solid being built); "st"/"s"/"t" give corner values.
+    // `placement` maps it into the space the current transform places (an object
+    // definition's space for instances).
+    void addQuadric(L, const char* what, QuadricShape shape, const rib::ParamList& params,
+                    const glm::mat4& placement = glm::mat4(1.0f));
+    // CSG: the primitive solid the next surface belongs to (one is opened implicitly for
+    // a surface given directly under an operation), or -1 outside SolidBegin.
+    int solidLeafForSurface(L, const char* what);
+    bool exactQuadrics() const {
+        return !m_forceTessellate && (m_inWorld ? m_world : m_options).render.exactQuadrics;
+    }
+    void finishSolid(L, int root);
 
     rib::Diagnostics& m_diag;
     Scene m_options;               // option state; copied into each new world
     Scene m_world;                 // the world being built
     bool m_inWorld = false;
+    bool m_forceTessellate = false;
     std::vector<Attributes> m_attrStack;
     std::vector<glm::mat4> m_xformStack;
     std::vector<Scene> m_scenes;
@@ -138,9 +160,25 @@ private:
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
-    // Object definitions (ObjectBegin/End): tessellated pieces in the object's space.
-    std::map<std::string, std::vector<VertexData>> m_objects;
-    std::vector<VertexData>* m_defining = nullptr;
+    // Object definitions (ObjectBegin/End): tessellated pieces and exact quadrics in the
+    // object's space (a quadric's matrices map it into the object's space).
+    struct ObjectDef {
+        std::vector<VertexData> meshes;
+        std::vector<QuadricShape> quadrics;
+    };
+    std::map<std::string, ObjectDef> m_objects;
+    ObjectDef* m_defining = nullptr;
+    // SolidBegin/End blocks being built: a tree of nodes; primitive leaves list the
+    // members (triangle indices or RT_OBJECT_BIT | quadric index) with what they were.
+    struct SolidNode {
+        std::string op;
+        rib::SourceLoc loc;
+        std::vector<int> children;
+        std::vector<uint32_t> members;
+        std::vector<std::string> memberWhat;  // "Cylinder at file:line"
+    };
+    std::vector<SolidNode> m_solidNodes;
+    std::vector<int> m_solidStack;
     glm::mat4 m_definingCtm{1.0f};
 };
 

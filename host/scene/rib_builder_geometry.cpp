@@ -1,7 +1,8 @@
-// rib_builder_geometry.cpp: the RenderMan surfaces other than polygons and spheres. Each
-// is tessellated in object space at a density chosen from its size on screen (chord
-// error about a tenth of a pixel for quadrics, a few pixels per patch segment), then
-// added as triangles in world space like any mesh.
+// rib_builder_geometry.cpp: the RenderMan surfaces other than polygons. Quadrics are kept
+// exact (quadric_shapes.h) unless Option "render" "exactquadrics" 0 asks for triangles;
+// the rest is tessellated in object space at a density chosen from its size on screen
+// (chord error about a tenth of a pixel for quadrics, a few pixels per patch segment),
+// then added as triangles in world space like any mesh.
 #include <algorithm>
 #include <cmath>
 
@@ -56,8 +57,55 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
     addMesh(loc, mesh);
 }
 
-void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float thetamax, P) {
+void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
+                            const rib::ParamList& params, const glm::mat4& placement) {
+    if (!shape.error.empty()) {
+        m_diag.error(loc, std::string(what) + ": " + shape.error);
+        return;
+    }
+    Quadric& q = shape.q;
+    // varying s, t: one value per (u, v) corner
+    const rib::Param* st = params.find("st");
+    const rib::Param* ps = params.find("s");
+    const rib::Param* pt = params.find("t");
+    if (st && st->floats.size() == 8) {
+        q.st_s = {st->floats[0], st->floats[2], st->floats[4], st->floats[6]};
+        q.st_t = {st->floats[1], st->floats[3], st->floats[5], st->floats[7]};
+    } else if (ps && pt && ps->floats.size() == 4 && pt->floats.size() == 4) {
+        q.st_s = {ps->floats[0], ps->floats[1], ps->floats[2], ps->floats[3]};
+        q.st_t = {pt->floats[0], pt->floats[1], pt->floats[2], pt->floats[3]};
+    }
+    if (m_defining) {
+        // keep it in the object's space: its matrices map it there; instances compose
+        glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
+        if (!placeQuadric(q, toObject)) {
+            m_diag.warning(loc, std::string(what) + ": singular transform, left out");
+            return;
+        }
+        m_defining->quadrics.push_back(shape);
+        return;
+    }
+    const glm::mat4 toWorld = m_attrStack.back().ctm * placement;
+    if (!placeQuadric(q, toWorld)) {
+        m_diag.warning(loc, std::string(what) + ": singular or non-finite transform, left out");
+        return;
+    }
+    q.material = currentMaterial();
+    const int leaf = solidLeafForSurface(loc, what);
+    uint32_t index = uint32_t(m_world.quadrics.size());
+    if (leaf >= 0) {
+        q.flags |= RT_QF_CSG_MEMBER;
+        m_solidNodes[leaf].members.push_back(RT_OBJECT_BIT | index);
+        m_solidNodes[leaf].memberWhat.push_back(std::string(what) + " at " + loc.str());
+    }
+    m_world.quadrics.push_back(q);
+    m_world.quadricBounds.push_back(quadricWorldBounds(q, shape.lo, shape.hi));
+}
+
+void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float thetamax, P params) {
     if (!inWorld(loc, "Cylinder")) return;
+    if (exactQuadrics())
+        return addQuadric(loc, "Cylinder", makeCylinder(radius, zmin, zmax, thetamax), params);
     SurfaceMesh m;
     std::string err;
     float rpx = screenRadius({0, 0, 0.5f * (zmin + zmax)},
@@ -66,8 +114,10 @@ void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float the
     addSurface(loc, "Cylinder", ok, m, err);
 }
 
-void RibBuilder::cone(L loc, float height, float radius, float thetamax, P) {
+void RibBuilder::cone(L loc, float height, float radius, float thetamax, P params) {
     if (!inWorld(loc, "Cone")) return;
+    if (exactQuadrics())
+        return addQuadric(loc, "Cone", makeCone(height, radius, thetamax), params);
     SurfaceMesh m;
     std::string err;
     float rpx = screenRadius({0, 0, 0.5f * height}, std::max(std::fabs(radius), std::fabs(height)));
@@ -76,8 +126,10 @@ void RibBuilder::cone(L loc, float height, float radius, float thetamax, P) {
     addSurface(loc, "Cone", ok, m, err);
 }
 
-void RibBuilder::disk(L loc, float height, float radius, float thetamax, P) {
+void RibBuilder::disk(L loc, float height, float radius, float thetamax, P params) {
     if (!inWorld(loc, "Disk")) return;
+    if (exactQuadrics())
+        return addQuadric(loc, "Disk", makeDisk(height, radius, thetamax), params);
     SurfaceMesh m;
     std::string err;
     int nu = turnSegments(screenRadius({0, 0, height}, radius));
@@ -86,8 +138,11 @@ void RibBuilder::disk(L loc, float height, float radius, float thetamax, P) {
 }
 
 void RibBuilder::torus(L loc, float majorRadius, float minorRadius, float phiMin, float phiMax,
-                       float thetamax, P) {
+                       float thetamax, P params) {
     if (!inWorld(loc, "Torus")) return;
+    if (exactQuadrics())
+        return addQuadric(loc, "Torus",
+                          makeTorus(majorRadius, minorRadius, phiMin, phiMax, thetamax), params);
     SurfaceMesh m;
     std::string err;
     float rpx = screenRadius({0, 0, 0}, std::fabs(majorRadius) + std::fabs(minorRadius));
@@ -98,8 +153,11 @@ void RibBuilder::torus(L loc, float majorRadius, float minorRadius, float phiMin
     addSurface(loc, "Torus", ok, m, err);
 }
 
-void RibBuilder::paraboloid(L loc, float rmax, float zmin, float zmax, float thetamax, P) {
+void RibBuilder::paraboloid(L loc, float rmax, float zmin, float zmax, float thetamax,
+                            P params) {
     if (!inWorld(loc, "Paraboloid")) return;
+    if (exactQuadrics())
+        return addQuadric(loc, "Paraboloid", makeParaboloid(rmax, zmin, zmax, thetamax), params);
     SurfaceMesh m;
     std::string err;
     int nu = turnSegments(screenRadius({0, 0, 0.5f * (zmin + zmax)},
@@ -108,8 +166,13 @@ void RibBuilder::paraboloid(L loc, float rmax, float zmin, float zmax, float the
     addSurface(loc, "Paraboloid", ok, m, err);
 }
 
-void RibBuilder::hyperboloid(L loc, const float p1[3], const float p2[3], float thetamax, P) {
+void RibBuilder::hyperboloid(L loc, const float p1[3], const float p2[3], float thetamax,
+                             P params) {
     if (!inWorld(loc, "Hyperboloid")) return;
+    if (exactQuadrics())
+        return addQuadric(loc, "Hyperboloid",
+                          makeHyperboloid({p1[0], p1[1], p1[2]}, {p2[0], p2[1], p2[2]}, thetamax),
+                          params);
     SurfaceMesh m;
     std::string err;
     glm::vec3 a(p1[0], p1[1], p1[2]), b(p2[0], p2[1], p2[2]);

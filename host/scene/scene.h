@@ -7,7 +7,9 @@
 
 #include <glm/glm.hpp>
 
+#include "cl/include/quadric.h"
 #include "cl/include/scene_types.h"
+#include "host/bvh/aabb.h"
 #include "rib/diagnostics.h"
 #include "rib/param_list.h"
 
@@ -52,6 +54,7 @@ struct RenderOptionsSpec {
     float error = 0;         // "float error": relative film error target, 0 = none
     int firstPassBlock = 2;  // "int firstpassblock": first pass at 1 ray per N x N pixels
     float pixelError = 0.01f; // "float pixelerror": per-pixel relative error to refine to
+    bool exactQuadrics = true; // "int exactquadrics": 0 tessellates quadrics into triangles
 };
 
 struct Scene {
@@ -62,6 +65,11 @@ struct Scene {
     // Per-vertex primitive variables, 3 per triangle, filled only when some geometry gives
     // them (RT_PRIMVAR_* in TriangleAttr says which triangles do): (s, t, 0, 0), Cs, Os.
     std::vector<rt_float4> vertexSt, vertexCs, vertexOs;
+    // Exact quadrics and CSG solids (cl/include/quadric.h), hit as RT_OBJECT_BIT | index,
+    // with their world bounds; csg holds the solids' member lists and programs.
+    std::vector<Quadric> quadrics;
+    std::vector<Aabb> quadricBounds;
+    std::vector<uint32_t> csg;
     // Materials: Material::shader indexes surfaceRefs until the shader set compiles them.
     std::vector<Material> materials;
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use

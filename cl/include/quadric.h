@@ -1,0 +1,67 @@
+/* quadric.h: exact RenderMan quadrics (RI 3.2 section 5.3) and CSG solids as the device
+ * sees them. A hit on one is a RayHit whose prim is RT_OBJECT_BIT | index into the Quadric
+ * array, with u, v the RI surface parameters; P, N, dPdu, dPdv are re-evaluated from
+ * (u, v) at shading time, so a shaded point lies on the exact surface.
+ *
+ * A quadric is intersected in its object space: the ray is moved there with `to_object`
+ * (applied to org - center, so objects far from the world origin keep their precision),
+ * and the implicit form qx x^2 + qy y^2 + qz z^2 + lz z + c = 0 (all kinds but the disk
+ * and torus) gives one quadratic. A CSG solid (kind RT_Q_CSG) is a box in the BVH over
+ * its members, which are not in the BVH themselves. */
+#ifndef RT_QUADRIC_H
+#define RT_QUADRIC_H
+#include "compat.h"
+
+#define RT_Q_SPHERE 0u
+#define RT_Q_CYLINDER 1u
+#define RT_Q_CONE 2u
+#define RT_Q_DISK 3u
+#define RT_Q_PARABOLOID 4u
+#define RT_Q_HYPERBOLOID 5u
+#define RT_Q_TORUS 6u
+#define RT_Q_CSG 7u
+
+/* RayHit.prim of a quadric or solid member; triangles use the indices below it. */
+#define RT_OBJECT_BIT 0x40000000u
+#define RT_OBJECT_MASK 0x3fffffffu
+
+/* Quadric.flags (and TriangleAttr.flags for triangle members of a solid) */
+#define RT_QF_FLIP 1u       /* shading normal reversed: a surface subtracted in a CSG tree */
+#define RT_QF_CSG_MEMBER 2u /* reached only through its solid, not from the BVH */
+
+typedef struct Quadric {
+    rt_float4 center;       /* world position of the object-space origin */
+    rt_float4 to_world[3];  /* rows of the linear object-to-world map */
+    rt_float4 to_object[3]; /* rows of its inverse */
+    rt_float4 coef;         /* implicit form: qx, qy, qz, lz */
+    rt_float4 range;        /* c, zmin, zmax, thetamax (radians, signed) */
+    /* per kind: sphere (r, phimin, phimax) with phi in radians; cylinder (r); cone
+     * (height, radius); disk (height, radius); paraboloid (rmax, zmin, zmax);
+     * hyperboloid point1 (x, y, z) and w = 1 when planar (point1.z == point2.z);
+     * torus (major, minor, phimin, phimax) in radians */
+    rt_float4 shape;
+    rt_float4 shape2;       /* hyperboloid point2 (x, y, z); planar: w = inner radius and
+                             * range.z the outer one */
+    rt_float4 st_s, st_t;   /* s and t at the (u, v) corners 00, 10, 01, 11 */
+    uint32_t kind;          /* RT_Q_* */
+    uint32_t material;      /* index into the Material array */
+    uint32_t flags;         /* RT_QF_* */
+    uint32_t pad;
+    /* RT_Q_CSG: members at csg[first_member ..] as (prim, leaf) pairs, 2 uints each,
+     * count of them; the tree as a postfix program at csg[first_op ..], op_count ops */
+    uint32_t first_member, member_count, first_op, op_count;
+} Quadric;
+
+/* CSG postfix program: a leaf pushes whether the ray is inside leaf solid k (k in the low
+ * bits); the operators pop two and push one. At most 32 leaves and depth 32. */
+#define RT_CSG_LEAF 0x00000000u
+#define RT_CSG_UNION 0x10000000u
+#define RT_CSG_INTERSECTION 0x20000000u
+#define RT_CSG_DIFFERENCE 0x30000000u
+#define RT_CSG_OP_MASK 0xf0000000u
+#define RT_CSG_MAX_LEAVES 32
+
+#ifndef __OPENCL_C_VERSION__
+RT_ASSERT_SIZE(Quadric, 240);
+#endif
+#endif
