@@ -266,8 +266,10 @@ TEST(Quadric, CsgBoundariesFaceTheRay) {
         SolidBegin "primitive" Sphere 1 -1 1 360 SolidEnd
         SolidBegin "primitive" Cylinder 0.5 -2 2 360 Disk -2 0.5 360 Disk 2 0.5 360 SolidEnd
         SolidBegin "intersection"
-          SolidBegin "primitive" Translate 0 0 1 Sphere 0.6 -0.6 0.6 360 SolidEnd
-          SolidBegin "primitive" Translate 0.3 0 1 Sphere 0.6 -0.6 0.6 360 SolidEnd
+          SolidBegin "primitive" AttributeBegin Translate 0 0 1 Sphere 0.6 -0.6 0.6 360
+            AttributeEnd SolidEnd
+          SolidBegin "primitive" AttributeBegin Translate 0.3 0 1 Sphere 0.6 -0.6 0.6 360
+            AttributeEnd SolidEnd
         SolidEnd
       SolidEnd)");
     ASSERT_FALSE(s.quadrics.empty());
