@@ -7,18 +7,13 @@
 # scenes' README measured it. RayDrive's first render of a scene builds its OpenCL
 # program (about 2 s on PoCL); that warm-up run is not timed.
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-spd="${SPD_DIR:-$root/../shared/scenes/spd}"
+source "$(dirname "$0")/common.sh"
+spd="${SPD_DIR:-$bench_root/../shared/scenes/spd}"
 runs="${1:-3}"
-command -v povray >/dev/null ||
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq povray >/dev/null
-# RAYDRIVE_BUILD=DIR uses an existing build instead of setting up and building build/.
-bin="${RAYDRIVE_BUILD:-$root/build}/bin/raydrive"
-[ -n "${RAYDRIVE_BUILD:-}" ] || "$root/scripts/setup.sh"
+need_povray
+bin="$(raydrive_bin)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-median() { sort -n | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
-wall() { local t0 t1; t0=$(date +%s%N); "$@" >/dev/null 2>&1; t1=$(date +%s%N); echo "$(( (t1 - t0) / 1000000 ))"; }
 printf '%-8s %12s %12s %8s\n' scene raydrive_ms povray_ms ratio
 tot_r=0; tot_p=0
 for s in balls gears mount rings teapot tetra tree; do
@@ -26,8 +21,8 @@ for s in balls gears mount rings teapot tetra tree; do
   "$bin" -q -o "$work/$s.exr" "$spd/$s.rib.gz"  # warm-up: program build
   r=$(for i in $(seq "$runs"); do wall "$bin" -q -o "$work/$s.exr" "$spd/$s.rib.gz"; done | median)
   p=$(for i in $(seq "$runs"); do wall povray +I"$work/$s.pov" +O"$work/$s.png" +W512 +H512 +WT2 -D -A; done | median)
-  printf '%-8s %12d %12d %8.2f\n' "$s" "$r" "$p" "$(echo "$r $p" | awk '{print $1/$2}')"
+  printf '%-8s %12d %12d %8.2f\n' "$s" "$r" "$p" "$(ratio "$r" "$p")"
   tot_r=$((tot_r + r)); tot_p=$((tot_p + p))
 done
-printf '%-8s %12d %12d %8.2f\n' total "$tot_r" "$tot_p" "$(echo "$tot_r $tot_p" | awk '{print $1/$2}')"
+printf '%-8s %12d %12d %8.2f\n' total "$tot_r" "$tot_p" "$(ratio "$tot_r" "$tot_p")"
 echo "(ratio = RayDrive time / POV-Ray time: below 1 is faster)"
