@@ -46,11 +46,14 @@ typedef struct Quadric {
     uint32_t kind;          /* RT_Q_* */
     uint32_t material;      /* index into the Material array */
     uint32_t flags;         /* RT_QF_* */
-    uint32_t pad;
+    uint32_t primvars;      /* first of 8 float4 in the quadric primvar buffer (Cs, then Os
+                             * at the 4 corners), or RT_NO_QUADRIC_PRIMVARS */
     /* RT_Q_CSG: members at csg[first_member ..] as (prim, leaf) pairs, 2 uints each,
      * count of them; the tree as a postfix program at csg[first_op ..], op_count ops */
     uint32_t first_member, member_count, first_op, op_count;
 } Quadric;
+
+#define RT_NO_QUADRIC_PRIMVARS 0xffffffffu
 
 /* CSG postfix program: a leaf pushes whether the ray is inside leaf solid k (k in the low
  * bits); the operators pop two and push one. At most 32 leaves and depth 32. */

@@ -15,6 +15,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const float4* vertex_os,
                             __global const Material* materials,
                             __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
+                            __global const float4* quadric_primvars,
                             __global const float* params,
                             __global const float4* origin,
                             __global const float4* direction,
@@ -50,7 +51,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     if (h.prim & RT_OBJECT_BIT) {
         __global const Quadric* q = &quadrics[h.prim & RT_OBJECT_MASK];
         m = materials[q->material];
-        rd_quadric_hit_globals(&g, q, h, org, m);
+        rd_quadric_hit_globals(&g, q, h, org, m, quadric_primvars);
     } else
 #endif
     {

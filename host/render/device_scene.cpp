@@ -46,6 +46,7 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
       vertexOs(ctx, scene.vertexOs),
       quadrics(ctx, scene.quadrics),
       csg(ctx, scene.csg),
+      quadricPrimvars(ctx, scene.quadricPrimvars),
       materials(ctx, shading.materials),
       params(ctx, shading.params) {}
 

@@ -22,6 +22,7 @@ struct DeviceScene {
     DeviceBuffer<rt_float4> vertexSt, vertexCs, vertexOs;  // only when the scene has them
     DeviceBuffer<Quadric> quadrics;    // exact quadrics and CSG solids (placeholder if none)
     DeviceBuffer<uint32_t> csg;        // CSG member lists and programs
+    DeviceBuffer<rt_float4> quadricPrimvars;  // varying Cs, Os of quadrics, if any
     DeviceBuffer<Material> materials;  // bound to compiled shaders and parameter blocks
     DeviceBuffer<float> params;        // every surface instance's parameter block
 };

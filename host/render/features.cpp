@@ -18,6 +18,11 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.depthOfField = scene.deviceCamera().lens_radius > 0;
     f.quadrics = !scene.quadrics.empty();
     f.csg = !scene.csg.empty();
+    f.quadricPrimvars = !scene.quadricPrimvars.empty();
+    for (size_t i = 0; i < scene.quadricPrimvars.size(); ++i) {
+        const rt_float4& o = scene.quadricPrimvars[i];  // of each 8: Cs corners, Os corners
+        if (i % 8 >= 4 && (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f)) f.transparency = true;
+    }
     return f;
 }
 
@@ -25,6 +30,7 @@ std::vector<std::string> Features::names() const {
     std::vector<std::string> n{"triangles"};
     if (quadrics) n.push_back("quadrics");
     if (csg) n.push_back("csg");
+    if (quadricPrimvars) n.push_back("quadric_primvars");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
@@ -49,6 +55,7 @@ std::string buildOptions(const Features& f) {
     if (f.aovs) o += " -DRT_HAS_AOVS";
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
     if (f.quadrics) o += " -DRT_HAS_QUADRICS";
+    if (f.quadricPrimvars) o += " -DRT_HAS_QUADRIC_PRIMVARS";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";
     if (f.primvars & RT_PRIMVAR_CS) o += " -DRT_HAS_VERTEX_CS";
     if (f.primvars & RT_PRIMVAR_OS) o += " -DRT_HAS_VERTEX_OS";

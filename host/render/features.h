@@ -21,6 +21,7 @@ struct Features {
     bool depthOfField = false;  // a thin-lens camera
     bool quadrics = false;      // exact quadrics (RT_HAS_QUADRICS)
     bool csg = false;           // some of them CSG solids
+    bool quadricPrimvars = false;  // some quadric has varying Cs or Os
     uint32_t lightCount = 0;
     int maxTransparentDepth = 16;
 

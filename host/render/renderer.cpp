@@ -271,7 +271,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 k.shade[s]->launch(counts[s], cl_uint(offsets[s]), cl_uint(counts[s]),
                                    rp.sorted, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
                                    ds.vertexCs, ds.vertexOs, ds.materials, ds.quadrics,
-                                   ds.params, rp.origin, rp.direction, rp.weight, rp.state,
+                                   ds.quadricPrimvars, ds.params, rp.origin, rp.direction, rp.weight, rp.state,
                                    rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                                    rp.nextDirection, rp.nextWeight, rp.nextState,
                                    rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,

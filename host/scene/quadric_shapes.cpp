@@ -22,6 +22,7 @@ bool finiteAll(std::initializer_list<float> xs) {
 QuadricShape start(uint32_t kind, float thetamaxDeg, std::initializer_list<float> params) {
     QuadricShape s;
     s.q.kind = kind;
+    s.q.primvars = RT_NO_QUADRIC_PRIMVARS;
     s.q.st_s = f4(0, 1, 0, 1);
     s.q.st_t = f4(0, 0, 1, 1);
     if (!finiteAll(params) || !std::isfinite(thetamaxDeg)) {

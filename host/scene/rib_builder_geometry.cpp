@@ -90,7 +90,30 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         m_diag.warning(loc, std::string(what) + ": singular or non-finite transform, left out");
         return;
     }
+    // Cs, Os: constant or uniform (one colour) set the material; varying (one per
+    // corner) go to the quadric primvar buffer.
+    Attributes& attrs = m_attrStack.back();
+    const float savedColor[3] = {attrs.color[0], attrs.color[1], attrs.color[2]};
+    const float savedOpacity[3] = {attrs.opacity[0], attrs.opacity[1], attrs.opacity[2]};
+    const rib::Param* cs = params.find("Cs");
+    const rib::Param* os = params.find("Os");
+    if (cs && cs->floats.size() == 3) std::copy_n(cs->floats.begin(), 3, attrs.color);
+    if (os && os->floats.size() == 3) std::copy_n(os->floats.begin(), 3, attrs.opacity);
     q.material = currentMaterial();
+    const bool varyingCs = cs && cs->floats.size() == 12, varyingOs = os && os->floats.size() == 12;
+    q.primvars = RT_NO_QUADRIC_PRIMVARS;
+    if (varyingCs || varyingOs) {
+        q.primvars = uint32_t(m_world.quadricPrimvars.size());
+        for (int k = 0; k < 8; ++k) {
+            const bool opacity = k >= 4;
+            const rib::Param* p = opacity ? (varyingOs ? os : nullptr) : (varyingCs ? cs : nullptr);
+            const float* dflt = opacity ? attrs.opacity : attrs.color;
+            const float* v = p ? &p->floats[size_t(3 * (k % 4))] : dflt;
+            m_world.quadricPrimvars.push_back({v[0], v[1], v[2], 0.0f});
+        }
+    }
+    std::copy_n(savedColor, 3, attrs.color);
+    std::copy_n(savedOpacity, 3, attrs.opacity);
     const int leaf = solidLeafForSurface(loc, what);
     uint32_t index = uint32_t(m_world.quadrics.size());
     if (leaf >= 0) {

@@ -70,6 +70,7 @@ struct Scene {
     std::vector<Quadric> quadrics;
     std::vector<Aabb> quadricBounds;
     std::vector<uint32_t> csg;
+    std::vector<rt_float4> quadricPrimvars;  // 8 per quadric that has them (Quadric.primvars)
     // Materials: Material::shader indexes surfaceRefs until the shader set compiles them.
     std::vector<Material> materials;
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use

@@ -160,6 +160,26 @@ TEST(QuadricRender, ExactShadingMatchesTheClosedForm) {
     EXPECT_NEAR(mt / me, 1.0, 0.02);
 }
 
+// Primitive variables over (u, v): varying Cs at the four corners, bilinear; constant Os.
+TEST(QuadricRender, PrimitiveVariablesInterpolateOverUV) {
+    // a disk's v runs from the rim (0) to the centre (1): red at the rim, blue at the centre
+    Rendered img = orthoRender("Disk 0 1.5 360 \"Cs\" [1 0 0  1 0 0  0 0 1  0 0 1] "
+                               "\"st\" [0 0 1 0 0 1 1 1]\n"
+                               "Translate 0 0 -1 Disk 0 0.5 360 \"Os\" [0.25 0.25 0.25]\n");
+    const double px = 2 * kHalf / kRes;
+    auto pixelAt = [&](double x, double y) {
+        return img.at(int((x + kHalf) / px), int((kHalf - y) / px));
+    };
+    rd::Rgba mid = pixelAt(1.05 + px / 2, px / 2);  // radius ~1.05: v = 0.3, behind nothing
+    EXPECT_NEAR(mid.r, 0.7f, 0.03f);
+    EXPECT_NEAR(mid.b, 0.3f, 0.03f);
+    // the small disk in front covers the centre with opacity 0.25 over the blue
+    rd::Rgba centre = pixelAt(px / 2, px / 2);
+    EXPECT_NEAR(centre.r, 0.25f, 0.02f);
+    EXPECT_NEAR(centre.b, 0.25f + 0.75f * 1.0f, 0.02f);
+    EXPECT_GT(img.stats.quadrics, 1u);
+}
+
 namespace {
 std::string buildErrors(const std::string& world) {
     std::ostringstream err;
