@@ -15,6 +15,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.shadowRays = shading.shadowRays;
     f.trace = shading.usesTrace;
     f.maxSpecularDepth = scene.maxSpecularDepth;
+    f.maxTransparentDepth = scene.maxTransparentDepth;
     f.depthOfField = scene.deviceCamera().lens_radius > 0;
     return f;
 }

@@ -20,7 +20,7 @@ struct Features {
     uint32_t primvars = 0;      // RT_PRIMVAR_* some triangle carries per vertex
     bool depthOfField = false;  // a thin-lens camera
     uint32_t lightCount = 0;
-    int maxTransparentDepth = 16;
+    int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
 
     std::vector<std::string> names() const;
     // Rays a shaded hit may spawn: its continuation, plus RSL_MAX_TRACE traced rays.

@@ -189,6 +189,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     filmBuf.fillZero();
     DeviceBuffer<AovAccum> aovBuf(m_ctx, f.aovs ? npix : 0);
     aovBuf.fillZero();
+    DeviceBuffer<uint32_t> numerics(m_ctx, 8);  // numerics.clh RT_NUM_* counters
+    numerics.fillZero();
     film.pixels.assign(npix, PixelAccum{});
     st.sceneSetupMs = secondsSince(t0) * 1e3;
 
@@ -269,7 +271,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                    rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                                    rp.nextDirection, rp.nextWeight, rp.nextState,
                                    rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,
-                                   rp.shState, rp.aov, nl);
+                                   rp.shState, rp.aov, nl, numerics);
             }
             if (nl > 0) {
                 k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
@@ -375,6 +377,20 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     if (f.aovs) film.aovs = aovBuf.download();
     st.estimatedError = estimateFilmError(film.pixels);
     st.nonfiniteSamples = film.nonfiniteCount();
+    std::vector<uint32_t> num = numerics.download();
+    st.shadeNonfinite = num[0], st.shadeNegative = num[1], st.shadeHuge = num[2];
+    st.shadeDenormal = num[3], st.transparentDepthCut = num[4], st.specularDepthCut = num[5];
+    const rib::SourceLoc where{scene.sourceFile, 0};
+    if (st.shadeNonfinite + st.shadeNegative + st.shadeHuge > 0)
+        diag.warning(where, "shaders produced " + std::to_string(st.shadeNonfinite) +
+                                " NaN/Inf, " + std::to_string(st.shadeNegative) +
+                                " negative and " + std::to_string(st.shadeHuge) +
+                                " huge (> 1e10) results; left out of the image");
+    if (st.transparentDepthCut > 0)
+        diag.warning(where, std::to_string(st.transparentDepthCut) +
+                                " ray(s) stopped after " + std::to_string(f.maxTransparentDepth) +
+                                " transparent surfaces; raise Attribute \"trace\" "
+                                "\"maxtransparentdepth\"");
     st.unsampledPixels = film.unsampledCount();
     st.passes = planner.passes();
     st.elapsedSec = secondsSince(t0);

@@ -76,12 +76,24 @@ void RibBuilder::attribute(L, const std::string& name, const rib::ParamList& par
         // Outside the world it sets the default; inside, the deepest limit any object
         // asks for holds for all (per-object limits are not carried yet).
         int depth = std::min(params.getInt("maxspeculardepth", -1), 64);
-        if (depth < 0) return;
-        if (m_inWorld)
-            m_world.maxSpecularDepth = std::max(m_world.maxSpecularDepth, depth);
-        else
-            m_options.maxSpecularDepth = depth;
+        if (depth >= 0) {
+            if (m_inWorld)
+                m_world.maxSpecularDepth = std::max(m_world.maxSpecularDepth, depth);
+            else
+                m_options.maxSpecularDepth = depth;
+        }
+        traceDepthOption(params);
     }
+}
+
+void RibBuilder::traceDepthOption(const rib::ParamList& params) {
+    // maxtransparentdepth bounds the work (one trace round per layer): 0..65536.
+    int depth = std::min(params.getInt("maxtransparentdepth", -1), 65536);
+    if (depth < 0) return;
+    if (m_inWorld)
+        m_world.maxTransparentDepth = depth;
+    else
+        m_options.maxTransparentDepth = depth;
 }
 
 void RibBuilder::attributeBegin(L) { m_attrStack.push_back(m_attrStack.back()); }
@@ -200,6 +212,7 @@ void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& pa
         m_options.shaderSearchPath = out;
         return;
     }
+    if (name == "trace") traceDepthOption(params);
     if (name != "render") return;
     RenderOptionsSpec& r = m_options.render;
     r.time = params.getFloat("time", r.time);

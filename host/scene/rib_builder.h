@@ -111,6 +111,8 @@ private:
     enum class Block { Frame, World, Attribute, Transform };
 
     uint32_t currentMaterial();
+    // "trace" "maxtransparentdepth" of an Attribute or Option.
+    void traceDepthOption(const rib::ParamList& params);
     bool addAov(L, const std::string& name);
     bool inWorld(L, const char* request);
     // Adds an object-space mesh (placed by the current transform) with its primitive

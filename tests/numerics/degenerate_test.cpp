@@ -1,0 +1,1 @@
+// degenerate_test.cpp: placeholder

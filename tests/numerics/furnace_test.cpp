@@ -1,0 +1,1 @@
+// furnace_test.cpp: placeholder

@@ -1,0 +1,1 @@
+// shader_guard_test.cpp: placeholder

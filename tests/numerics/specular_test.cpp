@@ -1,0 +1,1 @@
+// specular_test.cpp: placeholder

@@ -1,0 +1,1 @@
+// transform_test.cpp: placeholder
