@@ -56,6 +56,7 @@ void RibBuilder::worldBegin(L) {
     m_materialKeys.clear();
     m_surfaceKeys.clear();
     m_degenerate = 0;
+    m_specularSetInWorld = false;
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
 }
@@ -77,8 +78,12 @@ void RibBuilder::attribute(L, const std::string& name, const rib::ParamList& par
         // asks for holds for all (per-object limits are not carried yet).
         int depth = std::min(params.getInt("maxspeculardepth", -1), 64);
         if (depth >= 0) {
+            // The default is no floor: the first limit given in the world replaces it.
             if (m_inWorld)
-                m_world.maxSpecularDepth = std::max(m_world.maxSpecularDepth, depth);
+                m_world.maxSpecularDepth = m_specularSetInWorld
+                                               ? std::max(m_world.maxSpecularDepth, depth)
+                                               : depth;
+            if (m_inWorld) m_specularSetInWorld = true;
             else
                 m_options.maxSpecularDepth = depth;
         }
