@@ -2,6 +2,8 @@
 // and light binding) turning RIB requests into Scenes.
 #include "rib_builder.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -63,9 +65,7 @@ void RibBuilder::worldBegin(L) {
 
 void RibBuilder::worldEnd(L loc) {
     if (!m_inWorld) return;
-    if (m_degenerate > 0)
-        m_diag.warning(loc, std::to_string(m_degenerate) +
-                                " degenerate or non-finite triangle(s) left out of this world");
+    (void)loc;  // degenerate geometry is reported where it was given (addMesh)
     m_inWorld = false;
     if (m_attrStack.size() > 1) m_attrStack.pop_back();
     m_scenes.push_back(std::move(m_world));
@@ -360,7 +360,6 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
         m_defining->push_back(std::move(piece));
         return;
     }
-    (void)loc;
     const glm::mat4& ctm = m_attrStack.back().ctm;
     glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
     uint32_t material = currentMaterial();
@@ -381,18 +380,40 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
     start(RT_PRIMVAR_ST, m_world.vertexSt);
     start(RT_PRIMVAR_CS, m_world.vertexCs);
     start(RT_PRIMVAR_OS, m_world.vertexOs);
+    // Degenerate input is left out (or, for normals, replaced by the geometric normal)
+    // and reported once per request, at its file:line.
+    int nonfinite = 0, zeroArea = 0, duplicate = 0, badNormal = 0;
+    std::set<std::array<float, 9>> seen;  // coincident triangles within this request
     for (size_t t = 0; t + 2 < mesh.tris.size(); t += 3) {
         int i0 = mesh.tris[t], i1 = mesh.tris[t + 1], i2 = mesh.tris[t + 2];
         const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
         glm::vec3 cr = glm::cross(b - a, c - a);
         if (!finite3(a) || !finite3(b) || !finite3(c) || !(glm::dot(cr, cr) > 0.0f)) {
             ++m_degenerate;
+            ++(finite3(a) && finite3(b) && finite3(c) ? zeroArea : nonfinite);
+            continue;
+        }
+        std::array<glm::vec3, 3> key{a, b, c};
+        std::sort(key.begin(), key.end(), [](const glm::vec3& p, const glm::vec3& q) {
+            return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+        });
+        if (!seen.insert({key[0].x, key[0].y, key[0].z, key[1].x, key[1].y, key[1].z,
+                          key[2].x, key[2].y, key[2].z}).second) {
+            ++duplicate;
             continue;
         }
         m_world.triangles.push_back({f4(a), f4(b), f4(c)});
         m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars, 0u});
+        // A zero or non-finite vertex normal: all three stored as zero, the device uses Ng.
+        bool normalsOk = true;
         for (int k : {i0, i1, i2}) {
-            m_world.normals.push_back(smooth ? f4(glm::normalize(nm * mesh.n[k])) : f4(0, 0, 0));
+            glm::vec3 n = smooth ? nm * mesh.n[k] : glm::vec3(1.0f);
+            normalsOk = normalsOk && finite3(n) && glm::dot(n, n) > 0.0f &&
+                        std::isfinite(glm::dot(n, n));
+        }
+        for (int k : {i0, i1, i2}) {
+            m_world.normals.push_back(smooth && normalsOk ? f4(glm::normalize(nm * mesh.n[k]))
+                                                          : f4(0, 0, 0));
             if (m_world.primvarsUsed & RT_PRIMVAR_ST)
                 m_world.vertexSt.push_back((primvars & RT_PRIMVAR_ST)
                                                ? f4(mesh.st[k].x, mesh.st[k].y, 0)
@@ -402,7 +423,20 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
             if (m_world.primvarsUsed & RT_PRIMVAR_OS)
                 m_world.vertexOs.push_back((primvars & RT_PRIMVAR_OS) ? f4(mesh.os[k]) : f4(0, 0, 0));
         }
+        if (!normalsOk) ++badNormal;
     }
+    if (nonfinite + zeroArea + duplicate + badNormal == 0 ||
+        !m_warnedAt.insert({loc.file, loc.line}).second)
+        return;
+    std::string what;
+    auto add = [&](int n, const char* text) {
+        if (n) what += (what.empty() ? "" : ", ") + std::to_string(n) + text;
+    };
+    add(nonfinite, " triangle(s) with a NaN or Inf vertex left out");
+    add(zeroArea, " zero-area (collinear) triangle(s) left out");
+    add(duplicate, " coincident (duplicate) triangle(s) left out");
+    add(badNormal, " triangle(s) with a zero or non-finite normal shaded with the geometric normal");
+    m_diag.warning(loc, "degenerate geometry: " + what);
 }
 
 void RibBuilder::readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh) {

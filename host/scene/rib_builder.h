@@ -9,6 +9,8 @@
 
 #include <map>
 #include <memory>
+#include <set>
+#include <string>
 
 #include "rib/target.h"
 #include "scene.h"
@@ -140,7 +142,8 @@ private:
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
-    bool m_specularSetInWorld = false;  // some Attribute "trace" "maxspeculardepth" in it
+    bool m_specularSetInWorld = false;
+    std::set<std::pair<std::string, int>> m_warnedAt;  // requests already reported  // some Attribute "trace" "maxspeculardepth" in it
     // Object definitions (ObjectBegin/End): tessellated pieces in the object's space.
     std::map<std::string, std::vector<VertexData>> m_objects;
     std::vector<VertexData>* m_defining = nullptr;
