@@ -21,6 +21,9 @@ struct Features {
     bool depthOfField = false;  // a thin-lens camera
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
+    // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a
+    // surface scale with it (math.clh), so a scene scaled to 1e-6 does not leak light.
+    float sceneScale = 1.0f;
 
     std::vector<std::string> names() const;
     // Rays a shaded hit may spawn: its continuation, plus RSL_MAX_TRACE traced rays.

@@ -230,11 +230,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         uint32_t total = 0;
         for (size_t g = 0; g < groups; ++g) offset[g] = total, total += live[g];
         if (total == 0) return cl_uint(0);
+        if (total > pool) st.overflowRays += total - pool;  // dropped: reported at the end
         rp.groupOffset.upload(offset);
-        k.compactScatter.launch(n, n, rp.groupOffset, rp.nextOrigin, rp.nextDirection,
+        k.compactScatter.launch(n, n, cl_uint(pool), rp.groupOffset, rp.nextOrigin, rp.nextDirection,
                                 rp.nextWeight, rp.nextState, rp.nextSample, rp.origin,
                                 rp.direction, rp.weight, rp.state, rp.sample);
-        return cl_uint(total);
+        return cl_uint(std::min<size_t>(total, pool));
     };
     // Returns false when a stop cut the batch short (its samples are then dropped).
     auto traceBatch = [&](const Batch& b) {
@@ -386,6 +387,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                 " NaN/Inf, " + std::to_string(st.shadeNegative) +
                                 " negative and " + std::to_string(st.shadeHuge) +
                                 " huge (> 1e10) results; left out of the image");
+    if (st.overflowRays > 0)
+        diag.warning(where, std::to_string(st.overflowRays) +
+                                " traced ray(s) dropped: more in flight than the ray pool holds "
+                                "(lower maxspeculardepth or trace fewer rays per hit)");
     if (st.transparentDepthCut > 0)
         diag.warning(where, std::to_string(st.transparentDepthCut) +
                                 " ray(s) stopped after " + std::to_string(f.maxTransparentDepth) +

@@ -54,6 +54,13 @@ void RibBuilder::worldBegin(L) {
     // The transform current at WorldBegin is the camera's; world space starts as identity.
     m_options.camera.worldToCamera = m_attrStack.back().ctm;
     m_world = m_options;
+    // Camera-relative world: what reaches the device is world space moved so the eye is
+    // at the origin (in double here), so a scene far from the origin keeps the float
+    // precision it has near the eye. Applied to triangles as they come, to the camera,
+    // lights and shader spaces at WorldEnd.
+    m_origin = glm::dvec3(glm::inverse(glm::dmat4(m_options.camera.worldToCamera)) *
+                          glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    if (!finite3(glm::vec3(m_origin))) m_origin = glm::dvec3(0.0);
     m_inWorld = true;
     m_materialKeys.clear();
     m_surfaceKeys.clear();
@@ -66,6 +73,13 @@ void RibBuilder::worldBegin(L) {
 void RibBuilder::worldEnd(L loc) {
     if (!m_inWorld) return;
     (void)loc;  // degenerate geometry is reported where it was given (addMesh)
+    const glm::dmat4 toOrigin = glm::translate(glm::dmat4(1.0), -m_origin);
+    for (ShaderRef& r : m_world.lights) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
+    for (ShaderRef& r : m_world.surfaceRefs)
+        r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
+    m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
+                                             glm::translate(glm::dmat4(1.0), m_origin));
+    m_world.worldOrigin = m_origin;
     m_inWorld = false;
     if (m_attrStack.size() > 1) m_attrStack.pop_back();
     m_scenes.push_back(std::move(m_world));
@@ -76,7 +90,7 @@ void RibBuilder::attribute(L, const std::string& name, const rib::ParamList& par
     if (name == "trace") {
         // Outside the world it sets the default; inside, the deepest limit any object
         // asks for holds for all (per-object limits are not carried yet).
-        int depth = std::min(params.getInt("maxspeculardepth", -1), 64);
+        int depth = std::min(params.getInt("maxspeculardepth", -1), 4096);
         if (depth >= 0) {
             // The default is no floor: the first limit given in the world replaces it.
             if (m_inWorld)
@@ -364,7 +378,9 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
     glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
     uint32_t material = currentMaterial();
     std::vector<glm::vec3> wp(np);
-    for (size_t i = 0; i < np; ++i) wp[i] = xformPoint(ctm, mesh.p[i]);
+    const glm::dmat4 dctm(ctm);
+    for (size_t i = 0; i < np; ++i)  // camera-relative, in double (see worldBegin)
+        wp[i] = glm::vec3(glm::dvec3(dctm * glm::dvec4(glm::dvec3(mesh.p[i]), 1.0)) - m_origin);
     const bool smooth = mesh.n.size() == np;
     uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
                         (mesh.cs.size() == np ? RT_PRIMVAR_CS : 0u) |

@@ -143,6 +143,7 @@ private:
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
     bool m_specularSetInWorld = false;
+    glm::dvec3 m_origin{0.0};  // the eye in world space: the device's world origin
     std::set<std::pair<std::string, int>> m_warnedAt;  // requests already reported  // some Attribute "trace" "maxspeculardepth" in it
     // Object definitions (ObjectBegin/End): tessellated pieces in the object's space.
     std::map<std::string, std::vector<VertexData>> m_objects;
