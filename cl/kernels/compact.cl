@@ -2,7 +2,8 @@
  * that hit are compacted onto a stack"). compact_count sums live rays per work-group;
  * the host turns the group sums into offsets (a few thousand numbers); compact_scatter
  * moves each live ray to its offset, keeping their order, so the image does not depend
- * on scheduling. Work-groups are RT_COMPACT_GROUP wide. */
+ * on scheduling. Live rays beyond the pool's capacity (a shader tracing several rays per
+ * hit, deep) are dropped, never written out of bounds. Work-groups are RT_COMPACT_GROUP wide. */
 #include "counters.clh"
 #include "ray.h"
 
@@ -26,6 +27,7 @@ void compact_count(uint count, __global const RayState* state, __global uint* gr
 
 __kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
 void compact_scatter(uint count,
+                     uint capacity, /* the pool: live rays past it are dropped (host counts) */
                      __global const uint* group_offset, /* exclusive prefix of group_live */
                      __global const float4* src_origin,
                      __global const float4* src_direction,
@@ -50,6 +52,7 @@ void compact_scatter(uint count,
     uint before = 0;
     for (uint k = 0; k < RT_COMPACT_GROUP; ++k) before += (k < lid) ? live[k] : 0u;
     uint j = group_offset[get_group_id(0)] + before;
+    if (j >= capacity) return;
     dst_origin[j] = src_origin[i];
     dst_direction[j] = src_direction[i];
     dst_weight[j] = src_weight[i];

@@ -35,6 +35,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global RayState* shadow_state,
                             __global SampleAov* aov,
                             uint light_count,
+                            __global uint* numerics, /* numerics.clh counters */
                             __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint j = get_global_id(0);
@@ -81,7 +82,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     E.w = 0.0f;
     float4 add = w * E;
     add.w = w.w * (Oi.x + Oi.y + Oi.z) * (1.0f / 3.0f); /* coverage */
-    rt_atomic_add_float4(&total[sample].value, add);
+    rt_atomic_add_float4(&total[sample].value, rt_sanitize(add, numerics));
 
 #ifdef RT_HAS_SHADOW_RAYS
     float4 Pl = rt_offset_ray(g.P, Ngf);
@@ -99,6 +100,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         float4 coef = lgl.Ci - base.Ci;
         float4 sw = w * coef;
         sw.w = 0.0f;
+        sw = rt_sanitize(sw, numerics);
         if (!rd_nonzero3(sw)) continue;
         float dist = sqrt(rt_dot3(toward, toward));
         if (!(dist > 0.0f)) continue;
@@ -119,6 +121,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #if RT_SPAWN_SLOTS > 1
     /* trace(): one ray per call the base evaluation recorded */
     int traces = min(ev.trace_count, RSL_MAX_TRACE);
+    if (traces > 0 && rs.depth >= RT_MAX_SPECULAR_DEPTH)
+        atomic_add(&numerics[RT_NUM_SPECULAR_DEPTH], (uint)traces);
     for (int i = 0; i < traces && rs.depth < RT_MAX_SPECULAR_DEPTH; ++i) {
         RslEval te;
         te.mode_light = -1;
@@ -128,6 +132,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         rsl_surface_SURFACE(&tg, p, &te);
         float4 tw = w * (tg.Ci - base.Ci);
         tw.w = 0.0f;
+        tw = rt_sanitize(tw, numerics);
         if (rt_max3(fabs(tw)) < 1e-6f) continue;
         float4 td = rt_normalize3(ev.trace_dir[i]);
         /* a zero direction (refract() under total internal reflection) traces nothing */
@@ -151,7 +156,10 @@ __kernel void shade_SURFACE(uint begin, uint count,
     /* Oi < 1: the same ray continues behind the surface with the transmitted weight */
     float4 wt = w * ((float4)(1.0f) - Oi);
     wt.w = w.w * (1.0f - (Oi.x + Oi.y + Oi.z) * (1.0f / 3.0f));
-    if (rt_max3(wt) > 1e-6f && rs.pad < RT_MAX_TRANSPARENT_DEPTH) {
+    wt = rt_sanitize(wt, numerics);
+    if (rt_max3(wt) > 1e-6f && rs.pad >= RT_MAX_TRANSPARENT_DEPTH)
+        atomic_inc(&numerics[RT_NUM_TRANSPARENT_DEPTH]);
+    else if (rt_max3(wt) > 1e-6f) {
         float4 o = rt_offset_ray(g.P, -Ngf);
         o.w = 0.0f;
         float4 d = dir;

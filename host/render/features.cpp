@@ -1,6 +1,9 @@
 // features.cpp: scene analysis and kernel specialisation options.
 #include "features.h"
 
+#include <cmath>
+#include <cstdio>
+
 namespace rd {
 
 Features analyse(const Scene& scene, const ShadingSetup& shading) {
@@ -15,6 +18,12 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.shadowRays = shading.shadowRays;
     f.trace = shading.usesTrace;
     f.maxSpecularDepth = scene.maxSpecularDepth;
+    f.maxTransparentDepth = scene.maxTransparentDepth;
+    float extent = 0.0f;
+    for (const Triangle& t : scene.triangles)
+        for (const rt_float4& v : {t.v0, t.v1, t.v2})
+            extent = std::fmax(extent, std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))));
+    while (f.sceneScale > 1e-30f && f.sceneScale * 0.5f >= extent) f.sceneScale *= 0.5f;
     f.depthOfField = scene.deviceCamera().lens_radius > 0;
     f.quadrics = !scene.quadrics.empty();
     f.csg = !scene.csg.empty();
@@ -52,6 +61,11 @@ std::string buildOptions(const Features& f) {
         o += " -DRT_HAS_TRANSPARENCY -DRT_MAX_TRANSPARENT_DEPTH=" +
              std::to_string(f.maxTransparentDepth) + "u";
     if (f.shadowRays) o += " -DRT_HAS_SHADOW_RAYS";
+    if (f.sceneScale < 1.0f) {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, " -DRT_SCENE_SCALE=%.9ef", double(f.sceneScale));
+        o += buf;
+    }
     if (f.aovs) o += " -DRT_HAS_AOVS";
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
     if (f.quadrics) o += " -DRT_HAS_QUADRICS";

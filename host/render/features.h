@@ -23,7 +23,10 @@ struct Features {
     bool csg = false;           // some of them CSG solids
     bool quadricPrimvars = false;  // some quadric has varying Cs or Os
     uint32_t lightCount = 0;
-    int maxTransparentDepth = 16;
+    int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
+    // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a
+    // surface scale with it (math.clh), so a scene scaled to 1e-6 does not leak light.
+    float sceneScale = 1.0f;
 
     std::vector<std::string> names() const;
     // Rays a shaded hit may spawn: its continuation, plus RSL_MAX_TRACE traced rays.

@@ -195,6 +195,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     filmBuf.fillZero();
     DeviceBuffer<AovAccum> aovBuf(m_ctx, f.aovs ? npix : 0);
     aovBuf.fillZero();
+    DeviceBuffer<uint32_t> numerics(m_ctx, 8);  // numerics.clh RT_NUM_* counters
+    numerics.fillZero();
     film.pixels.assign(npix, PixelAccum{});
     st.sceneSetupMs = secondsSince(t0) * 1e3;
 
@@ -234,11 +236,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         uint32_t total = 0;
         for (size_t g = 0; g < groups; ++g) offset[g] = total, total += live[g];
         if (total == 0) return cl_uint(0);
+        if (total > pool) st.overflowRays += total - pool;  // dropped: reported at the end
         rp.groupOffset.upload(offset);
-        k.compactScatter.launch(n, n, rp.groupOffset, rp.nextOrigin, rp.nextDirection,
+        k.compactScatter.launch(n, n, cl_uint(pool), rp.groupOffset, rp.nextOrigin, rp.nextDirection,
                                 rp.nextWeight, rp.nextState, rp.nextSample, rp.origin,
                                 rp.direction, rp.weight, rp.state, rp.sample);
-        return cl_uint(total);
+        return cl_uint(std::min<size_t>(total, pool));
     };
     // Returns false when a stop cut the batch short (its samples are then dropped).
     auto traceBatch = [&](const Batch& b) {
@@ -275,7 +278,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                    rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                                    rp.nextDirection, rp.nextWeight, rp.nextState,
                                    rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,
-                                   rp.shState, rp.aov, nl);
+                                   rp.shState, rp.aov, nl, numerics);
             }
             if (nl > 0) {
                 k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
@@ -382,6 +385,24 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     if (f.aovs) film.aovs = aovBuf.download();
     st.estimatedError = estimateFilmError(film.pixels);
     st.nonfiniteSamples = film.nonfiniteCount();
+    std::vector<uint32_t> num = numerics.download();
+    st.shadeNonfinite = num[0], st.shadeNegative = num[1], st.shadeHuge = num[2];
+    st.shadeDenormal = num[3], st.transparentDepthCut = num[4], st.specularDepthCut = num[5];
+    const rib::SourceLoc where{scene.sourceFile, 0};
+    if (st.shadeNonfinite + st.shadeNegative + st.shadeHuge > 0)
+        diag.warning(where, "shaders produced " + std::to_string(st.shadeNonfinite) +
+                                " NaN/Inf, " + std::to_string(st.shadeNegative) +
+                                " negative and " + std::to_string(st.shadeHuge) +
+                                " huge (> 1e10) results; left out of the image");
+    if (st.overflowRays > 0)
+        diag.warning(where, std::to_string(st.overflowRays) +
+                                " traced ray(s) dropped: more in flight than the ray pool holds "
+                                "(lower maxspeculardepth or trace fewer rays per hit)");
+    if (st.transparentDepthCut > 0)
+        diag.warning(where, std::to_string(st.transparentDepthCut) +
+                                " ray(s) stopped after " + std::to_string(f.maxTransparentDepth) +
+                                " transparent surfaces; raise Attribute \"trace\" "
+                                "\"maxtransparentdepth\"");
     st.unsampledPixels = film.unsampledCount();
     st.passes = planner.passes();
     st.elapsedSec = secondsSince(t0);

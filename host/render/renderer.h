@@ -41,6 +41,12 @@ struct RenderStats {
     uint64_t triangles = 0, quadrics = 0, csgSolids = 0, bvhNodes = 0, droppedPrims = 0;
     uint64_t sceneBytes = 0;  // device bytes of geometry: BVH, blocks, triangles, quadrics
     uint64_t nonfiniteSamples = 0, unsampledPixels = 0, abortedSamples = 0;
+    // Shader results dropped before they reached a sample or a ray weight (numerics.clh):
+    // NaN/Inf, negative, huge (> 1e10); denormal channels flushed to zero; rays cut by
+    // maxtransparentdepth and by maxspeculardepth.
+    uint64_t shadeNonfinite = 0, shadeNegative = 0, shadeHuge = 0, shadeDenormal = 0;
+    uint64_t transparentDepthCut = 0, specularDepthCut = 0;
+    uint64_t overflowRays = 0;  // spawned rays beyond the pool's capacity, dropped
     size_t poolCapacity = 0;
     int passes = 0, batches = 0;
     double estimatedError = -1;

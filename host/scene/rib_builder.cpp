@@ -2,6 +2,8 @@
 // and light binding) turning RIB requests into Scenes.
 #include "rib_builder.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -52,21 +54,34 @@ void RibBuilder::worldBegin(L) {
     // The transform current at WorldBegin is the camera's; world space starts as identity.
     m_options.camera.worldToCamera = m_attrStack.back().ctm;
     m_world = m_options;
+    // Camera-relative world: what reaches the device is world space moved so the eye is
+    // at the origin (in double here), so a scene far from the origin keeps the float
+    // precision it has near the eye. Applied to triangles as they come, to the camera,
+    // lights and shader spaces at WorldEnd.
+    m_origin = glm::dvec3(glm::inverse(glm::dmat4(m_options.camera.worldToCamera)) *
+                          glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    if (!finite3(glm::vec3(m_origin))) m_origin = glm::dvec3(0.0);
     m_inWorld = true;
     m_materialKeys.clear();
     m_surfaceKeys.clear();
     m_degenerate = 0;
     m_solidNodes.clear();
     m_solidStack.clear();
+    m_specularSetInWorld = false;
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
 }
 
 void RibBuilder::worldEnd(L loc) {
     if (!m_inWorld) return;
-    if (m_degenerate > 0)
-        m_diag.warning(loc, std::to_string(m_degenerate) +
-                                " degenerate or non-finite triangle(s) left out of this world");
+    (void)loc;  // degenerate geometry is reported where it was given (addMesh)
+    const glm::dmat4 toOrigin = glm::translate(glm::dmat4(1.0), -m_origin);
+    for (ShaderRef& r : m_world.lights) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
+    for (ShaderRef& r : m_world.surfaceRefs)
+        r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
+    m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
+                                             glm::translate(glm::dmat4(1.0), m_origin));
+    m_world.worldOrigin = m_origin;
     m_inWorld = false;
     if (m_attrStack.size() > 1) m_attrStack.pop_back();
     m_scenes.push_back(std::move(m_world));
@@ -77,13 +92,29 @@ void RibBuilder::attribute(L, const std::string& name, const rib::ParamList& par
     if (name == "trace") {
         // Outside the world it sets the default; inside, the deepest limit any object
         // asks for holds for all (per-object limits are not carried yet).
-        int depth = std::min(params.getInt("maxspeculardepth", -1), 64);
-        if (depth < 0) return;
-        if (m_inWorld)
-            m_world.maxSpecularDepth = std::max(m_world.maxSpecularDepth, depth);
-        else
-            m_options.maxSpecularDepth = depth;
+        int depth = std::min(params.getInt("maxspeculardepth", -1), 4096);
+        if (depth >= 0) {
+            // The default is no floor: the first limit given in the world replaces it.
+            if (m_inWorld)
+                m_world.maxSpecularDepth = m_specularSetInWorld
+                                               ? std::max(m_world.maxSpecularDepth, depth)
+                                               : depth;
+            if (m_inWorld) m_specularSetInWorld = true;
+            else
+                m_options.maxSpecularDepth = depth;
+        }
+        traceDepthOption(params);
     }
+}
+
+void RibBuilder::traceDepthOption(const rib::ParamList& params) {
+    // maxtransparentdepth bounds the work (one trace round per layer): 0..65536.
+    int depth = std::min(params.getInt("maxtransparentdepth", -1), 65536);
+    if (depth < 0) return;
+    if (m_inWorld)
+        m_world.maxTransparentDepth = depth;
+    else
+        m_options.maxTransparentDepth = depth;
 }
 
 void RibBuilder::attributeBegin(L) { m_attrStack.push_back(m_attrStack.back()); }
@@ -202,6 +233,7 @@ void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& pa
         m_options.shaderSearchPath = out;
         return;
     }
+    if (name == "trace") traceDepthOption(params);
     if (name != "render") return;
     RenderOptionsSpec& r = m_options.render;
     r.time = params.getFloat("time", r.time);
@@ -350,7 +382,9 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
     glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
     uint32_t material = currentMaterial();
     std::vector<glm::vec3> wp(np);
-    for (size_t i = 0; i < np; ++i) wp[i] = xformPoint(ctm, mesh.p[i]);
+    const glm::dmat4 dctm(ctm);
+    for (size_t i = 0; i < np; ++i)  // camera-relative, in double (see worldBegin)
+        wp[i] = glm::vec3(glm::dvec3(dctm * glm::dvec4(glm::dvec3(mesh.p[i]), 1.0)) - m_origin);
     const bool smooth = mesh.n.size() == np;
     uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
                         (mesh.cs.size() == np ? RT_PRIMVAR_CS : 0u) |
@@ -366,12 +400,26 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
     start(RT_PRIMVAR_ST, m_world.vertexSt);
     start(RT_PRIMVAR_CS, m_world.vertexCs);
     start(RT_PRIMVAR_OS, m_world.vertexOs);
+    // Degenerate input is left out (or, for normals, replaced by the geometric normal)
+    // and reported once per request, at its file:line.
+    int nonfinite = 0, zeroArea = 0, duplicate = 0, badNormal = 0;
+    std::set<std::array<float, 9>> seen;  // coincident triangles within this request
     for (size_t t = 0; t + 2 < mesh.tris.size(); t += 3) {
         int i0 = mesh.tris[t], i1 = mesh.tris[t + 1], i2 = mesh.tris[t + 2];
         const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
         glm::vec3 cr = glm::cross(b - a, c - a);
         if (!finite3(a) || !finite3(b) || !finite3(c) || !(glm::dot(cr, cr) > 0.0f)) {
             ++m_degenerate;
+            ++(finite3(a) && finite3(b) && finite3(c) ? zeroArea : nonfinite);
+            continue;
+        }
+        std::array<glm::vec3, 3> key{a, b, c};
+        std::sort(key.begin(), key.end(), [](const glm::vec3& p, const glm::vec3& q) {
+            return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+        });
+        if (!seen.insert({key[0].x, key[0].y, key[0].z, key[1].x, key[1].y, key[1].z,
+                          key[2].x, key[2].y, key[2].z}).second) {
+            ++duplicate;
             continue;
         }
         if (leaf >= 0) {
@@ -381,8 +429,16 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
         m_world.triangles.push_back({f4(a), f4(b), f4(c)});
         m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars,
                                  leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u});
+        // A zero or non-finite vertex normal: all three stored as zero, the device uses Ng.
+        bool normalsOk = true;
         for (int k : {i0, i1, i2}) {
-            m_world.normals.push_back(smooth ? f4(glm::normalize(nm * mesh.n[k])) : f4(0, 0, 0));
+            glm::vec3 n = smooth ? nm * mesh.n[k] : glm::vec3(1.0f);
+            normalsOk = normalsOk && finite3(n) && glm::dot(n, n) > 0.0f &&
+                        std::isfinite(glm::dot(n, n));
+        }
+        for (int k : {i0, i1, i2}) {
+            m_world.normals.push_back(smooth && normalsOk ? f4(glm::normalize(nm * mesh.n[k]))
+                                                          : f4(0, 0, 0));
             if (m_world.primvarsUsed & RT_PRIMVAR_ST)
                 m_world.vertexSt.push_back((primvars & RT_PRIMVAR_ST)
                                                ? f4(mesh.st[k].x, mesh.st[k].y, 0)
@@ -392,7 +448,20 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
             if (m_world.primvarsUsed & RT_PRIMVAR_OS)
                 m_world.vertexOs.push_back((primvars & RT_PRIMVAR_OS) ? f4(mesh.os[k]) : f4(0, 0, 0));
         }
+        if (!normalsOk) ++badNormal;
     }
+    if (nonfinite + zeroArea + duplicate + badNormal == 0 ||
+        !m_warnedAt.insert({loc.file, loc.line}).second)
+        return;
+    std::string what;
+    auto add = [&](int n, const char* text) {
+        if (n) what += (what.empty() ? "" : ", ") + std::to_string(n) + text;
+    };
+    add(nonfinite, " triangle(s) with a NaN or Inf vertex left out");
+    add(zeroArea, " zero-area (collinear) triangle(s) left out");
+    add(duplicate, " coincident (duplicate) triangle(s) left out");
+    add(badNormal, " triangle(s) with a zero or non-finite normal shaded with the geometric normal");
+    m_diag.warning(loc, "degenerate geometry: " + what);
 }
 
 void RibBuilder::readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh) {

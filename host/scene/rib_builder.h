@@ -9,6 +9,8 @@
 
 #include <map>
 #include <memory>
+#include <set>
+#include <string>
 
 #include "rib/target.h"
 #include "quadric_shapes.h"
@@ -119,6 +121,8 @@ private:
     enum class Block { Frame, World, Attribute, Transform };
 
     uint32_t currentMaterial();
+    // "trace" "maxtransparentdepth" of an Attribute or Option.
+    void traceDepthOption(const rib::ParamList& params);
     bool addAov(L, const std::string& name);
     bool inWorld(L, const char* request);
     // Adds an object-space mesh (placed by the current transform) with its primitive
@@ -160,6 +164,9 @@ private:
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
+    bool m_specularSetInWorld = false;
+    glm::dvec3 m_origin{0.0};  // the eye in world space: the device's world origin
+    std::set<std::pair<std::string, int>> m_warnedAt;  // requests already reported
     // Object definitions (ObjectBegin/End): tessellated pieces and exact quadrics in the
     // object's space (a quadric's matrices map it into the object's space).
     struct ObjectDef {

@@ -85,7 +85,10 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         m_defining->quadrics.push_back(shape);
         return;
     }
-    const glm::mat4 toWorld = m_attrStack.back().ctm * placement;
+    // camera-relative world, composed in double like meshes (see worldBegin)
+    glm::dmat4 toWorldD = glm::dmat4(m_attrStack.back().ctm) * glm::dmat4(placement);
+    toWorldD[3] -= glm::dvec4(m_origin, 0.0);
+    const glm::mat4 toWorld(toWorldD);
     if (!placeQuadric(q, toWorld)) {
         m_diag.warning(loc, std::string(what) + ": singular or non-finite transform, left out");
         return;

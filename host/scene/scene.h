@@ -77,6 +77,12 @@ struct Scene {
     std::vector<ShaderRef> lights;       // every LightSource, in order
     std::vector<std::string> shaderSearchPath;  // Option "searchpath" "shader", split
     int maxSpecularDepth = 2;  // Attribute "trace" "maxspeculardepth" (the largest given)
+    // Attribute/Option "trace" "maxtransparentdepth": surfaces of Opacity < 1 a ray goes
+    // through; rays cut there are counted (--stats) and reported, never silently lost.
+    int maxTransparentDepth = 256;
+    // Where the device's origin is in RIB world space: triangles, camera, lights and
+    // shader spaces are stored relative to it (the eye), for precision far from the origin.
+    glm::dvec3 worldOrigin{0.0};
     CameraSpec camera;
     DisplaySpec display;
     std::vector<std::string> aovs;  // AOVs the RIB asks for (Display "+name", DisplayChannel)

@@ -47,6 +47,13 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                      {"cache_file", st.program.cacheFile},
                      {"build_ms", st.program.buildMs}}},
         {"nonfinite_samples", st.nonfiniteSamples},
+        {"numerics", {{"shader_nonfinite", st.shadeNonfinite},
+                      {"shader_negative", st.shadeNegative},
+                      {"shader_huge", st.shadeHuge},
+                      {"shader_denormal", st.shadeDenormal},
+                      {"transparent_depth_cut", st.transparentDepthCut},
+                      {"specular_depth_cut", st.specularDepthCut},
+                      {"pool_overflow_rays", st.overflowRays}}},
         {"sampling", {{"passes", st.passes},
                       {"batches", st.batches},
                       {"stop_reason", st.stopReason},
@@ -70,6 +77,12 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
     out << "sampling  " << s["sampling"]["passes"] << " passes, stopped by "
         << s["sampling"]["stop_reason"].get<std::string>() << ", estimated error "
         << s["sampling"]["estimated_error"].get<double>() << "\n";
+    out << "numerics  nonfinite samples " << s["nonfinite_samples"] << ", shader NaN/Inf "
+        << s["numerics"]["shader_nonfinite"] << ", negative " << s["numerics"]["shader_negative"]
+        << ", huge " << s["numerics"]["shader_huge"] << ", denormal "
+        << s["numerics"]["shader_denormal"] << ", cut at maxtransparentdepth "
+        << s["numerics"]["transparent_depth_cut"] << ", at maxspeculardepth "
+        << s["numerics"]["specular_depth_cut"] << "\n";
     out << "scene     " << s["scene_stats"]["triangles"] << " triangles, "
         << s["scene_stats"]["bvh_nodes"] << " BVH nodes\n";
     out << "features ";

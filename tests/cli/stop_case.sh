@@ -17,8 +17,10 @@ if [ "$mode" = time ]; then
   [ $rc -eq 0 ] || { echo "exit $rc, expected 0"; exit 1; }
   valid_exr out.exr || { echo "out.exr missing or not an EXR"; exit 1; }
   # The budget counts set-up (a cold OpenCL build included) and the first batch always
-  # completes; past the later of those two, the render must stop within a second.
-  python3 -c "import json,sys; d=json.load(open('s.json')); s=d['scene_stats']['setup_ms']/1000; sys.exit(0 if d['sampling']['stop_reason']=='time budget' and d['elapsed_s'] < max(1.0, s + 0.5) + 1.0 else 1)" \
+  # completes (on a cold PoCL cache it includes the JIT of every kernel at its first
+  # launch, about a second); past the later of those two, the render must stop within
+  # a second.
+  python3 -c "import json,sys; d=json.load(open('s.json')); s=d['scene_stats']['setup_ms']/1000; sys.exit(0 if d['sampling']['stop_reason']=='time budget' and d['elapsed_s'] < max(1.0, s + 1.5) + 1.0 else 1)" \
     || { echo "stats: $(cat s.json | head -c 600)"; exit 1; }
   echo "stopped by the time budget after $took ms (wall, process start to exit)"
   exit 0

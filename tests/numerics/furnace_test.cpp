@@ -1,0 +1,83 @@
+// furnace_test.cpp: case 6, white furnace: a closed box of polygons seen from inside,
+// every wall emitting E and reflecting diffusely with albedo a (cosine-weighted trace()
+// from RSL random()); the radiance is E (1 - a^(D+1)) / (1 - a) for D bounces, which is
+// E / (1 - a) as D grows. Every path has the same value, so there is no Monte Carlo
+// noise: any error is a leak through the box's seams, a lost bounce or rounding.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "numerics_util.h"
+
+using namespace rd::numerics;
+
+namespace {
+
+const char* kFurnaceShader =
+    "surface furnace(float albedo = 0.5, emission = 1;) {\n"
+    "    normal Nf = faceforward(normalize(N), I);\n"
+    "    vector A = abs(xcomp(Nf)) > 0.5 ? vector(0, 1, 0) : vector(1, 0, 0);\n"
+    "    vector T = normalize(Nf ^ A);\n"
+    "    vector B = Nf ^ T;\n"
+    "    float u1 = random();\n"
+    "    float u2 = random();\n"
+    "    float r = sqrt(u1), phi = 6.28318531 * u2;\n"
+    "    vector D = r * cos(phi) * T + r * sin(phi) * B + sqrt(max(0, 1 - u1)) * Nf;\n"
+    "    Oi = 1;\n"
+    "    Ci = emission + albedo * trace(P, D);\n"
+    "}\n";
+
+std::string shaderDir() {
+    std::string dir = ::testing::TempDir() + "/raydrive_numerics_furnace";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/furnace.sl") << kFurnaceShader;
+    return dir;
+}
+
+// The cube [-1, 1]^3 as six polygons sharing their edges, the eye at its centre.
+std::string furnace(double albedo, double emission, int depth) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "Attribute \"trace\" \"int maxspeculardepth\" [%d]\n"
+                  "Surface \"furnace\" \"albedo\" %.9g \"emission\" %.9g\n", depth, albedo,
+                  emission);
+    return "Option \"searchpath\" \"shader\" [\"" + shaderDir() + ":&\"]\n" + camera(8, 90, 1) +
+           "WorldBegin\n" + buf +
+           "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1]\n"
+           "Polygon \"P\" [-1 -1 -1  -1 1 -1  1 1 -1  1 -1 -1]\n"
+           "Polygon \"P\" [1 -1 -1  1 1 -1  1 1 1  1 -1 1]\n"
+           "Polygon \"P\" [-1 -1 -1  -1 -1 1  -1 1 1  -1 1 -1]\n"
+           "Polygon \"P\" [-1 1 -1  -1 1 1  1 1 1  1 1 -1]\n"
+           "Polygon \"P\" [-1 -1 -1  1 -1 -1  1 -1 1  -1 -1 1]\n"
+           "WorldEnd\n";
+}
+
+}  // namespace
+
+// Tolerance 1e-4 relative against the series to the depth the scene asks for (rounding
+// of up to 65 additions, the 1e-6 weight cut); against the infinite series E / (1 - a)
+// the truncation a^(D+1) adds to it, so that comparison is stated separately.
+TEST(Numerics, WhiteFurnace) {
+    const double e = 0.25;
+    for (double a : {0.5, 0.9, 0.99}) {
+        const int depth = a > 0.95 ? 1024 : 64;
+        Diagnosed d = renderWithDiagnostics(furnace(a, e, depth));
+        ASSERT_EQ(countOf(d.messages, "error"), 0) << d.messages;  // the shader compiled
+        const double got = d.image.mean(0, 0, 0, d.image.width, d.image.height);
+        double spread = 0;
+        for (const rd::Rgba& p : d.image.pixels) spread = std::fmax(spread, std::fabs(p.r - got));
+        const double series = e * (1.0 - std::pow(a, depth + 1)) / (1.0 - a);
+        const double infinite = e / (1.0 - a);
+        char name[80];
+        std::snprintf(name, sizeof name, "furnace_a%g_depth%d_vs_series", a, depth);
+        EXPECT_TRUE(report(name, 1e-4, std::fabs(got / series - 1.0) + spread / series))
+            << "got " << got << " expected " << series << "\n" << d.messages;
+        std::snprintf(name, sizeof name, "furnace_a%g_depth%d_vs_E/(1-a)", a, depth);
+        const double tol = std::pow(a, depth + 1) + 1e-4;  // the truncation, stated
+        EXPECT_TRUE(report(name, tol, std::fabs(got / infinite - 1.0)));
+        EXPECT_EQ(d.image.stats.nonfiniteSamples, 0u);
+    }
+}

@@ -1,0 +1,103 @@
+// specular_test.cpp: case 2, deep specular paths: two parallel mirrors facing each other
+// with the camera between them; each bounce adds the ambient term, so a pixel is the
+// geometric series sum_{k=0..D} Kr^k for Attribute "trace" "maxspeculardepth" D.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "numerics_util.h"
+
+using namespace rd::numerics;
+
+namespace {
+
+// Mirrors (standard "mirror", Ka 1 under an ambient light of 1: emission 1 per bounce)
+// at z = 5 and z = -5; the eye at the origin looks at the first through a 4 degree fov,
+// so 64 bounces drift 22 units sideways on mirrors 100 units across.
+std::string mirrors(double kr, int depth) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  "Attribute \"trace\" \"int maxspeculardepth\" [%d]\n"
+                  "Surface \"mirror\" \"Ka\" 1 \"Kr\" %.9g\n", depth, kr);
+    return camera(8, 4, 1) + "WorldBegin\nLightSource \"ambientlight\" 1 \"intensity\" 1\n" +
+           buf + squareAtZ(5.0) + squareAtZ(-5.0) + "WorldEnd\n";
+}
+
+}  // namespace
+
+// Tolerance 2e-5 relative: up to 65 float additions into the sample, and the 1e-6 weight
+// below which a traced ray is not spawned (Kr = 0.5 stops after 20 bounces: 2e-6).
+TEST(Numerics, MirrorsGiveTheGeometricSeries) {
+    for (double kr : {0.5, 0.9}) {
+        for (int depth : {1, 8, 64}) {
+            Diagnosed d = renderWithDiagnostics(mirrors(kr, depth));
+            const double expected = (1.0 - std::pow(kr, depth + 1)) / (1.0 - kr);
+            double err = 0;
+            for (const rd::Rgba& p : d.image.pixels)
+                for (float c : {p.r, p.g, p.b})
+                    err = std::fmax(err, std::fabs(c / expected - 1.0));
+            char name[64];
+            std::snprintf(name, sizeof name, "mirrors_Kr%g_depth%d", kr, depth);
+            EXPECT_TRUE(report(name, 2e-5, err)) << "expected " << expected;
+            const auto& st = d.image.stats;
+            EXPECT_EQ(st.features.maxSpecularDepth, depth);
+            // Bounded work: exactly one traced ray per bounce while the weight is above
+            // 1e-6 (0.9^64 is), none past the depth, where the cut is counted.
+            if (kr == 0.9) {
+                EXPECT_EQ(st.continuationRays, uint64_t(depth) * st.eyeRays) << name;
+                EXPECT_EQ(st.specularDepthCut, st.eyeRays) << name;
+            } else {
+                EXPECT_LE(st.continuationRays, uint64_t(std::min(depth, 20)) * st.eyeRays);
+            }
+        }
+    }
+}
+
+// A depth beyond 4096 is held at 4096: the work stays bounded whatever the RIB asks (and
+// here the 1e-6 weight cut ends the paths after 131 bounces).
+TEST(Numerics, SpecularDepthIsBounded) {
+    Diagnosed d = renderWithDiagnostics(mirrors(0.9, 100000));
+    const auto& st = d.image.stats;
+    EXPECT_EQ(st.features.maxSpecularDepth, 4096);
+    EXPECT_LE(st.continuationRays, 131u * st.eyeRays);
+    double err = std::fabs(d.image.mean(0, 0, 0, 8, 8) / 10.0 - 1.0);
+    EXPECT_TRUE(report("mirrors_Kr0.9_depth_4096", 2e-5, err));
+}
+
+namespace {
+// Two trace() calls per hit, each of weight 0.5, emission 1: D bounces give D + 1, with
+// 2^D rays per eye ray at depth D.
+std::string twins(int depth) {
+    std::string dir = ::testing::TempDir() + "/raydrive_numerics_twin";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/twin.sl")
+        << "surface twin() {\n    normal Nf = faceforward(normalize(N), I);\n"
+           "    vector R = reflect(I, Nf);\n    Oi = 1;\n"
+           "    Ci = 1 + 0.5 * trace(P, R) + 0.5 * trace(P, R);\n}\n";
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "Attribute \"trace\" \"int maxspeculardepth\" [%d]\n", depth);
+    return "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" + camera(8, 4, 1) +
+           "WorldBegin\n" + buf + "Surface \"twin\"\n" + squareAtZ(5.0) + squareAtZ(-5.0) +
+           "WorldEnd\n";
+}
+}  // namespace
+
+// A ray tree that outgrows the ray pool (2^12 rays per eye ray, a pool of 64) loses the
+// rays past the pool, counted and reported once, never written out of bounds; one that
+// fits is exact.
+TEST(Numerics, RayTreeLargerThanThePoolIsBounded) {
+    Diagnosed fits = renderWithDiagnostics(twins(5));
+    double err = std::fabs(fits.image.mean(0, 0, 0, 8, 8) / 6.0 - 1.0);
+    EXPECT_TRUE(report("ray_tree_depth5_fits_pool", 2e-5, err));
+    EXPECT_EQ(fits.image.stats.overflowRays, 0u);
+    rd::RenderSettings small;
+    small.poolCapacity = 64;
+    Diagnosed over = renderWithDiagnostics(twins(12), small);
+    EXPECT_TRUE(allFinite(over.image));
+    EXPECT_GT(over.image.stats.overflowRays, 0u);
+    EXPECT_LE(maxAbs(over.image), 13.0 + 1e-3);
+    EXPECT_EQ(countOf(over.messages, "ray pool"), 1) << over.messages;
+}
