@@ -268,7 +268,11 @@ ShadingSetup ShaderSet::prepare() {
                 << fmt(c[4 * r + 1]) << ", " << fmt(c[4 * r + 2]) << ", " << fmt(c[4 * r + 3])
                 << ");\n";
     }
-    svc << "    }\n    return m;\n}\n";
+    // "world": the renderer's current space is the world moved so the eye is at the
+    // origin (precision far from it); world points are current + worldOrigin.
+    const glm::dvec3& wo = m_scene.worldOrigin;
+    svc << "    }\n    if (space == RSL_SPACE_WORLD) m.r[3] = (float4)(" << fmt(float(-wo.x)) << ", "
+        << fmt(float(-wo.y)) << ", " << fmt(float(-wo.z)) << ", 1.0f);\n    return m;\n}\n";
     // --- surfaces: one compiled shader per name, one parameter block per call
     std::map<std::string, uint32_t> surfaceIndex;
     std::vector<uint32_t> refBlock(m_scene.surfaceRefs.size());

@@ -87,8 +87,9 @@
  *          Ps toward the light (surface-side), Cl = unshadowed colour.
  *   float4 rsl_ambient(const RslGlobals* g);  sum of the ambient lights' Cl
  *   RslMatrix rsl_space_matrix(int space);    maps points of `space` (RSL_SPACE_*) to
- *          current space (p_current = (p,1) * M); RSL_SPACE_CURRENT/WORLD: identity.
- *          Only called for CAMERA, SCREEN, RASTER and NDC: SHADER and OBJECT come from
+ *          current space (p_current = (p,1) * M); RSL_SPACE_CURRENT: identity; WORLD
+ *          a translation when the renderer keeps the scene relative to the eye.
+ *          Only called for WORLD, CAMERA, SCREEN, RASTER and NDC: SHADER and OBJECT come from
  *          the matrices after the parameter block (SPACES above).
  *   int    rsl_lightsource_param(int light, int nameId, float* out, int n);
  *          light `light`'s parameter named nameId (rsl::stringId of the name): nonzero
