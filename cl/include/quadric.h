@@ -20,6 +20,10 @@
 #define RT_Q_HYPERBOLOID 5u
 #define RT_Q_TORUS 6u
 #define RT_Q_CSG 7u
+/* A triangle that moves during the shutter (motion blur): its vertices at the first key
+ * are in the Triangle array, at the last key in the end-key triangle array (v0.w, v1.w:
+ * the two key times); it is reached through this record, hits report the triangle. */
+#define RT_Q_MOVING_TRIANGLE 8u
 
 /* RayHit.prim of a quadric or solid member; triangles use the indices below it. */
 #define RT_OBJECT_BIT 0x40000000u
@@ -28,6 +32,7 @@
 /* Quadric.flags (and TriangleAttr.flags for triangle members of a solid) */
 #define RT_QF_FLIP 1u       /* shading normal reversed: a surface subtracted in a CSG tree */
 #define RT_QF_CSG_MEMBER 2u /* reached only through its solid, not from the BVH */
+#define RT_QF_MOVING 4u     /* placement (or triangle vertices) interpolated by ray time */
 
 typedef struct Quadric {
     rt_float4 center;       /* world position of the object-space origin */
@@ -49,8 +54,14 @@ typedef struct Quadric {
     uint32_t primvars;      /* first of 8 float4 in the quadric primvar buffer (Cs, then Os
                              * at the 4 corners), or RT_NO_QUADRIC_PRIMVARS */
     /* RT_Q_CSG: members at csg[first_member ..] as (prim, leaf) pairs, 2 uints each,
-     * count of them; the tree as a postfix program at csg[first_op ..], op_count ops */
+     * count of them; the tree as a postfix program at csg[first_op ..], op_count ops.
+     * RT_Q_MOVING_TRIANGLE: first_member is the triangle's index. */
     uint32_t first_member, member_count, first_op, op_count;
+    /* RT_QF_MOVING: its placement at the last motion key is at quadric_motion[motion ..]
+     * (4 float4: centre with w = first key's time, to_world rows, row 0's w = last key's
+     * time); placements between are interpolated linearly */
+    uint32_t motion;
+    uint32_t pad2[3];
 } Quadric;
 
 #define RT_NO_QUADRIC_PRIMVARS 0xffffffffu
@@ -65,6 +76,6 @@ typedef struct Quadric {
 #define RT_CSG_MAX_LEAVES 32
 
 #ifndef __OPENCL_C_VERSION__
-RT_ASSERT_SIZE(Quadric, 240);
+RT_ASSERT_SIZE(Quadric, 256);
 #endif
 #endif

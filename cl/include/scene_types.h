@@ -61,7 +61,7 @@ typedef struct Camera {
     int32_t spp_x, spp_y;   /* PixelSamples */
     float lens_radius;      /* DepthOfField: focallength / (2 fstop); 0 = pinhole */
     float focal_distance;   /* camera-space z of the plane in focus */
-    float pad[2];
+    float shutter[2];       /* Shutter open, close: each sample's time is uniform in it */
 } Camera;
 
 #ifndef __OPENCL_C_VERSION__

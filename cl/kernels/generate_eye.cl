@@ -19,6 +19,7 @@ __kernel void generate_eye(__constant Camera* cam,
                            __global uint* ray_sample,
                            __global SampleTotal* total,
                            __global SampleAov* aov, /* used with RT_HAS_AOVS */
+                           __global float* sample_time, /* RT_HAS_MOTION: in the shutter */
                            __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
@@ -71,6 +72,9 @@ __kernel void generate_eye(__constant Camera* cam,
     RayState st = {1u, 0u, RT_NO_HIT, 0u};
     state[i] = st;
     ray_sample[i] = i; /* eye ray i belongs to sample i of the batch */
+#ifdef RT_HAS_MOTION
+    sample_time[i] = mix(cam->shutter[0], cam->shutter[1], rt_random(pixel, s, 4));
+#endif
     total[i].value = (float4)(0.0f);
 #ifdef RT_HAS_AOVS
     /* camera z per unit of world ray distance: the unit camera direction's z over len */

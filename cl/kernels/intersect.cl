@@ -7,10 +7,16 @@
 /* The object scene a kernel's traversal sees: its quadric, CSG and triangle buffers. */
 #ifdef RT_HAS_QUADRICS
 #define RT_OBJECT_SCENE_ARG , &objs
-#define RT_DECLARE_OBJECT_SCENE const ObjectScene objs = {quadrics, csg, tris}
+#ifdef RT_HAS_MOTION
+#define RT_RAY_TIME(i) sample_time[ray_sample[i]]
+#else
+#define RT_RAY_TIME(i) 0.0f
+#endif
+#define RT_DECLARE_OBJECT_SCENE(ray) \
+    const ObjectScene objs = {quadrics, csg, tris, quadric_motion, tris_end, RT_RAY_TIME(ray)}
 #else
 #define RT_OBJECT_SCENE_ARG
-#define RT_DECLARE_OBJECT_SCENE
+#define RT_DECLARE_OBJECT_SCENE(ray)
 #endif
 
 __kernel void intersect_closest(uint count,
@@ -23,13 +29,17 @@ __kernel void intersect_closest(uint count,
                                 __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
                                 __global const uint* csg,
                                 __global const Triangle* tris,
+                                __global const float4* quadric_motion, /* RT_HAS_MOTION */
+                                __global const Triangle* tris_end,
+                                __global const uint* ray_sample,
+                                __global const float* sample_time,
                                 __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
     RT_COUNT_ACTIVE(active_counter, active);
     if (!active) return;
-    RT_DECLARE_OBJECT_SCENE;
+    RT_DECLARE_OBJECT_SCENE(i);
     float4 o = origin[i], d = direction[i];
     RayHit h;
     h.t = d.w;
@@ -47,13 +57,18 @@ __kernel void intersect_shadow(uint count,
                                __global const Quadric* quadrics,
                                __global const uint* csg,
                                __global const Triangle* tris,
+                               __global const float4* quadric_motion, /* RT_HAS_MOTION */
+                               __global const Triangle* tris_end,
+                               __global const uint* ray_sample, /* of the shaded ray */
+                               __global const float* sample_time,
+                               uint light_count, /* shadow ray i: shaded ray i / count */
                                __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
     RT_COUNT_ACTIVE(active_counter, active);
     if (!active) return;
-    RT_DECLARE_OBJECT_SCENE;
+    RT_DECLARE_OBJECT_SCENE(i / light_count);
     float4 o = origin[i], d = direction[i];
     RayHit h;
     if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, &h RT_OBJECT_SCENE_ARG))

@@ -19,7 +19,8 @@ __kernel void quadric_probe(uint count, uint object,
                             __global uint* active_counter) {
     uint i = get_global_id(0);
     if (i >= count) return;
-    const ObjectScene os = {quadrics, csg, tris};
+    const ObjectScene os = {quadrics, csg, tris, (__global const float4*)0,
+                            (__global const Triangle*)0, 0.0f};
     float4 o = origin[i], d = direction[i];
     WatertightRay w = rt_watertight_setup(d);
     __global const Quadric* q = &quadrics[object];
@@ -27,21 +28,21 @@ __kernel void quadric_probe(uint count, uint object,
     uint prim = RT_OBJECT_BIT | object;
     int found = q->kind == RT_Q_CSG
                     ? rt_csg_intersect(&os, &w, q, o, d, o.w, d.w, &t, &u, &v, &prim)
-                    : rt_quadric_intersect(q, o, d, o.w, d.w, &t, &u, &v);
+                    : rt_quadric_intersect(q, os.quadric_motion, 0.0f, o, d, o.w, d.w, &t, &u, &v);
     hit[i] = (float4)(t, u, v, found ? 1.0f : 0.0f);
     hit_prim[i] = prim;
     float4 P = (float4)(0.0f), dPdu, dPdv, n = (float4)(0.0f);
     if (found && (prim & RT_OBJECT_BIT)) {
         __global const Quadric* hq = &quadrics[prim & RT_OBJECT_MASK];
         rt_quadric_eval(hq, u, v, &P, &dPdu, &dPdv, &n);
-        P = hq->center + rt_q_to_world(hq, P);
-        n = rt_normalize3(n.x * hq->to_object[0] + n.y * hq->to_object[1] +
-                          n.z * hq->to_object[2]);
+        QFrame f = rt_quadric_frame(hq, os.quadric_motion, 0.0f);
+        P = f.center + rt_q_to_world(&f, P);
+        n = rt_normalize3(n.x * f.to_object[0] + n.y * f.to_object[1] + n.z * f.to_object[2]);
         if (hq->flags & RT_QF_FLIP) n = -n;
     }
     position[i] = P;
     normal[i] = n;
     float ts[4] = {0.0f, 0.0f, 0.0f, 0.0f}, us[4], vs[4];
-    int nc = q->kind == RT_Q_CSG ? 0 : rt_quadric_crossings(q, o, d, ts, us, vs);
+    int nc = q->kind == RT_Q_CSG ? 0 : rt_quadric_crossings(q, os.quadric_motion, 0.0f, o, d, ts, us, vs);
     crossing[i] = (float4)(ts[0], ts[1], ts[2], (float)nc);
 }

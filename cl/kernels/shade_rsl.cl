@@ -16,6 +16,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const Material* materials,
                             __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
                             __global const float4* quadric_primvars,
+                            __global const float4* quadric_motion, /* RT_HAS_MOTION only */
+                            __global const Triangle* tris_end,
+                            __global const float* sample_time,
                             __global const float* params,
                             __global const float4* origin,
                             __global const float4* direction,
@@ -46,21 +49,27 @@ __kernel void shade_SURFACE(uint begin, uint count,
     float4 org = origin[r], dir = direction[r], w = weight[r];
     RayState rs = state[r];
     uint sample = ray_sample[r];
+#ifdef RT_HAS_MOTION
+    const float time = sample_time[sample];
+#else
+    const float time = 0.0f;
+#endif
     Material m;
     RslGlobals g;
 #ifdef RT_HAS_QUADRICS
     if (h.prim & RT_OBJECT_BIT) {
         __global const Quadric* q = &quadrics[h.prim & RT_OBJECT_MASK];
         m = materials[q->material];
-        rd_quadric_hit_globals(&g, q, h, org, m, quadric_primvars);
+        rd_quadric_hit_globals(&g, q, h, org, m, quadric_primvars, quadric_motion, time);
     } else
 #endif
     {
         TriangleAttr attr = attrs[h.prim];
         m = materials[attr.material];
         rd_hit_globals(&g, &tris[h.prim], h, org, dir, normals, attr, h.prim, m, vertex_st,
-                       vertex_cs, vertex_os);
+                       vertex_cs, vertex_os, &tris_end[h.prim], time);
     }
+    g.time = time;
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */
 #ifdef RT_HAS_AOVS
     if (!aov[sample].hit) {

@@ -19,7 +19,9 @@ BvhPrimitives bvhPrimitives(const Scene& scene) {
     BvhPrimitives p;
     std::vector<Aabb> tb = triangleBounds(scene);
     for (size_t i = 0; i < tb.size(); ++i) {
-        if (scene.attrs[i].flags & RT_QF_CSG_MEMBER) continue;
+        // solid members are reached through their solid, moving triangles through their
+        // motion records
+        if (scene.attrs[i].flags & (RT_QF_CSG_MEMBER | RT_QF_MOVING)) continue;
         p.ids.push_back(uint32_t(i));
         p.bounds.push_back(tb[i]);
     }
@@ -47,6 +49,8 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
       quadrics(ctx, scene.quadrics),
       csg(ctx, scene.csg),
       quadricPrimvars(ctx, scene.quadricPrimvars),
+      quadricMotion(ctx, scene.quadricMotion),
+      trianglesEnd(ctx, scene.trianglesEnd),
       materials(ctx, shading.materials),
       params(ctx, shading.params) {}
 

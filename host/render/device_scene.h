@@ -23,6 +23,8 @@ struct DeviceScene {
     DeviceBuffer<Quadric> quadrics;    // exact quadrics and CSG solids (placeholder if none)
     DeviceBuffer<uint32_t> csg;        // CSG member lists and programs
     DeviceBuffer<rt_float4> quadricPrimvars;  // varying Cs, Os of quadrics, if any
+    DeviceBuffer<rt_float4> quadricMotion;    // motion blur: moving quadrics' last keys
+    DeviceBuffer<Triangle> trianglesEnd;      // and moving triangles' 
     DeviceBuffer<Material> materials;  // bound to compiled shaders and parameter blocks
     DeviceBuffer<float> params;        // every surface instance's parameter block
 };
@@ -31,7 +33,7 @@ struct DeviceScene {
 std::vector<Aabb> triangleBounds(const Scene& scene);
 
 // What the BVH is built over: the triangles and quadrics that are not members of a CSG
-// solid, and the solids.
+// solid, the solids, and the motion records of moving triangles.
 BvhPrimitives bvhPrimitives(const Scene& scene);
 
 }  // namespace rd

@@ -28,6 +28,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.quadrics = !scene.quadrics.empty();
     f.csg = !scene.csg.empty();
     f.quadricPrimvars = !scene.quadricPrimvars.empty();
+    f.motion = !scene.quadricMotion.empty() || !scene.trianglesEnd.empty();
     for (size_t i = 0; i < scene.quadricPrimvars.size(); ++i) {
         const rt_float4& o = scene.quadricPrimvars[i];  // of each 8: Cs corners, Os corners
         if (i % 8 >= 4 && (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f)) f.transparency = true;
@@ -40,6 +41,7 @@ std::vector<std::string> Features::names() const {
     if (quadrics) n.push_back("quadrics");
     if (csg) n.push_back("csg");
     if (quadricPrimvars) n.push_back("quadric_primvars");
+    if (motion) n.push_back("motion_blur");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
@@ -70,6 +72,7 @@ std::string buildOptions(const Features& f) {
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
     if (f.quadrics) o += " -DRT_HAS_QUADRICS";
     if (f.quadricPrimvars) o += " -DRT_HAS_QUADRIC_PRIMVARS";
+    if (f.motion) o += " -DRT_HAS_MOTION";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";
     if (f.primvars & RT_PRIMVAR_CS) o += " -DRT_HAS_VERTEX_CS";
     if (f.primvars & RT_PRIMVAR_OS) o += " -DRT_HAS_VERTEX_OS";

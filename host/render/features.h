@@ -22,6 +22,7 @@ struct Features {
     bool quadrics = false;      // exact quadrics (RT_HAS_QUADRICS)
     bool csg = false;           // some of them CSG solids
     bool quadricPrimvars = false;  // some quadric has varying Cs or Os
+    bool motion = false;        // moving quadrics or triangles: a time per sample
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a

@@ -35,7 +35,7 @@ const std::vector<std::string> kRenderSources = {
 // compaction's per-group counts, and the per-sample AOV record only when AOVs are on.
 struct RayPool {
     RayPool(const ClContext& ctx, size_t capacity, size_t spawn, uint32_t shadowLights,
-            bool aovs, size_t shaderKeys)
+            bool aovs, bool motion, size_t shaderKeys)
         : origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity),
           state(ctx, capacity), sample(ctx, capacity), hits(ctx, capacity),
           totals(ctx, capacity), nextOrigin(ctx, capacity * spawn),
@@ -48,7 +48,7 @@ struct RayPool {
           shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
           aov(ctx, aovs ? capacity : 0), samplePixel(ctx, capacity),
           sampleIndex(ctx, capacity), batchPixel(ctx, capacity),
-          batchFirst(ctx, capacity + 1) {
+          batchFirst(ctx, capacity + 1), sampleTime(ctx, motion ? capacity : 0) {
         shState.fillZero();
         nextState.fillZero();
     }
@@ -67,6 +67,7 @@ struct RayPool {
     DeviceBuffer<SampleAov> aov;
     DeviceBuffer<uint32_t> samplePixel, sampleIndex;  // the batch's samples
     DeviceBuffer<uint32_t> batchPixel, batchFirst;    // its pixels, CSR over the samples
+    DeviceBuffer<float> sampleTime;                   // motion blur: each sample's time
 };
 
 struct RenderKernels {
@@ -187,7 +188,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                                     (size_t(512) << 20) / bytesPerRay),
                                            64, std::max<size_t>(64, m_settings.poolCapacity));
     st.poolCapacity = pool;
-    RayPool rp(m_ctx, pool, spawn, nl, f.aovs, shaderCount + 1);
+    RayPool rp(m_ctx, pool, spawn, nl, f.aovs, f.motion, shaderCount + 1);
     const size_t npix = size_t(cam.width) * size_t(cam.height);
     film.width = cam.width;
     film.height = cam.height;
@@ -252,7 +253,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         rp.batchPixel.upload(b.pixel);
         rp.batchFirst.upload(b.first);
         k.generateEye.launch(n, ds.cameraBuf, n, rp.samplePixel, rp.sampleIndex, rp.origin,
-                             rp.direction, rp.weight, rp.state, rp.sample, rp.totals, rp.aov);
+                             rp.direction, rp.weight, rp.state, rp.sample, rp.totals, rp.aov,
+                             rp.sampleTime);
         // Rounds: trace, shade, shadows; then the spawned rays (continuations through
         // Opacity < 1) are compacted and traced in the next round, until none is left.
         const int rounds = 1 + (f.transparency ? f.maxTransparentDepth : 0) +
@@ -260,7 +262,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         for (int round = 0; round < rounds && n > 0; ++round) {
             if (stopNow()) return false;
             k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
-                                      rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles);
+                                      rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
+                                      ds.quadricMotion, ds.trianglesEnd, rp.sample,
+                                      rp.sampleTime);
             // Sort the hits by shader, then run each shader over its own run of rays.
             rp.keyCount.fillZero();
             k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics, rp.key,
@@ -274,7 +278,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 k.shade[s]->launch(counts[s], cl_uint(offsets[s]), cl_uint(counts[s]),
                                    rp.sorted, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
                                    ds.vertexCs, ds.vertexOs, ds.materials, ds.quadrics,
-                                   ds.quadricPrimvars, ds.params, rp.origin, rp.direction, rp.weight, rp.state,
+                                   ds.quadricPrimvars, ds.quadricMotion, ds.trianglesEnd,
+                                   rp.sampleTime, ds.params, rp.origin, rp.direction, rp.weight, rp.state,
                                    rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                                    rp.nextDirection, rp.nextWeight, rp.nextState,
                                    rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,
@@ -283,7 +288,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             if (nl > 0) {
                 k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
                                          rp.shOrigin, rp.shDirection, rp.shState,
-                                         ds.quadrics, ds.csg, ds.triangles);
+                                         ds.quadrics, ds.csg, ds.triangles,
+                                         ds.quadricMotion, ds.trianglesEnd, rp.sample,
+                                         rp.sampleTime, nl);
                 k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
                                            rp.totals);
             }

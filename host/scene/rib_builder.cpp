@@ -10,27 +10,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "rib_builder_util.h"
 #include "tessellate.h"
 
 namespace rd {
-namespace {
-
-rt_float4 f4(float x, float y, float z, float w = 0.0f) { return {x, y, z, w}; }
-rt_float4 f4(const glm::vec3& v, float w = 0.0f) { return {v.x, v.y, v.z, w}; }
-
-// RIB matrices are written row-major for row vectors (p' = p M); glm uses column vectors,
-// so the same 16 numbers read column-major are already the transposed, glm-ready matrix.
-glm::mat4 ribMatrix(const float m[16]) { return glm::make_mat4(m); }
-
-glm::vec3 xformPoint(const glm::mat4& m, const glm::vec3& p) {
-    return glm::vec3(m * glm::vec4(p, 1.0f));
-}
-
-bool finite3(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-}  // namespace
 
 RibBuilder::RibBuilder(rib::Diagnostics& diag, const std::string& sourceFile) : m_diag(diag) {
     m_options.sourceFile = sourceFile;
@@ -70,6 +53,7 @@ void RibBuilder::worldBegin(L) {
     m_specularSetInWorld = false;
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
+    m_attrStack.back().moving = false;
 }
 
 void RibBuilder::worldEnd(L loc) {
@@ -82,6 +66,7 @@ void RibBuilder::worldEnd(L loc) {
     m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
                                              glm::translate(glm::dmat4(1.0), m_origin));
     m_world.worldOrigin = m_origin;
+    if (!m_world.trianglesEnd.empty()) m_world.trianglesEnd.resize(m_world.triangles.size());
     m_inWorld = false;
     if (m_attrStack.size() > 1) m_attrStack.pop_back();
     m_scenes.push_back(std::move(m_world));
@@ -120,12 +105,6 @@ void RibBuilder::traceDepthOption(const rib::ParamList& params) {
 void RibBuilder::attributeBegin(L) { m_attrStack.push_back(m_attrStack.back()); }
 void RibBuilder::attributeEnd(L) {
     if (m_attrStack.size() > 1) m_attrStack.pop_back();
-}
-void RibBuilder::transformBegin(L) { m_xformStack.push_back(m_attrStack.back().ctm); }
-void RibBuilder::transformEnd(L) {
-    if (m_xformStack.empty()) return;
-    m_attrStack.back().ctm = m_xformStack.back();
-    m_xformStack.pop_back();
 }
 
 void RibBuilder::format(L loc, int x, int y, float aspect) {
@@ -313,30 +292,6 @@ void RibBuilder::illuminate(L loc, const std::string&, bool on) {
                             "every surface");
 }
 
-void RibBuilder::identity(L) {
-    // Inside the world, identity means world space; outside, camera space.
-    m_attrStack.back().ctm = glm::mat4(1.0f);
-}
-void RibBuilder::transform(L, const float m[16]) { m_attrStack.back().ctm = ribMatrix(m); }
-void RibBuilder::concatTransform(L, const float m[16]) {
-    m_attrStack.back().ctm = m_attrStack.back().ctm * ribMatrix(m);
-}
-void RibBuilder::translate(L, float x, float y, float z) {
-    m_attrStack.back().ctm = glm::translate(m_attrStack.back().ctm, {x, y, z});
-}
-void RibBuilder::rotate(L loc, float a, float x, float y, float z) {
-    glm::vec3 axis(x, y, z);
-    if (!(glm::length(axis) > 0.0f)) {
-        m_diag.error(loc, "Rotate axis must not be zero");
-        return;
-    }
-    m_attrStack.back().ctm =
-        glm::rotate(m_attrStack.back().ctm, glm::radians(a), glm::normalize(axis));
-}
-void RibBuilder::scale(L, float x, float y, float z) {
-    m_attrStack.back().ctm = glm::scale(m_attrStack.back().ctm, {x, y, z});
-}
-
 uint32_t RibBuilder::currentMaterial() {
     const Attributes& a = m_attrStack.back();
     // One surface reference per distinct Surface call (same name, parameters, space).
@@ -363,128 +318,6 @@ uint32_t RibBuilder::currentMaterial() {
     m_world.materials.push_back(m);
     m_materialKeys.emplace_back(key, index);
     return index;
-}
-
-void RibBuilder::addMesh(L loc, const VertexData& mesh) {
-    const size_t np = mesh.p.size();
-    if (m_defining) {
-        // Inside ObjectBegin: keep the piece in the object's own space; instances place it.
-        glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
-        glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(toObject)));
-        VertexData piece = mesh;
-        for (glm::vec3& v : piece.p) v = xformPoint(toObject, v);
-        for (glm::vec3& v : piece.n) v = nm * v;
-        m_defining->meshes.push_back(std::move(piece));
-        return;
-    }
-    const int leaf = solidLeafForSurface(loc, "mesh");
-    const glm::mat4& ctm = m_attrStack.back().ctm;
-    glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
-    uint32_t material = currentMaterial();
-    std::vector<glm::vec3> wp(np);
-    const glm::dmat4 dctm(ctm);
-    for (size_t i = 0; i < np; ++i)  // camera-relative, in double (see worldBegin)
-        wp[i] = glm::vec3(glm::dvec3(dctm * glm::dvec4(glm::dvec3(mesh.p[i]), 1.0)) - m_origin);
-    const bool smooth = mesh.n.size() == np;
-    uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
-                        (mesh.cs.size() == np ? RT_PRIMVAR_CS : 0u) |
-                        (mesh.os.size() == np ? RT_PRIMVAR_OS : 0u);
-    if (smooth) m_world.anySmoothNormals = true;
-    // A primitive variable first seen now: earlier triangles get placeholder entries.
-    auto start = [&](uint32_t bit, std::vector<rt_float4>& buf) {
-        if ((primvars & bit) && !(m_world.primvarsUsed & bit)) {
-            buf.assign(3 * m_world.triangles.size(), f4(0, 0, 0));
-            m_world.primvarsUsed |= bit;
-        }
-    };
-    start(RT_PRIMVAR_ST, m_world.vertexSt);
-    start(RT_PRIMVAR_CS, m_world.vertexCs);
-    start(RT_PRIMVAR_OS, m_world.vertexOs);
-    // Degenerate input is left out (or, for normals, replaced by the geometric normal)
-    // and reported once per request, at its file:line.
-    int nonfinite = 0, zeroArea = 0, duplicate = 0, badNormal = 0;
-    std::set<std::array<float, 9>> seen;  // coincident triangles within this request
-    for (size_t t = 0; t + 2 < mesh.tris.size(); t += 3) {
-        int i0 = mesh.tris[t], i1 = mesh.tris[t + 1], i2 = mesh.tris[t + 2];
-        const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
-        glm::vec3 cr = glm::cross(b - a, c - a);
-        if (!finite3(a) || !finite3(b) || !finite3(c) || !(glm::dot(cr, cr) > 0.0f)) {
-            ++m_degenerate;
-            ++(finite3(a) && finite3(b) && finite3(c) ? zeroArea : nonfinite);
-            continue;
-        }
-        std::array<glm::vec3, 3> key{a, b, c};
-        std::sort(key.begin(), key.end(), [](const glm::vec3& p, const glm::vec3& q) {
-            return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
-        });
-        if (!seen.insert({key[0].x, key[0].y, key[0].z, key[1].x, key[1].y, key[1].z,
-                          key[2].x, key[2].y, key[2].z}).second) {
-            ++duplicate;
-            continue;
-        }
-        if (leaf >= 0) {
-            m_solidNodes[leaf].members.push_back(uint32_t(m_world.triangles.size()));
-            m_solidNodes[leaf].memberWhat.push_back("mesh at " + loc.str());
-        }
-        m_world.triangles.push_back({f4(a), f4(b), f4(c)});
-        m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars,
-                                 leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u});
-        // A zero or non-finite vertex normal: all three stored as zero, the device uses Ng.
-        bool normalsOk = true;
-        for (int k : {i0, i1, i2}) {
-            glm::vec3 n = smooth ? nm * mesh.n[k] : glm::vec3(1.0f);
-            normalsOk = normalsOk && finite3(n) && glm::dot(n, n) > 0.0f &&
-                        std::isfinite(glm::dot(n, n));
-        }
-        for (int k : {i0, i1, i2}) {
-            m_world.normals.push_back(smooth && normalsOk ? f4(glm::normalize(nm * mesh.n[k]))
-                                                          : f4(0, 0, 0));
-            if (m_world.primvarsUsed & RT_PRIMVAR_ST)
-                m_world.vertexSt.push_back((primvars & RT_PRIMVAR_ST)
-                                               ? f4(mesh.st[k].x, mesh.st[k].y, 0)
-                                               : f4(0, 0, 0));
-            if (m_world.primvarsUsed & RT_PRIMVAR_CS)
-                m_world.vertexCs.push_back((primvars & RT_PRIMVAR_CS) ? f4(mesh.cs[k]) : f4(0, 0, 0));
-            if (m_world.primvarsUsed & RT_PRIMVAR_OS)
-                m_world.vertexOs.push_back((primvars & RT_PRIMVAR_OS) ? f4(mesh.os[k]) : f4(0, 0, 0));
-        }
-        if (!normalsOk) ++badNormal;
-    }
-    if (nonfinite + zeroArea + duplicate + badNormal == 0 ||
-        !m_warnedAt.insert({loc.file, loc.line}).second)
-        return;
-    std::string what;
-    auto add = [&](int n, const char* text) {
-        if (n) what += (what.empty() ? "" : ", ") + std::to_string(n) + text;
-    };
-    add(nonfinite, " triangle(s) with a NaN or Inf vertex left out");
-    add(zeroArea, " zero-area (collinear) triangle(s) left out");
-    add(duplicate, " coincident (duplicate) triangle(s) left out");
-    add(badNormal, " triangle(s) with a zero or non-finite normal shaded with the geometric normal");
-    m_diag.warning(loc, "degenerate geometry: " + what);
-}
-
-void RibBuilder::readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh) {
-    auto triples = [&](const char* name, std::vector<glm::vec3>& out) {
-        const rib::Param* q = params.find(name);
-        if (!q || q->floats.size() != 3 * np) return;
-        out.resize(np);
-        for (size_t i = 0; i < np; ++i)
-            out[i] = {q->floats[3 * i], q->floats[3 * i + 1], q->floats[3 * i + 2]};
-    };
-    triples("N", mesh.n);
-    triples("Cs", mesh.cs);
-    triples("Os", mesh.os);
-    const rib::Param* st = params.find("st");
-    const rib::Param* s = params.find("s");
-    const rib::Param* t = params.find("t");
-    if (st && st->floats.size() == 2 * np) {
-        mesh.st.resize(np);
-        for (size_t i = 0; i < np; ++i) mesh.st[i] = {st->floats[2 * i], st->floats[2 * i + 1]};
-    } else if (s && t && s->floats.size() == np && t->floats.size() == np) {
-        mesh.st.resize(np);
-        for (size_t i = 0; i < np; ++i) mesh.st[i] = {s->floats[i], t->floats[i]};
-    }
 }
 
 void RibBuilder::objectBegin(L loc, const std::string& handle) {

@@ -61,6 +61,9 @@ public:
                      const rib::ParamList&) override;
     void illuminate(L, const std::string& handle, bool on) override;
 
+    void shutter(L, float open, float close) override;
+    void motionBegin(L, Floats times) override;
+    void motionEnd(L) override;
     void identity(L) override;
     void transform(L, const float m[16]) override;
     void concatTransform(L, const float m[16]) override;
@@ -108,8 +111,16 @@ public:
     void setTessellateQuadrics(bool on) { m_forceTessellate = on; }
 
 private:
-    struct Attributes {
+    // The current transform, with its motion: between the shutter times t0 and t1 the
+    // object-to-world map moves linearly from ctm to ctmEnd (MotionBegin around
+    // transforms, the first and last keys).
+    struct Placement {
         glm::mat4 ctm{1.0f};  // object to world (camera before WorldBegin)
+        glm::mat4 ctmEnd{1.0f};
+        bool moving = false;
+        float t0 = 0, t1 = 0;
+    };
+    struct Attributes : Placement {
         float color[3] = {1, 1, 1};
         float opacity[3] = {1, 1, 1};
         ShaderRef surface;    // the current Surface call
@@ -158,7 +169,32 @@ private:
     bool m_inWorld = false;
     bool m_forceTessellate = false;
     std::vector<Attributes> m_attrStack;
-    std::vector<glm::mat4> m_xformStack;
+    std::vector<Placement> m_xformStack;
+    // MotionBegin/End being read (rib_builder_transforms.cpp): its times, how many of
+    // its requests came, the placement before it and the transform keys so far; meshes
+    // given as keys (deformation) wait for the last one.
+    struct MotionBlock {
+        bool active = false;
+        std::vector<float> times;
+        int count = 0;
+        Placement before;
+        glm::mat4 firstKey{1.0f};
+        std::vector<VertexData> meshKeys;
+    } m_motion;
+    // Applies a transform request: concatenated (or replacing the ctm) on both ends of a
+    // moving placement, or as the next key inside MotionBegin.
+    void applyTransform(const glm::mat4& m, bool replace);
+    // Adds a mesh moving linearly from `a` to `b` (object space, same topology) between
+    // times t0 and t1, placed by the current transform (and its motion).
+    void addMovingMesh(L, const VertexData& a, const VertexData& b, float t0, float t1);
+    // Object-space points placed by `ctm` in the eye-relative world (in double).
+    std::vector<glm::vec3> worldPoints(const glm::mat4& ctm, const std::vector<glm::vec3>& p) const;
+    // Appends a mesh's triangles at world points wp (and, moving, wpEnd at the last key
+    // time t1, wp at t0), reporting degenerate ones once per request.
+    void appendTriangles(L, const VertexData& mesh, const std::vector<glm::vec3>& wp,
+                         const std::vector<glm::vec3>* wpEnd, float t0, float t1);
+    // Makes the triangle just appended (at its first key) move to `last`.
+    void addMovingTriangle(const Triangle& first, const Triangle& last);
     std::vector<Scene> m_scenes;
     std::vector<std::pair<std::string, uint32_t>> m_materialKeys;
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call

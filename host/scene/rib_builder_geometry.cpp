@@ -75,6 +75,13 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         q.st_s = {ps->floats[0], ps->floats[1], ps->floats[2], ps->floats[3]};
         q.st_t = {pt->floats[0], pt->floats[1], pt->floats[2], pt->floats[3]};
     }
+    if (m_motion.active && m_motion.count++ > 0) {
+        // a quadric's keys with other parameters: only the first is used
+        if (m_motion.count == 2)
+            m_diag.warning(loc, std::string(what) + ": motion of quadric parameters is not "
+                                                    "supported; the first key is used");
+        return;
+    }
     if (m_defining) {
         // keep it in the object's space: its matrices map it there; instances compose
         glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
@@ -86,9 +93,13 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         return;
     }
     // camera-relative world, composed in double like meshes (see worldBegin)
-    glm::dmat4 toWorldD = glm::dmat4(m_attrStack.back().ctm) * glm::dmat4(placement);
-    toWorldD[3] -= glm::dvec4(m_origin, 0.0);
-    const glm::mat4 toWorld(toWorldD);
+    auto eyeRelative = [&](const glm::mat4& ctm) {
+        glm::dmat4 d = glm::dmat4(ctm) * glm::dmat4(placement);
+        d[3] -= glm::dvec4(m_origin, 0.0);
+        return glm::mat4(d);
+    };
+    const Attributes& at = m_attrStack.back();
+    const glm::mat4 toWorld = eyeRelative(at.ctm);
     if (!placeQuadric(q, toWorld)) {
         m_diag.warning(loc, std::string(what) + ": singular or non-finite transform, left out");
         return;
@@ -124,8 +135,24 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         m_solidNodes[leaf].members.push_back(RT_OBJECT_BIT | index);
         m_solidNodes[leaf].memberWhat.push_back(std::string(what) + " at " + loc.str());
     }
+    Aabb bounds = quadricWorldBounds(q, shape.lo, shape.hi);
+    if (at.moving) {  // motion blur: the last key's placement, interpolated by ray time
+        Quadric last = q;
+        if (!placeQuadric(last, eyeRelative(at.ctmEnd))) {
+            m_diag.warning(loc, std::string(what) + ": singular motion key, left still");
+        } else {
+            q.flags |= RT_QF_MOVING;
+            q.motion = uint32_t(m_world.quadricMotion.size());
+            rt_float4 c = last.center, r0 = last.to_world[0];
+            c.w = at.t0;
+            r0.w = at.t1;
+            for (const rt_float4& v : {c, r0, last.to_world[1], last.to_world[2]})
+                m_world.quadricMotion.push_back(v);
+            bounds.grow(quadricWorldBounds(last, shape.lo, shape.hi));
+        }
+    }
     m_world.quadrics.push_back(q);
-    m_world.quadricBounds.push_back(quadricWorldBounds(q, shape.lo, shape.hi));
+    m_world.quadricBounds.push_back(bounds);
 }
 
 void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float thetamax, P params) {

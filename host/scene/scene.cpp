@@ -12,6 +12,8 @@ namespace rd {
 Camera Scene::deviceCamera() const {
     Camera d{};
     const CameraSpec& c = camera;
+    d.shutter[0] = c.shutter[0];
+    d.shutter[1] = c.shutter[1];
     float frame = c.frameAspect > 0 ? c.frameAspect
                                     : float(c.width) * c.pixelAspect / float(c.height);
     if (c.screenWindowSet) {

@@ -34,6 +34,7 @@ struct CameraSpec {
     float pixelSamples[2] = {2, 2}; // RI default PixelSamples 2 2
     glm::mat4 worldToCamera{1.0f};  // column-vector convention (glm)
     float fstop = 0, focalLength = 0, focalDistance = 0;  // DepthOfField; fstop 0 = pinhole
+    float shutter[2] = {0, 0};      // Shutter open, close
     float crop[4] = {0, 1, 0, 1};   // CropWindow xmin xmax ymin ymax (NDC)
     // The pixels the crop window covers: [x0, x1) x [y0, y1).
     void cropPixels(int& x0, int& x1, int& y0, int& y1) const;
@@ -71,6 +72,10 @@ struct Scene {
     std::vector<Aabb> quadricBounds;
     std::vector<uint32_t> csg;
     std::vector<rt_float4> quadricPrimvars;  // 8 per quadric that has them (Quadric.primvars)
+    // Motion blur: moving quadrics' last keys (4 per one, Quadric.motion) and moving
+    // triangles' last keys (by triangle index; empty without moving triangles).
+    std::vector<rt_float4> quadricMotion;
+    std::vector<Triangle> trianglesEnd;
     // Materials: Material::shader indexes surfaceRefs until the shader set compiles them.
     std::vector<Material> materials;
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use

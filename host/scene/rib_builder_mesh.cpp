@@ -1,0 +1,197 @@
+// rib_builder_mesh.cpp: meshes into the scene: object-space vertices placed in the
+// (eye-relative) world, degenerate triangles reported at their request, per-vertex
+// normals and primitive variables, and triangles that move during the shutter.
+#include <algorithm>
+#include <array>
+#include <set>
+
+#include "rib_builder.h"
+#include "rib_builder_util.h"
+
+namespace rd {
+
+void RibBuilder::addMesh(L loc, const VertexData& mesh) {
+    const size_t np = mesh.p.size();
+    if (m_defining) {
+        // Inside ObjectBegin: keep the piece in the object's own space; instances place it.
+        glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
+        glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(toObject)));
+        VertexData piece = mesh;
+        for (glm::vec3& v : piece.p) v = xformPoint(toObject, v);
+        for (glm::vec3& v : piece.n) v = nm * v;
+        m_defining->meshes.push_back(std::move(piece));
+        return;
+    }
+    if (m_motion.active) {  // a key of a deforming mesh: added at MotionEnd
+        m_motion.meshKeys.push_back(mesh);
+        return;
+    }
+    const Attributes& a = m_attrStack.back();
+    if (a.moving) return addMovingMesh(loc, mesh, mesh, a.t0, a.t1);
+    appendTriangles(loc, mesh, worldPoints(a.ctm, mesh.p), nullptr, 0, 0);
+}
+
+std::vector<glm::vec3> RibBuilder::worldPoints(const glm::mat4& ctm,
+                                               const std::vector<glm::vec3>& p) const {
+    std::vector<glm::vec3> wp(p.size());
+    const glm::dmat4 dctm(ctm);
+    for (size_t i = 0; i < p.size(); ++i)  // camera-relative, in double (see worldBegin)
+        wp[i] = glm::vec3(glm::dvec3(dctm * glm::dvec4(glm::dvec3(p[i]), 1.0)) - m_origin);
+    return wp;
+}
+
+void RibBuilder::addMovingMesh(L loc, const VertexData& a, const VertexData& b, float t0,
+                               float t1) {
+    if (a.p.size() != b.p.size() || a.tris != b.tris) {
+        m_diag.error(loc, "MotionBegin: the mesh keys differ in topology");
+        return;
+    }
+    const Attributes& at = m_attrStack.back();
+    std::vector<glm::vec3> wb = worldPoints(at.moving ? at.ctmEnd : at.ctm, b.p);
+    appendTriangles(loc, a, worldPoints(at.ctm, a.p), &wb, t0, t1);
+}
+
+void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vector<glm::vec3>& wp,
+                                 const std::vector<glm::vec3>* wpEnd, float t0, float t1) {
+    const size_t np = mesh.p.size();
+    const int leaf = solidLeafForSurface(loc, "mesh");
+    const glm::mat4& ctm = m_attrStack.back().ctm;
+    glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
+    uint32_t material = currentMaterial();
+    const bool smooth = mesh.n.size() == np;
+    uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
+                        (mesh.cs.size() == np ? RT_PRIMVAR_CS : 0u) |
+                        (mesh.os.size() == np ? RT_PRIMVAR_OS : 0u);
+    if (smooth) m_world.anySmoothNormals = true;
+    // A primitive variable first seen now: earlier triangles get placeholder entries.
+    auto start = [&](uint32_t bit, std::vector<rt_float4>& buf) {
+        if ((primvars & bit) && !(m_world.primvarsUsed & bit)) {
+            buf.assign(3 * m_world.triangles.size(), f4(0, 0, 0));
+            m_world.primvarsUsed |= bit;
+        }
+    };
+    start(RT_PRIMVAR_ST, m_world.vertexSt);
+    start(RT_PRIMVAR_CS, m_world.vertexCs);
+    start(RT_PRIMVAR_OS, m_world.vertexOs);
+    // Degenerate input is left out (or, for normals, replaced by the geometric normal)
+    // and reported once per request, at its file:line.
+    int nonfinite = 0, zeroArea = 0, duplicate = 0, badNormal = 0;
+    std::set<std::array<float, 9>> seen;  // coincident triangles within this request
+    for (size_t t = 0; t + 2 < mesh.tris.size(); t += 3) {
+        int i0 = mesh.tris[t], i1 = mesh.tris[t + 1], i2 = mesh.tris[t + 2];
+        const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
+        glm::vec3 cr = glm::cross(b - a, c - a);
+        if (wpEnd) {  // moving: finite at both keys, not degenerate at both
+            const glm::vec3 &ea = (*wpEnd)[i0], &eb = (*wpEnd)[i1], &ec = (*wpEnd)[i2];
+            glm::vec3 ce = glm::cross(eb - ea, ec - ea);
+            if (!finite3(ea) || !finite3(eb) || !finite3(ec)) {
+                ++nonfinite;
+                continue;
+            }
+            if (glm::dot(ce, ce) > 0.0f && !(glm::dot(cr, cr) > 0.0f)) cr = ce;
+        }
+        if (!finite3(a) || !finite3(b) || !finite3(c) || !(glm::dot(cr, cr) > 0.0f)) {
+            ++m_degenerate;
+            ++(finite3(a) && finite3(b) && finite3(c) ? zeroArea : nonfinite);
+            continue;
+        }
+        std::array<glm::vec3, 3> key{a, b, c};
+        std::sort(key.begin(), key.end(), [](const glm::vec3& p, const glm::vec3& q) {
+            return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+        });
+        if (!seen.insert({key[0].x, key[0].y, key[0].z, key[1].x, key[1].y, key[1].z,
+                          key[2].x, key[2].y, key[2].z}).second) {
+            ++duplicate;
+            continue;
+        }
+        if (leaf >= 0) {
+            m_solidNodes[leaf].members.push_back(uint32_t(m_world.triangles.size()));
+            m_solidNodes[leaf].memberWhat.push_back("mesh at " + loc.str());
+        }
+        m_world.triangles.push_back({f4(a), f4(b), f4(c)});
+        m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars,
+                                 leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u});
+        if (wpEnd) addMovingTriangle(m_world.triangles.back(),
+                                     {f4((*wpEnd)[i0], t0), f4((*wpEnd)[i1], t1), f4((*wpEnd)[i2])});
+        // A zero or non-finite vertex normal: all three stored as zero, the device uses Ng.
+        bool normalsOk = true;
+        for (int k : {i0, i1, i2}) {
+            glm::vec3 n = smooth ? nm * mesh.n[k] : glm::vec3(1.0f);
+            normalsOk = normalsOk && finite3(n) && glm::dot(n, n) > 0.0f &&
+                        std::isfinite(glm::dot(n, n));
+        }
+        for (int k : {i0, i1, i2}) {
+            m_world.normals.push_back(smooth && normalsOk ? f4(glm::normalize(nm * mesh.n[k]))
+                                                          : f4(0, 0, 0));
+            if (m_world.primvarsUsed & RT_PRIMVAR_ST)
+                m_world.vertexSt.push_back((primvars & RT_PRIMVAR_ST)
+                                               ? f4(mesh.st[k].x, mesh.st[k].y, 0)
+                                               : f4(0, 0, 0));
+            if (m_world.primvarsUsed & RT_PRIMVAR_CS)
+                m_world.vertexCs.push_back((primvars & RT_PRIMVAR_CS) ? f4(mesh.cs[k]) : f4(0, 0, 0));
+            if (m_world.primvarsUsed & RT_PRIMVAR_OS)
+                m_world.vertexOs.push_back((primvars & RT_PRIMVAR_OS) ? f4(mesh.os[k]) : f4(0, 0, 0));
+        }
+        if (!normalsOk) ++badNormal;
+    }
+    if (nonfinite + zeroArea + duplicate + badNormal == 0 ||
+        !m_warnedAt.insert({loc.file, loc.line}).second)
+        return;
+    std::string what;
+    auto add = [&](int n, const char* text) {
+        if (n) what += (what.empty() ? "" : ", ") + std::to_string(n) + text;
+    };
+    add(nonfinite, " triangle(s) with a NaN or Inf vertex left out");
+    add(zeroArea, " zero-area (collinear) triangle(s) left out");
+    add(duplicate, " coincident (duplicate) triangle(s) left out");
+    add(badNormal, " triangle(s) with a zero or non-finite normal shaded with the geometric normal");
+    m_diag.warning(loc, "degenerate geometry: " + what);
+}
+
+
+void RibBuilder::addMovingTriangle(const Triangle& first, const Triangle& last) {
+    // key times ride in the last key's v0.w and v1.w (cl/include/quadric.h)
+    const uint32_t index = uint32_t(m_world.triangles.size() - 1);
+    if (m_world.trianglesEnd.size() < index) m_world.trianglesEnd.resize(index);
+    m_world.trianglesEnd.push_back(last);
+    m_world.attrs.back().flags |= RT_QF_MOVING;
+    Quadric q{};
+    q.kind = RT_Q_MOVING_TRIANGLE;
+    q.first_member = index;
+    q.flags = RT_QF_MOVING;
+    q.primvars = RT_NO_QUADRIC_PRIMVARS;
+    Aabb box;
+    for (const Triangle* t : {&first, &last})
+        for (const rt_float4* v : {&t->v0, &t->v1, &t->v2}) {
+            const float p[3] = {v->x, v->y, v->z};
+            box.grow(p);
+        }
+    m_world.quadrics.push_back(q);
+    m_world.quadricBounds.push_back(box);
+}
+
+void RibBuilder::readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh) {
+    auto triples = [&](const char* name, std::vector<glm::vec3>& out) {
+        const rib::Param* q = params.find(name);
+        if (!q || q->floats.size() != 3 * np) return;
+        out.resize(np);
+        for (size_t i = 0; i < np; ++i)
+            out[i] = {q->floats[3 * i], q->floats[3 * i + 1], q->floats[3 * i + 2]};
+    };
+    triples("N", mesh.n);
+    triples("Cs", mesh.cs);
+    triples("Os", mesh.os);
+    const rib::Param* st = params.find("st");
+    const rib::Param* s = params.find("s");
+    const rib::Param* t = params.find("t");
+    if (st && st->floats.size() == 2 * np) {
+        mesh.st.resize(np);
+        for (size_t i = 0; i < np; ++i) mesh.st[i] = {st->floats[2 * i], st->floats[2 * i + 1]};
+    } else if (s && t && s->floats.size() == np && t->floats.size() == np) {
+        mesh.st.resize(np);
+        for (size_t i = 0; i < np; ++i) mesh.st[i] = {s->floats[i], t->floats[i]};
+    }
+}
+
+
+}  // namespace rd
