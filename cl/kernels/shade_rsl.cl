@@ -19,6 +19,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const float4* quadric_motion, /* RT_HAS_MOTION only */
                             __global const Triangle* tris_end,
                             __global const float* sample_time,
+                            __global const uint* sample_pixel, /* RT_ROULETTE_DEPTH only */
+                            __global const uint* sample_index,
                             __global const float* params,
                             __global const float4* origin,
                             __global const float4* direction,
@@ -142,6 +144,21 @@ __kernel void shade_SURFACE(uint begin, uint count,
         float4 tw = w * (tg.Ci - base.Ci);
         tw.w = 0.0f;
         tw = rt_sanitize(tw, numerics);
+#ifdef RT_ROULETTE_DEPTH
+        /* Russian roulette from the given depth on: a ray survives with probability p =
+         * its largest weight (at least 0.05, at most 1) and carries weight / p, so the
+         * estimate stays unbiased while dim paths end early; the random number is the
+         * sample's own (pixel, sample, depth, call), never the pool slot's */
+        if (rs.depth + 1u >= RT_ROULETTE_DEPTH) {
+            float surv = clamp(rt_max3(fabs(tw)), 0.05f, 1.0f);
+            uint dim = 1024u + 16u * rs.depth + (uint)i;
+            if (rt_random(sample_pixel[sample], sample_index[sample], dim) >= surv) {
+                atomic_inc(&numerics[RT_NUM_ROULETTE]);
+                continue;
+            }
+            tw /= surv;
+        }
+#endif
         if (rt_max3(fabs(tw)) < 1e-6f) continue;
         float4 td = rt_normalize3(ev.trace_dir[i]);
         /* a zero direction (refract() under total internal reflection) traces nothing */

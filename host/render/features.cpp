@@ -19,6 +19,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.trace = shading.usesTrace;
     f.maxSpecularDepth = scene.maxSpecularDepth;
     f.maxTransparentDepth = scene.maxTransparentDepth;
+    f.rouletteDepth = scene.rouletteDepth;
     float extent = 0.0f;
     for (const Triangle& t : scene.triangles)
         for (const rt_float4& v : {t.v0, t.v1, t.v2})
@@ -42,6 +43,7 @@ std::vector<std::string> Features::names() const {
     if (csg) n.push_back("csg");
     if (quadricPrimvars) n.push_back("quadric_primvars");
     if (motion) n.push_back("motion_blur");
+    if (trace && rouletteDepth > 0) n.push_back("roulette");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
@@ -73,6 +75,8 @@ std::string buildOptions(const Features& f) {
     if (f.quadrics) o += " -DRT_HAS_QUADRICS";
     if (f.quadricPrimvars) o += " -DRT_HAS_QUADRIC_PRIMVARS";
     if (f.motion) o += " -DRT_HAS_MOTION";
+    if (f.trace && f.rouletteDepth > 0)
+        o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";
     if (f.primvars & RT_PRIMVAR_CS) o += " -DRT_HAS_VERTEX_CS";
     if (f.primvars & RT_PRIMVAR_OS) o += " -DRT_HAS_VERTEX_OS";

@@ -25,6 +25,7 @@ struct Features {
     bool motion = false;        // moving quadrics or triangles: a time per sample
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
+    int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)
     // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a
     // surface scale with it (math.clh), so a scene scaled to 1e-6 does not leak light.
     float sceneScale = 1.0f;

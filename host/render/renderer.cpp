@@ -279,7 +279,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                    rp.sorted, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
                                    ds.vertexCs, ds.vertexOs, ds.materials, ds.quadrics,
                                    ds.quadricPrimvars, ds.quadricMotion, ds.trianglesEnd,
-                                   rp.sampleTime, ds.params, rp.origin, rp.direction, rp.weight, rp.state,
+                                   rp.sampleTime, rp.samplePixel, rp.sampleIndex, ds.params, rp.origin, rp.direction, rp.weight, rp.state,
                                    rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                                    rp.nextDirection, rp.nextWeight, rp.nextState,
                                    rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,
@@ -395,6 +395,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     std::vector<uint32_t> num = numerics.download();
     st.shadeNonfinite = num[0], st.shadeNegative = num[1], st.shadeHuge = num[2];
     st.shadeDenormal = num[3], st.transparentDepthCut = num[4], st.specularDepthCut = num[5];
+    st.rouletteEnded = num[6];
     const rib::SourceLoc where{scene.sourceFile, 0};
     if (st.shadeNonfinite + st.shadeNegative + st.shadeHuge > 0)
         diag.warning(where, "shaders produced " + std::to_string(st.shadeNonfinite) +

@@ -46,6 +46,7 @@ struct RenderStats {
     // maxtransparentdepth and by maxspeculardepth.
     uint64_t shadeNonfinite = 0, shadeNegative = 0, shadeHuge = 0, shadeDenormal = 0;
     uint64_t transparentDepthCut = 0, specularDepthCut = 0;
+    uint64_t rouletteEnded = 0;  // trace() rays Russian roulette ended
     uint64_t overflowRays = 0;  // spawned rays beyond the pool's capacity, dropped
     size_t poolCapacity = 0;
     int passes = 0, batches = 0;

@@ -94,6 +94,9 @@ void RibBuilder::attribute(L, const std::string& name, const rib::ParamList& par
 
 void RibBuilder::traceDepthOption(const rib::ParamList& params) {
     // maxtransparentdepth bounds the work (one trace round per layer): 0..65536.
+    // roulettedepth: trace() rays from this depth on meet Russian roulette (0: never)
+    int roulette = params.getInt("roulettedepth", -1);
+    if (roulette >= 0) (m_inWorld ? m_world : m_options).rouletteDepth = std::min(roulette, 4096);
     int depth = std::min(params.getInt("maxtransparentdepth", -1), 65536);
     if (depth < 0) return;
     if (m_inWorld)

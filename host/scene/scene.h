@@ -85,6 +85,7 @@ struct Scene {
     // Attribute/Option "trace" "maxtransparentdepth": surfaces of Opacity < 1 a ray goes
     // through; rays cut there are counted (--stats) and reported, never silently lost.
     int maxTransparentDepth = 256;
+    int rouletteDepth = 0;  // Option/Attribute "trace" "roulettedepth": 0 = no roulette
     // Where the device's origin is in RIB world space: triangles, camera, lights and
     // shader spaces are stored relative to it (the eye), for precision far from the origin.
     glm::dvec3 worldOrigin{0.0};

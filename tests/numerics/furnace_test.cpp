@@ -37,14 +37,17 @@ std::string shaderDir() {
     return dir;
 }
 
-// The cube [-1, 1]^3 as six polygons sharing their edges, the eye at its centre.
-std::string furnace(double albedo, double emission, int depth) {
+// The cube [-1, 1]^3 as six polygons sharing their edges, the eye at its centre;
+// `options` go before the camera (e.g. Russian roulette).
+std::string furnace(double albedo, double emission, int depth, const std::string& options = "",
+                    int res = 8, int spp = 1) {
     char buf[200];
     std::snprintf(buf, sizeof buf,
                   "Attribute \"trace\" \"int maxspeculardepth\" [%d]\n"
                   "Surface \"furnace\" \"albedo\" %.9g \"emission\" %.9g\n", depth, albedo,
                   emission);
-    return "Option \"searchpath\" \"shader\" [\"" + shaderDir() + ":&\"]\n" + camera(8, 90, 1) +
+    return "Option \"searchpath\" \"shader\" [\"" + shaderDir() + ":&\"]\n" + options +
+           camera(res, 90, spp) +
            "WorldBegin\n" + buf +
            "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1]\n"
            "Polygon \"P\" [-1 -1 -1  -1 1 -1  1 1 -1  1 -1 -1]\n"
@@ -80,4 +83,29 @@ TEST(Numerics, WhiteFurnace) {
         EXPECT_TRUE(report(name, tol, std::fabs(got / infinite - 1.0)));
         EXPECT_EQ(d.image.stats.nonfiniteSamples, 0u);
     }
+}
+
+// Russian roulette keeps the furnace unbiased: with roulette from depth 2 and a depth
+// limit deep enough that truncation is below 1e-40, the mean radiance is E / (1 - a)
+// within its Monte Carlo error (every path is a random-length sum now); roulette ends
+// paths, so far fewer rays are traced than without it.
+TEST(Numerics, WhiteFurnaceWithRussianRouletteIsUnbiased) {
+    const double e = 0.25, a = 0.9;
+    Diagnosed d = renderWithDiagnostics(
+        furnace(a, e, 1024, "Option \"trace\" \"int roulettedepth\" [2]\n", 16, 4));
+    ASSERT_EQ(countOf(d.messages, "error"), 0) << d.messages;
+    const auto& px = d.image.pixels;
+    double sum = 0, sum2 = 0;
+    for (const rd::Rgba& p : px) sum += p.r, sum2 += double(p.r) * p.r;
+    const double n = double(px.size()), mean = sum / n;
+    const double stderrOfMean = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+    const double expected = e / (1 - a);
+    const double z = std::fabs(mean - expected) / stderrOfMean;
+    std::printf("furnace with roulette: mean %.5f expected %.5f, standard error %.5f, z %.2f, "
+                "roulette ended %llu rays\n", mean, expected, stderrOfMean, z,
+                (unsigned long long)d.image.stats.rouletteEnded);
+    EXPECT_TRUE(report("furnace_a0.9_roulette_z_score", 4.0, z));
+    EXPECT_GT(d.image.stats.rouletteEnded, 0u);
+    EXPECT_GT(stderrOfMean, 0.0);  // roulette makes paths random: there is noise now
+    EXPECT_LT(stderrOfMean / expected, 0.05);
 }
