@@ -203,6 +203,13 @@ int main(int argc, char** argv) {
         Bvh4 bvh4 = collapseToBvh4(bvh, mesh.tris);
         DeviceBuffer<Bvh4Node> nodes(ctx, bvh4.nodes);
         DeviceBuffer<Triangle4> blocks(ctx, bvh4.blocks);
+        // the object, motion and sample buffers the kernels take; unused for a triangle
+        // scene built without RT_HAS_QUADRICS and RT_HAS_MOTION
+        DeviceBuffer<Quadric> noQuadrics(ctx, 1);
+        DeviceBuffer<uint32_t> noCsg(ctx, 1), noSample(ctx, 1);
+        DeviceBuffer<Triangle> noTris(ctx, 1);
+        DeviceBuffer<rt_float4> noMotion(ctx, 1);
+        DeviceBuffer<float> noTime(ctx, 1);
         Rays primary = primaryRays(side);
         std::vector<RayHit> primHits;
         emb.trace(primary, false, primHits);
@@ -227,12 +234,14 @@ int main(int argc, char** argv) {
                 if (k.shadow) {
                     state.upload(st);
                     auto t0 = Clock::now();
-                    ks.launch(n, cl_uint(n), nodes, blocks, org, dir, state);
+                    ks.launch(n, cl_uint(n), nodes, blocks, org, dir, state, noQuadrics, noCsg,
+                              noTris, noMotion, noTris, noSample, noTime, cl_uint(1));
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
                 }
                 auto t0 = Clock::now();
-                kc.launch(n, cl_uint(n), nodes, blocks, org, dir, state, hits);
+                kc.launch(n, cl_uint(n), nodes, blocks, org, dir, state, hits, noQuadrics, noCsg,
+                          noTris, noMotion, noTris, noSample, noTime);
                 ctx.finish();
                 return std::chrono::duration<double>(Clock::now() - t0).count();
             };
