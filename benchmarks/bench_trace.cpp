@@ -241,7 +241,7 @@ int main(int argc, char** argv) {
                 }
                 auto t0 = Clock::now();
                 kc.launch(n, cl_uint(n), nodes, blocks, org, dir, state, hits, noQuadrics, noCsg,
-                          noTris, noMotion, noTris, noSample, noTime);
+                          noTris, noMotion, noTris, noSample, noTime, noSample);
                 ctx.finish();
                 return std::chrono::duration<double>(Clock::now() - t0).count();
             };

@@ -24,6 +24,12 @@
  * are in the Triangle array, at the last key in the end-key triangle array (v0.w, v1.w:
  * the two key times); it is reached through this record, hits report the triangle. */
 #define RT_Q_MOVING_TRIANGLE 8u
+/* An instance of an object (ObjectBegin/ObjectInstance) whose triangles are stored once,
+ * in object space, under their own BVH: its placement maps that space to the world,
+ * first_member is the root node of the prototype's BVH (in the shared node array) and
+ * material the instance's shader. Hits report the prototype's triangle and the instance
+ * (cl/lib/traverse.clh). */
+#define RT_Q_INSTANCE 9u
 
 /* RayHit.prim of a quadric or solid member; triangles use the indices below it. */
 #define RT_OBJECT_BIT 0x40000000u
@@ -33,6 +39,7 @@
 #define RT_QF_FLIP 1u       /* shading normal reversed: a surface subtracted in a CSG tree */
 #define RT_QF_CSG_MEMBER 2u /* reached only through its solid, not from the BVH */
 #define RT_QF_MOVING 4u     /* placement (or triangle vertices) interpolated by ray time */
+#define RT_QF_PROTOTYPE 8u  /* a triangle of an instanced object: reached through instances */
 
 typedef struct Quadric {
     rt_float4 center;       /* world position of the object-space origin */

@@ -18,6 +18,11 @@
 #define RT_OBJECT_SCENE_ARG
 #define RT_DECLARE_OBJECT_SCENE(ray)
 #endif
+#ifdef RT_HAS_INSTANCES
+#define RT_INSTANCE_ARG , &inst
+#else
+#define RT_INSTANCE_ARG
+#endif
 
 __kernel void intersect_closest(uint count,
                                 __global const Bvh4Node* nodes,
@@ -33,6 +38,7 @@ __kernel void intersect_closest(uint count,
                                 __global const Triangle* tris_end,
                                 __global const uint* ray_sample,
                                 __global const float* sample_time,
+                                __global uint* hit_instance, /* RT_HAS_INSTANCES only */
                                 __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
@@ -44,8 +50,13 @@ __kernel void intersect_closest(uint count,
     RayHit h;
     h.t = d.w;
     h.u = h.v = 0.0f;
-    rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 0, &h RT_OBJECT_SCENE_ARG);
+    uint inst = RT_NO_HIT;
+    rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 0,
+                &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG);
     hits[i] = h;
+#ifdef RT_HAS_INSTANCES
+    hit_instance[i] = inst;
+#endif
 }
 
 __kernel void intersect_shadow(uint count,
@@ -71,6 +82,8 @@ __kernel void intersect_shadow(uint count,
     RT_DECLARE_OBJECT_SCENE(i / light_count);
     float4 o = origin[i], d = direction[i];
     RayHit h;
-    if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, &h RT_OBJECT_SCENE_ARG))
+    uint inst;
+    if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1,
+                    &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG))
         state[i].alive = 0u;
 }

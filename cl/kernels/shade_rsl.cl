@@ -21,6 +21,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const float* sample_time,
                             __global const uint* sample_pixel, /* RT_ROULETTE_DEPTH only */
                             __global const uint* sample_index,
+                            __global const uint* hit_instance, /* RT_HAS_INSTANCES only */
                             __global const float* params,
                             __global const float4* origin,
                             __global const float4* direction,
@@ -68,8 +69,16 @@ __kernel void shade_SURFACE(uint begin, uint count,
     {
         TriangleAttr attr = attrs[h.prim];
         m = materials[attr.material];
+#ifdef RT_HAS_INSTANCES
+        /* a prototype's triangle: its instance's shader, and its instance's place */
+        const uint inst = hit_instance[r];
+        if (inst != RT_NO_HIT) m = materials[quadrics[inst].material];
+#endif
         rd_hit_globals(&g, &tris[h.prim], h, org, dir, normals, attr, h.prim, m, vertex_st,
                        vertex_cs, vertex_os, &tris_end[h.prim], time);
+#ifdef RT_HAS_INSTANCES
+        if (inst != RT_NO_HIT) rd_instance_to_world(&g, &quadrics[inst], quadric_motion, time, org);
+#endif
     }
     g.time = time;
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */

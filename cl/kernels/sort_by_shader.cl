@@ -15,6 +15,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count,
                             __global const TriangleAttr* attrs,
                             __global const Material* materials,
                             __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
+                            __global const uint* hit_instance, /* RT_HAS_INSTANCES only */
                             __global uint* key,          /* per ray: shader, or shader_count */
                             __global uint* key_count,    /* shader_count + 1 counters */
                             __global RayState* next_state,
@@ -33,6 +34,9 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count,
 #ifdef RT_HAS_QUADRICS
             uint mat = (prim & RT_OBJECT_BIT) ? quadrics[prim & RT_OBJECT_MASK].material
                                               : attrs[prim].material;
+#ifdef RT_HAS_INSTANCES
+            if (hit_instance[r] != RT_NO_HIT) mat = quadrics[hit_instance[r]].material;
+#endif
 #else
             uint mat = attrs[prim].material;
 #endif

@@ -20,8 +20,8 @@ BvhPrimitives bvhPrimitives(const Scene& scene) {
     std::vector<Aabb> tb = triangleBounds(scene);
     for (size_t i = 0; i < tb.size(); ++i) {
         // solid members are reached through their solid, moving triangles through their
-        // motion records
-        if (scene.attrs[i].flags & (RT_QF_CSG_MEMBER | RT_QF_MOVING)) continue;
+        // motion records, prototypes through their instances
+        if (scene.attrs[i].flags & (RT_QF_CSG_MEMBER | RT_QF_MOVING | RT_QF_PROTOTYPE)) continue;
         p.ids.push_back(uint32_t(i));
         p.bounds.push_back(tb[i]);
     }
@@ -34,6 +34,7 @@ BvhPrimitives bvhPrimitives(const Scene& scene) {
 }
 
 DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh,
+                         const std::vector<Quadric>& objects,
                          const Features& f, const ShadingSetup& shading)
     : camera(scene.deviceCamera()),
       cameraBuf(ctx, std::vector<Camera>{camera}),
@@ -46,7 +47,7 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
       vertexSt(ctx, scene.vertexSt),
       vertexCs(ctx, scene.vertexCs),
       vertexOs(ctx, scene.vertexOs),
-      quadrics(ctx, scene.quadrics),
+      quadrics(ctx, objects),
       csg(ctx, scene.csg),
       quadricPrimvars(ctx, scene.quadricPrimvars),
       quadricMotion(ctx, scene.quadricMotion),

@@ -10,7 +10,9 @@
 namespace rd {
 
 struct DeviceScene {
-    DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh, const Features& f,
+    // `objects` are the scene's quadric records as the BVH build left them (scene_bvh.h).
+    DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh,
+                const std::vector<Quadric>& objects, const Features& f,
                 const ShadingSetup& shading);
     Camera camera;
     DeviceBuffer<Camera> cameraBuf;

@@ -13,6 +13,7 @@
 
 #include "cl/include/ray.h"
 #include "device_scene.h"
+#include "scene_bvh.h"
 #include "film/film_error.h"
 #include "progress.h"
 #include "shaders/shader_set.h"
@@ -35,7 +36,7 @@ const std::vector<std::string> kRenderSources = {
 // compaction's per-group counts, and the per-sample AOV record only when AOVs are on.
 struct RayPool {
     RayPool(const ClContext& ctx, size_t capacity, size_t spawn, uint32_t shadowLights,
-            bool aovs, bool motion, size_t shaderKeys)
+            bool aovs, bool motion, bool instances, size_t shaderKeys)
         : origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity),
           state(ctx, capacity), sample(ctx, capacity), hits(ctx, capacity),
           totals(ctx, capacity), nextOrigin(ctx, capacity * spawn),
@@ -48,7 +49,8 @@ struct RayPool {
           shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
           aov(ctx, aovs ? capacity : 0), samplePixel(ctx, capacity),
           sampleIndex(ctx, capacity), batchPixel(ctx, capacity),
-          batchFirst(ctx, capacity + 1), sampleTime(ctx, motion ? capacity : 0) {
+          batchFirst(ctx, capacity + 1), sampleTime(ctx, motion ? capacity : 0),
+          hitInstance(ctx, instances ? capacity : 0) {
         shState.fillZero();
         nextState.fillZero();
     }
@@ -68,6 +70,7 @@ struct RayPool {
     DeviceBuffer<uint32_t> samplePixel, sampleIndex;  // the batch's samples
     DeviceBuffer<uint32_t> batchPixel, batchFirst;    // its pixels, CSR over the samples
     DeviceBuffer<float> sampleTime;                   // motion blur: each sample's time
+    DeviceBuffer<uint32_t> hitInstance;               // instance of each closest hit
 };
 
 struct RenderKernels {
@@ -158,25 +161,28 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
 
     // Scene -> BVH -> specialised program -> device arrays
     auto tb = Clock::now();
-    BvhPrimitives prims = bvhPrimitives(scene);
-    Bvh bvh = buildBvh(prims.bounds);
-    Bvh4 bvh4 = collapseToBvh4(bvh, scene.triangles, &prims);
+    SceneBvh sceneBvh = buildSceneBvh(scene);
+    const Bvh4& bvh4 = sceneBvh.bvh4;
     st.bvhBuildMs = secondsSince(tb) * 1e3;
     st.triangles = scene.triangles.size();
-    for (const Quadric& q : scene.quadrics) (q.kind == RT_Q_CSG ? st.csgSolids : st.quadrics)++;
+    for (const Quadric& q : scene.quadrics) {
+        if (q.kind == RT_Q_CSG) ++st.csgSolids;
+        else if (q.kind == RT_Q_INSTANCE) ++st.instances;
+        else if (q.kind != RT_Q_MOVING_TRIANGLE) ++st.quadrics;
+    }
     st.sceneBytes = bvh4.nodes.size() * sizeof(Bvh4Node) + bvh4.blocks.size() * sizeof(Triangle4) +
                     scene.triangles.size() * (sizeof(Triangle) + sizeof(TriangleAttr)) +
                     scene.normals.size() * sizeof(rt_float4) +
                     scene.quadrics.size() * sizeof(Quadric) + scene.csg.size() * 4;
     st.bvhNodes = bvh4.nodes.size();
-    st.droppedPrims = bvh.droppedPrims;
+    st.droppedPrims = sceneBvh.droppedPrims;
     std::vector<std::string> sources = kRenderSources;
     sources.insert(sources.end(), shading.sourceOrder.begin(), shading.sourceOrder.end());
     Program program(m_ctx, assembleClSource(sources, shading.generated), buildOptions(f));
     st.program = program.info();
     Profiler prof(m_ctx);
     RenderKernels k(m_ctx, program.get(), prof, shading.shadeKernels);
-    DeviceScene ds(m_ctx, scene, bvh4, f, shading);
+    DeviceScene ds(m_ctx, scene, bvh4, sceneBvh.objects, f, shading);
     const Camera& cam = ds.camera;
 
     const uint32_t nl = f.shadowRays ? f.lightCount : 0;
@@ -188,7 +194,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                                     (size_t(512) << 20) / bytesPerRay),
                                            64, std::max<size_t>(64, m_settings.poolCapacity));
     st.poolCapacity = pool;
-    RayPool rp(m_ctx, pool, spawn, nl, f.aovs, f.motion, shaderCount + 1);
+    RayPool rp(m_ctx, pool, spawn, nl, f.aovs, f.motion, f.instances, shaderCount + 1);
     const size_t npix = size_t(cam.width) * size_t(cam.height);
     film.width = cam.width;
     film.height = cam.height;
@@ -264,10 +270,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
                                       rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
                                       ds.quadricMotion, ds.trianglesEnd, rp.sample,
-                                      rp.sampleTime);
+                                      rp.sampleTime, rp.hitInstance);
             // Sort the hits by shader, then run each shader over its own run of rays.
             rp.keyCount.fillZero();
-            k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics, rp.key,
+            k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics, rp.hitInstance, rp.key,
                               rp.keyCount, rp.nextState, rp.shState);
             std::vector<uint32_t> counts = rp.keyCount.download(), offsets(counts.size(), 0);
             for (size_t s = 1; s < counts.size(); ++s) offsets[s] = offsets[s - 1] + counts[s - 1];
@@ -279,7 +285,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                    rp.sorted, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
                                    ds.vertexCs, ds.vertexOs, ds.materials, ds.quadrics,
                                    ds.quadricPrimvars, ds.quadricMotion, ds.trianglesEnd,
-                                   rp.sampleTime, rp.samplePixel, rp.sampleIndex, ds.params, rp.origin, rp.direction, rp.weight, rp.state,
+                                   rp.sampleTime, rp.samplePixel, rp.sampleIndex,
+                                   rp.hitInstance, ds.params, rp.origin, rp.direction, rp.weight, rp.state,
                                    rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                                    rp.nextDirection, rp.nextWeight, rp.nextState,
                                    rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,

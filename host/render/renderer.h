@@ -38,7 +38,8 @@ struct RenderStats {
     double elapsedSec = 0;
     double sceneSetupMs = 0, bvhBuildMs = 0;
     uint64_t eyeRays = 0, continuationRays = 0, shadowRays = 0;
-    uint64_t triangles = 0, quadrics = 0, csgSolids = 0, bvhNodes = 0, droppedPrims = 0;
+    uint64_t triangles = 0, quadrics = 0, csgSolids = 0, instances = 0, bvhNodes = 0;
+    uint64_t droppedPrims = 0;
     uint64_t sceneBytes = 0;  // device bytes of geometry: BVH, blocks, triangles, quadrics
     uint64_t nonfiniteSamples = 0, unsampledPixels = 0, abortedSamples = 0;
     // Shader results dropped before they reached a sample or a ray weight (numerics.clh):

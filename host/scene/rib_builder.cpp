@@ -50,6 +50,7 @@ void RibBuilder::worldBegin(L) {
     m_degenerate = 0;
     m_solidNodes.clear();
     m_solidStack.clear();
+    m_prototypes.clear();
     m_specularSetInWorld = false;
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
@@ -343,8 +344,14 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
         return;
     }
     // Each instance is placed by the current transform with the current shading
-    // attributes. The pieces are copied: a two-level BVH that shares them is to come.
-    for (const VertexData& piece : it->second.meshes) addMesh(loc, piece);
+    // attributes. Meshes are shared (a prototype under its own BVH, reached through
+    // the instance's record), except inside a solid, where they are copied; quadrics are
+    // one record each anyway.
+    if (m_solidStack.empty()) {
+        addInstance(loc, handle, it->second);
+    } else {
+        for (const VertexData& piece : it->second.meshes) addMesh(loc, piece);
+    }
     for (const QuadricShape& q : it->second.quadrics)
         addQuadric(loc, quadricKindName(q.q.kind), q, {}, quadricPlacement(q.q));
 }

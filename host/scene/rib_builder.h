@@ -155,6 +155,13 @@ private:
     // definition's space for instances).
     void addQuadric(L, const char* what, QuadricShape shape, const rib::ParamList& params,
                     const glm::mat4& placement = glm::mat4(1.0f));
+    // The eye-relative world placement of `placement` under `ctm`.
+    glm::mat4 eyeRelative(const glm::mat4& ctm, const glm::mat4& placement) const;
+    // Appends an object record (quadric or instance) already placed at the current
+    // transform, with the motion of the current placement and its world bounds from its
+    // object-space box [lo, hi].
+    void addObjectRecord(L, const char* what, Quadric q, glm::vec3 lo, glm::vec3 hi,
+                         const glm::mat4& placement);
     // CSG: the primitive solid the next surface belongs to (one is opened implicitly for
     // a surface given directly under an operation), or -1 outside SolidBegin.
     int solidLeafForSurface(L, const char* what);
@@ -192,7 +199,8 @@ private:
     // Appends a mesh's triangles at world points wp (and, moving, wpEnd at the last key
     // time t1, wp at t0), reporting degenerate ones once per request.
     void appendTriangles(L, const VertexData& mesh, const std::vector<glm::vec3>& wp,
-                         const std::vector<glm::vec3>* wpEnd, float t0, float t1);
+                         const std::vector<glm::vec3>* wpEnd, float t0, float t1,
+                         uint32_t extraFlags = 0);
     // Makes the triangle just appended (at its first key) move to `last`.
     void addMovingTriangle(const Triangle& first, const Triangle& last);
     std::vector<Scene> m_scenes;
@@ -210,6 +218,11 @@ private:
         std::vector<QuadricShape> quadrics;
     };
     std::map<std::string, ObjectDef> m_objects;
+    std::map<std::string, uint32_t> m_prototypes;  // per world: handle -> Scene::prototypes
+    // ObjectInstance without copies: the object's meshes become a prototype (once per
+    // world, in object space), each instance a record placing it.
+    void addInstance(L, const std::string& handle, const ObjectDef& def);
+
     ObjectDef* m_defining = nullptr;
     // SolidBegin/End blocks being built: a tree of nodes; primitive leaves list the
     // members (triangle indices or RT_OBJECT_BIT | quadric index) with what they were.

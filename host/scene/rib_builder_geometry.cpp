@@ -92,15 +92,7 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         m_defining->quadrics.push_back(shape);
         return;
     }
-    // camera-relative world, composed in double like meshes (see worldBegin)
-    auto eyeRelative = [&](const glm::mat4& ctm) {
-        glm::dmat4 d = glm::dmat4(ctm) * glm::dmat4(placement);
-        d[3] -= glm::dvec4(m_origin, 0.0);
-        return glm::mat4(d);
-    };
-    const Attributes& at = m_attrStack.back();
-    const glm::mat4 toWorld = eyeRelative(at.ctm);
-    if (!placeQuadric(q, toWorld)) {
+    if (!placeQuadric(q, eyeRelative(m_attrStack.back().ctm, placement))) {
         m_diag.warning(loc, std::string(what) + ": singular or non-finite transform, left out");
         return;
     }
@@ -135,10 +127,23 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         m_solidNodes[leaf].members.push_back(RT_OBJECT_BIT | index);
         m_solidNodes[leaf].memberWhat.push_back(std::string(what) + " at " + loc.str());
     }
-    Aabb bounds = quadricWorldBounds(q, shape.lo, shape.hi);
+    addObjectRecord(loc, what, q, shape.lo, shape.hi, placement);
+}
+
+glm::mat4 RibBuilder::eyeRelative(const glm::mat4& ctm, const glm::mat4& placement) const {
+    // camera-relative world, composed in double like meshes (see worldBegin)
+    glm::dmat4 d = glm::dmat4(ctm) * glm::dmat4(placement);
+    d[3] -= glm::dvec4(m_origin, 0.0);
+    return glm::mat4(d);
+}
+
+void RibBuilder::addObjectRecord(L loc, const char* what, Quadric q, glm::vec3 lo, glm::vec3 hi,
+                                 const glm::mat4& placement) {
+    const Attributes& at = m_attrStack.back();
+    Aabb bounds = quadricWorldBounds(q, lo, hi);
     if (at.moving) {  // motion blur: the last key's placement, interpolated by ray time
         Quadric last = q;
-        if (!placeQuadric(last, eyeRelative(at.ctmEnd))) {
+        if (!placeQuadric(last, eyeRelative(at.ctmEnd, placement))) {
             m_diag.warning(loc, std::string(what) + ": singular motion key, left still");
         } else {
             q.flags |= RT_QF_MOVING;
@@ -148,7 +153,7 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
             r0.w = at.t1;
             for (const rt_float4& v : {c, r0, last.to_world[1], last.to_world[2]})
                 m_world.quadricMotion.push_back(v);
-            bounds.grow(quadricWorldBounds(last, shape.lo, shape.hi));
+            bounds.grow(quadricWorldBounds(last, lo, hi));
         }
     }
     m_world.quadrics.push_back(q);

@@ -2,6 +2,7 @@
 // (eye-relative) world, degenerate triangles reported at their request, per-vertex
 // normals and primitive variables, and triangles that move during the shutter.
 #include <algorithm>
+#include <cfloat>
 #include <array>
 #include <set>
 
@@ -52,11 +53,14 @@ void RibBuilder::addMovingMesh(L loc, const VertexData& a, const VertexData& b, 
 }
 
 void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vector<glm::vec3>& wp,
-                                 const std::vector<glm::vec3>* wpEnd, float t0, float t1) {
+                                 const std::vector<glm::vec3>* wpEnd, float t0, float t1,
+                                 uint32_t extraFlags) {
     const size_t np = mesh.p.size();
-    const int leaf = solidLeafForSurface(loc, "mesh");
+    // a prototype stays in its object space (normals too) and belongs to no solid
+    const bool prototype = extraFlags & RT_QF_PROTOTYPE;
+    const int leaf = prototype ? -1 : solidLeafForSurface(loc, "mesh");
     const glm::mat4& ctm = m_attrStack.back().ctm;
-    glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(ctm)));
+    glm::mat3 nm = prototype ? glm::mat3(1.0f) : glm::transpose(glm::inverse(glm::mat3(ctm)));
     uint32_t material = currentMaterial();
     const bool smooth = mesh.n.size() == np;
     uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
@@ -110,7 +114,7 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
         }
         m_world.triangles.push_back({f4(a), f4(b), f4(c)});
         m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars,
-                                 leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u});
+                                 (leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u) | extraFlags});
         if (wpEnd) addMovingTriangle(m_world.triangles.back(),
                                      {f4((*wpEnd)[i0], t0), f4((*wpEnd)[i1], t1), f4((*wpEnd)[i2])});
         // A zero or non-finite vertex normal: all three stored as zero, the device uses Ng.
@@ -168,6 +172,36 @@ void RibBuilder::addMovingTriangle(const Triangle& first, const Triangle& last) 
         }
     m_world.quadrics.push_back(q);
     m_world.quadricBounds.push_back(box);
+}
+
+void RibBuilder::addInstance(L loc, const std::string& handle, const ObjectDef& def) {
+    if (def.meshes.empty()) return;
+    auto [it, fresh] = m_prototypes.try_emplace(handle, uint32_t(m_world.prototypes.size()));
+    if (fresh) {
+        Scene::Prototype p;
+        p.firstTriangle = uint32_t(m_world.triangles.size());
+        p.lo = glm::vec3(FLT_MAX);
+        p.hi = glm::vec3(-FLT_MAX);
+        for (const VertexData& piece : def.meshes) {
+            appendTriangles(loc, piece, piece.p, nullptr, 0, 0, RT_QF_PROTOTYPE);
+            for (const glm::vec3& v : piece.p)
+                if (finite3(v)) p.lo = glm::min(p.lo, v), p.hi = glm::max(p.hi, v);
+        }
+        p.triangleCount = uint32_t(m_world.triangles.size()) - p.firstTriangle;
+        m_world.prototypes.push_back(p);
+    }
+    const Scene::Prototype& p = m_world.prototypes[it->second];
+    if (p.triangleCount == 0) return;
+    Quadric q{};
+    q.kind = RT_Q_INSTANCE;
+    q.first_member = it->second;  // the renderer replaces it with the prototype's BVH root
+    q.primvars = RT_NO_QUADRIC_PRIMVARS;
+    q.material = currentMaterial();
+    if (!placeQuadric(q, eyeRelative(m_attrStack.back().ctm, glm::mat4(1.0f)))) {
+        m_diag.warning(loc, "ObjectInstance: singular or non-finite transform, left out");
+        return;
+    }
+    addObjectRecord(loc, "ObjectInstance", q, p.lo, p.hi, glm::mat4(1.0f));
 }
 
 void RibBuilder::readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh) {

@@ -76,6 +76,13 @@ struct Scene {
     // triangles' last keys (by triangle index; empty without moving triangles).
     std::vector<rt_float4> quadricMotion;
     std::vector<Triangle> trianglesEnd;
+    // Instanced objects: each prototype's triangles (RT_QF_PROTOTYPE, in object space)
+    // and their box; instances are RT_Q_INSTANCE records whose first_member indexes this.
+    struct Prototype {
+        uint32_t firstTriangle = 0, triangleCount = 0;
+        glm::vec3 lo{0.0f}, hi{0.0f};
+    };
+    std::vector<Prototype> prototypes;
     // Materials: Material::shader indexes surfaceRefs until the shader set compiles them.
     std::vector<Material> materials;
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
