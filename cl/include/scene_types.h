@@ -43,7 +43,7 @@ typedef struct Material {
     uint32_t shader;   /* index of the compiled surface shader (its shade kernel) */
     uint32_t params;   /* first float of its parameter block */
     uint32_t flags;    /* RT_MATERIAL_* */
-    uint32_t pad;
+    uint32_t lights_off; /* bit l: light l turned off by Illuminate for this surface */
 } Material;
 
 /* Matte 1: a holdout. It hides what is behind it but adds neither colour nor alpha. */

@@ -81,6 +81,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #endif
     }
     g.time = time;
+    g.lights_off = m.lights_off;
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */
 #ifdef RT_HAS_AOVS
     if (!aov[sample].hit) {

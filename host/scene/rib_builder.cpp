@@ -51,6 +51,7 @@ void RibBuilder::worldBegin(L) {
     m_solidNodes.clear();
     m_solidStack.clear();
     m_prototypes.clear();
+    m_lightHandles.clear();
     m_specularSetInWorld = false;
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
@@ -284,16 +285,35 @@ void RibBuilder::surface(L loc, const std::string& name, const rib::ParamList& p
     m_attrStack.back().surfaceKey = ++m_surfaceCalls;
 }
 
-void RibBuilder::lightSource(L loc, const std::string& name, const std::string&,
+void RibBuilder::lightSource(L loc, const std::string& name, const std::string& handle,
                              const rib::ParamList& params) {
     if (!inWorld(loc, "LightSource")) return;
+    const uint32_t index = uint32_t(m_world.lights.size());
+    if (!handle.empty()) m_lightHandles[handle] = index;
     m_world.lights.push_back({name, params, m_attrStack.back().ctm, loc});
 }
 
-void RibBuilder::illuminate(L loc, const std::string&, bool on) {
-    if (!on)
-        m_diag.warning(loc, "Illuminate off is not supported yet: every light lights "
-                            "every surface");
+// An area light is rendered as its light shader (e.g. arealight) at its transform; the
+// geometry that follows is not yet its emitter.
+void RibBuilder::areaLightSource(L loc, S name, S handle, P params) {
+    lightSource(loc, name, handle, params);
+}
+
+// Illuminate turns a light off (or back on) for the geometry that follows, within the
+// current attribute block. (Lights are on everywhere unless turned off: a light declared
+// inside an attribute block still lights what comes after it.)
+void RibBuilder::illuminate(L loc, const std::string& handle, bool on) {
+    auto it = m_lightHandles.find(handle);
+    if (it == m_lightHandles.end()) {
+        m_diag.error(loc, "Illuminate: no light with handle \"" + handle + "\"");
+        return;
+    }
+    if (it->second >= 32) {
+        m_diag.warning(loc, "Illuminate: only the first 32 lights can be turned off");
+        return;
+    }
+    uint32_t& off = m_attrStack.back().lightsOff;
+    off = on ? (off & ~(1u << it->second)) : (off | (1u << it->second));
 }
 
 uint32_t RibBuilder::currentMaterial() {
@@ -311,6 +331,7 @@ uint32_t RibBuilder::currentMaterial() {
     m.cs = f4(a.color[0], a.color[1], a.color[2]);
     m.os = f4(a.opacity[0], a.opacity[1], a.opacity[2],
               (a.opacity[0] + a.opacity[1] + a.opacity[2]) / 3.0f);
+    m.lights_off = a.lightsOff;
     if (a.matte) {
         m.flags |= RT_MATERIAL_MATTE;
         m_world.anyMatte = true;

@@ -60,6 +60,9 @@ public:
     void lightSource(L, const std::string& name, const std::string& handle,
                      const rib::ParamList&) override;
     void illuminate(L, const std::string& handle, bool on) override;
+    void areaLightSource(L, S name, S handle, P params) override;
+    void coordinateSystem(L, S name) override;
+    void coordSysTransform(L, S name) override;
 
     void shutter(L, float open, float close) override;
     void motionBegin(L, Floats times) override;
@@ -126,6 +129,7 @@ private:
         ShaderRef surface;    // the current Surface call
         uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;
+        uint32_t lightsOff = 0;  // bit l: light l turned off (Illuminate handle 0)
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
         std::shared_ptr<const TrimCurves> trim;  // TrimCurve applies to later NuPatches
     };
@@ -219,6 +223,8 @@ private:
     };
     std::map<std::string, ObjectDef> m_objects;
     std::map<std::string, uint32_t> m_prototypes;  // per world: handle -> Scene::prototypes
+    std::map<std::string, uint32_t> m_lightHandles;  // per world: handle -> light index
+    std::map<std::string, glm::mat4> m_coordSystems; // CoordinateSystem name -> object to world
     // ObjectInstance without copies: the object's meshes become a prototype (once per
     // world, in object space), each instance a record placing it.
     void addInstance(L, const std::string& handle, const ObjectDef& def);

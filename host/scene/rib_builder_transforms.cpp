@@ -67,6 +67,24 @@ void RibBuilder::transformEnd(L) {
     m_xformStack.pop_back();
 }
 
+void RibBuilder::coordinateSystem(L, S name) { m_coordSystems[name] = m_attrStack.back().ctm; }
+
+// Makes a named coordinate system current: one CoordinateSystem named, or "world"
+// (identity inside the world), "camera" (camera to world); "object" and "shader" leave
+// the current transform as it is.
+void RibBuilder::coordSysTransform(L loc, S name) {
+    if (auto it = m_coordSystems.find(name); it != m_coordSystems.end())
+        return applyTransform(it->second, true);
+    if (name == "world") return applyTransform(glm::mat4(1.0f), true);
+    if (name == "camera") {
+        const glm::mat4 worldToCamera =
+            m_inWorld ? m_world.camera.worldToCamera : glm::mat4(1.0f);
+        return applyTransform(glm::inverse(worldToCamera), true);
+    }
+    if (name == "object" || name == "shader") return;
+    m_diag.error(loc, "CoordSysTransform: no coordinate system named \"" + name + "\"");
+}
+
 void RibBuilder::identity(L) {
     // Inside the world, identity means world space; outside, camera space.
     applyTransform(glm::mat4(1.0f), true);

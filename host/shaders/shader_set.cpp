@@ -233,6 +233,8 @@ ShadingSetup ShaderSet::prepare() {
     // evaluation mode and illuminance loop.
     svc << "/* Runs light l at Ps: surface-side L, unshadowed Cl (w = 1: solar). */\n"
            "static void rd_light_at(int l, const RslGlobals* g, float4 Ps, float4* L, float4* Cl) {\n"
+           "    if (l < 32 && ((g->lights_off >> l) & 1u)) {  /* Illuminate off */\n"
+           "        *L = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n        *Cl = (float4)(0.0f);\n        return;\n    }\n"
            "    if (l < g->light_cache_count && Ps.x == g->P.x && Ps.y == g->P.y && Ps.z == g->P.z) {\n"
            "        *L = g->light_cache_L[l];\n        *Cl = g->light_cache_Cl[l];\n        return;\n    }\n"
            "    RslGlobals lg;\n    int solar = rd_run_light(l, g, Ps, &lg);\n"

@@ -124,6 +124,7 @@ typedef struct RslGlobals {
      * the renderer's rsl_light() in every evaluation mode. Generated code never touches
      * them; copies of the globals carry them along. */
     int light_cache_count;
+    unsigned int lights_off; /* lights 0..31 Illuminate turned off for this surface */
     float4 light_cache_L[RSL_LIGHT_CACHE];
     float4 light_cache_Cl[RSL_LIGHT_CACHE]; /* w: 1 for a solar light */
 } RslGlobals;

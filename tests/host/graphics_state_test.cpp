@@ -1,0 +1,130 @@
+// graphics_state_test.cpp: RI graphics state rendered: Illuminate turning a light off
+// and on within attribute blocks, CoordinateSystem/CoordSysTransform placing geometry in
+// a named space, AreaLightSource lighting like its shader, and the same scene read as
+// ASCII, binary-encoded and gzip-compressed RIB giving the same image.
+#include <gtest/gtest.h>
+
+#include <zlib.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "render_harness.h"
+#include "rib/reader.h"
+#include "rib/writer.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+const char* kCamera =
+    "Format 48 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\nScreenWindow -3 3 -1 1\n"
+    "Translate 0 0 5\n";
+
+// Three unit squares at x = -2, 0, 2 facing the camera, under a distant light "key" of
+// intensity 1 straight on and a matte surface: lit squares are Cs * Kd = 1.
+std::string squares(const std::string& first, const std::string& second,
+                    const std::string& third) {
+    auto square = [](double x) {
+        std::ostringstream s;
+        s << "Polygon \"P\" [" << x - 0.5 << " -0.5 0  " << x + 0.5 << " -0.5 0  " << x + 0.5
+          << " 0.5 0  " << x - 0.5 << " 0.5 0]\n";
+        return s.str();
+    };
+    return std::string(kCamera) +
+           "WorldBegin\nLightSource \"distantlight\" \"key\" \"from\" [0 0 0] \"to\" [0 0 1]\n"
+           "Surface \"matte\"\n" + first + square(-2) + "AttributeBegin\n" + second + square(0) +
+           "AttributeEnd\n" + third + square(2) + "WorldEnd\n";
+}
+
+double brightness(const Rendered& img, int column) { return img.mean(0, column - 2, 6, column + 2, 10); }
+
+}  // namespace
+
+// Illuminate "key" 0 turns the light off for the geometry after it, in its attribute
+// block only; Illuminate 1 turns it back on.
+TEST(GraphicsState, IlluminateTurnsALightOffAndOn) {
+    Rendered img = renderRib(squares("", "Illuminate \"key\" 0\n", ""));
+    EXPECT_NEAR(brightness(img, 8), 1.0, 1e-3);   // x = -2: lit
+    EXPECT_NEAR(brightness(img, 24), 0.0, 1e-6);  // x = 0: the light off inside the block
+    EXPECT_NEAR(brightness(img, 40), 1.0, 1e-3);  // x = 2: the block ended, lit again
+    Rendered back = renderRib(squares("Illuminate \"key\" 0\n", "Illuminate \"key\" 1\n", ""));
+    EXPECT_NEAR(brightness(back, 8), 0.0, 1e-6);
+    EXPECT_NEAR(brightness(back, 24), 1.0, 1e-3);
+    EXPECT_NEAR(brightness(back, 40), 0.0, 1e-6);
+}
+
+// A name given to the transform at one place puts later geometry there again.
+TEST(GraphicsState, CoordSysTransformRestoresANamedSpace) {
+    Rendered img = renderRib(std::string(kCamera) +
+                             "WorldBegin\nSurface \"constant\"\nAttributeBegin\nTranslate 2 0 0\n"
+                             "CoordinateSystem \"right\"\nAttributeEnd\nAttributeBegin\n"
+                             "CoordSysTransform \"right\"\n"
+                             "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\n"
+                             "AttributeEnd\nWorldEnd\n");
+    EXPECT_NEAR(img.mean(3, 38, 6, 42, 10), 1.0, 1e-6);  // at x = 2
+    EXPECT_NEAR(img.mean(3, 22, 6, 26, 10), 0.0, 1e-6);  // not at the origin
+}
+
+// AreaLightSource: its light shader lights the scene like the same LightSource.
+TEST(GraphicsState, AreaLightSourceLightsLikeItsShader) {
+    const std::string rest =
+        "\"from\" [0 0 0] \"to\" [0 0 1]\nSurface \"matte\"\n"
+        "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\nWorldEnd\n";
+    Rendered area = renderRib(std::string(kCamera) + "WorldBegin\nAreaLightSource \"distantlight\" \"a\" " + rest);
+    Rendered plain = renderRib(std::string(kCamera) + "WorldBegin\nLightSource \"distantlight\" \"a\" " + rest);
+    EXPECT_NEAR(area.mean(0, 22, 6, 26, 10), plain.mean(0, 22, 6, 26, 10), 1e-6);
+    EXPECT_GT(area.mean(0, 22, 6, 26, 10), 0.5);
+}
+
+// The same scene as ASCII, binary-encoded (RI 3.2 appendix C, by the RIB writer) and
+// gzip-compressed RIB renders to the same image.
+TEST(GraphicsState, AsciiBinaryAndGzipRibGiveTheSameImage) {
+    const std::string ascii =
+        std::string(kCamera) +
+        "WorldBegin\nLightSource \"distantlight\" 1 \"from\" [1 1 -1] \"to\" [0 0 0]\n"
+        "Surface \"plastic\"\nColor [0.8 0.4 0.2]\nSphere 0.8 -0.8 0.8 360\n"
+        "Translate 1.8 0 0\nPolygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\n"
+        "WorldEnd\n";
+    // binary: the ASCII text read back through the writer in binary encoding
+    std::ostringstream bin;
+    {
+        rib::RibWriter writer(bin, rib::RibWriter::Encoding::Binary);
+        rib::Diagnostics diag;
+        ASSERT_TRUE(rib::readString(ascii, "scene.rib", writer, diag));
+    }
+    std::string dir = ::testing::TempDir() + "/raydrive_encodings";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/binary.rib", std::ios::binary) << bin.str();
+    gzFile gz = gzopen((dir + "/scene.rib.gz").c_str(), "wb");
+    ASSERT_NE(gz, nullptr);
+    gzwrite(gz, ascii.data(), unsigned(ascii.size()));
+    gzclose(gz);
+    auto renderFile = [&](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        return text.str();
+    };
+    EXPECT_NE(bin.str(), ascii);
+    Rendered a = renderRib(ascii);
+    Rendered b = renderRib(renderFile(dir + "/binary.rib"));
+    // gzip: read through the file reader, which detects the magic
+    rib::Diagnostics diag;
+    std::ostringstream roundTrip;
+    {
+        rib::RibWriter writer(roundTrip);
+        ASSERT_TRUE(rib::readFile(dir + "/scene.rib.gz", writer, diag));
+    }
+    Rendered c = renderRib(roundTrip.str());
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    ASSERT_EQ(a.pixels.size(), c.pixels.size());
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        EXPECT_EQ(a.pixels[i].r, b.pixels[i].r) << "pixel " << i;
+        EXPECT_EQ(a.pixels[i].r, c.pixels[i].r) << "pixel " << i;
+        EXPECT_EQ(a.pixels[i].a, c.pixels[i].a) << "pixel " << i;
+    }
+}
