@@ -62,6 +62,12 @@ typedef struct Camera {
     float lens_radius;      /* DepthOfField: focallength / (2 fstop); 0 = pinhole */
     float focal_distance;   /* camera-space z of the plane in focus */
     float shutter[2];       /* Shutter open, close: each sample's time is uniform in it */
+    /* A moving camera (MotionBegin around the camera transform): camera_to_world is the
+     * placement at motion_times[0], this one at motion_times[1]; interpolated linearly */
+    rt_float4 camera_to_world_end[3];
+    float motion_times[2];
+    uint32_t moving;
+    uint32_t pad;
 } Camera;
 
 #ifndef __OPENCL_C_VERSION__
@@ -69,6 +75,6 @@ RT_ASSERT_SIZE(Triangle, 48);
 RT_ASSERT_SIZE(Triangle4, 160);
 RT_ASSERT_SIZE(TriangleAttr, 16);
 RT_ASSERT_SIZE(Material, 48);
-RT_ASSERT_SIZE(Camera, 112);
+RT_ASSERT_SIZE(Camera, 176);
 #endif
 #endif

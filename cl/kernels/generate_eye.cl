@@ -59,6 +59,16 @@ __kernel void generate_eye(__constant Camera* cam,
     }
     float4 r0 = cam->camera_to_world[0], r1 = cam->camera_to_world[1],
            r2 = cam->camera_to_world[2];
+#ifdef RT_HAS_MOTION
+    const float time = mix(cam->shutter[0], cam->shutter[1], rt_random(pixel, s, 4));
+    if (cam->moving) { /* the camera's placement at the sample's time */
+        float t0 = cam->motion_times[0], t1 = cam->motion_times[1];
+        float a = t1 > t0 ? clamp((time - t0) / (t1 - t0), 0.0f, 1.0f) : 0.0f;
+        r0 = mix(r0, cam->camera_to_world_end[0], a);
+        r1 = mix(r1, cam->camera_to_world_end[1], a);
+        r2 = mix(r2, cam->camera_to_world_end[2], a);
+    }
+#endif
     float4 o = (float4)(dot(r0, o_cam), dot(r1, o_cam), dot(r2, o_cam), 0.0f);
     float4 dw = (float4)(rt_dot3(r0, d_cam), rt_dot3(r1, d_cam), rt_dot3(r2, d_cam), 0.0f);
     /* the world direction is renormalised, so camera-space distances grow by its length */
@@ -73,7 +83,7 @@ __kernel void generate_eye(__constant Camera* cam,
     state[i] = st;
     ray_sample[i] = i; /* eye ray i belongs to sample i of the batch */
 #ifdef RT_HAS_MOTION
-    sample_time[i] = mix(cam->shutter[0], cam->shutter[1], rt_random(pixel, s, 4));
+    sample_time[i] = time;
 #endif
     total[i].value = (float4)(0.0f);
 #ifdef RT_HAS_AOVS

@@ -29,7 +29,8 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.quadrics = !scene.quadrics.empty();
     f.csg = !scene.csg.empty();
     f.quadricPrimvars = !scene.quadricPrimvars.empty();
-    f.motion = !scene.quadricMotion.empty() || !scene.trianglesEnd.empty();
+    f.motion = !scene.quadricMotion.empty() || !scene.trianglesEnd.empty() ||
+               scene.camera.moving;
     f.instances = !scene.prototypes.empty();
     for (size_t i = 0; i < scene.quadricPrimvars.size(); ++i) {
         const rt_float4& o = scene.quadricPrimvars[i];  // of each 8: Cs corners, Os corners

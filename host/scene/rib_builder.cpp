@@ -35,7 +35,12 @@ void RibBuilder::frameEnd(L) {
 
 void RibBuilder::worldBegin(L) {
     // The transform current at WorldBegin is the camera's; world space starts as identity.
-    m_options.camera.worldToCamera = m_attrStack.back().ctm;
+    const Attributes& camera = m_attrStack.back();
+    m_options.camera.worldToCamera = camera.ctm;
+    m_options.camera.moving = camera.moving;  // MotionBegin around the camera transform
+    m_options.camera.worldToCameraEnd = camera.moving ? camera.ctmEnd : camera.ctm;
+    m_options.camera.motionTimes[0] = camera.t0;
+    m_options.camera.motionTimes[1] = camera.t1;
     m_world = m_options;
     // Camera-relative world: what reaches the device is world space moved so the eye is
     // at the origin (in double here), so a scene far from the origin keeps the float
@@ -67,6 +72,8 @@ void RibBuilder::worldEnd(L loc) {
         r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
     m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
                                              glm::translate(glm::dmat4(1.0), m_origin));
+    m_world.camera.worldToCameraEnd = glm::mat4(glm::dmat4(m_world.camera.worldToCameraEnd) *
+                                                glm::translate(glm::dmat4(1.0), m_origin));
     m_world.worldOrigin = m_origin;
     if (!m_world.trianglesEnd.empty()) m_world.trianglesEnd.resize(m_world.triangles.size());
     m_inWorld = false;

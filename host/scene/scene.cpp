@@ -37,9 +37,16 @@ Camera Scene::deviceCamera() const {
         d.focal_distance = c.focalDistance;
     }
     glm::mat4 camToWorld = glm::inverse(c.worldToCamera);
-    for (int r = 0; r < 3; ++r)
+    glm::mat4 camToWorldEnd = glm::inverse(c.moving ? c.worldToCameraEnd : c.worldToCamera);
+    for (int r = 0; r < 3; ++r) {
         d.camera_to_world[r] = {camToWorld[0][r], camToWorld[1][r], camToWorld[2][r],
                                 camToWorld[3][r]};
+        d.camera_to_world_end[r] = {camToWorldEnd[0][r], camToWorldEnd[1][r],
+                                    camToWorldEnd[2][r], camToWorldEnd[3][r]};
+    }
+    d.moving = c.moving ? 1u : 0u;
+    d.motion_times[0] = c.motionTimes[0];
+    d.motion_times[1] = c.motionTimes[1];
     return d;
 }
 

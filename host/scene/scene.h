@@ -33,6 +33,10 @@ struct CameraSpec {
     float clipNear = 1e-10f, clipFar = 1e30f;
     float pixelSamples[2] = {2, 2}; // RI default PixelSamples 2 2
     glm::mat4 worldToCamera{1.0f};  // column-vector convention (glm)
+    // A moving camera: worldToCamera holds at motionTimes[0], this at motionTimes[1].
+    bool moving = false;
+    glm::mat4 worldToCameraEnd{1.0f};
+    float motionTimes[2] = {0, 0};
     float fstop = 0, focalLength = 0, focalDistance = 0;  // DepthOfField; fstop 0 = pinhole
     float shutter[2] = {0, 0};      // Shutter open, close
     float crop[4] = {0, 1, 0, 1};   // CropWindow xmin xmax ymin ymax (NDC)

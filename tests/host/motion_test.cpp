@@ -111,3 +111,18 @@ TEST(Motion, NoShutterIntervalMeansNoBlur) {
     EXPECT_FLOAT_EQ(img.at(kW / 4, kH / 2).a, 1.0f);  // x = -1: the sphere's centre
     EXPECT_FLOAT_EQ(img.at(3 * kW / 4, kH / 2).a, 0.0f);
 }
+
+// A moving camera (MotionBegin around the camera transform) blurs a still sphere as if
+// the sphere moved: the camera's translation runs the sphere's image from x = -1 to 1.
+TEST(Motion, MovingCameraBlursTheScene) {
+    std::ostringstream rib;
+    rib << "Format " << kW << " " << kH << " 1\nPixelSamples 16 16\nShutter 0 1\n"
+        << "Projection \"orthographic\"\nScreenWindow -2 2 -0.5 0.5\n"
+        << "MotionBegin [0 1] Translate -1 0 5 Translate 1 0 5 MotionEnd\n"
+        << "WorldBegin\nSurface \"constant\"\nSphere 0.45 -0.45 0.45 360\nWorldEnd\n";
+    Rendered img = renderRib(rib.str());
+    compare(img, [](double x, double y, double t) {
+        double c = -1 + 2 * t;
+        return (x - c) * (x - c) + y * y < 0.45 * 0.45 ? 1.0 : 0.0;
+    }, "camera_translate");
+}
