@@ -421,6 +421,17 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     st.unsampledPixels = film.unsampledCount();
     st.passes = planner.passes();
     st.elapsedSec = secondsSince(t0);
+    // Pool fill: rays traced per intersect_closest launch over the pool's capacity.
+    // Device busy: kernel time over the sampling loop's wall time; the rest is the device
+    // waiting on the host (its downloads, sorts' offsets, batch planning) or idle.
+    if (auto it = st.kernels.find("intersect_closest");
+        it != st.kernels.end() && it->second.launches > 0)
+        st.poolFill = double(it->second.activeItems) /
+                      (double(it->second.launches) * double(st.poolCapacity));
+    double deviceMs = 0;
+    for (const auto& [name, ks] : st.kernels) deviceMs += ks.deviceMs;
+    const double loopMs = st.elapsedSec * 1e3 - st.sceneSetupMs;
+    if (loopMs > 0) st.deviceBusy = std::min(1.0, deviceMs / loopMs);
     st.errorVsTime.push_back({st.elapsedSec, st.totalRays(), st.estimatedError});
     return st;
 }

@@ -50,6 +50,8 @@ struct RenderStats {
     uint64_t rouletteEnded = 0;  // trace() rays Russian roulette ended
     uint64_t overflowRays = 0;  // spawned rays beyond the pool's capacity, dropped
     size_t poolCapacity = 0;
+    double poolFill = 0;    // mean rays per intersect_closest launch / pool capacity
+    double deviceBusy = 0;  // kernel time / wall time of the sampling loop
     int passes = 0, batches = 0;
     double estimatedError = -1;
     std::string stopReason;  // "quality", "error target", "time budget", "SIGINT", ...

@@ -40,7 +40,9 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                          {"bvh_build_ms", st.bvhBuildMs},
                          {"setup_ms", st.sceneSetupMs},
 
-                         {"pool_capacity", st.poolCapacity}}},
+                         {"pool_capacity", st.poolCapacity},
+                         {"pool_fill", st.poolFill},
+                         {"device_busy", st.deviceBusy}}},
         {"features", st.features.names()},
         {"program", {{"build_options", st.program.options},
                      {"cache_hit", st.program.cacheHit},
@@ -85,8 +87,13 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
         << s["numerics"]["shader_denormal"] << ", cut at maxtransparentdepth "
         << s["numerics"]["transparent_depth_cut"] << ", at maxspeculardepth "
         << s["numerics"]["specular_depth_cut"] << "\n";
-    out << "scene     " << s["scene_stats"]["triangles"] << " triangles, "
-        << s["scene_stats"]["bvh_nodes"] << " BVH nodes\n";
+    const auto& ss = s["scene_stats"];
+    out << "scene     " << ss["triangles"] << " triangles, " << ss["quadrics"] << " quadrics, "
+        << ss["csg_solids"] << " CSG solids, " << ss["instances"] << " instances, "
+        << ss["bvh_nodes"] << " BVH nodes, " << ss["geometry_bytes"] << " geometry bytes\n";
+    out << "pool      capacity " << ss["pool_capacity"] << ", fill "
+        << ss["pool_fill"].get<double>() << " per trace launch, device busy "
+        << ss["device_busy"].get<double>() << " of the sampling loop\n";
     out << "features ";
     for (const auto& f : s["features"]) out << " " << f.get<std::string>();
     out << "\nprogram   " << (s["program"]["cache_hit"].get<bool>() ? "cache hit" : "built")
