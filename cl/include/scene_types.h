@@ -48,6 +48,9 @@ typedef struct Material {
 
 /* Matte 1: a holdout. It hides what is behind it but adds neither colour nor alpha. */
 #define RT_MATERIAL_MATTE 1u
+/* Bits 8..15: 1 + the index of the surface's Atmosphere shader, 0 for none. */
+#define RT_MATERIAL_ATMOSPHERE_SHIFT 8u
+#define RT_MATERIAL_ATMOSPHERE_MASK 0xff00u
 
 /* Camera: rays start in camera space (RenderMan: left-handed, looking down +z) and are
  * moved to world space by the 3x4 matrix camera_to_world (rows, column-vector convention). */

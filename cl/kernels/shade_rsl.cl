@@ -101,6 +101,24 @@ __kernel void shade_SURFACE(uint begin, uint count,
     rsl_surface_SURFACE(&base, p, &ev);
     float4 E = base.Ci, Oi = base.Oi;
     E.w = 0.0f;
+    /* the atmosphere between the ray's origin and P: Ci' = a Ci + b (affine in Ci, as
+     * fog and depthcue are), so it scales every contribution and adds b once */
+    float4 atmo_a = (float4)(1.0f);
+#ifdef RT_HAS_ATMOSPHERE
+    uint atmo = (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT;
+    if (atmo) {
+        RslGlobals g0 = base, g1 = base;
+        g0.Ci = (float4)(0.0f);
+        g1.Ci = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
+        rd_atmosphere((int)atmo - 1, &g0, params);
+        rd_atmosphere((int)atmo - 1, &g1, params);
+        atmo_a = g1.Ci - g0.Ci;
+        atmo_a.w = 1.0f;
+        E = atmo_a * E + g0.Ci;
+        E.w = 0.0f;
+        Oi = g0.Oi;
+    }
+#endif
     float4 add = w * E;
     add.w = w.w * (Oi.x + Oi.y + Oi.z) * (1.0f / 3.0f); /* coverage */
     rt_atomic_add_float4(&total[sample].value, rt_sanitize(add, numerics));
@@ -119,7 +137,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         RslGlobals lgl = g;
         rsl_surface_SURFACE(&lgl, p, &le);
         float4 coef = lgl.Ci - base.Ci;
-        float4 sw = w * coef;
+        float4 sw = w * atmo_a * coef;
         sw.w = 0.0f;
         sw = rt_sanitize(sw, numerics);
         if (!rd_nonzero3(sw)) continue;
@@ -151,7 +169,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         te.trace_count = 0;
         RslGlobals tg = g;
         rsl_surface_SURFACE(&tg, p, &te);
-        float4 tw = w * (tg.Ci - base.Ci);
+        float4 tw = w * atmo_a * (tg.Ci - base.Ci);
         tw.w = 0.0f;
         tw = rt_sanitize(tw, numerics);
 #ifdef RT_ROULETTE_DEPTH

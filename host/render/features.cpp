@@ -32,6 +32,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.motion = !scene.quadricMotion.empty() || !scene.trianglesEnd.empty() ||
                scene.camera.moving;
     f.instances = !scene.prototypes.empty();
+    f.atmosphere = shading.atmosphere;
     for (size_t i = 0; i < scene.quadricPrimvars.size(); ++i) {
         const rt_float4& o = scene.quadricPrimvars[i];  // of each 8: Cs corners, Os corners
         if (i % 8 >= 4 && (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f)) f.transparency = true;
@@ -46,6 +47,7 @@ std::vector<std::string> Features::names() const {
     if (quadricPrimvars) n.push_back("quadric_primvars");
     if (motion) n.push_back("motion_blur");
     if (instances) n.push_back("instances");
+    if (atmosphere) n.push_back("atmosphere");
     if (trace && rouletteDepth > 0) n.push_back("roulette");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
@@ -79,6 +81,7 @@ std::string buildOptions(const Features& f) {
     if (f.quadricPrimvars) o += " -DRT_HAS_QUADRIC_PRIMVARS";
     if (f.motion) o += " -DRT_HAS_MOTION";
     if (f.instances) o += " -DRT_HAS_INSTANCES";
+    if (f.atmosphere) o += " -DRT_HAS_ATMOSPHERE";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";

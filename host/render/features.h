@@ -24,6 +24,7 @@ struct Features {
     bool quadricPrimvars = false;  // some quadric has varying Cs or Os
     bool motion = false;        // moving quadrics or triangles: a time per sample
     bool instances = false;     // ObjectInstance records over shared prototypes
+    bool atmosphere = false;    // Atmosphere (volume) shaders on some surfaces
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)

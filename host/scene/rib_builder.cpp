@@ -52,6 +52,7 @@ void RibBuilder::worldBegin(L) {
     m_inWorld = true;
     m_materialKeys.clear();
     m_surfaceKeys.clear();
+    m_atmosphereKeys.clear();
     m_degenerate = 0;
     m_solidNodes.clear();
     m_solidStack.clear();
@@ -292,6 +293,15 @@ void RibBuilder::surface(L loc, const std::string& name, const rib::ParamList& p
     m_attrStack.back().surfaceKey = ++m_surfaceCalls;
 }
 
+// Atmosphere "" (or "null") removes it; the volume shader runs on each surface's Ci and
+// Oi as seen from the ray's origin.
+void RibBuilder::atmosphere(L loc, S name, P params) {
+    Attributes& a = m_attrStack.back();
+    a.atmosphere = (name.empty() || name == "null") ? ShaderRef()
+                                                     : ShaderRef{name, params, a.ctm, loc};
+    a.atmosphereKey = a.atmosphere.name.empty() ? 0 : ++m_surfaceCalls;
+}
+
 void RibBuilder::lightSource(L loc, const std::string& name, const std::string& handle,
                              const rib::ParamList& params) {
     if (!inWorld(loc, "LightSource")) return;
@@ -339,6 +349,15 @@ uint32_t RibBuilder::currentMaterial() {
     m.os = f4(a.opacity[0], a.opacity[1], a.opacity[2],
               (a.opacity[0] + a.opacity[1] + a.opacity[2]) / 3.0f);
     m.lights_off = a.lightsOff;
+    if (a.atmosphereKey != 0) {
+        size_t index = 0;
+        while (index < m_atmosphereKeys.size() && m_atmosphereKeys[index] != a.atmosphereKey) ++index;
+        if (index == m_atmosphereKeys.size()) {
+            m_atmosphereKeys.push_back(a.atmosphereKey);
+            m_world.atmospheres.push_back(a.atmosphere);
+        }
+        if (index < 255) m.flags |= uint32_t(index + 1) << RT_MATERIAL_ATMOSPHERE_SHIFT;
+    }
     if (a.matte) {
         m.flags |= RT_MATERIAL_MATTE;
         m_world.anyMatte = true;

@@ -61,6 +61,7 @@ public:
                      const rib::ParamList&) override;
     void illuminate(L, const std::string& handle, bool on) override;
     void areaLightSource(L, S name, S handle, P params) override;
+    void atmosphere(L, S name, P params) override;
     void coordinateSystem(L, S name) override;
     void coordSysTransform(L, S name) override;
 
@@ -130,6 +131,8 @@ private:
         uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;
         uint32_t lightsOff = 0;  // bit l: light l turned off (Illuminate handle 0)
+        ShaderRef atmosphere;    // the current Atmosphere call (name empty: none)
+        uint64_t atmosphereKey = 0;
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
         std::shared_ptr<const TrimCurves> trim;  // TrimCurve applies to later NuPatches
     };
@@ -210,6 +213,7 @@ private:
     std::vector<Scene> m_scenes;
     std::vector<std::pair<std::string, uint32_t>> m_materialKeys;
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
+    std::vector<uint64_t> m_atmosphereKeys;  // per atmospheres entry: its Atmosphere call
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
     bool m_specularSetInWorld = false;

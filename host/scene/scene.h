@@ -91,6 +91,7 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
     std::vector<ShaderRef> lights;       // every LightSource, in order
+    std::vector<ShaderRef> atmospheres;  // one per distinct Atmosphere call in use
     std::vector<std::string> shaderSearchPath;  // Option "searchpath" "shader", split
     int maxSpecularDepth = 2;  // Attribute "trace" "maxspeculardepth" (the largest given)
     // Attribute/Option "trace" "maxtransparentdepth": surfaces of Opacity < 1 a ray goes

@@ -122,6 +122,15 @@ ShaderSet::ShaderSet(const Scene& scene, rib::Diagnostics& diag) : m_scene(scene
 
 ShaderSet::~ShaderSet() = default;
 
+namespace {
+// What happens to a shader of this kind that cannot be used.
+std::string leftOut(const std::string& kind) {
+    return kind == "light"    ? "light left out"
+           : kind == "volume" ? "atmosphere left out"
+                              : "using defaultsurface";
+}
+}  // namespace
+
 const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::string& kind,
                                           const rib::SourceLoc& loc) {
     auto it = m_cache.find(name);
@@ -138,7 +147,7 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
     if (file.empty()) {
         m_diag.warning(loc, kind + " shader \"" + name + "\" not found (" + name +
                                 ".sl on the shader search path); " +
-                                (kind == "light" ? "light left out" : "using defaultsurface"));
+                                leftOut(kind));
         return nullptr;
     }
     std::ostringstream messages;
@@ -156,9 +165,8 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
     std::istringstream lines(messages.str());
     for (std::string l; std::getline(lines, l);)
         if (l.find(": warning: ") == std::string::npos)
-            m_diag.warning(loc, "in " + kind + " shader \"" + name + "\": " + l +
-                                    (kind == "light" ? " (light left out)"
-                                                     : " (using defaultsurface)"));
+            m_diag.warning(loc, "in " + kind + " shader \"" + name + "\": " + l + " (" +
+                                    leftOut(kind) + ")");
     if (!decl || !emitted.ok || rd.hasErrors()) return nullptr;
     if (emitted.kind != kind) {
         m_diag.warning(loc, "shader \"" + name + "\" is a " + emitted.kind +
@@ -304,6 +312,26 @@ ShadingSetup ShaderSet::prepare() {
         std::vector<float> block = bindParameters(*sh, call, m_diag);
         out.params.insert(out.params.end(), block.begin(), block.end());
     }
+    // --- atmospheres: volume shaders on a surface's Ci and Oi, parameters in the buffer
+    std::ostringstream atmo;
+    std::map<std::string, bool> volumeEmitted;
+    atmo << "static void rd_atmosphere(int a, RslGlobals* g, __global const float* params) {\n"
+            "    RslEval ev;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
+            "    ev.trace_count = 0;\n    switch (a) {\n";
+    for (size_t a = 0; a < m_scene.atmospheres.size(); ++a) {
+        const ShaderRef& ref = m_scene.atmospheres[a];
+        const rsl::EmittedShader* sh = find(ref.name, "volume", ref.loc);
+        if (!sh) continue;  // reported by find(); the surfaces go without it
+        std::vector<float> block = bindParameters(*sh, ref, m_diag);
+        atmo << "    case " << a << ": " << sh->functionName << "(g, params + "
+             << out.params.size() << ", &ev); break;\n";
+        out.params.insert(out.params.end(), block.begin(), block.end());
+        if (!volumeEmitted[sh->name]) shaders << sh->source << "\n";
+        volumeEmitted[sh->name] = true;
+        out.atmosphere = true;
+    }
+    atmo << "    default: break;\n    }\n}\n";
+    if (out.atmosphere) svc << atmo.str();
     out.materials = m_scene.materials;
     for (Material& m : out.materials) {
         uint32_t r = m.shader;

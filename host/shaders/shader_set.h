@@ -32,6 +32,7 @@ struct ShadingSetup {
     bool shadowRays = false;                // some light is not ambient
     bool usesTrace = false;                 // some surface calls trace()
     int traceSlots = 0;                     // rays a hit may spawn with trace()
+    bool atmosphere = false;                // some surface has an Atmosphere shader
 };
 
 class ShaderSet {

@@ -4,6 +4,9 @@
 // the fallback when a shader is missing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -154,4 +157,22 @@ TEST(Shading, WorldSpaceIsTheRibWorld) {
     EXPECT_NEAR(img.mean(0, 7, 7, 9, 9), 1.0, 0.01);
     EXPECT_NEAR(img.mean(1, 7, 7, 9, 9), 1.0, 0.05);
     EXPECT_NEAR(img.mean(2, 7, 7, 9, 9), 1.0, 0.01);
+}
+
+// Atmosphere "fog" (the standard volume shader) on constant white surfaces at distances
+// 1 and 3 from an orthographic eye: Ci = mix(Ci, background, 1 - exp(-d / distance)).
+TEST(Shading, FogAtmosphereFollowsItsClosedForm) {
+    Rendered img = renderRib("Format 64 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
+                             "ScreenWindow -4 4 -1 1\nWorldBegin\nSurface \"constant\"\n"
+                             "Atmosphere \"fog\" \"distance\" 2 \"background\" [0 0 1]\n"
+                             "Polygon \"P\" [-4 -1 1  0 -1 1  0 1 1  -4 1 1]\n"
+                             "Polygon \"P\" [0 -1 3  4 -1 3  4 1 3  0 1 3]\nWorldEnd\n");
+    for (auto [x0, d] : {std::pair<int, double>{4, 1.0}, {36, 3.0}}) {
+        double fog = 1 - std::exp(-d / 2);
+        EXPECT_NEAR(img.mean(0, x0, 4, x0 + 24, 12), 1 - fog, 1e-4) << "distance " << d;
+        EXPECT_NEAR(img.mean(2, x0, 4, x0 + 24, 12), 1.0, 1e-4) << "distance " << d;
+        EXPECT_NEAR(img.mean(3, x0, 4, x0 + 24, 12), 1.0, 1e-6) << "distance " << d;
+    }
+    EXPECT_TRUE(std::find(img.stats.features.names().begin(), img.stats.features.names().end(),
+                          "atmosphere") != img.stats.features.names().end());
 }
