@@ -48,6 +48,8 @@ typedef struct Material {
 
 /* Matte 1: a holdout. It hides what is behind it but adds neither colour nor alpha. */
 #define RT_MATERIAL_MATTE 1u
+/* Sides 1: hits on the back (the side its normal points away from) are ignored. */
+#define RT_MATERIAL_ONE_SIDED 2u
 /* Bits 8..15: 1 + the index of the surface's Atmosphere shader, 0 for none. */
 #define RT_MATERIAL_ATMOSPHERE_SHIFT 8u
 #define RT_MATERIAL_ATMOSPHERE_MASK 0xff00u

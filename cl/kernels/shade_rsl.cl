@@ -92,21 +92,30 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #endif
     if (m.flags & RT_MATERIAL_MATTE) return; /* holdout: opaque, black, no alpha */
     __global const float* p = params + m.params;
-    rd_fill_light_cache(&g);
+    /* Sides 1: the back of a one-sided surface is not there; the ray goes on unchanged */
+#ifdef RT_HAS_ONE_SIDED
+    const int culled = (m.flags & RT_MATERIAL_ONE_SIDED) && rt_dot3(dir, g.Ng) > 0.0f;
+#else
+    const int culled = 0;
+#endif
     RslEval ev;
     ev.mode_light = -1;
     ev.mode_trace = -1;
     ev.trace_count = 0;
     RslGlobals base = g;
-    rsl_surface_SURFACE(&base, p, &ev);
-    float4 E = base.Ci, Oi = base.Oi;
+    if (!culled) {
+        rd_fill_light_cache(&g);
+        base = g;
+        rsl_surface_SURFACE(&base, p, &ev);
+    }
+    float4 E = culled ? (float4)(0.0f) : base.Ci, Oi = culled ? (float4)(0.0f) : base.Oi;
     E.w = 0.0f;
     /* the atmosphere between the ray's origin and P: Ci' = a Ci + b (affine in Ci, as
      * fog and depthcue are), so it scales every contribution and adds b once */
     float4 atmo_a = (float4)(1.0f);
 #ifdef RT_HAS_ATMOSPHERE
     uint atmo = (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT;
-    if (atmo) {
+    if (atmo && !culled) {
         RslGlobals g0 = base, g1 = base;
         g0.Ci = (float4)(0.0f);
         g1.Ci = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
@@ -119,13 +128,13 @@ __kernel void shade_SURFACE(uint begin, uint count,
         Oi = g0.Oi;
     }
 #endif
-    float4 add = w * E;
+    float4 add = culled ? (float4)(0.0f) : w * E;
     add.w = w.w * (Oi.x + Oi.y + Oi.z) * (1.0f / 3.0f); /* coverage */
     rt_atomic_add_float4(&total[sample].value, rt_sanitize(add, numerics));
 
 #ifdef RT_HAS_SHADOW_RAYS
     float4 Pl = rt_offset_ray(g.P, Ngf);
-    for (uint l = 0; l < light_count; ++l) {
+    for (uint l = 0; l < (culled ? 0u : light_count); ++l) {
         float4 toward, lcl;
         rd_light_at((int)l, &g, g.P, &toward, &lcl);
         int solar = lcl.w == 1.0f;

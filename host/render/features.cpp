@@ -9,8 +9,11 @@ namespace rd {
 Features analyse(const Scene& scene, const ShadingSetup& shading) {
     Features f;
     f.smoothNormals = scene.anySmoothNormals;
-    for (const Material& m : scene.materials)
+    for (const Material& m : scene.materials) {
         if (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f) f.transparency = true;
+        // a one-sided surface's back continues the ray, as a transparent surface does
+        if (m.flags & RT_MATERIAL_ONE_SIDED) f.oneSided = f.transparency = true;
+    }
     for (const rt_float4& o : scene.vertexOs)
         if (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f) f.transparency = true;
     f.primvars = scene.primvarsUsed;
@@ -48,6 +51,7 @@ std::vector<std::string> Features::names() const {
     if (motion) n.push_back("motion_blur");
     if (instances) n.push_back("instances");
     if (atmosphere) n.push_back("atmosphere");
+    if (oneSided) n.push_back("one_sided");
     if (trace && rouletteDepth > 0) n.push_back("roulette");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
@@ -82,6 +86,7 @@ std::string buildOptions(const Features& f) {
     if (f.motion) o += " -DRT_HAS_MOTION";
     if (f.instances) o += " -DRT_HAS_INSTANCES";
     if (f.atmosphere) o += " -DRT_HAS_ATMOSPHERE";
+    if (f.oneSided) o += " -DRT_HAS_ONE_SIDED";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";

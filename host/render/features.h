@@ -25,6 +25,7 @@ struct Features {
     bool motion = false;        // moving quadrics or triangles: a time per sample
     bool instances = false;     // ObjectInstance records over shared prototypes
     bool atmosphere = false;    // Atmosphere (volume) shaders on some surfaces
+    bool oneSided = false;      // Sides 1 surfaces: their backs pass rays on
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)

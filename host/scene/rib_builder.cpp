@@ -349,6 +349,7 @@ uint32_t RibBuilder::currentMaterial() {
     m.os = f4(a.opacity[0], a.opacity[1], a.opacity[2],
               (a.opacity[0] + a.opacity[1] + a.opacity[2]) / 3.0f);
     m.lights_off = a.lightsOff;
+    if (a.sides == 1) m.flags |= RT_MATERIAL_ONE_SIDED;
     if (a.atmosphereKey != 0) {
         size_t index = 0;
         while (index < m_atmosphereKeys.size() && m_atmosphereKeys[index] != a.atmosphereKey) ++index;

@@ -62,6 +62,12 @@ public:
     void illuminate(L, const std::string& handle, bool on) override;
     void areaLightSource(L, S name, S handle, P params) override;
     void atmosphere(L, S name, P params) override;
+    void sides(L, int n) override;
+    void orientation(L, const std::string& o) override;
+    void reverseOrientation(L) override;
+    // Whether normals computed from world-space vertices must be reversed to be RI's:
+    // the primitive inside out, or its transform a mirror (the cross product flips).
+    bool flipWorldNormals() const;
     void coordinateSystem(L, S name) override;
     void coordSysTransform(L, S name) override;
 
@@ -131,6 +137,10 @@ private:
         uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;
         uint32_t lightsOff = 0;  // bit l: light l turned off (Illuminate handle 0)
+        // Orientation relative to the current coordinate system's handedness: true when
+        // primitives are inside out (their normals flipped); Sides 1 or 2.
+        bool insideOut = false;
+        int sides = 2;
         ShaderRef atmosphere;    // the current Atmosphere call (name empty: none)
         uint64_t atmosphereKey = 0;
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();

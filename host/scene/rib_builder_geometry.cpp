@@ -106,6 +106,7 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     if (cs && cs->floats.size() == 3) std::copy_n(cs->floats.begin(), 3, attrs.color);
     if (os && os->floats.size() == 3) std::copy_n(os->floats.begin(), 3, attrs.opacity);
     q.material = currentMaterial();
+    if (m_attrStack.back().insideOut) q.flags ^= RT_QF_FLIP;  // the normal transform keeps mirrors
     const bool varyingCs = cs && cs->floats.size() == 12, varyingOs = os && os->floats.size() == 12;
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
     if (varyingCs || varyingOs) {

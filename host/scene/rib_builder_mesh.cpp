@@ -62,6 +62,9 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     const glm::mat4& ctm = m_attrStack.back().ctm;
     glm::mat3 nm = prototype ? glm::mat3(1.0f) : glm::transpose(glm::inverse(glm::mat3(ctm)));
     uint32_t material = currentMaterial();
+    // RI's geometric normal: the world-space cross product, reversed for inside-out
+    // primitives and mirrored transforms (prototypes: their object space, unmirrored)
+    const bool flipNormals = prototype ? m_attrStack.back().insideOut : flipWorldNormals();
     const bool smooth = mesh.n.size() == np;
     uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
                         (mesh.cs.size() == np ? RT_PRIMVAR_CS : 0u) |
@@ -114,7 +117,8 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
         }
         m_world.triangles.push_back({f4(a), f4(b), f4(c)});
         m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars,
-                                 (leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u) | extraFlags});
+                                 (leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u) | extraFlags |
+                                     (flipNormals ? uint32_t(RT_QF_FLIP) : 0u)});
         if (wpEnd) addMovingTriangle(m_world.triangles.back(),
                                      {f4((*wpEnd)[i0], t0), f4((*wpEnd)[i1], t1), f4((*wpEnd)[i2])});
         // A zero or non-finite vertex normal: all three stored as zero, the device uses Ng.

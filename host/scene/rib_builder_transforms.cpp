@@ -85,6 +85,31 @@ void RibBuilder::coordSysTransform(L loc, S name) {
     m_diag.error(loc, "CoordSysTransform: no coordinate system named \"" + name + "\"");
 }
 
+// Orientation and Sides (RI 3.2 section 4.2): the current orientation follows the
+// coordinate system's handedness through every transform, so what is kept is whether it
+// differs from it (inside out). "lh"/"rh" compare with the handedness of object to camera
+// space, left-handed when its determinant is positive (camera space is left-handed).
+void RibBuilder::sides(L loc, int n) {
+    if (n != 1 && n != 2) return m_diag.error(loc, "Sides must be 1 or 2");
+    m_attrStack.back().sides = n;
+}
+void RibBuilder::orientation(L loc, const std::string& o) {
+    Attributes& a = m_attrStack.back();
+    const glm::mat4 toCamera = m_inWorld ? m_world.camera.worldToCamera * a.ctm : a.ctm;
+    const bool leftHanded = glm::determinant(glm::mat3(toCamera)) > 0.0f;
+    if (o == "outside") a.insideOut = false;
+    else if (o == "inside") a.insideOut = true;
+    else if (o == "lh") a.insideOut = !leftHanded;
+    else if (o == "rh") a.insideOut = leftHanded;
+    else m_diag.error(loc, "Orientation must be outside, inside, lh or rh, not \"" + o + "\"");
+}
+void RibBuilder::reverseOrientation(L) { m_attrStack.back().insideOut ^= true; }
+
+bool RibBuilder::flipWorldNormals() const {
+    const Attributes& a = m_attrStack.back();
+    return a.insideOut != (glm::determinant(glm::mat3(a.ctm)) < 0.0f);
+}
+
 void RibBuilder::identity(L) {
     // Inside the world, identity means world space; outside, camera space.
     applyTransform(glm::mat4(1.0f), true);

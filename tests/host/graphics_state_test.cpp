@@ -128,3 +128,44 @@ TEST(GraphicsState, AsciiBinaryAndGzipRibGiveTheSameImage) {
         EXPECT_EQ(a.pixels[i].a, c.pixels[i].a) << "pixel " << i;
     }
 }
+
+namespace {
+// Coverage of one unit square at the image centre (constant shader), after `state`.
+double coverage(const std::string& state, bool clockwise) {
+    const char* cw = "Polygon \"P\" [-0.5 -0.5 0  -0.5 0.5 0  0.5 0.5 0  0.5 -0.5 0]\n";
+    const char* ccw = "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\n";
+    Rendered img = renderRib(std::string(kCamera) + "WorldBegin\nSurface \"constant\"\n" + state +
+                             (clockwise ? cw : ccw) + "WorldEnd\n");
+    return img.mean(3, 22, 6, 26, 10);
+}
+}  // namespace
+
+// RI: a polygon's normal points toward the viewer who sees its vertices clockwise (camera
+// space is left-handed); Sides 1 hides its back; Orientation/ReverseOrientation turn it
+// inside out; a mirroring transform flips the coordinate system and the orientation
+// together, so the front stays the front.
+TEST(GraphicsState, SidesAndOrientation) {
+    EXPECT_EQ(coverage("Sides 1\n", true), 1.0);   // clockwise from the eye: its front
+    EXPECT_EQ(coverage("Sides 1\n", false), 0.0);  // counter-clockwise: its back, hidden
+    EXPECT_EQ(coverage("Sides 2\n", false), 1.0);  // two-sided: both
+    EXPECT_EQ(coverage("Sides 1 ReverseOrientation\n", false), 1.0);
+    EXPECT_EQ(coverage("Sides 1 ReverseOrientation\n", true), 0.0);
+    EXPECT_EQ(coverage("Sides 1 Orientation \"inside\"\n", true), 0.0);
+    EXPECT_EQ(coverage("Sides 1 Orientation \"rh\"\n", true), 0.0);  // camera space is lh
+    EXPECT_EQ(coverage("Sides 1 Orientation \"lh\"\n", true), 1.0);
+    EXPECT_EQ(coverage("Sides 1 Scale -1 1 1\n", true), 1.0);  // mirrored: still its front
+    EXPECT_EQ(coverage("Sides 1 Scale -1 1 1 Orientation \"lh\"\n", true), 0.0);
+}
+
+// From inside a sphere its outside faces away: one-sided it vanishes, reversed it shows.
+TEST(GraphicsState, OneSidedSphereFromInside) {
+    auto inside = [](const std::string& state) {
+        Rendered img = renderRib("Format 16 16 1\nPixelSamples 1 1\nProjection \"perspective\" "
+                                 "\"fov\" 60\nWorldBegin\nSurface \"constant\"\n" + state +
+                                 "Sphere 2 -2 2 360\nWorldEnd\n");
+        return img.mean(3, 0, 0, 16, 16);
+    };
+    EXPECT_EQ(inside(""), 1.0);
+    EXPECT_EQ(inside("Sides 1\n"), 0.0);
+    EXPECT_EQ(inside("Sides 1 ReverseOrientation\n"), 1.0);
+}
