@@ -63,6 +63,12 @@ public:
     void areaLightSource(L, S name, S handle, P params) override;
     void atmosphere(L, S name, P params) override;
     void sides(L, int n) override;
+    void skew(L, float angleDeg, float dx1, float dy1, float dz1, float dx2, float dy2,
+              float dz2) override;
+    void perspective(L, float fovDeg) override;
+    void colorSamples(L, Floats nRGB, Floats RGBn) override;
+    void textureCoordinates(L, float s1, float t1, float s2, float t2, float s3, float t3,
+                            float s4, float t4) override;
     void orientation(L, const std::string& o) override;
     void reverseOrientation(L) override;
     // Whether normals computed from world-space vertices must be reversed to be RI's:
@@ -141,6 +147,8 @@ private:
         // primitives are inside out (their normals flipped); Sides 1 or 2.
         bool insideOut = false;
         int sides = 2;
+        // TextureCoordinates: s and t at the parametric corners (u, v) = 00, 10, 01, 11
+        float texS[4] = {0, 1, 0, 1}, texT[4] = {0, 0, 1, 1};
         ShaderRef atmosphere;    // the current Atmosphere call (name empty: none)
         uint64_t atmosphereKey = 0;
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();

@@ -54,6 +54,14 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
     VertexData mesh;
     mesh.p = m.mesh.p, mesh.n = m.mesh.n, mesh.tris = m.mesh.tris;
     if (m.st.size() == m.mesh.p.size()) mesh.st = m.st;
+    // TextureCoordinates: s, t bilinear over the parametric (u, v) the dicer gave as st
+    const Attributes& a = m_attrStack.back();
+    for (glm::vec2& st : mesh.st) {
+        const float u = st.x, v = st.y;
+        const float w[4] = {(1 - u) * (1 - v), u * (1 - v), (1 - u) * v, u * v};
+        st = glm::vec2(0.0f);
+        for (int k = 0; k < 4; ++k) st += w[k] * glm::vec2(a.texS[k], a.texT[k]);
+    }
     addMesh(loc, mesh);
 }
 
@@ -64,6 +72,11 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         return;
     }
     Quadric& q = shape.q;
+    if (placement == glm::mat4(1.0f)) {  // not an instance's copy: TextureCoordinates apply
+        const Attributes& current = m_attrStack.back();
+        q.st_s = {current.texS[0], current.texS[1], current.texS[2], current.texS[3]};
+        q.st_t = {current.texT[0], current.texT[1], current.texT[2], current.texT[3]};
+    }
     // varying s, t: one value per (u, v) corner
     const rib::Param* st = params.find("st");
     const rib::Param* ps = params.find("s");

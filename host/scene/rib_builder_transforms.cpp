@@ -3,6 +3,9 @@
 // linearly from its first key to its last between their times (motion blur of whatever
 // is declared under it, quadrics exactly); around a mesh's keys it makes the mesh
 // deform. Keys between the first and the last are not used yet.
+#include <algorithm>
+#include <cmath>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "rib_builder.h"
@@ -108,6 +111,50 @@ void RibBuilder::reverseOrientation(L) { m_attrStack.back().insideOut ^= true; }
 bool RibBuilder::flipWorldNormals() const {
     const Attributes& a = m_attrStack.back();
     return a.insideOut != (glm::determinant(glm::mat3(a.ctm)) < 0.0f);
+}
+
+// Skew (RI 3.2): shears along the second axis so that the first axis turns by `angle`
+// toward it: P' = P + s (P . d1perp) d2, with d1perp the part of d1 across d2. An angle
+// that would take d1 past d2 is an error.
+void RibBuilder::skew(L loc, float angleDeg, float dx1, float dy1, float dz1, float dx2,
+                      float dy2, float dz2) {
+    glm::dvec3 d1(dx1, dy1, dz1), d2(dx2, dy2, dz2);
+    if (!(glm::length(d1) > 0) || !(glm::length(d2) > 0))
+        return m_diag.error(loc, "Skew axes must not be zero");
+    d1 = glm::normalize(d1), d2 = glm::normalize(d2);
+    glm::dvec3 across = d1 - glm::dot(d1, d2) * d2;  // d1's part perpendicular to d2
+    const double perp = glm::length(across), par = glm::dot(d1, d2);
+    if (!(perp > 1e-9)) return m_diag.error(loc, "Skew axes must not be parallel");
+    const double from = std::atan2(perp, par), to = from - glm::radians(double(angleDeg));
+    if (!(to > 1e-9 && to < M_PI - 1e-9))
+        return m_diag.error(loc, "Skew angle turns the first axis past the second");
+    const double s = (perp / std::tan(to) - par) / perp;
+    const glm::dvec3 n = across / perp;
+    glm::dmat4 m(1.0);
+    for (int c = 0; c < 3; ++c)      // column c: the image of axis c
+        for (int r = 0; r < 3; ++r)  // row r
+            m[c][r] += s * d2[r] * n[c];
+    applyTransform(glm::mat4(m), false);
+}
+
+// Perspective makes the current transform projective, which placements here cannot be.
+void RibBuilder::perspective(L loc, float) {
+    m_diag.warning(loc, "Perspective (a projective transform) is not supported; ignored "
+                        "(use Projection \"perspective\" for the camera)");
+}
+
+void RibBuilder::colorSamples(L loc, Floats nRGB, Floats) {
+    if (nRGB.size() != 9)
+        m_diag.warning(loc, "ColorSamples with " + std::to_string(nRGB.size() / 3) +
+                                " samples is not supported yet; colours stay RGB");
+}
+
+void RibBuilder::textureCoordinates(L, float s1, float t1, float s2, float t2, float s3,
+                                    float t3, float s4, float t4) {
+    Attributes& a = m_attrStack.back();
+    const float s[4] = {s1, s2, s3, s4}, t[4] = {t1, t2, t3, t4};
+    std::copy(s, s + 4, a.texS);
+    std::copy(t, t + 4, a.texT);
 }
 
 void RibBuilder::identity(L) {

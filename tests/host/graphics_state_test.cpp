@@ -14,6 +14,7 @@
 #include "render_harness.h"
 #include "rib/reader.h"
 #include "rib/writer.h"
+#include "scene/rib_builder.h"
 
 using rd::test::Rendered;
 using rd::test::renderRib;
@@ -168,4 +169,44 @@ TEST(GraphicsState, OneSidedSphereFromInside) {
     EXPECT_EQ(inside(""), 1.0);
     EXPECT_EQ(inside("Sides 1\n"), 0.0);
     EXPECT_EQ(inside("Sides 1 ReverseOrientation\n"), 1.0);
+}
+
+// Skew 45 degrees turning the y axis toward x: x' = x + y, a square becomes a
+// parallelogram of the same area leaning right.
+TEST(GraphicsState, SkewShearsAlongTheSecondAxis) {
+    Rendered img = renderRib(std::string(kCamera) +
+                             "WorldBegin\nSurface \"constant\"\nSkew 45 0 1 0 1 0 0\n"
+                             "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\n"
+                             "WorldEnd\n");
+    auto alphaAt = [&](double x, double y) { return img.at(int((x + 3) * 8), int((1 - y) * 8)).a; };
+    EXPECT_EQ(alphaAt(0.6, 0.4), 1.0f);    // x + y: the top moved right (unskewed: outside)
+    EXPECT_EQ(alphaAt(-0.3, 0.4), 0.0f);
+    EXPECT_EQ(alphaAt(-0.7, -0.4), 1.0f);  // the bottom moved left
+    EXPECT_NEAR(img.mean(3, 0, 0, 48, 16) * 12.0, 1.0, 0.03);  // shear keeps the area
+}
+
+// TextureCoordinates give the default s, t of parametric surfaces: a disk whose v runs
+// rim to centre shows s = 2 - 2v ... here t = 1 at the rim, 3 at the centre.
+TEST(GraphicsState, TextureCoordinatesMapTheDefaultST) {
+    std::string dir = ::testing::TempDir() + "/raydrive_texcoords";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/showt.sl") << "surface showt() {\n    Oi = 1;\n    Ci = color(t, s, 0);\n}\n";
+    Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
+                             std::string(kCamera) +
+                             "WorldBegin\nSurface \"showt\"\nTextureCoordinates 0 1 0 1 0 3 0 3\n"
+                             "Disk 0 1 360\nWorldEnd\n");
+    // the centre pixel: v near 1, t near 3; s = 0 everywhere
+    EXPECT_NEAR(img.at(24, 8).r, 3.0f, 0.2f);
+    EXPECT_NEAR(img.at(24, 8).g, 0.0f, 1e-6f);
+}
+
+// Requests the renderer cannot honour say so instead of being ignored silently.
+TEST(GraphicsState, UnsupportedRequestsWarn) {
+    std::ostringstream err;
+    rib::Diagnostics diag(&err);
+    rd::RibBuilder b(diag, "w.rib");
+    rib::readString("ColorSamples [1 0 0 0 1 0 0 0 1 1 1 1] [1 0 0 0 1 0 0 0 1 1 1 1]\n"
+                    "WorldBegin\nPerspective 45\nWorldEnd\n", "w.rib", b, diag);
+    EXPECT_NE(err.str().find("w.rib:1: warning: ColorSamples"), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find("w.rib:3: warning: Perspective"), std::string::npos) << err.str();
 }
