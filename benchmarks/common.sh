@@ -10,6 +10,15 @@ need_povray() {
   command -v povray >/dev/null ||
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq povray >/dev/null
 }
+# The SPD scenes, POV-Ray, the RayDrive binary ($bin) and a scratch folder ($work) removed
+# on exit: what every peer benchmark starts with.
+peer_benchmark_setup() {
+  spd="${SPD_DIR:-$bench_root/../shared/scenes/spd}"
+  need_povray
+  bin="$(raydrive_bin)"
+  work="$(mktemp -d)"
+  trap 'rm -rf "$work"' EXIT
+}
 median() { sort -n | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 # Milliseconds of wall time the command takes (its output discarded).
 wall() { local t0 t1; t0=$(date +%s%N); "$@" >/dev/null 2>&1; t1=$(date +%s%N); echo "$(( (t1 - t0) / 1000000 ))"; }

@@ -8,12 +8,8 @@
 # peak resident memory, RayDrive's device geometry bytes, and the time ratios.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
-spd="${SPD_DIR:-$bench_root/../shared/scenes/spd}"
 runs="${1:-3}"
-need_povray
-bin="$(raydrive_bin)"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+peer_benchmark_setup
 
 # The forest, as RIB and as POV-Ray scene of the same camera, light and trees.
 python3 - "$work" <<'PY'

@@ -8,12 +8,8 @@
 # program (about 2 s on PoCL); that warm-up run is not timed.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
-spd="${SPD_DIR:-$bench_root/../shared/scenes/spd}"
 runs="${1:-3}"
-need_povray
-bin="$(raydrive_bin)"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+peer_benchmark_setup
 printf '%-8s %12s %12s %8s\n' scene raydrive_ms povray_ms ratio
 tot_r=0; tot_p=0
 for s in balls gears mount rings teapot tetra tree; do
