@@ -2,6 +2,7 @@
 // generated part of the shade stage's OpenCL source.
 #include "shader_set.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -224,6 +225,9 @@ ShadingSetup ShaderSet::prepare() {
            "        out[0] = " << fmt(float(m_scene.camera.width)) << "; out[1] = "
         << fmt(float(m_scene.camera.height)) << "; out[2] = "
         << fmt(m_scene.camera.pixelAspect) << ";\n        return 1;\n    }\n"
+           "    if (nameId == " << rsl::stringId("Clipping") << " && n == 2) {\n"
+           "        out[0] = " << fmt(m_scene.camera.clipNear) << "; out[1] = "
+        << fmt(std::min(m_scene.camera.clipFar, 1e30f)) << ";\n        return 1;\n    }\n"
            "    return 0;\n}\n";
     svc << "int rsl_light_count(void) { return " << out.lightCount << "; }\n";
     svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar light */\n"

@@ -1,0 +1,52 @@
+// standard_shaders_test.cpp: the RI standard shaders not covered elsewhere, each in a
+// small reference scene against its closed form: metal's highlight, paintedplastic
+// without a texture equal to plastic, shinymetal without an environment equal to metal,
+// and the depthcue atmosphere with depth() normalised between the clipping planes.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "render_harness.h"
+#include "rsl2cl/src/emit_cl.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+// A square facing an orthographic eye, lit head-on by a distant light of intensity 1.
+Rendered square(const std::string& surface, const std::string& options = "") {
+    return renderRib("Format 16 16 1\nPixelSamples 1 1\nProjection \"orthographic\"\n" + options +
+                     "Translate 0 0 5\nWorldBegin\n"
+                     "LightSource \"distantlight\" 1 \"from\" [0 0 -5] \"to\" [0 0 0]\n"
+                     "Color [0.5 0.25 1]\n" + surface +
+                     "\nPolygon \"P\" [-2 -2 0  2 -2 0  2 2 0  -2 2 0]\nWorldEnd\n");
+}
+
+}  // namespace
+
+// metal: Cs (Ka ambient + Ks specular); head-on, H = N, specular = Cl = 1 -> Ci = Cs.
+TEST(StandardShaders, MetalHighlightHeadOn) {
+    Rendered img = square("Surface \"metal\"");
+    EXPECT_NEAR(img.at(8, 8).r, 0.5f, 1e-4f);
+    EXPECT_NEAR(img.at(8, 8).g, 0.25f, 1e-4f);
+    EXPECT_NEAR(img.at(8, 8).b, 1.0f, 1e-4f);
+}
+
+// Without a texture paintedplastic is plastic; without an environment shinymetal is metal.
+TEST(StandardShaders, TexturelessVariantsEqualTheirBases) {
+    EXPECT_NEAR(square("Surface \"paintedplastic\"").at(8, 8).r,
+                square("Surface \"plastic\"").at(8, 8).r, 1e-6f);
+    EXPECT_NEAR(square("Surface \"shinymetal\"").at(8, 8).g,
+                square("Surface \"metal\"").at(8, 8).g, 1e-6f);
+}
+
+// depthcue: depth(P) is 0 at the near and 1 at the far clipping plane; the square at
+// camera z = 5 between Clipping 1 and 9 has depth 0.5, so Ci is half way to background.
+TEST(StandardShaders, DepthcueAtmosphereUsesNormalisedDepth) {
+    EXPECT_EQ(rsl::stringId("Clipping"), 16130671);  // RSL_ID_CLIPPING in rsl_stdlib.clh
+    Rendered img = square("Surface \"constant\"\nAtmosphere \"depthcue\" \"background\" [0 0 0]",
+                          "Clipping 1 9\n");
+    EXPECT_NEAR(img.at(8, 8).r, 0.25f, 1e-4f);
+    EXPECT_NEAR(img.at(8, 8).b, 0.5f, 1e-4f);
+}
