@@ -189,11 +189,11 @@ private:
                          const glm::mat4& placement);
     // CSG: the primitive solid the next surface belongs to (one is opened implicitly for
     // a surface given directly under an operation), or -1 outside SolidBegin.
-    int solidLeafForSurface(L, const char* what);
+    int solidLeafForSurface(L);
     bool exactQuadrics() const {
         return !m_forceTessellate && (m_inWorld ? m_world : m_options).render.exactQuadrics;
     }
-    void finishSolid(L, int root);
+    void finishSolid(int root);
 
     rib::Diagnostics& m_diag;
     Scene m_options;               // option state; copied into each new world

@@ -134,7 +134,7 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     }
     std::copy_n(savedColor, 3, attrs.color);
     std::copy_n(savedOpacity, 3, attrs.opacity);
-    const int leaf = solidLeafForSurface(loc, what);
+    const int leaf = solidLeafForSurface(loc);
     uint32_t index = uint32_t(m_world.quadrics.size());
     if (leaf >= 0) {
         q.flags |= RT_QF_CSG_MEMBER;

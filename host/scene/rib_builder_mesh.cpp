@@ -58,7 +58,7 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     const size_t np = mesh.p.size();
     // a prototype stays in its object space (normals too) and belongs to no solid
     const bool prototype = extraFlags & RT_QF_PROTOTYPE;
-    const int leaf = prototype ? -1 : solidLeafForSurface(loc, "mesh");
+    const int leaf = prototype ? -1 : solidLeafForSurface(loc);
     const glm::mat4& ctm = m_attrStack.back().ctm;
     glm::mat3 nm = prototype ? glm::mat3(1.0f) : glm::transpose(glm::inverse(glm::mat3(ctm)));
     uint32_t material = currentMaterial();

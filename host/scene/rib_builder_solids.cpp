@@ -54,17 +54,17 @@ void RibBuilder::solidBegin(L loc, S op) {
     m_solidStack.push_back(node);
 }
 
-void RibBuilder::solidEnd(L loc) {
+void RibBuilder::solidEnd(L) {
     if (m_solidStack.empty()) return;
     int node = m_solidStack.back();
     m_solidStack.pop_back();
     if (m_solidStack.empty()) {
-        finishSolid(loc, node);
+        finishSolid(node);
         m_solidNodes.clear();
     }
 }
 
-int RibBuilder::solidLeafForSurface(L loc, const char* what) {
+int RibBuilder::solidLeafForSurface(L loc) {
     if (m_solidStack.empty()) return -1;
     int top = m_solidStack.back();
     if (m_solidNodes[top].op == "primitive") return top;
@@ -72,11 +72,10 @@ int RibBuilder::solidLeafForSurface(L loc, const char* what) {
     int node = int(m_solidNodes.size());
     m_solidNodes.push_back({"primitive", loc, {}, {}, {}});
     m_solidNodes[top].children.push_back(node);
-    (void)what;
     return node;
 }
 
-void RibBuilder::finishSolid(L endLoc, int root) {
+void RibBuilder::finishSolid(int root) {
     std::vector<SolidNode>& nodes = m_solidNodes;
     // Which nodes hold any surface at all: empty operands drop out of unions and
     // differences, and empty an intersection.
@@ -238,7 +237,6 @@ void RibBuilder::finishSolid(L endLoc, int root) {
     if (bounds.isEmpty()) return;  // an intersection of disjoint boxes: nothing to see
     m_world.quadrics.push_back(solid);
     m_world.quadricBounds.push_back(bounds);
-    (void)endLoc;
 }
 
 }  // namespace rd
