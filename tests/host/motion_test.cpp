@@ -126,3 +126,18 @@ TEST(Motion, MovingCameraBlursTheScene) {
         return (x - c) * (x - c) + y * y < 0.45 * 0.45 ? 1.0 : 0.0;
     }, "camera_translate");
 }
+
+// An instance under a moving transform moves like the geometry it places.
+TEST(Motion, MovingInstance) {
+    Rendered img = render("Shutter 0 1\n",
+                          "ObjectBegin \"sq\"\n"
+                          "Polygon \"P\" [-0.25 -0.25 0  0.25 -0.25 0  0.25 0.25 0  -0.25 0.25 0]\n"
+                          "ObjectEnd\n"
+                          "MotionBegin [0 1] Translate -1 0 0 Translate 1 0 0 MotionEnd\n"
+                          "ObjectInstance \"sq\"");
+    EXPECT_EQ(img.stats.instances, 1u);
+    compare(img, [](double x, double y, double t) {
+        double c = -1 + 2 * t;
+        return std::fabs(x - c) < 0.25 && std::fabs(y) < 0.25 ? 1.0 : 0.0;
+    }, "instance_translate");
+}
