@@ -1,6 +1,7 @@
 // film.cpp: resolving the accumulated film, filling unreached pixels, and AOV channels.
 #include "film.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -43,6 +44,10 @@ std::vector<Rgba> Film::resolve() const {
         float inv = 1.0f / float(p.count);
         out[i] = {p.sum.x * inv, p.sum.y * inv, p.sum.z * inv, p.sum.w * inv};
     }
+    if (exposureGain != 1.0f || exposureGamma != 1.0f)  // the Exposure imager
+        for (Rgba& c : out)
+            for (float* v : {&c.r, &c.g, &c.b})
+                *v = std::pow(std::max(0.0f, exposureGain * *v), 1.0f / exposureGamma);
     return out;
 }
 

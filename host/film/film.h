@@ -50,8 +50,10 @@ struct Film {
         return out;
     }
 
-    // Mean of each pixel's samples; a pixel with none takes its nearest sampled
-    // neighbour's value (all transparent black if nothing was sampled).
+    // RI Exposure: resolved colour = (gain * colour)^(1 / gamma), alpha untouched.
+    float exposureGain = 1.0f, exposureGamma = 1.0f;
+    // Mean of each pixel's samples, through Exposure; a pixel with none takes its nearest
+    // sampled neighbour's value (all transparent black if nothing was sampled).
     std::vector<Rgba> resolve() const;
     // 1 where resolve() filled a pixel from a neighbour.
     std::vector<float> filledMask() const;

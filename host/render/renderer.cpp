@@ -197,6 +197,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     RayPool rp(m_ctx, pool, spawn, nl, f.aovs, f.motion, f.instances, shaderCount + 1);
     const size_t npix = size_t(cam.width) * size_t(cam.height);
     film.width = cam.width;
+    film.exposureGain = scene.camera.exposure[0];
+    film.exposureGamma = scene.camera.exposure[1];
     film.height = cam.height;
     DeviceBuffer<PixelAccum> filmBuf(m_ctx, npix);
     filmBuf.fillZero();

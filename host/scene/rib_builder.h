@@ -66,6 +66,7 @@ public:
     void skew(L, float angleDeg, float dx1, float dy1, float dz1, float dx2, float dy2,
               float dz2) override;
     void perspective(L, float fovDeg) override;
+    void exposure(L, float gain, float gamma) override;
     void colorSamples(L, Floats nRGB, Floats RGBn) override;
     void textureCoordinates(L, float s1, float t1, float s2, float t2, float s3, float t3,
                             float s4, float t4) override;

@@ -137,6 +137,13 @@ void RibBuilder::skew(L loc, float angleDeg, float dx1, float dy1, float dz1, fl
     applyTransform(glm::mat4(m), false);
 }
 
+void RibBuilder::exposure(L loc, float gain, float gamma) {
+    if (!(gain >= 0) || !(gamma > 0) || !std::isfinite(gain) || !std::isfinite(gamma))
+        return m_diag.error(loc, "Exposure needs gain >= 0 and gamma > 0");
+    m_options.camera.exposure[0] = gain;
+    m_options.camera.exposure[1] = gamma;
+}
+
 // Perspective makes the current transform projective, which placements here cannot be.
 void RibBuilder::perspective(L loc, float) {
     m_diag.warning(loc, "Perspective (a projective transform) is not supported; ignored "

@@ -39,6 +39,7 @@ struct CameraSpec {
     float motionTimes[2] = {0, 0};
     float fstop = 0, focalLength = 0, focalDistance = 0;  // DepthOfField; fstop 0 = pinhole
     float shutter[2] = {0, 0};      // Shutter open, close
+    float exposure[2] = {1, 1};     // Exposure gain, gamma
     float crop[4] = {0, 1, 0, 1};   // CropWindow xmin xmax ymin ymax (NDC)
     // The pixels the crop window covers: [x0, x1) x [y0, y1).
     void cropPixels(int& x0, int& x1, int& y0, int& y1) const;

@@ -210,3 +210,17 @@ TEST(GraphicsState, UnsupportedRequestsWarn) {
     EXPECT_NE(err.str().find("w.rib:1: warning: ColorSamples"), std::string::npos) << err.str();
     EXPECT_NE(err.str().find("w.rib:3: warning: Perspective"), std::string::npos) << err.str();
 }
+
+// Exposure gain gamma: the resolved colour is (gain * colour)^(1 / gamma).
+TEST(GraphicsState, ExposureScalesAndGammaCorrects) {
+    auto centre = [](const std::string& exposure) {
+        Rendered img = renderRib(std::string(kCamera) + exposure +
+                                 "WorldBegin\nColor [0.25 0.25 0.25]\nSurface \"constant\"\n"
+                                 "Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\nWorldEnd\n");
+        return img.at(24, 8);
+    };
+    EXPECT_NEAR(centre("").r, 0.25f, 1e-6f);
+    EXPECT_NEAR(centre("Exposure 2 1\n").r, 0.5f, 1e-6f);
+    EXPECT_NEAR(centre("Exposure 2 2\n").r, std::sqrt(0.5f), 1e-6f);
+    EXPECT_EQ(centre("Exposure 2 2\n").a, 1.0f);
+}
