@@ -191,7 +191,10 @@ private:
     // CSG: the primitive solid the next surface belongs to (one is opened implicitly for
     // a surface given directly under an operation), or -1 outside SolidBegin.
     int solidLeafForSurface(L);
+    // Quadrics stay exact inside SolidBegin whatever the option: a diced one is not a
+    // closed solid (its seams and poles do not meet exactly).
     bool exactQuadrics() const {
+        if (!m_solidStack.empty()) return true;
         return !m_forceTessellate && (m_inWorld ? m_world : m_options).render.exactQuadrics;
     }
     void finishSolid(int root);

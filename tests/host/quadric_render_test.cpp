@@ -105,6 +105,10 @@ TEST(QuadricRender, CsgBooleansHaveTheClosedFormAreas) {
     expectArea("csg_difference", std::string("SolidBegin \"difference\"\n") + a + b + "SolidEnd",
                M_PI - lens / 2, 0.01);
     // a sphere drilled through along the view axis by a capped cylinder: an annulus
+    // quadrics in solids stay exact when the others are diced
+    Rendered diced = orthoRender(std::string("SolidBegin \"intersection\"\n") + a + b + "SolidEnd",
+                                 4, "Option \"render\" \"int exactquadrics\" [0]\n");
+    EXPECT_NEAR(projectedArea(diced) / lens, 1.0, 0.01);
     expectArea("csg_drilled",
                "SolidBegin \"difference\"\n"
                "SolidBegin \"primitive\" Sphere 1 -1 1 360 SolidEnd\n"
