@@ -105,6 +105,14 @@ TEST(QuadricRender, CsgBooleansHaveTheClosedFormAreas) {
     expectArea("csg_difference", std::string("SolidBegin \"difference\"\n") + a + b + "SolidEnd",
                M_PI - lens / 2, 0.01);
     // a sphere drilled through along the view axis by a capped cylinder: an annulus
+    // a polygon cube minus a sphere of radius 1.2: where x^2 + y^2 < 0.44 the sphere
+    // holds the cube's whole chord, so the view is the square less a disc
+    expectArea("csg_mesh_minus_sphere",
+               "SolidBegin \"difference\"\nSolidBegin \"primitive\"\n"
+               "PointsPolygons [4 4 4 4 4 4] [0 1 3 2  4 6 7 5  0 4 5 1  2 3 7 6  0 2 6 4  1 5 7 3] "
+               "\"P\" [-1 -1 -1 1 -1 -1 -1 1 -1 1 1 -1 -1 -1 1 1 -1 1 -1 1 1 1 1 1]\nSolidEnd\n"
+               "SolidBegin \"primitive\" Sphere 1.2 -1.2 1.2 360 SolidEnd\nSolidEnd",
+               4.0 - M_PI * 0.44, 0.01);
     // quadrics in solids stay exact when the others are diced
     Rendered diced = orthoRender(std::string("SolidBegin \"intersection\"\n") + a + b + "SolidEnd",
                                  4, "Option \"render\" \"int exactquadrics\" [0]\n");
