@@ -102,12 +102,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
     ev.mode_light = -1;
     ev.mode_trace = -1;
     ev.trace_count = 0;
+    if (!culled) rd_fill_light_cache(&g);
     RslGlobals base = g;
-    if (!culled) {
-        rd_fill_light_cache(&g);
-        base = g;
-        rsl_surface_SURFACE(&base, p, &ev);
-    }
+    if (!culled) rsl_surface_SURFACE(&base, p, &ev);
     float4 E = culled ? (float4)(0.0f) : base.Ci, Oi = culled ? (float4)(0.0f) : base.Oi;
     E.w = 0.0f;
     /* the atmosphere between the ray's origin and P: Ci' = a Ci + b (affine in Ci, as
