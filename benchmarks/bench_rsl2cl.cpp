@@ -66,7 +66,7 @@ std::string kernelFor(const rsl::EmittedShader& sh) {
     if (light) {
         k << "  " << sh.functionName << "(&g, params);\n  out[get_global_id(0)] = g.Cl.x;\n}\n";
     } else {
-        k << "  RslEval ev; ev.mode_light = -1; ev.mode_trace = -1; ev.trace_count = 0;\n"
+        k << "  RslEval ev; ev.deriv = 0; ev.mode_light = -1; ev.mode_trace = -1; ev.trace_count = 0;\n"
           << "  " << sh.functionName << "(&g, params, &ev);\n  out[get_global_id(0)] = g.Ci.x;\n}\n";
     }
     return k.str();

@@ -14,14 +14,20 @@ typedef struct RayHit {
     uint32_t prim;  /* triangle index, RT_NO_HIT on a miss */
 } RayHit;
 
-/* Per-ray state word: alive flag and depth, and fromSurface (the primitive the ray left,
- * skipped by the intersector so a ray never hits the surface it started on). */
+/* Per-ray state word: alive flag, depths, fromSurface (the primitive the ray left,
+ * skipped by the intersector so a ray never hits the surface it started on), and the
+ * ray's footprint where it starts (its width, world units: a ray cone whose spread is
+ * the scene's pixel angle RT_PIXEL_SPREAD; written only when shaders take derivatives). */
 typedef struct RayState {
     uint32_t alive;
-    uint32_t depth;
+    uint32_t depth;     /* bits 0-15: trace() depth; 16-31: transparent surfaces passed */
     uint32_t from_prim; /* RT_NO_HIT for eye rays */
-    uint32_t pad;
+    float width;
 } RayState;
+
+#define RT_TRACE_DEPTH(s) ((s).depth & 0xffffu)
+#define RT_TRANSPARENT_DEPTH(s) ((s).depth >> 16)
+#define RT_ONE_TRANSPARENT 0x10000u
 
 #define RT_NO_HIT 0xffffffffu
 

@@ -53,6 +53,9 @@ typedef struct Material {
 /* Bits 8..15: 1 + the index of the surface's Atmosphere shader, 0 for none. */
 #define RT_MATERIAL_ATMOSPHERE_SHIFT 8u
 #define RT_MATERIAL_ATMOSPHERE_MASK 0xff00u
+/* Bits 16..23: 1 + the index of the surface's Displacement shader, 0 for none. */
+#define RT_MATERIAL_DISPLACEMENT_SHIFT 16u
+#define RT_MATERIAL_DISPLACEMENT_MASK 0xff0000u
 
 /* Camera: rays start in camera space (RenderMan: left-handed, looking down +z) and are
  * moved to world space by the 3x4 matrix camera_to_world (rows, column-vector convention). */

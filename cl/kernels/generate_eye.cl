@@ -79,7 +79,10 @@ __kernel void generate_eye(__constant Camera* cam,
     origin[i] = o;
     direction[i] = d;
     weight[i] = (float4)(1.0f);
-    RayState st = {1u, 0u, RT_NO_HIT, 0u};
+    /* an eye ray's footprint: a pixel wide where an orthographic ray starts; a
+     * perspective one starts as a point and widens by RT_PIXEL_SPREAD per unit */
+    float width = cam->perspective ? 0.0f : (cam->screen[1] - cam->screen[0]) / (float)cam->width * len;
+    RayState st = {1u, 0u, RT_NO_HIT, width};
     state[i] = st;
     ray_sample[i] = i; /* eye ray i belongs to sample i of the batch */
 #ifdef RT_HAS_MOTION

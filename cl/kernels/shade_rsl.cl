@@ -59,30 +59,20 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #endif
     Material m;
     RslGlobals g;
-#ifdef RT_HAS_QUADRICS
-    if (h.prim & RT_OBJECT_BIT) {
-        __global const Quadric* q = &quadrics[h.prim & RT_OBJECT_MASK];
-        m = materials[q->material];
-        rd_quadric_hit_globals(&g, q, h, org, m, quadric_primvars, quadric_motion, time);
-    } else
-#endif
-    {
-        TriangleAttr attr = attrs[h.prim];
-        m = materials[attr.material];
 #ifdef RT_HAS_INSTANCES
-        /* a prototype's triangle: its instance's shader, and its instance's place */
-        const uint inst = hit_instance[r];
-        if (inst != RT_NO_HIT) m = materials[quadrics[inst].material];
+    const uint inst = hit_instance[r];
+#else
+    const uint inst = RT_NO_HIT;
 #endif
-        rd_hit_globals(&g, &tris[h.prim], h, org, dir, normals, attr, h.prim, m, vertex_st,
-                       vertex_cs, vertex_os, &tris_end[h.prim], time);
-#ifdef RT_HAS_INSTANCES
-        if (inst != RT_NO_HIT) rd_instance_to_world(&g, &quadrics[inst], quadric_motion, time, org);
-#endif
-    }
-    g.time = time;
-    g.lights_off = m.lights_off;
+#define RD_HIT_BUFFERS org, dir, time, inst, tris, attrs, normals, vertex_st, vertex_cs, \
+    vertex_os, materials, quadrics, quadric_primvars, quadric_motion, tris_end
+    rd_surface_globals(&g, &m, h, RD_HIT_BUFFERS);
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */
+#ifdef RT_HAS_DERIVATIVES
+    const float width_at_hit = rs.width + RT_PIXEL_SPREAD * h.t; /* the rays it spawns start this wide */
+#else
+    const float width_at_hit = 0.0f;
+#endif
 #ifdef RT_HAS_AOVS
     if (!aov[sample].hit) {
         aov[sample].z *= h.t;
@@ -99,12 +89,35 @@ __kernel void shade_SURFACE(uint begin, uint count,
     const int culled = 0;
 #endif
     RslEval ev;
-    ev.mode_light = -1;
-    ev.mode_trace = -1;
-    ev.trace_count = 0;
+    RslDeriv* dsites = 0; /* the surface shader's derivatives, when it takes any */
+#ifdef RT_HAS_DERIVATIVES
+    RslDeriv deriv;
+    uint disp = (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT;
+    if (!culled && (RSL_DERIVS_SURFACE || disp)) {
+        RslGlobals g1, g2;
+        RD_NEIGHBOUR_GLOBALS(g, g1, g2, h, rs, RD_HIT_BUFFERS);
+#ifdef RT_HAS_DISPLACEMENT
+        if (disp) rd_displace_lanes((int)disp - 1, &g, &g1, &g2, params);
+#endif
+        if (RSL_DERIVS_SURFACE) { /* the neighbours first: they record what the point differences */
+            dsites = &deriv;
+            for (int lane = 1; lane <= 2; ++lane) {
+                RslGlobals gl = lane == 1 ? g1 : g2;
+                deriv.lane = lane;
+                deriv.count = 0;
+                rd_eval_init(&ev, dsites, -1, -1);
+                rsl_surface_SURFACE(&gl, p, &ev);
+            }
+            deriv.lane = 0;
+            deriv.count = 0;
+        }
+    }
+#endif
+    rd_eval_init(&ev, dsites, -1, -1);
     if (!culled) rd_fill_light_cache(&g);
     RslGlobals base = g;
     if (!culled) rsl_surface_SURFACE(&base, p, &ev);
+    if (dsites) dsites->lane = 3; /* every other mode replays the point's derivatives */
     float4 E = culled ? (float4)(0.0f) : base.Ci, Oi = culled ? (float4)(0.0f) : base.Oi;
     E.w = 0.0f;
     /* the atmosphere between the ray's origin and P: Ci' = a Ci + b (affine in Ci, as
@@ -137,9 +150,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
         int solar = lcl.w == 1.0f;
         if (rd_light_is_ambient((int)l) || !rd_nonzero3(lcl)) continue;
         RslEval le;
-        le.mode_light = (int)l;
-        le.mode_trace = -1;
-        le.trace_count = 0;
+        rd_eval_init(&le, dsites, (int)l, -1);
+        if (dsites) dsites->count = 0;
         RslGlobals lgl = g;
         rsl_surface_SURFACE(&lgl, p, &le);
         float4 coef = lgl.Ci - base.Ci;
@@ -158,7 +170,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         shadow_origin[s] = so;
         shadow_direction[s] = sd;
         shadow_weight[s] = sw;
-        RayState ss = {1u, 0u, h.prim, 0u};
+        RayState ss = {1u, 0u, h.prim, 0.0f};
         shadow_state[s] = ss;
     }
 #endif
@@ -166,13 +178,12 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #if RT_SPAWN_SLOTS > 1
     /* trace(): one ray per call the base evaluation recorded */
     int traces = min(ev.trace_count, RSL_MAX_TRACE);
-    if (traces > 0 && rs.depth >= RT_MAX_SPECULAR_DEPTH)
+    if (traces > 0 && RT_TRACE_DEPTH(rs) >= RT_MAX_SPECULAR_DEPTH)
         atomic_add(&numerics[RT_NUM_SPECULAR_DEPTH], (uint)traces);
-    for (int i = 0; i < traces && rs.depth < RT_MAX_SPECULAR_DEPTH; ++i) {
+    for (int i = 0; i < traces && RT_TRACE_DEPTH(rs) < RT_MAX_SPECULAR_DEPTH; ++i) {
         RslEval te;
-        te.mode_light = -1;
-        te.mode_trace = i;
-        te.trace_count = 0;
+        rd_eval_init(&te, dsites, -1, i);
+        if (dsites) dsites->count = 0;
         RslGlobals tg = g;
         rsl_surface_SURFACE(&tg, p, &te);
         float4 tw = w * atmo_a * (tg.Ci - base.Ci);
@@ -183,9 +194,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
          * its largest weight (at least 0.05, at most 1) and carries weight / p, so the
          * estimate stays unbiased while dim paths end early; the random number is the
          * sample's own (pixel, sample, depth, call), never the pool slot's */
-        if (rs.depth + 1u >= RT_ROULETTE_DEPTH) {
+        if (RT_TRACE_DEPTH(rs) + 1u >= RT_ROULETTE_DEPTH) {
             float surv = clamp(rt_max3(fabs(tw)), 0.05f, 1.0f);
-            uint dim = 1024u + 16u * rs.depth + (uint)i;
+            uint dim = 1024u + 16u * RT_TRACE_DEPTH(rs) + (uint)i;
             if (rt_random(sample_pixel[sample], sample_index[sample], dim) >= surv) {
                 atomic_inc(&numerics[RT_NUM_ROULETTE]);
                 continue;
@@ -206,7 +217,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         next_origin[s] = to;
         next_direction[s] = td;
         next_weight[s] = tw;
-        RayState ts = {1u, rs.depth + 1u, h.prim, rs.pad};
+        RayState ts = {1u, rs.depth + 1u, h.prim, width_at_hit};
         next_state[s] = ts;
         next_sample[s] = sample;
     }
@@ -217,7 +228,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     float4 wt = w * ((float4)(1.0f) - Oi);
     wt.w = w.w * (1.0f - (Oi.x + Oi.y + Oi.z) * (1.0f / 3.0f));
     wt = rt_sanitize(wt, numerics);
-    if (rt_max3(wt) > 1e-6f && rs.pad >= RT_MAX_TRANSPARENT_DEPTH)
+    if (rt_max3(wt) > 1e-6f && RT_TRANSPARENT_DEPTH(rs) >= RT_MAX_TRANSPARENT_DEPTH)
         atomic_inc(&numerics[RT_NUM_TRANSPARENT_DEPTH]);
     else if (rt_max3(wt) > 1e-6f) {
         float4 o = rt_offset_ray(g.P, -Ngf);
@@ -228,7 +239,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         next_origin[s] = o;
         next_direction[s] = d;
         next_weight[s] = wt;
-        RayState cs = {1u, rs.depth, h.prim, rs.pad + 1u};
+        RayState cs = {1u, rs.depth + RT_ONE_TRANSPARENT, h.prim, width_at_hit};
         next_state[s] = cs;
         next_sample[s] = sample;
     }

@@ -36,6 +36,16 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
                scene.camera.moving;
     f.instances = !scene.prototypes.empty();
     f.atmosphere = shading.atmosphere;
+    f.displacement = shading.displacement;
+    f.derivatives = shading.derivatives || shading.displacement;
+    if (f.derivatives) {
+        // a pixel's width at unit distance along a perspective eye ray (0 orthographic:
+        // the ray's width stays the pixel's)
+        const Camera cam = scene.deviceCamera();
+        f.pixelSpread = cam.perspective
+                            ? std::fabs(cam.screen[1] - cam.screen[0]) / float(cam.width) * cam.tan_half_fov
+                            : 0.0f;
+    }
     for (size_t i = 0; i < scene.quadricPrimvars.size(); ++i) {
         const rt_float4& o = scene.quadricPrimvars[i];  // of each 8: Cs corners, Os corners
         if (i % 8 >= 4 && (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f)) f.transparency = true;
@@ -52,6 +62,8 @@ std::vector<std::string> Features::names() const {
     if (instances) n.push_back("instances");
     if (atmosphere) n.push_back("atmosphere");
     if (oneSided) n.push_back("one_sided");
+    if (derivatives) n.push_back("derivatives");
+    if (displacement) n.push_back("displacement");
     if (trace && rouletteDepth > 0) n.push_back("roulette");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
@@ -87,6 +99,13 @@ std::string buildOptions(const Features& f) {
     if (f.instances) o += " -DRT_HAS_INSTANCES";
     if (f.atmosphere) o += " -DRT_HAS_ATMOSPHERE";
     if (f.oneSided) o += " -DRT_HAS_ONE_SIDED";
+    if (f.derivatives) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " -DRT_HAS_DERIVATIVES -DRT_PIXEL_SPREAD=%.9ef",
+                      double(f.pixelSpread));
+        o += buf;
+    }
+    if (f.displacement) o += " -DRT_HAS_DISPLACEMENT";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";

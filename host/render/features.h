@@ -26,6 +26,9 @@ struct Features {
     bool instances = false;     // ObjectInstance records over shared prototypes
     bool atmosphere = false;    // Atmosphere (volume) shaders on some surfaces
     bool oneSided = false;      // Sides 1 surfaces: their backs pass rays on
+    bool derivatives = false;   // some shader takes Du/Dv/area/calculatenormal/filterstep
+    bool displacement = false;  // Displacement shaders (bump: N only)
+    float pixelSpread = 0.0f;   // footprint growth per unit of ray length (perspective)
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)

@@ -53,6 +53,7 @@ void RibBuilder::worldBegin(L) {
     m_materialKeys.clear();
     m_surfaceKeys.clear();
     m_atmosphereKeys.clear();
+    m_displacementKeys.clear();
     m_degenerate = 0;
     m_solidNodes.clear();
     m_solidStack.clear();
@@ -69,8 +70,8 @@ void RibBuilder::worldEnd(L loc) {
     (void)loc;  // degenerate geometry is reported where it was given (addMesh)
     const glm::dmat4 toOrigin = glm::translate(glm::dmat4(1.0), -m_origin);
     for (ShaderRef& r : m_world.lights) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
-    for (ShaderRef& r : m_world.surfaceRefs)
-        r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
+    for (auto* refs : {&m_world.surfaceRefs, &m_world.displacements, &m_world.atmospheres})
+        for (ShaderRef& r : *refs) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
     m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
                                              glm::translate(glm::dmat4(1.0), m_origin));
     m_world.camera.worldToCameraEnd = glm::mat4(glm::dmat4(m_world.camera.worldToCameraEnd) *
@@ -103,11 +104,11 @@ void RibBuilder::attribute(L, const std::string& name, const rib::ParamList& par
 }
 
 void RibBuilder::traceDepthOption(const rib::ParamList& params) {
-    // maxtransparentdepth bounds the work (one trace round per layer): 0..65536.
+    // maxtransparentdepth bounds the work (one trace round per layer): 0..65535 (16 bits of RayState::depth).
     // roulettedepth: trace() rays from this depth on meet Russian roulette (0: never)
     int roulette = params.getInt("roulettedepth", -1);
     if (roulette >= 0) (m_inWorld ? m_world : m_options).rouletteDepth = std::min(roulette, 4096);
-    int depth = std::min(params.getInt("maxtransparentdepth", -1), 65536);
+    int depth = std::min(params.getInt("maxtransparentdepth", -1), 65535);
     if (depth < 0) return;
     if (m_inWorld)
         m_world.maxTransparentDepth = depth;
@@ -302,6 +303,22 @@ void RibBuilder::atmosphere(L loc, S name, P params) {
     a.atmosphereKey = a.atmosphere.name.empty() ? 0 : ++m_surfaceCalls;
 }
 
+// Displacement "" (or "null") removes it. Displacements are rendered as bump maps: the
+// shader's N shades the surface, rays still leave from the undisplaced one.
+void RibBuilder::displacement(L loc, S name, P params) {
+    Attributes& a = m_attrStack.back();
+    a.displacement = (name.empty() || name == "null") ? ShaderRef()
+                                                       : ShaderRef{name, params, a.ctm, loc};
+    a.displacementKey = a.displacement.name.empty() ? 0 : ++m_surfaceCalls;
+}
+
+// Imager: an option, the shader run on every pixel of the finished image.
+void RibBuilder::imager(L loc, S name, P params) {
+    Scene& s = m_inWorld ? m_world : m_options;
+    s.imager = (name.empty() || name == "null") ? ShaderRef()
+                                                 : ShaderRef{name, params, glm::mat4(1.0f), loc};
+}
+
 void RibBuilder::lightSource(L loc, const std::string& name, const std::string& handle,
                              const rib::ParamList& params) {
     if (!inWorld(loc, "LightSource")) return;
@@ -358,6 +375,17 @@ uint32_t RibBuilder::currentMaterial() {
             m_world.atmospheres.push_back(a.atmosphere);
         }
         if (index < 255) m.flags |= uint32_t(index + 1) << RT_MATERIAL_ATMOSPHERE_SHIFT;
+    }
+    if (a.displacementKey != 0) {
+        size_t index = 0;
+        while (index < m_displacementKeys.size() && m_displacementKeys[index] != a.displacementKey)
+            ++index;
+        if (index == m_displacementKeys.size()) {
+            m_displacementKeys.push_back(a.displacementKey);
+            m_world.displacements.push_back(a.displacement);
+        }
+        if (index < 255) m.flags |= uint32_t(index + 1) << RT_MATERIAL_DISPLACEMENT_SHIFT;
+        else m_diag.warning(a.displacement.loc, "more than 255 Displacement calls; this one is not used");
     }
     if (a.matte) {
         m.flags |= RT_MATERIAL_MATTE;

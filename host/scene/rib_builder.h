@@ -62,6 +62,8 @@ public:
     void illuminate(L, const std::string& handle, bool on) override;
     void areaLightSource(L, S name, S handle, P params) override;
     void atmosphere(L, S name, P params) override;
+    void displacement(L, S name, P params) override;
+    void imager(L, S name, P params) override;
     void sides(L, int n) override;
     void skew(L, float angleDeg, float dx1, float dy1, float dz1, float dx2, float dy2,
               float dz2) override;
@@ -152,6 +154,8 @@ private:
         float texS[4] = {0, 1, 0, 1}, texT[4] = {0, 0, 1, 1};
         ShaderRef atmosphere;    // the current Atmosphere call (name empty: none)
         uint64_t atmosphereKey = 0;
+        ShaderRef displacement;  // the current Displacement call (name empty: none)
+        uint64_t displacementKey = 0;
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
         std::shared_ptr<const TrimCurves> trim;  // TrimCurve applies to later NuPatches
     };
@@ -236,6 +240,7 @@ private:
     std::vector<std::pair<std::string, uint32_t>> m_materialKeys;
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
     std::vector<uint64_t> m_atmosphereKeys;  // per atmospheres entry: its Atmosphere call
+    std::vector<uint64_t> m_displacementKeys;  // per displacements entry: its call
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
     bool m_specularSetInWorld = false;

@@ -93,6 +93,8 @@ struct Scene {
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
     std::vector<ShaderRef> lights;       // every LightSource, in order
     std::vector<ShaderRef> atmospheres;  // one per distinct Atmosphere call in use
+    std::vector<ShaderRef> displacements;  // one per distinct Displacement call in use
+    ShaderRef imager;                    // the Imager option (name empty: none)
     std::vector<std::string> shaderSearchPath;  // Option "searchpath" "shader", split
     int maxSpecularDepth = 2;  // Attribute "trace" "maxspeculardepth" (the largest given)
     // Attribute/Option "trace" "maxtransparentdepth": surfaces of Opacity < 1 a ray goes

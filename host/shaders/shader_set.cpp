@@ -126,9 +126,11 @@ ShaderSet::~ShaderSet() = default;
 namespace {
 // What happens to a shader of this kind that cannot be used.
 std::string leftOut(const std::string& kind) {
-    return kind == "light"    ? "light left out"
-           : kind == "volume" ? "atmosphere left out"
-                              : "using defaultsurface";
+    return kind == "light"          ? "light left out"
+           : kind == "volume"       ? "atmosphere left out"
+           : kind == "displacement" ? "displacement left out"
+           : kind == "imager"       ? "imager left out"
+                                    : "using defaultsurface";
 }
 }  // namespace
 
@@ -305,11 +307,13 @@ ShadingSetup ShaderSet::prepare() {
             out.surfaceNames.push_back(sh->name);
             out.shadeKernels.push_back("shade_" + sh->name);
             shaders << sh->source << "\n";
-            std::string k = kernelTemplate;
+            std::string k = "#define RSL_DERIVS_" + sh->name + " " +
+                            (sh->usesDerivatives ? "1" : "0") + "\n" + kernelTemplate;
             for (size_t p = k.find("SURFACE"); p != std::string::npos; p = k.find("SURFACE", p))
                 k.replace(p, 7, sh->name);
             kernels << k << "\n";
             out.usesTrace |= sh->usesTrace;
+            out.derivatives |= sh->usesDerivatives;
         }
         refShader[r] = it->second;
         refBlock[r] = uint32_t(out.params.size());
@@ -320,7 +324,7 @@ ShadingSetup ShaderSet::prepare() {
     std::ostringstream atmo;
     std::map<std::string, bool> volumeEmitted;
     atmo << "static void rd_atmosphere(int a, RslGlobals* g, __global const float* params) {\n"
-            "    RslEval ev;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
+            "    RslEval ev;\n    ev.deriv = 0;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
             "    ev.trace_count = 0;\n    switch (a) {\n";
     for (size_t a = 0; a < m_scene.atmospheres.size(); ++a) {
         const ShaderRef& ref = m_scene.atmospheres[a];
@@ -336,6 +340,25 @@ ShadingSetup ShaderSet::prepare() {
     }
     atmo << "    default: break;\n    }\n}\n";
     if (out.atmosphere) svc << atmo.str();
+    // --- displacements: bump shaders run before the surface (shade_common.clh)
+    std::ostringstream disp;
+    std::map<std::string, bool> displacementEmitted;
+    disp << "static void rd_displace(int d, RslGlobals* g, __global const float* params, "
+            "RslEval* ev) {\n    switch (d) {\n";
+    for (size_t d = 0; d < m_scene.displacements.size(); ++d) {
+        const ShaderRef& ref = m_scene.displacements[d];
+        const rsl::EmittedShader* sh = find(ref.name, "displacement", ref.loc);
+        if (!sh) continue;  // reported by find(); the surfaces go without it
+        std::vector<float> block = bindParameters(*sh, ref, m_diag);
+        disp << "    case " << d << ": " << sh->functionName << "(g, params + "
+             << out.params.size() << ", ev); break;\n";
+        out.params.insert(out.params.end(), block.begin(), block.end());
+        if (!displacementEmitted[sh->name]) shaders << sh->source << "\n";
+        displacementEmitted[sh->name] = true;
+        out.displacement = true;
+    }
+    disp << "    default: break;\n    }\n}\n";
+    if (out.displacement) svc << disp.str();
     out.materials = m_scene.materials;
     for (Material& m : out.materials) {
         uint32_t r = m.shader;

@@ -33,6 +33,8 @@ struct ShadingSetup {
     bool usesTrace = false;                 // some surface calls trace()
     int traceSlots = 0;                     // rays a hit may spawn with trace()
     bool atmosphere = false;                // some surface has an Atmosphere shader
+    bool displacement = false;              // some surface has a Displacement shader
+    bool derivatives = false;               // some surface shader takes derivatives
 };
 
 class ShaderSet {

@@ -129,7 +129,27 @@ typedef struct RslGlobals {
     float4 light_cache_Cl[RSL_LIGHT_CACHE]; /* w: 1 for a solar light */
 } RslGlobals;
 
+/* DERIVATIVES. Du, Dv, Deriv, area, calculatenormal and filterstep are finite
+ * differences over a shading point's neighbours at (u + du, v) and (u, v + dv), as on a
+ * REYES grid: the renderer runs the shader at those two neighbours first (lanes 1 and 2;
+ * each derivative call site, counted dynamically in execution order, records its
+ * argument there and returns an approximation: 0, or N for calculatenormal), then at the
+ * point itself (lane 0), where each site takes the differences to what its neighbours
+ * recorded and keeps the result; later evaluations of the same point in other modes
+ * (lane 3) replay the kept results, so light and trace modes see exactly the base
+ * mode's derivatives. du and dv come from the renderer (the ray's footprint over
+ * |dPdu| and |dPdv|); where it gives none (deriv == 0, du == 0) derivatives are 0. At
+ * most RSL_MAX_DERIV sites per evaluation; later ones give 0. A site inside an
+ * illuminance loop is only as good as the loop's control flow is the same in every lane. */
+#define RSL_MAX_DERIV 16
+typedef struct RslDeriv {
+    int lane;   /* 0 the point, 1 at (u + du, v), 2 at (u, v + dv), 3 replay */
+    int count;  /* sites met so far in this evaluation; the renderer zeroes it */
+    float4 v[RSL_MAX_DERIV][2];
+} RslDeriv;
+
 typedef struct RslEval {
+    RslDeriv* deriv;  /* 0: no derivatives (lights, atmospheres, imagers) */
     int mode_light;   /* -1: no light's Cl is used */
     int mode_trace;   /* -1: every trace() returns 0 */
     int trace_count;  /* trace() calls made in this evaluation */

@@ -106,8 +106,23 @@ std::string Emitter::builtin(const Expr& e) {
     }
     if (n == "clamp" || n == "mix") return call("rsl_" + n + vf);
     if (n == "filterstep") {
+        // filterstep(edge, s1[, s2][, "width", w]): the optional pairs start at the
+        // first string argument
         m_out.usesDerivatives = true;
-        return "rsl_step(" + A(0) + ", " + A(1) + ")";
+        size_t pairs = 2;
+        while (pairs < na && !e.args[pairs]->type.isString()) ++pairs;
+        std::string s2 = pairs > 2 ? exprAs(*e.args[2], BaseType::Float) : "NAN";
+        std::string width = "1.0f";
+        for (size_t i = pairs; i + 1 < na; i += 2) {
+            const Expr& name = *e.args[i];
+            if (name.kind == ExprKind::String && name.text == "width")
+                width = exprAs(*e.args[i + 1], BaseType::Float);
+            else
+                m_diag.warning(name.loc, "filterstep: only the \"width\" parameter is "
+                                         "honoured (the filter is a box)");
+        }
+        return "rsl_filterstep(g, ev, " + exprAs(*e.args[0], BaseType::Float) + ", " +
+               exprAs(*e.args[1], BaseType::Float) + ", " + s2 + ", " + width + ")";
     }
     if (n == "spline") {
         size_t k = 0;
@@ -131,13 +146,15 @@ std::string Emitter::builtin(const Expr& e) {
         m_pre.push_back(lst + "};");
         return fn + tmp + ", " + std::to_string(na - k - 1) + ")";
     }
-    if (n == "Du" || n == "Dv" || n == "Deriv" || n == "area") {
+    // finite differences over the point's neighbours (rsl_abi.h, DERIVATIVES)
+    if (n == "Du" || n == "Dv" || n == "Deriv") {
         m_out.usesDerivatives = true;
-        return clZero(ret);
+        std::string s = "rsl_" + n + vf + "(g, ev, " + A(0);
+        return s + (n == "Deriv" ? ", " + A(1) : std::string()) + ")";
     }
-    if (n == "calculatenormal") {
+    if (n == "area" || n == "calculatenormal") {
         m_out.usesDerivatives = true;
-        return "g->N";
+        return "rsl_" + n + "(g, ev, " + A(0) + ")";
     }
     if (n == "random") return "rsl_random" + vf + "(g, " + std::to_string(m_randomSite++) + ")";
     if (n == "noise" || n == "pnoise" || n == "cellnoise") {

@@ -96,6 +96,7 @@ std::string Emitter::varName(const Symbol* s) {
             "P", "N", "Ng", "I", "E", "dPdu", "dPdv", "Cs", "Os", "Ci", "Oi", "L", "Cl",
             "Ol", "Ps", "u", "v", "s", "t", "du", "dv", "ncomps", "time"};
         if (inStruct.count(s->name)) return "g->" + s->name;
+        if (s->name == "PI") return "RSL_PI";
         return "_g_" + s->name;  // alpha, dtime, dPdtime: locals of every function
     }
     if (s->kind == SymbolKind::Param && !m_func) return "p_" + s->name;

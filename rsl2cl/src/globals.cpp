@@ -41,6 +41,7 @@ const GlobalDef kGlobals[] = {
     {"time", BaseType::Float, false, "sldvi", ""},
     {"dtime", BaseType::Float, false, "sldvi", ""},
     {"dPdtime", BaseType::Vector, true, "sld", ""},
+    {"PI", BaseType::Float, false, "sldvi", ""},  // a predefined constant in RSL
 };
 
 char kindLetter(ShaderKind k) {
