@@ -36,6 +36,15 @@ std::vector<int64_t> Film::nearestSampled() const {
 }
 
 std::vector<Rgba> Film::resolve() const {
+    std::vector<Rgba> out = imaged.size() == pixels.size() ? imaged : means();
+    if (exposureGain != 1.0f || exposureGamma != 1.0f)  // the Exposure imager
+        for (Rgba& c : out)
+            for (float* v : {&c.r, &c.g, &c.b})
+                *v = std::pow(std::max(0.0f, exposureGain * *v), 1.0f / exposureGamma);
+    return out;
+}
+
+std::vector<Rgba> Film::means() const {
     std::vector<Rgba> out(pixels.size(), Rgba{0, 0, 0, 0});
     std::vector<int64_t> src = nearestSampled();
     for (size_t i = 0; i < pixels.size(); ++i) {
@@ -44,10 +53,6 @@ std::vector<Rgba> Film::resolve() const {
         float inv = 1.0f / float(p.count);
         out[i] = {p.sum.x * inv, p.sum.y * inv, p.sum.z * inv, p.sum.w * inv};
     }
-    if (exposureGain != 1.0f || exposureGamma != 1.0f)  // the Exposure imager
-        for (Rgba& c : out)
-            for (float* v : {&c.r, &c.g, &c.b})
-                *v = std::pow(std::max(0.0f, exposureGain * *v), 1.0f / exposureGamma);
     return out;
 }
 

@@ -52,8 +52,12 @@ struct Film {
 
     // RI Exposure: resolved colour = (gain * colour)^(1 / gamma), alpha untouched.
     float exposureGain = 1.0f, exposureGamma = 1.0f;
-    // Mean of each pixel's samples, through Exposure; a pixel with none takes its nearest
-    // sampled neighbour's value (all transparent black if nothing was sampled).
+    // What the Imager shader made of means() (empty: no imager); resolve() uses it.
+    std::vector<Rgba> imaged;
+    // Mean of each pixel's samples; a pixel with none takes its nearest sampled
+    // neighbour's value (all transparent black if nothing was sampled).
+    std::vector<Rgba> means() const;
+    // The image: means(), through the Imager shader, through Exposure (RI's order).
     std::vector<Rgba> resolve() const;
     // 1 where resolve() filled a pixel from a neighbour.
     std::vector<float> filledMask() const;

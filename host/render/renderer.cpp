@@ -13,6 +13,7 @@
 
 #include "cl/include/ray.h"
 #include "device_scene.h"
+#include "imager_stage.h"
 #include "scene_bvh.h"
 #include "film/film_error.h"
 #include "progress.h"
@@ -383,6 +384,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         }
     }
     progress.finish();
+    if (shading.imager) {  // the Imager shader on the finished image (also a stopped one)
+        film.pixels = filmBuf.download();
+        film.imaged = applyImager(m_ctx, program.get(), prof, film, ds.params);
+    }
     m_ctx.finish();
     prof.collect();
     for (Kernel* kern : k.all()) kern->collectActive();

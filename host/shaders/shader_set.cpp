@@ -359,6 +359,43 @@ ShadingSetup ShaderSet::prepare() {
     }
     disp << "    default: break;\n    }\n}\n";
     if (out.displacement) svc << disp.str();
+    // --- the imager: a kernel over the resolved pixels (host/render/imager_stage)
+    std::string imagerKernel;
+    if (!m_scene.imager.name.empty()) {
+        const ShaderRef& ref = m_scene.imager;
+        if (const rsl::EmittedShader* sh = find(ref.name, "imager", ref.loc)) {
+            std::vector<float> block = bindParameters(*sh, ref, m_diag);
+            const size_t offset = out.params.size();
+            out.params.insert(out.params.end(), block.begin(), block.end());
+            shaders << sh->source << "\n";
+            out.imager = true;
+            imagerKernel =
+                "__kernel void imager_apply(uint width, uint count, __global float4* pixels,\n"
+                "                           __global const float* params,\n"
+                "                           __global uint* active_counter) {\n"
+                "    RT_DECLARE_ACTIVE_COUNTER;\n"
+                "    uint i = get_global_id(0);\n"
+                "    RT_COUNT_ACTIVE(active_counter, i < count);\n"
+                "    if (i >= count) return;\n"
+                "    float4 c = pixels[i];\n"
+                "    RslGlobals g;\n"
+                "    g.P = (float4)((float)(i % width) + 0.5f, (float)(i / width) + 0.5f, 0.0f, 0.0f);\n"
+                "    g.N = g.Ng = g.I = g.E = g.dPdu = g.dPdv = g.L = g.Cl = g.Ps = (float4)(0.0f);\n"
+                "    g.Cs = g.Os = (float4)(1.0f, 1.0f, 1.0f, 0.0f);\n"
+                "    g.Ci = (float4)(c.x, c.y, c.z, 0.0f);\n"
+                "    g.Oi = (float4)(c.w, c.w, c.w, 0.0f);\n"
+                "    g.Ol = (float4)(0.0f, 0.0f, 0.0f, c.w); /* alpha (rsl_abi.h, IMAGER) */\n"
+                "    g.u = g.v = g.s = g.t = g.du = g.dv = g.time = 0.0f;\n"
+                "    g.ncomps = 3.0f;\n"
+                "    g.light_cache_count = 0;\n"
+                "    g.lights_off = 0u;\n"
+                "    RslEval ev;\n"
+                "    rd_eval_init(&ev, 0, -1, -1);\n"
+                "    " + sh->functionName + "(&g, params + " + std::to_string(offset) + ", &ev);\n"
+                "    pixels[i] = (float4)(g.Ci.x, g.Ci.y, g.Ci.z, g.Ol.w);\n"
+                "}\n";
+        }
+    }
     out.materials = m_scene.materials;
     for (Material& m : out.materials) {
         uint32_t r = m.shader;
@@ -369,7 +406,8 @@ ShadingSetup ShaderSet::prepare() {
     out.generated["rd_shading.cl"] = "#define RSL_LIGHT_PARAMS __constant float*\n"
                                      "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n" +
                                      lights.str() + shaders.str() + svc.str();
-    out.generated["rd_shade_kernels.cl"] = "#include \"shade_common.clh\"\n" + kernels.str();
+    out.generated["rd_shade_kernels.cl"] =
+        "#include \"counters.clh\"\n#include \"shade_common.clh\"\n" + kernels.str() + imagerKernel;
     out.sourceOrder = {"rd_shading.cl", "rd_shade_kernels.cl"};
     return out;
 }

@@ -35,6 +35,7 @@ struct ShadingSetup {
     bool atmosphere = false;                // some surface has an Atmosphere shader
     bool displacement = false;              // some surface has a Displacement shader
     bool derivatives = false;               // some surface shader takes derivatives
+    bool imager = false;                    // the kernel imager_apply runs the Imager
 };
 
 class ShaderSet {

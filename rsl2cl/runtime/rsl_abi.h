@@ -78,7 +78,10 @@
  *   shadow("raytrace"...) inside a light return full visibility (1 / 0 shadow): the
  *   shadow ray is the renderer's job.
  * OTHER KINDS (displacement, volume, imager): void rsl_<kind>_<name>(RslGlobals* g,
- *   __global const float* params, RslEval* ev); volume shaders read/write Ci, Oi.
+ *   __global const float* params, RslEval* ev); volume shaders read/write Ci, Oi;
+ *   displacement shaders P and N. IMAGER: P is the pixel's raster position (x + 0.5,
+ *   y + 0.5, 0), Ci its colour (premultiplied), Oi its alpha in every channel, and the
+ *   global alpha enters and leaves in g->Ol.w.
  *
  * SERVICES THE RENDERER PROVIDES (define after including rsl_stdlib.clh):
  *   int    rsl_light_count(void);

@@ -110,6 +110,7 @@ void Emitter::layoutParams() {
 }
 
 void Emitter::writeOutputs() {
+    if (m_sh.kind == ShaderKind::Imager) line("g->Ol.w = _g_alpha;");
     for (size_t i = 0; i < m_sh.params.size() && i < m_out.params.size(); ++i) {
         const ParamSlot& slot = m_out.params[i];
         if (slot.outputOffset < 0) continue;
@@ -199,6 +200,7 @@ void Emitter::emitShader() {
     }
     line("float _g_alpha = 0.0f, _g_dtime = 0.0f; float4 _g_dPdtime = rsl_f2v(0.0f);");
     line("(void)params; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
+    if (m_sh.kind == ShaderKind::Imager) line("_g_alpha = g->Ol.w; /* rsl_abi.h, IMAGER */");
     // the spaces are read only when used: insert them here once the body is emitted
     std::string head = m_body.str();
     m_body.str("");
@@ -370,7 +372,9 @@ void Emitter::stmt(const Stmt& s) {
         break;
     case StmtKind::Return:
         if (m_func && s.expr) line("return " + exprAs(*s.expr, m_func->returnType) + ";");
-        else if (m_func || m_sh.kind == ShaderKind::Light || m_out.outputFloats == 0) line("return;");
+        else if (m_func || m_sh.kind == ShaderKind::Light ||
+                 (m_out.outputFloats == 0 && m_sh.kind != ShaderKind::Imager))
+            line("return;");
         else {
             line("{");
             ++m_indent;

@@ -4,6 +4,8 @@
 // and the depthcue atmosphere with depth() normalised between the clipping planes.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "render_harness.h"
@@ -49,4 +51,45 @@ TEST(StandardShaders, DepthcueAtmosphereUsesNormalisedDepth) {
                           "Clipping 1 9\n");
     EXPECT_NEAR(img.at(8, 8).r, 0.25f, 1e-4f);
     EXPECT_NEAR(img.at(8, 8).b, 0.5f, 1e-4f);
+}
+
+// Imager "background": uncovered pixels take bgcolor, covered ones keep their colour,
+// the image becomes opaque. The square covers x, y in [-2, 2] of the [-4, 4] view.
+TEST(StandardShaders, BackgroundImagerFillsUncoveredPixels) {
+    Rendered img = renderRib("Format 16 16 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"
+                             "ScreenWindow -4 4 -4 4\n"
+                             "Imager \"background\" \"color bgcolor\" [0.25 0.5 0.75]\n"
+                             "Translate 0 0 5\nWorldBegin\nColor [1 0 0]\nSurface \"constant\"\n"
+                             "Polygon \"P\" [-2 -2 0  2 -2 0  2 2 0  -2 2 0]\nWorldEnd\n");
+    EXPECT_NEAR(img.at(0, 0).r, 0.25f, 1e-6f);
+    EXPECT_NEAR(img.at(0, 0).g, 0.5f, 1e-6f);
+    EXPECT_NEAR(img.at(0, 0).b, 0.75f, 1e-6f);
+    EXPECT_NEAR(img.at(0, 0).a, 1.0f, 1e-6f);
+    EXPECT_NEAR(img.at(8, 8).r, 1.0f, 1e-6f);
+    EXPECT_NEAR(img.at(8, 8).g, 0.0f, 1e-6f);
+    EXPECT_NEAR(img.at(8, 8).a, 1.0f, 1e-6f);
+}
+
+// A user's imager sees the raster position in P and sets alpha; Exposure comes after
+// the imager (RI order), so gain 2 doubles what the imager wrote.
+TEST(StandardShaders, UserImagerSeesRasterPositionThenExposure) {
+    std::string dir = ::testing::TempDir() + "/raydrive_imagers";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/ramp.sl") << "imager ramp(float scale = 1) {\n"
+                                       "    Ci = color(xcomp(P), ycomp(P), alpha) * scale;\n"
+                                       "    alpha = 0.5;\n}\n";
+    Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
+                             "Format 8 4 1\nPixelSamples 1 1\nExposure 2 1\n"
+                             "Imager \"ramp\" \"scale\" 0.5\nWorldBegin\nWorldEnd\n");
+    EXPECT_NEAR(img.at(3, 2).r, 3.5f, 1e-6f);  // (x + 0.5) * 0.5 * gain 2
+    EXPECT_NEAR(img.at(3, 2).g, 2.5f, 1e-6f);
+    EXPECT_NEAR(img.at(3, 2).b, 0.0f, 1e-6f);  // nothing covered: alpha was 0
+    EXPECT_NEAR(img.at(3, 2).a, 0.5f, 1e-6f);
+}
+
+// An imager that is not found is reported, and the image is left as rendered.
+TEST(StandardShaders, MissingImagerIsLeftOut) {
+    Rendered img = renderRib("Format 4 4 1\nPixelSamples 1 1\nImager \"no_such_imager\"\n"
+                             "WorldBegin\nWorldEnd\n");
+    EXPECT_EQ(img.at(1, 1).a, 0.0f);
 }
