@@ -184,6 +184,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     Profiler prof(m_ctx);
     RenderKernels k(m_ctx, program.get(), prof, shading.shadeKernels);
     DeviceScene ds(m_ctx, scene, bvh4, sceneBvh.objects, f, shading);
+    if (!shading.prepares.empty()) {  // the shaders' uniform work, once per instance
+        Kernel prepare(m_ctx, program.get(), "rd_prepare_uniforms", prof);
+        prepare.launch(shading.prepares.size(), cl_uint(shading.prepares.size()), ds.params);
+        prepare.collectActive();
+    }
     const Camera& cam = ds.camera;
 
     const uint32_t nl = f.shadowRays ? f.lightCount : 0;

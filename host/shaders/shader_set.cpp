@@ -99,12 +99,22 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
     // object spaces are not carried to the shade stage yet.
     const float* m = &call.shaderToWorld[0][0];
     block.resize(size_t(sh.spaceOffset) + 32);
+    // then the slots its prepare function fills once per instance (rsl::HoistPlan)
+    block.resize(size_t(sh.prepOffset) + size_t(sh.prepFloats), 0.0f);
     for (int i = 0; i < 16; ++i) {
         block[size_t(sh.spaceOffset + i)] = m[i];
         block[size_t(sh.spaceOffset + 16 + i)] = m[i];
     }
     return block;
 }
+
+namespace {
+// The block about to be appended to out.params has uniform work to do once (hoist.h).
+void addPrepare(ShadingSetup& out, const rsl::EmittedShader& sh) {
+    if (!sh.prepFunction.empty())
+        out.prepares.push_back({sh.prepFunction, uint32_t(out.params.size())});
+}
+}  // namespace
 
 ShaderSet::ShaderSet(const Scene& scene, rib::Diagnostics& diag) : m_scene(scene), m_diag(diag) {
     // Option "searchpath" "shader" first, then the RIB's folder, the current folder,
@@ -318,6 +328,7 @@ ShadingSetup ShaderSet::prepare() {
         refShader[r] = it->second;
         refBlock[r] = uint32_t(out.params.size());
         std::vector<float> block = bindParameters(*sh, call, m_diag);
+        addPrepare(out, *sh);
         out.params.insert(out.params.end(), block.begin(), block.end());
     }
     // --- atmospheres: volume shaders on a surface's Ci and Oi, parameters in the buffer
@@ -331,6 +342,7 @@ ShadingSetup ShaderSet::prepare() {
         const rsl::EmittedShader* sh = find(ref.name, "volume", ref.loc);
         if (!sh) continue;  // reported by find(); the surfaces go without it
         std::vector<float> block = bindParameters(*sh, ref, m_diag);
+        addPrepare(out, *sh);
         atmo << "    case " << a << ": " << sh->functionName << "(g, params + "
              << out.params.size() << ", &ev); break;\n";
         out.params.insert(out.params.end(), block.begin(), block.end());
@@ -350,6 +362,7 @@ ShadingSetup ShaderSet::prepare() {
         const rsl::EmittedShader* sh = find(ref.name, "displacement", ref.loc);
         if (!sh) continue;  // reported by find(); the surfaces go without it
         std::vector<float> block = bindParameters(*sh, ref, m_diag);
+        addPrepare(out, *sh);
         disp << "    case " << d << ": " << sh->functionName << "(g, params + "
              << out.params.size() << ", ev); break;\n";
         out.params.insert(out.params.end(), block.begin(), block.end());
@@ -365,6 +378,7 @@ ShadingSetup ShaderSet::prepare() {
         const ShaderRef& ref = m_scene.imager;
         if (const rsl::EmittedShader* sh = find(ref.name, "imager", ref.loc)) {
             std::vector<float> block = bindParameters(*sh, ref, m_diag);
+            addPrepare(out, *sh);
             const size_t offset = out.params.size();
             out.params.insert(out.params.end(), block.begin(), block.end());
             shaders << sh->source << "\n";
@@ -396,6 +410,18 @@ ShadingSetup ShaderSet::prepare() {
                 "}\n";
         }
     }
+    // --- uniform work, once per bound instance: one work-item each
+    std::ostringstream prep;
+    if (!out.prepares.empty()) {
+        prep << "__kernel void rd_prepare_uniforms(uint count, __global float* params,\n"
+                "                                  __global uint* active_counter) {\n"
+                "    RT_DECLARE_ACTIVE_COUNTER;\n    uint i = get_global_id(0);\n"
+                "    RT_COUNT_ACTIVE(active_counter, i < count);\n    switch (i) {\n";
+        for (size_t i = 0; i < out.prepares.size(); ++i)
+            prep << "    case " << i << ": " << out.prepares[i].first << "(params + "
+                 << out.prepares[i].second << "); break;\n";
+        prep << "    default: break;\n    }\n}\n";
+    }
     out.materials = m_scene.materials;
     for (Material& m : out.materials) {
         uint32_t r = m.shader;
@@ -407,7 +433,7 @@ ShadingSetup ShaderSet::prepare() {
                                      "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n" +
                                      lights.str() + shaders.str() + svc.str();
     out.generated["rd_shade_kernels.cl"] =
-        "#include \"counters.clh\"\n#include \"shade_common.clh\"\n" + kernels.str() + imagerKernel;
+        "#include \"counters.clh\"\n#include \"shade_common.clh\"\n" + kernels.str() + imagerKernel + prep.str();
     out.sourceOrder = {"rd_shading.cl", "rd_shade_kernels.cl"};
     return out;
 }

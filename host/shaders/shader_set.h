@@ -36,6 +36,9 @@ struct ShadingSetup {
     bool displacement = false;              // some surface has a Displacement shader
     bool derivatives = false;               // some surface shader takes derivatives
     bool imager = false;                    // the kernel imager_apply runs the Imager
+    // Prepare functions and their blocks' offsets in params: the kernel
+    // rd_prepare_uniforms runs each once before shading (uniform work, rsl::HoistPlan).
+    std::vector<std::pair<std::string, uint32_t>> prepares;
 };
 
 class ShaderSet {

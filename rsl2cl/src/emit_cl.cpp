@@ -183,6 +183,62 @@ static bool hasLightStatement(const Stmt& s) {
     return false;
 }
 
+std::string Emitter::blockRead(BaseType base, const std::string& off) const {
+    switch (slotsOf(base)) {
+    case 3: return "rsl_param3(params, " + off + ")";
+    case 16: return "rsl_param16(params, " + off + ")";
+    default:
+        return base == BaseType::String ? "(int)params[" + off + "]" : "params[" + off + "]";
+    }
+}
+
+void Emitter::emitParamReads(bool computedDefaults) {
+    for (size_t i = 0; i < m_sh.params.size(); ++i) {
+        const VarDecl& p = m_sh.params[i];
+        const ParamSlot& slot = m_out.params[i];
+        std::string name = "p_" + p.name, o = std::to_string(slot.offset);
+        if (slot.arraySize > 0) {
+            line(std::string(clType(p.type)) + " " + name + "[" + std::to_string(slot.arraySize) + "];");
+            line("for (int _i = 0; _i < " + std::to_string(slot.arraySize) + "; ++_i) " + name +
+                 "[_i] = " + blockRead(p.type.base, o + " + " + std::to_string(slotsOf(p.type.base)) + " * _i") + ";");
+            continue;
+        }
+        line(std::string(clType(p.type)) + " " + name + " = " + blockRead(p.type.base, o) + ";");
+        if (computedDefaults && !slot.constantDefault && p.init)
+            line("if (isnan(params[" + o + "])) " + name + " = " + exprAs(*p.init, p.type) + ";");
+    }
+}
+
+// The instance's uniform work: the hoisted declarations computed from the parameters
+// and stored after the space matrices, where the shader body reads them.
+void Emitter::emitPrepare() {
+    if (m_hoist.decls.empty()) return;
+    m_body << "void " << m_out.prepFunction << "(__global float* params) {\n";
+    m_indent = 1;
+    std::string so = std::to_string(m_out.spaceOffset);
+    line("RslSpaces _sp; _sp.shader = rsl_param16(params, " + so +
+         "); _sp.object = rsl_param16(params, " + so + " + 16);");
+    line("const RslSpaces* sp = &_sp; (void)sp;");
+    emitParamReads(false);
+    for (const VarDecl* d : m_hoist.decls) {
+        std::string name = "v_" + d->name;
+        std::string off = std::to_string(m_out.prepOffset + m_hoist.slot.at(d));
+        line(std::string(clType(d->type)) + " " + name + " = " + exprAs(*d->init, d->type) + ";");
+        switch (slotsOf(d->type.base)) {
+        case 3:
+            line("params[" + off + "] = " + name + ".x; params[" + off + " + 1] = " + name +
+                 ".y; params[" + off + " + 2] = " + name + ".z;");
+            break;
+        case 16:
+            line("for (int _k = 0; _k < 16; ++_k) params[" + off + " + _k] = rsl_mget(" + name +
+                 ", _k / 4, _k % 4);");
+            break;
+        default: line("params[" + off + "] = " + name + ";");
+        }
+    }
+    m_body << "}\n";
+}
+
 void Emitter::emitShader() {
     bool light = m_sh.kind == ShaderKind::Light;
     std::string fn = m_out.functionName;
@@ -205,29 +261,7 @@ void Emitter::emitShader() {
     std::string head = m_body.str();
     m_body.str("");
     m_usesSpaces = false;
-    for (size_t i = 0; i < m_sh.params.size(); ++i) {
-        const VarDecl& p = m_sh.params[i];
-        const ParamSlot& slot = m_out.params[i];
-        std::string name = "p_" + p.name, o = std::to_string(slot.offset);
-        auto read = [&](const std::string& off) -> std::string {
-            switch (slotsOf(p.type.base)) {
-            case 3: return "rsl_param3(params, " + off + ")";
-            case 16: return "rsl_param16(params, " + off + ")";
-            default:
-                return p.type.base == BaseType::String ? "(int)params[" + off + "]"
-                                                       : "params[" + off + "]";
-            }
-        };
-        if (slot.arraySize > 0) {
-            line(std::string(clType(p.type)) + " " + name + "[" + std::to_string(slot.arraySize) + "];");
-            line("for (int _i = 0; _i < " + std::to_string(slot.arraySize) + "; ++_i) " + name +
-                 "[_i] = " + read(o + " + " + std::to_string(slotsOf(p.type.base)) + " * _i") + ";");
-            continue;
-        }
-        line(std::string(clType(p.type)) + " " + name + " = " + read(o) + ";");
-        if (!slot.constantDefault && p.init)
-            line("if (isnan(params[" + o + "])) " + name + " = " + exprAs(*p.init, p.type) + ";");
-    }
+    emitParamReads(true);
     for (const StmtPtr& s : m_sh.body->stmts) stmt(*s);
     if (!light) writeOutputs();
     m_body << "}\n";
@@ -244,6 +278,12 @@ void Emitter::emitShader() {
 void Emitter::decl(const VarDecl& d) {
     if (d.isExtern) return;
     std::string t = clType(d.type), name = "v_" + d.name;
+    if (auto h = m_hoist.slot.find(&d); h != m_hoist.slot.end() && !m_func) {
+        line(t + " " + name + " = " +
+             blockRead(d.type.base, std::to_string(m_out.prepOffset + h->second)) +
+             "; /* once per instance */");
+        return;
+    }
     if (d.type.isArray()) {
         int n = d.type.arraySize;
         if (n <= 0) {
@@ -398,6 +438,15 @@ void Emitter::run() {
     m_out.functionName = std::string("rsl_") + kind + "_" + m_sh.name;
     m_out.ambientLight = m_sh.kind == ShaderKind::Light && !hasLightStatement(*m_sh.body);
     layoutParams();
+    if (m_sh.kind != ShaderKind::Light) {  // lights' parameters are compiled-in constants
+        std::vector<bool> computed;
+        for (const ParamSlot& p : m_out.params) computed.push_back(!p.constantDefault);
+        m_hoist = planHoisting(m_sh, computed);
+    }
+    m_out.prepOffset = m_out.spaceOffset + 32;  // RSL_SPACE_FLOATS
+    m_out.prepFloats = m_hoist.floats;
+    if (m_hoist.floats > 0) m_out.prepFunction = std::string("rsl_prep_") + kind + "_" + m_sh.name;
+    for (const VarDecl* d : m_hoist.decls) m_out.hoisted.push_back(d->name);
     for (const VarDecl& p : m_sh.params)
         if (p.init) collectCalls(*p.init);
     collectCallsStmt(*m_sh.body);
@@ -405,6 +454,7 @@ void Emitter::run() {
     if (!m_fnOrder.empty()) m_body << "\n";
     for (const FunctionDecl* f : m_fnOrder) emitFunction(*f, false);
     emitShader();
+    emitPrepare();
 }
 
 EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnostics& diag) {

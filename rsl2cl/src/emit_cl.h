@@ -35,6 +35,12 @@ struct EmittedShader {
     // parameters at this offset (== paramFloats); the host writes them (rsl_abi.h).
     int spaceOffset = 0;
     int outputFloats = 0;       // RslEval::outputs used by output parameters
+    // Uniform work done once per instance (hoist.h): prepFunction (empty: none) fills
+    // prepFloats floats at prepOffset (after the space matrices) from the parameters;
+    // the host runs it once per bound block before shading.
+    int prepOffset = 0, prepFloats = 0;
+    std::string prepFunction;
+    std::vector<std::string> hoisted;  // the variables it computes, for --info
     bool usesTrace = false, usesDerivatives = false, usesTexture = false;
     bool usesLighting = false;  // illuminance, diffuse, specular, phong, ambient
     bool ambientLight = false;  // a light shader with no illuminate/solar

@@ -9,6 +9,7 @@
 
 #include "builtins.h"
 #include "emit_cl.h"
+#include "hoist.h"
 
 namespace rsl {
 
@@ -51,6 +52,9 @@ private:
     void layoutParams();
     void emitFunction(const FunctionDecl& f, bool prototypeOnly);
     void emitShader();
+    void emitParamReads(bool computedDefaults);  // p_<name> locals from `params`
+    void emitPrepare();  // the uniform work of one instance (hoist.h)
+    std::string blockRead(BaseType base, const std::string& offset) const;
     void stmt(const Stmt& s);
     void decl(const VarDecl& d);
     void lightLoop(const Stmt& s);
@@ -79,6 +83,7 @@ public:
     std::vector<std::string> m_lightVars;  // light index of each enclosing illuminance
     bool m_usesSpaces = false;  // the code being emitted uses sp (shader/object spaces)
     std::set<const FunctionDecl*> m_fnUsesSpaces;
+    HoistPlan m_hoist;  // declarations computed once per instance
 };
 
 }  // namespace rsl

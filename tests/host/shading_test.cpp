@@ -176,3 +176,37 @@ TEST(Shading, FogAtmosphereFollowsItsClosedForm) {
     EXPECT_TRUE(std::find(img.stats.features.names().begin(), img.stats.features.names().end(),
                           "atmosphere") != img.stats.features.names().end());
 }
+
+// Uniform work hoisted into the per-instance prepare kernel gives what the same shader
+// computes at every point (its twin declares the variables varying, so nothing is
+// hoisted), and each instance keeps its own prepared values.
+TEST(Shading, HoistedUniformWorkEqualsPerPointWork) {
+    std::string dir = ::testing::TempDir() + "/raydrive_shaders";
+    std::filesystem::create_directories(dir);
+    for (const char* storage : {"uniform", "varying"})
+        std::ofstream(dir + "/prep_" + storage + ".sl")
+            << "surface prep_" << storage << "(float Kd = 0.5; float rough = 0.25;\n"
+            << "                 color tint = color(1, 0.5, 0.25);) {\n"
+            << "    " << storage << " float k = pow(Kd, 2) + sqrt(rough);\n"
+            << "    " << storage << " color c = tint * k;\n"
+            << "    " << storage << " matrix m = rotate(matrix 1, radians(90), vector(0, 0, 1));\n"
+            << "    Ci = c * (2 + xcomp(transform(m, point(1, 0, 0))) + ycomp(transform(m, point(1, 0, 0))));\n"
+            << "    Oi = 1;\n}\n";
+    auto scene = [&](const std::string& name) {
+        return renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
+                         std::string(kCamera) + "WorldBegin\nAttributeBegin\nSurface \"" + name +
+                         "\" \"Kd\" 0.8\n"
+                         "Polygon \"P\" [-50 -50 5  0 -50 5  0 50 5  -50 50 5]\nAttributeEnd\n"
+                         "Surface \"" + name + "\" \"rough\" 0.5\n"
+                         "Polygon \"P\" [0 -50 5  50 -50 5  50 50 5  0 50 5]\nWorldEnd\n");
+    };
+    Rendered hoisted = scene("prep_uniform"), perPoint = scene("prep_varying");
+    const double left = 0.64 + std::sqrt(0.25), right = 0.25 + std::sqrt(0.5);  // k
+    EXPECT_NEAR(hoisted.at(4, 16).g, 0.5 * left * 3.0, 1e-5);
+    EXPECT_NEAR(hoisted.at(28, 16).g, 0.5 * right * 3.0, 1e-5);
+    for (int x : {4, 28})
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ((&hoisted.at(x, 16).r)[c], (&perPoint.at(x, 16).r)[c]) << x << " " << c;
+    EXPECT_EQ(hoisted.stats.kernels.count("rd_prepare_uniforms"), 1u);
+    EXPECT_EQ(perPoint.stats.kernels.count("rd_prepare_uniforms"), 0u);
+}

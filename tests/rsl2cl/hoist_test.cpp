@@ -1,0 +1,81 @@
+// hoist_test.cpp: uniform work done once per shader instance (rsl2cl/src/hoist.h): which
+// declarations the compiler hoists into the prepare function, and which it must not.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "emit_cl.h"
+#include "test_util.h"
+
+namespace {
+
+rsl::EmittedShader emit(const std::string& src) {
+    rsltest::Result r;
+    rsltest::compile(src, r);
+    EXPECT_TRUE(r.ok) << r.diags;
+    rsl::Diagnostics diag;
+    rsl::EmittedShader out = rsl::emitOpenCL(*r.prog.shaders.at(0), r.prog, diag);
+    EXPECT_TRUE(out.ok) << diag.text();
+    return out;
+}
+
+bool hoisted(const rsl::EmittedShader& sh, const std::string& name) {
+    return std::find(sh.hoisted.begin(), sh.hoisted.end(), name) != sh.hoisted.end();
+}
+
+}  // namespace
+
+TEST(Hoist, UniformWorkOnParametersIsDoneOncePerInstance) {
+    rsl::EmittedShader sh = emit(
+        "surface s(float Kd = 0.5; float rough = 0.1; color tint = 1;) {\n"
+        "    uniform float k = pow(Kd, 2) + sqrt(rough);\n"  // params only: hoisted
+        "    color c = tint * k;\n"                          // inferred uniform, uses k
+        "    matrix m = rotate(matrix 1, radians(90), vector(0, 0, 1));\n"
+        "    float copy = Kd;\n"                             // no work: left alone
+        "    float atP = k * xcomp(P);\n"                    // reads a varying global
+        "    uniform float later = pow(Kd, 3);\n"
+        "    later = 2;\n"                                   // assigned again: not hoisted
+        "    uniform float e = length(E);\n"                 // a global: not hoisted
+        "    Ci = c * atP * later * e * comp(m, 0, 0) + copy; Oi = 1;\n}\n");
+    EXPECT_TRUE(hoisted(sh, "k"));
+    EXPECT_TRUE(hoisted(sh, "c"));
+    EXPECT_TRUE(hoisted(sh, "m"));
+    EXPECT_FALSE(hoisted(sh, "copy"));
+    EXPECT_FALSE(hoisted(sh, "atP"));
+    EXPECT_FALSE(hoisted(sh, "later"));
+    EXPECT_FALSE(hoisted(sh, "e"));
+    EXPECT_EQ(sh.prepFunction, "rsl_prep_surface_s");
+    EXPECT_EQ(sh.prepFloats, 1 + 3 + 16);
+    EXPECT_EQ(sh.prepOffset, sh.spaceOffset + 32);
+    // the body reads the slot; the prepare function computes it
+    EXPECT_NE(sh.source.find("float v_k = params[" + std::to_string(sh.prepOffset) + "]"),
+              std::string::npos)
+        << sh.source;
+    EXPECT_NE(sh.source.find("void rsl_prep_surface_s(__global float* params)"), std::string::npos);
+}
+
+TEST(Hoist, NothingThatDependsOnTheShadingPointOrTheRenderer) {
+    rsl::EmittedShader sh = emit(
+        "float twice(float x) { return 2 * x; }\n"
+        "surface s(float Kd = 0.5; color c = Cs;) {\n"
+        "    uniform float a = twice(Kd);\n"             // a user function: left alone
+        "    uniform color b = c * 2;\n"                 // c's default is computed per point
+        "    uniform float n = noise(Kd);\n"             // pure builtin: hoisted
+        "    float r = random();\n"                      // varying
+        "    float f = 0; if (Kd > 0.25) { uniform float inner = pow(Kd, 2); f = inner; }\n"
+        "    Ci = a * b * n * r * f; Oi = 1;\n}\n");
+    EXPECT_FALSE(hoisted(sh, "a"));
+    EXPECT_FALSE(hoisted(sh, "b"));
+    EXPECT_TRUE(hoisted(sh, "n"));
+    EXPECT_FALSE(hoisted(sh, "r"));
+    EXPECT_FALSE(hoisted(sh, "inner")) << "only top-level declarations";
+}
+
+TEST(Hoist, LightShadersKeepTheirConstants) {
+    rsl::EmittedShader sh = emit(
+        "light l(float intensity = 1;) {\n"
+        "    uniform float k = pow(intensity, 2);\n"
+        "    illuminate(point(0, 0, 0)) { Cl = k; }\n}\n");
+    EXPECT_TRUE(sh.prepFunction.empty());
+    EXPECT_EQ(sh.prepFloats, 0);
+}
