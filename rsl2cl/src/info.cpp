@@ -2,6 +2,7 @@
 #include "info.h"
 
 #include "builtins.h"
+#include "hoist.h"
 
 namespace rsl {
 namespace {
@@ -134,6 +135,15 @@ ShaderInfo collectInfo(const ShaderDecl& shader) {
     for (const VarDecl& p : shader.params)
         if (p.init) walker.expr(*p.init);
     if (shader.body) walker.stmt(*shader.body);
+    if (shader.body && shader.kind != ShaderKind::Light) {
+        std::vector<bool> computed;
+        for (const VarDecl& p : shader.params) {
+            ConstValue v;
+            computed.push_back(p.init && !evalConst(*p.init, v));
+        }
+        for (const VarDecl* d : planHoisting(shader, computed).decls)
+            info.oncePerInstance.push_back(d->name);
+    }
     return info;
 }
 
@@ -151,6 +161,11 @@ std::string formatInfo(const ShaderInfo& info) {
     out += "    services: " + join(info.services) + "\n";
     if (!info.textures.empty()) out += "    textures: " + join(info.textures) + "\n";
     if (!info.derivatives.empty()) out += "    derivatives: " + join(info.derivatives) + "\n";
+    if (!info.oncePerInstance.empty()) {
+        out += "    once per instance:";
+        for (const std::string& v : info.oncePerInstance) out += " " + v;
+        out += "\n";
+    }
     return out;
 }
 

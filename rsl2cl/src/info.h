@@ -31,6 +31,7 @@ struct ShaderInfo {
                                       // illuminance, derivatives, message
     std::set<std::string> textures;   // literal map names given to texture() & co
     std::set<std::string> derivatives;  // Du Dv Deriv area calculatenormal filterstep
+    std::vector<std::string> oncePerInstance;  // hoisted uniform variables (hoist.h)
 };
 
 // Walks the typed shader (and the user functions it calls).
