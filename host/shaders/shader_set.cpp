@@ -207,7 +207,16 @@ ShadingSetup ShaderSet::prepare() {
         for (size_t i = 0; i < block.size(); ++i) lights << (i ? ", " : "") << fmt(block[i]);
         if (block.empty()) lights << "0.0f";
         lights << "};\n";
-        lightCalls.push_back(sh->functionName + "(&lg, rd_light_params_" +
+        // In the light shader P and N are the light's own: its shader-space origin and +z
+        // axis (where an area light's geometry would be sampled; a point stands for it)
+        glm::vec3 o(l.shaderToWorld * glm::vec4(0, 0, 0, 1));
+        glm::vec3 n = glm::transpose(glm::inverse(glm::mat3(l.shaderToWorld))) * glm::vec3(0, 0, 1);
+        if (glm::dot(n, n) > 0.0f) n = glm::normalize(n);
+        auto f4 = [](const glm::vec3& v) {
+            return "(float4)(" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + ", 0.0f)";
+        };
+        lightCalls.push_back("lg.P = " + f4(o) + "; lg.N = lg.Ng = " + f4(n) + "; " +
+                             sh->functionName + "(&lg, rd_light_params_" +
                              std::to_string(index) + ")");
         lightAmbient.push_back(sh->ambientLight);
         lightShaders.push_back(sh);

@@ -306,6 +306,18 @@ void Emitter::decl(const VarDecl& d) {
     line(t + " " + name + " = " + (d.init ? exprAs(*d.init, d.type) : clZero(d.type)) + ";");
 }
 
+void Emitter::loopBody(const Stmt& body) {
+    int id = m_tmp++;
+    m_loops.push_back(id);
+    stmt(body);
+    if (m_continueTargets.count(id)) line("_cont" + std::to_string(id) + ": ;");
+}
+
+void Emitter::loopEnd() {
+    if (m_breakTargets.count(m_loops.back())) line("_brk" + std::to_string(m_loops.back()) + ": ;");
+    m_loops.pop_back();
+}
+
 void Emitter::lightLoop(const Stmt& s) {
     int id = m_tmp++;
     std::string k = std::to_string(id);
@@ -387,9 +399,10 @@ void Emitter::stmt(const Stmt& s) {
     case StmtKind::While:
         line("while ((" + expr(*s.expr) + ") != 0.0f) {");
         ++m_indent;
-        stmt(*s.body);
+        loopBody(*s.body);
         --m_indent;
         line("}");
+        loopEnd();
         break;
     case StmtKind::For: {
         line("{");
@@ -398,18 +411,35 @@ void Emitter::stmt(const Stmt& s) {
         line("for (; " + (s.expr ? "(" + expr(*s.expr) + ") != 0.0f" : std::string("1")) + "; " +
              (s.step ? expr(*s.step) : std::string()) + ") {");
         ++m_indent;
-        stmt(*s.body);
+        loopBody(*s.body);
         --m_indent;
         line("}");
+        loopEnd();
         --m_indent;
         line("}");
         break;
     }
     case StmtKind::Break:
-    case StmtKind::Continue:
-        if (s.level > 1) error(s.loc, "break/continue with a level is not supported yet");
-        line(s.kind == StmtKind::Break ? "break;" : "continue;");
+    case StmtKind::Continue: {
+        // break N / continue N leave or continue the N-th enclosing loop: a goto to the
+        // label after that loop, or at the end of its body (where a for loop's step follows)
+        int n = s.level;
+        if (n < 1 || n > int(m_loops.size())) {
+            error(s.loc, std::string(s.kind == StmtKind::Break ? "break" : "continue") + " " +
+                             std::to_string(n) + " outside of " + std::to_string(n) +
+                             " enclosing loop(s)");
+            break;
+        }
+        if (n == 1) {
+            line(s.kind == StmtKind::Break ? "break;" : "continue;");
+            break;
+        }
+        int id = m_loops[m_loops.size() - size_t(n)];
+        (s.kind == StmtKind::Break ? m_breakTargets : m_continueTargets).insert(id);
+        line(std::string("goto ") + (s.kind == StmtKind::Break ? "_brk" : "_cont") +
+             std::to_string(id) + ";");
         break;
+    }
     case StmtKind::Return:
         if (m_func && s.expr) line("return " + exprAs(*s.expr, m_func->returnType) + ";");
         else if (m_func || m_sh.kind == ShaderKind::Light ||

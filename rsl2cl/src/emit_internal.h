@@ -58,6 +58,8 @@ private:
     void stmt(const Stmt& s);
     void decl(const VarDecl& d);
     void lightLoop(const Stmt& s);
+    void loopBody(const Stmt& body);  // a loop's body; its labels for break/continue N
+    void loopEnd();
     void writeOutputs();  // output parameters -> ev->outputs (shader body only)
     void line(const std::string& s) {
         for (const std::string& p : m_pre) m_body << std::string(2 * m_indent, ' ') << p << "\n";
@@ -84,6 +86,8 @@ public:
     bool m_usesSpaces = false;  // the code being emitted uses sp (shader/object spaces)
     std::set<const FunctionDecl*> m_fnUsesSpaces;
     HoistPlan m_hoist;  // declarations computed once per instance
+    std::vector<int> m_loops;  // ids of the enclosing loops, innermost last
+    std::set<int> m_breakTargets, m_continueTargets;  // loops a break/continue N names
 };
 
 }  // namespace rsl

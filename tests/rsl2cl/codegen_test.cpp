@@ -106,6 +106,38 @@ TEST(Codegen, NonConstantDefaultIsComputedUnlessOverridden) {
     expectNear(out[0].Ci, {1, 2, 3}, 1e-6f, "override");
 }
 
+// break N and continue N leave or continue the N-th enclosing loop (RI 3.2 RSL).
+TEST(Codegen, BreakAndContinueWithALevel) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource(
+        "surface s() {\n"
+        "    float n = 0, m = 0, i, j;\n"
+        "    for (i = 0; i < 5; i += 1) {\n"
+        "        for (j = 0; j < 5; j += 1) {\n"
+        "            if (j == 2) continue 2;\n"  // skips the rest of the outer body
+        "            n += 1;\n"
+        "        }\n"
+        "        n += 100;\n"
+        "    }\n"
+        "    i = 0;\n"
+        "    while (i < 5) {\n"
+        "        i += 1;\n"
+        "        for (j = 0; j < 5; j += 1) {\n"
+        "            if (i == 3) break 2;\n"
+        "            m += 1;\n"
+        "        }\n"
+        "    }\n"
+        "    Ci = color(n, m, i); Oi = 1;\n}\n",
+        "s.sl", &err))
+        << err;
+    ts::Scene sc;
+    auto out = sh.run(ts::grid(1), sc);
+    ASSERT_EQ(out.size(), 1u);
+    expectNear(out[0].Ci, {10, 10, 3}, 1e-6f, "break/continue N");
+}
+
 // ---- (c) closed forms with one distant light ------------------------------------------
 struct Closed {
     ts::Scene sc;
