@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 #include <glm/glm.hpp>
@@ -190,6 +191,27 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
     return slot.get();
 }
 
+// Binds each call of a list of shaders run by index (atmospheres, displacements): its
+// parameter block goes into out.params, its case into `cases`, its code into `shaders`
+// once. A shader that cannot be used is reported by find() and skipped.
+bool ShaderSet::bindCases(const std::vector<ShaderRef>& refs, const std::string& kind,
+                          const std::string& evArg, ShadingSetup& out, std::ostream& cases,
+                          std::ostream& shaders, std::set<std::string>& emitted) {
+    bool any = false;
+    for (size_t i = 0; i < refs.size(); ++i) {
+        const rsl::EmittedShader* sh = find(refs[i].name, kind, refs[i].loc);
+        if (!sh) continue;
+        std::vector<float> block = bindParameters(*sh, refs[i], m_diag);
+        addPrepare(out, *sh);
+        cases << "    case " << i << ": " << sh->functionName << "(g, params + "
+              << out.params.size() << ", " << evArg << "); break;\n";
+        out.params.insert(out.params.end(), block.begin(), block.end());
+        if (emitted.insert(sh->name).second) shaders << sh->source << "\n";
+        any = true;
+    }
+    return any;
+}
+
 ShadingSetup ShaderSet::prepare() {
     ShadingSetup out;
     std::ostringstream lights, shaders;
@@ -341,46 +363,21 @@ ShadingSetup ShaderSet::prepare() {
         out.params.insert(out.params.end(), block.begin(), block.end());
     }
     // --- atmospheres: volume shaders on a surface's Ci and Oi, parameters in the buffer
+    std::set<std::string> emitted;
     std::ostringstream atmo;
-    std::map<std::string, bool> volumeEmitted;
-    atmo << "static void rd_atmosphere(int a, RslGlobals* g, __global const float* params) {\n"
-            "    RslEval ev;\n    ev.deriv = 0;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
-            "    ev.trace_count = 0;\n    switch (a) {\n";
-    for (size_t a = 0; a < m_scene.atmospheres.size(); ++a) {
-        const ShaderRef& ref = m_scene.atmospheres[a];
-        const rsl::EmittedShader* sh = find(ref.name, "volume", ref.loc);
-        if (!sh) continue;  // reported by find(); the surfaces go without it
-        std::vector<float> block = bindParameters(*sh, ref, m_diag);
-        addPrepare(out, *sh);
-        atmo << "    case " << a << ": " << sh->functionName << "(g, params + "
-             << out.params.size() << ", &ev); break;\n";
-        out.params.insert(out.params.end(), block.begin(), block.end());
-        if (!volumeEmitted[sh->name]) shaders << sh->source << "\n";
-        volumeEmitted[sh->name] = true;
-        out.atmosphere = true;
-    }
-    atmo << "    default: break;\n    }\n}\n";
-    if (out.atmosphere) svc << atmo.str();
+    out.atmosphere = bindCases(m_scene.atmospheres, "volume", "&ev", out, atmo, shaders, emitted);
+    if (out.atmosphere)
+        svc << "static void rd_atmosphere(int a, RslGlobals* g, __global const float* params) {\n"
+               "    RslEval ev;\n    ev.deriv = 0;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
+               "    ev.trace_count = 0;\n    switch (a) {\n" << atmo.str()
+            << "    default: break;\n    }\n}\n";
     // --- displacements: bump shaders run before the surface (shade_common.clh)
     std::ostringstream disp;
-    std::map<std::string, bool> displacementEmitted;
-    disp << "static void rd_displace(int d, RslGlobals* g, __global const float* params, "
-            "RslEval* ev) {\n    switch (d) {\n";
-    for (size_t d = 0; d < m_scene.displacements.size(); ++d) {
-        const ShaderRef& ref = m_scene.displacements[d];
-        const rsl::EmittedShader* sh = find(ref.name, "displacement", ref.loc);
-        if (!sh) continue;  // reported by find(); the surfaces go without it
-        std::vector<float> block = bindParameters(*sh, ref, m_diag);
-        addPrepare(out, *sh);
-        disp << "    case " << d << ": " << sh->functionName << "(g, params + "
-             << out.params.size() << ", ev); break;\n";
-        out.params.insert(out.params.end(), block.begin(), block.end());
-        if (!displacementEmitted[sh->name]) shaders << sh->source << "\n";
-        displacementEmitted[sh->name] = true;
-        out.displacement = true;
-    }
-    disp << "    default: break;\n    }\n}\n";
-    if (out.displacement) svc << disp.str();
+    out.displacement = bindCases(m_scene.displacements, "displacement", "ev", out, disp, shaders, emitted);
+    if (out.displacement)
+        svc << "static void rd_displace(int d, RslGlobals* g, __global const float* params, "
+               "RslEval* ev) {\n    switch (d) {\n" << disp.str()
+            << "    default: break;\n    }\n}\n";
     // --- the imager: a kernel over the resolved pixels (host/render/imager_stage)
     std::string imagerKernel;
     if (!m_scene.imager.name.empty()) {

@@ -8,6 +8,8 @@
 #pragma once
 #include <map>
 #include <memory>
+#include <ostream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -56,6 +58,9 @@ public:
 private:
     const rsl::EmittedShader* find(const std::string& name, const std::string& kind,
                                    const rib::SourceLoc& loc);
+    bool bindCases(const std::vector<ShaderRef>& refs, const std::string& kind,
+                   const std::string& evArg, ShadingSetup& out, std::ostream& cases,
+                   std::ostream& shaders, std::set<std::string>& emitted);
     const Scene& m_scene;
     rib::Diagnostics& m_diag;
     std::vector<std::string> m_path;
