@@ -27,11 +27,12 @@ int slotsFor(const TypeSpec& t) {
 class Planner {
 public:
     Planner(const ShaderDecl& sh, const std::vector<bool>& computed) : m_sh(sh) {
+        written(*sh.body);
+        // a parameter the body assigns is not the instance's value once it has
         for (size_t i = 0; i < sh.params.size(); ++i)
             if (sh.params[i].symbol && !sh.params[i].symbol->varying &&
-                !(i < computed.size() && computed[i]))
+                !(i < computed.size() && computed[i]) && !m_written.count(sh.params[i].symbol))
                 m_uniformParams.insert(sh.params[i].symbol);
-        written(*sh.body);
     }
 
     HoistPlan run() {

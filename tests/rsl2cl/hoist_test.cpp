@@ -79,3 +79,17 @@ TEST(Hoist, LightShadersKeepTheirConstants) {
     EXPECT_TRUE(sh.prepFunction.empty());
     EXPECT_EQ(sh.prepFloats, 0);
 }
+
+// A parameter the body assigns is no longer the instance's value: nothing computed from
+// it is hoisted.
+TEST(Hoist, AssignedParametersAreNotTheInstancesValue) {
+    rsl::EmittedShader sh = emit(
+        "surface s(float Kd = 0.5; matrix m = 1;) {\n"
+        "    setcomp(m, 0, 1, 2);\n"
+        "    Kd = Kd * 2;\n"
+        "    uniform float k = pow(Kd, 2);\n"
+        "    matrix r = m * determinant(m);\n"
+        "    Ci = k * comp(r, 0, 1); Oi = 1;\n}\n");
+    EXPECT_FALSE(hoisted(sh, "k"));
+    EXPECT_FALSE(hoisted(sh, "r"));
+}

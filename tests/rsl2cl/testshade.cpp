@@ -182,6 +182,9 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
         << messageService("int rsl_option(int nameId, float* out, int n)", sc.options, false);
     src << shader.source << "\n";
     bool light = shader.kind == "light";
+    if (!shader.prepFunction.empty())  // the instance's uniform work (hoist.h), run first
+        src << "__kernel void ts_prep(__global float* params) { " << shader.prepFunction
+            << "(params); }\n";
     src << "__kernel void ts_main(__global const float* gin, __global const float* params,\n"
            "                      int mode_light, int mode_trace, __global float* out) {\n"
            "  int i = get_global_id(0);\n"
@@ -244,13 +247,20 @@ std::vector<Out> Shade::run(const std::vector<Point>& pts, const Scene& sc, int 
     size_t outFloats = n * (kGlobalFloats + kEvalFloats);
     // the block, then the shader and object matrices (rsl_abi.h, SPACES)
     std::vector<float> pv = params;
-    pv.resize(size_t(shader.spaceOffset) + 32, 0.0f);
+    pv.resize(size_t(shader.prepOffset) + size_t(shader.prepFloats), 0.0f);
     for (int k = 0; k < 16; ++k) {
         pv[shader.spaceOffset + k] = sc.shaderMatrix[k] + (k >= 12 && k < 15 ? sc.shaderOffset[k - 12] : 0.0f);
         pv[shader.spaceOffset + 16 + k] = sc.objectMatrix[k];
     }
     cl_mem bg = clCreateBuffer(cl().ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, gin.size() * 4, gin.data(), &err);
-    cl_mem bp = clCreateBuffer(cl().ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, pv.size() * 4, pv.data(), &err);
+    cl_mem bp = clCreateBuffer(cl().ctx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, pv.size() * 4, pv.data(), &err);
+    if (!shader.prepFunction.empty()) {
+        cl_kernel kp = clCreateKernel(static_cast<cl_program>(m_program), "ts_prep", &err);
+        clSetKernelArg(kp, 0, sizeof(cl_mem), &bp);
+        size_t one = 1;
+        clEnqueueNDRangeKernel(cl().q, kp, 1, nullptr, &one, nullptr, 0, nullptr, nullptr);
+        clReleaseKernel(kp);
+    }
     cl_mem bo = clCreateBuffer(cl().ctx, CL_MEM_WRITE_ONLY, outFloats * 4, nullptr, &err);
     cl_kernel k = clCreateKernel(static_cast<cl_program>(m_program), "ts_main", &err);
     clSetKernelArg(k, 0, sizeof(cl_mem), &bg);
