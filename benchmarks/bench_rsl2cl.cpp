@@ -53,7 +53,13 @@ const char* kServices =
     "int rsl_lightsource_param(int light, int nameId, float* out, int n) {\n"
     "  (void)light; (void)nameId; (void)out; (void)n; return 0;\n}\n"
     "int rsl_attribute(int nameId, float* out, int n) { (void)nameId; (void)out; (void)n; return 0; }\n"
-    "int rsl_option(int nameId, float* out, int n) { (void)nameId; (void)out; (void)n; return 0; }\n";
+    "int rsl_option(int nameId, float* out, int n) { (void)nameId; (void)out; (void)n; return 0; }\n"
+    "float4 rsl_texture_service(RslEval* ev, int kind, int id, int channel, float4 p, float4 dpdu,\n"
+    "                           float4 dpdv, float width, float blur, float fill, float4 extra) {\n"
+    "  (void)ev; (void)kind; (void)id; (void)channel; (void)p; (void)dpdu; (void)dpdv; (void)width;\n"
+    "  (void)blur; (void)extra; return (float4)(fill, fill, fill, 0.0f);\n}\n"
+    "float rsl_textureinfo_service(int id, int what, float* out, int n) {\n"
+    "  (void)id; (void)what; (void)out; (void)n; return 0.0f;\n}\n";
 
 std::string kernelFor(const rsl::EmittedShader& sh) {
     bool light = sh.kind == "light";

@@ -18,6 +18,7 @@
 #include "rib/reader.h"
 #include "scene/rib_builder.h"
 #include "stats/stats_report.h"
+#include "texture/texture_maker.h"
 
 namespace {
 
@@ -44,6 +45,41 @@ int listDevicesCommand() {
     return 0;
 }
 
+// raydrive txmake [options] picture texture: makes a tiled, mip-mapped float texture
+// (what MakeTexture, MakeLatLongEnvironment and MakeShadow do in a RIB).
+int txmakeCommand(int argc, char** argv) {
+    CLI::App app{"raydrive txmake: any image into a tiled, mip-mapped float OpenEXR texture"};
+    std::string picture, texture, wrap, swrap = "black", twrap = "black", filter = "box";
+    bool envlatl = false, shadow = false;
+    app.add_option("picture", picture, "input image (TIFF, PNG, JPEG, OpenEXR, HDR, ...)")->required();
+    app.add_option("texture", texture, "output texture file")->required();
+    app.add_option("--wrap", wrap, "wrap mode for s and t: black, periodic or clamp");
+    app.add_option("--swrap", swrap, "wrap mode for s");
+    app.add_option("--twrap", twrap, "wrap mode for t");
+    app.add_option("--filter", filter, "filter for the mip levels (box, triangle, gaussian, ...)");
+    app.add_flag("--envlatl", envlatl, "a lat-long environment map");
+    app.add_flag("--shadow", shadow, "a shadow map from a depth image with its matrices");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int rc = app.exit(e);
+        return rc == 0 ? 0 : 2;
+    }
+    rd::MakeTextureOptions o;
+    o.swrap = wrap.empty() ? swrap : wrap;
+    o.twrap = wrap.empty() ? twrap : wrap;
+    o.filter = filter;
+    try {
+        if (shadow) rd::makeShadow(picture, texture);
+        else if (envlatl) rd::makeLatLongEnvironment(picture, texture, o);
+        else rd::makeTexture(picture, texture, o);
+    } catch (const std::exception& e) {
+        std::cerr << "raydrive txmake: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
+
 std::string outputName(const rd::Scene& scene, const std::string& override, size_t frame,
                        size_t frames) {
     std::string name = override;
@@ -64,6 +100,7 @@ std::string outputName(const rd::Scene& scene, const std::string& override, size
 }  // namespace
 
 int main(int argc, char** argv) {
+    if (argc > 1 && std::string(argv[1]) == "txmake") return txmakeCommand(argc - 1, argv + 1);
     CLI::App app{"RayDrive: a RenderMan renderer on OpenCL, after ART's RenderDrive"};
     std::string scenePath, output, deviceSpec, statsPath;
     bool quiet = false, halfFloat = false, tessellateQuadrics = false;
@@ -84,6 +121,10 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"z", "N", "samples", "error", "filled"}));
     app.add_flag("--half", halfFloat, "write 16-bit half-float channels");
     app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+    size_t textureTiles = 0;
+    app.add_option("--texture-cache", textureTiles,
+                   "device texture cache in tiles of 32x32 (default: Option \"limits\" "
+                   "\"texturememory\", else every tile up to 256 MiB)");
     app.add_flag("--tessellate-quadrics", tessellateQuadrics,
                  "dice quadrics into triangles instead of intersecting them exactly");
     try {
@@ -121,6 +162,7 @@ int main(int argc, char** argv) {
             settings.timeBudget = timeBudget;
             settings.errorTarget = errorTarget;
             settings.progress = !quiet;
+            settings.textureCacheTiles = textureTiles;
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
             rd::Renderer renderer(ctx, settings);
             rd::Film film;

@@ -6,4 +6,5 @@
 #include "quadric.h"
 #include "ray.h"
 #include "scene_types.h"
+#include "texture.h"
 #endif

@@ -42,6 +42,18 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global SampleAov* aov,
                             uint light_count,
                             __global uint* numerics, /* numerics.clh counters */
+                            /* RT_HAS_TEXTURES only: the texture state (texture.h), and
+                             * the points to shade again once missing tiles are there,
+                             * at begin + their rank in this shader's run */
+                            __global const TexInfo* tex_info,
+                            __global const uint* tex_pages,
+                            __global const float4* tex_tiles,
+                            __global TexRequest* tex_requests,
+                            __global uint* tex_counters,
+                            __global uint* tex_used,
+                            __global uint* retry_sorted,
+                            __global uint* retry_count,
+                            uint shader_index,
                             __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint j = get_global_id(0);
@@ -90,6 +102,14 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #endif
     RslEval ev;
     RslDeriv* dsites = 0; /* the surface shader's derivatives, when it takes any */
+#ifdef RT_HAS_TEXTURES
+    struct RslTexContext texc;
+    rd_tex_context_init(&texc, tex_info, tex_pages, tex_tiles, tex_requests, tex_counters,
+                        tex_used, shader_index);
+    struct RslTexContext* tc = &texc;
+#else
+    struct RslTexContext* tc = 0;
+#endif
 #ifdef RT_HAS_DERIVATIVES
     RslDeriv deriv;
     uint disp = (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT;
@@ -97,7 +117,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         RslGlobals g1, g2;
         RD_NEIGHBOUR_GLOBALS(g, g1, g2, h, rs, RD_HIT_BUFFERS);
 #ifdef RT_HAS_DISPLACEMENT
-        if (disp) rd_displace_lanes((int)disp - 1, &g, &g1, &g2, params);
+        if (disp) rd_displace_lanes((int)disp - 1, &g, &g1, &g2, params, tc);
 #endif
         if (RSL_DERIVS_SURFACE) { /* the neighbours first: they record what the point differences */
             dsites = &deriv;
@@ -105,7 +125,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                 RslGlobals gl = lane == 1 ? g1 : g2;
                 deriv.lane = lane;
                 deriv.count = 0;
-                rd_eval_init(&ev, dsites, -1, -1);
+                rd_eval_init(&ev, dsites, tc, -1, -1);
                 rsl_surface_SURFACE(&gl, p, &ev);
             }
             deriv.lane = 0;
@@ -113,10 +133,17 @@ __kernel void shade_SURFACE(uint begin, uint count,
         }
     }
 #endif
-    rd_eval_init(&ev, dsites, -1, -1);
+    rd_eval_init(&ev, dsites, tc, -1, -1);
     if (!culled) rd_fill_light_cache(&g);
     RslGlobals base = g;
     if (!culled) rsl_surface_SURFACE(&base, p, &ev);
+#ifdef RT_HAS_TEXTURES
+    rd_tex_context_done(&texc);
+    if (texc.miss) { /* a tile was not there: commit nothing, shade this point again */
+        retry_sorted[begin + atomic_inc(&retry_count[shader_index])] = r;
+        return;
+    }
+#endif
     if (dsites) dsites->lane = 3; /* every other mode replays the point's derivatives */
     float4 E = culled ? (float4)(0.0f) : base.Ci, Oi = culled ? (float4)(0.0f) : base.Oi;
     E.w = 0.0f;
@@ -150,7 +177,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         int solar = lcl.w == 1.0f;
         if (rd_light_is_ambient((int)l) || !rd_nonzero3(lcl)) continue;
         RslEval le;
-        rd_eval_init(&le, dsites, (int)l, -1);
+        rd_eval_init(&le, dsites, tc, (int)l, -1);
         if (dsites) dsites->count = 0;
         RslGlobals lgl = g;
         rsl_surface_SURFACE(&lgl, p, &le);
@@ -182,7 +209,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         atomic_add(&numerics[RT_NUM_SPECULAR_DEPTH], (uint)traces);
     for (int i = 0; i < traces && RT_TRACE_DEPTH(rs) < RT_MAX_SPECULAR_DEPTH; ++i) {
         RslEval te;
-        rd_eval_init(&te, dsites, -1, i);
+        rd_eval_init(&te, dsites, tc, -1, i);
         if (dsites) dsites->count = 0;
         RslGlobals tg = g;
         rsl_surface_SURFACE(&tg, p, &te);

@@ -2,6 +2,7 @@
 // blocking by default: the host needs their data at once, and the in-order queue keeps
 // kernel order anyway.
 #pragma once
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -51,6 +52,31 @@ public:
                                          sizeof(T) * data.size(), data.data(), 0, nullptr,
                                          nullptr),
                     m_ctx->name());
+    }
+    // Writes count elements from data at element offset first (texture tiles).
+    void uploadRange(size_t first, const T* data, size_t count) {
+        if (count)
+            RD_CL_CHECK(clEnqueueWriteBuffer(m_ctx->queue(), m_mem, CL_TRUE, sizeof(T) * first,
+                                             sizeof(T) * count, data, 0, nullptr, nullptr),
+                        m_ctx->name());
+    }
+    // Copies count elements from this buffer at srcFirst into dst at dstFirst, on the device.
+    void copyTo(DeviceBuffer& dst, size_t srcFirst, size_t dstFirst, size_t count) const {
+        if (count)
+            RD_CL_CHECK(clEnqueueCopyBuffer(m_ctx->queue(), m_mem, dst.m_mem, sizeof(T) * srcFirst,
+                                            sizeof(T) * dstFirst, sizeof(T) * count, 0, nullptr,
+                                            nullptr),
+                        m_ctx->name());
+    }
+    // The first count elements (the rest need not be read).
+    std::vector<T> downloadFirst(size_t count) const {
+        std::vector<T> out(std::min(count, m_count));
+        if (!out.empty())
+            RD_CL_CHECK(clEnqueueReadBuffer(m_ctx->queue(), m_mem, CL_TRUE, 0,
+                                            sizeof(T) * out.size(), out.data(), 0, nullptr,
+                                            nullptr),
+                        m_ctx->name());
+        return out;
     }
     std::vector<T> download() const {
         std::vector<T> out(m_count);

@@ -64,6 +64,7 @@ std::vector<std::string> Features::names() const {
     if (oneSided) n.push_back("one_sided");
     if (derivatives) n.push_back("derivatives");
     if (displacement) n.push_back("displacement");
+    if (textures) n.push_back("textures");
     if (trace && rouletteDepth > 0) n.push_back("roulette");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
@@ -106,6 +107,7 @@ std::string buildOptions(const Features& f) {
         o += buf;
     }
     if (f.displacement) o += " -DRT_HAS_DISPLACEMENT";
+    if (f.textures) o += " -DRT_HAS_TEXTURES";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 
 #include "cl/include/ray.h"
@@ -150,7 +151,25 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     st.platform = m_ctx.info().platformName;
     // The scene's RSL shaders, compiled and bound: they decide lights, trace and more.
     ShadingSetup shading = ShaderSet(scene, diag).prepare();
+    // The textures those shaders may ask for: the texture search path, then the RIB's
+    // folder and the current one.
+    std::vector<std::string> texturePath = scene.textureSearchPath;
+    {
+        std::string ribDir = std::filesystem::path(scene.sourceFile).parent_path().string();
+        texturePath.push_back(ribDir.empty() ? "." : ribDir);
+        texturePath.push_back(".");
+    }
+    std::string texCache = defaultProgramCacheDir();
+    TextureSet textures(texturePath,
+                        (texCache.empty() ? std::filesystem::temp_directory_path().string() : texCache) +
+                            "/textures",
+                        diag, rib::SourceLoc{scene.sourceFile, 0});
+    if (shading.textures)
+        for (const std::string& name : shading.textureNames) textures.addCandidate(name);
+    shading.generated["rd_textures.cl"] = textures.deviceSource(
+        scene.worldOrigin.x, scene.worldOrigin.y, scene.worldOrigin.z);
     Features f = analyse(scene, shading);
+    f.textures = shading.textures && !textures.empty();
     f.aovs = m_settings.geometricAovs;
     st.features = f;
 
@@ -201,6 +220,17 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                            64, std::max<size_t>(64, m_settings.poolCapacity));
     st.poolCapacity = pool;
     RayPool rp(m_ctx, pool, spawn, nl, f.aovs, f.motion, f.instances, shaderCount + 1);
+    // Textures: the device tile cache (Option "limits" "texturememory" or the command
+    // line; else every tile when they fit in 256 MiB), and the lists of points to shade
+    // again once the tiles they missed are there.
+    size_t cacheTiles = m_settings.textureCacheTiles;
+    if (cacheTiles == 0 && scene.render.textureMemoryKB > 0)
+        cacheTiles = size_t(scene.render.textureMemoryKB) * 1024 /
+                     (sizeof(rt_float4) * RT_TEX_TILE_TEXELS);
+    textures.createDevice(m_ctx, f.textures ? cacheTiles : 1);
+    DeviceBuffer<uint32_t> retryA(m_ctx, f.textures ? pool : 0), retryB(m_ctx, f.textures ? pool : 0);
+    DeviceBuffer<uint32_t> retryCount(m_ctx, shaderCount + 1);
+    retryCount.fillZero();
     const size_t npix = size_t(cam.width) * size_t(cam.height);
     film.width = cam.width;
     film.exposureGain = scene.camera.exposure[0];
@@ -258,6 +288,25 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                 rp.direction, rp.weight, rp.state, rp.sample);
         return cl_uint(std::min<size_t>(total, pool));
     };
+    // One shade kernel per shader over its run [offsets[s], + counts[s]) of `sorted`;
+    // points a texture miss sends back are listed in `retry` at the same offsets.
+    auto shadeRuns = [&](const std::vector<uint32_t>& counts, const std::vector<uint32_t>& offsets,
+                         const DeviceBuffer<uint32_t>& sorted, DeviceBuffer<uint32_t>& retry) {
+        for (cl_uint s = 0; s < shaderCount; ++s) {
+            if (counts[s] == 0) continue;
+            k.shade[s]->launch(counts[s], cl_uint(offsets[s]), cl_uint(counts[s]), sorted,
+                               ds.triangles, ds.attrs, ds.normals, ds.vertexSt, ds.vertexCs,
+                               ds.vertexOs, ds.materials, ds.quadrics, ds.quadricPrimvars,
+                               ds.quadricMotion, ds.trianglesEnd, rp.sampleTime, rp.samplePixel,
+                               rp.sampleIndex, rp.hitInstance, ds.params, rp.origin,
+                               rp.direction, rp.weight, rp.state, rp.sample, rp.hits, rp.totals,
+                               rp.nextOrigin, rp.nextDirection, rp.nextWeight, rp.nextState,
+                               rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,
+                               rp.shState, rp.aov, nl, numerics, textures.infoBuf,
+                               textures.pageBuf, textures.tileBuf, textures.requestBuf,
+                               textures.counterBuf, textures.usedBuf, retry, retryCount, s);
+        }
+    };
     // Returns false when a stop cut the batch short (its samples are then dropped).
     auto traceBatch = [&](const Batch& b) {
         cl_uint n = cl_uint(b.samplePixel.size());
@@ -287,18 +336,64 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             for (size_t s = 1; s < counts.size(); ++s) offsets[s] = offsets[s - 1] + counts[s - 1];
             rp.keyCursor.upload(offsets);
             k.scatter.launch(n, n, shaderCount, rp.key, rp.keyCursor, rp.sorted);
-            for (cl_uint s = 0; s < shaderCount; ++s) {
-                if (counts[s] == 0) continue;
-                k.shade[s]->launch(counts[s], cl_uint(offsets[s]), cl_uint(counts[s]),
-                                   rp.sorted, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
-                                   ds.vertexCs, ds.vertexOs, ds.materials, ds.quadrics,
-                                   ds.quadricPrimvars, ds.quadricMotion, ds.trianglesEnd,
-                                   rp.sampleTime, rp.samplePixel, rp.sampleIndex,
-                                   rp.hitInstance, ds.params, rp.origin, rp.direction, rp.weight, rp.state,
-                                   rp.sample, rp.hits, rp.totals, rp.nextOrigin,
-                                   rp.nextDirection, rp.nextWeight, rp.nextState,
-                                   rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,
-                                   rp.shState, rp.aov, nl, numerics);
+            shadeRuns(counts, offsets, rp.sorted, retryA);
+            if (f.textures) {
+                // Points that met an absent tile committed nothing: upload what they
+                // asked for and shade them again (RenderDrive's texture broadcast)
+                DeviceBuffer<uint32_t>* src = &retryA;
+                DeviceBuffer<uint32_t>* dst = &retryB;
+                double share = 1.0;  // of the waiting points, shaded in one pass
+                uint64_t lastTotal = ~uint64_t(0), lastLaunched = 0;
+                for (int pass = 0;; ++pass) {
+                    std::vector<uint32_t> again = retryCount.download();
+                    std::vector<uint32_t> reqCount = textures.counterBuf.downloadFirst(1);
+                    uint64_t total = 0;
+                    for (uint32_t c : again) total += c;
+                    if (reqCount[0] > 0) {
+                        std::vector<TexRequest> req = textures.requestBuf.downloadFirst(
+                            std::min<size_t>(reqCount[0], TextureSet::kMaxRequests));
+                        const uint32_t zero = 0;
+                        textures.counterBuf.uploadRange(0, &zero, 1);
+                        textures.serve(req, shading.surfaceNames);
+                    }
+                    if (total == 0) break;
+                    if (pass >= 4096) {  // the cache cannot hold what these points need
+                        textures.stats().unresolved += total;
+                        retryCount.fillZero();
+                        break;
+                    }
+                    // When the waiting points need more tiles than the cache holds they
+                    // evict each other's: shade fewer of them at a time (the rest wait
+                    // in the list) until each pass finishes some.
+                    if (lastTotal != ~uint64_t(0)) {
+                        const uint64_t done = lastTotal - std::min(lastTotal, total);
+                        if (done * 10 < lastLaunched) share = std::max(share * 0.5, 1.0 / 65536);
+                        else if (done * 2 >= lastLaunched) share = std::min(1.0, share * 2);
+                    }
+                    lastTotal = total;
+                    std::vector<uint32_t> launch(again.size());
+                    bool partial = false;
+                    for (size_t s = 0; s < again.size(); ++s) {
+                        launch[s] = std::min<uint32_t>(
+                            again[s], uint32_t(std::ceil(double(again[s]) * share)));
+                        partial |= launch[s] < again[s];
+                    }
+                    lastLaunched = 0;
+                    for (uint32_t l : launch) lastLaunched += l;
+                    retryCount.fillZero();
+                    ++textures.stats().retryPasses;
+                    shadeRuns(launch, offsets, *src, *dst);
+                    if (partial) {  // the points not shaded now go after the new misses
+                        std::vector<uint32_t> now = retryCount.download();
+                        for (size_t s = 0; s < again.size(); ++s) {
+                            src->copyTo(*dst, offsets[s] + launch[s], offsets[s] + now[s],
+                                        again[s] - launch[s]);
+                            now[s] += again[s] - launch[s];
+                        }
+                        retryCount.upload(now);
+                    }
+                    std::swap(src, dst);
+                }
             }
             if (nl > 0) {
                 k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
@@ -397,6 +492,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     prof.collect();
     for (Kernel* kern : k.all()) kern->collectActive();
     st.kernels = prof.stats();
+    if (f.textures) {
+        std::vector<uint32_t> tc = textures.counterBuf.download();
+        textures.stats().lookups = tc[1];
+        textures.stats().missedLookups = tc[2];
+        st.textures = textures.stats();
+    }
     auto active = [&](const char* name) {
         auto it = st.kernels.find(name);
         return it == st.kernels.end() ? uint64_t(0) : it->second.activeItems;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "texture/texture_set.h"
 #include "features.h"
 #include "film/film.h"
 #include "ocl/context.h"
@@ -25,6 +26,7 @@ struct RenderSettings {
     int firstPassBlock = 0;   // 0 = the scene's option (default 2: 1/4 ray per pixel)
     bool geometricAovs = false;  // render z and N
     bool progress = false;       // progress bar on stderr (when it is a terminal)
+    size_t textureCacheTiles = 0;  // device texture tiles (0: the scene's, else all that fit)
 };
 
 // One point of the error-against-time series in --stats.
@@ -60,6 +62,7 @@ struct RenderStats {
     ProgramBuildInfo program;
     std::string device, platform;
     std::map<std::string, KernelStats> kernels;
+    TextureStats textures;
     uint64_t totalRays() const { return eyeRays + continuationRays + shadowRays; }
 };
 

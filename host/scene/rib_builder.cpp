@@ -207,23 +207,28 @@ void RibBuilder::displayChannel(L loc, const std::string& channel, const rib::Pa
 
 void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& params) {
     if (name == "searchpath") {
-        // "shader" ["dir:dir:&"]: '&' stands for the path so far (the default one).
-        std::string path = params.getString("shader", "");
-        if (path.empty()) return;
-        std::vector<std::string> out;
-        size_t start = 0;
-        while (start <= path.size()) {
-            size_t end = path.find(':', start);
-            if (end == std::string::npos) end = path.size();
-            std::string dir = path.substr(start, end - start);
-            if (dir == "&")
-                out.insert(out.end(), m_options.shaderSearchPath.begin(),
-                           m_options.shaderSearchPath.end());
-            else if (!dir.empty())
-                out.push_back(dir);
-            start = end + 1;
+        // "shader"/"texture" ["dir:dir:&"]: '&' stands for the path so far.
+        for (auto [key, list] : {std::pair{"shader", &m_options.shaderSearchPath},
+                                 std::pair{"texture", &m_options.textureSearchPath}}) {
+            std::string path = params.getString(key, "");
+            if (path.empty()) continue;
+            std::vector<std::string> out;
+            size_t start = 0;
+            while (start <= path.size()) {
+                size_t end = path.find(':', start);
+                if (end == std::string::npos) end = path.size();
+                std::string dir = path.substr(start, end - start);
+                if (dir == "&") out.insert(out.end(), list->begin(), list->end());
+                else if (!dir.empty()) out.push_back(dir);
+                start = end + 1;
+            }
+            *list = out;
         }
-        m_options.shaderSearchPath = out;
+        return;
+    }
+    if (name == "limits") {  // PRMan's texture cache size, in KiB
+        int kb = params.getInt("texturememory", -1);
+        if (kb > 0) m_options.render.textureMemoryKB = kb;
         return;
     }
     if (name == "trace") traceDepthOption(params);

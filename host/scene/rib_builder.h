@@ -63,6 +63,14 @@ public:
     void areaLightSource(L, S name, S handle, P params) override;
     void atmosphere(L, S name, P params) override;
     void displacement(L, S name, P params) override;
+    // Texture making, when read (rib_builder_textures.cpp)
+    void makeTexture(L, S picture, S texture, S swrap, S twrap, S filter, float swidth,
+                     float twidth, P) override;
+    void makeLatLongEnvironment(L, S picture, S texture, S filter, float swidth, float twidth,
+                                P) override;
+    void makeCubeFaceEnvironment(L, Strings faces, S texture, float fov, S filter, float swidth,
+                                 float twidth, P) override;
+    void makeShadow(L, S picture, S texture, P) override;
     void imager(L, S name, P params) override;
     void sides(L, int n) override;
     void skew(L, float angleDeg, float dx1, float dy1, float dz1, float dx2, float dy2,
@@ -130,6 +138,9 @@ public:
     void setTessellateQuadrics(bool on) { m_forceTessellate = on; }
 
 private:
+    template <typename F>
+    void makeTextureFile(L loc, const char* request, const std::string& output, F&& make);
+
     // The current transform, with its motion: between the shutter times t0 and t1 the
     // object-to-world map moves linearly from ctm to ctmEnd (MotionBegin around
     // transforms, the first and last keys).

@@ -61,6 +61,7 @@ struct RenderOptionsSpec {
     int firstPassBlock = 2;  // "int firstpassblock": first pass at 1 ray per N x N pixels
     float pixelError = 0.01f; // "float pixelerror": per-pixel relative error to refine to
     bool exactQuadrics = true; // "int exactquadrics": 0 tessellates quadrics into triangles
+    int textureMemoryKB = 0;   // Option "limits" "texturememory": the device tile cache (0: auto)
 };
 
 struct Scene {
@@ -96,6 +97,7 @@ struct Scene {
     std::vector<ShaderRef> displacements;  // one per distinct Displacement call in use
     ShaderRef imager;                    // the Imager option (name empty: none)
     std::vector<std::string> shaderSearchPath;  // Option "searchpath" "shader", split
+    std::vector<std::string> textureSearchPath; // Option "searchpath" "texture", split
     int maxSpecularDepth = 2;  // Attribute "trace" "maxspeculardepth" (the largest given)
     // Attribute/Option "trace" "maxtransparentdepth": surfaces of Opacity < 1 a ray goes
     // through; rays cut there are counted (--stats) and reported, never silently lost.

@@ -115,6 +115,19 @@ void addPrepare(ShadingSetup& out, const rsl::EmittedShader& sh) {
     if (!sh.prepFunction.empty())
         out.prepares.push_back({sh.prepFunction, uint32_t(out.params.size())});
 }
+
+// The strings an instance of a texture-using shader may pass as map names.
+void noteTextures(ShadingSetup& out, const rsl::EmittedShader& sh, const ShaderRef& call) {
+    if (!sh.usesTexture) return;
+    out.textures = true;
+    for (const std::string& s : sh.strings) out.textureNames.push_back(s);
+    for (const rsl::ParamSlot& slot : sh.params) {
+        if (slot.type.base != rsl::BaseType::String) continue;
+        for (const std::string& s : slot.stringDefaults) out.textureNames.push_back(s);
+        if (const rib::Param* p = call.params.find(slot.name))
+            for (const std::string& s : p->strings) out.textureNames.push_back(s);
+    }
+}
 }  // namespace
 
 ShaderSet::ShaderSet(const Scene& scene, rib::Diagnostics& diag) : m_scene(scene), m_diag(diag) {
@@ -203,6 +216,7 @@ bool ShaderSet::bindCases(const std::vector<ShaderRef>& refs, const std::string&
         if (!sh) continue;
         std::vector<float> block = bindParameters(*sh, refs[i], m_diag);
         addPrepare(out, *sh);
+        noteTextures(out, *sh, refs[i]);
         cases << "    case " << i << ": " << sh->functionName << "(g, params + "
               << out.params.size() << ", " << evArg << "); break;\n";
         out.params.insert(out.params.end(), block.begin(), block.end());
@@ -225,6 +239,7 @@ ShadingSetup ShaderSet::prepare() {
         if (!sh) continue;
         int index = int(lightCalls.size());
         std::vector<float> block = bindParameters(*sh, l, m_diag);
+        noteTextures(out, *sh, l);
         lights << "__constant float rd_light_params_" << index << "[] = {";
         for (size_t i = 0; i < block.size(); ++i) lights << (i ? ", " : "") << fmt(block[i]);
         if (block.empty()) lights << "0.0f";
@@ -360,6 +375,7 @@ ShadingSetup ShaderSet::prepare() {
         refBlock[r] = uint32_t(out.params.size());
         std::vector<float> block = bindParameters(*sh, call, m_diag);
         addPrepare(out, *sh);
+        noteTextures(out, *sh, call);
         out.params.insert(out.params.end(), block.begin(), block.end());
     }
     // --- atmospheres: volume shaders on a surface's Ci and Oi, parameters in the buffer
@@ -368,7 +384,7 @@ ShadingSetup ShaderSet::prepare() {
     out.atmosphere = bindCases(m_scene.atmospheres, "volume", "&ev", out, atmo, shaders, emitted);
     if (out.atmosphere)
         svc << "static void rd_atmosphere(int a, RslGlobals* g, __global const float* params) {\n"
-               "    RslEval ev;\n    ev.deriv = 0;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
+               "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
                "    ev.trace_count = 0;\n    switch (a) {\n" << atmo.str()
             << "    default: break;\n    }\n}\n";
     // --- displacements: bump shaders run before the surface (shade_common.clh)
@@ -385,6 +401,7 @@ ShadingSetup ShaderSet::prepare() {
         if (const rsl::EmittedShader* sh = find(ref.name, "imager", ref.loc)) {
             std::vector<float> block = bindParameters(*sh, ref, m_diag);
             addPrepare(out, *sh);
+            noteTextures(out, *sh, ref);
             const size_t offset = out.params.size();
             out.params.insert(out.params.end(), block.begin(), block.end());
             shaders << sh->source << "\n";
@@ -410,7 +427,7 @@ ShadingSetup ShaderSet::prepare() {
                 "    g.light_cache_count = 0;\n"
                 "    g.lights_off = 0u;\n"
                 "    RslEval ev;\n"
-                "    rd_eval_init(&ev, 0, -1, -1);\n"
+                "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
                 "    " + sh->functionName + "(&g, params + " + std::to_string(offset) + ", &ev);\n"
                 "    pixels[i] = (float4)(g.Ci.x, g.Ci.y, g.Ci.z, g.Ol.w);\n"
                 "}\n";
@@ -440,7 +457,7 @@ ShadingSetup ShaderSet::prepare() {
                                      lights.str() + shaders.str() + svc.str();
     out.generated["rd_shade_kernels.cl"] =
         "#include \"counters.clh\"\n#include \"shade_common.clh\"\n" + kernels.str() + imagerKernel + prep.str();
-    out.sourceOrder = {"rd_shading.cl", "rd_shade_kernels.cl"};
+    out.sourceOrder = {"rd_shading.cl", "rd_textures.cl", "rd_shade_kernels.cl"};
     return out;
 }
 

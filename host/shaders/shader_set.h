@@ -41,6 +41,10 @@ struct ShadingSetup {
     // Prepare functions and their blocks' offsets in params: the kernel
     // rd_prepare_uniforms runs each once before shading (uniform work, rsl::HoistPlan).
     std::vector<std::pair<std::string, uint32_t>> prepares;
+    // Some shader calls texture(), environment(), shadow() or bump(); the strings its
+    // instances may pass as map names (parameter values, literals), for TextureSet.
+    bool textures = false;
+    std::vector<std::string> textureNames;
 };
 
 class ShaderSet {

@@ -66,6 +66,17 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                       {"aborted_samples", st.abortedSamples}}},
         {"error_vs_time", series},
         {"kernels", kernels},
+        {"textures", {{"files", st.textures.textures},
+                      {"resident", st.textures.resident},
+                      {"cache_tiles", st.textures.cacheTiles},
+                      {"total_tiles", st.textures.totalTiles},
+                      {"lookups", st.textures.lookups},
+                      {"missed_lookups", st.textures.missedLookups},
+                      {"tile_hit_rate", st.textures.hitRate()},
+                      {"tiles_uploaded", st.textures.tilesUploaded},
+                      {"bytes_uploaded", st.textures.bytesUploaded},
+                      {"reshade_passes", st.textures.retryPasses},
+                      {"unresolved_points", st.textures.unresolved}}},
     };
 }
 
@@ -94,6 +105,14 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
     out << "pool      capacity " << ss["pool_capacity"] << ", fill "
         << ss["pool_fill"].get<double>() << " per trace launch, device busy "
         << ss["device_busy"].get<double>() << " of the sampling loop\n";
+    if (const auto& t = s["textures"]; t["files"].get<uint64_t>() > 0)
+        out << "textures  " << t["files"] << " files, "
+            << (t["resident"].get<bool>() ? "resident" : "streamed") << ", cache "
+            << t["cache_tiles"] << " of " << t["total_tiles"] << " tiles, " << t["lookups"]
+            << " lookups, tile hit rate " << t["tile_hit_rate"].get<double>() << ", "
+            << t["tiles_uploaded"] << " tiles (" << t["bytes_uploaded"] << " bytes) uploaded, "
+            << t["reshade_passes"] << " reshade passes, " << t["unresolved_points"]
+            << " unresolved\n";
     out << "features ";
     for (const auto& f : s["features"]) out << " " << f.get<std::string>();
     out << "\nprogram   " << (s["program"]["cache_hit"].get<bool>() ? "cache hit" : "built")

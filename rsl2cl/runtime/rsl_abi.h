@@ -103,6 +103,19 @@
  *   int    rsl_option(int nameId, float* out, int n);     option("name", var), e.g.
  *          "Format" (float[3]: x resolution, y resolution, pixel aspect)
  *          Both: nonzero and out[0..n) written when known with exactly n slots, else 0.
+ *   float4 rsl_texture_service(RslEval* ev, int kind, int id, int channel, float4 p,
+ *                              float4 dpdu, float4 dpdv, float width, float blur,
+ *                              float fill, float4 extra);
+ *          TEXTURES. kind RSL_TEX_2D: map id at (s, t) = p.xy, filtered over the
+ *          footprint spanned by dpdu.xy and dpdv.xy (the changes of s, t to the
+ *          neighbours), times width, plus blur; RSL_TEX_ENVIRONMENT: the direction p.xyz,
+ *          dpdu/dpdv its changes; RSL_TEX_SHADOW: the point p.xyz (current space), extra =
+ *          (bias, samples). Returns channels channel.. channel+2 (a one-channel map in all
+ *          three); fill where the map has no such channel. A renderer that must fetch
+ *          data first may return anything and shade the point again later (its
+ *          side effects are then not committed).
+ *   float  rsl_textureinfo_service(int id, int what, float* out, int n);  what:
+ *          RSL_TEXINFO_*; nonzero when known, out[0..n) written.
  * Define RSL_NO_SERVICE_PROTOTYPES before including rsl_stdlib.clh to skip the
  * prototypes (e.g. when the definitions come first).
  */
@@ -130,6 +143,9 @@ typedef struct RslGlobals {
     unsigned int lights_off; /* lights 0..31 Illuminate turned off for this surface */
     float4 light_cache_L[RSL_LIGHT_CACHE];
     float4 light_cache_Cl[RSL_LIGHT_CACHE]; /* w: 1 for a solar light */
+    /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global
+     * s, t, which texture lookups use at a shading point's neighbours (DERIVATIVES) */
+    float4 st_footprint;
 } RslGlobals;
 
 /* DERIVATIVES. Du, Dv, Deriv, area, calculatenormal and filterstep are finite
@@ -151,8 +167,11 @@ typedef struct RslDeriv {
     float4 v[RSL_MAX_DERIV][2];
 } RslDeriv;
 
+struct RslTexContext; /* the renderer's texture state (TEXTURES) */
+
 typedef struct RslEval {
     RslDeriv* deriv;  /* 0: no derivatives (lights, atmospheres, imagers) */
+    struct RslTexContext* tex; /* 0: textures give their defaults */
     int mode_light;   /* -1: no light's Cl is used */
     int mode_trace;   /* -1: every trace() returns 0 */
     int trace_count;  /* trace() calls made in this evaluation */
@@ -164,6 +183,14 @@ typedef struct RslEval {
 typedef struct RslMatrix {
     float4 r[4];
 } RslMatrix;
+
+/* Texture services (TEXTURES above). */
+#define RSL_TEX_2D 0
+#define RSL_TEX_ENVIRONMENT 1
+#define RSL_TEX_SHADOW 2
+#define RSL_TEXINFO_RESOLUTION 0  /* float[2] */
+#define RSL_TEXINFO_CHANNELS 1    /* float */
+#define RSL_TEXINFO_TYPE 2        /* string id of "texture", "environment", "shadow" */
 
 /* Spaces for rsl_space_matrix. */
 #define RSL_SPACE_CURRENT 0

@@ -59,6 +59,103 @@ std::string Emitter::message(const Expr& e) {
     return "rsl_msg_" + kc + "(" + found + ", " + buf + ", &" + lvalue(var) + ")";
 }
 
+// texture(), environment(), shadow() and bump() through the renderer's texture service
+// (rsl_abi.h, TEXTURES): the positional arguments, then "name", value pairs: blur,
+// width (swidth, twidth: their larger), fill, bias, samples.
+std::string Emitter::textureCall(const Expr& e, bool vret) {
+    const std::string& n = e.text;
+    m_out.usesTexture = true;
+    m_out.usesDerivatives = true;  // filter widths come from the footprint
+    size_t pairs = 1;
+    while (pairs < e.args.size() && !e.args[pairs]->type.isString()) ++pairs;
+    std::map<std::string, std::string> opt = {{"blur", "0.0f"}, {"width", "1.0f"},
+                                              {"fill", "0.0f"}, {"bias", "-1.0f"},
+                                              {"samples", "16.0f"}};
+    std::string sw, tw;
+    for (size_t i = pairs; i + 1 < e.args.size(); i += 2) {
+        const Expr& key = *e.args[i];
+        std::string v = exprAs(*e.args[i + 1], BaseType::Float);
+        if (key.kind != ExprKind::String) {
+            m_diag.warning(key.loc, n + "(): a parameter name must be a string literal; ignored");
+            continue;
+        }
+        if (key.text == "swidth") sw = v;
+        else if (key.text == "twidth") tw = v;
+        else if (opt.count(key.text)) opt[key.text] = v;
+        else if (key.text != "filter")
+            m_diag.warning(key.loc, n + "(): parameter \"" + key.text + "\" is not supported; ignored");
+    }
+    if (!sw.empty() || !tw.empty())
+        opt["width"] = "fmax(" + (sw.empty() ? opt["width"] : sw) + ", " + (tw.empty() ? opt["width"] : tw) + ")";
+    std::string id = exprAs(*e.args[0], BaseType::String);
+    std::string ch = e.channel ? "(int)(" + exprAs(*e.channel, BaseType::Float) + ")" : "0";
+    auto F = [&](size_t i) { return exprAs(*e.args[i], BaseType::Float); };
+    auto V = [&](size_t i) { return exprAs(*e.args[i], BaseType::Vector); };
+    std::string call;
+    if (n == "texture") {
+        if (pairs == 1)
+            call = "rsl_tex2d(g, ev, " + id + ", " + ch + ", g->s, g->t, ";
+        else if (pairs == 3)
+            call = "rsl_tex2d(g, ev, " + id + ", " + ch + ", " + F(1) + ", " + F(2) + ", ";
+        else {
+            call = "rsl_tex2d_quad(ev, " + id + ", " + ch;
+            for (size_t i = 1; i < 9; ++i) call += ", " + F(i);
+            call += ", ";
+        }
+        call += opt["width"] + ", " + opt["blur"] + ", " + opt["fill"] + ")";
+    } else if (n == "environment") {
+        // the four-direction form: their mean, the spread between them as the footprint
+        std::string R = pairs == 2 ? V(1) : "(0.25f * (" + V(1) + " + " + V(2) + " + " + V(3) + " + " + V(4) + "))";
+        call = "rsl_environment_map(ev, " + id + ", " + ch + ", " + R + ", " + opt["width"] + ", " +
+               opt["blur"] + ", " + opt["fill"] + ")";
+    } else if (n == "shadow") {
+        std::string P = pairs == 2 ? exprAs(*e.args[1], BaseType::Point)
+                                   : "(0.25f * (" + exprAs(*e.args[1], BaseType::Point) + " + " +
+                                         exprAs(*e.args[2], BaseType::Point) + " + " +
+                                         exprAs(*e.args[3], BaseType::Point) + " + " +
+                                         exprAs(*e.args[4], BaseType::Point) + "))";
+        call = "rsl_shadow_map(ev, " + id + ", " + ch + ", " + P + ", " + opt["width"] + ", " +
+               opt["blur"] + ", " + opt["bias"] + ", " + opt["samples"] + ")";
+        // "raytrace" (and "") in a light: the renderer's own shadow ray does the work
+        if (m_sh.kind == ShaderKind::Light)
+            call = "((" + id + ") == " + std::to_string(stringId("raytrace")) + " || (" + id +
+                   ") == 0 ? (float4)(0.0f) : " + call + ")";
+        else if (e.args[0]->kind == ExprKind::String && e.args[0]->text == "raytrace")
+            m_diag.warning(e.loc, "shadow(\"raytrace\") in a surface shader is not traced: it "
+                                  "gives 0 (unoccluded); the renderer traces light shadows itself");
+        if (e.args[0]->kind == ExprKind::String && e.args[0]->text == "raytrace")
+            call = "(float4)(0.0f)";
+    } else {  // bump(name, N, dPdu, dPdv[, s, t | 8 coordinates])
+        std::string s = pairs >= 6 ? F(4) : "g->s", t = pairs >= 6 ? F(5) : "g->t";
+        return "rsl_bump_map(g, ev, " + id + ", " + ch + ", " + exprAs(*e.args[1], BaseType::Normal) +
+               ", " + V(2) + ", " + V(3) + ", " + s + ", " + t + ", " + opt["width"] + ", " +
+               opt["blur"] + ")";
+    }
+    return vret ? "rsl_w0(" + call + ")" : "(" + call + ").x";
+}
+
+// textureinfo(name, "resolution" | "channels" | "type", var)
+std::string Emitter::textureInfo(const Expr& e) {
+    const Expr& what = *e.args[1];
+    const Expr& var = *e.args[2];
+    int code = -1, slots = 0;
+    if (what.kind == ExprKind::String) {
+        if (what.text == "resolution") code = 0, slots = 2;
+        else if (what.text == "channels") code = 1, slots = 1;
+        else if (what.text == "type") code = 2, slots = 1;
+    }
+    int varSlots = slotsOf(var.type.base) * (var.type.isArray() ? var.type.arraySize : 1);
+    if (code < 0 || varSlots != slots) return "0.0f";
+    std::string buf = "_tinfo" + std::to_string(m_tmp++);
+    m_pre.push_back("float " + buf + "[" + std::to_string(slots) + "];");
+    std::string found = "rsl_textureinfo(" + exprAs(*e.args[0], BaseType::String) + ", " +
+                        std::to_string(code) + ", " + buf + ", " + std::to_string(slots) + ")";
+    if (var.type.isArray())
+        return "rsl_msg_F(" + found + ", " + buf + ", " + lvalue(var) + ", " + std::to_string(slots) + ")";
+    return "rsl_msg_" + std::string(var.type.isString() ? "s" : "f") + "(" + found + ", " + buf +
+           ", &" + lvalue(var) + ")";
+}
+
 std::string Emitter::builtin(const Expr& e) {
     const std::string& n = e.text;
     const BuiltinSig* sig = e.sig;
@@ -244,23 +341,9 @@ std::string Emitter::builtin(const Expr& e) {
         return "rsl_trace(ev, " + A(0) + ", " + A(1) + ")";
     }
     if (n == "transmission") return "rsl_f2v(1.0f)";
-    if (n == "shadow") {
-        const Expr& m = *e.args[0];
-        if (m_sh.kind != ShaderKind::Light || (m.kind == ExprKind::String && m.text != "raytrace"))
-            m_diag.warning(e.loc, "shadow() returns 0 (unoccluded) until shadow maps land (issue 9)");
-        return vret ? "rsl_f2v(0.0f)" : "0.0f";
-    }
-    if (n == "texture" || n == "environment") {
-        m_out.usesTexture = true;
-        m_diag.warning(e.loc, n + "() returns its default until textures land (issue 9)");
-        return vret ? "rsl_f2v(0.0f)" : "0.0f";
-    }
-    if (n == "bump") {
-        m_out.usesTexture = true;
-        m_diag.warning(e.loc, "bump() returns its default until textures land (issue 9)");
-        return A(1);
-    }
-    if (n == "textureinfo") return "0.0f";
+    if (n == "texture" || n == "environment" || n == "shadow" || n == "bump")
+        return textureCall(e, vret);
+    if (n == "textureinfo") return textureInfo(e);
     if (e.builtin->flags & BF_MESSAGE) return message(e);
     error(e.loc, "builtin '" + n + "' is not supported by the code generator yet");
     return clZero(ret);

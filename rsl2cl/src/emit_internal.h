@@ -41,6 +41,8 @@ public:
     std::string spaceArg(const Expr& e);
     std::string colorSpaceArg(const Expr& e);
     std::string message(const Expr& e);  // lightsource(), attribute(), option(), ...
+    std::string textureCall(const Expr& e, bool vret);  // texture, environment, shadow, bump
+    std::string textureInfo(const Expr& e);
 
     void error(const SourceLoc& loc, const std::string& msg) { m_diag.error(loc, msg); }
 

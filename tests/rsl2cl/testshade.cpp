@@ -180,6 +180,13 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
                           sc.lightParams, true)
         << messageService("int rsl_attribute(int nameId, float* out, int n)", sc.attributes, false)
         << messageService("int rsl_option(int nameId, float* out, int n)", sc.options, false);
+    // no textures here: every lookup gives its fill value
+    src << "float4 rsl_texture_service(RslEval* ev, int kind, int id, int channel, float4 p, float4 dpdu,\n"
+    "                           float4 dpdv, float width, float blur, float fill, float4 extra) {\n"
+    "  (void)ev; (void)kind; (void)id; (void)channel; (void)p; (void)dpdu; (void)dpdv; (void)width;\n"
+    "  (void)blur; (void)extra; return (float4)(fill, fill, fill, 0.0f);\n}\n"
+    "float rsl_textureinfo_service(int id, int what, float* out, int n) {\n"
+    "  (void)id; (void)what; (void)out; (void)n; return 0.0f;\n}\n";
     src << shader.source << "\n";
     bool light = shader.kind == "light";
     if (!shader.prepFunction.empty())  // the instance's uniform work (hoist.h), run first

@@ -1,0 +1,80 @@
+// rib_builder_textures.cpp: the RIB's texture-making requests (MakeTexture,
+// MakeLatLongEnvironment, MakeCubeFaceEnvironment, MakeShadow), carried out when read,
+// as PRMan does. Relative file names are taken from the RIB's folder, where the render
+// also looks for textures.
+#include <filesystem>
+
+#include "rib_builder.h"
+#include "texture/texture_maker.h"
+
+namespace rd {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string besideRib(const std::string& rib, const std::string& name) {
+    if (name.empty() || fs::path(name).is_absolute()) return name;
+    fs::path dir = fs::path(rib).parent_path();
+    return dir.empty() ? name : (dir / name).string();
+}
+
+MakeTextureOptions options(const std::string& swrap, const std::string& twrap,
+                           const std::string& filter, float swidth, float twidth) {
+    MakeTextureOptions o;
+    o.swrap = swrap.empty() ? "black" : swrap;
+    o.twrap = twrap.empty() ? "black" : twrap;
+    o.filter = filter;
+    o.swidth = swidth;
+    o.twidth = twidth;
+    return o;
+}
+
+}  // namespace
+
+template <typename F>
+void RibBuilder::makeTextureFile(L loc, const char* request, const std::string& output, F&& make) {
+    try {
+        make();
+    } catch (const std::exception& e) {
+        m_diag.error(loc, std::string(request) + ": " + e.what() + " (\"" + output + "\" not made)");
+    }
+}
+
+void RibBuilder::makeTexture(L loc, S picture, S texture, S swrap, S twrap, S filter,
+                             float swidth, float twidth, P) {
+    const std::string& rib = m_options.sourceFile;
+    makeTextureFile(loc, "MakeTexture", texture, [&] {
+        rd::makeTexture(besideRib(rib, picture), besideRib(rib, texture),
+                        options(swrap, twrap, filter, swidth, twidth));
+    });
+}
+
+void RibBuilder::makeLatLongEnvironment(L loc, S picture, S texture, S filter, float swidth,
+                                        float twidth, P) {
+    const std::string& rib = m_options.sourceFile;
+    makeTextureFile(loc, "MakeLatLongEnvironment", texture, [&] {
+        rd::makeLatLongEnvironment(besideRib(rib, picture), besideRib(rib, texture),
+                                   options("periodic", "clamp", filter, swidth, twidth));
+    });
+}
+
+void RibBuilder::makeCubeFaceEnvironment(L loc, rib::Target::Strings faces, S texture,
+                                         float fov, S filter, float swidth, float twidth, P) {
+    const std::string& rib = m_options.sourceFile;
+    makeTextureFile(loc, "MakeCubeFaceEnvironment", texture, [&] {
+        if (faces.size() != 6) throw std::runtime_error("needs six faces");
+        std::array<std::string, 6> f;
+        for (size_t i = 0; i < 6; ++i) f[i] = besideRib(rib, faces[i]);
+        rd::makeCubeFaceEnvironment(f, besideRib(rib, texture), fov,
+                                    options("periodic", "clamp", filter, swidth, twidth));
+    });
+}
+
+void RibBuilder::makeShadow(L loc, S picture, S texture, P) {
+    const std::string& rib = m_options.sourceFile;
+    makeTextureFile(loc, "MakeShadow", texture, [&] {
+        rd::makeShadow(besideRib(rib, picture), besideRib(rib, texture));
+    });
+}
+
+}  // namespace rd
