@@ -115,7 +115,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     uint disp = (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT;
     if (!culled && (RSL_DERIVS_SURFACE || disp)) {
         RslGlobals g1, g2;
-        RD_NEIGHBOUR_GLOBALS(g, g1, g2, h, rs, RD_HIT_BUFFERS);
+        RD_NEIGHBOUR_GLOBALS(g, g1, g2, h, rs, dir, RD_HIT_BUFFERS);
 #ifdef RT_HAS_DISPLACEMENT
         if (disp) rd_displace_lanes((int)disp - 1, &g, &g1, &g2, params, tc);
 #endif

@@ -88,7 +88,8 @@ void TextureSet::openFile(Texture& t, bool mayConvert) {
         ++levels;
     }
     (void)ic->geterror();  // the probe past the last level leaves an error behind
-    if (mayConvert && levels == 1 && (spec.width > 1 || spec.height > 1)) {
+    const bool made = spec.tile_width > 0 && !spec.get_string_attribute("textureformat").empty();
+    if (mayConvert && !made && levels == 1 && (spec.width > 1 || spec.height > 1)) {
         // a picture, not a mip-map: make one once, as `raydrive txmake` does, and keep it
         std::error_code ec;
         auto stamp = fs::last_write_time(t.file, ec).time_since_epoch().count();

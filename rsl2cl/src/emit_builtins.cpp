@@ -136,6 +136,7 @@ std::string Emitter::textureCall(const Expr& e, bool vret) {
 
 // textureinfo(name, "resolution" | "channels" | "type", var)
 std::string Emitter::textureInfo(const Expr& e) {
+    m_out.usesTexture = true;  // its map names are the renderer's to find
     const Expr& what = *e.args[1];
     const Expr& var = *e.args[2];
     int code = -1, slots = 0;

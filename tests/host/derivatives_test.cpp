@@ -75,8 +75,9 @@ TEST(Derivatives, FootprintStepsAndAreaOrthographic) {
 }
 
 // Perspective, fov 90 over 16 pixels: the footprint grows by 2/16 per unit of distance,
-// so at the plane z = 5 straight ahead area(P) = (5 * 0.125)^2 (a ray cone: the tilt
-// of off-axis rays is not in it, so only the middle pixels are compared).
+// so at the plane z = 5 straight ahead area(P) = (5 * 0.125)^2; the middle pixels'
+// samples lie up to a pixel off the axis, which lengthens the distance and tilts the
+// footprint: up to 5% more.
 TEST(Derivatives, AreaGrowsWithDistanceInPerspective) {
     Rendered img = renderRib(shaderPath() +
                              "Format 16 16 1\nPixelSamples 1 1\nProjection \"perspective\" "
@@ -85,7 +86,7 @@ TEST(Derivatives, AreaGrowsWithDistanceInPerspective) {
                              "WorldEnd\n");
     const double expect = std::pow(5.0 * 0.125, 2);
     for (int y = 7; y <= 8; ++y)
-        for (int x = 7; x <= 8; ++x) EXPECT_NEAR(img.at(x, y).b, expect, 0.03 * expect);
+        for (int x = 7; x <= 8; ++x) EXPECT_NEAR(img.at(x, y).b, 1.025 * expect, 0.025 * expect);
     // and twice as far, four times the area
     Rendered far = renderRib(shaderPath() +
                              "Format 16 16 1\nPixelSamples 1 1\nProjection \"perspective\" "
@@ -97,7 +98,8 @@ TEST(Derivatives, AreaGrowsWithDistanceInPerspective) {
 
 // calculatenormal of an undisplaced P is N; Deriv(s*s, s) = 2 s on a cylinder, where s
 // runs around and t along it (Deriv = Du(num)/Du(den) + Dv(num)/Dv(den), and t's
-// direction does not change s). Forward differences: error about one footprint in s.
+// direction does not change s). Forward differences: error about one footprint in s,
+// which the cylinder's tilt toward its silhouette stretches (1.5x at the pixels kept).
 TEST(Derivatives, CalculatenormalAndDerivOnACylinder) {
     Rendered img = renderRib(shaderPath() +
                              "Format 32 32 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"
@@ -115,10 +117,10 @@ TEST(Derivatives, CalculatenormalAndDerivOnACylinder) {
             worstDeriv = std::fmax(worstDeriv, std::fabs(p.g));
         }
     EXPECT_GT(covered, 300);
-    EXPECT_LT(worstN, 1e-3) << "calculatenormal(P) . N (forward difference: cos of half a step)";
-    EXPECT_LT(worstDeriv, 0.02) << "Deriv(s*s, s) - 2s";
-    std::printf("NUMERICS case=calculatenormal tolerance=1e-3 measured=%.3g\n", worstN);
-    std::printf("NUMERICS case=deriv_forward_difference tolerance=0.02 measured=%.3g\n",
+    EXPECT_LT(worstN, 2.5e-3) << "calculatenormal(P) . N (forward difference: cos of half a step)";
+    EXPECT_LT(worstDeriv, 0.03) << "Deriv(s*s, s) - 2s";
+    std::printf("NUMERICS case=calculatenormal tolerance=2.5e-3 measured=%.3g\n", worstN);
+    std::printf("NUMERICS case=deriv_forward_difference tolerance=0.03 measured=%.3g\n",
                 worstDeriv);
 }
 
