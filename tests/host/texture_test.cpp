@@ -5,6 +5,7 @@
 // or corrupt files reported with the file and the shader while the render goes on.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -253,4 +254,38 @@ TEST(Textures, BumpyDisplacesByItsMap) {
         for (int x = 0; x < 32; ++x) changed += std::fabs(bumped.at(x, y).r - flat.at(x, y).r) > 0.01;
     EXPECT_GT(changed, 50) << "the checks' edges tilt the normal";
     EXPECT_LT(changed, 32 * 32) << "inside the checks the map is flat";
+}
+
+// MakeCubeFaceEnvironment: six constant faces (+x red, -x green, +y blue, -y yellow,
+// +z white, -z grey) resampled into a lat-long map; each axis reads its face's colour.
+TEST(Textures, CubeFacesBecomeALatLongMap) {
+    const float colours[6][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, 1, 1}, {0.5f, 0.5f, 0.5f}};
+    std::array<std::string, 6> faces;
+    for (int f = 0; f < 6; ++f) {
+        OIIO::ImageBuf img(OIIO::ImageSpec(16, 16, 3, OIIO::TypeDesc::FLOAT));
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x) img.setpixel(x, y, colours[f], 3);
+        faces[size_t(f)] = dir() + "/face" + std::to_string(f) + ".exr";
+        ASSERT_TRUE(img.write(faces[size_t(f)]));
+    }
+    rd::makeCubeFaceEnvironment(faces, dir() + "/cube.env", 90.0f, {});
+    const char* dirs[6] = {"1 0 0", "-1 0 0", "0 1 0", "0 -1 0", "0 0 1", "0 0 -1"};
+    for (int f = 0; f < 6; ++f) {
+        Rendered r = renderRib(searchPath() +
+                               "Format 4 4 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"
+                               "WorldBegin\nSurface \"envlook\" \"map\" \"" + dir() +
+                               "/cube.env\" \"vector dir\" [" + dirs[f] + "]\n"
+                               "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5]\nWorldEnd\n");
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR((&r.at(2, 2).r)[c], colours[f][c], 1e-3) << dirs[f] << " channel " << c;
+    }
+}
+
+// A scene whose shaders look nothing up gets no texture code or buffers.
+TEST(Textures, ScenesWithoutTexturesGetNone) {
+    Rendered r = renderRib("Format 4 4 1\nPixelSamples 1 1\nWorldBegin\nSurface \"matte\"\n"
+                           "Sphere 1 -1 1 360\nWorldEnd\n");
+    EXPECT_FALSE(r.stats.features.textures);
+    EXPECT_EQ(r.stats.program.options.find("RT_HAS_TEXTURES"), std::string::npos);
+    EXPECT_EQ(r.stats.textures.textures, 0u);
 }
