@@ -62,6 +62,7 @@ public:
     DeviceBuffer<uint32_t> counterBuf;    // [0] requests, [1] lookups, [2] missed, [3] pass
     DeviceBuffer<uint32_t> usedBuf;       // per cache slot: the last pass that used it
     static constexpr size_t kMaxRequests = 8192;
+    static constexpr size_t kPreloadTiles = 1024;  // 16 MiB: uploaded before rendering
 
     // Loads what the requests name into the cache and uploads it with the page table;
     // a request for a broken or unknown texture is reported once per (texture, shader).
