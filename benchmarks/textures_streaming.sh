@@ -71,7 +71,7 @@ RIB
 
 printf "%-22s %9s %7s %9s %10s %12s %8s %s\n" cache "wall ms" ratio "hit rate" "tiles up" "MB up" reshade image
 resident_ms=""
-for cache in 22000 4096 1024 256; do
+for cache in 22000 4096 1024 256 64; do
   times=()
   for r in $(seq "$runs"); do
     times+=("$(wall "$bin" -q --texture-cache "$cache" -o "c$cache.exr" --stats "c$cache.json" scene.rib)")
