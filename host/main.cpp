@@ -16,6 +16,7 @@
 #include "render/renderer.h"
 #include "render/stop.h"
 #include "rib/reader.h"
+#include "scene/depth_map.h"
 #include "scene/rib_builder.h"
 #include "stats/stats_report.h"
 #include "texture/texture_maker.h"
@@ -170,6 +171,12 @@ int main(int argc, char** argv) {
             std::string out = outputName(scenes[i], output, i, scenes.size());
             rd::ExrOptions opts;
             opts.alpha = scenes[i].display.mode != "rgb";
+            if (scenes[i].display.mode == "z") {  // a depth map: Z and the camera's matrices
+                opts.colour = false;
+                rd::DepthMapMatrices m = rd::depthMapMatrices(scenes[i]);
+                opts.matrices["worldToCamera"] = m.worldToCamera;
+                opts.matrices["worldToScreen"] = m.worldToScreen;
+            }
             opts.halfFloat = halfFloat;
             opts.metadata["software"] = "RayDrive " RAYDRIVE_VERSION;
             opts.metadata["raydrive:device"] = st.device;

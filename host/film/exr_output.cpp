@@ -9,6 +9,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfMatrixAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 #include <Imath/half.h>
@@ -32,9 +33,13 @@ void writeExr(const std::string& path, int width, int height, const std::vector<
         header.compression() = Imf::ZIP_COMPRESSION;
         for (const auto& [k, v] : options.metadata)
             header.insert(k, Imf::StringAttribute(v));
+        for (const auto& [k, m] : options.matrices)
+            header.insert(k, Imf::M44fAttribute(Imath::M44f(m[0], m[1], m[2], m[3], m[4], m[5],
+                                                            m[6], m[7], m[8], m[9], m[10], m[11],
+                                                            m[12], m[13], m[14], m[15])));
         Imf::PixelType type = options.halfFloat ? Imf::HALF : Imf::FLOAT;
         const char* names[] = {"R", "G", "B", "A"};
-        int channels = options.alpha ? 4 : 3;
+        int channels = !options.colour ? 0 : options.alpha ? 4 : 3;
         for (int c = 0; c < channels; ++c) header.channels().insert(names[c], Imf::Channel(type));
         // OpenEXR does not convert on write: a HALF channel needs a half buffer.
         Imf::FrameBuffer fb;

@@ -2,6 +2,7 @@
 // The file is written under a temporary name and renamed into place, so an interrupted
 // or failed write never leaves a file that looks complete.
 #pragma once
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -11,9 +12,13 @@
 namespace rd {
 
 struct ExrOptions {
+    bool colour = true;      // false: only the extra channels (a depth map: "Z")
     bool alpha = true;       // "rgba" vs "rgb"
     bool halfFloat = false;  // 16-bit half instead of 32-bit float channels
     std::map<std::string, std::string> metadata;  // string attributes in the header
+    // 4x4 matrix attributes, row-major in the row-vector convention (p' = p M), e.g. a
+    // depth map's "worldToCamera" and "worldToScreen"
+    std::map<std::string, std::array<float, 16>> matrices;
     std::vector<Channel> extra;  // AOV channels (always 32-bit float), width*height each
     // A crop window: the pixels given are the data window at (dataX, dataY) of a frame of
     // displayWidth x displayHeight (0: the data is the whole frame).

@@ -180,11 +180,15 @@ void RibBuilder::display(L loc, const std::string& name, const std::string& type
         addAov(loc, mode);
         return;
     }
-    if (type != "file" && type != "openexr" && type != "exr")
+    // "zfile" and "shadow" are depth maps (mode "z"): one channel Z and the camera's
+    // matrices, for MakeShadow
+    const bool depth = mode == "z" || type == "zfile" || type == "shadow";
+    if (type != "file" && type != "openexr" && type != "exr" && type != "zfile" && type != "shadow")
         m_diag.warning(loc, "display type \"" + type + "\" is written as an OpenEXR file");
-    if (mode != "rgb" && mode != "rgba")
+    if (mode != "rgb" && mode != "rgba" && mode != "z")
         m_diag.warning(loc, "display mode \"" + mode + "\" is written as rgba");
-    m_options.display = {name, type, mode == "rgb" ? "rgb" : "rgba", loc};
+    m_options.display = {name, type, depth ? "z" : mode == "rgb" ? "rgb" : "rgba", loc};
+    if (depth) m_options.aovs.push_back("z");
 }
 
 bool RibBuilder::addAov(L loc, const std::string& name) {

@@ -13,7 +13,11 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "film/exr_output.h"
 #include "render_harness.h"
+#include "rib/reader.h"
+#include "scene/depth_map.h"
+#include "scene/rib_builder.h"
 #include "texture/texture_maker.h"
 
 using rd::test::Rendered;
@@ -288,4 +292,40 @@ TEST(Textures, ScenesWithoutTexturesGetNone) {
     EXPECT_FALSE(r.stats.features.textures);
     EXPECT_EQ(r.stats.program.options.find("RT_HAS_TEXTURES"), std::string::npos);
     EXPECT_EQ(r.stats.textures.textures, 0u);
+}
+
+// The whole shadow-map path: RayDrive renders a depth map from a perspective light at
+// the origin (Display mode "z": Z and the camera's matrices, as raydrive writes it),
+// MakeShadow makes it a shadow map, and a wall at z = 6 seen orthographically is dark
+// exactly behind an occluder at z = 3 (half size 0.5: its shadow's half size is 1).
+TEST(Textures, ShadowMapFromARenderedDepthMap) {
+    const std::string occluder = "Polygon \"P\" [-0.5 -0.5 3  0.5 -0.5 3  0.5 0.5 3  -0.5 0.5 3]\n";
+    const std::string wall = "Polygon \"P\" [-8 -8 6  8 -8 6  8 8 6  -8 8 6]\n";
+    rd::RenderSettings depthSettings;
+    depthSettings.geometricAovs = true;
+    Rendered depth = renderRib("Format 128 128 1\nPixelSamples 1 1\nProjection \"perspective\" "
+                               "\"fov\" 60\nDisplay \"light.z\" \"zfile\" \"z\"\nWorldBegin\n" +
+                                   occluder + wall + "WorldEnd\n",
+                               depthSettings);
+    rib::Diagnostics diag(&std::cerr);
+    rd::RibBuilder builder(diag, "light.rib");
+    rib::readString("Format 128 128 1\nProjection \"perspective\" \"fov\" 60\nWorldBegin\nWorldEnd\n",
+                    "light.rib", builder, diag);
+    rd::DepthMapMatrices m = rd::depthMapMatrices(builder.scenes().front());
+    rd::ExrOptions opts;
+    opts.colour = false;
+    opts.extra = depth.film.aovChannels("z");
+    opts.matrices["worldToCamera"] = m.worldToCamera;
+    opts.matrices["worldToScreen"] = m.worldToScreen;
+    rd::writeExr(dir() + "/light.z.exr", 128, 128, depth.pixels, opts);
+    rd::makeShadow(dir() + "/light.z.exr", dir() + "/rendered.shd");
+    Rendered r = renderRib(searchPath() + "Format 32 32 1\nPixelSamples 1 1\n"
+                           "Projection \"orthographic\"\nScreenWindow -4 4 -4 4\nWorldBegin\n"
+                           "Surface \"shadowlook\" \"map\" \"" + dir() + "/rendered.shd\"\n" +
+                           wall + "WorldEnd\n");
+    // pixel (x, y) sees the wall at (-4 + (x + 0.5) / 4, 4 - (y + 0.5) / 4)
+    EXPECT_NEAR(r.at(16, 16).r, 0.0, 1e-6) << "behind the occluder";
+    EXPECT_NEAR(r.at(13, 13).r, 0.0, 1e-6) << "behind the occluder, near its corner";
+    EXPECT_NEAR(r.at(10, 16).r, 1.0, 1e-6) << "beside the shadow";
+    EXPECT_NEAR(r.at(2, 2).r, 1.0, 1e-6) << "in the open";
 }
