@@ -151,8 +151,12 @@ void RibBuilder::projection(L loc, const std::string& name, const rib::ParamList
         }
     } else if (name == "orthographic") {
         c.perspective = false;
+    } else if (name == "null") {
+        // RI: the transforms that follow (a Perspective) are the projection
+        c.perspective = false;
+        m_projectionNull = true;
     } else {
-        m_diag.error(loc, "unknown projection \"" + name + "\" (perspective, orthographic)");
+        m_diag.error(loc, "unknown projection \"" + name + "\" (perspective, orthographic, null)");
     }
     // RI: transformations given before Projection are screen space; start camera space.
     m_attrStack.back().ctm = glm::mat4(1.0f);

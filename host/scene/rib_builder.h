@@ -215,6 +215,7 @@ private:
     void finishSolid(int root);
 
     rib::Diagnostics& m_diag;
+    bool m_projectionNull = false;  // Projection "null": a Perspective defines it
     Scene m_options;               // option state; copied into each new world
     Scene m_world;                 // the world being built
     bool m_inWorld = false;

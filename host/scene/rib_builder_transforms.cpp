@@ -144,10 +144,23 @@ void RibBuilder::exposure(L loc, float gain, float gamma) {
     m_options.camera.exposure[1] = gamma;
 }
 
-// Perspective makes the current transform projective, which placements here cannot be.
-void RibBuilder::perspective(L loc, float) {
-    m_diag.warning(loc, "Perspective (a projective transform) is not supported; ignored "
-                        "(use Projection \"perspective\" for the camera)");
+// Perspective makes the current transform projective. As the projection (after
+// Projection "null", or first in the camera's transforms before WorldBegin) it is the
+// perspective camera of that field of view; anywhere else placements here cannot be
+// projective and it is ignored with a warning.
+void RibBuilder::perspective(L loc, float fov) {
+    const bool identity = m_attrStack.back().ctm == glm::mat4(1.0f);
+    if (!m_inWorld && !m_defining && (m_projectionNull || identity)) {
+        if (!(fov > 0.0f && fov < 180.0f))
+            return m_diag.error(loc, "Perspective fov must be in (0, 180) degrees");
+        m_options.camera.perspective = true;
+        m_options.camera.fovDeg = fov;
+        m_projectionNull = false;
+        m_attrStack.back().ctm = glm::mat4(1.0f);  // camera space starts after it
+        return;
+    }
+    m_diag.warning(loc, "Perspective inside the world or after camera transforms (a "
+                        "projective transform) is not supported; ignored");
 }
 
 void RibBuilder::colorSamples(L loc, Floats nRGB, Floats) {

@@ -70,3 +70,22 @@ TEST(Camera, MatteObjectIsAHoldout) {
     EXPECT_EQ(img.at(1, 1).a, 1.0f);
     EXPECT_EQ(img.at(1, 1).r, 1.0f);
 }
+
+// RI's other way to a perspective camera: Projection "null" then Perspective fov (or a
+// Perspective first among the camera's transforms) renders what Projection
+// "perspective" "fov" does.
+TEST(Camera, PerspectiveRequestIsTheProjection) {
+    const std::string world = "Translate 0 0 5\nWorldBegin\nSurface \"matte\"\n"
+                              "LightSource \"distantlight\" 1\nSphere 1 -1 1 360\nWorldEnd\n";
+    const std::string head = "Format 24 24 1\nPixelSamples 1 1\n";
+    Rendered projection = renderRib(head + "Projection \"perspective\" \"fov\" 40\n" + world);
+    Rendered null = renderRib(head + "Projection \"null\"\nPerspective 40\n" + world);
+    Rendered bare = renderRib(head + "Perspective 40\n" + world);
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 24; ++x) {
+            EXPECT_EQ(projection.at(x, y).r, null.at(x, y).r) << x << " " << y;
+            EXPECT_EQ(projection.at(x, y).a, bare.at(x, y).a) << x << " " << y;
+        }
+    EXPECT_GT(projection.at(12, 12).a, 0.5f);
+    EXPECT_EQ(projection.at(0, 0).a, 0.0f) << "fov 40 at distance 5 leaves the corners empty";
+}
