@@ -13,8 +13,9 @@ int Param::components() const {
         case ParamType::Point:
         case ParamType::Vector:
         case ParamType::Normal:
-        case ParamType::Color:
             return 3;
+        case ParamType::Color:
+            return colorComponents;
         case ParamType::HPoint:
             return 4;
         case ParamType::Matrix:

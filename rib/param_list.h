@@ -18,7 +18,9 @@ struct Param {
     std::vector<float> floats;       // Float, Point, Vector, Normal, Color, HPoint, Matrix
     std::vector<int> ints;           // Integer
     std::vector<std::string> strings; // String
-    // Floats per element: 3 for point/vector/normal/color, 4 for hpoint, 16 for matrix.
+    int colorComponents = 3;          // a color's floats (ColorSamples)
+    // Floats per element: 3 for point/vector/normal, colorComponents for color, 4 for
+    // hpoint, 16 for matrix.
     int components() const;
 };
 

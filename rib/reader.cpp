@@ -263,6 +263,8 @@ bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
                 return false;
             }
             args.floatArrays.emplace_back(got.begin(), got.end());
+            if (c == 'C' && m_target.wantsRgbColors() && !m_nRGB.empty())
+                args.floatArrays.back() = toRgb(args.floatArrays.back());
             ++si;
         } else if (c == 'B') {
             if (vi < vals.size() && !vals[vi].array && vals[vi].isString) {
@@ -422,6 +424,7 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
         for (double d : v.nums) p.floats.push_back(static_cast<float>(d));
         count = p.floats.size();
     }
+    if (p.type == ParamType::Color) p.colorComponents = m_nColor;
     size_t per = static_cast<size_t>(p.components()) * static_cast<size_t>(p.arraySize);
     if (per > 1 && count % per != 0) {
         std::string type = paramTypeName(p.type);
@@ -431,7 +434,24 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
                               std::to_string(count));
         return false;
     }
+    if (p.type == ParamType::Color && m_target.wantsRgbColors() && !m_nRGB.empty()) {
+        p.floats = toRgb(p.floats);
+        p.colorComponents = 3;
+    }
     return true;
+}
+
+std::vector<float> Reader::toRgb(const std::vector<float>& n) const {
+    const size_t k = m_nRGB.size() / 3;
+    std::vector<float> rgb;
+    rgb.reserve(n.size() / k * 3);
+    for (size_t base = 0; base + k <= n.size(); base += k)
+        for (size_t j = 0; j < 3; ++j) {
+            float v = 0.0f;
+            for (size_t i = 0; i < k; ++i) v += n[base + i] * m_nRGB[i * 3 + j];
+            rgb.push_back(v);
+        }
+    return rgb;
 }
 
 }  // namespace detail

@@ -146,6 +146,7 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
                 break;
             }
             m_nColor = static_cast<int>(nRGB.size() / 3);
+            m_nRGB = nRGB;
             t.colorSamples(loc, nRGB, RGBn);
             break;
         }

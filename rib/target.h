@@ -92,6 +92,10 @@ public:
     virtual void hider(L, S /*type*/, P) {}
     // nRGB is n*3 floats (n rows of RGB), RGBn is 3*n; both row-major.
     virtual void colorSamples(L, Floats /*nRGB*/, Floats /*RGBn*/) {}
+    // A target that renders RGB asks the reader for every colour (Color, Opacity, color
+    // parameters) as RGB: under ColorSamples n the reader converts the n values with the
+    // nRGB matrix before the call. Writers keep the n values (false).
+    virtual bool wantsRgbColors() const { return false; }
     virtual void relativeDetail(L, float) {}
     virtual void cropWindow(L, float /*xmin*/, float /*xmax*/, float /*ymin*/,
                             float /*ymax*/) {}

@@ -78,6 +78,7 @@ public:
     void perspective(L, float fovDeg) override;
     void exposure(L, float gain, float gamma) override;
     void colorSamples(L, Floats nRGB, Floats RGBn) override;
+    bool wantsRgbColors() const override { return true; }  // ColorSamples n: converted
     void textureCoordinates(L, float s1, float t1, float s2, float t2, float s3, float t3,
                             float s4, float t4) override;
     void orientation(L, const std::string& o) override;

@@ -12,7 +12,6 @@
 namespace rd {
 
 void RibBuilder::addMesh(L loc, const VertexData& mesh) {
-    const size_t np = mesh.p.size();
     if (m_defining) {
         // Inside ObjectBegin: keep the piece in the object's own space; instances place it.
         glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;

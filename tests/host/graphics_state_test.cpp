@@ -205,10 +205,35 @@ TEST(GraphicsState, UnsupportedRequestsWarn) {
     std::ostringstream err;
     rib::Diagnostics diag(&err);
     rd::RibBuilder b(diag, "w.rib");
-    rib::readString("ColorSamples [1 0 0 0 1 0 0 0 1 1 1 1] [1 0 0 0 1 0 0 0 1 1 1 1]\n"
-                    "WorldBegin\nPerspective 45\nWorldEnd\n", "w.rib", b, diag);
-    EXPECT_NE(err.str().find("w.rib:1: warning: ColorSamples"), std::string::npos) << err.str();
-    EXPECT_NE(err.str().find("w.rib:3: warning: Perspective"), std::string::npos) << err.str();
+    rib::readString("WorldBegin\nPerspective 45\nWorldEnd\n", "w.rib", b, diag);
+    EXPECT_NE(err.str().find("w.rib:2: warning: Perspective"), std::string::npos) << err.str();
+}
+
+// ColorSamples n: colours given with n values (Color, Opacity, "Cs" primitive variables,
+// shader colour parameters) reach the renderer as RGB through the nRGB matrix. Here
+// n = 4 with nRGB rows (1 0 0) (0 1 0) (0 0 1) (0.5 0.5 0.5).
+TEST(GraphicsState, ColorSamplesConvertThroughNRGB) {
+    const std::string cs =
+        "ColorSamples [1 0 0  0 1 0  0 0 1  0.5 0.5 0.5] [1 0 0 0  0 1 0 0  0 0 1 0]\n"
+        "Format 8 8 1\nPixelSamples 1 1\nProjection \"orthographic\"\nWorldBegin\n";
+    // Color [0.2 0.1 0 0.4] -> (0.4, 0.3, 0.2)
+    Rendered flat = renderRib(cs + "Color [0.2 0.1 0 0.4]\nSurface \"constant\"\n"
+                              "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5]\nWorldEnd\n");
+    EXPECT_NEAR(flat.at(4, 4).r, 0.4f, 1e-6f);
+    EXPECT_NEAR(flat.at(4, 4).g, 0.3f, 1e-6f);
+    EXPECT_NEAR(flat.at(4, 4).b, 0.2f, 1e-6f);
+    // per-vertex "Cs" with 4 values a vertex, all (0 0 0 1) -> (0.5 0.5 0.5)
+    Rendered varying = renderRib(cs + "Surface \"constant\"\n"
+                                 "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5] \"Cs\" "
+                                 "[0 0 0 1  0 0 0 1  0 0 0 1  0 0 0 1]\nWorldEnd\n");
+    EXPECT_NEAR(varying.at(4, 4).g, 0.5f, 1e-6f);
+    // a shader's colour parameter: matte's light, "lightcolor" [0 0 1 1] -> (0.5 0.5 1.5)
+    Rendered lit = renderRib(cs + "LightSource \"ambientlight\" 1 \"lightcolor\" [0 0 1 1]\n"
+                             "Color [1 0 0 1]\nSurface \"matte\" \"Ka\" 1 \"Kd\" 0\n"
+                             "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5]\nWorldEnd\n");
+    // Cs = (1.5, 0.5, 0.5), ambient (0.5, 0.5, 1.5)
+    EXPECT_NEAR(lit.at(4, 4).r, 0.75f, 1e-5f);
+    EXPECT_NEAR(lit.at(4, 4).b, 0.75f, 1e-5f);
 }
 
 // Exposure gain gamma: the resolved colour is (gain * colour)^(1 / gamma).
