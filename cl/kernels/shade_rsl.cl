@@ -19,7 +19,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const float4* quadric_motion, /* RT_HAS_MOTION only */
                             __global const Triangle* tris_end,
                             __global const float* sample_time,
-                            __global const uint* sample_pixel, /* RT_ROULETTE_DEPTH only */
+                            __global const uint* sample_pixel, /* roulette, area lights */
                             __global const uint* sample_index,
                             __global const uint* hit_instance, /* RT_HAS_INSTANCES only */
                             __global const float* params,
@@ -79,6 +79,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #define RD_HIT_BUFFERS org, dir, time, inst, tris, attrs, normals, vertex_st, vertex_cs, \
     vertex_os, materials, quadrics, quadric_primvars, quadric_motion, tris_end
     rd_surface_globals(&g, &m, h, RD_HIT_BUFFERS);
+    g.rng_pixel = sample_pixel[sample]; /* area lights pick their points by the sample */
+    g.rng_sample = sample_index[sample];
+    g.rng_depth = RT_TRACE_DEPTH(rs) + RT_TRANSPARENT_DEPTH(rs);
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */
 #ifdef RT_HAS_DERIVATIVES
     const float width_at_hit = rs.width + RT_PIXEL_SPREAD * h.t; /* the rays it spawns start this wide */
@@ -189,9 +192,20 @@ __kernel void shade_SURFACE(uint begin, uint count,
         float dist = sqrt(rt_dot3(toward, toward));
         if (!(dist > 0.0f)) continue;
         float4 sd = toward / dist;
-        /* leave from the side of the surface the light is on */
+        /* leave from the side of the surface the light is on; a light at a point ends
+         * the ray just short of it, measured from where the ray starts (the offset
+         * origin), so a light on a surface (an area light's own geometry) is not hidden
+         * by that surface */
         float4 so = rt_dot3(sd, Ngf) >= 0.0f ? Pl : rt_offset_ray(g.P, -Ngf);
         so.w = 0.0f;
+        if (!solar) {
+            float4 lp = g.P + toward - so;
+            lp.w = 0.0f;
+            float d2 = sqrt(rt_dot3(lp, lp));
+            if (!(d2 > 0.0f)) continue;
+            sd = lp / d2;
+            dist = d2;
+        }
         sd.w = solar ? INFINITY : dist * (1.0f - 1e-5f);
         uint s = r * light_count + l;
         shadow_origin[s] = so;

@@ -340,10 +340,13 @@ void RibBuilder::lightSource(L loc, const std::string& name, const std::string& 
     m_world.lights.push_back({name, params, m_attrStack.back().ctm, loc});
 }
 
-// An area light is rendered as its light shader (e.g. arealight) at its transform; the
-// geometry that follows is not yet its emitter.
+// An area light: its light shader (e.g. arealight) runs at points on the geometry that
+// follows in the same attribute block, one random point per shading point and sample
+// (soft shadows as the samples add up). Its quadrics are diced so they can be sampled.
 void RibBuilder::areaLightSource(L loc, S name, S handle, P params) {
+    const size_t before = m_world.lights.size();
     lightSource(loc, name, handle, params);
+    if (m_world.lights.size() > before) m_attrStack.back().areaLight = int(before);
 }
 
 // Illuminate turns a light off (or back on) for the geometry that follows, within the

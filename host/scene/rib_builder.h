@@ -167,6 +167,7 @@ private:
         ShaderRef atmosphere;    // the current Atmosphere call (name empty: none)
         uint64_t atmosphereKey = 0;
         ShaderRef displacement;  // the current Displacement call (name empty: none)
+        int areaLight = -1;      // AreaLightSource in this block: the geometry emits
         uint64_t displacementKey = 0;
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
         std::shared_ptr<const TrimCurves> trim;  // TrimCurve applies to later NuPatches
@@ -211,6 +212,7 @@ private:
     // closed solid (its seams and poles do not meet exactly).
     bool exactQuadrics() const {
         if (!m_solidStack.empty()) return true;
+        if (m_attrStack.back().areaLight >= 0) return false;  // its triangles are sampled
         return !m_forceTessellate && (m_inWorld ? m_world : m_options).render.exactQuadrics;
     }
     void finishSolid(int root);

@@ -115,6 +115,9 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
             m_solidNodes[leaf].memberWhat.push_back("mesh at " + loc.str());
         }
         m_world.triangles.push_back({f4(a), f4(b), f4(c)});
+        if (int light = m_attrStack.back().areaLight; light >= 0 && !prototype)
+            m_world.areaLightTriangles[uint32_t(light)].push_back(
+                flipNormals ? std::array<glm::vec3, 3>{a, c, b} : std::array<glm::vec3, 3>{a, b, c});
         m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars,
                                  (leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u) | extraFlags |
                                      (flipNormals ? uint32_t(RT_QF_FLIP) : 0u)});

@@ -2,6 +2,8 @@
 // their attributes, shader instances, lights, camera and the output options. The device
 // arrays are built from it (render/scene_upload), the BVH over its triangles.
 #pragma once
+#include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -93,6 +95,9 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
     std::vector<ShaderRef> lights;       // every LightSource, in order
+    // AreaLightSource: the triangles of the geometry that followed it in its attribute
+    // block (world, eye-relative, facing where they emit), by index into lights
+    std::map<uint32_t, std::vector<std::array<glm::vec3, 3>>> areaLightTriangles;
     std::vector<ShaderRef> atmospheres;  // one per distinct Atmosphere call in use
     std::vector<ShaderRef> displacements;  // one per distinct Displacement call in use
     ShaderRef imager;                    // the Imager option (name empty: none)

@@ -234,7 +234,8 @@ ShadingSetup ShaderSet::prepare() {
     std::vector<bool> lightAmbient;
     std::vector<const rsl::EmittedShader*> lightShaders;
     std::map<std::string, bool> lightEmitted;
-    for (const ShaderRef& l : m_scene.lights) {
+    for (size_t sceneLight = 0; sceneLight < m_scene.lights.size(); ++sceneLight) {
+        const ShaderRef& l = m_scene.lights[sceneLight];
         const rsl::EmittedShader* sh = find(l.name, "light", l.loc);
         if (!sh) continue;
         int index = int(lightCalls.size());
@@ -252,8 +253,37 @@ ShadingSetup ShaderSet::prepare() {
         auto f4 = [](const glm::vec3& v) {
             return "(float4)(" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + ", 0.0f)";
         };
-        lightCalls.push_back("lg.P = " + f4(o) + "; lg.N = lg.Ng = " + f4(n) + "; " +
-                             sh->functionName + "(&lg, rd_light_params_" +
+        std::string place = "lg.P = " + f4(o) + "; lg.N = lg.Ng = " + f4(n) + "; ";
+        // an area light: a point on its geometry instead, weighted by area
+        auto area = m_scene.areaLightTriangles.find(uint32_t(sceneLight));
+        if (area != m_scene.areaLightTriangles.end() && !area->second.empty()) {
+            const auto& tris = area->second;
+            const size_t count = std::min<size_t>(tris.size(), 4096);
+            if (count < tris.size())
+                m_diag.warning(l.loc, "area light geometry of " + std::to_string(tris.size()) +
+                                          " triangles: the first 4096 emit");
+            std::vector<double> cdf(count);
+            double total = 0;
+            for (size_t t = 0; t < count; ++t) {
+                const auto& v = tris[t];
+                total += 0.5 * double(glm::length(glm::cross(v[1] - v[0], v[2] - v[0])));
+                cdf[t] = total;
+            }
+            lights << "__constant float4 rd_area_" << index << "[] = {";
+            for (size_t t = 0; t < count; ++t) {
+                const auto& v = tris[t];
+                float w = total > 0 ? float(cdf[t] / total) : float(t + 1) / float(count);
+                for (int k = 0; k < 3; ++k)
+                    lights << (t || k ? ", " : "") << "(float4)(" << fmt(v[k].x) << ", "
+                           << fmt(v[k].y) << ", " << fmt(v[k].z) << ", "
+                           << (k == 0 ? fmt(t + 1 == count ? 1.0f : w) : std::string("0.0f")) << ")";
+            }
+            lights << "};\n";
+            place = "{ float4 ap_, an_; rd_area_point(rd_area_" + std::to_string(index) + ", " +
+                    std::to_string(count) + ", g, " + std::to_string(index) +
+                    ", &ap_, &an_); lg.P = ap_; lg.N = lg.Ng = an_; } ";
+        }
+        lightCalls.push_back(place + sh->functionName + "(&lg, rd_light_params_" +
                              std::to_string(index) + ")");
         lightAmbient.push_back(sh->ambientLight);
         lightShaders.push_back(sh);
@@ -426,6 +456,7 @@ ShadingSetup ShaderSet::prepare() {
                 "    g.ncomps = 3.0f;\n"
                 "    g.light_cache_count = 0;\n"
                 "    g.lights_off = 0u;\n"
+                "    g.rng_pixel = i;\n    g.rng_sample = 0u;\n    g.rng_depth = 0u;\n"
                 "    RslEval ev;\n"
                 "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
                 "    " + sh->functionName + "(&g, params + " + std::to_string(offset) + ", &ev);\n"
@@ -453,7 +484,8 @@ ShadingSetup ShaderSet::prepare() {
     }
     out.traceSlots = out.usesTrace ? 8 : 0;  // RSL_MAX_TRACE
     out.generated["rd_shading.cl"] = "#define RSL_LIGHT_PARAMS __constant float*\n"
-                                     "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n" +
+                                     "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n"
+                                     "#include \"area_light.clh\"\n" +
                                      lights.str() + shaders.str() + svc.str();
     out.generated["rd_shade_kernels.cl"] =
         "#include \"counters.clh\"\n#include \"shade_common.clh\"\n" + kernels.str() + imagerKernel + prep.str();

@@ -141,6 +141,7 @@ typedef struct RslGlobals {
      * them; copies of the globals carry them along. */
     int light_cache_count;
     unsigned int lights_off; /* lights 0..31 Illuminate turned off for this surface */
+    unsigned int rng_pixel, rng_sample, rng_depth; /* the sample, for area light points */
     float4 light_cache_L[RSL_LIGHT_CACHE];
     float4 light_cache_Cl[RSL_LIGHT_CACHE]; /* w: 1 for a solar light */
     /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global

@@ -249,3 +249,51 @@ TEST(GraphicsState, ExposureScalesAndGammaCorrects) {
     EXPECT_NEAR(centre("Exposure 2 2\n").r, std::sqrt(0.5f), 1e-6f);
     EXPECT_EQ(centre("Exposure 2 2\n").a, 1.0f);
 }
+
+// An area light emits from its geometry: arealight on a disk of radius 0.5 at z = 3
+// facing a wall at z = 5 (h = 2) lights a wall point p (matte, Kd 1) with the mean over
+// the disk's points q of intensity cos / d^2 = intensity h / |p - q|^3 (quadrature here),
+// one random point a sample. An occluder at z = 4 (half size 0.25) shadows the wall softly:
+// for x in (0.5, 1) part of the disk is hidden (a penumbra), beyond x = 1 none of it.
+TEST(GraphicsState, AreaLightGeometryEmitsWithSoftShadows) {
+    auto scene = [](const std::string& occluder) {
+        return renderRib("Format 32 32 1\nPixelSamples 16 16\nProjection \"orthographic\"\n"
+                         "ScreenWindow -2 2 -2 2\nWorldBegin\n"
+                         "AttributeBegin\nTranslate 0 0 3\n"
+                         "AreaLightSource \"arealight\" 1 \"intensity\" 4\n"
+                         "Surface \"constant\"\nDisk 0 0.5 360\nAttributeEnd\n" + occluder +
+                         "Surface \"matte\"\nPolygon \"P\" [-4 -4 5  4 -4 5  4 4 5  -4 4 5]\n"
+                         "WorldEnd\n");
+    };
+    auto irradiance = [](double x, double y) {  // 4 h / d^3 averaged over the disk
+        const double h = 2, R = 0.5;
+        double sum = 0, area = 0;
+        for (int i = 0; i < 200; ++i)
+            for (int j = 0; j < 200; ++j) {
+                double r = R * (i + 0.5) / 200, a = 2 * 3.14159265358979 * (j + 0.5) / 200;
+                double dx = x - r * std::cos(a), dy = y - r * std::sin(a);
+                double d = std::sqrt(dx * dx + dy * dy + h * h);
+                sum += r * 4 * h / (d * d * d);
+                area += r;
+            }
+        return sum / area;
+    };
+    Rendered lit = scene("");
+    // pixel column c is at x = -2 + (c + 0.5) / 8; rows 15, 16 at y = +-1/16
+    for (int c : {24, 27}) {
+        const double x = -2 + (c + 0.5) / 8;
+        const double expect = 0.5 * (irradiance(x, 1.0 / 16) + irradiance(x, -1.0 / 16));
+        const double measured = lit.mean(0, c, 15, c + 1, 17);
+        EXPECT_NEAR(measured, expect, 0.03 * expect) << "x = " << x;
+        std::printf("NUMERICS case=area_light_disk_x%.2f tolerance=0.03 measured=%.3g\n", x,
+                    std::fabs(measured / expect - 1));
+    }
+    Rendered shadowed = scene("AttributeBegin\nSurface \"matte\"\nPolygon \"P\" "
+                              "[-0.25 -0.25 4  0.25 -0.25 4  0.25 0.25 4  -0.25 0.25 4]\n"
+                              "AttributeEnd\n");
+    const double penumbra = shadowed.mean(0, 22, 15, 23, 17) / lit.mean(0, 22, 15, 23, 17);
+    EXPECT_GT(penumbra, 0.1) << "x = 0.81: partly lit";
+    EXPECT_LT(penumbra, 0.95) << "x = 0.81: partly shadowed";
+    EXPECT_NEAR(shadowed.mean(0, 27, 15, 28, 17), lit.mean(0, 27, 15, 28, 17), 1e-6)
+        << "x = 1.44: the whole disk is seen";
+}
