@@ -13,6 +13,7 @@
 #include "film/exr_output.h"
 #include "ocl/check.h"
 #include "ocl/device.h"
+#include "render/render_with_archives.h"
 #include "render/renderer.h"
 #include "render/stop.h"
 #include "rib/reader.h"
@@ -167,7 +168,15 @@ int main(int argc, char** argv) {
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
             rd::Renderer renderer(ctx, settings);
             rd::Film film;
-            rd::RenderStats st = renderer.render(scenes[i], film, diag);
+            // DelayedReadArchive: read when a ray reaches its bound (the RIB read again)
+            auto readAgain = [&](const std::set<std::string>& loaded, rib::Diagnostics& d) {
+                rd::RibBuilder b(d, scenePath);
+                b.setTessellateQuadrics(tessellateQuadrics);
+                b.setLoadedProcedurals(loaded);
+                rib::readFile(scenePath, b, d);
+                return std::move(b.scenes());
+            };
+            rd::RenderStats st = rd::renderWithArchives(renderer, readAgain, scenes[i], i, film, diag);
             std::string out = outputName(scenes[i], output, i, scenes.size());
             rd::ExrOptions opts;
             opts.alpha = scenes[i].display.mode != "rgb";

@@ -425,6 +425,12 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
             }
             float bound[6];
             for (size_t i = 0; i < 6; ++i) bound[i] = f(i);
+            if (m_opts.expandArchives && name == "DelayedReadArchive") {
+                std::string file = resolveArchive(a.strArrays[0][0]);
+                if (t.deferProcedural(loc, name, a.strArrays[0], bound,
+                                      file.empty() ? a.strArrays[0][0] : file))
+                    break;
+            }
             if (m_opts.expandArchives && name != "DynamicLoad")
                 expandProcedural(name, a.strArrays[0], loc);
             else

@@ -183,6 +183,13 @@ public:
     virtual void geometry(L, S /*type*/, P) {}
     // "DelayedReadArchive" | "RunProgram" | "DynamicLoad"; bound is 6 floats.
     virtual void procedural(L, S /*name*/, Strings /*args*/, const float /*bound*/[6]) {}
+    // Before the reader expands a DelayedReadArchive (file: the archive it would read,
+    // found on the archive search path): a target that loads it only once a ray reaches
+    // its bound keeps it and returns true; the reader then reads nothing now.
+    virtual bool deferProcedural(L, S /*name*/, Strings /*args*/, const float /*bound*/[6],
+                                 S /*file*/) {
+        return false;
+    }
 
     // Texture making (outside World)
     virtual void makeTexture(L, S /*picture*/, S /*texture*/, S /*swrap*/, S /*twrap*/,

@@ -30,6 +30,10 @@
  * material the instance's shader. Hits report the prototype's triangle and the instance
  * (cl/lib/traverse.clh). */
 #define RT_Q_INSTANCE 9u
+/* A DelayedReadArchive not loaded yet: its bound (shape = low corner, shape2 = high,
+ * world) is hit like a box; first_member is its index among the scene's procedurals.
+ * A ray that reaches it asks the host to load it (the render starts again with it). */
+#define RT_Q_PROCEDURAL 10u
 
 /* RayHit.prim of a quadric or solid member; triangles use the indices below it. */
 #define RT_OBJECT_BIT 0x40000000u

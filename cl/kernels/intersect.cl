@@ -1,5 +1,6 @@
 /* intersect.cl: the trace stage over the resident BVH. intersect_closest finds each live
  * ray's nearest hit; intersect_shadow kills the shadow rays that meet an occluder. */
+#include "numerics.clh"
 #include "counters.clh"
 #include "quadric.h"
 #include "traverse.clh"
@@ -73,6 +74,7 @@ __kernel void intersect_shadow(uint count,
                                __global const uint* ray_sample, /* of the shaded ray */
                                __global const float* sample_time,
                                uint light_count, /* shadow ray i: shaded ray i / count */
+                               __global uint* numerics, /* RT_HAS_PROCEDURALS: flags */
                                __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
@@ -84,6 +86,11 @@ __kernel void intersect_shadow(uint count,
     RayHit h;
     uint inst;
     if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1,
-                    &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG))
+                    &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG)) {
         state[i].alive = 0u;
+#ifdef RT_HAS_PROCEDURALS
+        if ((h.prim & RT_OBJECT_BIT) && quadrics[h.prim & RT_OBJECT_MASK].kind == RT_Q_PROCEDURAL)
+            numerics[RT_NUM_PROCEDURAL_BASE + quadrics[h.prim & RT_OBJECT_MASK].first_member] = 1u;
+#endif
+    }
 }

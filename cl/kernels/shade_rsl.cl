@@ -69,6 +69,13 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #else
     const float time = 0.0f;
 #endif
+#ifdef RT_HAS_PROCEDURALS
+    if ((h.prim & RT_OBJECT_BIT) && quadrics[h.prim & RT_OBJECT_MASK].kind == RT_Q_PROCEDURAL) {
+        /* an archive not loaded yet: the host loads it and renders again */
+        numerics[RT_NUM_PROCEDURAL_BASE + quadrics[h.prim & RT_OBJECT_MASK].first_member] = 1u;
+        return;
+    }
+#endif
     Material m;
     RslGlobals g;
 #ifdef RT_HAS_INSTANCES

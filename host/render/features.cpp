@@ -27,6 +27,10 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     for (const Triangle& t : scene.triangles)
         for (const rt_float4& v : {t.v0, t.v1, t.v2})
             extent = std::fmax(extent, std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))));
+    for (const Aabb& b : scene.quadricBounds)  // quadrics, solids, archives' bounds too
+        for (int k = 0; k < 3; ++k)
+            if (b.lo[k] <= b.hi[k])
+                extent = std::fmax(extent, std::fmax(std::fabs(b.lo[k]), std::fabs(b.hi[k])));
     while (f.sceneScale > 1e-30f && f.sceneScale * 0.5f >= extent) f.sceneScale *= 0.5f;
     f.depthOfField = scene.deviceCamera().lens_radius > 0;
     f.quadrics = !scene.quadrics.empty();
@@ -35,6 +39,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.motion = !scene.quadricMotion.empty() || !scene.trianglesEnd.empty() ||
                scene.camera.moving;
     f.instances = !scene.prototypes.empty();
+    f.procedurals = !scene.procedurals.empty();
     f.atmosphere = shading.atmosphere;
     f.displacement = shading.displacement;
     f.derivatives = shading.derivatives || shading.displacement;
@@ -65,6 +70,7 @@ std::vector<std::string> Features::names() const {
     if (derivatives) n.push_back("derivatives");
     if (displacement) n.push_back("displacement");
     if (textures) n.push_back("textures");
+    if (procedurals) n.push_back("deferred_procedurals");
     if (trace && rouletteDepth > 0) n.push_back("roulette");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
@@ -108,6 +114,7 @@ std::string buildOptions(const Features& f) {
     }
     if (f.displacement) o += " -DRT_HAS_DISPLACEMENT";
     if (f.textures) o += " -DRT_HAS_TEXTURES";
+    if (f.procedurals) o += " -DRT_HAS_PROCEDURALS";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";

@@ -29,6 +29,7 @@ struct Features {
     bool derivatives = false;   // some shader takes Du/Dv/area/calculatenormal/filterstep
     bool displacement = false;  // Displacement shaders (bump: N only)
     bool textures = false;      // some shader looks up a texture the scene has
+    bool procedurals = false;   // DelayedReadArchive bounds not loaded yet
     float pixelSpread = 0.0f;   // footprint growth per unit of ray length (perspective)
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"

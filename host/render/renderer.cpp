@@ -22,6 +22,9 @@
 #include "stop.h"
 
 namespace rd {
+
+// numerics.clh: RT_NUM_PROCEDURAL_BASE, the first archive flag after the counters
+constexpr size_t kProceduralFlags = 8;
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -240,7 +243,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     filmBuf.fillZero();
     DeviceBuffer<AovAccum> aovBuf(m_ctx, f.aovs ? npix : 0);
     aovBuf.fillZero();
-    DeviceBuffer<uint32_t> numerics(m_ctx, 8);  // numerics.clh RT_NUM_* counters
+    // numerics.clh RT_NUM_* counters, then a flag per archive not loaded yet
+    DeviceBuffer<uint32_t> numerics(m_ctx, kProceduralFlags + scene.procedurals.size());
     numerics.fillZero();
     film.pixels.assign(npix, PixelAccum{});
     st.sceneSetupMs = secondsSince(t0) * 1e3;
@@ -400,7 +404,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                          rp.shOrigin, rp.shDirection, rp.shState,
                                          ds.quadrics, ds.csg, ds.triangles,
                                          ds.quadricMotion, ds.trianglesEnd, rp.sample,
-                                         rp.sampleTime, nl);
+                                         rp.sampleTime, nl, numerics);
                 k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
                                            rp.totals);
             }
@@ -461,6 +465,17 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                     break;
                 }
                 m_ctx.finish();
+                if (f.procedurals) {  // a ray reached an archive's bound: load it first
+                    std::vector<uint32_t> flags = numerics.download();
+                    for (size_t k = 0; k < scene.procedurals.size(); ++k)
+                        if (flags[kProceduralFlags + k])
+                            st.proceduralsReached.push_back(scene.procedurals[k].key);
+                    if (!st.proceduralsReached.empty()) {
+                        st.stopReason = "archives to load";
+                        stopped = true;
+                        break;
+                    }
+                }
                 ++st.batches;
                 st.eyeRays += b.samplePixel.size();
                 double dt = secondsSince(tBatch);

@@ -63,6 +63,10 @@ struct RenderStats {
     std::string device, platform;
     std::map<std::string, KernelStats> kernels;
     TextureStats textures;
+    // DelayedReadArchive calls (keys) rays reached before they were loaded: the render
+    // stopped at once; read the RIB again with them loaded (render_with_archives.h)
+    std::vector<std::string> proceduralsReached;
+    size_t archivesLoaded = 0;  // DelayedReadArchive calls read because rays reached them
     uint64_t totalRays() const { return eyeRays + continuationRays + shadowRays; }
 };
 

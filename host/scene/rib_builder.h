@@ -71,6 +71,10 @@ public:
     void makeCubeFaceEnvironment(L, Strings faces, S texture, float fov, S filter, float swidth,
                                  float twidth, P) override;
     void makeShadow(L, S picture, S texture, P) override;
+    bool deferProcedural(L, S name, Strings args, const float bound[6], S file) override;
+    // The DelayedReadArchive calls (Scene::DeferredProcedural::key) to load when read;
+    // the others wait, as boxes, until a ray reaches them.
+    void setLoadedProcedurals(std::set<std::string> keys) { m_loadProcedurals = std::move(keys); }
     void imager(L, S name, P params) override;
     void sides(L, int n) override;
     void skew(L, float angleDeg, float dx1, float dy1, float dz1, float dx2, float dy2,
@@ -218,6 +222,7 @@ private:
     void finishSolid(int root);
 
     rib::Diagnostics& m_diag;
+    std::set<std::string> m_loadProcedurals;  // DelayedReadArchive keys read at once
     bool m_projectionNull = false;  // Projection "null": a Perspective defines it
     Scene m_options;               // option state; copied into each new world
     Scene m_world;                 // the world being built

@@ -94,6 +94,13 @@ struct Scene {
     // Materials: Material::shader indexes surfaceRefs until the shader set compiles them.
     std::vector<Material> materials;
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
+    // DelayedReadArchive calls not loaded yet (RT_Q_PROCEDURAL boxes); key: where the
+    // call is and what it reads, the same from one reading of the RIB to the next
+    struct DeferredProcedural {
+        std::string key, file;
+        rib::SourceLoc loc;
+    };
+    std::vector<DeferredProcedural> procedurals;
     std::vector<ShaderRef> lights;       // every LightSource, in order
     // AreaLightSource: the triangles of the geometry that followed it in its attribute
     // block (world, eye-relative, facing where they emit), by index into lights

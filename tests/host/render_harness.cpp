@@ -1,6 +1,8 @@
 // render_harness.cpp: the in-process render used by the render tests.
 #include "render_harness.h"
 
+#include "render/render_with_archives.h"
+
 #include <gtest/gtest.h>
 
 #include <iostream>
@@ -39,7 +41,13 @@ Rendered renderRib(const std::string& rib, const RenderSettings& settings) {
     }
     Renderer renderer(testContext(), settings);
     Film film;
-    out.stats = renderer.render(builder.scenes().front(), film, diag);
+    auto readAgain = [&](const std::set<std::string>& loaded, rib::Diagnostics& d) {
+        RibBuilder b(d, "test.rib");
+        b.setLoadedProcedurals(loaded);
+        rib::readString(rib, "test.rib", b, d);
+        return std::move(b.scenes());
+    };
+    out.stats = renderWithArchives(renderer, readAgain, builder.scenes().front(), 0, film, diag);
     out.width = film.width;
     out.height = film.height;
     out.pixels = film.resolve();
