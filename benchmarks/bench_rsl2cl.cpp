@@ -98,8 +98,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "no .sl files in %s\n", dir.c_str());
         return 1;
     }
-    std::string rt = rsl::runtimeDir();
-    std::string runtime = slurp(rt + "/rsl_abi.h") + "\n" + slurp(rt + "/rsl_stdlib.clh") + "\n" + kServices;
+    std::string runtime = rsl::runtimeSource() + kServices;
 
     rd::DeviceInfo dev = rd::selectDevice("");
     rd::ClContext ctx(dev);

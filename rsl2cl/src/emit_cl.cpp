@@ -3,6 +3,8 @@
 #include "emit_cl.h"
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "constfold.h"
 #include "emit_internal.h"
@@ -15,6 +17,23 @@ std::string runtimeDir() {
 #else
     return "rsl2cl/runtime";
 #endif
+}
+
+namespace {
+std::string slurpRuntime(const std::string& name) {
+    std::ifstream in(runtimeDir() + "/" + name);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+}  // namespace
+
+std::string runtimeSource() {
+    std::string lib = slurpRuntime("rsl_stdlib.clh");
+    const std::string inc = "#include \"rsl_derivatives.clh\"";
+    if (size_t at = lib.find(inc); at != std::string::npos)
+        lib.replace(at, inc.size(), slurpRuntime("rsl_derivatives.clh"));
+    return slurpRuntime("rsl_abi.h") + "\n" + lib + "\n";
 }
 
 int slotsOf(BaseType b) {

@@ -61,5 +61,8 @@ bool checkAffine(const ShaderDecl& shader, const Program& prog, Diagnostics& dia
 
 // Directory of rsl_abi.h and rsl_stdlib.clh in the source tree (for tests/tools).
 std::string runtimeDir();
+// rsl_abi.h then rsl_stdlib.clh with the runtime files it includes inlined: what generated
+// code compiles after, as one text (for tests/tools that build it themselves).
+std::string runtimeSource();
 
 }  // namespace rsl

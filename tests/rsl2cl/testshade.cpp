@@ -155,9 +155,8 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
     }
     std::string key = sceneKey(sc);
     if (m_program && m_builtFor == key) return true;
-    std::string rt = rsl::runtimeDir();
     std::ostringstream src;
-    src << slurp(rt + "/rsl_abi.h") << "\n" << slurp(rt + "/rsl_stdlib.clh") << "\n";
+    src << rsl::runtimeSource();
     // the fake renderer services
     src << "__constant float ts_lights[] = {0";
     for (const Light& l : sc.lights)
