@@ -292,6 +292,11 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
     const ParamList& P = a.params;
     const char* req = info.name;
     Target& t = m_target;
+    struct PrimitiveScope {  // the request's primitive variables, for its duration
+        Target& t;
+        PrimitiveScope(Target& target, const ParamList& p) : t(target) { t.primitiveVariables(&p); }
+        ~PrimitiveScope() { t.primitiveVariables(nullptr); }
+    } primitiveScope(t, P);
     long long np = 0;
     switch (info.req) {
         case Req::Polygon:

@@ -96,6 +96,9 @@ public:
     // parameters) as RGB: under ColorSamples n the reader converts the n values with the
     // nRGB matrix before the call. Writers keep the n values (false).
     virtual bool wantsRgbColors() const { return false; }
+    // Around each geometry request: its parameter list (the primitive variables) before
+    // the call, nullptr after it, so a target can read them wherever it needs them.
+    virtual void primitiveVariables(const ParamList* /*params*/) {}
     virtual void relativeDetail(L, float) {}
     virtual void cropWindow(L, float /*xmin*/, float /*xmax*/, float /*ymin*/,
                             float /*ymax*/) {}

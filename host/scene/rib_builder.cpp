@@ -52,6 +52,7 @@ void RibBuilder::worldBegin(L) {
     m_inWorld = true;
     m_materialKeys.clear();
     m_surfaceKeys.clear();
+    m_surfaceVariants.clear();
     m_atmosphereKeys.clear();
     m_displacementKeys.clear();
     m_degenerate = 0;
@@ -366,16 +367,57 @@ void RibBuilder::illuminate(L loc, const std::string& handle, bool on) {
     off = on ? (off & ~(1u << it->second)) : (off | (1u << it->second));
 }
 
-uint32_t RibBuilder::currentMaterial() {
-    const Attributes& a = m_attrStack.back();
-    // One surface reference per distinct Surface call (same name, parameters, space).
-    uint32_t surface = 0;
-    for (; surface < m_world.surfaceRefs.size(); ++surface)
-        if (m_surfaceKeys[surface] == a.surfaceKey) break;
-    if (surface == m_world.surfaceRefs.size()) {
-        m_world.surfaceRefs.push_back(a.surface);
+// One surface reference per distinct Surface call (same name, parameters, space), and
+// per distinct set of primitive variables overriding its parameters (RI: a primitive
+// variable named like a shader parameter gives that parameter its value on the primitive;
+// constant ones, and uniform ones of a single face, are carried).
+uint32_t RibBuilder::surfaceFor(const Attributes& a) {
+    static const std::set<std::string> standard = {"P", "Pw", "Pz", "N", "Np", "Cs", "Os", "s",
+                                                   "t", "st", "width", "constantwidth"};
+    rib::ParamList overrides;
+    std::string signature;
+    for (const rib::Param& p : m_primVars ? m_primVars->params : std::vector<rib::Param>{}) {
+        if (standard.count(p.name)) continue;
+        const size_t values = p.type == rib::ParamType::String ? p.strings.size()
+                              : p.type == rib::ParamType::Integer ? p.ints.size()
+                                                                 : p.floats.size();
+        const size_t per = size_t(std::max(1, p.components() * p.arraySize));
+        const bool one = p.storage == rib::StorageClass::Constant ||
+                         (p.storage == rib::StorageClass::Uniform && values == per);
+        if (!one) {
+            if (m_varyingPrimvarWarned.insert(p.name).second)
+                m_diag.warning(a.surface.loc, "primitive variable \"" + p.name + "\" (" +
+                                                  rib::storageClassName(p.storage) +
+                                                  ", one value a face or vertex) does not reach "
+                                                  "shader parameters; only constant ones do");
+            continue;
+        }
+        overrides.params.push_back(p);
+        signature += p.name + ":" + std::to_string(int(p.type)) + ":";
+        for (float f : p.floats) signature += std::to_string(f) + ",";
+        for (int v : p.ints) signature += std::to_string(v) + ",";
+        for (const std::string& v : p.strings) signature += v + ",";
+        signature += ";";
+    }
+    auto [it, fresh] = m_surfaceVariants.emplace(std::make_pair(a.surfaceKey, signature),
+                                                 uint32_t(m_world.surfaceRefs.size()));
+    if (fresh) {
+        ShaderRef ref = a.surface;
+        for (const rib::Param& p : overrides.params) {
+            auto same = std::find_if(ref.params.params.begin(), ref.params.params.end(),
+                                     [&](const rib::Param& q) { return q.name == p.name; });
+            if (same != ref.params.params.end()) *same = p;
+            else ref.params.params.push_back(p);
+        }
+        m_world.surfaceRefs.push_back(ref);
         m_surfaceKeys.push_back(a.surfaceKey);
     }
+    return it->second;
+}
+
+uint32_t RibBuilder::currentMaterial() {
+    const Attributes& a = m_attrStack.back();
+    const uint32_t surface = surfaceFor(a);
     Material m{};
     m.shader = surface;
     m.cs = f4(a.color[0], a.color[1], a.color[2]);

@@ -83,6 +83,7 @@ public:
     void exposure(L, float gain, float gamma) override;
     void colorSamples(L, Floats nRGB, Floats RGBn) override;
     bool wantsRgbColors() const override { return true; }  // ColorSamples n: converted
+    void primitiveVariables(const rib::ParamList* params) override { m_primVars = params; }
     void textureCoordinates(L, float s1, float t1, float s2, float t2, float s3, float t3,
                             float s4, float t4) override;
     void orientation(L, const std::string& o) override;
@@ -223,6 +224,12 @@ private:
 
     rib::Diagnostics& m_diag;
     std::set<std::string> m_loadProcedurals;  // DelayedReadArchive keys read at once
+    // The geometry request being read: its constant primitive variables that are not the
+    // standard ones override the surface shader's parameters of the same names
+    const rib::ParamList* m_primVars = nullptr;
+    std::map<std::pair<uint64_t, std::string>, uint32_t> m_surfaceVariants;
+    std::set<std::string> m_varyingPrimvarWarned;
+    uint32_t surfaceFor(const Attributes& a);  // the surface reference of this primitive
     bool m_projectionNull = false;  // Projection "null": a Perspective defines it
     Scene m_options;               // option state; copied into each new world
     Scene m_world;                 // the world being built

@@ -210,3 +210,24 @@ TEST(Shading, HoistedUniformWorkEqualsPerPointWork) {
     EXPECT_EQ(hoisted.stats.kernels.count("rd_prepare_uniforms"), 1u);
     EXPECT_EQ(perPoint.stats.kernels.count("rd_prepare_uniforms"), 0u);
 }
+
+// A primitive variable named like a shader parameter gives it its value on that
+// primitive (constant ones, and uniform ones of a single face); varying ones warn.
+TEST(Shading, ConstantPrimitiveVariablesOverrideShaderParameters) {
+    std::string dir = ::testing::TempDir() + "/raydrive_shaders";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/gained.sl") << "surface gained(float gain = 1; color tint = 1;) {\n"
+                                         "    Oi = 1;\n    Ci = tint * gain;\n}\n";
+    ::testing::internal::CaptureStderr();
+    Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
+                             std::string(kCamera) + "WorldBegin\nSurface \"gained\"\n"
+                             "Polygon \"P\" [-50 -50 5  0 -50 5  0 50 5  -50 50 5] "
+                             "\"constant float gain\" [3] \"uniform color tint\" [1 0.5 0.25]\n"
+                             "Polygon \"P\" [0 -50 5  50 -50 5  50 50 5  0 50 5] "
+                             "\"varying float gain\" [5 5 5 5]\nWorldEnd\n");
+    std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_NEAR(img.at(4, 16).r, 3.0, 1e-5);
+    EXPECT_NEAR(img.at(4, 16).g, 1.5, 1e-5);
+    EXPECT_NEAR(img.at(28, 16).r, 1.0, 1e-5) << "the other polygon keeps the default";
+    EXPECT_NE(err.find("primitive variable \"gain\" (varying"), std::string::npos) << err;
+}
