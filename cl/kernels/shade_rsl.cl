@@ -89,6 +89,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     g.rng_pixel = sample_pixel[sample]; /* area lights pick their points by the sample */
     g.rng_sample = sample_index[sample];
     g.rng_depth = RT_TRACE_DEPTH(rs) + RT_TRANSPARENT_DEPTH(rs);
+    g.texctx = 0; /* set below when the scene has textures */
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */
 #ifdef RT_HAS_DERIVATIVES
     const float width_at_hit = rs.width + RT_PIXEL_SPREAD * h.t; /* the rays it spawns start this wide */
@@ -117,6 +118,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     rd_tex_context_init(&texc, tex_info, tex_pages, tex_tiles, tex_requests, tex_counters,
                         tex_used, shader_index);
     struct RslTexContext* tc = &texc;
+    g.texctx = tc; /* light shaders' shadow maps and textures */
 #else
     struct RslTexContext* tc = 0;
 #endif
@@ -196,6 +198,10 @@ __kernel void shade_SURFACE(uint begin, uint count,
         sw.w = 0.0f;
         sw = rt_sanitize(sw, numerics);
         if (!rd_nonzero3(sw)) continue;
+        if (!rd_light_traces_shadows((int)l)) { /* its shadow map did the shadowing */
+            rt_atomic_add_float4(&total[sample].value, sw);
+            continue;
+        }
         float dist = sqrt(rt_dot3(toward, toward));
         if (!(dist > 0.0f)) continue;
         float4 sd = toward / dist;

@@ -231,7 +231,7 @@ ShadingSetup ShaderSet::prepare() {
     std::ostringstream lights, shaders;
     // --- light instances: parameters baked into constants, one switch case each
     std::vector<std::string> lightCalls;
-    std::vector<bool> lightAmbient;
+    std::vector<bool> lightAmbient, lightMapShadowed;
     std::vector<const rsl::EmittedShader*> lightShaders;
     std::map<std::string, bool> lightEmitted;
     for (size_t sceneLight = 0; sceneLight < m_scene.lights.size(); ++sceneLight) {
@@ -286,6 +286,11 @@ ShadingSetup ShaderSet::prepare() {
         lightCalls.push_back(place + sh->functionName + "(&lg, rd_light_params_" +
                              std::to_string(index) + ")");
         lightAmbient.push_back(sh->ambientLight);
+        // a light whose "shadowname" names a shadow map is shadowed by that map (its
+        // shader's shadow() call) instead of by a traced shadow ray
+        const rib::Param* sn = l.params.find("shadowname");
+        const std::string map = sn && !sn->strings.empty() ? sn->strings[0] : "";
+        lightMapShadowed.push_back(!map.empty() && map != "raytrace");
         lightShaders.push_back(sh);
         if (!lightEmitted[sh->name]) shaders << sh->source << "\n";
         lightEmitted[sh->name] = true;
@@ -325,6 +330,10 @@ ShadingSetup ShaderSet::prepare() {
     for (size_t i = 0; i < lightCalls.size(); ++i)
         svc << "    case " << i << ": " << lightCalls[i] << "; break;\n";
     svc << "    default: break;\n    }\n    *out = lg;\n    return lg.Ol.w == 1.0f;\n}\n";
+    svc << "static int rd_light_traces_shadows(int l) {\n    switch (l) {\n";
+    for (size_t i = 0; i < lightMapShadowed.size(); ++i)
+        if (lightMapShadowed[i]) svc << "    case " << i << ": return 0;\n";
+    svc << "    default: return 1;\n    }\n}\n";
     svc << "static int rd_light_is_ambient(int l) {\n    switch (l) {\n";
     for (size_t i = 0; i < lightAmbient.size(); ++i)
         if (lightAmbient[i]) svc << "    case " << i << ": return 1;\n";
@@ -457,6 +466,7 @@ ShadingSetup ShaderSet::prepare() {
                 "    g.light_cache_count = 0;\n"
                 "    g.lights_off = 0u;\n"
                 "    g.rng_pixel = i;\n    g.rng_sample = 0u;\n    g.rng_depth = 0u;\n"
+                "    g.texctx = 0;\n"
                 "    RslEval ev;\n"
                 "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
                 "    " + sh->functionName + "(&g, params + " + std::to_string(offset) + ", &ev);\n"

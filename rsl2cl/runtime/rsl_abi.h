@@ -132,6 +132,8 @@
 
 #define RSL_LIGHT_CACHE 8
 
+struct RslTexContext; /* the renderer's texture state (TEXTURES) */
+
 typedef struct RslGlobals {
     float4 P, N, Ng, I, E, dPdu, dPdv, Cs, Os, Ci, Oi, L, Cl, Ol, Ps;
     float u, v, s, t, du, dv, ncomps, time;
@@ -142,6 +144,7 @@ typedef struct RslGlobals {
     int light_cache_count;
     unsigned int lights_off; /* lights 0..31 Illuminate turned off for this surface */
     unsigned int rng_pixel, rng_sample, rng_depth; /* the sample, for area light points */
+    struct RslTexContext* texctx; /* the textures light shaders look up (0: none) */
     float4 light_cache_L[RSL_LIGHT_CACHE];
     float4 light_cache_Cl[RSL_LIGHT_CACHE]; /* w: 1 for a solar light */
     /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global
@@ -167,8 +170,6 @@ typedef struct RslDeriv {
     int count;  /* sites met so far in this evaluation; the renderer zeroes it */
     float4 v[RSL_MAX_DERIV][2];
 } RslDeriv;
-
-struct RslTexContext; /* the renderer's texture state (TEXTURES) */
 
 typedef struct RslEval {
     RslDeriv* deriv;  /* 0: no derivatives (lights, atmospheres, imagers) */

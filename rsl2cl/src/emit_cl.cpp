@@ -267,7 +267,7 @@ void Emitter::emitShader() {
         m_body << "void " << fn << "(RslGlobals* g, __global const float* params, RslEval* ev) {\n";
     m_indent = 1;
     if (light) {
-        line("RslEval _ev; _ev.deriv = 0; _ev.tex = 0; _ev.mode_light = -1; _ev.mode_trace = -1; _ev.trace_count = 0;");
+        line("RslEval _ev; _ev.deriv = 0; _ev.tex = g->texctx; _ev.mode_light = -1; _ev.mode_trace = -1; _ev.trace_count = 0;");
         line("RslEval* ev = &_ev;");
         line("g->Cl = rsl_f2v(0.0f);");
     } else {

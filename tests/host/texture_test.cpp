@@ -328,4 +328,13 @@ TEST(Textures, ShadowMapFromARenderedDepthMap) {
     EXPECT_NEAR(r.at(13, 13).r, 0.0, 1e-6) << "behind the occluder, near its corner";
     EXPECT_NEAR(r.at(10, 16).r, 1.0, 1e-6) << "beside the shadow";
     EXPECT_NEAR(r.at(2, 2).r, 1.0, 1e-6) << "in the open";
+    // a light whose shadowname is the map: shadowed by the map alone (no shadow ray), so
+    // the occluder's shadow is there even with the occluder left out of the scene
+    Rendered lit = renderRib("Format 32 32 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"
+                             "ScreenWindow -4 4 -4 4\nWorldBegin\n"
+                             "LightSource \"shadowspot\" 1 \"from\" [0 0 0] \"to\" [0 0 1] "
+                             "\"coneangle\" 1.2 \"intensity\" 36 \"shadowname\" \"" + dir() +
+                             "/rendered.shd\"\nSurface \"matte\"\n" + wall + "WorldEnd\n");
+    EXPECT_NEAR(lit.at(16, 16).r, 0.0, 1e-6) << "the map's shadow";
+    EXPECT_GT(lit.at(10, 16).r, 0.5) << "lit beside it";
 }

@@ -197,6 +197,7 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  RslGlobals g; float* gp = (float*)&g;\n"
            "  for (int k = 0; k < "
         << kGlobalFloats << "; ++k) gp[k] = gin[i * " << kGlobalFloats << " + k];\n"
+           "  g.texctx = 0;\n"
         << "  RslEval ev; ev.deriv = 0; ev.mode_light = mode_light; ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
            "  for (int k = 0; k < RSL_MAX_TRACE; ++k) { ev.trace_org[k] = (float4)(0); ev.trace_dir[k] = (float4)(0); }\n"
            "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) ev.outputs[k] = -12345.0f;\n"
