@@ -2,7 +2,8 @@
 // MakeCubeFaceEnvironment, MakeShadow, and `raydrive txmake`): any image OpenImageIO
 // reads (TIFF, PNG, JPEG, OpenEXR, HDR, ...) becomes a tiled, mip-mapped float OpenEXR
 // file that carries its wrap modes, which is what the renderer's texture tiles stream
-// from. Errors are exceptions (std::runtime_error) naming the file.
+// from. Errors are exceptions (std::runtime_error) naming the file. The work is done by
+// the texture backend (texture_backend.h), loaded on first use.
 #pragma once
 #include <array>
 #include <string>
@@ -30,7 +31,9 @@ void makeCubeFaceEnvironment(const std::array<std::string, 6>& faces, const std:
 // into a shadow map.
 void makeShadow(const std::string& picture, const std::string& texture);
 
-// The wrap mode a name stands for (RT_WRAP_*), or -1.
-int wrapModeOf(const std::string& name);
+// The wrap mode a name stands for (RT_WRAP_*: black 0, periodic 1, clamp 2), or -1.
+inline int wrapModeOf(const std::string& name) {
+    return name == "black" ? 0 : name == "periodic" ? 1 : name == "clamp" ? 2 : -1;
+}
 
 }  // namespace rd

@@ -8,25 +8,16 @@
 #include <functional>
 #include <sstream>
 
-#include <OpenImageIO/imagecache.h>
-
+#include "texture_backend.h"
 #include "texture_maker.h"
 
 namespace rd {
 namespace fs = std::filesystem;
-namespace OIIO = OIIO_NAMESPACE;
-
-struct TextureSet::Cache {
-    OIIO::ImageCache* ic = OIIO::ImageCache::create(false);  // a private cache
-    ~Cache() { OIIO::ImageCache::destroy(ic); }
-};
 
 TextureSet::TextureSet(std::vector<std::string> searchPath, std::string cacheDir,
                        rib::Diagnostics& diag, rib::SourceLoc where)
     : m_path(std::move(searchPath)), m_cacheDir(std::move(cacheDir)), m_diag(diag),
-      m_where(std::move(where)), m_cache(std::make_unique<Cache>()) {
-    m_cache->ic->attribute("max_memory_MB", 512.0f);
-}
+      m_where(std::move(where)) {}
 
 TextureSet::~TextureSet() = default;
 
@@ -75,20 +66,19 @@ void TextureSet::open(Texture& t) {
 
 void TextureSet::openFile(Texture& t, bool mayConvert) {
     TexInfo& info = t.info;
-    OIIO::ImageCache* ic = m_cache->ic;
-    OIIO::ImageSpec spec;
-    if (!ic->get_imagespec(OIIO::ustring(t.file), spec, 0, 0)) {
-        t.problem = "cannot read \"" + t.file + "\": " + ic->geterror();
+    ImageInfo spec;
+    std::string error;
+    try {
+        if (!textureBackend().describe(t.file, spec, &error)) {
+            t.problem = "cannot read \"" + t.file + "\": " + error;
+            return;
+        }
+    } catch (const std::exception& e) {
+        t.problem = e.what();
         return;
     }
-    int levels = 1;
-    while (levels < RT_TEX_MAX_LEVELS) {
-        OIIO::ImageSpec s;
-        if (!ic->get_imagespec(OIIO::ustring(t.file), s, 0, levels)) break;
-        ++levels;
-    }
-    (void)ic->geterror();  // the probe past the last level leaves an error behind
-    const bool made = spec.tile_width > 0 && !spec.get_string_attribute("textureformat").empty();
+    const int levels = spec.levels;
+    const bool made = spec.tiled && !spec.textureformat.empty();
     if (mayConvert && !made && levels == 1 && (spec.width > 1 || spec.height > 1)) {
         // a picture, not a mip-map: make one once, as `raydrive txmake` does, and keep it
         std::error_code ec;
@@ -114,31 +104,29 @@ void TextureSet::openFile(Texture& t, bool mayConvert) {
     info.width = uint32_t(spec.width);
     info.height = uint32_t(spec.height);
     info.levels = uint32_t(levels);
-    info.channels = uint32_t(std::clamp(spec.nchannels, 1, 4));
-    std::string wraps = spec.get_string_attribute("wrapmodes", "black,black");
+    info.channels = uint32_t(std::clamp(spec.channels, 1, 4));
+    std::string wraps = spec.wrapmodes.empty() ? "black,black" : spec.wrapmodes;
     size_t comma = wraps.find(',');
     int ws = wrapModeOf(wraps.substr(0, comma));
     int wt = wrapModeOf(comma == std::string::npos ? wraps : wraps.substr(comma + 1));
     info.wrap_s = uint32_t(ws < 0 ? 0 : ws);
     info.wrap_t = uint32_t(wt < 0 ? 0 : wt);
-    std::string format = spec.get_string_attribute("textureformat", "");
+    const std::string& format = spec.textureformat;
     info.flags = 0;
     if (format.find("LatLong") != std::string::npos) info.flags |= RT_TEX_LATLONG;
     if (format.find("Shadow") != std::string::npos) {
         info.flags |= RT_TEX_SHADOW;
-        const OIIO::ParamValue* ms = spec.find_attribute("worldtoscreen", OIIO::TypeMatrix);
-        const OIIO::ParamValue* mc = spec.find_attribute("worldtocamera", OIIO::TypeMatrix);
-        if (!ms || !mc) {
+        if (!spec.hasMatrices) {
             info.flags = RT_TEX_BROKEN;
             t.problem = "a shadow map without its \"worldtoscreen\" and \"worldtocamera\" matrices";
             return;
         }
-        // OpenImageIO keeps row-vector matrices (p' = p M): column j of M is output j
-        const float* s = static_cast<const float*>(ms->data());
-        const float* c = static_cast<const float*>(mc->data());
+        // row-vector matrices (p' = p M): column j of M is output j
+        const float* sm = spec.worldToScreen.data();
+        const float* cm = spec.worldToCamera.data();
         for (int j = 0; j < 4; ++j) {
-            info.world_to_screen[j] = {s[0 * 4 + j], s[1 * 4 + j], s[2 * 4 + j], s[3 * 4 + j]};
-            info.world_to_camera[j] = {c[0 * 4 + j], c[1 * 4 + j], c[2 * 4 + j], c[3 * 4 + j]};
+            info.world_to_screen[j] = {sm[0 * 4 + j], sm[1 * 4 + j], sm[2 * 4 + j], sm[3 * 4 + j]};
+            info.world_to_camera[j] = {cm[0 * 4 + j], cm[1 * 4 + j], cm[2 * 4 + j], cm[3 * 4 + j]};
         }
     }
     uint32_t page = 0;
@@ -162,9 +150,9 @@ bool TextureSet::loadTile(const Texture& t, uint32_t level, uint32_t tx, uint32_
     int x1 = std::min(x0 + RT_TEX_TILE, t.levelW[level]);
     int y1 = std::min(y0 + RT_TEX_TILE, t.levelH[level]);
     if (x1 <= x0 || y1 <= y0) return true;
-    return m_cache->ic->get_pixels(OIIO::ustring(t.file), 0, int(level), x0, x1, y0, y1, 0, 1, 0,
-                                   int(t.info.channels), OIIO::TypeFloat, out.data(),
-                                   sizeof(rt_float4), sizeof(rt_float4) * RT_TEX_TILE);
+    return textureBackend().read(t.file, int(level), x0, x1, y0, y1, int(t.info.channels),
+                                 &out[0].x, sizeof(rt_float4), sizeof(rt_float4) * RT_TEX_TILE,
+                                 &m_readError);
 }
 
 std::string TextureSet::deviceSource(double ox, double oy, double oz) const {
@@ -323,7 +311,7 @@ void TextureSet::serve(const std::vector<TexRequest>& requests,
         if (next == victims.size()) break;  // the cache is full of this round's tiles
         Texture& t = m_tex[n.tex];
         if (!loadTile(t, n.level, n.tx, n.ty, texels)) {
-            t.problem = "cannot read a tile of \"" + t.file + "\": " + m_cache->ic->geterror();
+            t.problem = "cannot read a tile of \"" + t.file + "\": " + m_readError;
             t.info.flags |= RT_TEX_BROKEN;
             infoBuf.uploadRange(n.tex, &t.info, 1);
             continue;

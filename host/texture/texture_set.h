@@ -1,7 +1,7 @@
 // texture_set.h: the scene's textures on the device (cl/include/texture.h). Names the
 // shaders may pass to texture(), environment() or shadow() are looked up on the texture
 // search path; each found file is opened through OpenImageIO's ImageCache (any tiled or
-// scanline format; a picture that is not a mip-map is first made into one, as
+// scanline format, through the texture backend; a picture that is not a mip-map is first made into one, as
 // `raydrive txmake` would, in the cache folder). The device gets a table of textures,
 // a page table and a tile cache of fixed size: when every tile fits, all of them are
 // uploaded at once (resident); otherwise tiles are uploaded as lookups ask for them
@@ -95,8 +95,7 @@ private:
     std::set<std::pair<uint32_t, uint32_t>> m_reported;  // (texture or id, shader)
     const ClContext* m_ctx = nullptr;
     TextureStats m_stats;
-    struct Cache;
-    std::unique_ptr<Cache> m_cache;
+    std::string m_readError;  // the backend's last read failure
 };
 
 }  // namespace rd
