@@ -108,7 +108,8 @@ int main(int argc, char** argv) {
     bool quiet = false, halfFloat = false, tessellateQuadrics = false;
     double timeBudget = 0, errorTarget = 0;
     std::vector<std::string> aovs;
-    app.add_option("scene", scenePath, "RIB file to render, or `devices` to list devices")
+    app.add_option("scene", scenePath,
+                   "RIB file to render, `devices` to list devices (or `raydrive txmake --help`)")
         ->required();
     app.add_option("-o,--output", output, "output file (overrides the RIB's Display)");
     app.add_option("--device", deviceSpec,
