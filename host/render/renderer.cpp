@@ -15,6 +15,7 @@
 #include "cl/include/ray.h"
 #include "device_scene.h"
 #include "imager_stage.h"
+#include "texture_reshade.h"
 #include "scene_bvh.h"
 #include "film/film_error.h"
 #include "progress.h"
@@ -231,9 +232,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         cacheTiles = size_t(scene.render.textureMemoryKB) * 1024 /
                      (sizeof(rt_float4) * RT_TEX_TILE_TEXELS);
     textures.createDevice(m_ctx, f.textures ? cacheTiles : 1);
-    DeviceBuffer<uint32_t> retryA(m_ctx, f.textures ? pool : 0), retryB(m_ctx, f.textures ? pool : 0);
-    DeviceBuffer<uint32_t> retryCount(m_ctx, shaderCount + 1);
-    retryCount.fillZero();
+    TextureReshade reshade(m_ctx, textures, pool, shaderCount, f.textures);
     const size_t npix = size_t(cam.width) * size_t(cam.height);
     film.width = cam.width;
     film.exposureGain = scene.camera.exposure[0];
@@ -308,7 +307,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,
                                rp.shState, rp.aov, nl, numerics, textures.infoBuf,
                                textures.pageBuf, textures.tileBuf, textures.requestBuf,
-                               textures.counterBuf, textures.usedBuf, retry, retryCount, s);
+                               textures.counterBuf, textures.usedBuf, retry, reshade.counts(), s);
         }
     };
     // Returns false when a stop cut the batch short (its samples are then dropped).
@@ -340,65 +339,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             for (size_t s = 1; s < counts.size(); ++s) offsets[s] = offsets[s - 1] + counts[s - 1];
             rp.keyCursor.upload(offsets);
             k.scatter.launch(n, n, shaderCount, rp.key, rp.keyCursor, rp.sorted);
-            shadeRuns(counts, offsets, rp.sorted, retryA);
-            if (f.textures) {
-                // Points that met an absent tile committed nothing: upload what they
-                // asked for and shade them again (RenderDrive's texture broadcast)
-                DeviceBuffer<uint32_t>* src = &retryA;
-                DeviceBuffer<uint32_t>* dst = &retryB;
-                double share = 1.0;  // of the waiting points, shaded in one pass
-                uint64_t lastTotal = ~uint64_t(0), lastLaunched = 0;
-                for (int pass = 0;; ++pass) {
-                    std::vector<uint32_t> again = retryCount.download();
-                    std::vector<uint32_t> reqCount = textures.counterBuf.downloadFirst(1);
-                    uint64_t total = 0;
-                    for (uint32_t c : again) total += c;
-                    if (reqCount[0] > 0) {
-                        std::vector<TexRequest> req = textures.requestBuf.downloadFirst(
-                            std::min<size_t>(reqCount[0], TextureSet::kMaxRequests));
-                        const uint32_t zero = 0;
-                        textures.counterBuf.uploadRange(0, &zero, 1);
-                        textures.serve(req, shading.surfaceNames);
-                    }
-                    if (total == 0) break;
-                    if (pass >= 4096) {  // the cache cannot hold what these points need
-                        textures.stats().unresolved += total;
-                        retryCount.fillZero();
-                        break;
-                    }
-                    // When the waiting points need more tiles than the cache holds they
-                    // evict each other's: shade fewer of them at a time (the rest wait
-                    // in the list) until each pass finishes some.
-                    if (lastTotal != ~uint64_t(0)) {
-                        const uint64_t done = lastTotal - std::min(lastTotal, total);
-                        if (done * 10 < lastLaunched) share = std::max(share * 0.5, 1.0 / 65536);
-                        else if (done * 2 >= lastLaunched) share = std::min(1.0, share * 2);
-                    }
-                    lastTotal = total;
-                    std::vector<uint32_t> launch(again.size());
-                    bool partial = false;
-                    for (size_t s = 0; s < again.size(); ++s) {
-                        launch[s] = std::min<uint32_t>(
-                            again[s], uint32_t(std::ceil(double(again[s]) * share)));
-                        partial |= launch[s] < again[s];
-                    }
-                    lastLaunched = 0;
-                    for (uint32_t l : launch) lastLaunched += l;
-                    retryCount.fillZero();
-                    ++textures.stats().retryPasses;
-                    shadeRuns(launch, offsets, *src, *dst);
-                    if (partial) {  // the points not shaded now go after the new misses
-                        std::vector<uint32_t> now = retryCount.download();
-                        for (size_t s = 0; s < again.size(); ++s) {
-                            src->copyTo(*dst, offsets[s] + launch[s], offsets[s] + now[s],
-                                        again[s] - launch[s]);
-                            now[s] += again[s] - launch[s];
-                        }
-                        retryCount.upload(now);
-                    }
-                    std::swap(src, dst);
-                }
-            }
+            shadeRuns(counts, offsets, rp.sorted, reshade.firstList());
+            if (f.textures) reshade.run(offsets, shading.surfaceNames, shadeRuns);
             if (nl > 0) {
                 k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
                                          rp.shOrigin, rp.shDirection, rp.shState,

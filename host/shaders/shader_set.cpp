@@ -246,7 +246,7 @@ ShadingSetup ShaderSet::prepare() {
         if (block.empty()) lights << "0.0f";
         lights << "};\n";
         // In the light shader P and N are the light's own: its shader-space origin and +z
-        // axis (where an area light's geometry would be sampled; a point stands for it)
+        // axis, or for an area light a point of its geometry (below)
         glm::vec3 o(l.shaderToWorld * glm::vec4(0, 0, 0, 1));
         glm::vec3 n = glm::transpose(glm::inverse(glm::mat3(l.shaderToWorld))) * glm::vec3(0, 0, 1);
         if (glm::dot(n, n) > 0.0f) n = glm::normalize(n);

@@ -1,15 +1,14 @@
 // texture_set.h: the scene's textures on the device (cl/include/texture.h). Names the
 // shaders may pass to texture(), environment() or shadow() are looked up on the texture
-// search path; each found file is opened through OpenImageIO's ImageCache (any tiled or
-// scanline format, through the texture backend; a picture that is not a mip-map is first made into one, as
-// `raydrive txmake` would, in the cache folder). The device gets a table of textures,
-// a page table and a tile cache of fixed size: when every tile fits, all of them are
-// uploaded at once (resident); otherwise tiles are uploaded as lookups ask for them
-// (streamed), least recently asked for evicted first.
+// search path; each found file is opened through the texture backend (OpenImageIO's
+// ImageCache: any tiled or scanline format); a picture that is not a mip-map is first
+// made into one, as `raydrive txmake` would, in the cache folder. The device gets a table
+// of textures, a page table and a tile cache of fixed size: a cache that holds every tile
+// never evicts (sets up to 16 MiB are uploaded at once); a smaller one streams tiles as
+// lookups ask for them, least recently used evicted first.
 #pragma once
 #include <cstdint>
 #include <map>
-#include <memory>
 #include <set>
 #include <string>
 #include <vector>
