@@ -204,10 +204,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         }
     };
     // The rays in the pool now, and on the spill stack. Refill tops the pool up to
-    // roundCap: the whole pool once the device is known to trace it in a quarter second,
-    // less near the end of a time budget (the samples in flight at a stop are lost).
+    // roundCap: the whole pool while the device traces it in a quarter second, less near
+    // the end of a time budget (the samples in flight at a stop are lost).
     cl_uint n = 0;
-    size_t roundCap = std::min<size_t>(pool, 16384);
+    size_t roundCap = pool;
     double raysPerSec = 0;
     size_t spillTop = 0;
     const size_t spillCapacity = pool * spawn;
@@ -405,7 +405,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         if (errorTarget > 0) pixelError = float(errorTarget);
         else if (timeBudget > 0 && st.estimatedError > 0)
             pixelError = float(0.5 * st.estimatedError);  // refine the worse half
+        const auto tPlan = Clock::now();
         std::vector<PixelRequest> pass = planner.nextPass(film.pixels, pixelError);
+        st.planMs += secondsSince(tPlan) * 1e3;
         if (pass.empty()) {
             st.stopReason = "quality";
             break;
@@ -414,7 +416,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             st.abortedSamples = ring.samplesInFlight();  // in flight: never reach the film
             break;
         }
+        const auto tFilm = Clock::now();
         sampleError(true);
+        st.planMs += secondsSince(tFilm) * 1e3;
         if (errorTarget > 0 && st.estimatedError >= 0 && st.estimatedError <= errorTarget) {
             st.stopReason = "error target";
             break;

@@ -64,6 +64,7 @@ struct RenderStats {
     double poolFill = 0;    // mean rays per round / pool capacity
     double deviceBusy = 0;  // kernel time / wall time of the sampling loop
     double hostOverhead = 0;  // sampling-loop time the device did not run kernels / frame
+    double planMs = 0;  // of which between passes: the film read back, the next pass planned
     std::vector<PoolFillSample> poolFillSeries;
     int passes = 0, iterations = 0;  // iterations: rounds of the ray pool
     double estimatedError = -1;
