@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <cstdio>
 #include <random>
 #include <thread>
@@ -170,6 +171,14 @@ Rays secondaryRays(const Mesh& m, const Rays& prim, const std::vector<RayHit>& h
     return r;
 }
 
+// CPU seconds of the whole process (every thread): on a shared, loaded machine the
+// ratio of CPU time is steadier than that of wall time, so both are printed.
+double cpuSeconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
@@ -184,15 +193,24 @@ int main(int argc, char** argv) {
     app.add_option("--runs", runs, "timed runs per measurement (median reported)");
     app.add_option("--side", side, "primary rays: side x side");
     app.add_option("--device", device, "OpenCL device (index or name)");
+    std::vector<std::string> variants;
+    app.add_option("--variant", variants,
+                   "extra OpenCL build options (e.g. -DRT_SOME_SWITCH): that kernel variant is "
+                   "timed in the same runs, printed against the default");
     CLI11_PARSE(app, argc, argv);
 
     ClContext ctx(selectDevice(device));
     std::printf("device: %s | Embree %d.%d.%d on %u threads | median of %d runs\n",
                 ctx.name().c_str(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
                 std::thread::hardware_concurrency(), runs);
-    Program program(ctx, assembleClSource({"intersect.cl"}), "-cl-std=CL1.2");
-    std::printf("%-14s %-8s %10s %10s %10s %8s %9s\n", "scene", "rays", "count",
-                "RayDrive", "Embree", "ratio", "agree");
+    std::vector<std::unique_ptr<Program>> programs;
+    programs.push_back(
+        std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}), "-cl-std=CL1.2"));
+    for (const std::string& v : variants)
+        programs.push_back(std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}),
+                                                     "-cl-std=CL1.2 " + v));
+    std::printf("%-14s %-8s %10s %10s %10s %8s %9s %9s\n", "scene", "rays", "count",
+                "RayDrive", "Embree", "ratio", "agree", "cpu ratio");
     for (const Mesh& mesh : {sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")}) {
         Bvh bvh = buildBvh([&] {
             Scene s;
@@ -210,6 +228,7 @@ int main(int argc, char** argv) {
         DeviceBuffer<Triangle> noTris(ctx, 1);
         DeviceBuffer<rt_float4> noMotion(ctx, 1);
         DeviceBuffer<float> noTime(ctx, 1);
+        DeviceBuffer<uint32_t> noNumerics(ctx, 1);  // archive flags: RT_HAS_PROCEDURALS only
         Rays primary = primaryRays(side);
         std::vector<RayHit> primHits;
         emb.trace(primary, false, primHits);
@@ -228,14 +247,20 @@ int main(int argc, char** argv) {
             DeviceBuffer<RayState> state(ctx, st, CL_MEM_READ_WRITE);
             DeviceBuffer<RayHit> hits(ctx, n);
             Profiler prof(ctx);
-            Kernel kc(ctx, program.get(), "intersect_closest", prof);
-            Kernel ks(ctx, program.get(), "intersect_shadow", prof);
-            auto runDevice = [&] {
+            std::vector<std::unique_ptr<Kernel>> kcs, kss;
+            for (const auto& prog : programs) {
+                kcs.push_back(std::make_unique<Kernel>(ctx, prog->get(), "intersect_closest", prof));
+                kss.push_back(std::make_unique<Kernel>(ctx, prog->get(), "intersect_shadow", prof));
+            }
+            auto runDevice = [&](size_t p) {
+                Kernel& kc = *kcs[p];
+                Kernel& ks = *kss[p];
                 if (k.shadow) {
                     state.upload(st);
                     auto t0 = Clock::now();
                     ks.launch(n, cl_uint(n), nodes, blocks, org, dir, state, noQuadrics, noCsg,
-                              noTris, noMotion, noTris, noSample, noTime, cl_uint(1));
+                              noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
+                              noNumerics);
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
                 }
@@ -245,14 +270,20 @@ int main(int argc, char** argv) {
                 ctx.finish();
                 return std::chrono::duration<double>(Clock::now() - t0).count();
             };
-            runDevice();  // first launch compiles the kernel on PoCL
-            std::vector<double> td, te;
+            std::vector<std::vector<double>> tv(programs.size());
+            for (size_t p = programs.size(); p-- > 0;) runDevice(p);  // PoCL compiles on first launch
+            std::vector<double> td, te, cd, ce;
             std::vector<RayHit> eh;
             for (int r = 0; r < runs; ++r) {
-                td.push_back(runDevice());
+                for (size_t p = 1; p < programs.size(); ++p) tv[p].push_back(runDevice(p));
+                double c0 = cpuSeconds();
+                td.push_back(runDevice(0));
+                double c1 = cpuSeconds();
                 auto t0 = Clock::now();
                 emb.trace(*k.rays, k.shadow, eh);
                 te.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+                ce.push_back(cpuSeconds() - c1);
+                cd.push_back(c1 - c0);
             }
             // Agreement: same hit / same occlusion as Embree.
             size_t same = 0;
@@ -268,10 +299,16 @@ int main(int argc, char** argv) {
                                                              1e-3f * std::max(1.0f, eh[i].t));
             }
             double md = n / median(td) * 1e-6, me = n / median(te) * 1e-6;
-            std::printf("%-14s %-8s %10zu %10.2f %10.2f %8.3f %8.4f%%\n", mesh.name.c_str(),
-                        k.name, n, md, me, md / me, 100.0 * double(same) / double(n));
+            std::printf("%-14s %-8s %10zu %10.2f %10.2f %8.3f %8.4f%% %9.3f\n", mesh.name.c_str(),
+                        k.name, n, md, me, md / me, 100.0 * double(same) / double(n),
+                        median(ce) / median(cd));
+            for (size_t p = 1; p < programs.size(); ++p)
+                std::printf("  variant %-30s %10.2f Mrays/s, %.3f of default, %.3f of Embree\n",
+                            variants[p - 1].c_str(), n / median(tv[p]) * 1e-6,
+                            median(td) / median(tv[p]), median(te) / median(tv[p]));
         }
     }
-    std::printf("(Mrays/s, wall time of one launch over all rays incl. launch overhead)\n");
+    std::printf("(Mrays/s, wall time of one launch over all rays incl. launch overhead;\n"
+                " cpu ratio: Embree's CPU seconds over RayDrive's for the same rays)\n");
     return 0;
 }
