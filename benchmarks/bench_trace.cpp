@@ -9,6 +9,8 @@
 #include <cmath>
 #include <memory>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <thread>
 
@@ -52,6 +54,46 @@ Mesh sphereField(int count, int perSphere, const std::string& name) {
                 m.tris.push_back({P(i, j), P(i + 1, j), P(i + 1, j + 1)});
                 m.tris.push_back({P(i, j), P(i + 1, j + 1), P(i, j + 1)});
             }
+    }
+    return m;
+}
+
+// A triangle mesh from an OFF file (polygons fanned into triangles), scaled and centred
+// into the same 10x10x10 box, e.g. the Stanford bunny from Debian's libcgal-demo
+// (run_trace.sh fetches it; it is not ours to commit).
+Mesh loadOff(const std::string& path) {
+    std::ifstream in(path);
+    std::string word;
+    auto next = [&]() -> std::string {  // the next token, comments skipped
+        while (in >> word) {
+            if (word[0] != '#') return word;
+            std::getline(in, word);
+        }
+        throw std::runtime_error(path + ": truncated OFF file");
+    };
+    if (!in || next() != "OFF") throw std::runtime_error(path + ": not an OFF file");
+    const size_t nv = std::stoul(next()), nf = std::stoul(next());
+    next();  // edges
+    std::vector<rt_float4> v(nv);
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    for (rt_float4& p : v) {
+        p = {std::stof(next()), std::stof(next()), std::stof(next()), 0};
+        const float c[3] = {p.x, p.y, p.z};
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+    }
+    const float scale = 10.0f / std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    for (rt_float4& p : v)
+        p = {(p.x - 0.5f * (lo[0] + hi[0])) * scale, -(p.y - 0.5f * (lo[1] + hi[1])) * scale,
+             (p.z - 0.5f * (lo[2] + hi[2])) * scale, 0};
+    Mesh m{{}, std::filesystem::path(path).stem().string()};
+    for (size_t f = 0; f < nf; ++f) {
+        const size_t k = std::stoul(next());
+        std::vector<size_t> idx(k);
+        for (size_t& i : idx) {
+            i = std::stoul(next());
+            if (i >= nv) throw std::runtime_error(path + ": vertex index out of range");
+        }
+        for (size_t j = 1; j + 1 < k; ++j) m.tris.push_back({v[idx[0]], v[idx[j]], v[idx[j + 1]]});
     }
     return m;
 }
@@ -193,7 +235,8 @@ int main(int argc, char** argv) {
     app.add_option("--runs", runs, "timed runs per measurement (median reported)");
     app.add_option("--side", side, "primary rays: side x side");
     app.add_option("--device", device, "OpenCL device (index or name)");
-    std::vector<std::string> variants;
+    std::vector<std::string> variants, meshFiles;
+    app.add_option("--mesh", meshFiles, "also an OFF mesh (e.g. the Stanford bunny)");
     app.add_option("--variant", variants,
                    "extra OpenCL build options (e.g. -DRT_SOME_SWITCH): that kernel variant is "
                    "timed in the same runs, printed against the default");
@@ -211,7 +254,9 @@ int main(int argc, char** argv) {
                                                      "-cl-std=CL1.2 " + v));
     std::printf("%-14s %-8s %10s %10s %10s %8s %9s %9s\n", "scene", "rays", "count",
                 "RayDrive", "Embree", "ratio", "agree", "cpu ratio");
-    for (const Mesh& mesh : {sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")}) {
+    std::vector<Mesh> meshes{sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")};
+    for (const std::string& f : meshFiles) meshes.push_back(loadOff(f));
+    for (const Mesh& mesh : meshes) {
         Bvh bvh = buildBvh([&] {
             Scene s;
             s.triangles = mesh.tris;
