@@ -23,6 +23,7 @@
 #include "ocl/kernel.h"
 #include "ocl/program.h"
 #include "render/device_scene.h"
+#include "render/scene_bvh.h"
 
 using namespace rd;
 using Clock = std::chrono::steady_clock;
@@ -236,6 +237,8 @@ int main(int argc, char** argv) {
     app.add_option("--side", side, "primary rays: side x side");
     app.add_option("--device", device, "OpenCL device (index or name)");
     std::vector<std::string> variants, meshFiles;
+    int sahBlock = 0;
+    app.add_option("--sah-block", sahBlock, "SAH block size (default: the renderer's)");
     app.add_option("--mesh", meshFiles, "also an OFF mesh (e.g. the Stanford bunny)");
     app.add_option("--variant", variants,
                    "extra OpenCL build options (e.g. -DRT_SOME_SWITCH): that kernel variant is "
@@ -257,11 +260,13 @@ int main(int argc, char** argv) {
     std::vector<Mesh> meshes{sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")};
     for (const std::string& f : meshFiles) meshes.push_back(loadOff(f));
     for (const Mesh& mesh : meshes) {
+        BvhBuildSettings bs = sceneBvhSettings();
+        if (sahBlock > 0) bs.blockSize = sahBlock;
         Bvh bvh = buildBvh([&] {
             Scene s;
             s.triangles = mesh.tris;
             return triangleBounds(s);
-        }());
+        }(), bs);
         EmbreeScene emb(mesh);
         Bvh4 bvh4 = collapseToBvh4(bvh, mesh.tris);
         DeviceBuffer<Bvh4Node> nodes(ctx, bvh4.nodes);
