@@ -7,8 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include <CLI/CLI.hpp>
+#include <zlib.h>
 
 #include "film/exr_output.h"
 #include "ocl/check.h"
@@ -17,6 +19,7 @@
 #include "render/renderer.h"
 #include "render/stop.h"
 #include "rib/reader.h"
+#include "rib/writer.h"
 #include "scene/depth_map.h"
 #include "scene/rib_builder.h"
 #include "stats/stats_report.h"
@@ -82,6 +85,55 @@ int txmakeCommand(int argc, char** argv) {
     return 0;
 }
 
+// raydrive catrib [--binary] [--gzip] [-o out] in.rib: the RIB read and written back
+// through the RI writer (as PRMan's catrib): ASCII or binary encoding, optionally
+// gzip-compressed, archives read inline. Errors are reported as a render reports them.
+int catribCommand(int argc, char** argv) {
+    CLI::App app{"raydrive catrib: a RIB file written back as ASCII or binary RIB"};
+    std::string input, output = "-";
+    bool binary = false, gzip = false;
+    app.add_option("input", input, "RIB file (plain or gzip-compressed)")->required();
+    app.add_option("-o,--output", output, "output file (default: standard output)");
+    app.add_flag("--binary", binary, "binary-encoded RIB (RI 3.2 appendix C)");
+    app.add_flag("--gzip", gzip, "gzip-compress the output");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int rc = app.exit(e);
+        return rc == 0 ? 0 : 2;
+    }
+    std::ostringstream text;
+    rib::Diagnostics diag(&std::cerr);
+    bool ok;
+    {
+        rib::RibWriter writer(text, binary ? rib::RibWriter::Encoding::Binary
+                                           : rib::RibWriter::Encoding::Ascii);
+        ok = rib::readFile(input, writer, diag);
+    }
+    const std::string bytes = text.str();
+    if (gzip) {
+        if (output == "-") {
+            std::cerr << "raydrive catrib: error: --gzip needs -o FILE\n";
+            return 2;
+        }
+        gzFile f = gzopen(output.c_str(), "wb");
+        bool written = f && gzwrite(f, bytes.data(), unsigned(bytes.size())) == int(bytes.size());
+        if (!f || gzclose(f) != Z_OK || !written) {
+            std::cerr << "raydrive catrib: error: cannot write " << output << "\n";
+            return 4;
+        }
+    } else if (output == "-") {
+        std::cout << bytes;
+    } else {
+        std::ofstream out(output, std::ios::binary);
+        if (!(out << bytes)) {
+            std::cerr << "raydrive catrib: error: cannot write " << output << "\n";
+            return 4;
+        }
+    }
+    return ok ? 0 : 1;
+}
+
 std::string outputName(const rd::Scene& scene, const std::string& override, size_t frame,
                        size_t frames) {
     std::string name = override;
@@ -103,13 +155,15 @@ std::string outputName(const rd::Scene& scene, const std::string& override, size
 
 int main(int argc, char** argv) {
     if (argc > 1 && std::string(argv[1]) == "txmake") return txmakeCommand(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "catrib") return catribCommand(argc - 1, argv + 1);
     CLI::App app{"RayDrive: a RenderMan renderer on OpenCL, after ART's RenderDrive"};
     std::string scenePath, output, deviceSpec, statsPath;
     bool quiet = false, halfFloat = false, tessellateQuadrics = false;
     double timeBudget = 0, errorTarget = 0;
     std::vector<std::string> aovs;
     app.add_option("scene", scenePath,
-                   "RIB file to render, `devices` to list devices (or `raydrive txmake --help`)")
+                   "RIB file to render, `devices` to list devices (or `raydrive txmake --help`, "
+                   "`raydrive catrib --help`)")
         ->required();
     app.add_option("-o,--output", output, "output file (overrides the RIB's Display)");
     app.add_option("--device", deviceSpec,
