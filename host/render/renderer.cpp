@@ -371,7 +371,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                     st.poolFillSeries.push_back({secondsSince(t0), double(n) / double(pool)});
                 compactSpawned(cl_uint(n * spawn));
             }
+            const size_t inFlightBefore = ring.inFlight();
             retireJobs(pending);  // its progress read waits for the round: time it here
+            // No ray anywhere yet a job still in flight would loop for ever: a sample's
+            // count of rays went wrong. Never hang: stop with a clear error.
+            if (traced == 0 && spillTop == 0 && ring.inFlight() == inFlightBefore &&
+                inFlightBefore > 0)
+                throw std::runtime_error("internal error: samples in flight with no ray left");
             if (const double dt = secondsSince(tRound); traced > 0 && dt > 0) {
                 raysPerSec = double(traced) / dt;
                 roundCap = std::clamp<size_t>(size_t(raysPerSec * 0.25),
