@@ -28,9 +28,11 @@ struct RayPool {
           nextWeight(ctx, capacity * spawn), nextState(ctx, capacity * spawn),
           nextSample(ctx, capacity * spawn), groupLive(ctx, capacity * spawn / 64 + 1),
           groupOffset(ctx, capacity * spawn / 64 + 1),
-          spillOrigin(ctx, capacity * spawn), spillDirection(ctx, capacity * spawn),
-          spillWeight(ctx, capacity * spawn), spillState(ctx, capacity * spawn),
-          spillSample(ctx, capacity * spawn),
+          spillOrigin(ctx, spillCapacity(capacity, spawn)),
+          spillDirection(ctx, spillCapacity(capacity, spawn)),
+          spillWeight(ctx, spillCapacity(capacity, spawn)),
+          spillState(ctx, spillCapacity(capacity, spawn)),
+          spillSample(ctx, spillCapacity(capacity, spawn)),
           shOrigin(ctx, capacity * shadowLights), shDirection(ctx, capacity * shadowLights),
           shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
           newPixel(ctx, capacity), newIndex(ctx, capacity),
@@ -44,7 +46,13 @@ struct RayPool {
     }
     // Device bytes per ray of capacity, for sizing the pool to a memory budget.
     static size_t bytesPerRay(size_t spawn, uint32_t shadowLights) {
-        return 140 + 2 * 100 + spawn * (72 + 68) + size_t(shadowLights) * 64;
+        return 140 + 2 * 100 + spawn * 72 + spillCapacity(1, spawn) * 68 +
+               size_t(shadowLights) * 64;
+    }
+    // Only a scene whose shaders trace can spawn more rays than it traced: the rest
+    // (continuations through Opacity < 1 at most one a ray) never need the stack.
+    static size_t spillCapacity(size_t capacity, size_t spawn) {
+        return spawn > 1 ? capacity * spawn : 0;
     }
     // the round's rays
     DeviceBuffer<rt_float4> origin, direction, weight;

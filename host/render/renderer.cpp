@@ -210,7 +210,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     size_t roundCap = pool;
     double raysPerSec = 0;
     size_t spillTop = 0;
-    const size_t spillCapacity = pool * spawn;
+    const size_t spillCapacity = RayPool::spillCapacity(pool, spawn);
+    const bool spawns = f.trace || f.transparency;  // else a round leaves no ray behind
     // Refill: whole pixel jobs from the front of `pending` into the free end of the pool
     // (AR250: new eye rays whenever there is room, so eye and secondary rays share rounds).
     auto refill = [&](std::deque<PlannedJob>& pending) {
@@ -369,7 +370,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 if (st.poolFillSeries.empty() ||
                     secondsSince(t0) - st.poolFillSeries.back().seconds >= 0.05)
                     st.poolFillSeries.push_back({secondsSince(t0), double(n) / double(pool)});
-                compactSpawned(cl_uint(n * spawn));
+                if (spawns) compactSpawned(cl_uint(n * spawn));
+                else n = 0;
             }
             const size_t inFlightBefore = ring.inFlight();
             retireJobs(pending);  // its progress read waits for the round: time it here
