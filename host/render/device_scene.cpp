@@ -53,6 +53,9 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
       quadricMotion(ctx, scene.quadricMotion),
       trianglesEnd(ctx, scene.trianglesEnd),
       materials(ctx, shading.materials),
-      params(ctx, shading.params) {}
+      params(ctx, shading.params),
+      triangleParams(ctx, f.pointParams > 0 ? scene.triangleParams : std::vector<uint32_t>{}),
+      pointParamValues(ctx, f.pointParams > 0 ? scene.pointParamValues : std::vector<rt_float4>{}),
+      pointParamLayout(ctx, f.pointParams > 0 ? shading.pointParamLayout : std::vector<int32_t>{}) {}
 
 }  // namespace rd

@@ -21,6 +21,15 @@
 
 namespace rd {
 
+// Primitive variables that give shader parameters per-point values
+// (rib_builder_point_params.cpp): at most this many per primitive.
+constexpr int kMaxPointParams = 8;
+bool isStandardPrimvar(const std::string& name);  // P, N, Cs, st ...: not parameters
+bool givesOneValue(const rib::Param& p);          // constant, or uniform on one face
+// The request's variables that give a parameter a value per point (float, color,
+// point, vector, normal; not the standard ones), in order, the first kMaxPointParams.
+std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params);
+
 class RibBuilder : public rib::Target {
 public:
     RibBuilder(rib::Diagnostics& diag, const std::string& sourceFile);
@@ -189,6 +198,25 @@ private:
     void addMesh(L, const VertexData& mesh);
     // Per-vertex "N", "Cs", "Os", "st" or "s"+"t" of a polygon mesh with np points.
     void readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh);
+    // Per-point shader parameters (rib_builder_point_params.cpp): of a polygon mesh
+    // (split into one vertex per face-vertex when some are facevarying or uniform;
+    // mesh.tris are then remade from nverts/verts), of a diced quadric (bilinear in the
+    // corner values at each vertex's (u, v) in mesh.st), and of an exact quadric (4
+    // corner values appended to Scene::pointParamValues; returns the first or
+    // RT_NO_POINT_PARAMS).
+    void readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
+                         const std::vector<int>& verts, VertexData& mesh);
+    void cornerPointParams(const rib::ParamList& params, VertexData& mesh);
+    uint32_t quadricPointParams(const rib::ParamList& params, const glm::mat4& ctm);
+    std::vector<glm::vec3> pointParamToWorld(const glm::mat4& ctm,
+                                             const VertexData::PointParam& p) const;
+    // The request being read gives these per-point parameters (an object instance's
+    // pieces were read at ObjectBegin, another request).
+    bool pointParamsMatch(const VertexData& mesh) const;
+    // Scene::triangleParams gets placeholders up to the triangles so far.
+    void startTrianglePointParams();
+    // Set while a primitive whose per-point parameters are carried picks its material.
+    bool m_carryPointParams = false;
     // Pixels per world unit at distance `depth` in front of the camera.
     float pixelsPerUnit(float depth) const;
     // Screen size in pixels of an object-space sphere (centre, radius), for dicing rates.

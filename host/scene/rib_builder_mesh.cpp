@@ -60,7 +60,17 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     const int leaf = prototype ? -1 : solidLeafForSurface(loc);
     const glm::mat4& ctm = m_attrStack.back().ctm;
     glm::mat3 nm = prototype ? glm::mat3(1.0f) : glm::transpose(glm::inverse(glm::mat3(ctm)));
+    // Per-point shader parameters: their surface variant gets them in the same order
+    // (prototypes are shaded with their instance's surface, which has none)
+    std::vector<std::vector<glm::vec3>> pointParams;
+    if (!prototype && pointParamsMatch(mesh)) {
+        for (const VertexData::PointParam& p : mesh.params)
+            pointParams.push_back(pointParamToWorld(ctm, p));
+        startTrianglePointParams();
+    }
+    m_carryPointParams = !pointParams.empty();
     uint32_t material = currentMaterial();
+    m_carryPointParams = false;
     // RI's geometric normal: the world-space cross product, reversed for inside-out
     // primitives and mirrored transforms (prototypes: their object space, unmirrored)
     const bool flipNormals = prototype ? m_attrStack.back().insideOut : flipWorldNormals();
@@ -115,6 +125,15 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
             m_solidNodes[leaf].memberWhat.push_back("mesh at " + loc.str());
         }
         m_world.triangles.push_back({f4(a), f4(b), f4(c)});
+        if (!m_world.triangleParams.empty() || !pointParams.empty()) {
+            startTrianglePointParams();
+            m_world.triangleParams.back() = pointParams.empty()
+                                                ? RT_NO_POINT_PARAMS
+                                                : uint32_t(m_world.pointParamValues.size());
+            for (int k : {i0, i1, i2})
+                for (const std::vector<glm::vec3>& v : pointParams)
+                    m_world.pointParamValues.push_back(f4(v[size_t(k)]));
+        }
         if (int light = m_attrStack.back().areaLight; light >= 0 && !prototype)
             m_world.areaLightTriangles[uint32_t(light)].push_back(
                 flipNormals ? std::array<glm::vec3, 3>{a, c, b} : std::array<glm::vec3, 3>{a, b, c});

@@ -1,0 +1,190 @@
+// rib_builder_point_params.cpp: primitive variables that give a shader parameter a value
+// per point (RI: a varying, vertex, facevarying or uniform variable named like a
+// parameter of the surface shader gives that parameter its value on the primitive,
+// interpolated over it). They are read here into per-vertex values of the mesh (per
+// face-vertex when some are facevarying or per face), or into 4 (u, v) corner values
+// of a quadric, moved to world ("current") space, and stored for the device, which
+// interpolates them at each hit (shade_common.clh) and hands them to the shader in
+// place of its parameters (rsl_abi.h, PER-POINT PARAMETERS).
+#include <algorithm>
+#include <set>
+
+#include "rib_builder.h"
+#include "rib_builder_util.h"
+
+namespace rd {
+namespace {
+
+using Kind = VertexData::Kind;
+
+// Values a parameter has in all (floats, ints or strings).
+size_t valueCount(const rib::Param& p) {
+    return p.type == rib::ParamType::String    ? p.strings.size()
+           : p.type == rib::ParamType::Integer ? p.ints.size()
+                                               : p.floats.size();
+}
+
+bool kindOf(const rib::Param& p, Kind* kind) {
+    if (p.arraySize != 1) return false;
+    switch (p.type) {
+    case rib::ParamType::Float: *kind = Kind::Float; return true;
+    case rib::ParamType::Color: *kind = Kind::Color; return p.components() == 3;
+    case rib::ParamType::Point: *kind = Kind::Point; return true;
+    case rib::ParamType::Vector: *kind = Kind::Vector; return true;
+    case rib::ParamType::Normal: *kind = Kind::Normal; return true;
+    default: return false;
+    }
+}
+
+glm::vec3 valueAt(const rib::Param& p, size_t i) {
+    const size_t n = size_t(p.components());
+    if (n == 1) return glm::vec3(i < p.floats.size() ? p.floats[i] : 0.0f, 0.0f, 0.0f);
+    if (n * i + 2 >= p.floats.size()) return glm::vec3(0.0f);
+    return {p.floats[n * i], p.floats[n * i + 1], p.floats[n * i + 2]};
+}
+
+}  // namespace
+
+bool isStandardPrimvar(const std::string& name) {
+    static const std::set<std::string> standard = {"P", "Pw", "Pz", "N", "Np", "Cs", "Os", "s",
+                                                   "t", "st", "width", "constantwidth"};
+    return standard.count(name) != 0;
+}
+
+bool givesOneValue(const rib::Param& p) {
+    const size_t per = size_t(std::max(1, p.components() * p.arraySize));
+    return p.storage == rib::StorageClass::Constant ||
+           (p.storage == rib::StorageClass::Uniform && valueCount(p) == per);
+}
+
+std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params) {
+    std::vector<const rib::Param*> out;
+    if (!params) return out;
+    Kind kind;
+    for (const rib::Param& p : params->params)
+        if (!isStandardPrimvar(p.name) && !givesOneValue(p) && kindOf(p, &kind) &&
+            out.size() < size_t(kMaxPointParams))
+            out.push_back(&p);
+    return out;
+}
+
+void RibBuilder::readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
+                                 const std::vector<int>& verts, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    if (list.empty()) return;
+    const size_t np = mesh.p.size();
+    bool perCorner = false;  // some value belongs to a face or a face's corner
+    for (const rib::Param* p : list)
+        perCorner |= p->storage == rib::StorageClass::FaceVarying ||
+                     p->storage == rib::StorageClass::Uniform;
+    if (perCorner) {
+        // one vertex per face-vertex: every other per-vertex value is copied to it
+        const size_t nfv = verts.size();
+        auto spread = [&](auto& v) {
+            if (v.size() != np) return;
+            auto copy = v;
+            v.resize(nfv);
+            for (size_t i = 0; i < nfv; ++i)
+                v[i] = verts[i] >= 0 && size_t(verts[i]) < np ? copy[size_t(verts[i])] : copy[0];
+        };
+        spread(mesh.p), spread(mesh.n), spread(mesh.st), spread(mesh.cs), spread(mesh.os);
+        mesh.tris.clear();
+        std::vector<int> corner(nfv);
+        for (size_t i = 0; i < nfv; ++i) corner[i] = int(i);
+        size_t offset = 0;
+        for (int count : nverts) {  // the faces pointsPolygons took (it reported the rest)
+            bool ok = count >= 3 && offset + size_t(count) <= nfv;
+            for (int k = 0; ok && k < count; ++k)
+                ok = verts[offset + k] >= 0 && size_t(verts[offset + k]) < np;
+            if (ok) triangulateConvex(&corner[offset], count, mesh.tris);
+            offset += size_t(std::max(count, 0));
+        }
+    }
+    std::vector<int> faceOf;  // face index of each face-vertex
+    for (size_t f = 0; f < nverts.size(); ++f)
+        faceOf.insert(faceOf.end(), size_t(std::max(nverts[f], 0)), int(f));
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            size_t src = i;  // the value's index for vertex i
+            if (perCorner) {
+                if (p->storage == rib::StorageClass::FaceVarying) src = i;
+                else if (p->storage == rib::StorageClass::Uniform)
+                    src = i < faceOf.size() ? size_t(faceOf[i]) : 0;
+                else src = verts[i] >= 0 && size_t(verts[i]) < np ? size_t(verts[i]) : 0;
+            }
+            out.v[i] = valueAt(*p, src);
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh) {
+    for (const rib::Param* p : pointParamsOf(&params)) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        // a quadric's varying values are at its (u, v) corners 00, 10, 01, 11 (one value,
+        // uniform: everywhere); mesh.st holds each vertex's (u, v)
+        const bool corners = valueCount(*p) >= 4 * size_t(p->components());
+        glm::vec3 c[4];
+        for (int k = 0; k < 4; ++k) c[k] = valueAt(*p, corners ? size_t(k) : 0);
+        out.v.resize(mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const glm::vec2 uv = i < mesh.st.size() ? mesh.st[i] : glm::vec2(0.0f);
+            out.v[i] = (1 - uv.x) * (1 - uv.y) * c[0] + uv.x * (1 - uv.y) * c[1] +
+                       (1 - uv.x) * uv.y * c[2] + uv.x * uv.y * c[3];
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+// Object-space values to the device's world space (eye-relative, like P): points by
+// the full transform, vectors by its linear part, normals by its inverse transpose.
+std::vector<glm::vec3> RibBuilder::pointParamToWorld(const glm::mat4& ctm,
+                                                     const VertexData::PointParam& p) const {
+    switch (p.kind) {
+    case Kind::Point: return worldPoints(ctm, p.v);
+    case Kind::Vector:
+    case Kind::Normal: {
+        const glm::mat3 m = p.kind == Kind::Vector ? glm::mat3(ctm)
+                                                   : glm::transpose(glm::inverse(glm::mat3(ctm)));
+        std::vector<glm::vec3> out(p.v.size());
+        for (size_t i = 0; i < out.size(); ++i) out[i] = m * p.v[i];
+        return out;
+    }
+    default: return p.v;
+    }
+}
+
+uint32_t RibBuilder::quadricPointParams(const rib::ParamList& params, const glm::mat4& ctm) {
+    if (pointParamsOf(&params).empty()) return RT_NO_POINT_PARAMS;
+    VertexData corners;
+    corners.p.resize(4);
+    corners.st = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    cornerPointParams(params, corners);
+    std::vector<std::vector<glm::vec3>> world;
+    for (const VertexData::PointParam& p : corners.params) world.push_back(pointParamToWorld(ctm, p));
+    const uint32_t first = uint32_t(m_world.pointParamValues.size());
+    for (int c = 0; c < 4; ++c)
+        for (const std::vector<glm::vec3>& v : world) m_world.pointParamValues.push_back(f4(v[c]));
+    return first;
+}
+
+bool RibBuilder::pointParamsMatch(const VertexData& mesh) const {
+    const std::vector<const rib::Param*> list = pointParamsOf(m_primVars);
+    if (list.empty() || list.size() != mesh.params.size()) return false;
+    for (size_t i = 0; i < list.size(); ++i)
+        if (list[i]->name != mesh.params[i].name) return false;
+    return true;
+}
+
+void RibBuilder::startTrianglePointParams() {
+    if (m_world.triangleParams.size() < m_world.triangles.size())
+        m_world.triangleParams.resize(m_world.triangles.size(), RT_NO_POINT_PARAMS);
+}
+
+}  // namespace rd

@@ -1,0 +1,171 @@
+// point_params_test.cpp: primitive variables that give a shader parameter a value per
+// point (varying, vertex, facevarying, uniform on several faces) rendered through the
+// whole pipeline against the values they interpolate to: linear ramps across polygons,
+// discontinuities between faces, bilinear corner values on a quadric (exact and diced),
+// points moved to current space, hoisted uniform work that reads such a parameter, and
+// no build option for scenes without them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "render/features.h"
+#include "render_harness.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+// Orthographic over [-1, 1]^2: pixel column i of W has its centre at x = -1 + (i + 0.5) 2 / W.
+const int kSize = 16;
+const std::string kCam = "Format 16 16 1\nPixelSamples 8 8\nOption \"render\" \"float pixelerror\" [1e-9]\nProjection \"orthographic\"\n";
+double centre(int i) { return -1.0 + (i + 0.5) * 2.0 / kSize; }
+
+// A folder of test shaders on the search path.
+std::string shaders() {
+    std::string dir = ::testing::TempDir() + "/raydrive_point_params";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/pp_value.sl") << "surface pp_value(float Kd = 0.25; color tint = 1;) {\n"
+                                           "    Oi = 1;\n    Ci = tint * Kd;\n}\n";
+    // k is uniform: hoisted into the prepare kernel, unless Kd varies per point
+    std::ofstream(dir + "/pp_hoist.sl") << "surface pp_hoist(float Kd = 0.5;) {\n"
+                                           "    uniform float k = pow(Kd, 2) + 0.125;\n"
+                                           "    Oi = 1;\n    Ci = k;\n}\n";
+    std::ofstream(dir + "/pp_point.sl") << "surface pp_point(point Pref = point(100, 100, 100);) {\n"
+                                           "    Oi = 1;\n    Ci = length(Pref - P);\n}\n";
+    return "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n";
+}
+
+bool hasOption(const Rendered& img) {
+    return rd::buildOptions(img.stats.features).find("-DRSL_MAX_PARAM_PRIMVARS") !=
+           std::string::npos;
+}
+
+// Largest error of channel c against f(x) (y up: f(y)) at the pixel centres, over the
+// columns [x0, x1) (rows) each averaged along its length: 16 x 64 samples, which keeps
+// the sampling noise (the pixel's samples are random in it) under 1e-3.
+template <class F>
+double columnError(const Rendered& img, int c, F f, int x0 = 0, int x1 = kSize) {
+    double e = 0;
+    for (int x = x0; x < x1; ++x)
+        e = std::max(e, std::fabs(img.mean(c, x, 0, x + 1, kSize) - f(centre(x))));
+    return e;
+}
+template <class F>
+double rowError(const Rendered& img, int c, F f) {
+    double e = 0;
+    for (int y = 0; y < kSize; ++y)
+        e = std::max(e, std::fabs(img.mean(c, 0, y, kSize, y + 1) - f(-centre(y))));
+    return e;
+}
+
+}  // namespace
+
+// "varying float Kd" 0 at the left edge, 1 at the right, through matte lit head-on by a
+// distant light (Ci = Kd exactly): every light mode of the shade kernel sees the value
+// interpolated at the point. Pixels hold the ramp at their centres (a linear function's
+// mean over the pixel), to 3e-3.
+TEST(PointParams, VaryingFloatRampsAcrossAPolygon) {
+    Rendered img = renderRib(kCam +
+                             "WorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] "
+                             "\"to\" [0 0 1]\nSurface \"matte\" \"Ka\" 0 \"Kd\" 0.3\n"
+                             "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1] "
+                             "\"varying float Kd\" [0 1 1 0]\nWorldEnd\n");
+    EXPECT_LT(columnError(img, 0, [](double x) { return (x + 1) / 2; }), 3e-3);
+    EXPECT_LT(columnError(img, 2, [](double x) { return (x + 1) / 2; }), 3e-3);
+    EXPECT_TRUE(hasOption(img));
+    const auto names = img.stats.features.names();
+    EXPECT_NE(std::find(names.begin(), names.end(), "point_params"), names.end());
+}
+
+// "vertex color tint" on a PointsPolygons of two quads sharing an edge: a colour linear
+// in x and y, so the triangulation does not matter; each channel to 3e-3.
+TEST(PointParams, VertexColorOnPointsPolygons) {
+    Rendered img = renderRib(shaders() + kCam +
+                             "WorldBegin\nSurface \"pp_value\" \"Kd\" 1\n"
+                             "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] "
+                             "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] "
+                             "\"vertex color tint\" [0 0 0.5  0.5 0 0.5  1 0 0.5  "
+                             "0 1 0.5  0.5 1 0.5  1 1 0.5]\nWorldEnd\n");
+    EXPECT_LT(columnError(img, 0, [](double x) { return (x + 1) / 2; }), 3e-3);
+    EXPECT_LT(rowError(img, 1, [](double y) { return (y + 1) / 2; }), 3e-3);
+    EXPECT_LT(columnError(img, 2, [](double) { return 0.5; }), 1e-5);
+}
+
+// facevarying: the two faces share their middle vertices but not their values there
+// (left face 0.2 everywhere, right face 0.6 at x = 0 up to 1.0 at x = 1); uniform: one
+// value per face (exact, 1e-5); the ramp to 3e-3.
+TEST(PointParams, FaceVaryingAndUniformPerFace) {
+    const std::string mesh = "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] "
+                             "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] ";
+    Rendered fv = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + mesh +
+                            "\"facevarying float Kd\" [0.2 0.2 0.2 0.2  0.6 1 1 0.6]\nWorldEnd\n");
+    EXPECT_LT(columnError(fv, 0, [](double) { return 0.2; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(fv, 0, [](double x) { return 0.6 + 0.4 * x; }, kSize / 2, kSize), 3e-3);
+    Rendered uni = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + mesh +
+                             "\"uniform float Kd\" [2 5]\nWorldEnd\n");
+    EXPECT_LT(columnError(uni, 0, [](double) { return 2.0; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(uni, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
+}
+
+// A uniform declaration reading a per-point parameter is computed at the point, not
+// once per instance: Ci = Kd^2 + 0.125 along the ramp (Kd = x; a pixel's mean of x^2 is
+// its centre's plus (1/16)^2 / 3), to 3e-3. The same shader on a polygon
+// without the variable still hoists it (its default: 0.375).
+TEST(PointParams, HoistedWorkFollowsThePerPointParameter) {
+    Rendered img = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_hoist\"\n"
+                             "Polygon \"P\" [-1 -1 1  0 -1 1  0 1 1  -1 1 1]\n"
+                             "Polygon \"P\" [0 -1 1  1 -1 1  1 1 1  0 1 1] "
+                             "\"varying float Kd\" [0 1 1 0]\nWorldEnd\n");
+    EXPECT_LT(columnError(img, 0, [](double) { return 0.375; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(img, 0, [](double x) { return x * x + 0.125 + 1.0 / (3 * 16 * 16); }, kSize / 2, kSize), 3e-3);
+    EXPECT_EQ(img.stats.kernels.count("rd_prepare_uniforms"), 1u);
+}
+
+// A varying point reaches the shader in current space: "Pref" given equal to "P" under
+// a rotation and translation is P at every shading point (|Pref - P| under 1e-4).
+TEST(PointParams, PointsAreInCurrentSpace) {
+    Rendered img = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_point\"\n"
+                             "Translate 0.25 -0.125 2\nRotate 30 0 0 1\nScale 0.5 0.5 0.5\n"
+                             "Polygon \"P\" [-3 -3 0  3 -3 0  3 3 0  -3 3 0] "
+                             "\"varying point Pref\" [-3 -3 0  3 -3 0  3 3 0  -3 3 0]\nWorldEnd\n");
+    EXPECT_LT(columnError(img, 0, [](double) { return 0.0; }), 1e-4);
+}
+
+// A quadric's varying values are at its (u, v) corners: "varying float Kd" [0 0 1 1] is
+// v, which on a full sphere is (asin(z / r) + pi/2) / pi. The sphere's z axis is turned
+// to the screen's y (Rotate -90 about x), so down the middle column Kd = asin(y)/pi +
+// 1/2; exact and diced (exactquadrics 0) alike, to 0.01 (pixels over 1/8 of the radius).
+TEST(PointParams, VaryingOnASphere) {
+    for (int exact : {1, 0}) {
+        Rendered img = renderRib(shaders() + "Option \"render\" \"int exactquadrics\" [" +
+                                 std::to_string(exact) + "]\n" + kCam +
+                                 "WorldBegin\nSurface \"pp_value\"\nTranslate 0 0 5\n"
+                                 "Rotate -90 1 0 0\nSphere 1 -1 1 360 \"varying float Kd\" [0 0 1 1]\n"
+                                 "WorldEnd\n");
+        for (int y = 2; y < kSize - 2; ++y) {
+            const double sy = -centre(y);
+            const double want = std::asin(sy) / M_PI + 0.5;
+            EXPECT_NEAR(img.mean(0, kSize / 2 - 1, y, kSize / 2 + 1, y + 1), want, 0.01)
+                << "row " << y << " exact " << exact;
+        }
+        EXPECT_TRUE(hasOption(img));
+    }
+}
+
+// Only scenes that feed parameters per point get the code: none given, or one naming no
+// parameter of the shader, leaves the build option out.
+TEST(PointParams, NoOptionWithoutThem) {
+    Rendered none = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
+                              "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1]\nWorldEnd\n");
+    EXPECT_FALSE(hasOption(none));
+    EXPECT_NEAR(none.at(8, 8).r, 0.25, 1e-6);
+    Rendered other = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
+                               "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1] "
+                               "\"varying float notaparam\" [0 1 1 0]\nWorldEnd\n");
+    EXPECT_FALSE(hasOption(other));
+    EXPECT_NEAR(other.at(8, 8).r, 0.25, 1e-6);
+}
