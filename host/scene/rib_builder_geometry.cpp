@@ -5,6 +5,7 @@
 // then added as triangles in world space like any mesh.
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "rib_builder.h"
 #include "tessellate_curves_points.h"
@@ -54,6 +55,12 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
     VertexData mesh;
     mesh.p = m.mesh.p, mesh.n = m.mesh.n, mesh.tris = m.mesh.tris;
     if (m.st.size() == m.mesh.p.size()) mesh.st = m.st;
+    // a diced quadric's per-point parameters: bilinear in its corner values at each
+    // vertex's (u, v), which the dicer gave as st
+    static const std::set<std::string> quadrics = {"Cylinder", "Cone", "Disk", "Paraboloid",
+                                                   "Hyperboloid", "Torus"};
+    if (m_primVars && quadrics.count(what) && mesh.st.size() == mesh.p.size())
+        cornerPointParams(*m_primVars, mesh);
     // TextureCoordinates: s, t bilinear over the parametric (u, v) the dicer gave as st
     const Attributes& a = m_attrStack.back();
     for (glm::vec2& st : mesh.st) {

@@ -189,6 +189,7 @@ void RibBuilder::addMovingTriangle(const Triangle& first, const Triangle& last) 
     q.first_member = index;
     q.flags = RT_QF_MOVING;
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
+    q.point_params = RT_NO_POINT_PARAMS;
     Aabb box;
     for (const Triangle* t : {&first, &last})
         for (const rt_float4* v : {&t->v0, &t->v1, &t->v2}) {
@@ -221,6 +222,7 @@ void RibBuilder::addInstance(L loc, const std::string& handle, const ObjectDef& 
     q.kind = RT_Q_INSTANCE;
     q.first_member = it->second;  // the renderer replaces it with the prototype's BVH root
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
+    q.point_params = RT_NO_POINT_PARAMS;
     q.material = currentMaterial();
     if (!placeQuadric(q, eyeRelative(m_attrStack.back().ctm, glm::mat4(1.0f)))) {
         m_diag.warning(loc, "ObjectInstance: singular or non-finite transform, left out");

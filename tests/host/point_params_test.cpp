@@ -139,13 +139,16 @@ TEST(PointParams, PointsAreInCurrentSpace) {
 // v, which on a full sphere is (asin(z / r) + pi/2) / pi. The sphere's z axis is turned
 // to the screen's y (Rotate -90 about x), so down the middle column Kd = asin(y)/pi +
 // 1/2; exact and diced (exactquadrics 0) alike, to 0.01 (pixels over 1/8 of the radius).
+// The polygon behind it, with no such variable, keeps the shader's default.
 TEST(PointParams, VaryingOnASphere) {
     for (int exact : {1, 0}) {
         Rendered img = renderRib(shaders() + "Option \"render\" \"int exactquadrics\" [" +
                                  std::to_string(exact) + "]\n" + kCam +
-                                 "WorldBegin\nSurface \"pp_value\"\nTranslate 0 0 5\n"
+                                 "WorldBegin\nSurface \"pp_value\"\n"
+                                 "Polygon \"P\" [-2 -2 9  2 -2 9  2 2 9  -2 2 9]\nTranslate 0 0 5\n"
                                  "Rotate -90 1 0 0\nSphere 1 -1 1 360 \"varying float Kd\" [0 0 1 1]\n"
                                  "WorldEnd\n");
+        EXPECT_NEAR(img.at(0, 0).r, 0.25, 1e-6) << "a polygon without them, behind";
         for (int y = 2; y < kSize - 2; ++y) {
             const double sy = -centre(y);
             const double want = std::asin(sy) / M_PI + 0.5;
@@ -153,6 +156,19 @@ TEST(PointParams, VaryingOnASphere) {
                 << "row " << y << " exact " << exact;
         }
         EXPECT_TRUE(hasOption(img));
+    }
+}
+
+// The other quadrics the same way: on a cylinder turned like the sphere above,
+// [0 0 1 1] is v = (y + 1) / 2 in every row, exact and diced, to 3e-3.
+TEST(PointParams, VaryingOnACylinder) {
+    for (int exact : {1, 0}) {
+        Rendered img = renderRib(shaders() + "Option \"render\" \"int exactquadrics\" [" +
+                                 std::to_string(exact) + "]\n" + kCam +
+                                 "WorldBegin\nSurface \"pp_value\"\nTranslate 0 0 5\n"
+                                 "Rotate -90 1 0 0\nCylinder 1 -1 1 360 \"varying float Kd\" [0 0 1 1]\n"
+                                 "WorldEnd\n");
+        EXPECT_LT(rowError(img, 0, [](double y) { return (y + 1) / 2; }), 3e-3) << "exact " << exact;
     }
 }
 
