@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -207,6 +208,12 @@ private:
     void readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
                          const std::vector<int>& verts, VertexData& mesh);
     void cornerPointParams(const rib::ParamList& params, VertexData& mesh);
+    // General polygons (their tessellation's vertices are the points of P; faceIndex
+    // names each triangle's polygon): split into one vertex per triangle corner when
+    // some are facevarying or uniform.
+    void generalPolygonPointParams(const rib::ParamList& params, const std::vector<int>& nloops,
+                                   const std::vector<int>& nverts, const std::vector<int>& verts,
+                                   const std::vector<int>& faceIndex, VertexData& mesh);
     uint32_t quadricPointParams(const rib::ParamList& params, const glm::mat4& ctm);
     std::vector<glm::vec3> pointParamToWorld(const glm::mat4& ctm,
                                              const VertexData::PointParam& p) const;
@@ -224,7 +231,9 @@ private:
     // Screen size of the bounding sphere of object-space points.
     float screenRadius(const std::vector<glm::vec3>& points) const;
     // Adds a tessellated surface, or reports why the tessellator refused it.
-    void addSurface(L, const char* what, bool ok, const SurfaceMesh& m, const std::string& err);
+    // `perPoint`, when given, adds the per-point shader parameters to the mesh.
+    void addSurface(L, const char* what, bool ok, const SurfaceMesh& m, const std::string& err,
+                    const std::function<void(VertexData&)>& perPoint = nullptr);
     // Adds an exact quadric placed by the current transform (or keeps it in the object
     // being defined, or in the solid being built); "st"/"s"/"t" give corner values.
     // `placement` maps it into the space the current transform places (an object

@@ -47,7 +47,8 @@ float RibBuilder::screenRadius(const std::vector<glm::vec3>& pts) const {
 }
 
 void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh& m,
-                            const std::string& err) {
+                            const std::string& err,
+                            const std::function<void(VertexData&)>& perPoint) {
     if (!ok) {
         m_diag.error(loc, std::string(what) + ": " + err);
         return;
@@ -69,6 +70,7 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
         st = glm::vec2(0.0f);
         for (int k = 0; k < 4; ++k) st += w[k] * glm::vec2(a.texS[k], a.texT[k]);
     }
+    if (perPoint) perPoint(mesh);
     addMesh(loc, mesh);
 }
 
@@ -276,7 +278,11 @@ void RibBuilder::generalPolygon(L loc, Ints nverts, P params) {
     SurfaceMesh m;
     std::string err;
     bool ok = tessellateGeneralPolygon(nverts, points3(Pp->floats), m, &err);
-    addSurface(loc, "GeneralPolygon", ok, m, err);
+    addSurface(loc, "GeneralPolygon", ok, m, err, [&](VertexData& mesh) {
+        std::vector<int> verts(mesh.p.size());  // one polygon: its points in order
+        for (size_t i = 0; i < verts.size(); ++i) verts[i] = int(i);
+        generalPolygonPointParams(params, {int(nverts.size())}, nverts, verts, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::pointsGeneralPolygons(L loc, Ints nloops, Ints nverts, Ints verts, P params) {
@@ -286,7 +292,9 @@ void RibBuilder::pointsGeneralPolygons(L loc, Ints nloops, Ints nverts, Ints ver
     SurfaceMesh m;
     std::string err;
     bool ok = tessellatePointsGeneralPolygons(nloops, nverts, verts, points3(Pp->floats), m, &err);
-    addSurface(loc, "PointsGeneralPolygons", ok, m, err);
+    addSurface(loc, "PointsGeneralPolygons", ok, m, err, [&](VertexData& mesh) {
+        generalPolygonPointParams(params, nloops, nverts, verts, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::basis(L loc, S, const float ubasis[16], int ustep, S, const float vbasis[16],

@@ -122,6 +122,65 @@ void RibBuilder::readPointParams(const rib::ParamList& params, const std::vector
     }
 }
 
+void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,
+                                           const std::vector<int>& nloops,
+                                           const std::vector<int>& nverts,
+                                           const std::vector<int>& verts,
+                                           const std::vector<int>& faceIndex, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    if (list.empty()) return;
+    bool perCorner = false;
+    for (const rib::Param* p : list)
+        perCorner |= p->storage == rib::StorageClass::FaceVarying ||
+                     p->storage == rib::StorageClass::Uniform;
+    // where each polygon's face-vertices start in `verts` (its loops one after another)
+    std::vector<size_t> first(nloops.size() + 1, 0);
+    for (size_t f = 0, l = 0; f < nloops.size(); ++f) {
+        first[f + 1] = first[f];
+        for (int k = 0; k < nloops[f] && l < nverts.size(); ++k, ++l)
+            first[f + 1] += size_t(std::max(nverts[l], 0));
+    }
+    // each vertex of the mesh: its point, polygon and face-vertex (for facevarying)
+    struct Source {
+        size_t point = 0, face = 0, faceVertex = 0;
+    };
+    std::vector<Source> src(mesh.p.size());
+    for (size_t i = 0; i < src.size(); ++i) src[i].point = i;
+    if (perCorner) {
+        // one vertex per triangle corner: the tessellator shares the points of P
+        VertexData split;
+        src.clear();
+        for (size_t t = 0; 3 * t + 2 < mesh.tris.size(); ++t)
+            for (int c = 0; c < 3; ++c) {
+                const size_t v = size_t(mesh.tris[3 * t + c]);
+                Source s{v, t < faceIndex.size() ? size_t(faceIndex[t]) : 0, 0};
+                s.faceVertex = s.face < nloops.size() ? first[s.face] : 0;
+                for (size_t j = s.faceVertex; s.face < nloops.size() && j < first[s.face + 1]; ++j)
+                    if (j < verts.size() && size_t(verts[j]) == v) {
+                        s.faceVertex = j;
+                        break;
+                    }
+                split.p.push_back(mesh.p[v]);
+                if (mesh.st.size() == mesh.p.size()) split.st.push_back(mesh.st[v]);
+                if (mesh.n.size() == mesh.p.size()) split.n.push_back(mesh.n[v]);
+                split.tris.push_back(int(src.size()));
+                src.push_back(s);
+            }
+        mesh = std::move(split);
+    }
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i)
+            out.v[i] = valueAt(*p, p->storage == rib::StorageClass::FaceVarying ? src[i].faceVertex
+                                   : p->storage == rib::StorageClass::Uniform   ? src[i].face
+                                                                                : src[i].point);
+        mesh.params.push_back(std::move(out));
+    }
+}
+
 void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh) {
     for (const rib::Param* p : pointParamsOf(&params)) {
         VertexData::PointParam out;

@@ -111,6 +111,40 @@ TEST(PointParams, FaceVaryingAndUniformPerFace) {
     EXPECT_LT(columnError(uni, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
 }
 
+// General polygons (triangulated by ear clipping, vertices shared): a square with a
+// square hole, "varying float Kd" = (x + 1) / 2 at its 8 points, is that ramp on the
+// ring (the hole shows nothing); PointsGeneralPolygons with one value per polygon
+// ("uniform") and per polygon corner ("facevarying").
+TEST(PointParams, GeneralPolygons) {
+    Rendered ring = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
+                              "GeneralPolygon [4 4] \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1  "
+                              "-0.5 -0.5 1  -0.5 0.5 1  0.5 0.5 1  0.5 -0.5 1] "
+                              "\"varying float Kd\" [0 1 1 0  0.25 0.25 0.75 0.75]\nWorldEnd\n");
+    double e = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const bool hole = std::fabs(centre(x)) < 0.5 && std::fabs(centre(y)) < 0.5;
+            const bool ringOnly = std::fabs(centre(x)) > 0.5 || std::fabs(centre(y)) > 0.5;
+            if (hole) {
+                EXPECT_EQ(ring.at(x, y).a, 0.0f) << x << " " << y;
+            }
+            if (ringOnly && std::fabs(std::fabs(centre(x)) - 0.5) > 0.1 &&
+                std::fabs(std::fabs(centre(y)) - 0.5) > 0.1)
+                e = std::max(e, std::fabs(double(ring.at(x, y).r) - (centre(x) + 1) / 2));
+        }
+    EXPECT_LT(e, 1.5e-2) << "single pixels (64 samples each)";
+    const std::string mesh = "PointsGeneralPolygons [1 1] [4 4] [0 1 4 3  1 2 5 4] "
+                             "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] ";
+    Rendered uni = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + mesh +
+                             "\"uniform float Kd\" [2 5]\nWorldEnd\n");
+    EXPECT_LT(columnError(uni, 0, [](double) { return 2.0; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(uni, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
+    Rendered fv = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + mesh +
+                            "\"facevarying float Kd\" [0.2 0.2 0.2 0.2  0.6 1 1 0.6]\nWorldEnd\n");
+    EXPECT_LT(columnError(fv, 0, [](double) { return 0.2; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(fv, 0, [](double x) { return 0.6 + 0.4 * x; }, kSize / 2, kSize), 3e-3);
+}
+
 // A uniform declaration reading a per-point parameter is computed at the point, not
 // once per instance: Ci = Kd^2 + 0.125 along the ramp (Kd = x; a pixel's mean of x^2 is
 // its centre's plus (1/16)^2 / 3), to 3e-3. The same shader on a polygon
