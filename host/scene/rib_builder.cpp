@@ -394,7 +394,7 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
                                    rib::paramTypeName(p.type) +
                                    ") does not reach shader parameters; per-point values are "
                                    "carried for float, color, point, vector and normal "
-                                   "variables of polygons and quadrics only");
+                                   "variables of polygons, patches and quadrics only");
             continue;
         }
         overrides.params.push_back(p);

@@ -214,6 +214,18 @@ private:
     void generalPolygonPointParams(const rib::ParamList& params, const std::vector<int>& nloops,
                                    const std::vector<int>& nverts, const std::vector<int>& verts,
                                    const std::vector<int>& faceIndex, VertexData& mesh);
+    // Patch and PatchMesh: varying (facevarying, bilinear vertex) values on the grid of
+    // sub-patch corners, bilinear at each vertex's global (u, v) (`uv`, the dicer's st);
+    // uniform ones per sub-patch (faceIndex); a single bicubic Patch's 16 vertex values
+    // through its basis. Vertex values of a bicubic PatchMesh are not carried.
+    struct PatchGrid {
+        bool bicubic = false, single = false, uperiodic = false, vperiodic = false;
+        int nupatches = 1, nvpatches = 1;
+        CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
+    };
+    void patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
+                          const std::vector<glm::vec2>& uv, const std::vector<int>& faceIndex,
+                          VertexData& mesh);
     uint32_t quadricPointParams(const rib::ParamList& params, const glm::mat4& ctm);
     std::vector<glm::vec3> pointParamToWorld(const glm::mat4& ctm,
                                              const VertexData::PointParam& p) const;

@@ -337,7 +337,12 @@ void RibBuilder::patch(L loc, S type, P params) {
     int seg = patchSegments(screenRadius(controlHull(kind, pos)));
     const Attributes& a = m_attrStack.back();
     bool ok = tessellatePatch(type, kind, pos, a.ubasis, a.vbasis, seg, seg, m, &err);
-    addSurface(loc, "Patch", ok, m, err);
+    PatchGrid grid;
+    grid.bicubic = type == "bicubic", grid.single = true;
+    grid.ubasis = a.ubasis, grid.vbasis = a.vbasis;
+    addSurface(loc, "Patch", ok, m, err, [&](VertexData& mesh) {
+        patchPointParams(params, grid, m.st, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::patchMesh(L loc, S type, int nu, S uwrap, int nv, S vwrap, P params) {
@@ -356,7 +361,14 @@ void RibBuilder::patchMesh(L loc, S type, int nu, S uwrap, int nv, S vwrap, P pa
     SurfaceMesh m;
     std::string err;
     bool ok = tessellatePatchMesh(in, seg, seg, m, &err);
-    addSurface(loc, "PatchMesh", ok, m, err);
+    PatchGrid grid;
+    grid.bicubic = in.bicubic, grid.uperiodic = in.uperiodic, grid.vperiodic = in.vperiodic;
+    grid.nupatches = std::max(1, patchCount(in.bicubic, nu, in.uperiodic, in.ubasis.step));
+    grid.nvpatches = std::max(1, patchCount(in.bicubic, nv, in.vperiodic, in.vbasis.step));
+    grid.ubasis = in.ubasis, grid.vbasis = in.vbasis;
+    addSurface(loc, "PatchMesh", ok, m, err, [&](VertexData& mesh) {
+        patchPointParams(params, grid, m.st, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::trimCurve(L loc, Ints ncurves, Ints order, Floats knot, Floats min, Floats max,

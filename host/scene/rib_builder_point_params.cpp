@@ -43,6 +43,42 @@ glm::vec3 valueAt(const rib::Param& p, size_t i) {
     return {p.floats[n * i], p.floats[n * i + 1], p.floats[n * i + 2]};
 }
 
+// The vertex and triangle each vertex of a mesh came from.
+struct Corner {
+    size_t vertex = 0, triangle = 0;
+};
+
+// Values of a face (uniform) or a face's corner (facevarying) differ between the faces
+// that share a vertex: then the mesh gets one vertex per triangle corner. Returns where
+// each vertex came from (its triangle: the first that uses it when not split).
+std::vector<Corner> splitCornersIfNeeded(const std::vector<const rib::Param*>& list,
+                                         VertexData& mesh) {
+    bool perCorner = false;
+    for (const rib::Param* p : list)
+        perCorner |= p->storage == rib::StorageClass::FaceVarying ||
+                     p->storage == rib::StorageClass::Uniform;
+    std::vector<Corner> src(mesh.p.size());
+    if (!perCorner) {
+        for (size_t i = 0; i < src.size(); ++i) src[i].vertex = i;
+        return src;
+    }
+    VertexData split;
+    src.clear();
+    for (size_t t = 0; 3 * t + 2 < mesh.tris.size(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const size_t v = size_t(mesh.tris[3 * t + c]);
+            split.p.push_back(mesh.p[v]);
+            if (mesh.st.size() == mesh.p.size()) split.st.push_back(mesh.st[v]);
+            if (mesh.n.size() == mesh.p.size()) split.n.push_back(mesh.n[v]);
+            if (mesh.cs.size() == mesh.p.size()) split.cs.push_back(mesh.cs[v]);
+            if (mesh.os.size() == mesh.p.size()) split.os.push_back(mesh.os[v]);
+            split.tris.push_back(int(src.size()));
+            src.push_back({v, t});
+        }
+    mesh = std::move(split);
+    return src;
+}
+
 }  // namespace
 
 bool isStandardPrimvar(const std::string& name) {
@@ -129,10 +165,6 @@ void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,
                                            const std::vector<int>& faceIndex, VertexData& mesh) {
     const std::vector<const rib::Param*> list = pointParamsOf(&params);
     if (list.empty()) return;
-    bool perCorner = false;
-    for (const rib::Param* p : list)
-        perCorner |= p->storage == rib::StorageClass::FaceVarying ||
-                     p->storage == rib::StorageClass::Uniform;
     // where each polygon's face-vertices start in `verts` (its loops one after another)
     std::vector<size_t> first(nloops.size() + 1, 0);
     for (size_t f = 0, l = 0; f < nloops.size(); ++f) {
@@ -140,43 +172,78 @@ void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,
         for (int k = 0; k < nloops[f] && l < nverts.size(); ++k, ++l)
             first[f + 1] += size_t(std::max(nverts[l], 0));
     }
-    // each vertex of the mesh: its point, polygon and face-vertex (for facevarying)
-    struct Source {
-        size_t point = 0, face = 0, faceVertex = 0;
-    };
-    std::vector<Source> src(mesh.p.size());
-    for (size_t i = 0; i < src.size(); ++i) src[i].point = i;
-    if (perCorner) {
-        // one vertex per triangle corner: the tessellator shares the points of P
-        VertexData split;
-        src.clear();
-        for (size_t t = 0; 3 * t + 2 < mesh.tris.size(); ++t)
-            for (int c = 0; c < 3; ++c) {
-                const size_t v = size_t(mesh.tris[3 * t + c]);
-                Source s{v, t < faceIndex.size() ? size_t(faceIndex[t]) : 0, 0};
-                s.faceVertex = s.face < nloops.size() ? first[s.face] : 0;
-                for (size_t j = s.faceVertex; s.face < nloops.size() && j < first[s.face + 1]; ++j)
-                    if (j < verts.size() && size_t(verts[j]) == v) {
-                        s.faceVertex = j;
-                        break;
-                    }
-                split.p.push_back(mesh.p[v]);
-                if (mesh.st.size() == mesh.p.size()) split.st.push_back(mesh.st[v]);
-                if (mesh.n.size() == mesh.p.size()) split.n.push_back(mesh.n[v]);
-                split.tris.push_back(int(src.size()));
-                src.push_back(s);
-            }
-        mesh = std::move(split);
-    }
+    const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
     for (const rib::Param* p : list) {
         VertexData::PointParam out;
         out.name = p->name;
         kindOf(*p, &out.kind);
         out.v.resize(mesh.p.size());
-        for (size_t i = 0; i < out.v.size(); ++i)
-            out.v[i] = valueAt(*p, p->storage == rib::StorageClass::FaceVarying ? src[i].faceVertex
-                                   : p->storage == rib::StorageClass::Uniform   ? src[i].face
-                                                                                : src[i].point);
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const size_t point = src[i].vertex;
+            const size_t face = src[i].triangle < faceIndex.size() ? size_t(faceIndex[src[i].triangle]) : 0;
+            size_t at = point;  // varying, vertex: the point's value
+            if (p->storage == rib::StorageClass::Uniform) at = face;
+            if (p->storage == rib::StorageClass::FaceVarying && face < nloops.size())
+                for (size_t j = first[face]; j < first[face + 1] && j < verts.size(); ++j)
+                    if (size_t(verts[j]) == point) {  // this polygon's corner at the point
+                        at = j;
+                        break;
+                    }
+            out.v[i] = valueAt(*p, at);
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
+                                  const std::vector<glm::vec2>& uv,
+                                  const std::vector<int>& faceIndex, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    if (list.empty() || uv.size() != mesh.p.size()) return;
+    // varying values sit on the sub-patches' corners: one more than the sub-patches
+    // across a direction unless it wraps (RI); a bilinear mesh's vertex values too
+    const int gu = grid.nupatches + (grid.uperiodic ? 0 : 1);
+    const int gv = grid.nvpatches + (grid.vperiodic ? 0 : 1);
+    for (const rib::Param* p : list) {
+        const size_t n = valueCount(*p) / size_t(p->components());
+        const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
+        const bool ok = p->storage == rib::StorageClass::Uniform
+                            ? n == size_t(grid.nupatches * grid.nvpatches)
+                        : bicubicVertex ? (grid.single && n == 16)
+                                        : n == size_t(gu * gv);
+        if (!ok) return;  // vertex values of a bicubic mesh: not carried (surfaceFor warns)
+    }
+    const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const glm::vec2 at = uv[src[i].vertex];
+            if (p->storage == rib::StorageClass::Uniform) {
+                const size_t t = src[i].triangle;
+                out.v[i] = valueAt(*p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
+            } else if (bicubicVertex) {  // the patch's own basis over its 16 values
+                float wu[4], wv[4];
+                basisWeights(grid.ubasis, at.x, wu);
+                basisWeights(grid.vbasis, at.y, wv);
+                glm::vec3 v(0.0f);
+                for (int b = 0; b < 4; ++b)
+                    for (int a = 0; a < 4; ++a) v += wu[a] * wv[b] * valueAt(*p, size_t(4 * b + a));
+                out.v[i] = v;
+            } else {  // bilinear between the corners of the sub-patch the vertex is in
+                const float U = at.x * float(grid.nupatches), V = at.y * float(grid.nvpatches);
+                const int i0 = std::clamp(int(std::floor(U)), 0, grid.nupatches - 1);
+                const int j0 = std::clamp(int(std::floor(V)), 0, grid.nvpatches - 1);
+                const float fu = U - float(i0), fv = V - float(j0);
+                const int i1 = (i0 + 1) % gu, j1 = (j0 + 1) % gv;
+                auto c = [&](int a, int b) { return valueAt(*p, size_t(b * gu + a)); };
+                out.v[i] = (1 - fu) * (1 - fv) * c(i0, j0) + fu * (1 - fv) * c(i1, j0) +
+                           (1 - fu) * fv * c(i0, j1) + fu * fv * c(i1, j1);
+            }
+        }
         mesh.params.push_back(std::move(out));
     }
 }

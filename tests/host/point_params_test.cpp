@@ -145,6 +145,37 @@ TEST(PointParams, GeneralPolygons) {
     EXPECT_LT(columnError(fv, 0, [](double x) { return 0.6 + 0.4 * x; }, kSize / 2, kSize), 3e-3);
 }
 
+// Patches: a bilinear Patch's 4 varying values are bilinear in (u, v) (Kd = u = (x +
+// 1) / 2, to 3e-3); a bicubic (Bezier) Patch's 16 vertex values go through its basis:
+// 0 0 1 1 along u is 3u^2 - 2u^3 (compared with its mean over each column, to 4e-3:
+// linear between the dicing's vertices);
+// a bilinear PatchMesh of 2 x 1 sub-patches has one uniform value each (exact).
+TEST(PointParams, Patches) {
+    const std::string world = shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n";
+    Rendered bilinear = renderRib(world + "Patch \"bilinear\" \"P\" [-1 -1 1  1 -1 1  -1 1 1  1 1 1] "
+                                          "\"varying float Kd\" [0 1 0 1]\nWorldEnd\n");
+    EXPECT_LT(columnError(bilinear, 0, [](double x) { return (x + 1) / 2; }), 3e-3);
+    std::string p, kd;
+    for (int b = 0; b < 4; ++b)
+        for (int a = 0; a < 4; ++a) {
+            p += std::to_string(-1 + 2 * a / 3.0) + " " + std::to_string(-1 + 2 * b / 3.0) + " 1 ";
+            kd += a < 2 ? "0 " : "1 ";
+        }
+    Rendered bicubic = renderRib(world + "Patch \"bicubic\" \"P\" [" + p + "] \"vertex float Kd\" [" +
+                                 kd + "]\nWorldEnd\n");
+    auto smoothMean = [](double x) {  // the column's mean of 3u^2 - 2u^3, u = (x + 1) / 2
+        auto F = [](double u) { return u * u * u - u * u * u * u / 2; };
+        const double u = (x + 1) / 2, h = 0.5 / kSize;
+        return (F(u + h) - F(u - h)) / (2 * h);
+    };
+    EXPECT_LT(columnError(bicubic, 0, smoothMean), 4e-3);
+    Rendered mesh = renderRib(world + "PatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" "
+                                      "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] "
+                                      "\"uniform float Kd\" [2 5]\nWorldEnd\n");
+    EXPECT_LT(columnError(mesh, 0, [](double) { return 2.0; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(mesh, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
+}
+
 // A uniform declaration reading a per-point parameter is computed at the point, not
 // once per instance: Ci = Kd^2 + 0.125 along the ramp (Kd = x; a pixel's mean of x^2 is
 // its centre's plus (1/16)^2 / 3), to 3e-3. The same shader on a polygon
