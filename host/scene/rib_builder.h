@@ -26,7 +26,7 @@ namespace rd {
 // (rib_builder_point_params.cpp): at most this many per primitive.
 constexpr int kMaxPointParams = 8;
 bool isStandardPrimvar(const std::string& name);  // P, N, Cs, st ...: not parameters
-bool givesOneValue(const rib::Param& p);          // constant, or uniform on one face
+bool givesOneValue(const rib::Param& p);          // constant, or one value of any class
 // The request's variables that give a parameter a value per point (float, color,
 // point, vector, normal; not the standard ones), in order, the first kMaxPointParams.
 std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params);

@@ -88,9 +88,10 @@ bool isStandardPrimvar(const std::string& name) {
 }
 
 bool givesOneValue(const rib::Param& p) {
+    // one value for the whole primitive, whatever its class, is read as constant (the
+    // reader accepts it: "Cs" [1 0 0] on a sphere)
     const size_t per = size_t(std::max(1, p.components() * p.arraySize));
-    return p.storage == rib::StorageClass::Constant ||
-           (p.storage == rib::StorageClass::Uniform && valueCount(p) == per);
+    return p.storage == rib::StorageClass::Constant || valueCount(p) == per;
 }
 
 std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params) {

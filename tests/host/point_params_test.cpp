@@ -10,8 +10,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "render/features.h"
+#include "rib/reader.h"
+#include "scene/rib_builder.h"
 #include "render_harness.h"
 
 using rd::test::Rendered;
@@ -237,8 +240,8 @@ TEST(PointParams, VaryingOnACylinder) {
     }
 }
 
-// Only scenes that feed parameters per point get the code: none given, or one naming no
-// parameter of the shader, leaves the build option out.
+// Only scenes that feed parameters per point get the code: none given, one naming no
+// parameter of the shader, or a single value (a constant) leaves the build option out.
 TEST(PointParams, NoOptionWithoutThem) {
     Rendered none = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
                               "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1]\nWorldEnd\n");
@@ -249,4 +252,45 @@ TEST(PointParams, NoOptionWithoutThem) {
                                "\"varying float notaparam\" [0 1 1 0]\nWorldEnd\n");
     EXPECT_FALSE(hasOption(other));
     EXPECT_NEAR(other.at(8, 8).r, 0.25, 1e-6);
+    // one value of any class is the primitive's constant (as the reader accepts it)
+    Rendered one = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
+                             "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1] "
+                             "\"varying float Kd\" [0.75]\nWorldEnd\n");
+    EXPECT_FALSE(hasOption(one));
+    EXPECT_NEAR(one.at(8, 8).r, 0.75, 1e-6);
+}
+
+// Bad input keeps its file:line: a wrong number of values is the reader's error (for a
+// mesh's facevarying and uniform classes and a quadric's 4 corners); a variable whose
+// type does not fit the parameter is a warning at the Surface call and is ignored.
+TEST(PointParams, BadInputIsReportedWithFileAndLine) {
+    std::ostringstream out;
+    rib::Diagnostics diag(&out);
+    rd::RibBuilder builder(diag, "t.rib");
+    rib::readString("WorldBegin\nSurface \"pp_value\"\n"
+                    "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] "
+                    "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] "
+                    "\"facevarying float Kd\" [1 2 3]\n"
+                    "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] "
+                    "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] "
+                    "\"uniform float Kd\" [1 2 3]\n"
+                    "Sphere 1 -1 1 360 \"varying float Kd\" [0 1]\nWorldEnd\n",
+                    "t.rib", builder, diag);
+    const std::string text = out.str();
+    EXPECT_NE(text.find("t.rib:3: error: PointsPolygons: facevarying \"Kd\" has 3 values, needs 8"),
+              std::string::npos) << text;
+    EXPECT_NE(text.find("t.rib:4: error: PointsPolygons: uniform \"Kd\" has 3 values, needs 2"),
+              std::string::npos) << text;
+    EXPECT_NE(text.find("t.rib:5: error: Sphere: varying \"Kd\" has 2 values, needs 4"),
+              std::string::npos) << text;
+
+    ::testing::internal::CaptureStderr();
+    Rendered img = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
+                             "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1] "
+                             "\"varying color Kd\" [0 0 0  1 1 1  1 1 1  0 0 0]\nWorldEnd\n");
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("test.rib:7: warning: primitive variable \"Kd\" of 3 float(s) per point "
+                       "does not fit parameter \"Kd\" (a float) of shader \"pp_value\"; ignored"),
+              std::string::npos) << err;
+    EXPECT_NEAR(img.at(8, 8).r, 0.25, 1e-6) << "the parameter keeps its value";
 }
