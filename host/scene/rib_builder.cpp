@@ -371,21 +371,17 @@ void RibBuilder::illuminate(L loc, const std::string& handle, bool on) {
 // per distinct set of primitive variables overriding its parameters (RI: a primitive
 // variable named like a shader parameter gives that parameter its value on the primitive;
 // constant ones, and uniform ones of a single face, become the instance's values; the
-// others, on primitives that carry them (m_carryPointParams), are given per point:
+// others, on primitives that carry them (m_carriedPointParams), are given per point:
 // rib_builder_point_params.cpp).
 uint32_t RibBuilder::surfaceFor(const Attributes& a) {
     rib::ParamList overrides;
     std::string signature;
-    const std::vector<const rib::Param*> perPoint =
-        m_carryPointParams ? pointParamsOf(m_primVars) : std::vector<const rib::Param*>{};
+    const std::vector<std::pair<std::string, int>>& perPoint = m_carriedPointParams;
     for (const rib::Param& p : m_primVars ? m_primVars->params : std::vector<rib::Param>{}) {
         if (isStandardPrimvar(p.name)) continue;
-        if (std::find_if(perPoint.begin(), perPoint.end(), [&](const rib::Param* q) {
-                return q->name == p.name;
-            }) != perPoint.end()) {
-            signature += p.name + ":per point;";
+        if (std::find_if(perPoint.begin(), perPoint.end(),
+                         [&](const auto& q) { return q.first == p.name; }) != perPoint.end())
             continue;
-        }
         if (!givesOneValue(p)) {
             if (m_varyingPrimvarWarned.insert(p.name).second)
                 m_diag.warning(a.surface.loc,
@@ -404,6 +400,8 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
         for (const std::string& v : p.strings) signature += v + ",";
         signature += ";";
     }
+    for (const auto& [name, floats] : perPoint)
+        signature += name + ":" + std::to_string(floats) + " per point;";
     auto [it, fresh] = m_surfaceVariants.emplace(std::make_pair(a.surfaceKey, signature),
                                                  uint32_t(m_world.surfaceRefs.size()));
     if (fresh) {
@@ -414,7 +412,7 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
             if (same != ref.params.params.end()) *same = p;
             else ref.params.params.push_back(p);
         }
-        for (const rib::Param* p : perPoint) ref.pointParams.push_back({p->name, p->components()});
+        ref.pointParams = perPoint;
         m_world.maxPointParams = std::max(m_world.maxPointParams, int(perPoint.size()));
         m_world.surfaceRefs.push_back(ref);
         m_surfaceKeys.push_back(a.surfaceKey);

@@ -229,13 +229,11 @@ private:
     uint32_t quadricPointParams(const rib::ParamList& params, const glm::mat4& ctm);
     std::vector<glm::vec3> pointParamToWorld(const glm::mat4& ctm,
                                              const VertexData::PointParam& p) const;
-    // The request being read gives these per-point parameters (an object instance's
-    // pieces were read at ObjectBegin, another request).
-    bool pointParamsMatch(const VertexData& mesh) const;
     // Scene::triangleParams gets placeholders up to the triangles so far.
     void startTrianglePointParams();
-    // Set while a primitive whose per-point parameters are carried picks its material.
-    bool m_carryPointParams = false;
+    // While a primitive that carries per-point parameters picks its material: their
+    // names and floats per value, in the order of its values (ShaderRef::pointParams).
+    std::vector<std::pair<std::string, int>> m_carriedPointParams;
     // Pixels per world unit at distance `depth` in front of the camera.
     float pixelsPerUnit(float depth) const;
     // Screen size in pixels of an object-space sphere (centre, radius), for dicing rates.

@@ -111,6 +111,9 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
             m_diag.warning(loc, std::string(what) + ": singular transform, left out");
             return;
         }
+        if (!pointParamsOf(&params).empty())
+            m_diag.warning(loc, "primitive variables given per point to shader parameters are "
+                                "not carried inside ObjectBegin");
         m_defining->quadrics.push_back(shape);
         return;
     }
@@ -128,14 +131,11 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     if (cs && cs->floats.size() == 3) std::copy_n(cs->floats.begin(), 3, attrs.color);
     if (os && os->floats.size() == 3) std::copy_n(os->floats.begin(), 3, attrs.opacity);
     // per-point shader parameters at the (u, v) corners, when this request gives them
-    VertexData given;
-    for (const rib::Param* p : pointParamsOf(&params)) given.params.push_back({p->name, {}, {}});
-    q.point_params = pointParamsMatch(given)
-                         ? quadricPointParams(params, m_attrStack.back().ctm * placement)
-                         : RT_NO_POINT_PARAMS;
-    m_carryPointParams = q.point_params != RT_NO_POINT_PARAMS;
+    q.point_params = quadricPointParams(params, m_attrStack.back().ctm * placement);
+    for (const rib::Param* p : pointParamsOf(&params))
+        m_carriedPointParams.push_back({p->name, p->components()});
     q.material = currentMaterial();
-    m_carryPointParams = false;
+    m_carriedPointParams.clear();
     if (m_attrStack.back().insideOut) q.flags ^= RT_QF_FLIP;  // the normal transform keeps mirrors
     const bool varyingCs = cs && cs->floats.size() == 12, varyingOs = os && os->floats.size() == 12;
     q.primvars = RT_NO_QUADRIC_PRIMVARS;

@@ -17,6 +17,10 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
         glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
         glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(toObject)));
         VertexData piece = mesh;
+        if (!piece.params.empty() && m_warnedAt.insert({loc.file, loc.line}).second)
+            m_diag.warning(loc, "primitive variables given per point to shader parameters are "
+                                "not carried inside ObjectBegin");
+        piece.params.clear();  // its instances' surfaces have none
         for (glm::vec3& v : piece.p) v = xformPoint(toObject, v);
         for (glm::vec3& v : piece.n) v = nm * v;
         m_defining->meshes.push_back(std::move(piece));
@@ -63,14 +67,14 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     // Per-point shader parameters: their surface variant gets them in the same order
     // (prototypes are shaded with their instance's surface, which has none)
     std::vector<std::vector<glm::vec3>> pointParams;
-    if (!prototype && pointParamsMatch(mesh)) {
-        for (const VertexData::PointParam& p : mesh.params)
+    if (!prototype)
+        for (const VertexData::PointParam& p : mesh.params) {
             pointParams.push_back(pointParamToWorld(ctm, p));
-        startTrianglePointParams();
-    }
-    m_carryPointParams = !pointParams.empty();
+            m_carriedPointParams.push_back({p.name, p.kind == VertexData::Kind::Float ? 1 : 3});
+        }
+    if (!pointParams.empty()) startTrianglePointParams();
     uint32_t material = currentMaterial();
-    m_carryPointParams = false;
+    m_carriedPointParams.clear();
     // RI's geometric normal: the world-space cross product, reversed for inside-out
     // primitives and mirrored transforms (prototypes: their object space, unmirrored)
     const bool flipNormals = prototype ? m_attrStack.back().insideOut : flipWorldNormals();

@@ -301,14 +301,6 @@ uint32_t RibBuilder::quadricPointParams(const rib::ParamList& params, const glm:
     return first;
 }
 
-bool RibBuilder::pointParamsMatch(const VertexData& mesh) const {
-    const std::vector<const rib::Param*> list = pointParamsOf(m_primVars);
-    if (list.empty() || list.size() != mesh.params.size()) return false;
-    for (size_t i = 0; i < list.size(); ++i)
-        if (list[i]->name != mesh.params[i].name) return false;
-    return true;
-}
-
 void RibBuilder::startTrianglePointParams() {
     if (m_world.triangleParams.size() < m_world.triangles.size())
         m_world.triangleParams.resize(m_world.triangles.size(), RT_NO_POINT_PARAMS);

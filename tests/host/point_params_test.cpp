@@ -179,6 +179,16 @@ TEST(PointParams, Patches) {
     EXPECT_LT(columnError(mesh, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
 }
 
+// A deforming mesh (MotionBegin around two keys of a polygon, still here) is shaded
+// with its first key's values: the ramp, to 3e-3.
+TEST(PointParams, DeformingMeshKeepsItsValues) {
+    const std::string key = "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1] "
+                            "\"varying float Kd\" [0 1 1 0]\n";
+    Rendered img = renderRib(shaders() + kCam + "Shutter 0 1\nWorldBegin\nSurface \"pp_value\"\n"
+                             "MotionBegin [0 1]\n" + key + key + "MotionEnd\nWorldEnd\n");
+    EXPECT_LT(columnError(img, 0, [](double x) { return (x + 1) / 2; }), 3e-3);
+}
+
 // A uniform declaration reading a per-point parameter is computed at the point, not
 // once per instance: Ci = Kd^2 + 0.125 along the ramp (Kd = x; a pixel's mean of x^2 is
 // its centre's plus (1/16)^2 / 3), to 3e-3. The same shader on a polygon
