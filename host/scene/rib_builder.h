@@ -208,6 +208,9 @@ private:
     void readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
                          const std::vector<int>& verts, VertexData& mesh);
     void cornerPointParams(const rib::ParamList& params, VertexData& mesh);
+    // Points: each disc (faceIndex: its point) has its point's value all over.
+    void pointsPointParams(const rib::ParamList& params, const std::vector<int>& faceIndex,
+                           VertexData& mesh);
     // General polygons (their tessellation's vertices are the points of P; faceIndex
     // names each triangle's polygon): split into one vertex per triangle corner when
     // some are facevarying or uniform.

@@ -459,7 +459,9 @@ void RibBuilder::points(L loc, P params) {
     std::string err;
     bool ok = tessellatePoints(P, width, params.getFloat("constantwidth", 1.0f),
                                glm::normalize(centre - eye), 12, m, &err);
-    addSurface(loc, "Points", ok, m, err);
+    addSurface(loc, "Points", ok, m, err, [&](VertexData& mesh) {
+        pointsPointParams(params, m.faceIndex, mesh);
+    });
 }
 
 }  // namespace rd

@@ -249,6 +249,20 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
     }
 }
 
+void RibBuilder::pointsPointParams(const rib::ParamList& params,
+                                   const std::vector<int>& faceIndex, VertexData& mesh) {
+    for (const rib::Param* p : pointParamsOf(&params)) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.assign(mesh.p.size(), glm::vec3(0.0f));
+        for (size_t t = 0; 3 * t + 2 < mesh.tris.size() && t < faceIndex.size(); ++t)
+            for (int c = 0; c < 3; ++c)  // each disc has its own vertices
+                out.v[size_t(mesh.tris[3 * t + c])] = valueAt(*p, size_t(faceIndex[t]));
+        mesh.params.push_back(std::move(out));
+    }
+}
+
 void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh) {
     for (const rib::Param* p : pointParamsOf(&params)) {
         VertexData::PointParam out;

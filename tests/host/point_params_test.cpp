@@ -179,6 +179,18 @@ TEST(PointParams, Patches) {
     EXPECT_LT(columnError(mesh, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
 }
 
+// Points: each disc has its point's value ("varying float Kd" [0.3 0.9]) all over;
+// pixels the discs cover whole, exact.
+TEST(PointParams, PointsHaveTheirPointsValue) {
+    Rendered img = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
+                             "Points \"P\" [-0.5 0 1  0.5 0 1] \"constantwidth\" [0.5] "
+                             "\"varying float Kd\" [0.3 0.9]\nWorldEnd\n");
+    for (int y : {7, 8}) {
+        EXPECT_NEAR(img.at(4, y).r, 0.3, 1e-5);
+        EXPECT_NEAR(img.at(11, y).r, 0.9, 1e-5);
+    }
+}
+
 // A deforming mesh (MotionBegin around two keys of a polygon, still here) is shaded
 // with its first key's values: the ramp, to 3e-3.
 TEST(PointParams, DeformingMeshKeepsItsValues) {
