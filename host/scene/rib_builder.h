@@ -221,10 +221,14 @@ private:
     // sub-patch corners, bilinear at each vertex's global (u, v) (`uv`, the dicer's st);
     // uniform ones per sub-patch (faceIndex); a single bicubic Patch's 16 vertex values
     // through its basis. Vertex values of a bicubic PatchMesh are not carried.
+    // NuPatch the same over its knot spans (orders and knots given; vertex values, which
+    // follow the NURBS basis, are not carried).
     struct PatchGrid {
         bool bicubic = false, single = false, uperiodic = false, vperiodic = false;
         int nupatches = 1, nvpatches = 1;
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
+        int uorder = 0, vorder = 0;  // a NuPatch's: sub-patches are its knot spans
+        std::vector<float> uknot, vknot;
     };
     void patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
                           const std::vector<glm::vec2>& uv, const std::vector<int>& faceIndex,

@@ -396,7 +396,12 @@ void RibBuilder::nuPatch(L loc, int nu, int uorder, Floats uknot, float umin, fl
     SurfaceMesh m;
     std::string err;
     bool ok = tessellateNuPatch(in, seg, seg, m_attrStack.back().trim.get(), m, &err);
-    addSurface(loc, "NuPatch", ok, m, err);
+    PatchGrid grid;  // varying values on the knot spans' corners
+    grid.nupatches = std::max(1, nu - uorder + 1), grid.nvpatches = std::max(1, nv - vorder + 1);
+    grid.uorder = uorder, grid.vorder = vorder, grid.uknot = uknot, grid.vknot = vknot;
+    addSurface(loc, "NuPatch", ok, m, err, [&](VertexData& mesh) {
+        patchPointParams(params, grid, m.st, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strings tags,

@@ -43,6 +43,26 @@ glm::vec3 valueAt(const rib::Param& p, size_t i) {
     return {p.floats[n * i], p.floats[n * i + 1], p.floats[n * i + 2]};
 }
 
+// The sub-patch (or NURBS knot span, when `order` > 0) that parameter x is in, of n,
+// and where in it (0..1): sub-patches split [0, 1] evenly; span i of a NURBS runs from
+// knot[order - 1 + i] to knot[order + i] (empty ones, at repeated knots, are skipped).
+void spanAt(float x, int n, const std::vector<float>& knot, int order, int* i, float* f) {
+    if (order <= 0 || knot.size() < size_t(order + n)) {
+        const float X = x * float(n);
+        *i = std::clamp(int(std::floor(X)), 0, n - 1);
+        *f = X - float(*i);
+        return;
+    }
+    *i = n - 1;
+    for (int k = 0; k < n; ++k)
+        if (x < knot[size_t(order + k)]) {
+            *i = k;
+            break;
+        }
+    const float k0 = knot[size_t(order - 1 + *i)], k1 = knot[size_t(order + *i)];
+    *f = k1 > k0 ? std::clamp((x - k0) / (k1 - k0), 0.0f, 1.0f) : 0.0f;
+}
+
 // The vertex and triangle each vertex of a mesh came from.
 struct Corner {
     size_t vertex = 0, triangle = 0;
@@ -208,6 +228,7 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
     for (const rib::Param* p : list) {
         const size_t n = valueCount(*p) / size_t(p->components());
         const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
+        if (grid.uorder > 0 && p->storage == rib::StorageClass::Vertex) return;
         const bool ok = p->storage == rib::StorageClass::Uniform
                             ? n == size_t(grid.nupatches * grid.nvpatches)
                         : bicubicVertex ? (grid.single && n == 16)
@@ -235,10 +256,10 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
                     for (int a = 0; a < 4; ++a) v += wu[a] * wv[b] * valueAt(*p, size_t(4 * b + a));
                 out.v[i] = v;
             } else {  // bilinear between the corners of the sub-patch the vertex is in
-                const float U = at.x * float(grid.nupatches), V = at.y * float(grid.nvpatches);
-                const int i0 = std::clamp(int(std::floor(U)), 0, grid.nupatches - 1);
-                const int j0 = std::clamp(int(std::floor(V)), 0, grid.nvpatches - 1);
-                const float fu = U - float(i0), fv = V - float(j0);
+                int i0, j0;
+                float fu, fv;
+                spanAt(at.x, grid.nupatches, grid.uknot, grid.uorder, &i0, &fu);
+                spanAt(at.y, grid.nvpatches, grid.vknot, grid.vorder, &j0, &fv);
                 const int i1 = (i0 + 1) % gu, j1 = (j0 + 1) % gv;
                 auto c = [&](int a, int b) { return valueAt(*p, size_t(b * gu + a)); };
                 out.v[i] = (1 - fu) * (1 - fv) * c(i0, j0) + fu * (1 - fv) * c(i1, j0) +

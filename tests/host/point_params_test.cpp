@@ -201,6 +201,17 @@ TEST(PointParams, DeformingMeshKeepsItsValues) {
     EXPECT_LT(columnError(img, 0, [](double x) { return (x + 1) / 2; }), 3e-3);
 }
 
+// NuPatch: varying values sit on the corners of the knot spans. Order 2 (linear) in u
+// with knots 0 0 1 3 3 puts x = -1, 0, 1 at u = 0, 1, 3, so values 0, 0.5, 1 there are
+// (x + 1) / 2 again, to 3e-3, only if each span is found by its knots.
+TEST(PointParams, NuPatchKnotSpans) {
+    Rendered img = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
+                             "NuPatch 3 2 [0 0 1 3 3] 0 3 2 2 [0 0 1 1] 0 1 "
+                             "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] "
+                             "\"varying float Kd\" [0 0.5 1  0 0.5 1]\nWorldEnd\n");
+    EXPECT_LT(columnError(img, 0, [](double x) { return (x + 1) / 2; }), 3e-3);
+}
+
 // A uniform declaration reading a per-point parameter is computed at the point, not
 // once per instance: Ci = Kd^2 + 0.125 along the ramp (Kd = x; a pixel's mean of x^2 is
 // its centre's plus (1/16)^2 / 3), to 3e-3. The same shader on a polygon
