@@ -390,7 +390,7 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
                                    rib::paramTypeName(p.type) +
                                    ") does not reach shader parameters; per-point values are "
                                    "carried for float, color, point, vector and normal "
-                                   "variables of polygons, patches, quadrics and points only");
+                                   "variables of polygons, patches, subdivision meshes, quadrics and points only");
             continue;
         }
         overrides.params.push_back(p);

@@ -18,6 +18,7 @@
 #include "scene.h"
 #include "tessellate_nurbs.h"
 #include "tessellate_patches.h"
+#include "tessellate_subdiv.h"
 #include "tessellate_types.h"
 
 namespace rd {
@@ -30,6 +31,9 @@ bool givesOneValue(const rib::Param& p);          // constant, or one value of a
 // The request's variables that give a parameter a value per point (float, color,
 // point, vector, normal; not the standard ones), in order, the first kMaxPointParams.
 std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params);
+// A SubdivisionMesh's per-point values to refine with it (SubdivInput); false when it
+// has none, or some that cannot be carried (facevarying).
+bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in);
 
 class RibBuilder : public rib::Target {
 public:
@@ -208,6 +212,12 @@ private:
     void readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
                          const std::vector<int>& verts, VertexData& mesh);
     void cornerPointParams(const rib::ParamList& params, VertexData& mesh);
+    // SubdivisionMesh: vertex values go to the limit, varying ones are refined
+    // linearly (`refined`: tessellateSubdivisionMesh's values for subdivPointParamsIn's
+    // input), uniform ones per base face (faceIndex); facevarying ones are not carried.
+    void subdivPointParams(const rib::ParamList& params,
+                           const std::vector<std::vector<glm::vec3>>& refined,
+                           const std::vector<int>& faceIndex, VertexData& mesh);
     // Points: each disc (faceIndex: its point) has its point's value all over.
     void pointsPointParams(const rib::ParamList& params, const std::vector<int>& faceIndex,
                            VertexData& mesh);

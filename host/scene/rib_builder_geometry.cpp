@@ -419,8 +419,12 @@ void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strin
     int level = std::clamp(int(std::ceil(std::log2(std::max(1.0f, facePx / 4.0f)))), 1, 5);
     SurfaceMesh m;
     std::string err;
-    bool ok = tessellateSubdivisionMesh(in, level, m, &err);
-    addSurface(loc, "SubdivisionMesh", ok, m, err);
+    std::vector<std::vector<glm::vec3>> refined;  // per-point parameters, refined
+    const bool carried = subdivPointParamsIn(params, in);
+    bool ok = tessellateSubdivisionMesh(in, level, m, &err, carried ? &refined : nullptr);
+    addSurface(loc, "SubdivisionMesh", ok, m, err, [&](VertexData& mesh) {
+        if (carried) subdivPointParams(params, refined, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::curves(L loc, S type, Ints nvertices, S wrap, P params) {

@@ -284,6 +284,46 @@ void RibBuilder::pointsPointParams(const rib::ParamList& params,
     }
 }
 
+bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    for (const rib::Param* p : list)  // facevarying values need an FVar channel: not yet
+        if (p->storage == rib::StorageClass::FaceVarying) return false;
+    for (const rib::Param* p : list) {
+        if (p->storage == rib::StorageClass::Uniform) continue;  // per face: no refining
+        std::vector<glm::vec3> v(in.P.size());
+        for (size_t i = 0; i < v.size(); ++i) v[i] = valueAt(*p, i);
+        (p->storage == rib::StorageClass::Vertex ? in.vertexValues : in.varyingValues)
+            .push_back(std::move(v));
+    }
+    return !list.empty();
+}
+
+void RibBuilder::subdivPointParams(const rib::ParamList& params,
+                                   const std::vector<std::vector<glm::vec3>>& refined,
+                                   const std::vector<int>& faceIndex, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    size_t vertexCount = 0, next[2] = {0, 0};
+    for (const rib::Param* p : list) vertexCount += p->storage == rib::StorageClass::Vertex;
+    const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        // refined values: the vertex ones first, then the varying ones (SubdivInput)
+        const std::vector<glm::vec3>* r = nullptr;
+        if (p->storage == rib::StorageClass::Vertex) r = &refined.at(next[0]++);
+        else if (p->storage != rib::StorageClass::Uniform)
+            r = &refined.at(vertexCount + next[1]++);
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const size_t t = src[i].triangle;
+            out.v[i] = r ? (src[i].vertex < r->size() ? (*r)[src[i].vertex] : glm::vec3(0.0f))
+                         : valueAt(*p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
 void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh) {
     for (const rib::Param* p : pointParamsOf(&params)) {
         VertexData::PointParam out;

@@ -191,6 +191,40 @@ TEST(PointParams, PointsHaveTheirPointsValue) {
     }
 }
 
+// SubdivisionMesh: a flat 3 x 3 cage over [-1, 1]^2 (boundary interpolated) with a
+// value affine in x at its vertices: "vertex" (to the limit, which reproduces affine
+// functions) and "varying" (refined linearly) both give (x + 1) / 2, to 3e-3;
+// "uniform" [1 2 3 4] one value per base face (the four quadrants), exact.
+TEST(PointParams, SubdivisionMesh) {
+    const std::string cage =
+        "SubdivisionMesh \"catmull-clark\" [4 4 4 4] [0 1 4 3  1 2 5 4  3 4 7 6  4 5 8 7] "
+        "[\"interpolateboundary\"] [0 0] [] [] "
+        "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 0 1  0 0 1  1 0 1  -1 1 1  0 1 1  1 1 1] ";
+    const std::string ramp = "[0 0.5 1  0 0.5 1  0 0.5 1]";
+    for (const char* storage : {"vertex", "varying"}) {
+        Rendered img = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + cage +
+                                 "\"" + storage + " float Kd\" " + ramp + "\nWorldEnd\n");
+        EXPECT_LT(columnError(img, 0, [](double x) { return (x + 1) / 2; }), 3e-3) << storage;
+    }
+    // a bump (1 at the middle vertex, 0 around) tells them apart: the limit there is
+    // 16/36 (Catmull-Clark's limit stencil at a valence-4 vertex), linear refinement
+    // keeps 1; the 4 middle pixels' mean, against 4/9 (to 0.03, its curvature over them)
+    // and the tent's mean (1 - 1/16)^2 (to 0.01)
+    const std::string bump = "[0 0 0  0 1 0  0 0 0]";
+    Rendered vb = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + cage +
+                            "\"vertex float Kd\" " + bump + "\nWorldEnd\n");
+    EXPECT_NEAR(vb.mean(0, 7, 7, 9, 9), 4.0 / 9.0, 0.03);
+    Rendered lb = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + cage +
+                            "\"varying float Kd\" " + bump + "\nWorldEnd\n");
+    EXPECT_NEAR(lb.mean(0, 7, 7, 9, 9), (1 - 1.0 / 16) * (1 - 1.0 / 16), 0.01);
+    Rendered uni = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + cage +
+                             "\"uniform float Kd\" [1 2 3 4]\nWorldEnd\n");
+    EXPECT_NEAR(uni.at(4, 12).r, 1.0, 1e-5);
+    EXPECT_NEAR(uni.at(12, 12).r, 2.0, 1e-5);
+    EXPECT_NEAR(uni.at(4, 4).r, 3.0, 1e-5);
+    EXPECT_NEAR(uni.at(12, 4).r, 4.0, 1e-5);
+}
+
 // A deforming mesh (MotionBegin around two keys of a polygon, still here) is shaded
 // with its first key's values: the ramp, to 3e-3.
 TEST(PointParams, DeformingMeshKeepsItsValues) {
