@@ -388,9 +388,11 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
                                "primitive variable \"" + p.name + "\" (" +
                                    rib::storageClassName(p.storage) + " " +
                                    rib::paramTypeName(p.type) +
-                                   ") does not reach shader parameters; per-point values are "
+                                   ") does not reach shader parameters: per-point values are "
                                    "carried for float, color, point, vector and normal "
-                                   "variables of polygons, patches, subdivision meshes, quadrics and points only");
+                                   "variables, except vertex ones of a bicubic PatchMesh or "
+                                   "a NuPatch, facevarying ones of a SubdivisionMesh, and "
+                                   "inside ObjectBegin");
             continue;
         }
         overrides.params.push_back(p);

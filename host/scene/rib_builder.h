@@ -18,6 +18,7 @@
 #include "scene.h"
 #include "tessellate_nurbs.h"
 #include "tessellate_patches.h"
+#include "tessellate_curves_points.h"
 #include "tessellate_subdiv.h"
 #include "tessellate_types.h"
 
@@ -218,6 +219,11 @@ private:
     void subdivPointParams(const rib::ParamList& params,
                            const std::vector<std::vector<glm::vec3>>& refined,
                            const std::vector<int>& faceIndex, VertexData& mesh);
+    // Curves: varying (and facevarying) values along each curve's segments, vertex
+    // values through the cubic basis like P, uniform ones per curve (faceIndex).
+    void curvesPointParams(const rib::ParamList& params, const CurvesInput& in,
+                           const std::vector<glm::vec2>& uv, const std::vector<int>& faceIndex,
+                           VertexData& mesh);
     // Points: each disc (faceIndex: its point) has its point's value all over.
     void pointsPointParams(const rib::ParamList& params, const std::vector<int>& faceIndex,
                            VertexData& mesh);

@@ -449,7 +449,9 @@ void RibBuilder::curves(L loc, S type, Ints nvertices, S wrap, P params) {
     SurfaceMesh m;
     std::string err;
     bool ok = tessellateCurves(in, glm::normalize(centre - eye), 8, m, &err);
-    addSurface(loc, "Curves", ok, m, err);
+    addSurface(loc, "Curves", ok, m, err, [&](VertexData& mesh) {
+        curvesPointParams(params, in, m.st, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::points(L loc, P params) {

@@ -1,11 +1,14 @@
 // rib_builder_point_params.cpp: primitive variables that give a shader parameter a value
 // per point (RI: a varying, vertex, facevarying or uniform variable named like a
 // parameter of the surface shader gives that parameter its value on the primitive,
-// interpolated over it). They are read here into per-vertex values of the mesh (per
-// face-vertex when some are facevarying or per face), or into 4 (u, v) corner values
-// of a quadric, moved to world ("current") space, and stored for the device, which
-// interpolates them at each hit (shade_common.clh) and hands them to the shader in
-// place of its parameters (rsl_abi.h, PER-POINT PARAMETERS).
+// interpolated over it). Each kind of geometry turns them into per-vertex values of
+// its triangles (one vertex per triangle corner when some are facevarying or per face):
+// polygons from their vertices, patches and NuPatch from their sub-patch or knot-span
+// corners, subdivision meshes refined with the cage, points per disc, diced quadrics
+// from their 4 (u, v) corners; exact quadrics keep the 4 corner values. The values are
+// moved to world ("current") space and stored for the device, which interpolates them
+// at each hit (shade_common.clh) and hands them to the shader in place of its
+// parameters (rsl_abi.h, PER-POINT PARAMETERS).
 #include <algorithm>
 #include <set>
 
@@ -319,6 +322,53 @@ void RibBuilder::subdivPointParams(const rib::ParamList& params,
             const size_t t = src[i].triangle;
             out.v[i] = r ? (src[i].vertex < r->size() ? (*r)[src[i].vertex] : glm::vec3(0.0f))
                          : valueAt(*p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+void RibBuilder::curvesPointParams(const rib::ParamList& params, const CurvesInput& in,
+                                   const std::vector<glm::vec2>& uv,
+                                   const std::vector<int>& faceIndex, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    if (list.empty() || uv.size() != mesh.p.size()) return;
+    const int step = in.cubic ? in.vbasis.step : 1;
+    // each curve's first control point and first varying value
+    std::vector<size_t> p0(in.nvertices.size() + 1, 0), var0(in.nvertices.size() + 1, 0);
+    for (size_t c = 0; c < in.nvertices.size(); ++c) {
+        p0[c + 1] = p0[c] + size_t(std::max(in.nvertices[c], 0));
+        var0[c + 1] = var0[c] +
+                      size_t(std::max(curveVaryingCount(in.cubic, in.nvertices[c], in.periodic, step), 0));
+    }
+    std::vector<size_t> curveOf(mesh.p.size(), 0);  // a ribbon's vertices are its own
+    for (size_t t = 0; 3 * t + 2 < mesh.tris.size() && t < faceIndex.size(); ++t)
+        for (int k = 0; k < 3; ++k) curveOf[size_t(mesh.tris[3 * t + k])] = size_t(faceIndex[t]);
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const size_t c = std::min(curveOf[i], in.nvertices.size() - 1);
+            const int n = in.nvertices[c];
+            const int segs = std::max(1, curveSegments(in.cubic, n, in.periodic, step));
+            const int nvar = std::max(1, curveVaryingCount(in.cubic, n, in.periodic, step));
+            // along the curve as its centre line is (tessellate_curves_points.cpp)
+            const float x = std::clamp(uv[i].y, 0.0f, 1.0f) * float(segs);
+            const int s = std::min(int(x), segs - 1);
+            const float t = x - float(s);
+            if (p->storage == rib::StorageClass::Uniform) {
+                out.v[i] = valueAt(*p, c);
+            } else if (p->storage == rib::StorageClass::Vertex && in.cubic) {
+                float w[4];
+                basisWeights(in.vbasis, t, w);
+                glm::vec3 v(0.0f);
+                for (int k = 0; k < 4; ++k) v += w[k] * valueAt(*p, p0[c] + size_t((s * step + k) % n));
+                out.v[i] = v;
+            } else {  // varying (and a linear curve's vertex values): along each segment
+                out.v[i] = (1 - t) * valueAt(*p, var0[c] + size_t(s)) +
+                           t * valueAt(*p, var0[c] + size_t((s + 1) % nvar));
+            }
         }
         mesh.params.push_back(std::move(out));
     }

@@ -225,6 +225,25 @@ TEST(PointParams, SubdivisionMesh) {
     EXPECT_NEAR(uni.at(12, 4).r, 4.0, 1e-5);
 }
 
+// Curves: a linear curve across the view (x from -1.5 to 1.5 along 3 vertices, width 1)
+// with "varying float Kd" [-0.25 0.5 1.25] is (x + 1) / 2 along it, to 3e-3 (column
+// means of the covered rows 4 to 11); "uniform" one value per curve (two), exact.
+TEST(PointParams, Curves) {
+    Rendered img = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
+                             "Curves \"linear\" [3] \"nonperiodic\" \"P\" [-1.5 0 1  0 0 1  1.5 0 1] "
+                             "\"constantwidth\" [1] \"varying float Kd\" [-0.25 0.5 1.25]\nWorldEnd\n");
+    double e = 0;
+    for (int x = 0; x < kSize; ++x)
+        e = std::max(e, std::fabs(img.mean(0, x, 4, x + 1, 12) - (centre(x) + 1) / 2));
+    EXPECT_LT(e, 3e-3);
+    Rendered uni = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n"
+                             "Curves \"linear\" [2 2] \"nonperiodic\" "
+                             "\"P\" [-1.5 -0.5 1  1.5 -0.5 1  -1.5 0.5 1  1.5 0.5 1] "
+                             "\"constantwidth\" [0.5] \"uniform float Kd\" [2 5]\nWorldEnd\n");
+    EXPECT_NEAR(uni.at(8, 12).r, 2.0, 1e-5);
+    EXPECT_NEAR(uni.at(8, 3).r, 5.0, 1e-5);
+}
+
 // A deforming mesh (MotionBegin around two keys of a polygon, still here) is shaded
 // with its first key's values: the ramp, to 3e-3.
 TEST(PointParams, DeformingMeshKeepsItsValues) {
