@@ -390,7 +390,7 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
                                    rib::paramTypeName(p.type) +
                                    ") does not reach shader parameters: per-point values are "
                                    "carried for float, color, point, vector and normal "
-                                   "variables, except vertex ones of a bicubic PatchMesh or "
+                                   "variables (8 a primitive), except vertex ones of a bicubic PatchMesh or "
                                    "a NuPatch, facevarying ones of a SubdivisionMesh, and "
                                    "inside ObjectBegin");
             continue;

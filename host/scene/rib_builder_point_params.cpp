@@ -73,7 +73,7 @@ struct Corner {
 
 // Values of a face (uniform) or a face's corner (facevarying) differ between the faces
 // that share a vertex: then the mesh gets one vertex per triangle corner. Returns where
-// each vertex came from (its triangle: the first that uses it when not split).
+// each vertex came from (its triangle only when split: only those values need it).
 std::vector<Corner> splitCornersIfNeeded(const std::vector<const rib::Param*>& list,
                                          VertexData& mesh) {
     bool perCorner = false;
