@@ -96,8 +96,7 @@ bool Reader::checkVaryingCounts(const char* req, const ParamList& params,
                 want = 1;
                 break;
             case StorageClass::Uniform:
-                want = -1;
-                (void)uniform;
+                want = uniform;  // one a face; -1: not checked (the caller has no count)
                 break;
             case StorageClass::Varying:
                 want = varying;
@@ -166,8 +165,8 @@ bool Reader::checkPointsPolygons(const Args& a, const SourceLoc& loc) {
             return false;
         }
     }
-    return checkVaryingCounts("PointsPolygons", a.params, -1, npoints, npoints, total,
-                              loc);
+    return checkVaryingCounts("PointsPolygons", a.params, static_cast<long long>(nverts.size()),
+                              npoints, npoints, total, loc);
 }
 
 bool Reader::checkPointsGeneralPolygons(const Args& a, const SourceLoc& loc) {
@@ -201,7 +200,8 @@ bool Reader::checkPointsGeneralPolygons(const Args& a, const SourceLoc& loc) {
     }
     long long npoints = countPoints(req, a.params, loc);
     if (npoints < 0 || !checkIndices(req, verts, npoints, "vertex", loc)) return false;
-    return checkVaryingCounts(req, a.params, -1, npoints, npoints, total, loc);
+    return checkVaryingCounts(req, a.params, static_cast<long long>(nloops.size()), npoints,
+                              npoints, total, loc);
 }
 
 bool Reader::checkPatchMesh(const Args& a, const SourceLoc& loc) {

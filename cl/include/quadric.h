@@ -72,10 +72,14 @@ typedef struct Quadric {
      * (4 float4: centre with w = first key's time, to_world rows, row 0's w = last key's
      * time); placements between are interpolated linearly */
     uint32_t motion;
-    uint32_t pad2[3];
+    /* shader parameters given per point: the first of 4 x K values in the point
+     * parameter buffer (scene.h, Scene::pointParamValues), or RT_NO_POINT_PARAMS */
+    uint32_t point_params;
+    uint32_t pad2[2];
 } Quadric;
 
 #define RT_NO_QUADRIC_PRIMVARS 0xffffffffu
+#define RT_NO_POINT_PARAMS 0xffffffffu
 
 /* CSG postfix program: a leaf pushes whether the ray is inside leaf solid k (k in the low
  * bits); the operators pop two and push one. At most 32 leaves and depth 32. */

@@ -23,6 +23,10 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const uint* sample_index,
                             __global const uint* hit_instance, /* RT_HAS_INSTANCES only */
                             __global const float* params,
+                            /* RSL_MAX_PARAM_PRIMVARS only: parameters given per point */
+                            __global const uint* tri_params,
+                            __global const float4* point_params,
+                            __global const int* param_layout,
                             __global const float4* origin,
                             __global const float4* direction,
                             __global const float4* weight,
@@ -84,7 +88,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
     const uint inst = RT_NO_HIT;
 #endif
 #define RD_HIT_BUFFERS org, dir, time, inst, tris, attrs, normals, vertex_st, vertex_cs, \
-    vertex_os, materials, quadrics, quadric_primvars, quadric_motion, tris_end
+    vertex_os, materials, quadrics, quadric_primvars, quadric_motion, tris_end, tri_params, \
+    point_params, param_layout
     rd_surface_globals(&g, &m, h, RD_HIT_BUFFERS);
     g.rng_pixel = sample_pixel[sample]; /* area lights pick their points by the sample */
     g.rng_sample = sample_index[sample];

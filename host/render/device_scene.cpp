@@ -33,6 +33,14 @@ BvhPrimitives bvhPrimitives(const Scene& scene) {
     return p;
 }
 
+// Every triangle's entry, none for those added before the first that had any (or all,
+// when only quadrics have them): the shade kernel reads it at any triangle hit.
+static std::vector<uint32_t> triangleParamsFor(const Scene& scene) {
+    std::vector<uint32_t> t = scene.triangleParams;
+    t.resize(scene.triangles.size(), RT_NO_POINT_PARAMS);
+    return t;
+}
+
 DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh,
                          const std::vector<Quadric>& objects,
                          const Features& f, const ShadingSetup& shading)
@@ -53,6 +61,9 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
       quadricMotion(ctx, scene.quadricMotion),
       trianglesEnd(ctx, scene.trianglesEnd),
       materials(ctx, shading.materials),
-      params(ctx, shading.params) {}
+      params(ctx, shading.params),
+      triangleParams(ctx, f.pointParams > 0 ? triangleParamsFor(scene) : std::vector<uint32_t>{}),
+      pointParamValues(ctx, f.pointParams > 0 ? scene.pointParamValues : std::vector<rt_float4>{}),
+      pointParamLayout(ctx, f.pointParams > 0 ? shading.pointParamLayout : std::vector<int32_t>{}) {}
 
 }  // namespace rd

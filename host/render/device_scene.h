@@ -29,6 +29,11 @@ struct DeviceScene {
     DeviceBuffer<Triangle> trianglesEnd;      // and moving triangles' 
     DeviceBuffer<Material> materials;  // bound to compiled shaders and parameter blocks
     DeviceBuffer<float> params;        // every surface instance's parameter block
+    // Shader parameters given per point (scene.h, Scene::triangleParams), placeholders
+    // when no primitive gives any
+    DeviceBuffer<uint32_t> triangleParams;
+    DeviceBuffer<rt_float4> pointParamValues;
+    DeviceBuffer<int32_t> pointParamLayout;  // per material (ShadingSetup::pointParamLayout)
 };
 
 // Bounds of every triangle, for the BVH builder.

@@ -40,6 +40,12 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
                scene.camera.moving;
     f.instances = !scene.prototypes.empty();
     f.procedurals = !scene.procedurals.empty();
+    // primitive variables that feed shader parameters per point (the scene's data is
+    // only used when some shader has such a parameter)
+    for (int32_t k = 0; k + shading.maxPointParams < int32_t(shading.pointParamLayout.size());
+         k += shading.maxPointParams + 1)
+        for (int32_t i = 1; i <= shading.pointParamLayout[size_t(k)]; ++i)
+            if (shading.pointParamLayout[size_t(k + i)] >= 0) f.pointParams = shading.maxPointParams;
     f.atmosphere = shading.atmosphere;
     f.displacement = shading.displacement;
     f.derivatives = shading.derivatives || shading.displacement;
@@ -71,6 +77,7 @@ std::vector<std::string> Features::names() const {
     if (displacement) n.push_back("displacement");
     if (textures) n.push_back("textures");
     if (procedurals) n.push_back("deferred_procedurals");
+    if (pointParams > 0) n.push_back("point_params");
     if (trace && rouletteDepth > 0) n.push_back("roulette");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
@@ -115,6 +122,7 @@ std::string buildOptions(const Features& f) {
     if (f.displacement) o += " -DRT_HAS_DISPLACEMENT";
     if (f.textures) o += " -DRT_HAS_TEXTURES";
     if (f.procedurals) o += " -DRT_HAS_PROCEDURALS";
+    if (f.pointParams > 0) o += " -DRSL_MAX_PARAM_PRIMVARS=" + std::to_string(f.pointParams);
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";

@@ -30,6 +30,7 @@ struct Features {
     bool displacement = false;  // Displacement shaders (bump: N only)
     bool textures = false;      // some shader looks up a texture the scene has
     bool procedurals = false;   // DelayedReadArchive bounds not loaded yet
+    int pointParams = 0;        // shader parameters given per point: the most on a surface
     float pixelSpread = 0.0f;   // footprint growth per unit of ray length (perspective)
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"

@@ -370,26 +370,29 @@ void RibBuilder::illuminate(L loc, const std::string& handle, bool on) {
 // One surface reference per distinct Surface call (same name, parameters, space), and
 // per distinct set of primitive variables overriding its parameters (RI: a primitive
 // variable named like a shader parameter gives that parameter its value on the primitive;
-// constant ones, and uniform ones of a single face, are carried).
+// constant ones, and uniform ones of a single face, become the instance's values; the
+// others, on primitives that carry them (m_carriedPointParams), are given per point:
+// rib_builder_point_params.cpp).
 uint32_t RibBuilder::surfaceFor(const Attributes& a) {
-    static const std::set<std::string> standard = {"P", "Pw", "Pz", "N", "Np", "Cs", "Os", "s",
-                                                   "t", "st", "width", "constantwidth"};
     rib::ParamList overrides;
     std::string signature;
+    const std::vector<std::pair<std::string, int>>& perPoint = m_carriedPointParams;
     for (const rib::Param& p : m_primVars ? m_primVars->params : std::vector<rib::Param>{}) {
-        if (standard.count(p.name)) continue;
-        const size_t values = p.type == rib::ParamType::String ? p.strings.size()
-                              : p.type == rib::ParamType::Integer ? p.ints.size()
-                                                                 : p.floats.size();
-        const size_t per = size_t(std::max(1, p.components() * p.arraySize));
-        const bool one = p.storage == rib::StorageClass::Constant ||
-                         (p.storage == rib::StorageClass::Uniform && values == per);
-        if (!one) {
+        if (isStandardPrimvar(p.name)) continue;
+        if (std::find_if(perPoint.begin(), perPoint.end(),
+                         [&](const auto& q) { return q.first == p.name; }) != perPoint.end())
+            continue;
+        if (!givesOneValue(p)) {
             if (m_varyingPrimvarWarned.insert(p.name).second)
-                m_diag.warning(a.surface.loc, "primitive variable \"" + p.name + "\" (" +
-                                                  rib::storageClassName(p.storage) +
-                                                  ", one value a face or vertex) does not reach "
-                                                  "shader parameters; only constant ones do");
+                m_diag.warning(a.surface.loc,
+                               "primitive variable \"" + p.name + "\" (" +
+                                   rib::storageClassName(p.storage) + " " +
+                                   rib::paramTypeName(p.type) +
+                                   ") does not reach shader parameters: per-point values are "
+                                   "carried for float, color, point, vector and normal "
+                                   "variables (8 a primitive), except vertex ones of a bicubic PatchMesh or "
+                                   "a NuPatch, facevarying ones of a SubdivisionMesh, and "
+                                   "inside ObjectBegin");
             continue;
         }
         overrides.params.push_back(p);
@@ -399,6 +402,8 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
         for (const std::string& v : p.strings) signature += v + ",";
         signature += ";";
     }
+    for (const auto& [name, floats] : perPoint)
+        signature += name + ":" + std::to_string(floats) + " per point;";
     auto [it, fresh] = m_surfaceVariants.emplace(std::make_pair(a.surfaceKey, signature),
                                                  uint32_t(m_world.surfaceRefs.size()));
     if (fresh) {
@@ -409,6 +414,8 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
             if (same != ref.params.params.end()) *same = p;
             else ref.params.params.push_back(p);
         }
+        ref.pointParams = perPoint;
+        m_world.maxPointParams = std::max(m_world.maxPointParams, int(perPoint.size()));
         m_world.surfaceRefs.push_back(ref);
         m_surfaceKeys.push_back(a.surfaceKey);
     }
@@ -533,6 +540,7 @@ void RibBuilder::pointsPolygons(L loc, const std::vector<int>& nverts,
         else m_diag.error(loc, "polygon vertex index out of range");
         offset += count;
     }
+    readPointParams(params, nverts, verts, mesh);
     addMesh(loc, mesh);
 }
 
@@ -565,6 +573,7 @@ void RibBuilder::sphere(L loc, float radius, float zmin, float zmax, float theta
     VertexData mesh;
     TriMesh m = tessellateSphere(radius, zmin, zmax, thetamax, nu, nu / 2, &mesh.st);
     mesh.p = std::move(m.p), mesh.n = std::move(m.n), mesh.tris = std::move(m.tris);
+    cornerPointParams(params, mesh);  // st is (u, v) here
     addMesh(loc, mesh);
 }
 

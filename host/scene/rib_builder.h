@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -17,9 +18,23 @@
 #include "scene.h"
 #include "tessellate_nurbs.h"
 #include "tessellate_patches.h"
+#include "tessellate_curves_points.h"
+#include "tessellate_subdiv.h"
 #include "tessellate_types.h"
 
 namespace rd {
+
+// Primitive variables that give shader parameters per-point values
+// (rib_builder_point_params.cpp): at most this many per primitive.
+constexpr int kMaxPointParams = 8;
+bool isStandardPrimvar(const std::string& name);  // P, N, Cs, st ...: not parameters
+bool givesOneValue(const rib::Param& p);          // constant, or one value of any class
+// The request's variables that give a parameter a value per point (float, color,
+// point, vector, normal; not the standard ones), in order, the first kMaxPointParams.
+std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params);
+// A SubdivisionMesh's per-point values to refine with it (SubdivInput); false when it
+// has none, or some that cannot be carried (facevarying).
+bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in);
 
 class RibBuilder : public rib::Target {
 public:
@@ -189,6 +204,59 @@ private:
     void addMesh(L, const VertexData& mesh);
     // Per-vertex "N", "Cs", "Os", "st" or "s"+"t" of a polygon mesh with np points.
     void readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh);
+    // Per-point shader parameters (rib_builder_point_params.cpp): of a polygon mesh
+    // (split into one vertex per face-vertex when some are facevarying or uniform;
+    // mesh.tris are then remade from nverts/verts), of a diced quadric (bilinear in the
+    // corner values at each vertex's (u, v) in mesh.st), and of an exact quadric (4
+    // corner values appended to Scene::pointParamValues; returns the first or
+    // RT_NO_POINT_PARAMS).
+    void readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
+                         const std::vector<int>& verts, VertexData& mesh);
+    void cornerPointParams(const rib::ParamList& params, VertexData& mesh);
+    // SubdivisionMesh: vertex values go to the limit, varying ones are refined
+    // linearly (`refined`: tessellateSubdivisionMesh's values for subdivPointParamsIn's
+    // input), uniform ones per base face (faceIndex); facevarying ones are not carried.
+    void subdivPointParams(const rib::ParamList& params,
+                           const std::vector<std::vector<glm::vec3>>& refined,
+                           const std::vector<int>& faceIndex, VertexData& mesh);
+    // Curves: varying (and facevarying) values along each curve's segments, vertex
+    // values through the cubic basis like P, uniform ones per curve (faceIndex).
+    void curvesPointParams(const rib::ParamList& params, const CurvesInput& in,
+                           const std::vector<glm::vec2>& uv, const std::vector<int>& faceIndex,
+                           VertexData& mesh);
+    // Points: each disc (faceIndex: its point) has its point's value all over.
+    void pointsPointParams(const rib::ParamList& params, const std::vector<int>& faceIndex,
+                           VertexData& mesh);
+    // General polygons (their tessellation's vertices are the points of P; faceIndex
+    // names each triangle's polygon): split into one vertex per triangle corner when
+    // some are facevarying or uniform.
+    void generalPolygonPointParams(const rib::ParamList& params, const std::vector<int>& nloops,
+                                   const std::vector<int>& nverts, const std::vector<int>& verts,
+                                   const std::vector<int>& faceIndex, VertexData& mesh);
+    // Patch and PatchMesh: varying (facevarying, bilinear vertex) values on the grid of
+    // sub-patch corners, bilinear at each vertex's global (u, v) (`uv`, the dicer's st);
+    // uniform ones per sub-patch (faceIndex); a single bicubic Patch's 16 vertex values
+    // through its basis. Vertex values of a bicubic PatchMesh are not carried.
+    // NuPatch the same over its knot spans (orders and knots given; vertex values, which
+    // follow the NURBS basis, are not carried).
+    struct PatchGrid {
+        bool bicubic = false, single = false, uperiodic = false, vperiodic = false;
+        int nupatches = 1, nvpatches = 1;
+        CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
+        int uorder = 0, vorder = 0;  // a NuPatch's: sub-patches are its knot spans
+        std::vector<float> uknot, vknot;
+    };
+    void patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
+                          const std::vector<glm::vec2>& uv, const std::vector<int>& faceIndex,
+                          VertexData& mesh);
+    uint32_t quadricPointParams(const rib::ParamList& params, const glm::mat4& ctm);
+    std::vector<glm::vec3> pointParamToWorld(const glm::mat4& ctm,
+                                             const VertexData::PointParam& p) const;
+    // Scene::triangleParams gets placeholders up to the triangles so far.
+    void startTrianglePointParams();
+    // While a primitive that carries per-point parameters picks its material: their
+    // names and floats per value, in the order of its values (ShaderRef::pointParams).
+    std::vector<std::pair<std::string, int>> m_carriedPointParams;
     // Pixels per world unit at distance `depth` in front of the camera.
     float pixelsPerUnit(float depth) const;
     // Screen size in pixels of an object-space sphere (centre, radius), for dicing rates.
@@ -196,7 +264,9 @@ private:
     // Screen size of the bounding sphere of object-space points.
     float screenRadius(const std::vector<glm::vec3>& points) const;
     // Adds a tessellated surface, or reports why the tessellator refused it.
-    void addSurface(L, const char* what, bool ok, const SurfaceMesh& m, const std::string& err);
+    // `perPoint`, when given, adds the per-point shader parameters to the mesh.
+    void addSurface(L, const char* what, bool ok, const SurfaceMesh& m, const std::string& err,
+                    const std::function<void(VertexData&)>& perPoint = nullptr);
     // Adds an exact quadric placed by the current transform (or keeps it in the object
     // being defined, or in the solid being built); "st"/"s"/"t" give corner values.
     // `placement` maps it into the space the current transform places (an object

@@ -5,6 +5,7 @@
 // then added as triangles in world space like any mesh.
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "rib_builder.h"
 #include "tessellate_curves_points.h"
@@ -46,7 +47,8 @@ float RibBuilder::screenRadius(const std::vector<glm::vec3>& pts) const {
 }
 
 void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh& m,
-                            const std::string& err) {
+                            const std::string& err,
+                            const std::function<void(VertexData&)>& perPoint) {
     if (!ok) {
         m_diag.error(loc, std::string(what) + ": " + err);
         return;
@@ -54,6 +56,12 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
     VertexData mesh;
     mesh.p = m.mesh.p, mesh.n = m.mesh.n, mesh.tris = m.mesh.tris;
     if (m.st.size() == m.mesh.p.size()) mesh.st = m.st;
+    // a diced quadric's per-point parameters: bilinear in its corner values at each
+    // vertex's (u, v), which the dicer gave as st
+    static const std::set<std::string> quadrics = {"Cylinder", "Cone", "Disk", "Paraboloid",
+                                                   "Hyperboloid", "Torus"};
+    if (m_primVars && quadrics.count(what) && mesh.st.size() == mesh.p.size())
+        cornerPointParams(*m_primVars, mesh);
     // TextureCoordinates: s, t bilinear over the parametric (u, v) the dicer gave as st
     const Attributes& a = m_attrStack.back();
     for (glm::vec2& st : mesh.st) {
@@ -62,6 +70,7 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
         st = glm::vec2(0.0f);
         for (int k = 0; k < 4; ++k) st += w[k] * glm::vec2(a.texS[k], a.texT[k]);
     }
+    if (perPoint) perPoint(mesh);
     addMesh(loc, mesh);
 }
 
@@ -102,6 +111,9 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
             m_diag.warning(loc, std::string(what) + ": singular transform, left out");
             return;
         }
+        if (!pointParamsOf(&params).empty())
+            m_diag.warning(loc, "primitive variables given per point to shader parameters are "
+                                "not carried inside ObjectBegin");
         m_defining->quadrics.push_back(shape);
         return;
     }
@@ -118,7 +130,12 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     const rib::Param* os = params.find("Os");
     if (cs && cs->floats.size() == 3) std::copy_n(cs->floats.begin(), 3, attrs.color);
     if (os && os->floats.size() == 3) std::copy_n(os->floats.begin(), 3, attrs.opacity);
+    // per-point shader parameters at the (u, v) corners, when this request gives them
+    q.point_params = quadricPointParams(params, m_attrStack.back().ctm * placement);
+    for (const rib::Param* p : pointParamsOf(&params))
+        m_carriedPointParams.push_back({p->name, p->components()});
     q.material = currentMaterial();
+    m_carriedPointParams.clear();
     if (m_attrStack.back().insideOut) q.flags ^= RT_QF_FLIP;  // the normal transform keeps mirrors
     const bool varyingCs = cs && cs->floats.size() == 12, varyingOs = os && os->floats.size() == 12;
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
@@ -261,7 +278,11 @@ void RibBuilder::generalPolygon(L loc, Ints nverts, P params) {
     SurfaceMesh m;
     std::string err;
     bool ok = tessellateGeneralPolygon(nverts, points3(Pp->floats), m, &err);
-    addSurface(loc, "GeneralPolygon", ok, m, err);
+    addSurface(loc, "GeneralPolygon", ok, m, err, [&](VertexData& mesh) {
+        std::vector<int> verts(mesh.p.size());  // one polygon: its points in order
+        for (size_t i = 0; i < verts.size(); ++i) verts[i] = int(i);
+        generalPolygonPointParams(params, {int(nverts.size())}, nverts, verts, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::pointsGeneralPolygons(L loc, Ints nloops, Ints nverts, Ints verts, P params) {
@@ -271,7 +292,9 @@ void RibBuilder::pointsGeneralPolygons(L loc, Ints nloops, Ints nverts, Ints ver
     SurfaceMesh m;
     std::string err;
     bool ok = tessellatePointsGeneralPolygons(nloops, nverts, verts, points3(Pp->floats), m, &err);
-    addSurface(loc, "PointsGeneralPolygons", ok, m, err);
+    addSurface(loc, "PointsGeneralPolygons", ok, m, err, [&](VertexData& mesh) {
+        generalPolygonPointParams(params, nloops, nverts, verts, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::basis(L loc, S, const float ubasis[16], int ustep, S, const float vbasis[16],
@@ -314,7 +337,12 @@ void RibBuilder::patch(L loc, S type, P params) {
     int seg = patchSegments(screenRadius(controlHull(kind, pos)));
     const Attributes& a = m_attrStack.back();
     bool ok = tessellatePatch(type, kind, pos, a.ubasis, a.vbasis, seg, seg, m, &err);
-    addSurface(loc, "Patch", ok, m, err);
+    PatchGrid grid;
+    grid.bicubic = type == "bicubic", grid.single = true;
+    grid.ubasis = a.ubasis, grid.vbasis = a.vbasis;
+    addSurface(loc, "Patch", ok, m, err, [&](VertexData& mesh) {
+        patchPointParams(params, grid, m.st, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::patchMesh(L loc, S type, int nu, S uwrap, int nv, S vwrap, P params) {
@@ -333,7 +361,14 @@ void RibBuilder::patchMesh(L loc, S type, int nu, S uwrap, int nv, S vwrap, P pa
     SurfaceMesh m;
     std::string err;
     bool ok = tessellatePatchMesh(in, seg, seg, m, &err);
-    addSurface(loc, "PatchMesh", ok, m, err);
+    PatchGrid grid;
+    grid.bicubic = in.bicubic, grid.uperiodic = in.uperiodic, grid.vperiodic = in.vperiodic;
+    grid.nupatches = std::max(1, patchCount(in.bicubic, nu, in.uperiodic, in.ubasis.step));
+    grid.nvpatches = std::max(1, patchCount(in.bicubic, nv, in.vperiodic, in.vbasis.step));
+    grid.ubasis = in.ubasis, grid.vbasis = in.vbasis;
+    addSurface(loc, "PatchMesh", ok, m, err, [&](VertexData& mesh) {
+        patchPointParams(params, grid, m.st, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::trimCurve(L loc, Ints ncurves, Ints order, Floats knot, Floats min, Floats max,
@@ -361,7 +396,12 @@ void RibBuilder::nuPatch(L loc, int nu, int uorder, Floats uknot, float umin, fl
     SurfaceMesh m;
     std::string err;
     bool ok = tessellateNuPatch(in, seg, seg, m_attrStack.back().trim.get(), m, &err);
-    addSurface(loc, "NuPatch", ok, m, err);
+    PatchGrid grid;  // varying values on the knot spans' corners
+    grid.nupatches = std::max(1, nu - uorder + 1), grid.nvpatches = std::max(1, nv - vorder + 1);
+    grid.uorder = uorder, grid.vorder = vorder, grid.uknot = uknot, grid.vknot = vknot;
+    addSurface(loc, "NuPatch", ok, m, err, [&](VertexData& mesh) {
+        patchPointParams(params, grid, m.st, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strings tags,
@@ -379,8 +419,12 @@ void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strin
     int level = std::clamp(int(std::ceil(std::log2(std::max(1.0f, facePx / 4.0f)))), 1, 5);
     SurfaceMesh m;
     std::string err;
-    bool ok = tessellateSubdivisionMesh(in, level, m, &err);
-    addSurface(loc, "SubdivisionMesh", ok, m, err);
+    std::vector<std::vector<glm::vec3>> refined;  // per-point parameters, refined
+    const bool carried = subdivPointParamsIn(params, in);
+    bool ok = tessellateSubdivisionMesh(in, level, m, &err, carried ? &refined : nullptr);
+    addSurface(loc, "SubdivisionMesh", ok, m, err, [&](VertexData& mesh) {
+        if (carried) subdivPointParams(params, refined, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::curves(L loc, S type, Ints nvertices, S wrap, P params) {
@@ -405,7 +449,9 @@ void RibBuilder::curves(L loc, S type, Ints nvertices, S wrap, P params) {
     SurfaceMesh m;
     std::string err;
     bool ok = tessellateCurves(in, glm::normalize(centre - eye), 8, m, &err);
-    addSurface(loc, "Curves", ok, m, err);
+    addSurface(loc, "Curves", ok, m, err, [&](VertexData& mesh) {
+        curvesPointParams(params, in, m.st, m.faceIndex, mesh);
+    });
 }
 
 void RibBuilder::points(L loc, P params) {
@@ -424,7 +470,9 @@ void RibBuilder::points(L loc, P params) {
     std::string err;
     bool ok = tessellatePoints(P, width, params.getFloat("constantwidth", 1.0f),
                                glm::normalize(centre - eye), 12, m, &err);
-    addSurface(loc, "Points", ok, m, err);
+    addSurface(loc, "Points", ok, m, err, [&](VertexData& mesh) {
+        pointsPointParams(params, m.faceIndex, mesh);
+    });
 }
 
 }  // namespace rd

@@ -17,6 +17,10 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
         glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
         glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(toObject)));
         VertexData piece = mesh;
+        if (!piece.params.empty() && m_warnedAt.insert({loc.file, loc.line}).second)
+            m_diag.warning(loc, "primitive variables given per point to shader parameters are "
+                                "not carried inside ObjectBegin");
+        piece.params.clear();  // its instances' surfaces have none
         for (glm::vec3& v : piece.p) v = xformPoint(toObject, v);
         for (glm::vec3& v : piece.n) v = nm * v;
         m_defining->meshes.push_back(std::move(piece));
@@ -60,7 +64,17 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     const int leaf = prototype ? -1 : solidLeafForSurface(loc);
     const glm::mat4& ctm = m_attrStack.back().ctm;
     glm::mat3 nm = prototype ? glm::mat3(1.0f) : glm::transpose(glm::inverse(glm::mat3(ctm)));
+    // Per-point shader parameters: their surface variant gets them in the same order
+    // (prototypes are shaded with their instance's surface, which has none)
+    std::vector<std::vector<glm::vec3>> pointParams;
+    if (!prototype)
+        for (const VertexData::PointParam& p : mesh.params) {
+            pointParams.push_back(pointParamToWorld(ctm, p));
+            m_carriedPointParams.push_back({p.name, p.kind == VertexData::Kind::Float ? 1 : 3});
+        }
+    if (!pointParams.empty()) startTrianglePointParams();
     uint32_t material = currentMaterial();
+    m_carriedPointParams.clear();
     // RI's geometric normal: the world-space cross product, reversed for inside-out
     // primitives and mirrored transforms (prototypes: their object space, unmirrored)
     const bool flipNormals = prototype ? m_attrStack.back().insideOut : flipWorldNormals();
@@ -115,6 +129,15 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
             m_solidNodes[leaf].memberWhat.push_back("mesh at " + loc.str());
         }
         m_world.triangles.push_back({f4(a), f4(b), f4(c)});
+        if (!m_world.triangleParams.empty() || !pointParams.empty()) {
+            startTrianglePointParams();
+            m_world.triangleParams.back() = pointParams.empty()
+                                                ? RT_NO_POINT_PARAMS
+                                                : uint32_t(m_world.pointParamValues.size());
+            for (int k : {i0, i1, i2})
+                for (const std::vector<glm::vec3>& v : pointParams)
+                    m_world.pointParamValues.push_back(f4(v[size_t(k)]));
+        }
         if (int light = m_attrStack.back().areaLight; light >= 0 && !prototype)
             m_world.areaLightTriangles[uint32_t(light)].push_back(
                 flipNormals ? std::array<glm::vec3, 3>{a, c, b} : std::array<glm::vec3, 3>{a, b, c});
@@ -170,6 +193,7 @@ void RibBuilder::addMovingTriangle(const Triangle& first, const Triangle& last) 
     q.first_member = index;
     q.flags = RT_QF_MOVING;
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
+    q.point_params = RT_NO_POINT_PARAMS;
     Aabb box;
     for (const Triangle* t : {&first, &last})
         for (const rt_float4* v : {&t->v0, &t->v1, &t->v2}) {
@@ -202,6 +226,7 @@ void RibBuilder::addInstance(L loc, const std::string& handle, const ObjectDef& 
     q.kind = RT_Q_INSTANCE;
     q.first_member = it->second;  // the renderer replaces it with the prototype's BVH root
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
+    q.point_params = RT_NO_POINT_PARAMS;
     q.material = currentMaterial();
     if (!placeQuadric(q, eyeRelative(m_attrStack.back().ctm, glm::mat4(1.0f)))) {
         m_diag.warning(loc, "ObjectInstance: singular or non-finite transform, left out");

@@ -33,6 +33,7 @@ bool RibBuilder::deferProcedural(L loc, S name, Strings args, const float bound[
     q.shape2 = f4(box.hi[0], box.hi[1], box.hi[2]);
     q.first_member = uint32_t(m_world.procedurals.size());
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
+    q.point_params = RT_NO_POINT_PARAMS;
     m_world.procedurals.push_back({key, file, loc});
     m_world.quadrics.push_back(q);
     m_world.quadricBounds.push_back(box);

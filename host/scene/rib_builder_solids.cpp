@@ -228,6 +228,7 @@ void RibBuilder::finishSolid(int root) {
 
     Quadric solid{};
     solid.kind = RT_Q_CSG;
+    solid.point_params = RT_NO_POINT_PARAMS;
     solid.first_member = uint32_t(m_world.csg.size());
     solid.member_count = uint32_t(members.size() / 2);
     m_world.csg.insert(m_world.csg.end(), members.begin(), members.end());

@@ -54,6 +54,10 @@ struct ShaderRef {
     rib::ParamList params;
     glm::mat4 shaderToWorld{1.0f};
     rib::SourceLoc loc;
+    // Parameters its primitives give per point (RI varying, vertex, facevarying, or
+    // uniform on several faces), in the order of their values (Scene::pointParamValues):
+    // name, and floats per value (1 float, 3 color/point/vector/normal)
+    std::vector<std::pair<std::string, int>> pointParams = {};
 };
 
 // Option "render" ...: budgets and adaptive sampling (the command line overrides).
@@ -74,6 +78,13 @@ struct Scene {
     // Per-vertex primitive variables, 3 per triangle, filled only when some geometry gives
     // them (RT_PRIMVAR_* in TriangleAttr says which triangles do): (s, t, 0, 0), Cs, Os.
     std::vector<rt_float4> vertexSt, vertexCs, vertexOs;
+    // Shader parameters given per point (ShaderRef::pointParams, K of them): by triangle,
+    // the first of its 3 x K values (corner-major) in pointParamValues, or
+    // RT_NO_POINT_PARAMS; empty when no triangle has any. Quadrics: Quadric.point_params,
+    // 4 x K (the (u, v) corners 00, 10, 01, 11). Points, vectors, normals in world space.
+    std::vector<uint32_t> triangleParams;
+    std::vector<rt_float4> pointParamValues;
+    int maxPointParams = 0;  // the largest K of a surface in use (0: none)
     // Exact quadrics and CSG solids (cl/include/quadric.h), hit as RT_OBJECT_BIT | index,
     // with their world bounds; csg holds the solids' member lists and programs.
     std::vector<Quadric> quadrics;

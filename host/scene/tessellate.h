@@ -3,6 +3,7 @@
 // fraction of a pixel (viewpoint-aware, as RenderDrive did); issue 8 replaces them with
 // exact quadric intersection.
 #pragma once
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -21,6 +22,15 @@ struct VertexData {
     std::vector<glm::vec2> st;
     std::vector<glm::vec3> cs, os;
     std::vector<int> tris;
+    // Primitive variables naming shader parameters, one value per vertex (float: x),
+    // in object space; in the order RibBuilder::surfaceFor lists them (point_params.cpp)
+    enum class Kind { Float, Color, Point, Vector, Normal };
+    struct PointParam {
+        std::string name;
+        Kind kind = Kind::Float;
+        std::vector<glm::vec3> v;
+    };
+    std::vector<PointParam> params;
 };
 
 // Segment count for a full circle of radius `radiusPixels` on screen so that the chord

@@ -76,7 +76,7 @@ bool validateSubdiv(const SubdivInput& in, std::string* err) {
 
 #ifdef RD_HAVE_OPENSUBDIV
 bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
-                               std::string* err) {
+                               std::string* err, std::vector<std::vector<glm::vec3>>* values) {
     using namespace OpenSubdiv;
     if (!validateSubdiv(in, err)) return false;
     level = std::clamp(level, 0, kMaxSubdivLevel);
@@ -160,6 +160,28 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     int nv = last.GetNumVertices();
     std::vector<Vtx> lim(nv), t1(nv), t2(nv);
     primvar.Limit(src, lim, t1, t2);
+    // other values: vertex ones to the limit like P, varying ones linearly
+    if (values) {
+        auto refine = [&](const std::vector<glm::vec3>& given, bool vertex) {
+            std::vector<Vtx> v(refiner->GetNumVerticesTotal());
+            for (size_t i = 0; i < given.size() && i < in.P.size(); ++i) v[i].p = given[i];
+            Vtx* s = v.data();
+            for (int l = 1; l <= level; ++l) {
+                Vtx* d = s + refiner->GetLevel(l - 1).GetNumVertices();
+                if (vertex) primvar.Interpolate(l, s, d);
+                else primvar.InterpolateVarying(l, s, d);
+                s = d;
+            }
+            std::vector<Vtx> atLimit(nv);
+            if (vertex) primvar.Limit(s, atLimit);
+            else std::copy(s, s + nv, atLimit.begin());
+            std::vector<glm::vec3> refined(static_cast<size_t>(nv));
+            for (int i = 0; i < nv; ++i) refined[size_t(i)] = atLimit[size_t(i)].p;
+            values->push_back(std::move(refined));
+        };
+        for (const std::vector<glm::vec3>& v : in.vertexValues) refine(v, true);
+        for (const std::vector<glm::vec3>& v : in.varyingValues) refine(v, false);
+    }
 
     // Parent base face of each refined face: uniform Catmull-Clark refinement emits a
     // face's children consecutively (n for an n-gon at level 1, then 4 per quad).
@@ -199,9 +221,10 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
 }
 #else
 bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
-                               std::string* err) {
+                               std::string* err, std::vector<std::vector<glm::vec3>>* values) {
     (void)level;
     (void)out;
+    (void)values;
     if (!validateSubdiv(in, err)) return false;
     return fail(err, "SubdivisionMesh: built without OpenSubdiv");
 }

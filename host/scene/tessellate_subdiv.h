@@ -7,8 +7,9 @@
 // Subdivision surfaces have no global (u,v): st is left at (0,0) (facevarying "st" is
 // not interpolated yet). Without "interpolateboundary" the boundary follows OpenSubdiv's
 // VTX_BOUNDARY_NONE rule; "interpolateboundary" [1] (or no int arg) = edges and
-// corners, [2] = edges only. Built without OpenSubdiv (RD_HAVE_OPENSUBDIV undefined)
-// the function returns false with an error.
+// corners, [2] = edges only. Other per-vertex values (shader parameters given per
+// point) are refined with the cage on request. Built without OpenSubdiv
+// (RD_HAVE_OPENSUBDIV undefined) the function returns false with an error.
 #pragma once
 #include <string>
 #include <vector>
@@ -25,6 +26,10 @@ struct SubdivInput {
     std::vector<int> intargs;
     std::vector<float> floatargs;
     std::vector<glm::vec3> P;
+    // Other values refined with the mesh (shader parameters given per point): "vertex"
+    // ones one per control vertex, projected to the limit like P; "varying" ones one
+    // per control vertex too, refined linearly (RI varying on a subdivision mesh).
+    std::vector<std::vector<glm::vec3>> vertexValues, varyingValues;
 };
 
 constexpr int kMaxSubdivLevel = 8;
@@ -34,7 +39,10 @@ bool validateSubdiv(const SubdivInput& in, std::string* err);
 
 // `level` is clamped to [0, kMaxSubdivLevel] and lowered further when the refined mesh
 // would exceed kMaxMeshVertices.
+// `values`, when given, receives in.vertexValues then in.varyingValues refined, one
+// value per vertex of `out` (its vertices from the first this call adds).
 bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
-                               std::string* err = nullptr);
+                               std::string* err = nullptr,
+                               std::vector<std::vector<glm::vec3>>* values = nullptr);
 
 }  // namespace rd

@@ -109,6 +109,26 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
     return block;
 }
 
+std::vector<int32_t> pointParamOffsets(const rsl::EmittedShader& sh, const ShaderRef& call,
+                                       rib::Diagnostics& diag) {
+    std::vector<int32_t> out;
+    for (const auto& [name, floats] : call.pointParams) {
+        int32_t offset = -1;  // not a parameter of this shader: RI ignores it
+        for (const rsl::ParamSlot& slot : sh.params) {
+            if (slot.name != name) continue;
+            if (slot.arraySize == 0 && slot.size == floats && slot.type.base != rsl::BaseType::String)
+                offset = slot.offset;
+            else
+                diag.warning(call.loc, "primitive variable \"" + name + "\" of " +
+                                           std::to_string(floats) + " float(s) per point does not "
+                                           "fit parameter \"" + name + "\" (a " + slot.typeName +
+                                           ") of shader \"" + call.name + "\"; ignored");
+        }
+        out.push_back(offset);
+    }
+    return out;
+}
+
 namespace {
 // The block about to be appended to out.params has uniform work to do once (hoist.h).
 void addPrepare(ShadingSetup& out, const rsl::EmittedShader& sh) {
@@ -388,6 +408,7 @@ ShadingSetup ShaderSet::prepare() {
     std::map<std::string, uint32_t> surfaceIndex;
     std::vector<uint32_t> refBlock(m_scene.surfaceRefs.size());
     std::vector<uint32_t> refShader(m_scene.surfaceRefs.size());
+    std::vector<std::vector<int32_t>> refPointParams(m_scene.surfaceRefs.size());
     std::ostringstream kernels;
     const std::string& kernelTemplate = embeddedClSources().at("shade_rsl.cl");
     for (size_t r = 0; r < m_scene.surfaceRefs.size(); ++r) {
@@ -412,6 +433,7 @@ ShadingSetup ShaderSet::prepare() {
         }
         refShader[r] = it->second;
         refBlock[r] = uint32_t(out.params.size());
+        refPointParams[r] = pointParamOffsets(*sh, call, m_diag);
         std::vector<float> block = bindParameters(*sh, call, m_diag);
         addPrepare(out, *sh);
         noteTextures(out, *sh, call);
@@ -487,10 +509,19 @@ ShadingSetup ShaderSet::prepare() {
         prep << "    default: break;\n    }\n}\n";
     }
     out.materials = m_scene.materials;
+    out.maxPointParams = m_scene.maxPointParams;
     for (Material& m : out.materials) {
         uint32_t r = m.shader;
         m.shader = r < refShader.size() ? refShader[r] : 0;
         m.params = r < refBlock.size() ? refBlock[r] : 0;
+        if (out.maxPointParams > 0) {
+            std::vector<int32_t> lay(size_t(1 + out.maxPointParams), -1);
+            const std::vector<int32_t> none;
+            const std::vector<int32_t>& given = r < refPointParams.size() ? refPointParams[r] : none;
+            lay[0] = int32_t(given.size());
+            std::copy(given.begin(), given.end(), lay.begin() + 1);
+            out.pointParamLayout.insert(out.pointParamLayout.end(), lay.begin(), lay.end());
+        }
     }
     out.traceSlots = out.usesTrace ? 8 : 0;  // RSL_MAX_TRACE
     out.generated["rd_shading.cl"] = "#define RSL_LIGHT_PARAMS __constant float*\n"

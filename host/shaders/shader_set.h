@@ -30,6 +30,11 @@ struct ShadingSetup {
     std::vector<std::string> surfaceNames;  // the shaders themselves, same order
     std::vector<Material> materials;        // Material::shader/params filled in
     std::vector<float> params;              // every surface instance's block
+    // Parameters given per point (ShaderRef::pointParams), when some surface has them:
+    // per material, 1 + maxPointParams ints: how many its primitives give, then the
+    // offset in its block of each (-1: its shader has no float or triple of that name)
+    int maxPointParams = 0;
+    std::vector<int32_t> pointParamLayout;
     uint32_t lightCount = 0;                // LightSource instances (ambient included)
     bool shadowRays = false;                // some light is not ambient
     bool usesTrace = false;                 // some surface calls trace()
@@ -75,5 +80,11 @@ private:
 // against the declared type), points/vectors/normals moved to world space.
 std::vector<float> bindParameters(const rsl::EmittedShader& shader, const ShaderRef& call,
                                   rib::Diagnostics& diag);
+
+// Where each of the call's per-point parameters (ShaderRef::pointParams) goes in its
+// block: the offset of the shader's parameter of that name, or -1 (none, or one of
+// another size: reported).
+std::vector<int32_t> pointParamOffsets(const rsl::EmittedShader& shader, const ShaderRef& call,
+                                       rib::Diagnostics& diag);
 
 }  // namespace rd

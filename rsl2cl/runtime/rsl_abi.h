@@ -47,6 +47,16 @@
  * surface() from a light, and atmosphere(), displacement(), incident(), opposite(),
  * rendererinfo() return 0 without calling anything.
  *
+ * PER-POINT PARAMETERS. A renderer that defines RSL_MAX_PARAM_PRIMVARS (> 0) gives
+ * surface shaders parameter values per shading point (RI primitive variables of class
+ * varying, vertex, facevarying or uniform named like a parameter): RslGlobals then
+ * holds pv_count entries of (pv_slot, pv_value), the parameter's offset in the block
+ * and its value there (a float in .x, a triple in xyz, already in current space). The
+ * generated surface function replaces the block's value of each such non-array float
+ * or triple parameter after reading the block; other slots are ignored. While
+ * pv_count > 0 it also computes its hoisted declarations (hoist.h) at the point
+ * instead of reading the prepared slots, since they may depend on those parameters.
+ *
  * STRINGS. A string's id is FNV-1a (32 bit) of its bytes masked to 24 bits, with the
  * empty string 0 (exactly representable in a float slot). rsl::stringId() in
  * emit_cl.h computes the same value; texture/shadow map names reach the host that way.
@@ -150,6 +160,12 @@ typedef struct RslGlobals {
     /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global
      * s, t, which texture lookups use at a shading point's neighbours (DERIVATIVES) */
     float4 st_footprint;
+#ifdef RSL_MAX_PARAM_PRIMVARS
+    /* PER-POINT PARAMETERS (the contract at the top): the parameters given at this point */
+    int pv_count;
+    int pv_slot[RSL_MAX_PARAM_PRIMVARS];
+    float4 pv_value[RSL_MAX_PARAM_PRIMVARS];
+#endif
 } RslGlobals;
 
 /* DERIVATIVES. Du, Dv, Deriv, area, calculatenormal and filterstep are finite

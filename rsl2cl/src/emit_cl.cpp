@@ -258,6 +258,27 @@ void Emitter::emitPrepare() {
     m_body << "}\n";
 }
 
+// A surface instance whose primitives give some parameters per vertex: the renderer puts
+// the values interpolated at the point in g->pv_value, keyed by the parameter's offset
+// in the block; they replace what was read from the block. Compiled only into scenes
+// that have such parameters (the renderer defines RSL_MAX_PARAM_PRIMVARS).
+void Emitter::emitPointParams() {
+    std::string cases;
+    for (size_t i = 0; i < m_sh.params.size(); ++i) {
+        const VarDecl& p = m_sh.params[i];
+        const ParamSlot& slot = m_out.params[i];
+        int n = slotsOf(p.type.base);
+        if (slot.arraySize > 0 || (n != 1 && n != 3) || p.type.base == BaseType::String) continue;
+        cases += "case " + std::to_string(slot.offset) + ": p_" + p.name + " = g->pv_value[_k]" +
+                 (n == 1 ? ".x" : "") + "; break; ";
+    }
+    if (cases.empty()) return;
+    line("#ifdef RSL_MAX_PARAM_PRIMVARS");
+    line("for (int _k = 0; _k < g->pv_count; ++_k) switch (g->pv_slot[_k]) { " + cases +
+         "default: break; }");
+    line("#endif");
+}
+
 void Emitter::emitShader() {
     bool light = m_sh.kind == ShaderKind::Light;
     std::string fn = m_out.functionName;
@@ -281,6 +302,7 @@ void Emitter::emitShader() {
     m_body.str("");
     m_usesSpaces = false;
     emitParamReads(true);
+    if (m_sh.kind == ShaderKind::Surface) emitPointParams();
     for (const StmtPtr& s : m_sh.body->stmts) stmt(*s);
     if (!light) writeOutputs();
     m_body << "}\n";
@@ -298,9 +320,19 @@ void Emitter::decl(const VarDecl& d) {
     if (d.isExtern) return;
     std::string t = clType(d.type), name = "v_" + d.name;
     if (auto h = m_hoist.slot.find(&d); h != m_hoist.slot.end() && !m_func) {
-        line(t + " " + name + " = " +
-             blockRead(d.type.base, std::to_string(m_out.prepOffset + h->second)) +
-             "; /* once per instance */");
+        std::string once = blockRead(d.type.base, std::to_string(m_out.prepOffset + h->second));
+        if (m_sh.kind == ShaderKind::Surface) {
+            // an instance whose parameters vary per point: the prepared value was made
+            // from the block's values, not the point's, so compute it here instead
+            line("#ifdef RSL_MAX_PARAM_PRIMVARS");
+            line(t + " " + name + " = g->pv_count > 0 ? " + exprAs(*d.init, d.type) + " : " +
+                 once + ";");
+            line("#else");
+            line(t + " " + name + " = " + once + "; /* once per instance */");
+            line("#endif");
+            return;
+        }
+        line(t + " " + name + " = " + once + "; /* once per instance */");
         return;
     }
     if (d.type.isArray()) {

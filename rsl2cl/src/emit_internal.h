@@ -56,6 +56,7 @@ private:
     void emitShader();
     void emitParamReads(bool computedDefaults);  // p_<name> locals from `params`
     void emitPrepare();  // the uniform work of one instance (hoist.h)
+    void emitPointParams();  // per-point parameter values (rsl_abi.h, PER-POINT PARAMETERS)
     std::string blockRead(BaseType base, const std::string& offset) const;
     void stmt(const Stmt& s);
     void decl(const VarDecl& d);

@@ -212,7 +212,8 @@ TEST(Shading, HoistedUniformWorkEqualsPerPointWork) {
 }
 
 // A primitive variable named like a shader parameter gives it its value on that
-// primitive (constant ones, and uniform ones of a single face); varying ones warn.
+// primitive (constant ones, and uniform ones of a single face, as the instance's value;
+// varying ones per point: point_params_test.cpp); varying strings warn.
 TEST(Shading, ConstantPrimitiveVariablesOverrideShaderParameters) {
     std::string dir = ::testing::TempDir() + "/raydrive_shaders";
     std::filesystem::create_directories(dir);
@@ -224,10 +225,12 @@ TEST(Shading, ConstantPrimitiveVariablesOverrideShaderParameters) {
                              "Polygon \"P\" [-50 -50 5  0 -50 5  0 50 5  -50 50 5] "
                              "\"constant float gain\" [3] \"uniform color tint\" [1 0.5 0.25]\n"
                              "Polygon \"P\" [0 -50 5  50 -50 5  50 50 5  0 50 5] "
-                             "\"varying float gain\" [5 5 5 5]\nWorldEnd\n");
+                             "\"varying float gain\" [5 5 5 5] "
+                             "\"varying string label\" [\"a\" \"b\" \"c\" \"d\"]\nWorldEnd\n");
     std::string err = ::testing::internal::GetCapturedStderr();
     EXPECT_NEAR(img.at(4, 16).r, 3.0, 1e-5);
     EXPECT_NEAR(img.at(4, 16).g, 1.5, 1e-5);
-    EXPECT_NEAR(img.at(28, 16).r, 1.0, 1e-5) << "the other polygon keeps the default";
-    EXPECT_NE(err.find("primitive variable \"gain\" (varying"), std::string::npos) << err;
+    EXPECT_NEAR(img.at(28, 16).r, 5.0, 1e-5) << "the other polygon's own gain, per point";
+    EXPECT_NEAR(img.at(28, 16).g, 5.0, 1e-5) << "and the default tint";
+    EXPECT_NE(err.find("primitive variable \"label\" (varying string)"), std::string::npos) << err;
 }

@@ -93,3 +93,35 @@ TEST(Hoist, AssignedParametersAreNotTheInstancesValue) {
     EXPECT_FALSE(hoisted(sh, "k"));
     EXPECT_FALSE(hoisted(sh, "r"));
 }
+
+// Parameters a primitive gives per point (rsl_abi.h, PER-POINT PARAMETERS): only where
+// the renderer defines RSL_MAX_PARAM_PRIMVARS, the surface takes g->pv_value for the
+// parameter at that block offset (floats and triples; arrays and strings never), and
+// its hoisted work is computed at the point while pv_count > 0. The render tests are in
+// tests/host/point_params_test.cpp.
+TEST(Hoist, PerPointParametersReplaceTheBlockValueAndTheHoistedWork) {
+    rsl::EmittedShader sh = emit(
+        "surface s(float Kd = 0.5; color tint = 1; string map = \"\"; float w[2] = {1, 2};) {\n"
+        "    uniform float k = pow(Kd, 2);\n"
+        "    Ci = tint * k * w[0]; Oi = 1;\n}\n");
+    ASSERT_TRUE(hoisted(sh, "k"));
+    auto offset = [&](const std::string& name) {
+        for (const rsl::ParamSlot& p : sh.params)
+            if (p.name == name) return std::to_string(p.offset);
+        return std::string("?");
+    };
+    EXPECT_NE(sh.source.find("#ifdef RSL_MAX_PARAM_PRIMVARS"), std::string::npos) << sh.source;
+    EXPECT_NE(sh.source.find("case " + offset("Kd") + ": p_Kd = g->pv_value[_k].x;"),
+              std::string::npos) << sh.source;
+    EXPECT_NE(sh.source.find("case " + offset("tint") + ": p_tint = g->pv_value[_k];"),
+              std::string::npos) << sh.source;
+    EXPECT_EQ(sh.source.find("p_map = g->pv_value"), std::string::npos);
+    EXPECT_EQ(sh.source.find("p_w = g->pv_value"), std::string::npos);
+    EXPECT_NE(sh.source.find("float v_k = g->pv_count > 0 ?"), std::string::npos) << sh.source;
+    // the prepare function and light shaders have no per-point values
+    const std::string prep = sh.source.substr(sh.source.find("void " + sh.prepFunction));
+    EXPECT_EQ(prep.find("pv_"), std::string::npos) << prep;
+    rsl::EmittedShader light = emit("light l(float intensity = 1;) {\n"
+                                    "    illuminate(point(0, 0, 0)) { Cl = intensity; }\n}\n");
+    EXPECT_EQ(light.source.find("pv_"), std::string::npos) << light.source;
+}

@@ -1,0 +1,434 @@
+// rib_builder_point_params.cpp: primitive variables that give a shader parameter a value
+// per point (RI: a varying, vertex, facevarying or uniform variable named like a
+// parameter of the surface shader gives that parameter its value on the primitive,
+// interpolated over it). Each kind of geometry turns them into per-vertex values of
+// its triangles (one vertex per triangle corner when some are facevarying or per face):
+// polygons from their vertices, patches and NuPatch from their sub-patch or knot-span
+// corners, subdivision meshes refined with the cage, points per disc, diced quadrics
+// from their 4 (u, v) corners; exact quadrics keep the 4 corner values. The values are
+// moved to world ("current") space and stored for the device, which interpolates them
+// at each hit (shade_common.clh) and hands them to the shader in place of its
+// parameters (rsl_abi.h, PER-POINT PARAMETERS).
+#include <algorithm>
+#include <set>
+
+#include "rib_builder.h"
+#include "rib_builder_util.h"
+
+namespace rd {
+namespace {
+
+using Kind = VertexData::Kind;
+
+// Values a parameter has in all (floats, ints or strings).
+size_t valueCount(const rib::Param& p) {
+    return p.type == rib::ParamType::String    ? p.strings.size()
+           : p.type == rib::ParamType::Integer ? p.ints.size()
+                                               : p.floats.size();
+}
+
+bool kindOf(const rib::Param& p, Kind* kind) {
+    if (p.arraySize != 1) return false;
+    switch (p.type) {
+    case rib::ParamType::Float: *kind = Kind::Float; return true;
+    case rib::ParamType::Color: *kind = Kind::Color; return p.components() == 3;
+    case rib::ParamType::Point: *kind = Kind::Point; return true;
+    case rib::ParamType::Vector: *kind = Kind::Vector; return true;
+    case rib::ParamType::Normal: *kind = Kind::Normal; return true;
+    default: return false;
+    }
+}
+
+glm::vec3 valueAt(const rib::Param& p, size_t i) {
+    const size_t n = size_t(p.components());
+    if (n == 1) return glm::vec3(i < p.floats.size() ? p.floats[i] : 0.0f, 0.0f, 0.0f);
+    if (n * i + 2 >= p.floats.size()) return glm::vec3(0.0f);
+    return {p.floats[n * i], p.floats[n * i + 1], p.floats[n * i + 2]};
+}
+
+// The sub-patch (or NURBS knot span, when `order` > 0) that parameter x is in, of n,
+// and where in it (0..1): sub-patches split [0, 1] evenly; span i of a NURBS runs from
+// knot[order - 1 + i] to knot[order + i] (empty ones, at repeated knots, are skipped).
+void spanAt(float x, int n, const std::vector<float>& knot, int order, int* i, float* f) {
+    if (order <= 0 || knot.size() < size_t(order + n)) {
+        const float X = x * float(n);
+        *i = std::clamp(int(std::floor(X)), 0, n - 1);
+        *f = X - float(*i);
+        return;
+    }
+    *i = n - 1;
+    for (int k = 0; k < n; ++k)
+        if (x < knot[size_t(order + k)]) {
+            *i = k;
+            break;
+        }
+    const float k0 = knot[size_t(order - 1 + *i)], k1 = knot[size_t(order + *i)];
+    *f = k1 > k0 ? std::clamp((x - k0) / (k1 - k0), 0.0f, 1.0f) : 0.0f;
+}
+
+// The vertex and triangle each vertex of a mesh came from.
+struct Corner {
+    size_t vertex = 0, triangle = 0;
+};
+
+// Values of a face (uniform) or a face's corner (facevarying) differ between the faces
+// that share a vertex: then the mesh gets one vertex per triangle corner. Returns where
+// each vertex came from (its triangle only when split: only those values need it).
+std::vector<Corner> splitCornersIfNeeded(const std::vector<const rib::Param*>& list,
+                                         VertexData& mesh) {
+    bool perCorner = false;
+    for (const rib::Param* p : list)
+        perCorner |= p->storage == rib::StorageClass::FaceVarying ||
+                     p->storage == rib::StorageClass::Uniform;
+    std::vector<Corner> src(mesh.p.size());
+    if (!perCorner) {
+        for (size_t i = 0; i < src.size(); ++i) src[i].vertex = i;
+        return src;
+    }
+    VertexData split;
+    src.clear();
+    for (size_t t = 0; 3 * t + 2 < mesh.tris.size(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const size_t v = size_t(mesh.tris[3 * t + c]);
+            split.p.push_back(mesh.p[v]);
+            if (mesh.st.size() == mesh.p.size()) split.st.push_back(mesh.st[v]);
+            if (mesh.n.size() == mesh.p.size()) split.n.push_back(mesh.n[v]);
+            if (mesh.cs.size() == mesh.p.size()) split.cs.push_back(mesh.cs[v]);
+            if (mesh.os.size() == mesh.p.size()) split.os.push_back(mesh.os[v]);
+            split.tris.push_back(int(src.size()));
+            src.push_back({v, t});
+        }
+    mesh = std::move(split);
+    return src;
+}
+
+}  // namespace
+
+bool isStandardPrimvar(const std::string& name) {
+    static const std::set<std::string> standard = {"P", "Pw", "Pz", "N", "Np", "Cs", "Os", "s",
+                                                   "t", "st", "width", "constantwidth"};
+    return standard.count(name) != 0;
+}
+
+bool givesOneValue(const rib::Param& p) {
+    // one value for the whole primitive, whatever its class, is read as constant (the
+    // reader accepts it: "Cs" [1 0 0] on a sphere)
+    const size_t per = size_t(std::max(1, p.components() * p.arraySize));
+    return p.storage == rib::StorageClass::Constant || valueCount(p) == per;
+}
+
+std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params) {
+    std::vector<const rib::Param*> out;
+    if (!params) return out;
+    Kind kind;
+    for (const rib::Param& p : params->params)
+        if (!isStandardPrimvar(p.name) && !givesOneValue(p) && kindOf(p, &kind) &&
+            out.size() < size_t(kMaxPointParams))
+            out.push_back(&p);
+    return out;
+}
+
+void RibBuilder::readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
+                                 const std::vector<int>& verts, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    if (list.empty()) return;
+    const size_t np = mesh.p.size();
+    bool perCorner = false;  // some value belongs to a face or a face's corner
+    for (const rib::Param* p : list)
+        perCorner |= p->storage == rib::StorageClass::FaceVarying ||
+                     p->storage == rib::StorageClass::Uniform;
+    if (perCorner) {
+        // one vertex per face-vertex: every other per-vertex value is copied to it
+        const size_t nfv = verts.size();
+        auto spread = [&](auto& v) {
+            if (v.size() != np) return;
+            auto copy = v;
+            v.resize(nfv);
+            for (size_t i = 0; i < nfv; ++i)
+                v[i] = verts[i] >= 0 && size_t(verts[i]) < np ? copy[size_t(verts[i])] : copy[0];
+        };
+        spread(mesh.p), spread(mesh.n), spread(mesh.st), spread(mesh.cs), spread(mesh.os);
+        mesh.tris.clear();
+        std::vector<int> corner(nfv);
+        for (size_t i = 0; i < nfv; ++i) corner[i] = int(i);
+        size_t offset = 0;
+        for (int count : nverts) {  // the faces pointsPolygons took (it reported the rest)
+            bool ok = count >= 3 && offset + size_t(count) <= nfv;
+            for (int k = 0; ok && k < count; ++k)
+                ok = verts[offset + k] >= 0 && size_t(verts[offset + k]) < np;
+            if (ok) triangulateConvex(&corner[offset], count, mesh.tris);
+            offset += size_t(std::max(count, 0));
+        }
+    }
+    std::vector<int> faceOf;  // face index of each face-vertex
+    for (size_t f = 0; f < nverts.size(); ++f)
+        faceOf.insert(faceOf.end(), size_t(std::max(nverts[f], 0)), int(f));
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            size_t src = i;  // the value's index for vertex i
+            if (perCorner) {
+                if (p->storage == rib::StorageClass::FaceVarying) src = i;
+                else if (p->storage == rib::StorageClass::Uniform)
+                    src = i < faceOf.size() ? size_t(faceOf[i]) : 0;
+                else src = verts[i] >= 0 && size_t(verts[i]) < np ? size_t(verts[i]) : 0;
+            }
+            out.v[i] = valueAt(*p, src);
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,
+                                           const std::vector<int>& nloops,
+                                           const std::vector<int>& nverts,
+                                           const std::vector<int>& verts,
+                                           const std::vector<int>& faceIndex, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    if (list.empty()) return;
+    // where each polygon's face-vertices start in `verts` (its loops one after another)
+    std::vector<size_t> first(nloops.size() + 1, 0);
+    for (size_t f = 0, l = 0; f < nloops.size(); ++f) {
+        first[f + 1] = first[f];
+        for (int k = 0; k < nloops[f] && l < nverts.size(); ++k, ++l)
+            first[f + 1] += size_t(std::max(nverts[l], 0));
+    }
+    const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const size_t point = src[i].vertex;
+            const size_t face = src[i].triangle < faceIndex.size() ? size_t(faceIndex[src[i].triangle]) : 0;
+            size_t at = point;  // varying, vertex: the point's value
+            if (p->storage == rib::StorageClass::Uniform) at = face;
+            if (p->storage == rib::StorageClass::FaceVarying && face < nloops.size())
+                for (size_t j = first[face]; j < first[face + 1] && j < verts.size(); ++j)
+                    if (size_t(verts[j]) == point) {  // this polygon's corner at the point
+                        at = j;
+                        break;
+                    }
+            out.v[i] = valueAt(*p, at);
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
+                                  const std::vector<glm::vec2>& uv,
+                                  const std::vector<int>& faceIndex, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    if (list.empty() || uv.size() != mesh.p.size()) return;
+    // varying values sit on the sub-patches' corners: one more than the sub-patches
+    // across a direction unless it wraps (RI); a bilinear mesh's vertex values too
+    const int gu = grid.nupatches + (grid.uperiodic ? 0 : 1);
+    const int gv = grid.nvpatches + (grid.vperiodic ? 0 : 1);
+    for (const rib::Param* p : list) {
+        const size_t n = valueCount(*p) / size_t(p->components());
+        const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
+        if (grid.uorder > 0 && p->storage == rib::StorageClass::Vertex) return;
+        const bool ok = p->storage == rib::StorageClass::Uniform
+                            ? n == size_t(grid.nupatches * grid.nvpatches)
+                        : bicubicVertex ? (grid.single && n == 16)
+                                        : n == size_t(gu * gv);
+        if (!ok) return;  // vertex values of a bicubic mesh: not carried (surfaceFor warns)
+    }
+    const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const glm::vec2 at = uv[src[i].vertex];
+            if (p->storage == rib::StorageClass::Uniform) {
+                const size_t t = src[i].triangle;
+                out.v[i] = valueAt(*p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
+            } else if (bicubicVertex) {  // the patch's own basis over its 16 values
+                float wu[4], wv[4];
+                basisWeights(grid.ubasis, at.x, wu);
+                basisWeights(grid.vbasis, at.y, wv);
+                glm::vec3 v(0.0f);
+                for (int b = 0; b < 4; ++b)
+                    for (int a = 0; a < 4; ++a) v += wu[a] * wv[b] * valueAt(*p, size_t(4 * b + a));
+                out.v[i] = v;
+            } else {  // bilinear between the corners of the sub-patch the vertex is in
+                int i0, j0;
+                float fu, fv;
+                spanAt(at.x, grid.nupatches, grid.uknot, grid.uorder, &i0, &fu);
+                spanAt(at.y, grid.nvpatches, grid.vknot, grid.vorder, &j0, &fv);
+                const int i1 = (i0 + 1) % gu, j1 = (j0 + 1) % gv;
+                auto c = [&](int a, int b) { return valueAt(*p, size_t(b * gu + a)); };
+                out.v[i] = (1 - fu) * (1 - fv) * c(i0, j0) + fu * (1 - fv) * c(i1, j0) +
+                           (1 - fu) * fv * c(i0, j1) + fu * fv * c(i1, j1);
+            }
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+void RibBuilder::pointsPointParams(const rib::ParamList& params,
+                                   const std::vector<int>& faceIndex, VertexData& mesh) {
+    for (const rib::Param* p : pointParamsOf(&params)) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.assign(mesh.p.size(), glm::vec3(0.0f));
+        for (size_t t = 0; 3 * t + 2 < mesh.tris.size() && t < faceIndex.size(); ++t)
+            for (int c = 0; c < 3; ++c)  // each disc has its own vertices
+                out.v[size_t(mesh.tris[3 * t + c])] = valueAt(*p, size_t(faceIndex[t]));
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    for (const rib::Param* p : list)  // facevarying values need an FVar channel: not yet
+        if (p->storage == rib::StorageClass::FaceVarying) return false;
+    for (const rib::Param* p : list) {
+        if (p->storage == rib::StorageClass::Uniform) continue;  // per face: no refining
+        std::vector<glm::vec3> v(in.P.size());
+        for (size_t i = 0; i < v.size(); ++i) v[i] = valueAt(*p, i);
+        (p->storage == rib::StorageClass::Vertex ? in.vertexValues : in.varyingValues)
+            .push_back(std::move(v));
+    }
+    return !list.empty();
+}
+
+void RibBuilder::subdivPointParams(const rib::ParamList& params,
+                                   const std::vector<std::vector<glm::vec3>>& refined,
+                                   const std::vector<int>& faceIndex, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    size_t vertexCount = 0, next[2] = {0, 0};
+    for (const rib::Param* p : list) vertexCount += p->storage == rib::StorageClass::Vertex;
+    const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        // refined values: the vertex ones first, then the varying ones (SubdivInput)
+        const std::vector<glm::vec3>* r = nullptr;
+        if (p->storage == rib::StorageClass::Vertex) r = &refined.at(next[0]++);
+        else if (p->storage != rib::StorageClass::Uniform)
+            r = &refined.at(vertexCount + next[1]++);
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const size_t t = src[i].triangle;
+            out.v[i] = r ? (src[i].vertex < r->size() ? (*r)[src[i].vertex] : glm::vec3(0.0f))
+                         : valueAt(*p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+void RibBuilder::curvesPointParams(const rib::ParamList& params, const CurvesInput& in,
+                                   const std::vector<glm::vec2>& uv,
+                                   const std::vector<int>& faceIndex, VertexData& mesh) {
+    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    if (list.empty() || uv.size() != mesh.p.size()) return;
+    const int step = in.cubic ? in.vbasis.step : 1;
+    // each curve's first control point and first varying value
+    std::vector<size_t> p0(in.nvertices.size() + 1, 0), var0(in.nvertices.size() + 1, 0);
+    for (size_t c = 0; c < in.nvertices.size(); ++c) {
+        p0[c + 1] = p0[c] + size_t(std::max(in.nvertices[c], 0));
+        var0[c + 1] = var0[c] +
+                      size_t(std::max(curveVaryingCount(in.cubic, in.nvertices[c], in.periodic, step), 0));
+    }
+    std::vector<size_t> curveOf(mesh.p.size(), 0);  // a ribbon's vertices are its own
+    for (size_t t = 0; 3 * t + 2 < mesh.tris.size() && t < faceIndex.size(); ++t)
+        for (int k = 0; k < 3; ++k) curveOf[size_t(mesh.tris[3 * t + k])] = size_t(faceIndex[t]);
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const size_t c = std::min(curveOf[i], in.nvertices.size() - 1);
+            const int n = in.nvertices[c];
+            const int segs = std::max(1, curveSegments(in.cubic, n, in.periodic, step));
+            const int nvar = std::max(1, curveVaryingCount(in.cubic, n, in.periodic, step));
+            // along the curve as its centre line is (tessellate_curves_points.cpp)
+            const float x = std::clamp(uv[i].y, 0.0f, 1.0f) * float(segs);
+            const int s = std::min(int(x), segs - 1);
+            const float t = x - float(s);
+            if (p->storage == rib::StorageClass::Uniform) {
+                out.v[i] = valueAt(*p, c);
+            } else if (p->storage == rib::StorageClass::Vertex && in.cubic) {
+                float w[4];
+                basisWeights(in.vbasis, t, w);
+                glm::vec3 v(0.0f);
+                for (int k = 0; k < 4; ++k) v += w[k] * valueAt(*p, p0[c] + size_t((s * step + k) % n));
+                out.v[i] = v;
+            } else {  // varying (and a linear curve's vertex values): along each segment
+                out.v[i] = (1 - t) * valueAt(*p, var0[c] + size_t(s)) +
+                           t * valueAt(*p, var0[c] + size_t((s + 1) % nvar));
+            }
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh) {
+    for (const rib::Param* p : pointParamsOf(&params)) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        // a quadric's varying values are at its (u, v) corners 00, 10, 01, 11 (one value,
+        // uniform: everywhere); mesh.st holds each vertex's (u, v)
+        const bool corners = valueCount(*p) >= 4 * size_t(p->components());
+        glm::vec3 c[4];
+        for (int k = 0; k < 4; ++k) c[k] = valueAt(*p, corners ? size_t(k) : 0);
+        out.v.resize(mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i) {
+            const glm::vec2 uv = i < mesh.st.size() ? mesh.st[i] : glm::vec2(0.0f);
+            out.v[i] = (1 - uv.x) * (1 - uv.y) * c[0] + uv.x * (1 - uv.y) * c[1] +
+                       (1 - uv.x) * uv.y * c[2] + uv.x * uv.y * c[3];
+        }
+        mesh.params.push_back(std::move(out));
+    }
+}
+
+// Object-space values to the device's world space (eye-relative, like P): points by
+// the full transform, vectors by its linear part, normals by its inverse transpose.
+std::vector<glm::vec3> RibBuilder::pointParamToWorld(const glm::mat4& ctm,
+                                                     const VertexData::PointParam& p) const {
+    switch (p.kind) {
+    case Kind::Point: return worldPoints(ctm, p.v);
+    case Kind::Vector:
+    case Kind::Normal: {
+        const glm::mat3 m = p.kind == Kind::Vector ? glm::mat3(ctm)
+                                                   : glm::transpose(glm::inverse(glm::mat3(ctm)));
+        std::vector<glm::vec3> out(p.v.size());
+        for (size_t i = 0; i < out.size(); ++i) out[i] = m * p.v[i];
+        return out;
+    }
+    default: return p.v;
+    }
+}
+
+uint32_t RibBuilder::quadricPointParams(const rib::ParamList& params, const glm::mat4& ctm) {
+    if (pointParamsOf(&params).empty()) return RT_NO_POINT_PARAMS;
+    VertexData corners;
+    corners.p.resize(4);
+    corners.st = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    cornerPointParams(params, corners);
+    std::vector<std::vector<glm::vec3>> world;
+    for (const VertexData::PointParam& p : corners.params) world.push_back(pointParamToWorld(ctm, p));
+    const uint32_t first = uint32_t(m_world.pointParamValues.size());
+    for (int c = 0; c < 4; ++c)
+        for (const std::vector<glm::vec3>& v : world) m_world.pointParamValues.push_back(f4(v[c]));
+    return first;
+}
+
+void RibBuilder::startTrianglePointParams() {
+    if (m_world.triangleParams.size() < m_world.triangles.size())
+        m_world.triangleParams.resize(m_world.triangles.size(), RT_NO_POINT_PARAMS);
+}
+
+}  // namespace rd
