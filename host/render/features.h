@@ -31,6 +31,8 @@ struct Features {
     bool textures = false;      // some shader looks up a texture the scene has
     bool procedurals = false;   // DelayedReadArchive bounds not loaded yet
     float pixelSpread = 0.0f;   // footprint growth per unit of ray length (perspective)
+    bool treelets = false;      // treelet-streamed traversal (render/treelet_trace.h)
+    bool int64Min = false;      // the device has 64-bit atomic min (its closest hits)
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)

@@ -35,7 +35,7 @@ double secondsSince(Clock::time_point t0) {
 
 const std::vector<std::string> kRenderSources = {
     "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "accumulate.cl", "compact.cl",
-    "retire.cl"};
+    "retire.cl", "treelet.cl"};
 
 // The ray pool. The current round's rays (each knows its sample), the rays the shade
 // stage spawns (slot i: ray i's continuation), light_count shadow slots per ray, the
@@ -175,6 +175,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     Features f = analyse(scene, shading);
     f.textures = shading.textures && !textures.empty();
     f.aovs = m_settings.geometricAovs;
+    // Treelet-streamed traversal when a budget is set and the scene allows it.
+    const size_t treeletBudget = m_settings.treeletBytes > 0 ? m_settings.treeletBytes
+                                                             : size_t(scene.render.treeletBytes);
+    configureTreelets(f, m_ctx, treeletBudget, st.treelets);
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
@@ -213,6 +217,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         prepare.collectActive();
     }
     const Camera& cam = ds.camera;
+    std::unique_ptr<TreeletTracer> treelets;  // instead of the two intersect launches
 
     const uint32_t nl = f.shadowRays ? f.lightCount : 0;
     const size_t spawn = size_t(f.spawnSlots());
@@ -224,6 +229,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                            64, std::max<size_t>(64, m_settings.poolCapacity));
     st.poolCapacity = pool;
     RayPool rp(m_ctx, pool, spawn, nl, f.aovs, f.motion, f.instances, shaderCount + 1);
+    if (f.treelets)
+        treelets = std::make_unique<TreeletTracer>(
+            m_ctx, program.get(), prof, bvh4, treeletBudget,
+            m_settings.sceneMemoryBytes > 0 ? m_settings.sceneMemoryBytes
+                                            : size_t(scene.render.sceneMemoryKB) << 10,
+            pool, st.treelets);
     // Textures: the device tile cache (Option "limits" "texturememory" or the command
     // line; else every tile when they fit in 256 MiB), and the lists of points to shade
     // again once the tiles they missed are there.
@@ -327,10 +338,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                            (f.trace ? f.maxSpecularDepth : 0);
         for (int round = 0; round < rounds && n > 0; ++round) {
             if (stopNow()) return false;
-            k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
-                                      rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
-                                      ds.quadricMotion, ds.trianglesEnd, rp.sample,
-                                      rp.sampleTime, rp.hitInstance);
+            if (treelets)
+                treelets->closest(n, rp.origin, rp.direction, rp.state, rp.hits, ds.triangles);
+            else
+                k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
+                                          rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
+                                          ds.quadricMotion, ds.trianglesEnd, rp.sample,
+                                          rp.sampleTime, rp.hitInstance);
             // Sort the hits by shader, then run each shader over its own run of rays.
             rp.keyCount.fillZero();
             k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics, rp.hitInstance, rp.key,
@@ -342,11 +356,14 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             shadeRuns(counts, offsets, rp.sorted, reshade.firstList());
             if (f.textures) reshade.run(offsets, shading.surfaceNames, shadeRuns);
             if (nl > 0) {
-                k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
-                                         rp.shOrigin, rp.shDirection, rp.shState,
-                                         ds.quadrics, ds.csg, ds.triangles,
-                                         ds.quadricMotion, ds.trianglesEnd, rp.sample,
-                                         rp.sampleTime, nl, numerics);
+                if (treelets)
+                    treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState);
+                else
+                    k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes,
+                                             ds.blocks, rp.shOrigin, rp.shDirection,
+                                             rp.shState, ds.quadrics, ds.csg, ds.triangles,
+                                             ds.quadricMotion, ds.trianglesEnd, rp.sample,
+                                             rp.sampleTime, nl, numerics);
                 k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
                                            rp.totals);
             }
@@ -370,7 +387,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         film.pixels = filmBuf.download();
         st.estimatedError = estimateFilmError(film.pixels);
         prof.collect();
-        uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive();
+        uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
+                        (treelets ? treelets->peekRays() : 0);
         st.errorVsTime.push_back({now, rays, st.estimatedError});
     };
 
@@ -448,6 +466,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     m_ctx.finish();
     prof.collect();
     for (Kernel* kern : k.all()) kern->collectActive();
+    if (treelets) treelets->collectActive();
     st.kernels = prof.stats();
     if (f.textures) {
         std::vector<uint32_t> tc = textures.counterBuf.download();
@@ -461,10 +480,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     };
     // Eye rays of dropped batches were traced too; count what the device did.
     st.eyeRays += st.abortedSamples;
-    st.continuationRays = active("intersect_closest") > st.eyeRays
-                              ? active("intersect_closest") - st.eyeRays
-                              : 0;
-    st.shadowRays = active("intersect_shadow");
+    // (the treelet path's first rounds take each ray once, as the intersect kernels do)
+    const uint64_t closestRays = active("intersect_closest") + active("treelet_closest_root");
+    st.continuationRays = closestRays > st.eyeRays ? closestRays - st.eyeRays : 0;
+    st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root");
     film.pixels = filmBuf.download();
     if (f.aovs) film.aovs = aovBuf.download();
     st.estimatedError = estimateFilmError(film.pixels);
@@ -494,7 +513,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // Pool fill: rays traced per intersect_closest launch over the pool's capacity.
     // Device busy: kernel time over the sampling loop's wall time; the rest is the device
     // waiting on the host (its downloads, sorts' offsets, batch planning) or idle.
-    if (auto it = st.kernels.find("intersect_closest");
+    if (auto it = st.kernels.find(treelets ? "treelet_closest_root" : "intersect_closest");
         it != st.kernels.end() && it->second.launches > 0)
         st.poolFill = double(it->second.activeItems) /
                       (double(it->second.launches) * double(st.poolCapacity));
