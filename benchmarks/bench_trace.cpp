@@ -1,7 +1,10 @@
 // bench_trace.cpp: ray throughput (issue 5). Primary, diffuse-bounce and shadow rays on
 // the same procedural meshes, traced by RayDrive's intersect kernels on the chosen OpenCL
 // device and by Embree 3 (rtcIntersect1/rtcOccluded1 over all cores) in the same run,
-// median of several runs, reported as Mrays/s and as the ratio RayDrive / Embree.
+// median of several runs, reported as Mrays/s and as the ratio RayDrive / Embree; then
+// the same rays through the treelet-streamed traversal (render/treelet_trace.h) at a few
+// treelet budgets, resident and streamed through a cache, with their ratio to Embree and
+// to the resident kernels.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -20,6 +23,7 @@
 #include "ocl/kernel.h"
 #include "ocl/program.h"
 #include "render/device_scene.h"
+#include "render/treelet_trace.h"
 
 using namespace rd;
 using Clock = std::chrono::steady_clock;
@@ -181,6 +185,14 @@ int main(int argc, char** argv) {
     CLI::App app{"RayDrive vs Embree: Mrays/s for primary, diffuse and shadow rays"};
     int runs = 5, side = 1024;
     std::string device;
+    std::vector<size_t> budgets{size_t(1) << 30, size_t(256) << 10, size_t(64) << 10,
+                                size_t(4) << 10};
+    double streamFraction = 0.25;
+    app.add_option("--treelet-budgets", budgets,
+                   "treelet budgets in bytes to time (the first is resident as one treelet)");
+    app.add_option("--stream-fraction", streamFraction,
+                   "also stream 64 KiB treelets through a cache of this fraction of the BVH "
+                   "(0: not)");
     app.add_option("--runs", runs, "timed runs per measurement (median reported)");
     app.add_option("--side", side, "primary rays: side x side");
     app.add_option("--device", device, "OpenCL device (index or name)");
@@ -190,9 +202,12 @@ int main(int argc, char** argv) {
     std::printf("device: %s | Embree %d.%d.%d on %u threads | median of %d runs\n",
                 ctx.name().c_str(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
                 std::thread::hardware_concurrency(), runs);
-    Program program(ctx, assembleClSource({"intersect.cl"}), "-cl-std=CL1.2");
+    Program program(ctx, assembleClSource({"intersect.cl", "treelet.cl"}),
+                    "-cl-std=CL1.2 -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN");
     std::printf("%-14s %-8s %10s %10s %10s %8s %9s\n", "scene", "rays", "count",
                 "RayDrive", "Embree", "ratio", "agree");
+    // Treelet rows, printed after the resident table.
+    std::vector<std::string> treeletRows;
     for (const Mesh& mesh : {sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")}) {
         Bvh bvh = buildBvh([&] {
             Scene s;
@@ -235,7 +250,8 @@ int main(int argc, char** argv) {
                     state.upload(st);
                     auto t0 = Clock::now();
                     ks.launch(n, cl_uint(n), nodes, blocks, org, dir, state, noQuadrics, noCsg,
-                              noTris, noMotion, noTris, noSample, noTime, cl_uint(1));
+                              noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
+                              noSample /* numerics: RT_HAS_PROCEDURALS only */);
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
                 }
@@ -270,8 +286,66 @@ int main(int argc, char** argv) {
             double md = n / median(td) * 1e-6, me = n / median(te) * 1e-6;
             std::printf("%-14s %-8s %10zu %10.2f %10.2f %8.3f %8.4f%%\n", mesh.name.c_str(),
                         k.name, n, md, me, md / me, 100.0 * double(same) / double(n));
+            std::fflush(stdout);
+            // The treelet path on the same rays; "same" is bit-for-bit agreement with the
+            // resident kernels (hit, t, u, v; occlusion).
+            std::vector<RayHit> residentHits = hits.download();
+            std::vector<RayState> residentShadow = state.download();
+            std::vector<std::pair<size_t, size_t>> modes;  // (budget, scene memory)
+            for (size_t b : budgets) modes.push_back({b, 0});
+            if (streamFraction > 0)
+                modes.push_back({size_t(64) << 10,
+                                 std::max<size_t>(1, size_t(streamFraction * double(
+                                     bvh4.nodes.size() * sizeof(Bvh4Node) +
+                                     bvh4.blocks.size() * sizeof(Triangle4))))});
+            for (auto [budget, memory] : modes) {
+                TreeletStats ts;
+                TreeletTracer tracer(ctx, program.get(), prof, bvh4, budget, memory, n, ts);
+                DeviceBuffer<Triangle> tris(ctx, mesh.tris);
+                auto runTreelets = [&] {
+                    state.upload(st);
+                    ctx.finish();
+                    auto t0 = Clock::now();
+                    if (k.shadow) tracer.shadow(cl_uint(n), org, dir, state);
+                    else tracer.closest(cl_uint(n), org, dir, state, hits, tris);
+                    ctx.finish();
+                    return std::chrono::duration<double>(Clock::now() - t0).count();
+                };
+                runTreelets();
+                const TreeletStats once = ts;
+                std::vector<double> tt;
+                for (int r = 0; r < runs; ++r) tt.push_back(runTreelets());
+                size_t agree = 0;
+                if (k.shadow) {
+                    auto s2 = state.download();
+                    for (size_t i = 0; i < n; ++i) agree += s2[i].alive == residentShadow[i].alive;
+                } else {
+                    auto h2 = hits.download();
+                    for (size_t i = 0; i < n; ++i)
+                        agree += h2[i].prim == residentHits[i].prim && h2[i].t == residentHits[i].t &&
+                                 h2[i].u == residentHits[i].u && h2[i].v == residentHits[i].v;
+                }
+                double mt = n / median(tt) * 1e-6;
+                char label[64], row[320];
+                if (budget >= (size_t(1) << 30)) std::snprintf(label, sizeof label, "whole");
+                else std::snprintf(label, sizeof label, "%zuK%s", budget >> 10,
+                                   memory ? " stream" : "");
+                std::snprintf(row, sizeof row,
+                              "%-14s %-8s %-11s %8zu %7llu %10llu %8llu %10.2f %8.3f %8.3f %8.4f%%",
+                              mesh.name.c_str(), k.name, label, ts.treelets,
+                              (unsigned long long)once.rounds, (unsigned long long)once.pairs,
+                              (unsigned long long)once.uploads, mt, mt / me, mt / md,
+                              100.0 * double(agree) / double(n));
+                treeletRows.push_back(row);
+            }
         }
     }
-    std::printf("(Mrays/s, wall time of one launch over all rays incl. launch overhead)\n");
+    std::printf("(Mrays/s, wall time of one launch over all rays incl. launch overhead)\n\n");
+    std::printf("treelet-streamed traversal (rounds, pairs, uploads: of one trace; agree: "
+                "bit for bit with the resident kernels)\n");
+    std::printf("%-14s %-8s %-11s %8s %7s %10s %8s %10s %8s %8s %9s\n", "scene", "rays",
+                "budget", "treelets", "rounds", "pairs", "uploads", "Mrays/s", "/Embree",
+                "/resid.", "agree");
+    for (const std::string& r : treeletRows) std::printf("%s\n", r.c_str());
     return 0;
 }

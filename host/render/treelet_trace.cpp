@@ -3,6 +3,7 @@
 #include "treelet_trace.h"
 
 #include <algorithm>
+#include <deque>
 #include <functional>
 
 namespace rd {
@@ -54,18 +55,32 @@ struct TreeletTracer::Impl {
     std::vector<uint64_t> slotStamp;
     uint64_t stamp = 0;
 
+    // Treelet t into cache slot s. The writes do not block (a round's uploads overlap
+    // the host's planning of the next chunk; the in-order queue runs them before the
+    // chunk's kernel): the nodes and blocks come from `cut`, which outlives them, and
+    // each new TreeletRef from `pendingRefs`, whose elements stay put until the trace's
+    // next blocking read, after which it is cleared.
     void upload(uint32_t t, size_t slot) {
         const TreeletRange& r = cut.ranges[t];
-        nodes.uploadRange(slot * cut.maxNodes, &cut.nodes[r.nodeFirst], r.nodeCount);
-        blocks.uploadRange(slot * cut.maxBlocks, cut.blocks.data() + r.blockFirst, r.blockCount);
-        TreeletRef ref{int32_t(slot * cut.maxNodes), int32_t(slot * cut.maxBlocks)};
-        refs.uploadRange(t, &ref, 1);
+        write(nodes.mem(), slot * cut.maxNodes * sizeof(Bvh4Node), &cut.nodes[r.nodeFirst],
+              r.nodeCount * sizeof(Bvh4Node));
+        write(blocks.mem(), slot * cut.maxBlocks * sizeof(Triangle4),
+              cut.blocks.data() + r.blockFirst, r.blockCount * sizeof(Triangle4));
+        pendingRefs.push_back({int32_t(slot * cut.maxNodes), int32_t(slot * cut.maxBlocks)});
+        write(refs.mem(), t * sizeof(TreeletRef), &pendingRefs.back(), sizeof(TreeletRef));
         if (slotTreelet[slot] >= 0) treeletSlot[size_t(slotTreelet[slot])] = -1;
         slotTreelet[slot] = t;
         treeletSlot[t] = int64_t(slot);
         ++st.uploads;
         st.uploadedBytes += r.bytes();
     }
+    void write(cl_mem m, size_t offset, const void* data, size_t bytes) {
+        if (bytes)
+            RD_CL_CHECK(clEnqueueWriteBuffer(ctx.queue(), m, CL_FALSE, offset, bytes, data, 0,
+                                             nullptr, nullptr),
+                        ctx.name());
+    }
+    std::deque<TreeletRef> pendingRefs;
 
     // Runs one round's grouped pairs: at once when resident, else treelet by treelet in
     // chunks whose treelets all fit in the cache (the root's slot is never given up; a
@@ -122,7 +137,8 @@ struct TreeletTracer::Impl {
         st.pairs += n;
         ++st.rounds;
         for (size_t r = 1;; ++r) {
-            std::vector<cl_uint> counts = counters.download();
+            std::vector<cl_uint> counts = counters.download();  // blocks: uploads done
+            pendingRefs.clear();
             const cl_uint total = counts[T];
             if (total > capacity) {
                 // The queue overflowed: grow it and run the round again (keys and
