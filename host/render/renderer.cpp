@@ -179,6 +179,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const size_t treeletBudget = m_settings.treeletBytes > 0 ? m_settings.treeletBytes
                                                              : size_t(scene.render.treeletBytes);
     configureTreelets(f, m_ctx, treeletBudget, st.treelets);
+    if (treeletBudget > 0 && !f.treelets)
+        diag.warning(rib::SourceLoc{scene.sourceFile, 0},
+                     "treelet budget not used: " + st.treelets.why);
     st.features = f;
 
     // Budgets: the command line wins over Option "render".

@@ -214,7 +214,8 @@ TreeletTracer::TreeletTracer(const ClContext& ctx, cl_program program, Profiler&
     s.sorted = DeviceBuffer<TreeletPair>(ctx, s.capacity);
 }
 
-TreeletTracer::~TreeletTracer() = default;
+// Uploads may still be queued: they read from the cut and pendingRefs.
+TreeletTracer::~TreeletTracer() { m->ctx.finish(); }
 
 void TreeletTracer::closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                             const DeviceBuffer<rt_float4>& direction,
