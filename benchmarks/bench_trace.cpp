@@ -306,8 +306,9 @@ int main(int argc, char** argv) {
                     state.upload(st);
                     ctx.finish();
                     auto t0 = Clock::now();
-                    if (k.shadow) tracer.shadow(cl_uint(n), org, dir, state);
-                    else tracer.closest(cl_uint(n), org, dir, state, hits, tris);
+                    const TraceScene sc{noQuadrics, noCsg, tris, noMotion, tris, noSample, noTime};
+                    if (k.shadow) tracer.shadow(cl_uint(n), org, dir, state, sc, 1);
+                    else tracer.closest(cl_uint(n), org, dir, state, hits, sc);
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
                 };

@@ -238,6 +238,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             m_settings.sceneMemoryBytes > 0 ? m_settings.sceneMemoryBytes
                                             : size_t(scene.render.sceneMemoryKB) << 10,
             pool, st.treelets);
+    const TraceScene traceScene{ds.quadrics,      ds.csg,    ds.triangles, ds.quadricMotion,
+                                ds.trianglesEnd, rp.sample, rp.sampleTime};
     // Textures: the device tile cache (Option "limits" "texturememory" or the command
     // line; else every tile when they fit in 256 MiB), and the lists of points to shade
     // again once the tiles they missed are there.
@@ -342,7 +344,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         for (int round = 0; round < rounds && n > 0; ++round) {
             if (stopNow()) return false;
             if (treelets)
-                treelets->closest(n, rp.origin, rp.direction, rp.state, rp.hits, ds.triangles);
+                treelets->closest(n, rp.origin, rp.direction, rp.state, rp.hits, traceScene);
             else
                 k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
                                           rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
@@ -360,7 +362,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             if (f.textures) reshade.run(offsets, shading.surfaceNames, shadeRuns);
             if (nl > 0) {
                 if (treelets)
-                    treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState);
+                    treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
+                                     traceScene, nl);
                 else
                     k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes,
                                              ds.blocks, rp.shOrigin, rp.shDirection,

@@ -17,9 +17,9 @@ void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
     clGetDeviceInfo(ctx.device(), CL_DEVICE_EXTENSIONS, 0, nullptr, &extBytes);
     std::string ext(extBytes, '\0');
     clGetDeviceInfo(ctx.device(), CL_DEVICE_EXTENSIONS, extBytes, ext.data(), nullptr);
-    if (f.quadrics || f.csg || f.instances || f.motion || f.procedurals)
-        stats.why = "the scene has quadrics, CSG, instances, motion or deferred archives "
-                    "(treelets take triangles only): resident traversal";
+    if (f.instances || f.procedurals)
+        stats.why = "the scene has instances or deferred archives (the treelet cut does not "
+                    "cover their trees): resident traversal";
     else if (ext.find("cl_khr_int64_base_atomics") == std::string::npos)
         stats.why = "the device lacks cl_khr_int64_base_atomics: resident traversal";
     if (!stats.why.empty()) return;
@@ -220,7 +220,7 @@ TreeletTracer::~TreeletTracer() { m->ctx.finish(); }
 void TreeletTracer::closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                             const DeviceBuffer<rt_float4>& direction,
                             const DeviceBuffer<RayState>& state, DeviceBuffer<RayHit>& hits,
-                            const DeviceBuffer<Triangle>& triangles) {
+                            const TraceScene& sc) {
     Impl& s = *m;
     if (s.keys.size() < n) s.keys = DeviceBuffer<cl_ulong>(s.ctx, n);
     const cl_uint T = cl_uint(s.cut.count());
@@ -228,21 +228,27 @@ void TreeletTracer::closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
         ++s.st.launches;
         (root ? s.closestRoot : s.closestPairs)
             .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin, direction,
-                    state, s.keys, s.queue, cl_uint(s.capacity), s.counters, T);
+                    state, s.keys, s.queue, cl_uint(s.capacity), s.counters, T, sc.quadrics,
+                    sc.csg, sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
+                    sc.sampleTime, cl_uint(1));
     });
-    s.resolve.launch(n, n, origin, direction, state, s.keys, triangles, hits);
+    s.resolve.launch(n, n, origin, direction, state, s.keys, hits, sc.quadrics, sc.csg,
+                     sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
+                     sc.sampleTime, cl_uint(1));
 }
 
 void TreeletTracer::shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                            const DeviceBuffer<rt_float4>& direction,
-                           DeviceBuffer<RayState>& state) {
+                           DeviceBuffer<RayState>& state, const TraceScene& sc, cl_uint lights) {
     Impl& s = *m;
     const cl_uint T = cl_uint(s.cut.count());
     s.rounds(n, [&](bool root, cl_uint first, cl_uint count) {
         ++s.st.launches;
         (root ? s.shadowRoot : s.shadowPairs)
             .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin, direction,
-                    state, s.queue, cl_uint(s.capacity), s.counters, T);
+                    state, s.queue, cl_uint(s.capacity), s.counters, T, sc.quadrics, sc.csg,
+                    sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
+                    sc.sampleTime, std::max<cl_uint>(lights, 1));
     });
 }
 

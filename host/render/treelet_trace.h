@@ -37,10 +37,24 @@ struct TreeletStats {
     std::vector<TreeletRoundStats> byRound;
 };
 
+// What object blocks need besides the BVH (used with RT_HAS_QUADRICS: quadric records,
+// CSG lists, triangles, motion keys, and each ray's sample for its shutter time; any
+// buffers otherwise). The triangles are also what treelet_resolve reads u, v from.
+struct TraceScene {
+    const DeviceBuffer<Quadric>& quadrics;
+    const DeviceBuffer<uint32_t>& csg;
+    const DeviceBuffer<Triangle>& triangles;
+    const DeviceBuffer<rt_float4>& quadricMotion;
+    const DeviceBuffer<Triangle>& trianglesEnd;
+    const DeviceBuffer<uint32_t>& raySample;  // of the closest-hit rays (shadow ray i: i / lights)
+    const DeviceBuffer<float>& sampleTime;
+};
+
 // Decides whether the scene traces through treelets with this budget (0: no) and sets
-// f.treelets and f.int64Min for buildOptions(). The treelet kernels handle triangles
-// only: a scene with quadrics, CSG, instances, moving or deferred geometry, or a device
-// without cl_khr_int64_base_atomics, keeps the resident traversal (`why` says which).
+// f.treelets and f.int64Min for buildOptions(). The treelet kernels handle triangles,
+// quadrics, CSG solids and motion; a scene with instances or deferred archives (whose
+// prototype trees and bounds the cut does not cover), or a device without
+// cl_khr_int64_base_atomics, keeps the resident traversal (`why` says which).
 void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
                        TreeletStats& stats);
 
@@ -55,10 +69,12 @@ public:
     // intersect_closest's work: hits[i] for the first n rays that are alive.
     void closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                  const DeviceBuffer<rt_float4>& direction, const DeviceBuffer<RayState>& state,
-                 DeviceBuffer<RayHit>& hits, const DeviceBuffer<Triangle>& triangles);
-    // intersect_shadow's work: state[i].alive = 0 for the occluded ones.
+                 DeviceBuffer<RayHit>& hits, const TraceScene& scene);
+    // intersect_shadow's work: state[i].alive = 0 for the occluded ones; `lights` shadow
+    // rays per shaded ray (for their time).
     void shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
-                const DeviceBuffer<rt_float4>& direction, DeviceBuffer<RayState>& state);
+                const DeviceBuffer<rt_float4>& direction, DeviceBuffer<RayState>& state,
+                const TraceScene& scene, cl_uint lights);
 
     // Rays traced so far (the first rounds' active counters, read without resetting), and
     // the per-kernel active counts handed to the profiler for --stats.

@@ -5,9 +5,11 @@
 // 32-bit compare-and-swap fallback for the 64-bit min, and with a queue that must grow.
 // Renders: a triangle scene with shadows and mirror reflections gives the same image
 // whatever the budget; a closed mesh shot from inside leaks no ray with small treelets;
-// a scene with exact quadrics keeps the resident traversal and says why.
+// quadrics, CSG and motion inside treelets give the resident image too; a scene with
+// instances keeps the resident traversal and says why.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <sstream>
 
@@ -98,13 +100,13 @@ Traced trace(size_t budget, size_t sceneMemory, bool int64Min, size_t rays) {
     hits.fillZero();
     DeviceBuffer<Triangle> tris(ctx, f.tris);
     Traced out;
+    DeviceBuffer<Quadric> noQ(ctx, 1);
+    DeviceBuffer<uint32_t> noU(ctx, 1);
+    DeviceBuffer<rt_float4> noM(ctx, 1);
+    DeviceBuffer<float> noT(ctx, 1);
     if (budget == 0) {
         DeviceBuffer<Bvh4Node> nodes(ctx, f.bvh.nodes);
         DeviceBuffer<Triangle4> blocks(ctx, f.bvh.blocks);
-        DeviceBuffer<Quadric> noQ(ctx, 1);
-        DeviceBuffer<uint32_t> noU(ctx, 1);
-        DeviceBuffer<rt_float4> noM(ctx, 1);
-        DeviceBuffer<float> noT(ctx, 1);
         Kernel kc(ctx, program.get(), "intersect_closest", prof);
         Kernel ks(ctx, program.get(), "intersect_shadow", prof);
         kc.launch(n, n, nodes, blocks, org, dir, state, hits, noQ, noU, tris, noM, tris, noU,
@@ -115,9 +117,10 @@ Traced trace(size_t budget, size_t sceneMemory, bool int64Min, size_t rays) {
     } else {
         TreeletTracer tracer(ctx, program.get(), prof, f.bvh, budget, sceneMemory, rays,
                              out.stats);
-        tracer.closest(n, org, dir, state, hits, tris);
+        const TraceScene sc{noQ, noU, tris, noM, tris, noU, noT};
+        tracer.closest(n, org, dir, state, hits, sc);
         out.hits = hits.download();
-        tracer.shadow(n, org, dir, state);
+        tracer.shadow(n, org, dir, state, sc, 1);
     }
     out.shadow = state.download();
     return out;
@@ -299,16 +302,70 @@ TEST(TreeletTrace, ClosedMeshFromInsideLeaksNothing) {
     }
 }
 
-// Exact quadrics are not in the treelet kernels: the render keeps the resident traversal,
-// says why in --stats, and the image is the resident one.
-TEST(TreeletTrace, QuadricSceneKeepsResidentTraversal) {
+// Object blocks work inside treelets: exact quadrics, a CSG difference, a moving sphere
+// and a moving triangle mesh, with shadows, give the resident image bit for bit at every
+// budget, streamed too.
+TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
+    // a wall of 12 x 8 small spheres behind, so the tree has something to cut
+    std::ostringstream spheres;
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 12; ++i)
+            spheres << "AttributeBegin\nTranslate " << (-3.3 + 0.6 * i) << " " << (-0.7 + 0.6 * j)
+                    << " 3\nSphere 0.25 -0.25 0.25 360\nAttributeEnd\n";
+    const std::string rib =
+        "Format 40 30 1\nPixelSamples 2 2\nShutter 0 1\nProjection \"perspective\" \"fov\" 45\n"
+        "Translate 0 -0.5 6\nWorldBegin\n"
+        "LightSource \"distantlight\" 1 \"from\" [-1 3 -2] \"to\" [0 0 0]\n"
+        "Surface \"matte\"\nPolygon \"P\" [-9 -1 -9  -9 -1 9  9 -1 9  9 -1 -9]\n"
+        "AttributeBegin\nTranslate -1.5 0 0\nSphere 0.8 -0.8 0.8 360\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 0.2 0 0.5\nRotate 90 1 0 0\nCylinder 0.4 -0.8 0.8 360\n"
+        "Disk 0.8 0.4 360\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 1.6 0.2 0\nSolidBegin \"difference\"\n"
+        "SolidBegin \"primitive\"\nSphere 0.7 -0.7 0.7 360\nSolidEnd\n"
+        "SolidBegin \"primitive\"\nTranslate 0.3 0.3 -0.4\nSphere 0.5 -0.5 0.5 360\nSolidEnd\n"
+        "SolidEnd\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 0 1.6 0\nMotionBegin [0 1] Translate -0.5 0 0 Translate 0.5 0 0 "
+        "MotionEnd\nSphere 0.3 -0.3 0.3 360\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 0 -0.6 -1.5\nMotionBegin [0 1] Translate 0 0 0 Translate 0 0.3 0 "
+        "MotionEnd\nPolygon \"P\" [-0.3 -0.3 0  0.3 -0.3 0  0.3 0.3 0  -0.3 0.3 0]\nAttributeEnd\n"
+        + spheres.str() + "WorldEnd\n";
+    Rendered resident = renderRib(rib);
+    ASSERT_GT(resident.stats.quadrics, 0u);
+    ASSERT_GT(resident.stats.csgSolids, 0u);
+    const auto names = resident.stats.features.names();
+    ASSERT_NE(std::find(names.begin(), names.end(), "motion_blur"), names.end());
+    struct Case {
+        size_t budget, memory;
+    } cases[] = {{size_t(1) << 30, 0}, {1, 0}, {1024, 2048}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(std::to_string(c.budget) + " bytes, memory " + std::to_string(c.memory));
+        RenderSettings s;
+        s.treeletBytes = c.budget;
+        s.sceneMemoryBytes = c.memory;
+        Rendered t = renderRib(rib, s);
+        ASSERT_TRUE(t.stats.treelets.used) << t.stats.treelets.why;
+        EXPECT_EQ(t.stats.treelets.streamed, c.memory > 0);
+        if (c.budget < 4096) EXPECT_GT(t.stats.treelets.treelets, 8u);
+        EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
+        expectSameImage(resident, t);
+    }
+}
+
+// Instances are not in the treelet cut (their prototypes' trees are reached through
+// instance records): the render keeps the resident traversal, says why in --stats, and
+// the image is the resident one.
+TEST(TreeletTrace, InstancedSceneKeepsResidentTraversal) {
     const std::string rib =
         "Format 24 24 1\nProjection \"perspective\" \"fov\" 30\nWorldBegin\n"
-        "Surface \"constant\"\nTranslate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n";
+        "Surface \"constant\"\nObjectBegin \"sq\"\n"
+        "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\nObjectEnd\n"
+        "Translate 0 0 5\nAttributeBegin\nTranslate -0.5 0 0\nObjectInstance \"sq\"\n"
+        "AttributeEnd\nAttributeBegin\nTranslate 0.6 0.2 0\nObjectInstance \"sq\"\n"
+        "AttributeEnd\nWorldEnd\n";
     RenderSettings s;
     s.treeletBytes = 4096;
     Rendered a = renderRib(rib), b = renderRib(rib, s);
     EXPECT_FALSE(b.stats.treelets.used);
-    EXPECT_NE(b.stats.treelets.why.find("quadrics"), std::string::npos);
+    EXPECT_NE(b.stats.treelets.why.find("instances"), std::string::npos);
     expectSameImage(a, b);
 }
