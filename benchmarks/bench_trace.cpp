@@ -10,7 +10,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <thread>
 
@@ -55,6 +58,46 @@ Mesh sphereField(int count, int perSphere, const std::string& name) {
                 m.tris.push_back({P(i, j), P(i + 1, j), P(i + 1, j + 1)});
                 m.tris.push_back({P(i, j), P(i + 1, j + 1), P(i, j + 1)});
             }
+    }
+    return m;
+}
+
+// A triangle mesh from an OFF file (polygons fanned into triangles), scaled and centred
+// into the same 10x10x10 box, e.g. the Stanford bunny from Debian's libcgal-demo
+// (run_trace.sh fetches it; it is not ours to commit).
+Mesh loadOff(const std::string& path) {
+    std::ifstream in(path);
+    std::string word;
+    auto next = [&]() -> std::string {  // the next token, comments skipped
+        while (in >> word) {
+            if (word[0] != '#') return word;
+            std::getline(in, word);
+        }
+        throw std::runtime_error(path + ": truncated OFF file");
+    };
+    if (!in || next() != "OFF") throw std::runtime_error(path + ": not an OFF file");
+    const size_t nv = std::stoul(next()), nf = std::stoul(next());
+    next();  // edges
+    std::vector<rt_float4> v(nv);
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    for (rt_float4& p : v) {
+        p = {std::stof(next()), std::stof(next()), std::stof(next()), 0};
+        const float c[3] = {p.x, p.y, p.z};
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+    }
+    const float scale = 10.0f / std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    for (rt_float4& p : v)
+        p = {(p.x - 0.5f * (lo[0] + hi[0])) * scale, -(p.y - 0.5f * (lo[1] + hi[1])) * scale,
+             (p.z - 0.5f * (lo[2] + hi[2])) * scale, 0};
+    Mesh m{{}, std::filesystem::path(path).stem().string()};
+    for (size_t f = 0; f < nf; ++f) {
+        const size_t k = std::stoul(next());
+        std::vector<size_t> idx(k);
+        for (size_t& i : idx) {
+            i = std::stoul(next());
+            if (i >= nv) throw std::runtime_error(path + ": vertex index out of range");
+        }
+        for (size_t j = 1; j + 1 < k; ++j) m.tris.push_back({v[idx[0]], v[idx[j]], v[idx[j + 1]]});
     }
     return m;
 }
@@ -174,6 +217,14 @@ Rays secondaryRays(const Mesh& m, const Rays& prim, const std::vector<RayHit>& h
     return r;
 }
 
+// CPU seconds of the whole process (every thread): on a shared, loaded machine the
+// ratio of CPU time is steadier than that of wall time, so both are printed.
+double cpuSeconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
@@ -185,30 +236,42 @@ int main(int argc, char** argv) {
     CLI::App app{"RayDrive vs Embree: Mrays/s for primary, diffuse and shadow rays"};
     int runs = 5, side = 1024;
     std::string device;
+    app.add_option("--runs", runs, "timed runs per measurement (median reported)");
+    app.add_option("--side", side, "primary rays: side x side");
+    app.add_option("--device", device, "OpenCL device (index or name)");
+    std::vector<std::string> variants, meshFiles;
+    app.add_option("--mesh", meshFiles, "also an OFF mesh (e.g. the Stanford bunny)");
+    app.add_option("--variant", variants,
+                   "extra OpenCL build options (e.g. -DRT_SOME_SWITCH): that kernel variant is "
+                   "timed in the same runs, printed against the default");
     std::vector<size_t> budgets{size_t(1) << 30, size_t(256) << 10, size_t(64) << 10,
                                 size_t(4) << 10};
     double streamFraction = 0.25;
     app.add_option("--treelet-budgets", budgets,
-                   "treelet budgets in bytes to time (the first is resident as one treelet)");
+                   "treelet budgets in bytes to time (1 GiB and more: the whole BVH)");
     app.add_option("--stream-fraction", streamFraction,
                    "also stream 64 KiB treelets through a cache of this fraction of the BVH "
                    "(0: not)");
-    app.add_option("--runs", runs, "timed runs per measurement (median reported)");
-    app.add_option("--side", side, "primary rays: side x side");
-    app.add_option("--device", device, "OpenCL device (index or name)");
     CLI11_PARSE(app, argc, argv);
 
     ClContext ctx(selectDevice(device));
     std::printf("device: %s | Embree %d.%d.%d on %u threads | median of %d runs\n",
                 ctx.name().c_str(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
                 std::thread::hardware_concurrency(), runs);
-    Program program(ctx, assembleClSource({"intersect.cl", "treelet.cl"}),
-                    "-cl-std=CL1.2 -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN");
-    std::printf("%-14s %-8s %10s %10s %10s %8s %9s\n", "scene", "rays", "count",
-                "RayDrive", "Embree", "ratio", "agree");
-    // Treelet rows, printed after the resident table.
-    std::vector<std::string> treeletRows;
-    for (const Mesh& mesh : {sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")}) {
+    std::vector<std::unique_ptr<Program>> programs;
+    programs.push_back(
+        std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}), "-cl-std=CL1.2"));
+    for (const std::string& v : variants)
+        programs.push_back(std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}),
+                                                     "-cl-std=CL1.2 " + v));
+    Program treeletProgram(ctx, assembleClSource({"intersect.cl", "treelet.cl"}),
+                           "-cl-std=CL1.2 -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN");
+    std::vector<std::string> treeletRows;  // printed after the resident table
+    std::printf("%-14s %-8s %10s %10s %10s %8s %9s %9s\n", "scene", "rays", "count",
+                "RayDrive", "Embree", "ratio", "agree", "cpu ratio");
+    std::vector<Mesh> meshes{sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")};
+    for (const std::string& f : meshFiles) meshes.push_back(loadOff(f));
+    for (const Mesh& mesh : meshes) {
         Bvh bvh = buildBvh([&] {
             Scene s;
             s.triangles = mesh.tris;
@@ -225,6 +288,7 @@ int main(int argc, char** argv) {
         DeviceBuffer<Triangle> noTris(ctx, 1);
         DeviceBuffer<rt_float4> noMotion(ctx, 1);
         DeviceBuffer<float> noTime(ctx, 1);
+        DeviceBuffer<uint32_t> noNumerics(ctx, 1);  // archive flags: RT_HAS_PROCEDURALS only
         Rays primary = primaryRays(side);
         std::vector<RayHit> primHits;
         emb.trace(primary, false, primHits);
@@ -243,15 +307,20 @@ int main(int argc, char** argv) {
             DeviceBuffer<RayState> state(ctx, st, CL_MEM_READ_WRITE);
             DeviceBuffer<RayHit> hits(ctx, n);
             Profiler prof(ctx);
-            Kernel kc(ctx, program.get(), "intersect_closest", prof);
-            Kernel ks(ctx, program.get(), "intersect_shadow", prof);
-            auto runDevice = [&] {
+            std::vector<std::unique_ptr<Kernel>> kcs, kss;
+            for (const auto& prog : programs) {
+                kcs.push_back(std::make_unique<Kernel>(ctx, prog->get(), "intersect_closest", prof));
+                kss.push_back(std::make_unique<Kernel>(ctx, prog->get(), "intersect_shadow", prof));
+            }
+            auto runDevice = [&](size_t p) {
+                Kernel& kc = *kcs[p];
+                Kernel& ks = *kss[p];
                 if (k.shadow) {
                     state.upload(st);
                     auto t0 = Clock::now();
                     ks.launch(n, cl_uint(n), nodes, blocks, org, dir, state, noQuadrics, noCsg,
                               noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
-                              noSample /* numerics: RT_HAS_PROCEDURALS only */);
+                              noNumerics);
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
                 }
@@ -261,14 +330,20 @@ int main(int argc, char** argv) {
                 ctx.finish();
                 return std::chrono::duration<double>(Clock::now() - t0).count();
             };
-            runDevice();  // first launch compiles the kernel on PoCL
-            std::vector<double> td, te;
+            std::vector<std::vector<double>> tv(programs.size());
+            for (size_t p = programs.size(); p-- > 0;) runDevice(p);  // PoCL compiles on first launch
+            std::vector<double> td, te, cd, ce;
             std::vector<RayHit> eh;
             for (int r = 0; r < runs; ++r) {
-                td.push_back(runDevice());
+                for (size_t p = 1; p < programs.size(); ++p) tv[p].push_back(runDevice(p));
+                double c0 = cpuSeconds();
+                td.push_back(runDevice(0));
+                double c1 = cpuSeconds();
                 auto t0 = Clock::now();
                 emb.trace(*k.rays, k.shadow, eh);
                 te.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+                ce.push_back(cpuSeconds() - c1);
+                cd.push_back(c1 - c0);
             }
             // Agreement: same hit / same occlusion as Embree.
             size_t same = 0;
@@ -284,10 +359,15 @@ int main(int argc, char** argv) {
                                                              1e-3f * std::max(1.0f, eh[i].t));
             }
             double md = n / median(td) * 1e-6, me = n / median(te) * 1e-6;
-            std::printf("%-14s %-8s %10zu %10.2f %10.2f %8.3f %8.4f%%\n", mesh.name.c_str(),
-                        k.name, n, md, me, md / me, 100.0 * double(same) / double(n));
+            std::printf("%-14s %-8s %10zu %10.2f %10.2f %8.3f %8.4f%% %9.3f\n", mesh.name.c_str(),
+                        k.name, n, md, me, md / me, 100.0 * double(same) / double(n),
+                        median(ce) / median(cd));
+            for (size_t p = 1; p < programs.size(); ++p)
+                std::printf("  variant %-30s %10.2f Mrays/s, %.3f of default, %.3f of Embree\n",
+                            variants[p - 1].c_str(), n / median(tv[p]) * 1e-6,
+                            median(td) / median(tv[p]), median(te) / median(tv[p]));
             std::fflush(stdout);
-            // The treelet path on the same rays; "same" is bit-for-bit agreement with the
+            // The treelet path on the same rays; "agree" is bit-for-bit agreement with the
             // resident kernels (hit, t, u, v; occlusion).
             std::vector<RayHit> residentHits = hits.download();
             std::vector<RayState> residentShadow = state.download();
@@ -298,15 +378,15 @@ int main(int argc, char** argv) {
                                  std::max<size_t>(1, size_t(streamFraction * double(
                                      bvh4.nodes.size() * sizeof(Bvh4Node) +
                                      bvh4.blocks.size() * sizeof(Triangle4))))});
+            DeviceBuffer<Triangle> tris(ctx, mesh.tris);
+            const TraceScene sc{noQuadrics, noCsg, tris, noMotion, tris, noSample, noTime};
             for (auto [budget, memory] : modes) {
                 TreeletStats ts;
-                TreeletTracer tracer(ctx, program.get(), prof, bvh4, budget, memory, n, ts);
-                DeviceBuffer<Triangle> tris(ctx, mesh.tris);
+                TreeletTracer tracer(ctx, treeletProgram.get(), prof, bvh4, budget, memory, n, ts);
                 auto runTreelets = [&] {
                     state.upload(st);
                     ctx.finish();
                     auto t0 = Clock::now();
-                    const TraceScene sc{noQuadrics, noCsg, tris, noMotion, tris, noSample, noTime};
                     if (k.shadow) tracer.shadow(cl_uint(n), org, dir, state, sc, 1);
                     else tracer.closest(cl_uint(n), org, dir, state, hits, sc);
                     ctx.finish();
@@ -341,7 +421,8 @@ int main(int argc, char** argv) {
             }
         }
     }
-    std::printf("(Mrays/s, wall time of one launch over all rays incl. launch overhead)\n\n");
+    std::printf("(Mrays/s, wall time of one launch over all rays incl. launch overhead;\n"
+                " cpu ratio: Embree's CPU seconds over RayDrive's for the same rays)\n\n");
     std::printf("treelet-streamed traversal (rounds, pairs, uploads: of one trace; agree: "
                 "bit for bit with the resident kernels)\n");
     std::printf("%-14s %-8s %-11s %8s %7s %10s %8s %10s %8s %8s %9s\n", "scene", "rays",

@@ -35,8 +35,22 @@ typedef struct SampleAov {
     uint32_t pad[2];
 } SampleAov;
 
+/* A pixel job: `count` consecutive samples of one pixel, in the sample slots
+ * [first_slot, first_slot + count) of the slot ring (modulo its capacity). It retires to
+ * the film, its samples summed in order, once none of its slots has a ray in flight. */
+typedef struct PixelJob {
+    uint32_t pixel;
+    uint32_t first_slot;
+    uint32_t count;
+    uint32_t state; /* RT_JOB_* */
+} PixelJob;
+#define RT_JOB_IN_FLIGHT 0u
+#define RT_JOB_RETIRED 1u
+#define RT_JOB_ABORTED 2u   /* a ray of it was dropped: issue it again */
+#define RT_JOB_LAST_TRY 3u  /* in flight, issued again: retires with what it has */
 #ifndef __OPENCL_C_VERSION__
 RT_ASSERT_SIZE(SampleTotal, 16);
+RT_ASSERT_SIZE(PixelJob, 16);
 RT_ASSERT_SIZE(PixelAccum, 48);
 RT_ASSERT_SIZE(AovAccum, 32);
 RT_ASSERT_SIZE(SampleAov, 32);

@@ -3,7 +3,10 @@
  * the host turns the group sums into offsets (a few thousand numbers); compact_scatter
  * moves each live ray to its offset, keeping their order, so the image does not depend
  * on scheduling. Live rays beyond the pool's capacity (a shader tracing several rays per
- * hit, deep) are dropped, never written out of bounds. Work-groups are RT_COMPACT_GROUP wide. */
+ * hit) go onto the spill stack, traced in later rounds; past the stack's capacity they
+ * are dropped, never written out of bounds, and their sample is marked to be issued
+ * again. Each ray kept adds one to its sample's count of rays in flight.
+ * Work-groups are RT_COMPACT_GROUP wide. */
 #include "counters.clh"
 #include "ray.h"
 
@@ -27,7 +30,9 @@ void compact_count(uint count, __global const RayState* state, __global uint* gr
 
 __kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
 void compact_scatter(uint count,
-                     uint capacity, /* the pool: live rays past it are dropped (host counts) */
+                     uint capacity, /* the pool: live rays past it go to the spill stack */
+                     uint spill_top,
+                     uint spill_capacity,
                      __global const uint* group_offset, /* exclusive prefix of group_live */
                      __global const float4* src_origin,
                      __global const float4* src_direction,
@@ -39,6 +44,13 @@ void compact_scatter(uint count,
                      __global float4* dst_weight,
                      __global RayState* dst_state,
                      __global uint* dst_sample,
+                     __global float4* spill_origin,
+                     __global float4* spill_direction,
+                     __global float4* spill_weight,
+                     __global RayState* spill_state,
+                     __global uint* spill_sample,
+                     __global uint* slot_rays,
+                     __global uint* slot_abort,
                      __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     __local uint live[RT_COMPACT_GROUP];
@@ -52,10 +64,23 @@ void compact_scatter(uint count,
     uint before = 0;
     for (uint k = 0; k < RT_COMPACT_GROUP; ++k) before += (k < lid) ? live[k] : 0u;
     uint j = group_offset[get_group_id(0)] + before;
-    if (j >= capacity) return;
-    dst_origin[j] = src_origin[i];
-    dst_direction[j] = src_direction[i];
-    dst_weight[j] = src_weight[i];
-    dst_state[j] = src_state[i];
-    dst_sample[j] = src_sample[i];
+    const uint sample = src_sample[i];
+    if (j < capacity) {
+        dst_origin[j] = src_origin[i];
+        dst_direction[j] = src_direction[i];
+        dst_weight[j] = src_weight[i];
+        dst_state[j] = src_state[i];
+        dst_sample[j] = sample;
+    } else if (spill_top + (j - capacity) < spill_capacity) {
+        j = spill_top + (j - capacity);
+        spill_origin[j] = src_origin[i];
+        spill_direction[j] = src_direction[i];
+        spill_weight[j] = src_weight[i];
+        spill_state[j] = src_state[i];
+        spill_sample[j] = sample;
+    } else {
+        slot_abort[sample] = 1u;
+        return;
+    }
+    atomic_inc(&slot_rays[sample]);
 }

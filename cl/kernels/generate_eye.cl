@@ -1,6 +1,9 @@
-/* generate_eye.cl: the refill stage. One eye sample per pool slot: slot i is sample
- * sample_index[i] of pixel sample_pixel[i] (the host's sample plan), placed in the pixel
- * by the pixel's random sequence (rng.clh). The running total starts at zero. */
+/* generate_eye.cl: the refill stage. New eye samples fill the free end of the ray pool:
+ * new sample i is sample new_index[i] of pixel new_pixel[i] (the host's sample plan),
+ * its eye ray goes to pool slot ray_offset + i and its record to sample slot
+ * (slot_base + i) modulo slot_capacity, placed in the pixel by the pixel's random
+ * sequence (rng.clh), never by where it lands. Its running total starts at zero and its
+ * count of rays in flight at one. */
 #include "counters.clh"
 #include "math.clh"
 #include "rng.clh"
@@ -10,8 +13,15 @@
 
 __kernel void generate_eye(__constant Camera* cam,
                            uint count,
-                           __global const uint* sample_pixel,
-                           __global const uint* sample_index,
+                           uint ray_offset,
+                           uint slot_base,
+                           uint slot_capacity,
+                           __global const uint* new_pixel,
+                           __global const uint* new_index,
+                           __global uint* sample_pixel, /* per sample slot */
+                           __global uint* sample_index,
+                           __global uint* slot_rays,
+                           __global uint* slot_abort,
                            __global float4* origin,      /* xyz, w = tmin */
                            __global float4* direction,   /* xyz, w = tmax */
                            __global float4* weight,
@@ -22,10 +32,15 @@ __kernel void generate_eye(__constant Camera* cam,
                            __global float* sample_time, /* RT_HAS_MOTION: in the shutter */
                            __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
-    uint i = get_global_id(0);
-    RT_COUNT_ACTIVE(active_counter, i < count);
-    if (i >= count) return;
-    uint pixel = sample_pixel[i], s = sample_index[i];
+    uint k = get_global_id(0);
+    RT_COUNT_ACTIVE(active_counter, k < count);
+    if (k >= count) return;
+    const uint pixel = new_pixel[k], s = new_index[k];
+    const uint slot = (slot_base + k) % slot_capacity, i = ray_offset + k;
+    sample_pixel[slot] = pixel;
+    sample_index[slot] = s;
+    slot_rays[slot] = 1u;
+    slot_abort[slot] = 0u;
     int px = (int)(pixel % (uint)cam->width), py = (int)(pixel / (uint)cam->width);
     float2 j = rt_pixel_sample(pixel, s);
     float jx = j.x, jy = j.y;
@@ -84,14 +99,14 @@ __kernel void generate_eye(__constant Camera* cam,
     float width = cam->perspective ? 0.0f : (cam->screen[1] - cam->screen[0]) / (float)cam->width * len;
     RayState st = {1u, 0u, RT_NO_HIT, width};
     state[i] = st;
-    ray_sample[i] = i; /* eye ray i belongs to sample i of the batch */
+    ray_sample[i] = slot;
 #ifdef RT_HAS_MOTION
-    sample_time[i] = time;
+    sample_time[slot] = time;
 #endif
-    total[i].value = (float4)(0.0f);
+    total[slot].value = (float4)(0.0f);
 #ifdef RT_HAS_AOVS
     /* camera z per unit of world ray distance: the unit camera direction's z over len */
     SampleAov a = {(float4)(0.0f), d_cam.z / len, 0u, {0u, 0u}};
-    aov[i] = a;
+    aov[slot] = a;
 #endif
 }

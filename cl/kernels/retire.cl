@@ -1,29 +1,60 @@
-/* retire.cl: the retire stage. Each pixel of the batch adds its whole samples to the film
- * (sum, sum of squares, count). A batch lists each pixel once, its samples in the pool
- * slots [first[k], first[k+1]), so one work-item per pixel needs no atomics and sums in a
- * fixed order (the image is bit-identical from run to run). A sample with a NaN or Inf
- * channel never reaches the film: it is counted instead. */
+/* retire.cl: the retire stage. A sample slot counts the rays of its sample still in flight
+ * (generate_eye sets 1, the sort stage takes one off for each ray it classifies, the
+ * compaction adds one for each spawned ray it keeps). Each pixel job whose slots all
+ * count zero adds its whole samples to the film, summed in slot order: a pixel has one
+ * job per pass unless its samples outnumber the largest job, so the film is the same
+ * whatever the pool's capacity. A job with a dropped ray (slot_abort: the pool in
+ * extremis) leaves no trace in the film and is marked for the host to issue again,
+ * unless this was its last try. A sample with a NaN or Inf channel never reaches the
+ * film: it is counted instead. */
+#include "atomics.clh"
 #include "counters.clh"
 #include "film.h"
 #include "math.clh"
 
-__kernel void retire_samples(uint pixel_count,
-                             __global const uint* batch_pixel,
-                             __global const uint* batch_first, /* pixel_count + 1 */
+/* window: the jobs in flight, ring positions [window_start, + window_count) modulo
+ * job_capacity. progress[0] (set to window_count by the host) becomes the rank of the
+ * oldest job still in flight, so the host frees the retired prefix of the rings;
+ * progress[1] counts jobs aborted by this launch. */
+__kernel void retire_samples(uint window_start, uint window_count, uint job_capacity,
+                             uint slot_capacity,
+                             __global PixelJob* jobs,
+                             __global const uint* slot_rays,
+                             __global const uint* slot_abort,
                              __global const SampleTotal* total,
                              __global PixelAccum* film,
                              __global const SampleAov* aov,   /* used with RT_HAS_AOVS */
                              __global AovAccum* aov_film,
+                             __global uint* progress,
                              __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint k = get_global_id(0);
-    RT_COUNT_ACTIVE(active_counter, k < pixel_count);
-    if (k >= pixel_count) return;
-    __global PixelAccum* acc = &film[batch_pixel[k]];
-    float4 sum = acc->sum, sum_sq = acc->sum_sq;
-    uint n = acc->count, bad = acc->nonfinite;
-    for (uint i = batch_first[k]; i < batch_first[k + 1]; ++i) {
-        float4 v = total[i].value;
+    uint job = (window_start + k) % job_capacity;
+    int active = k < window_count &&
+                 (jobs[job].state == RT_JOB_IN_FLIGHT || jobs[job].state == RT_JOB_LAST_TRY);
+    RT_COUNT_ACTIVE(active_counter, active);
+    if (!active) return;
+    const uint first = jobs[job].first_slot, count = jobs[job].count;
+    uint in_flight = 0, dropped = 0;
+    for (uint s = 0; s < count; ++s) {
+        uint slot = (first + s) % slot_capacity;
+        in_flight += slot_rays[slot];
+        dropped |= slot_abort[slot];
+    }
+    if (in_flight) {
+        atomic_min(&progress[0], k);
+        return;
+    }
+    if (dropped && jobs[job].state == RT_JOB_IN_FLIGHT) {
+        jobs[job].state = RT_JOB_ABORTED;
+        atomic_inc(&progress[1]);
+        return;
+    }
+    jobs[job].state = RT_JOB_RETIRED;
+    float4 sum = (float4)(0.0f), sum_sq = (float4)(0.0f);
+    uint n = 0, bad = 0;
+    for (uint s = 0; s < count; ++s) {
+        float4 v = total[(first + s) % slot_capacity].value;
         if (rt_all_finite(v)) {
             sum += v;
             sum_sq += v * v;
@@ -32,24 +63,27 @@ __kernel void retire_samples(uint pixel_count,
             ++bad;
         }
     }
-    acc->sum = sum;
-    acc->sum_sq = sum_sq;
-    acc->count = n;
-    acc->nonfinite = bad;
+    /* atomics only for the rare pixel with two jobs retiring in one launch */
+    __global PixelAccum* acc = &film[jobs[job].pixel];
+    rt_atomic_add_float4(&acc->sum, sum);
+    rt_atomic_add_float4(&acc->sum_sq, sum_sq);
+    atomic_add(&acc->count, n);
+    atomic_add(&acc->nonfinite, bad);
 #ifdef RT_HAS_AOVS
-    __global AovAccum* a = &aov_film[batch_pixel[k]];
-    float4 nsum = a->normal_sum;
-    float zsum = a->z_sum;
-    uint hits = a->hits;
-    for (uint i = batch_first[k]; i < batch_first[k + 1]; ++i) {
-        if (aov[i].hit) {
-            nsum += aov[i].normal;
-            zsum += aov[i].z;
+    float4 nsum = (float4)(0.0f);
+    float zsum = 0.0f;
+    uint hits = 0;
+    for (uint s = 0; s < count; ++s) {
+        uint slot = (first + s) % slot_capacity;
+        if (aov[slot].hit) {
+            nsum += aov[slot].normal;
+            zsum += aov[slot].z;
             ++hits;
         }
     }
-    a->normal_sum = nsum;
-    a->z_sum = zsum;
-    a->hits = hits;
+    __global AovAccum* a = &aov_film[jobs[job].pixel];
+    rt_atomic_add_float4(&a->normal_sum, nsum);
+    rt_atomic_add_float((volatile __global float*)&a->z_sum, zsum);
+    atomic_add(&a->hits, hits);
 #endif
 }

@@ -2,7 +2,9 @@
  * what they hit (a counting sort: classify counts rays per shader, the host turns counts
  * into offsets, scatter writes ray indices into each shader's run), so each shade kernel
  * runs over its own contiguous run with no idle work-items; misses are left out. Classify
- * also clears the spawn and shadow slots the shade stage may fill this round. */
+ * also clears the spawn and shadow slots the shade stage may fill this round, and takes
+ * the ray off its sample's count of rays in flight (what it spawns is counted when the
+ * compaction keeps it). */
 #include "counters.clh"
 #include "ray.h"
 #include "quadric.h"
@@ -20,6 +22,8 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count,
                             __global uint* key_count,    /* shader_count + 1 counters */
                             __global RayState* next_state,
                             __global RayState* shadow_state,
+                            __global const uint* ray_sample,
+                            __global uint* slot_rays,
                             __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     __local uint hist[RT_MAX_SHADER_KEYS];
@@ -46,6 +50,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count,
         atomic_inc(&hist[k]);
         for (uint s = 0; s < RT_SPAWN_SLOTS; ++s) next_state[r * RT_SPAWN_SLOTS + s].alive = 0u;
         for (uint l = 0; l < light_count; ++l) shadow_state[r * light_count + l].alive = 0u;
+        atomic_dec(&slot_rays[ray_sample[r]]);
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     for (uint k = lid; k <= shader_count; k += get_local_size(0))

@@ -1,16 +1,20 @@
 // renderer.cpp: the render loop. It reads as the algorithm: analyse the scene, build the
-// BVH and the specialised program, upload; then pass after pass of the sample plan, each
-// in batches that fill the ray pool: refill (generate_eye), trace (intersect_closest),
-// shade, trace shadows (intersect_shadow), add them (accumulate_shadows), retire
-// (retire_samples). Between launches it polls the stop conditions; a batch cut short is
-// dropped whole, so the film holds only whole samples.
+// BVH and the specialised program, upload; then pass after pass of the sample plan. A
+// pass's pixel jobs stream through the ray pool in rounds: refill the free end of the
+// pool with eye rays (generate_eye), trace (intersect_closest), sort by shader, shade,
+// trace shadows (intersect_shadow), add them (accumulate_shadows), compact what the
+// shaders spawned into the next round, retire the samples with no ray left
+// (retire_samples). Between rounds it polls the stop conditions; samples still in
+// flight at a stop never reach the film, so it holds only whole samples.
 #include "renderer.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 
 #include "cl/include/ray.h"
 #include "device_scene.h"
@@ -19,6 +23,8 @@
 #include "scene_bvh.h"
 #include "film/film_error.h"
 #include "progress.h"
+#include "ray_pool.h"
+#include "sample_ring.h"
 #include "shaders/shader_set.h"
 #include "stop.h"
 
@@ -36,110 +42,6 @@ double secondsSince(Clock::time_point t0) {
 const std::vector<std::string> kRenderSources = {
     "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "accumulate.cl", "compact.cl",
     "retire.cl", "treelet.cl"};
-
-// The ray pool. The current round's rays (each knows its sample), the rays the shade
-// stage spawns (slot i: ray i's continuation), light_count shadow slots per ray, the
-// compaction's per-group counts, and the per-sample AOV record only when AOVs are on.
-struct RayPool {
-    RayPool(const ClContext& ctx, size_t capacity, size_t spawn, uint32_t shadowLights,
-            bool aovs, bool motion, bool instances, size_t shaderKeys)
-        : origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity),
-          state(ctx, capacity), sample(ctx, capacity), hits(ctx, capacity),
-          totals(ctx, capacity), nextOrigin(ctx, capacity * spawn),
-          nextDirection(ctx, capacity * spawn), nextWeight(ctx, capacity * spawn),
-          nextState(ctx, capacity * spawn), nextSample(ctx, capacity * spawn),
-          groupLive(ctx, capacity * spawn / 64 + 1), groupOffset(ctx, capacity * spawn / 64 + 1),
-          key(ctx, capacity), keyCount(ctx, shaderKeys), keyCursor(ctx, shaderKeys),
-          sorted(ctx, capacity),
-          shOrigin(ctx, capacity * shadowLights), shDirection(ctx, capacity * shadowLights),
-          shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
-          aov(ctx, aovs ? capacity : 0), samplePixel(ctx, capacity),
-          sampleIndex(ctx, capacity), batchPixel(ctx, capacity),
-          batchFirst(ctx, capacity + 1), sampleTime(ctx, motion ? capacity : 0),
-          hitInstance(ctx, instances ? capacity : 0) {
-        shState.fillZero();
-        nextState.fillZero();
-    }
-    DeviceBuffer<rt_float4> origin, direction, weight;
-    DeviceBuffer<RayState> state;
-    DeviceBuffer<uint32_t> sample;
-    DeviceBuffer<RayHit> hits;
-    DeviceBuffer<SampleTotal> totals;
-    DeviceBuffer<rt_float4> nextOrigin, nextDirection, nextWeight;
-    DeviceBuffer<RayState> nextState;
-    DeviceBuffer<uint32_t> nextSample;
-    DeviceBuffer<uint32_t> groupLive, groupOffset;
-    DeviceBuffer<uint32_t> key, keyCount, keyCursor, sorted;  // the sort by shader
-    DeviceBuffer<rt_float4> shOrigin, shDirection, shWeight;
-    DeviceBuffer<RayState> shState;
-    DeviceBuffer<SampleAov> aov;
-    DeviceBuffer<uint32_t> samplePixel, sampleIndex;  // the batch's samples
-    DeviceBuffer<uint32_t> batchPixel, batchFirst;    // its pixels, CSR over the samples
-    DeviceBuffer<float> sampleTime;                   // motion blur: each sample's time
-    DeviceBuffer<uint32_t> hitInstance;               // instance of each closest hit
-};
-
-struct RenderKernels {
-    RenderKernels(const ClContext& ctx, cl_program p, Profiler& prof,
-                  const std::vector<std::string>& shadeKernels)
-        : generateEye(ctx, p, "generate_eye", prof),
-          intersectClosest(ctx, p, "intersect_closest", prof),
-          classify(ctx, p, "classify_hits", prof),
-          scatter(ctx, p, "scatter_by_shader", prof),
-          intersectShadow(ctx, p, "intersect_shadow", prof),
-          accumulateShadows(ctx, p, "accumulate_shadows", prof),
-          compactCount(ctx, p, "compact_count", prof),
-          compactScatter(ctx, p, "compact_scatter", prof),
-          retire(ctx, p, "retire_samples", prof) {
-        for (const std::string& name : shadeKernels)
-            shade.push_back(std::make_unique<Kernel>(ctx, p, name, prof));
-    }
-    Kernel generateEye, intersectClosest, classify, scatter, intersectShadow,
-        accumulateShadows, compactCount, compactScatter, retire;
-    std::vector<std::unique_ptr<Kernel>> shade;  // one per compiled surface shader
-    std::vector<Kernel*> all() {
-        std::vector<Kernel*> v{&generateEye, &intersectClosest, &classify, &scatter,
-                               &intersectShadow, &accumulateShadows, &compactCount,
-                               &compactScatter, &retire};
-        for (auto& s : shade) v.push_back(s.get());
-        return v;
-    }
-};
-
-// A batch: pixel-major list of samples, at most the pool's capacity.
-struct Batch {
-    std::vector<uint32_t> samplePixel, sampleIndex, pixel, first;
-};
-
-// Cuts a pass into batches of at most `capacity` samples; a pixel's samples stay
-// contiguous within a batch (the retire kernel relies on it).
-std::vector<Batch> makeBatches(const std::vector<PixelRequest>& pass, size_t capacity) {
-    std::vector<Batch> out;
-    Batch b;
-    auto flush = [&] {
-        if (b.samplePixel.empty()) return;
-        b.first.push_back(uint32_t(b.samplePixel.size()));
-        out.push_back(std::move(b));
-        b = Batch();
-    };
-    for (const PixelRequest& r : pass) {
-        uint32_t done = 0;
-        while (done < r.count) {
-            if (b.samplePixel.size() == capacity) flush();
-            uint32_t take = uint32_t(std::min<size_t>(r.count - done,
-                                                      capacity - b.samplePixel.size()));
-            b.pixel.push_back(r.pixel);
-            b.first.push_back(uint32_t(b.samplePixel.size()));
-            for (uint32_t k = 0; k < take; ++k) {
-                b.samplePixel.push_back(r.pixel);
-                b.sampleIndex.push_back(r.first + done + k);
-            }
-            done += take;
-        }
-    }
-    flush();
-    return out;
-}
 
 const char* signalName(int sig) { return sig == 2 ? "SIGINT" : sig == 15 ? "SIGTERM" : "signal"; }
 
@@ -225,13 +127,22 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const uint32_t nl = f.shadowRays ? f.lightCount : 0;
     const size_t spawn = size_t(f.spawnSlots());
     const cl_uint shaderCount = cl_uint(shading.shadeKernels.size());
-    // The pool holds a batch's rays and what they spawn: keep it within a memory budget.
-    const size_t bytesPerRay = 128 + spawn * 72 + size_t(nl) * 64;
-    const size_t pool = std::clamp<size_t>(std::min(m_settings.poolCapacity,
-                                                    (size_t(512) << 20) / bytesPerRay),
-                                           64, std::max<size_t>(64, m_settings.poolCapacity));
+    // The pool: the rays of one round, enough to keep every compute unit busy (16k rays
+    // each), within a memory budget; the sample slots twice that, pixel jobs at most a
+    // quarter of it so several pixels share a round.
+    size_t wanted = m_settings.poolCapacity;
+    if (wanted == 0) wanted = std::clamp<size_t>(size_t(m_ctx.info().computeUnits) << 14,
+                                                 size_t(1) << 14, size_t(1) << 20);
+    const size_t memoryBudget = std::clamp<size_t>(m_ctx.info().globalMemBytes / 8,
+                                                   size_t(64) << 20, size_t(512) << 20);
+    const size_t pool = std::clamp<size_t>(
+        std::min(wanted, memoryBudget / RayPool::bytesPerRay(spawn, nl)), 64,
+        std::max<size_t>(64, wanted));
     st.poolCapacity = pool;
-    RayPool rp(m_ctx, pool, spawn, nl, f.aovs, f.motion, f.instances, shaderCount + 1);
+    SampleRing ring(2 * pool);
+    const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
+    RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
+               shaderCount + 1);
     if (f.treelets)
         treelets = std::make_unique<TreeletTracer>(
             m_ctx, program.get(), prof, bvh4, treeletBudget,
@@ -281,31 +192,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             st.stopReason = signalName(sig);
             return true;
         }
-        // The first batch always completes, so a budget smaller than the set-up time still
-        // yields an image (at the cost of overrunning it by one short batch).
-        if (timeBudget > 0 && st.batches > 0 && secondsSince(t0) >= timeBudget) {
+        // The first round always completes, so a budget smaller than the set-up time still
+        // yields an image (at the cost of overrunning it by one short round).
+        if (timeBudget > 0 && st.iterations > 0 && secondsSince(t0) >= timeBudget) {
             st.stopReason = "time budget";
             return true;
         }
         return false;
-    };
-    // Returns false when a stop cut the batch short (its samples are then dropped).
-    // Compacts the rays the shade stage spawned into the current round's buffers and
-    // returns how many there are: group counts on the device, their prefix on the host.
-    auto compactSpawned = [&](cl_uint n) {
-        k.compactCount.launch(n, n, rp.nextState, rp.groupLive);
-        const size_t groups = (n + 63) / 64;
-        std::vector<uint32_t> live = rp.groupLive.download();
-        std::vector<uint32_t> offset(live.size(), 0);
-        uint32_t total = 0;
-        for (size_t g = 0; g < groups; ++g) offset[g] = total, total += live[g];
-        if (total == 0) return cl_uint(0);
-        if (total > pool) st.overflowRays += total - pool;  // dropped: reported at the end
-        rp.groupOffset.upload(offset);
-        k.compactScatter.launch(n, n, cl_uint(pool), rp.groupOffset, rp.nextOrigin, rp.nextDirection,
-                                rp.nextWeight, rp.nextState, rp.nextSample, rp.origin,
-                                rp.direction, rp.weight, rp.state, rp.sample);
-        return cl_uint(std::min<size_t>(total, pool));
     };
     // One shade kernel per shader over its run [offsets[s], + counts[s]) of `sorted`;
     // points a texture miss sends back are listed in `retry` at the same offsets.
@@ -326,65 +219,148 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                textures.counterBuf, textures.usedBuf, retry, reshade.counts(), s);
         }
     };
-    // Returns false when a stop cut the batch short (its samples are then dropped).
-    auto traceBatch = [&](const Batch& b) {
-        cl_uint n = cl_uint(b.samplePixel.size());
-        const cl_uint pixels = cl_uint(b.pixel.size());
-        rp.samplePixel.upload(b.samplePixel);
-        rp.sampleIndex.upload(b.sampleIndex);
-        rp.batchPixel.upload(b.pixel);
-        rp.batchFirst.upload(b.first);
-        k.generateEye.launch(n, ds.cameraBuf, n, rp.samplePixel, rp.sampleIndex, rp.origin,
-                             rp.direction, rp.weight, rp.state, rp.sample, rp.totals, rp.aov,
-                             rp.sampleTime);
-        // Rounds: trace, shade, shadows; then the spawned rays (continuations through
-        // Opacity < 1) are compacted and traced in the next round, until none is left.
-        const int rounds = 1 + (f.transparency ? f.maxTransparentDepth : 0) +
-                           (f.trace ? f.maxSpecularDepth : 0);
-        for (int round = 0; round < rounds && n > 0; ++round) {
-            if (stopNow()) return false;
-            if (treelets)
-                treelets->closest(n, rp.origin, rp.direction, rp.state, rp.hits, traceScene);
-            else
-                k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
-                                          rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
-                                          ds.quadricMotion, ds.trianglesEnd, rp.sample,
-                                          rp.sampleTime, rp.hitInstance);
-            // Sort the hits by shader, then run each shader over its own run of rays.
-            rp.keyCount.fillZero();
-            k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics, rp.hitInstance, rp.key,
-                              rp.keyCount, rp.nextState, rp.shState);
-            std::vector<uint32_t> counts = rp.keyCount.download(), offsets(counts.size(), 0);
-            for (size_t s = 1; s < counts.size(); ++s) offsets[s] = offsets[s - 1] + counts[s - 1];
-            rp.keyCursor.upload(offsets);
-            k.scatter.launch(n, n, shaderCount, rp.key, rp.keyCursor, rp.sorted);
-            shadeRuns(counts, offsets, rp.sorted, reshade.firstList());
-            if (f.textures) reshade.run(offsets, shading.surfaceNames, shadeRuns);
-            if (nl > 0) {
-                if (treelets)
-                    treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
-                                     traceScene, nl);
-                else
-                    k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes,
-                                             ds.blocks, rp.shOrigin, rp.shDirection,
-                                             rp.shState, ds.quadrics, ds.csg, ds.triangles,
-                                             ds.quadricMotion, ds.trianglesEnd, rp.sample,
-                                             rp.sampleTime, nl, numerics);
-                k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
-                                           rp.totals);
+    // The rays in the pool now, and on the spill stack. Refill tops the pool up to
+    // roundCap: the whole pool while the device traces it in a quarter second, less near
+    // the end of a time budget (the samples in flight at a stop are lost).
+    cl_uint n = 0;
+    size_t roundCap = pool;
+    double raysPerSec = 0;
+    size_t spillTop = 0;
+    const size_t spillCapacity = pool * spawn;
+    // Refill: whole pixel jobs from the front of `pending` into the free end of the pool
+    // (AR250: new eye rays whenever there is room, so eye and secondary rays share rounds).
+    auto refill = [&](std::deque<PlannedJob>& pending) {
+        std::vector<uint32_t> pixels, indices;
+        std::vector<PixelJob> recs;
+        const size_t jobPos = ring.nextJobPosition(), slotBase = ring.nextSlot();
+        auto room = [&](uint32_t count) {  // an empty pool takes a job whatever the cap
+            return n + pixels.size() + count <= roundCap || (n == 0 && pixels.empty());
+        };
+        while (!pending.empty() && room(pending.front().count) &&
+               ring.fits(pending.front().count)) {
+            const PlannedJob& j = pending.front();
+            recs.push_back(ring.push(j));
+            for (uint32_t c = 0; c < j.count; ++c) {
+                pixels.push_back(j.pixel);
+                indices.push_back(j.firstSample + c);
             }
-            if (round + 1 < rounds) n = compactSpawned(cl_uint(n * spawn));
+            pending.pop_front();
         }
-        if (stopNow()) return false;
-        k.retire.launch(pixels, pixels, rp.batchPixel, rp.batchFirst, rp.totals, filmBuf,
-                        rp.aov, aovBuf);
-        return true;
+        if (pixels.empty()) return;
+        const size_t wrap = std::min(recs.size(), ring.jobCapacity() - jobPos);
+        rp.jobs.uploadRange(jobPos, recs.data(), wrap);
+        if (wrap < recs.size()) rp.jobs.uploadRange(0, recs.data() + wrap, recs.size() - wrap);
+        rp.newPixel.uploadRange(0, pixels.data(), pixels.size());
+        rp.newIndex.uploadRange(0, indices.data(), indices.size());
+        const cl_uint add = cl_uint(pixels.size());
+        k.generateEye.launch(add, ds.cameraBuf, add, n, cl_uint(slotBase),
+                             cl_uint(ring.slotCapacity()), rp.newPixel, rp.newIndex,
+                             rp.samplePixel, rp.sampleIndex, rp.slotRays, rp.slotAbort,
+                             rp.origin, rp.direction, rp.weight, rp.state, rp.sample,
+                             rp.totals, rp.aov, rp.sampleTime);
+        n += add;
+        st.eyeRays += add;
+    };
+    // Compacts the rays the shade stage spawned into the pool, past its capacity onto the
+    // spill stack; then tops the pool up from the stack (newest first, as a stack keeps
+    // ray trees shallow). Group counts on the device, their prefix on the host.
+    auto compactSpawned = [&](cl_uint spawned) {
+        k.compactCount.launch(spawned, spawned, rp.nextState, rp.groupLive);
+        const size_t groups = (spawned + 63) / 64;
+        std::vector<uint32_t> live = rp.groupLive.downloadFirst(groups);
+        std::vector<uint32_t> offset(groups, 0);
+        size_t total = 0;
+        for (size_t g = 0; g < groups; ++g) offset[g] = uint32_t(total), total += live[g];
+        if (total > 0) {
+            rp.groupOffset.uploadRange(0, offset.data(), groups);
+            k.compactScatter.launch(spawned, spawned, cl_uint(pool), cl_uint(spillTop),
+                                    cl_uint(spillCapacity), rp.groupOffset, rp.nextOrigin,
+                                    rp.nextDirection, rp.nextWeight, rp.nextState,
+                                    rp.nextSample, rp.origin, rp.direction, rp.weight,
+                                    rp.state, rp.sample, rp.spillOrigin, rp.spillDirection,
+                                    rp.spillWeight, rp.spillState, rp.spillSample,
+                                    rp.slotRays, rp.slotAbort);
+        }
+        n = cl_uint(std::min(total, pool));
+        if (total > pool) {
+            const size_t spilled = std::min(total - pool, spillCapacity - spillTop);
+            st.overflowRays += total - pool - spilled;  // dropped: the sample goes again
+            spillTop += spilled;
+            st.spilledRays += spilled;
+        } else if (spillTop > 0) {
+            const size_t take = std::min(pool - n, spillTop);
+            const size_t from = spillTop - take;
+            rp.spillOrigin.copyTo(rp.origin, from, n, take);
+            rp.spillDirection.copyTo(rp.direction, from, n, take);
+            rp.spillWeight.copyTo(rp.weight, from, n, take);
+            rp.spillState.copyTo(rp.state, from, n, take);
+            rp.spillSample.copyTo(rp.sample, from, n, take);
+            spillTop = from;
+            n += cl_uint(take);
+        }
+    };
+    // One round over the pool's n rays: trace, sort by shader, shade, shadows.
+    auto traceRound = [&] {
+        if (treelets)
+            treelets->closest(n, rp.origin, rp.direction, rp.state, rp.hits, traceScene);
+        else
+            k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
+                                      rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
+                                      ds.quadricMotion, ds.trianglesEnd, rp.sample,
+                                      rp.sampleTime, rp.hitInstance);
+        rp.keyCount.fillZero();
+        k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics,
+                          rp.hitInstance, rp.key, rp.keyCount, rp.nextState, rp.shState,
+                          rp.sample, rp.slotRays);
+        std::vector<uint32_t> counts = rp.keyCount.download(), offsets(counts.size(), 0);
+        for (size_t s = 1; s < counts.size(); ++s) offsets[s] = offsets[s - 1] + counts[s - 1];
+        rp.keyCursor.upload(offsets);
+        k.scatter.launch(n, n, shaderCount, rp.key, rp.keyCursor, rp.sorted);
+        shadeRuns(counts, offsets, rp.sorted, reshade.firstList());
+        if (f.textures) reshade.run(offsets, shading.surfaceNames, shadeRuns);
+        if (nl > 0) {
+            if (treelets)
+                treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
+                                 traceScene, nl);
+            else
+                k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
+                                         rp.shOrigin, rp.shDirection, rp.shState, ds.quadrics,
+                                         ds.csg, ds.triangles, ds.quadricMotion,
+                                         ds.trianglesEnd, rp.sample, rp.sampleTime, nl,
+                                         numerics);
+            k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
+                                       rp.totals);
+        }
+    };
+    // Retire: jobs whose samples have no ray left go to the film; the oldest ones free
+    // their slots. Aborted jobs (a ray dropped) are issued again, once.
+    auto retireJobs = [&](std::deque<PlannedJob>& pending) {
+        const cl_uint window = cl_uint(ring.inFlight());
+        if (window == 0) return;
+        const uint32_t init[2] = {window, 0u};
+        rp.progress.uploadRange(0, init, 2);
+        k.retire.launch(window, cl_uint(ring.frontPosition()), window,
+                        cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()), rp.jobs,
+                        rp.slotRays, rp.slotAbort, rp.totals, filmBuf, rp.aov, aovBuf,
+                        rp.progress);
+        std::vector<uint32_t> prog = rp.progress.download();
+        if (prog[1] > 0) {
+            std::vector<PixelJob> recs = rp.jobs.download();
+            for (size_t j = window; j-- > 0;) {
+                PixelJob& r = recs[(ring.frontPosition() + j) % ring.jobCapacity()];
+                if (r.state != RT_JOB_ABORTED) continue;
+                r.state = RT_JOB_RETIRED;
+                PlannedJob again = ring.at(j);
+                again.lastTry = true;
+                pending.push_front(again);
+                st.reissuedSamples += again.count;
+            }
+            rp.jobs.upload(recs);
+        }
+        for (size_t j = 0; j < prog[0]; ++j) st.retiredSamples += ring.at(j).count;
+        ring.popFront(prog[0]);
     };
 
-    // Batches are sized to about a quarter second once the speed is known, so a stop or
-    // a time budget is honoured promptly and the error series is sampled often.
-    size_t batchCap = std::min<size_t>(pool, 16384);
-    double samplesPerSec = 0;
     double lastSample = -1;
     auto sampleError = [&](bool force) {
         double now = secondsSince(t0);
@@ -397,68 +373,77 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                         (treelets ? treelets->peekRays() : 0);
         st.errorVsTime.push_back({now, rays, st.estimatedError});
     };
+    uint64_t poolRays = 0;  // rays traced over all rounds, for the pool fill
+    // The pass's jobs stream through the pool: refill, trace, compact, retire, until every
+    // job has retired. Returns false when a stop ends it early.
+    auto runPass = [&](std::deque<PlannedJob> pending) {
+        while (!pending.empty() || ring.inFlight() > 0) {
+            if (stopNow()) return false;
+            if (timeBudget > 0 && raysPerSec > 0)
+                roundCap = std::clamp<size_t>(
+                    size_t(raysPerSec * std::max(0.0, timeBudget - secondsSince(t0)) * 0.9),
+                    256, roundCap);
+            refill(pending);
+            if (n == 0 && spillTop == 0 && ring.inFlight() == 0)
+                throw std::runtime_error("internal error: a pixel job larger than the ray pool");
+            if (n > 0) {
+                const auto tRound = Clock::now();
+                traceRound();
+                poolRays += n;
+                if (st.poolFillSeries.empty() ||
+                    secondsSince(t0) - st.poolFillSeries.back().seconds >= 0.05)
+                    st.poolFillSeries.push_back({secondsSince(t0), double(n) / double(pool)});
+                const cl_uint traced = n;
+                compactSpawned(cl_uint(n * spawn));
+                m_ctx.finish();
+                const double dt = secondsSince(tRound);
+                if (dt > 0) raysPerSec = double(traced) / dt;
+                roundCap = std::clamp<size_t>(size_t(raysPerSec * 0.25),
+                                               std::min<size_t>(1024, pool), pool);
+            }
+            retireJobs(pending);
+            ++st.iterations;
+            if (f.procedurals) {  // a ray reached an archive's bound: load it first
+                std::vector<uint32_t> flags = numerics.download();
+                for (size_t a = 0; a < scene.procedurals.size(); ++a)
+                    if (flags[kProceduralFlags + a])
+                        st.proceduralsReached.push_back(scene.procedurals[a].key);
+                if (!st.proceduralsReached.empty()) {
+                    st.stopReason = "archives to load";
+                    return false;
+                }
+            }
+            sampleError(false);
+            double fraction =
+                timeBudget > 0 ? secondsSince(t0) / timeBudget
+                : errorTarget > 0 && st.estimatedError > 0
+                    ? std::min(1.0, std::log(1.0 / st.estimatedError) /
+                                        std::log(1.0 / errorTarget))
+                    : double(st.retiredSamples) / double(film.cropPixelCount() * ss.maxSamples);
+            progress.update(fraction, secondsSince(t0), st.eyeRays, st.estimatedError);
+        }
+        return true;
+    };
 
-    bool stopped = false;
-    while (!stopped) {
+    for (;;) {
         float pixelError = ss.pixelError;
         if (errorTarget > 0) pixelError = float(errorTarget);
         else if (timeBudget > 0 && st.estimatedError > 0)
             pixelError = float(0.5 * st.estimatedError);  // refine the worse half
+        const auto tPlan = Clock::now();
         std::vector<PixelRequest> pass = planner.nextPass(film.pixels, pixelError);
+        st.planMs += secondsSince(tPlan) * 1e3;
         if (pass.empty()) {
             st.stopReason = "quality";
             break;
         }
-        ++st.passes;
-        size_t done = 0;
-        while (done < pass.size() && !stopped) {
-            // Take pixels until the batch holds batchCap samples (fewer when the time
-            // budget has less than a quarter second left: a batch cut short is wasted).
-            size_t cap = batchCap;
-            if (timeBudget > 0 && samplesPerSec > 0) {
-                double left = timeBudget - secondsSince(t0);
-                cap = std::clamp<size_t>(size_t(samplesPerSec * left * 0.9), 256, batchCap);
-            }
-            size_t end = done, samples = 0;
-            while (end < pass.size() && samples < cap) samples += pass[end++].count;
-            std::vector<PixelRequest> part(pass.begin() + long(done), pass.begin() + long(end));
-            done = end;
-            for (const Batch& b : makeBatches(part, pool)) {
-                auto tBatch = Clock::now();
-                if (!traceBatch(b)) {
-                    st.abortedSamples += b.samplePixel.size();
-                    stopped = true;
-                    break;
-                }
-                m_ctx.finish();
-                if (f.procedurals) {  // a ray reached an archive's bound: load it first
-                    std::vector<uint32_t> flags = numerics.download();
-                    for (size_t k = 0; k < scene.procedurals.size(); ++k)
-                        if (flags[kProceduralFlags + k])
-                            st.proceduralsReached.push_back(scene.procedurals[k].key);
-                    if (!st.proceduralsReached.empty()) {
-                        st.stopReason = "archives to load";
-                        stopped = true;
-                        break;
-                    }
-                }
-                ++st.batches;
-                st.eyeRays += b.samplePixel.size();
-                double dt = secondsSince(tBatch);
-                if (dt > 0) samplesPerSec = double(b.samplePixel.size()) / dt;
-                batchCap = std::clamp<size_t>(size_t(samplesPerSec * 0.25), 1024, pool);
-                sampleError(false);
-                double fraction =
-                    timeBudget > 0 ? secondsSince(t0) / timeBudget
-                    : errorTarget > 0 && st.estimatedError > 0
-                        ? std::min(1.0, std::log(1.0 / st.estimatedError) /
-                                            std::log(1.0 / errorTarget))
-                        : double(st.eyeRays) / double(film.cropPixelCount() * ss.maxSamples);
-                progress.update(fraction, secondsSince(t0), st.eyeRays, st.estimatedError);
-            }
+        if (!runPass(planJobs(pass, maxJob))) {
+            st.abortedSamples = ring.samplesInFlight();  // in flight: never reach the film
+            break;
         }
-        if (stopped) break;
+        const auto tFilm = Clock::now();
         sampleError(true);
+        st.planMs += secondsSince(tFilm) * 1e3;
         if (errorTarget > 0 && st.estimatedError >= 0 && st.estimatedError <= errorTarget) {
             st.stopReason = "error target";
             break;
@@ -484,8 +469,6 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         auto it = st.kernels.find(name);
         return it == st.kernels.end() ? uint64_t(0) : it->second.activeItems;
     };
-    // Eye rays of dropped batches were traced too; count what the device did.
-    st.eyeRays += st.abortedSamples;
     // (the treelet path's first rounds take each ray once, as the intersect kernels do)
     const uint64_t closestRays = active("intersect_closest") + active("treelet_closest_root");
     st.continuationRays = closestRays > st.eyeRays ? closestRays - st.eyeRays : 0;
@@ -506,7 +489,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                 " huge (> 1e10) results; left out of the image");
     if (st.overflowRays > 0)
         diag.warning(where, std::to_string(st.overflowRays) +
-                                " traced ray(s) dropped: more in flight than the ray pool holds "
+                                " traced ray(s) dropped: more in flight than the ray pool and "
+                                "its spill stack hold; " + std::to_string(st.reissuedSamples) +
+                                " sample(s) traced again, the rest kept what they had "
                                 "(lower maxspeculardepth or trace fewer rays per hit)");
     if (st.transparentDepthCut > 0)
         diag.warning(where, std::to_string(st.transparentDepthCut) +
@@ -516,9 +501,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     st.unsampledPixels = film.unsampledCount();
     st.passes = planner.passes();
     st.elapsedSec = secondsSince(t0);
-    // Pool fill: rays traced per intersect_closest launch over the pool's capacity.
-    // Device busy: kernel time over the sampling loop's wall time; the rest is the device
-    // waiting on the host (its downloads, sorts' offsets, batch planning) or idle.
+    // Pool fill: rays traced per round over the pool's capacity. Device busy: kernel time
+    // over the sampling loop's wall time; the rest of the frame is host overhead: the
+    // device waiting on the host (downloads of counts, offsets, planning) or idle.
     if (auto it = st.kernels.find(treelets ? "treelet_closest_root" : "intersect_closest");
         it != st.kernels.end() && it->second.launches > 0)
         st.poolFill = double(it->second.activeItems) /
@@ -527,6 +512,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     for (const auto& [name, ks] : st.kernels) deviceMs += ks.deviceMs;
     const double loopMs = st.elapsedSec * 1e3 - st.sceneSetupMs;
     if (loopMs > 0) st.deviceBusy = std::min(1.0, deviceMs / loopMs);
+    if (st.elapsedSec > 0)
+        st.hostOverhead = std::max(0.0, loopMs - deviceMs) / (st.elapsedSec * 1e3);
     st.errorVsTime.push_back({st.elapsedSec, st.totalRays(), st.estimatedError});
     return st;
 }

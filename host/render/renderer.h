@@ -1,7 +1,7 @@
 // renderer.h: the render loop of DESIGN.md section 3 for one Scene on one device: upload
-// the scene and its BVH, then pass after pass of adaptive sampling, in batches that fill
-// the ray pool: refill with eye samples, trace and shade in rounds, trace shadow rays,
-// retire whole samples to the film; stop on quality, error target, time budget or signal.
+// the scene and its BVH, then pass after pass of adaptive sampling, streamed through the
+// ray pool in rounds: refill with eye samples, trace and shade, trace shadow rays, retire
+// whole samples to the film; stop on quality, error target, time budget or signal.
 #pragma once
 #include <array>
 #include <map>
@@ -21,7 +21,7 @@
 namespace rd {
 
 struct RenderSettings {
-    size_t poolCapacity = size_t(1) << 18;  // eye samples in flight per batch (at most)
+    size_t poolCapacity = 0;  // rays per round; 0: 16k per compute unit within a memory budget
     double timeBudget = 0;    // seconds; 0 = none (also from Option "render" "time")
     double errorTarget = 0;   // relative film error; 0 = none ("render" "error")
     int firstPassBlock = 0;   // 0 = the scene's option (default 2: 1/4 ray per pixel)
@@ -42,6 +42,12 @@ struct ErrorSample {
     double estimatedError;  // < 0: not known yet
 };
 
+// One point of the pool-fill series in --stats: rays of a round over the capacity.
+struct PoolFillSample {
+    double seconds;
+    double fill;
+};
+
 struct RenderStats {
     double elapsedSec = 0;
     double sceneSetupMs = 0, bvhBuildMs = 0;
@@ -56,11 +62,17 @@ struct RenderStats {
     uint64_t shadeNonfinite = 0, shadeNegative = 0, shadeHuge = 0, shadeDenormal = 0;
     uint64_t transparentDepthCut = 0, specularDepthCut = 0;
     uint64_t rouletteEnded = 0;  // trace() rays Russian roulette ended
-    uint64_t overflowRays = 0;  // spawned rays beyond the pool's capacity, dropped
+    uint64_t overflowRays = 0;  // spawned rays beyond the pool and its spill stack: dropped
+    uint64_t spilledRays = 0;   // spawned rays that waited on the spill stack
+    uint64_t reissuedSamples = 0;  // samples aborted (a ray dropped) and traced again
+    uint64_t retiredSamples = 0;   // samples that reached the film
     size_t poolCapacity = 0;
-    double poolFill = 0;    // mean rays per intersect_closest launch / pool capacity
+    double poolFill = 0;    // mean rays per round / pool capacity
     double deviceBusy = 0;  // kernel time / wall time of the sampling loop
-    int passes = 0, batches = 0;
+    double hostOverhead = 0;  // sampling-loop time the device did not run kernels / frame
+    double planMs = 0;  // of which between passes: the film read back, the next pass planned
+    std::vector<PoolFillSample> poolFillSeries;
+    int passes = 0, iterations = 0;  // iterations: rounds of the ray pool
     double estimatedError = -1;
     std::string stopReason;  // "quality", "error target", "time budget", "SIGINT", ...
     std::vector<ErrorSample> errorVsTime;

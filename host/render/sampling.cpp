@@ -59,6 +59,16 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const std::vector<PixelAccum>&
             int px = bx * b + int(h % uint32_t(w)), py = by * b + int((h / 7) % uint32_t(hgt));
             if (px == x && py == y) out.push_back({pixel, 0, 1});
         }
+        // Then every pixel up to the minimum, which needs no film to decide, in the same
+        // pass: the ray pool streams on instead of draining between the two.
+        const size_t blockSamples = out.size();
+        std::vector<uint8_t> sampled(size_t(m_width) * size_t(m_height), 0);
+        for (size_t k = 0; k < blockSamples; ++k) sampled[out[k].pixel] = 1;
+        for (uint32_t pixel : m_tileOrder) {
+            uint32_t have = sampled[pixel];
+            if (m_settings.minSamples > have)
+                out.push_back({pixel, have, m_settings.minSamples - have});
+        }
         ++m_pass;
         return out;
     }

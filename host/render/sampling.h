@@ -1,8 +1,10 @@
-// sampling.h: adaptive sampling as RenderDrive did it. A first pass takes one eye sample
-// per block of pixels (2x2: 1/4 ray per pixel); each later pass adds samples where
-// neighbouring pixels disagree (discontinuities) or a pixel's estimated error is high,
-// doubling those pixels' counts, until the final quality: PixelSamples, an error target
-// or a time budget. The film's error is estimated from whole-sample variance.
+// sampling.h: adaptive sampling as RenderDrive did it. The first pass takes one eye sample
+// per block of pixels (2x2: 1/4 ray per pixel) and then brings every pixel to the minimum
+// (two samples: a variance needs two; that needs no film to decide, so it streams on in
+// the same pass); each later pass adds samples where neighbouring pixels disagree
+// (discontinuities) or a pixel's estimated error is high, doubling those pixels' counts,
+// until the final quality: PixelSamples, an error target or a time budget. The film's
+// error is estimated from whole-sample variance.
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -27,6 +27,8 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
     json series = json::array();
     for (const ErrorSample& e : st.errorVsTime)
         series.push_back({e.seconds, e.rays, e.estimatedError});
+    json fillSeries = json::array();  // [seconds, fill] every 50 ms or so
+    for (const PoolFillSample& p : st.poolFillSeries) fillSeries.push_back({p.seconds, p.fill});
     return json{
         {"scene", scene},
         {"output", output},
@@ -48,7 +50,12 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
 
                          {"pool_capacity", st.poolCapacity},
                          {"pool_fill", st.poolFill},
-                         {"device_busy", st.deviceBusy}}},
+                         {"pool_fill_series", fillSeries},
+                         {"rounds", st.iterations},
+                         {"spilled_rays", st.spilledRays},
+                         {"device_busy", st.deviceBusy},
+                         {"host_overhead", st.hostOverhead},
+                         {"plan_ms", st.planMs}}},
         {"features", st.features.names()},
         {"program", {{"build_options", st.program.options},
                      {"cache_hit", st.program.cacheHit},
@@ -65,7 +72,8 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                       {"roulette_ended", st.rouletteEnded},
                       {"pool_overflow_rays", st.overflowRays}}},
         {"sampling", {{"passes", st.passes},
-                      {"batches", st.batches},
+                      {"retired_samples", st.retiredSamples},
+                      {"reissued_samples", st.reissuedSamples},
                       {"stop_reason", st.stopReason},
                       {"estimated_error", st.estimatedError},
                       {"unsampled_pixels", st.unsampledPixels},
@@ -125,8 +133,10 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
         << ss["csg_solids"] << " CSG solids, " << ss["instances"] << " instances, "
         << ss["bvh_nodes"] << " BVH nodes, " << ss["geometry_bytes"] << " geometry bytes\n";
     out << "pool      capacity " << ss["pool_capacity"] << ", fill "
-        << ss["pool_fill"].get<double>() << " per trace launch, device busy "
-        << ss["device_busy"].get<double>() << " of the sampling loop\n";
+        << ss["pool_fill"].get<double>() << " over " << ss["rounds"]
+        << " rounds, device busy " << ss["device_busy"].get<double>()
+        << " of the sampling loop, host overhead " << ss["host_overhead"].get<double>()
+        << " of the frame\n";
     if (const auto& t = s["textures"]; t["files"].get<uint64_t>() > 0)
         out << "textures  " << t["files"] << " files, "
             << (t["resident"].get<bool>() ? "resident" : "streamed") << ", cache "

@@ -100,4 +100,32 @@ TEST(Numerics, RayTreeLargerThanThePoolIsBounded) {
     EXPECT_GT(over.image.stats.overflowRays, 0u);
     EXPECT_LE(maxAbs(over.image), 13.0 + 1e-3);
     EXPECT_EQ(countOf(over.messages, "ray pool"), 1) << over.messages;
+    // the first time a sample's tree overflowed it was aborted and issued again
+    EXPECT_GT(over.image.stats.reissuedSamples, 0u);
+}
+
+// Ray trees that outgrow the pool wait on the spill stack instead of being lost: with a
+// pool of 64 rays, 127-ray trees (depth 6) give exactly the series D + 1 = 7, the same
+// image as a pool that holds them all, and the pool stays full while eye rays refill it
+// beside the trees' rays (pool fill above 0.7, the goal).
+TEST(Numerics, RayTreesSpillAndTheImageDoesNotDependOnThePool) {
+    Diagnosed big = renderWithDiagnostics(twins(6));
+    rd::RenderSettings small;
+    small.poolCapacity = 64;
+    Diagnosed tiny = renderWithDiagnostics(twins(6), small);
+    const auto& st = tiny.image.stats;
+    EXPECT_GT(st.spilledRays, 0u);
+    EXPECT_EQ(st.overflowRays, 0u);
+    EXPECT_EQ(st.reissuedSamples, 0u);
+    EXPECT_EQ(countOf(tiny.messages, "ray pool"), 0) << tiny.messages;
+    ASSERT_EQ(big.image.pixels.size(), tiny.image.pixels.size());
+    double err = 0;
+    for (size_t i = 0; i < big.image.pixels.size(); ++i) {
+        err = std::fmax(err, std::fabs(tiny.image.pixels[i].r / 7.0 - 1.0));
+        // the same sums in another order of rounds: within float rounding of 7
+        EXPECT_NEAR(tiny.image.pixels[i].r, big.image.pixels[i].r, 2e-6) << i;
+    }
+    EXPECT_TRUE(report("twins_depth6_pool64", 1e-6, err));
+    EXPECT_GT(st.poolFill, 0.7) << "rounds " << st.iterations;
+    EXPECT_EQ(st.retiredSamples, st.eyeRays);
 }

@@ -1,0 +1,106 @@
+// ray_pool.h: the device side of the streaming core. The ray pool (structure of arrays,
+// a fixed capacity: the rays traced in one round), the rays the shade stage spawns (slot
+// r * spawn + k: ray r's k-th), the spill stack those that do not fit wait on, the
+// shadow rays (light_count slots per ray), the sample slots (each sample's running
+// total, its pixel and index, its count of rays in flight) and the pixel-job ring.
+// Buffers a scene does not need (AOVs, motion times, instance ids) keep one element.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cl/include/film.h"
+#include "cl/include/ray.h"
+#include "ocl/buffer.h"
+#include "ocl/kernel.h"
+
+namespace rd {
+
+struct RayPool {
+    RayPool(const ClContext& ctx, size_t capacity, size_t spawn, uint32_t shadowLights,
+            size_t slots, bool aovs, bool motion, bool instances, size_t shaderKeys)
+        : origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity),
+          state(ctx, capacity), sample(ctx, capacity), hits(ctx, capacity),
+          hitInstance(ctx, instances ? capacity : 0),
+          key(ctx, capacity), keyCount(ctx, shaderKeys), keyCursor(ctx, shaderKeys),
+          sorted(ctx, capacity),
+          nextOrigin(ctx, capacity * spawn), nextDirection(ctx, capacity * spawn),
+          nextWeight(ctx, capacity * spawn), nextState(ctx, capacity * spawn),
+          nextSample(ctx, capacity * spawn), groupLive(ctx, capacity * spawn / 64 + 1),
+          groupOffset(ctx, capacity * spawn / 64 + 1),
+          spillOrigin(ctx, capacity * spawn), spillDirection(ctx, capacity * spawn),
+          spillWeight(ctx, capacity * spawn), spillState(ctx, capacity * spawn),
+          spillSample(ctx, capacity * spawn),
+          shOrigin(ctx, capacity * shadowLights), shDirection(ctx, capacity * shadowLights),
+          shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
+          newPixel(ctx, capacity), newIndex(ctx, capacity),
+          totals(ctx, slots), samplePixel(ctx, slots), sampleIndex(ctx, slots),
+          sampleTime(ctx, motion ? slots : 0), aov(ctx, aovs ? slots : 0),
+          slotRays(ctx, slots), slotAbort(ctx, slots), jobs(ctx, slots), progress(ctx, 2) {
+        shState.fillZero();
+        nextState.fillZero();
+        slotRays.fillZero();
+        slotAbort.fillZero();
+    }
+    // Device bytes per ray of capacity, for sizing the pool to a memory budget.
+    static size_t bytesPerRay(size_t spawn, uint32_t shadowLights) {
+        return 140 + 2 * 100 + spawn * (72 + 68) + size_t(shadowLights) * 64;
+    }
+    // the round's rays
+    DeviceBuffer<rt_float4> origin, direction, weight;
+    DeviceBuffer<RayState> state;
+    DeviceBuffer<uint32_t> sample;  // the ray's sample slot
+    DeviceBuffer<RayHit> hits;
+    DeviceBuffer<uint32_t> hitInstance;                // instance of each closest hit
+    DeviceBuffer<uint32_t> key, keyCount, keyCursor, sorted;  // the sort by shader
+    // what the shade stage spawns, compacted into the next round (and the spill stack)
+    DeviceBuffer<rt_float4> nextOrigin, nextDirection, nextWeight;
+    DeviceBuffer<RayState> nextState;
+    DeviceBuffer<uint32_t> nextSample;
+    DeviceBuffer<uint32_t> groupLive, groupOffset;
+    DeviceBuffer<rt_float4> spillOrigin, spillDirection, spillWeight;
+    DeviceBuffer<RayState> spillState;
+    DeviceBuffer<uint32_t> spillSample;
+    // shadow rays
+    DeviceBuffer<rt_float4> shOrigin, shDirection, shWeight;
+    DeviceBuffer<RayState> shState;
+    // the refill: the new samples' pixels and indices
+    DeviceBuffer<uint32_t> newPixel, newIndex;
+    // sample slots and pixel jobs
+    DeviceBuffer<SampleTotal> totals;
+    DeviceBuffer<uint32_t> samplePixel, sampleIndex;
+    DeviceBuffer<float> sampleTime;  // motion blur: each sample's time
+    DeviceBuffer<SampleAov> aov;
+    DeviceBuffer<uint32_t> slotRays, slotAbort;
+    DeviceBuffer<PixelJob> jobs;
+    DeviceBuffer<uint32_t> progress;  // retire_samples: oldest job in flight, aborted jobs
+};
+
+struct RenderKernels {
+    RenderKernels(const ClContext& ctx, cl_program p, Profiler& prof,
+                  const std::vector<std::string>& shadeKernels)
+        : generateEye(ctx, p, "generate_eye", prof),
+          intersectClosest(ctx, p, "intersect_closest", prof),
+          classify(ctx, p, "classify_hits", prof),
+          scatter(ctx, p, "scatter_by_shader", prof),
+          intersectShadow(ctx, p, "intersect_shadow", prof),
+          accumulateShadows(ctx, p, "accumulate_shadows", prof),
+          compactCount(ctx, p, "compact_count", prof),
+          compactScatter(ctx, p, "compact_scatter", prof),
+          retire(ctx, p, "retire_samples", prof) {
+        for (const std::string& name : shadeKernels)
+            shade.push_back(std::make_unique<Kernel>(ctx, p, name, prof));
+    }
+    Kernel generateEye, intersectClosest, classify, scatter, intersectShadow,
+        accumulateShadows, compactCount, compactScatter, retire;
+    std::vector<std::unique_ptr<Kernel>> shade;  // one per compiled surface shader
+    std::vector<Kernel*> all() {
+        std::vector<Kernel*> v{&generateEye, &intersectClosest, &classify, &scatter,
+                               &intersectShadow, &accumulateShadows, &compactCount,
+                               &compactScatter, &retire};
+        for (auto& s : shade) v.push_back(s.get());
+        return v;
+    }
+};
+
+}  // namespace rd

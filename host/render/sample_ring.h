@@ -1,0 +1,54 @@
+// sample_ring.h: the host's book of sample slots and pixel jobs. RenderDrive kept each eye
+// sample's total on the chip until its last ray came back; here a sample owns a slot in a
+// ring of slots on the device, and the samples of one pixel in one pass (a pixel job)
+// take consecutive slots. Jobs retire on the device in any order; the host frees the
+// slots of the retired prefix (the oldest jobs first), so a late job holds back only the
+// slots after it, and the ring is sized well above the ray pool to absorb that.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+#include "cl/include/film.h"
+#include "sampling.h"
+
+namespace rd {
+
+// A job the host plans: samples [firstSample, + count) of `pixel`, and whether it was
+// issued before (aborted) and so retires with what it has next time.
+struct PlannedJob {
+    uint32_t pixel = 0, firstSample = 0, count = 0;
+    bool lastTry = false;
+};
+
+// Cuts a pass's requests into jobs of at most `maxJob` samples, in the pass's order.
+std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t maxJob);
+
+class SampleRing {
+public:
+    explicit SampleRing(size_t slots) : m_slots(slots) {}
+    size_t slotCapacity() const { return m_slots; }
+    size_t jobCapacity() const { return m_slots; }  // a job takes at least one slot
+    bool fits(uint32_t count) const {
+        return m_slotsUsed + count <= m_slots && m_jobs.size() < jobCapacity();
+    }
+    // Records the job and returns its device record (state, first slot filled in).
+    PixelJob push(const PlannedJob& job);
+    size_t nextSlot() const { return m_slotHead; }
+    size_t nextJobPosition() const { return (m_frontPos + m_jobs.size()) % jobCapacity(); }
+    // The jobs in flight: ring positions [frontPosition(), + inFlight()).
+    size_t frontPosition() const { return m_frontPos; }
+    size_t inFlight() const { return m_jobs.size(); }
+    const PlannedJob& at(size_t k) const { return m_jobs[k]; }
+    // The oldest `n` jobs retired (or were aborted): their slots are free again.
+    void popFront(size_t n);
+    uint64_t samplesInFlight() const { return m_slotsUsed; }
+
+private:
+    size_t m_slots;
+    size_t m_slotHead = 0, m_slotsUsed = 0, m_frontPos = 0;
+    std::deque<PlannedJob> m_jobs;
+};
+
+}  // namespace rd

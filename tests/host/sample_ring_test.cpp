@@ -1,0 +1,57 @@
+// sample_ring_test.cpp: pixel jobs cut from a pass, and the host's book of the sample-slot
+// and job rings (host/render/sample_ring.h).
+#include <gtest/gtest.h>
+
+#include "render/sample_ring.h"
+
+using rd::PlannedJob;
+using rd::SampleRing;
+
+TEST(SampleRing, PassesAreCutIntoJobsOfAtMostMaxSamples) {
+    std::vector<rd::PixelRequest> pass = {{7, 0, 3}, {9, 4, 10}};
+    auto jobs = rd::planJobs(pass, 4);
+    ASSERT_EQ(jobs.size(), 4u);  // 3 | 4 + 4 + 2
+    EXPECT_EQ(jobs[0].pixel, 7u);
+    EXPECT_EQ(jobs[0].count, 3u);
+    EXPECT_EQ(jobs[1].firstSample, 4u);
+    EXPECT_EQ(jobs[2].firstSample, 8u);
+    EXPECT_EQ(jobs[3].firstSample, 12u);
+    EXPECT_EQ(jobs[3].count, 2u);
+    EXPECT_EQ(rd::planJobs(pass, 0).size(), 13u) << "a zero limit still makes progress";
+}
+
+TEST(SampleRing, SlotsAreConsecutiveAndFreedOldestFirst) {
+    SampleRing ring(10);
+    EXPECT_TRUE(ring.fits(10));
+    EXPECT_FALSE(ring.fits(11));
+    PixelJob a = ring.push({1, 0, 6, false});
+    PixelJob b = ring.push({2, 0, 3, true});
+    EXPECT_EQ(a.first_slot, 0u);
+    EXPECT_EQ(a.state, RT_JOB_IN_FLIGHT);
+    EXPECT_EQ(b.first_slot, 6u);
+    EXPECT_EQ(b.state, RT_JOB_LAST_TRY);
+    EXPECT_EQ(ring.samplesInFlight(), 9u);
+    EXPECT_FALSE(ring.fits(2));
+    ring.popFront(1);  // the oldest job retired: its 6 slots are free again
+    EXPECT_EQ(ring.frontPosition(), 1u);
+    EXPECT_EQ(ring.inFlight(), 1u);
+    EXPECT_EQ(ring.at(0).pixel, 2u);
+    EXPECT_TRUE(ring.fits(7));
+    PixelJob c = ring.push({3, 0, 5, false});  // slots 9, 0, 1, 2, 3: wraps around
+    EXPECT_EQ(c.first_slot, 9u);
+    EXPECT_EQ(ring.nextSlot(), 4u);
+    EXPECT_EQ(ring.nextJobPosition(), 3u);
+    ring.popFront(5);  // more than in flight: all of them
+    EXPECT_EQ(ring.inFlight(), 0u);
+    EXPECT_EQ(ring.samplesInFlight(), 0u);
+}
+
+TEST(SampleRing, JobPositionsWrapAroundTheJobRing) {
+    SampleRing ring(3);  // three slots, so three jobs at most
+    for (int round = 0; round < 5; ++round) {
+        size_t pos = ring.nextJobPosition();
+        ring.push({uint32_t(round), 0, 1, false});
+        EXPECT_EQ(pos, size_t(round) % 3);
+        ring.popFront(1);
+    }
+}
