@@ -26,6 +26,7 @@
 #include "ocl/kernel.h"
 #include "ocl/program.h"
 #include "render/device_scene.h"
+#include "render/scene_bvh.h"
 #include "render/treelet_trace.h"
 
 using namespace rd;
@@ -240,6 +241,12 @@ int main(int argc, char** argv) {
     app.add_option("--side", side, "primary rays: side x side");
     app.add_option("--device", device, "OpenCL device (index or name)");
     std::vector<std::string> variants, meshFiles;
+    int sahBlock = 0;
+    bool wide8 = false;
+    app.add_flag("--wide8", wide8, "also time an eight-wide BVH (float8 node tests)");
+    std::string wide8Options;
+    app.add_option("--wide8-options", wide8Options, "build options of the eight-wide kernels");
+    app.add_option("--sah-block", sahBlock, "SAH block size (default: the renderer's)");
     app.add_option("--mesh", meshFiles, "also an OFF mesh (e.g. the Stanford bunny)");
     app.add_option("--variant", variants,
                    "extra OpenCL build options (e.g. -DRT_SOME_SWITCH): that kernel variant is "
@@ -269,18 +276,28 @@ int main(int argc, char** argv) {
     std::vector<std::string> treeletRows;  // printed after the resident table
     std::printf("%-14s %-8s %10s %10s %10s %8s %9s %9s\n", "scene", "rays", "count",
                 "RayDrive", "Embree", "ratio", "agree", "cpu ratio");
+    std::unique_ptr<Program> program8;
+    if (wide8)
+        program8 = std::make_unique<Program>(ctx, assembleClSource({"intersect8.cl"}),
+                                             "-cl-std=CL1.2 " + wide8Options);
     std::vector<Mesh> meshes{sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")};
     for (const std::string& f : meshFiles) meshes.push_back(loadOff(f));
     for (const Mesh& mesh : meshes) {
+        BvhBuildSettings bs = sceneBvhSettings();
+        if (sahBlock > 0) bs.blockSize = sahBlock;
         Bvh bvh = buildBvh([&] {
             Scene s;
             s.triangles = mesh.tris;
             return triangleBounds(s);
-        }());
+        }(), bs);
         EmbreeScene emb(mesh);
         Bvh4 bvh4 = collapseToBvh4(bvh, mesh.tris);
         DeviceBuffer<Bvh4Node> nodes(ctx, bvh4.nodes);
         DeviceBuffer<Triangle4> blocks(ctx, bvh4.blocks);
+        Bvh8 bvh8 = wide8 ? collapseToBvh8(bvh, mesh.tris) : Bvh8{};
+        DeviceBuffer<Bvh8Node> nodes8(ctx, bvh8.nodes.size());
+        DeviceBuffer<Triangle4> blocks8(ctx, bvh8.blocks.size());
+        if (wide8) nodes8.upload(bvh8.nodes), blocks8.upload(bvh8.blocks);
         // the object, motion and sample buffers the kernels take; unused for a triangle
         // scene built without RT_HAS_QUADRICS and RT_HAS_MOTION
         DeviceBuffer<Quadric> noQuadrics(ctx, 1);
@@ -330,12 +347,32 @@ int main(int argc, char** argv) {
                 ctx.finish();
                 return std::chrono::duration<double>(Clock::now() - t0).count();
             };
+            std::unique_ptr<Kernel> kc8, ks8;
+            DeviceBuffer<RayHit> hits8(ctx, n);
+            DeviceBuffer<RayState> state8(ctx, st, CL_MEM_READ_WRITE);
+            if (wide8) {
+                kc8 = std::make_unique<Kernel>(ctx, program8->get(), "intersect_closest8", prof);
+                ks8 = std::make_unique<Kernel>(ctx, program8->get(), "intersect_shadow8", prof);
+            }
+            auto runWide8 = [&] {
+                if (k.shadow) state8.upload(st);
+                auto t0 = Clock::now();
+                if (k.shadow)
+                    ks8->launch(n, cl_uint(n), nodes8, blocks8, org, dir, state8);
+                else
+                    kc8->launch(n, cl_uint(n), nodes8, blocks8, org, dir, state8, hits8);
+                ctx.finish();
+                return std::chrono::duration<double>(Clock::now() - t0).count();
+            };
+            std::vector<double> t8;
+            if (wide8) runWide8();
             std::vector<std::vector<double>> tv(programs.size());
             for (size_t p = programs.size(); p-- > 0;) runDevice(p);  // PoCL compiles on first launch
             std::vector<double> td, te, cd, ce;
             std::vector<RayHit> eh;
             for (int r = 0; r < runs; ++r) {
                 for (size_t p = 1; p < programs.size(); ++p) tv[p].push_back(runDevice(p));
+                if (wide8) t8.push_back(runWide8());
                 double c0 = cpuSeconds();
                 td.push_back(runDevice(0));
                 double c1 = cpuSeconds();
@@ -362,6 +399,20 @@ int main(int argc, char** argv) {
             std::printf("%-14s %-8s %10zu %10.2f %10.2f %8.3f %8.4f%% %9.3f\n", mesh.name.c_str(),
                         k.name, n, md, me, md / me, 100.0 * double(same) / double(n),
                         median(ce) / median(cd));
+            if (wide8) {
+                size_t same8 = 0;
+                auto h8 = hits8.download();
+                auto s8 = state8.download();
+                for (size_t i = 0; i < n; ++i)
+                    same8 += k.shadow ? (s8[i].alive == 0) == (eh[i].prim != RT_NO_HIT)
+                                      : (h8[i].prim == RT_NO_HIT) == (eh[i].prim == RT_NO_HIT) &&
+                                            (h8[i].prim == RT_NO_HIT ||
+                                             std::fabs(h8[i].t - eh[i].t) <=
+                                                 1e-3f * std::max(1.0f, eh[i].t));
+                std::printf("  bvh8 %-33s %10.2f Mrays/s, %.3f of bvh4, %.3f of Embree, agree "
+                            "%.4f%%\n", "", n / median(t8) * 1e-6, median(td) / median(t8),
+                            median(te) / median(t8), 100.0 * double(same8) / double(n));
+            }
             for (size_t p = 1; p < programs.size(); ++p)
                 std::printf("  variant %-30s %10.2f Mrays/s, %.3f of default, %.3f of Embree\n",
                             variants[p - 1].c_str(), n / median(tv[p]) * 1e-6,

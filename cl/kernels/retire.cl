@@ -15,7 +15,7 @@
 /* window: the jobs in flight, ring positions [window_start, + window_count) modulo
  * job_capacity. progress[0] (set to window_count by the host) becomes the rank of the
  * oldest job still in flight, so the host frees the retired prefix of the rings;
- * progress[1] counts jobs aborted by this launch. */
+ * progress[1] counts jobs aborted by this launch, progress[2] samples left out as NaN/Inf. */
 __kernel void retire_samples(uint window_start, uint window_count, uint job_capacity,
                              uint slot_capacity,
                              __global PixelJob* jobs,
@@ -69,6 +69,7 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
     rt_atomic_add_float4(&acc->sum_sq, sum_sq);
     atomic_add(&acc->count, n);
     atomic_add(&acc->nonfinite, bad);
+    if (bad) atomic_add(&progress[2], bad);
 #ifdef RT_HAS_AOVS
     float4 nsum = (float4)(0.0f);
     float zsum = 0.0f;

@@ -13,22 +13,32 @@ double area(const BvhNode& n) {
     return dx < 0 ? 0 : 2 * (dx * dy + dy * dz + dz * dx);
 }
 
-void setSlot(Bvh4Node& w, int k, const BvhNode& n) {
-    float* lo[3] = {&w.lo_x.x, &w.lo_y.x, &w.lo_z.x};
-    float* hi[3] = {&w.hi_x.x, &w.hi_y.x, &w.hi_z.x};
+// The six planes of a wide node as float arrays, whatever its layout.
+struct Planes {
+    float* lo[3];
+    float* hi[3];
+};
+Planes planes(Bvh4Node& w) {
+    return {{&w.lo_x.x, &w.lo_y.x, &w.lo_z.x}, {&w.hi_x.x, &w.hi_y.x, &w.hi_z.x}};
+}
+Planes planes(Bvh8Node& w) { return {{w.lo_x, w.lo_y, w.lo_z}, {w.hi_x, w.hi_y, w.hi_z}}; }
+
+template <class Node>
+void setSlot(Node& w, int k, const BvhNode& n) {
+    Planes p = planes(w);
     for (int a = 0; a < 3; ++a) {
-        lo[a][k] = n.bmin[a];
-        hi[a][k] = n.bmax[a];
+        p.lo[a][k] = n.bmin[a];
+        p.hi[a][k] = n.bmax[a];
     }
 }
 
-void clearSlot(Bvh4Node& w, int k) {
-    float* lo[3] = {&w.lo_x.x, &w.lo_y.x, &w.lo_z.x};
-    float* hi[3] = {&w.hi_x.x, &w.hi_y.x, &w.hi_z.x};
+template <class Node>
+void clearSlot(Node& w, int k) {
+    Planes p = planes(w);
     for (int a = 0; a < 3; ++a) {
         // lo > hi: the near/far slab test rejects it however the ray points
-        lo[a][k] = FLT_MAX;
-        hi[a][k] = -FLT_MAX;
+        p.lo[a][k] = FLT_MAX;
+        p.hi[a][k] = -FLT_MAX;
     }
     w.child[k] = 0;
     w.count[k] = -1;
@@ -87,12 +97,17 @@ int packLeaf(const Bvh& bvh, const std::vector<Triangle>& tris, const BvhPrimiti
 
 }  // namespace
 
-Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
-                    const BvhPrimitives* prims) {
-    Bvh4 result;
-    std::vector<Bvh4Node>& out = result.nodes;
+namespace {
+
+// Each wide node takes a binary node's children and keeps opening its largest interior
+// child until it has W.
+template <class Node, int W>
+BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
+                           const BvhPrimitives* prims) {
+    BvhWide<Node> result;
+    std::vector<Node>& out = result.nodes;
     out.resize(1);
-    for (int k = 0; k < 4; ++k) clearSlot(out[0], k);
+    for (int k = 0; k < W; ++k) clearSlot(out[0], k);
     if (bvh.empty()) return result;
     const std::vector<BvhNode>& b = bvh.nodes;
     // Work list: (wide node index, binary node whose children it holds).
@@ -109,7 +124,7 @@ Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
         auto [wi, bi] = work.back();
         work.pop_back();
         std::vector<int> kids{b[bi].left_or_first, b[bi].left_or_first + 1};
-        while (kids.size() < 4) {
+        while (kids.size() < size_t(W)) {
             int best = -1;
             double bestArea = -1;
             for (size_t k = 0; k < kids.size(); ++k)
@@ -121,7 +136,7 @@ Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
             kids.push_back(b[open].left_or_first);
             kids.push_back(b[open].left_or_first + 1);
         }
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < W; ++k) {
             if (k >= int(kids.size())) {
                 clearSlot(out[wi], k);
                 continue;
@@ -142,6 +157,18 @@ Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
         }
     }
     return result;
+}
+
+}  // namespace
+
+Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
+                    const BvhPrimitives* prims) {
+    return collapseWide<Bvh4Node, 4>(bvh, tris, prims);
+}
+
+Bvh8 collapseToBvh8(const Bvh& bvh, const std::vector<Triangle>& tris,
+                    const BvhPrimitives* prims) {
+    return collapseWide<Bvh8Node, 8>(bvh, tris, prims);
 }
 
 }  // namespace rd

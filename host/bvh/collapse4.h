@@ -14,10 +14,13 @@ namespace rd {
 // nodes[0] is the root. An empty tree gives one node with four unused slots. A leaf
 // child refers to blocks (of triangles, or of objects): child = first block, count =
 // number of blocks.
-struct Bvh4 {
-    std::vector<Bvh4Node> nodes;
+template <class Node>
+struct BvhWide {
+    std::vector<Node> nodes;
     std::vector<Triangle4> blocks;
 };
+using Bvh4 = BvhWide<Bvh4Node>;
+using Bvh8 = BvhWide<Bvh8Node>;
 
 // What the binary tree was built over when it is not just `tris`: ids[i] is primitive
 // i's triangle index, or RT_OBJECT_BIT | its quadric index (cl/include/quadric.h), and
@@ -29,6 +32,9 @@ struct BvhPrimitives {
 
 // Without `prims`, the tree was built over `tris` themselves.
 Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
+                    const BvhPrimitives* prims = nullptr);
+// The same collapse to eight children per node (Bvh8Node).
+Bvh8 collapseToBvh8(const Bvh& bvh, const std::vector<Triangle>& tris,
                     const BvhPrimitives* prims = nullptr);
 
 }  // namespace rd

@@ -78,6 +78,7 @@ public:
         leafCap_ = std::max(kBvhMaxLeafCap, maxLeaf_);
         ct_ = s.traversalCost;
         ci_ = s.intersectionCost;
+        block_ = uint32_t(std::max(1, s.blockSize));
     }
 
     void build(const std::vector<Aabb>& primBounds) {
@@ -163,7 +164,7 @@ private:
 
         useLength_ = sahMeasure(box, false) <= 0.0;
         parentMeasure_ = sahMeasure(box, useLength_);
-        double leafCost = double(ci_) * n;
+        double leafCost = double(ci_) * blocks(n);
         bool canLeaf = n <= uint32_t(leafCap_);
 
         if (t.depth < kBvhMedianDepth) {
@@ -198,11 +199,13 @@ private:
 
     double splitCost(const Box4& l, uint32_t nl, const Box4& r, uint32_t nr) const {
         // A zero-measure parent (all primitives at one point): every ratio is 1.
-        if (parentMeasure_ <= 0.0) return ct_ + double(ci_) * (nl + nr);
-        return ct_ +
-               ci_ * (sahMeasure(l, useLength_) * nl + sahMeasure(r, useLength_) * nr) /
-                   parentMeasure_;
+        if (parentMeasure_ <= 0.0) return ct_ + double(ci_) * (blocks(nl) + blocks(nr));
+        return ct_ + ci_ *
+                         (sahMeasure(l, useLength_) * blocks(nl) +
+                          sahMeasure(r, useLength_) * blocks(nr)) /
+                         parentMeasure_;
     }
+    double blocks(uint32_t n) const { return double((n + block_ - 1) / block_); }
 
     // Scale mapping a centroid coordinate to its bin; 0 for an axis that binning cannot
     // split. The extent is taken in double because near +-FLT_MAX it overflows a float;
@@ -308,6 +311,7 @@ private:
     std::vector<PrimRef> refs_;
     int binCount_ = 16, maxLeaf_ = 4, leafCap_ = kBvhMaxLeafCap;
     float ct_ = 1.0f, ci_ = 1.0f;
+    uint32_t block_ = 1;
     bool useLength_ = false;
     double parentMeasure_ = 0.0;
     Bin bins_[3][kMaxBins];

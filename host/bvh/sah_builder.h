@@ -15,6 +15,9 @@ struct BvhBuildSettings {
     int maxLeafSize = 4;  // nodes with at most this many primitives always become leaves
     float traversalCost = 1.0f;
     float intersectionCost = 1.0f;
+    // Primitives are intersected this many at a time (the kernels' four-triangle blocks):
+    // SAH counts a set of n as ceil(n / blockSize) intersections, so leaves fill blocks.
+    int blockSize = 1;
 };
 
 // The largest leaf the builder emits when maxLeafSize is below it: a node of up to this

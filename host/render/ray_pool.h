@@ -36,7 +36,7 @@ struct RayPool {
           newPixel(ctx, capacity), newIndex(ctx, capacity),
           totals(ctx, slots), samplePixel(ctx, slots), sampleIndex(ctx, slots),
           sampleTime(ctx, motion ? slots : 0), aov(ctx, aovs ? slots : 0),
-          slotRays(ctx, slots), slotAbort(ctx, slots), jobs(ctx, slots), progress(ctx, 2) {
+          slotRays(ctx, slots), slotAbort(ctx, slots), jobs(ctx, slots), progress(ctx, 3) {
         shState.fillZero();
         nextState.fillZero();
         slotRays.fillZero();
@@ -73,7 +73,7 @@ struct RayPool {
     DeviceBuffer<SampleAov> aov;
     DeviceBuffer<uint32_t> slotRays, slotAbort;
     DeviceBuffer<PixelJob> jobs;
-    DeviceBuffer<uint32_t> progress;  // retire_samples: oldest job in flight, aborted jobs
+    DeviceBuffer<uint32_t> progress;  // retire_samples: oldest job in flight, aborted, NaN/Inf
 };
 
 struct RenderKernels {

@@ -334,16 +334,18 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     };
     // Retire: jobs whose samples have no ray left go to the film; the oldest ones free
     // their slots. Aborted jobs (a ray dropped) are issued again, once.
+    uint64_t nonfiniteRetired = 0;  // samples the film left out: a later pass replaces them
     auto retireJobs = [&](std::deque<PlannedJob>& pending) {
         const cl_uint window = cl_uint(ring.inFlight());
         if (window == 0) return;
-        const uint32_t init[2] = {window, 0u};
-        rp.progress.uploadRange(0, init, 2);
+        const uint32_t init[3] = {window, 0u, 0u};
+        rp.progress.uploadRange(0, init, 3);
         k.retire.launch(window, cl_uint(ring.frontPosition()), window,
                         cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()), rp.jobs,
                         rp.slotRays, rp.slotAbort, rp.totals, filmBuf, rp.aov, aovBuf,
                         rp.progress);
         std::vector<uint32_t> prog = rp.progress.download();
+        nonfiniteRetired += prog[2];
         if (prog[1] > 0) {
             std::vector<PixelJob> recs = rp.jobs.download();
             for (size_t j = window; j-- > 0;) {
@@ -373,7 +375,6 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                         (treelets ? treelets->peekRays() : 0);
         st.errorVsTime.push_back({now, rays, st.estimatedError});
     };
-    uint64_t poolRays = 0;  // rays traced over all rounds, for the pool fill
     // The pass's jobs stream through the pool: refill, trace, compact, retire, until every
     // job has retired. Returns false when a stop ends it early.
     auto runPass = [&](std::deque<PlannedJob> pending) {
@@ -386,22 +387,21 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             refill(pending);
             if (n == 0 && spillTop == 0 && ring.inFlight() == 0)
                 throw std::runtime_error("internal error: a pixel job larger than the ray pool");
+            const auto tRound = Clock::now();
+            const cl_uint traced = n;
             if (n > 0) {
-                const auto tRound = Clock::now();
                 traceRound();
-                poolRays += n;
                 if (st.poolFillSeries.empty() ||
                     secondsSince(t0) - st.poolFillSeries.back().seconds >= 0.05)
                     st.poolFillSeries.push_back({secondsSince(t0), double(n) / double(pool)});
-                const cl_uint traced = n;
                 compactSpawned(cl_uint(n * spawn));
-                m_ctx.finish();
-                const double dt = secondsSince(tRound);
-                if (dt > 0) raysPerSec = double(traced) / dt;
-                roundCap = std::clamp<size_t>(size_t(raysPerSec * 0.25),
-                                               std::min<size_t>(1024, pool), pool);
             }
-            retireJobs(pending);
+            retireJobs(pending);  // its progress read waits for the round: time it here
+            if (const double dt = secondsSince(tRound); traced > 0 && dt > 0) {
+                raysPerSec = double(traced) / dt;
+                roundCap = std::clamp<size_t>(size_t(raysPerSec * 0.25),
+                                              std::min<size_t>(1024, pool), pool);
+            }
             ++st.iterations;
             if (f.procedurals) {  // a ray reached an archive's bound: load it first
                 std::vector<uint32_t> flags = numerics.download();
@@ -439,6 +439,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         }
         if (!runPass(planJobs(pass, maxJob))) {
             st.abortedSamples = ring.samplesInFlight();  // in flight: never reach the film
+            break;
+        }
+        if (planner.firstPassIsFinal() && nonfiniteRetired == 0 && errorTarget <= 0) {
+            st.stopReason = "quality";  // every pixel has all its samples: nothing to plan
             break;
         }
         const auto tFilm = Clock::now();

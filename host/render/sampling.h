@@ -37,6 +37,12 @@ public:
     // pass (an error target or a time budget tightens it as the render goes on).
     std::vector<PixelRequest> nextPass(const std::vector<PixelAccum>& film, float pixelError);
     int passes() const { return m_pass; }
+    // After the first pass every pixel has the minimum; when that is also the maximum,
+    // no later pass can add a sample (unless some were dropped as NaN/Inf), so the film
+    // need not be read back to plan one.
+    bool firstPassIsFinal() const {
+        return m_pass > 0 && m_settings.minSamples >= m_settings.maxSamples;
+    }
     const SamplingSettings& settings() const { return m_settings; }
 
 private:

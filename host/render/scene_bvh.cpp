@@ -18,10 +18,16 @@ int appendBvh4(Bvh4& into, const Bvh4& part) {
     return nodeOffset;
 }
 
+BvhBuildSettings sceneBvhSettings() {
+    BvhBuildSettings s;
+    s.blockSize = 4;
+    return s;
+}
+
 SceneBvh buildSceneBvh(const Scene& scene) {
     SceneBvh out;
     BvhPrimitives top = bvhPrimitives(scene);
-    Bvh bvh = buildBvh(top.bounds);
+    Bvh bvh = buildBvh(top.bounds, sceneBvhSettings());
     out.droppedPrims = bvh.droppedPrims;
     out.bvh4 = collapseToBvh4(bvh, scene.triangles, &top);
     std::vector<int> roots;
@@ -37,7 +43,7 @@ SceneBvh buildSceneBvh(const Scene& scene) {
             prims.ids.push_back(t);
             prims.bounds.push_back(b);
         }
-        Bvh pb = buildBvh(prims.bounds);
+        Bvh pb = buildBvh(prims.bounds, sceneBvhSettings());
         roots.push_back(appendBvh4(out.bvh4, collapseToBvh4(pb, scene.triangles, &prims)));
     }
     out.objects = scene.quadrics;

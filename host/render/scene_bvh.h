@@ -16,6 +16,10 @@ struct SceneBvh {
     uint32_t droppedPrims = 0;     // primitives with unusable bounds (non-finite)
 };
 
+// How the renderer builds its trees (the benchmarks build with the same): SAH counting
+// primitives in the kernels' blocks of four.
+BvhBuildSettings sceneBvhSettings();
+
 SceneBvh buildSceneBvh(const Scene& scene);
 
 // Appends `part` (a tree with its own node and block indices) to `into`; returns the

@@ -1,0 +1,122 @@
+// wide_bvh_test.cpp: the four- and eight-wide collapses of the binary SAH tree
+// (host/bvh/collapse4.h) keep every triangle exactly once, and the eight-wide traversal
+// (cl/lib/traverse8.clh, measured against the four-wide one by bench_trace --wide8)
+// finds the same closest hits as a brute-force search in double precision.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "bvh/collapse4.h"
+#include "cl/include/ray.h"
+#include "ocl/buffer.h"
+#include "ocl/kernel.h"
+#include "ocl/program.h"
+#include "render/device_scene.h"
+#include "render/scene_bvh.h"
+#include "render_harness.h"
+
+using namespace rd;
+
+namespace {
+
+std::vector<Triangle> soup(size_t n, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+    std::vector<Triangle> t;
+    for (size_t i = 0; i < n; ++i) {
+        float cx = 5 * U(rng), cy = 5 * U(rng), cz = 5 * U(rng);
+        auto p = [&] { return rt_float4{cx + 0.4f * U(rng), cy + 0.4f * U(rng), cz + 0.4f * U(rng), 0}; };
+        t.push_back({p(), p(), p()});
+    }
+    return t;
+}
+
+template <class Wide>
+std::vector<int> primCounts(const Wide& w, size_t tris) {
+    std::vector<int> seen(tris, 0);
+    for (const Triangle4& b : w.blocks)
+        for (uint32_t p : b.prim)
+            if (p != RT_EMPTY_LANE) ++seen.at(p);
+    return seen;
+}
+
+// Closest hit by a plain double-precision Moller-Trumbore over every triangle.
+double bruteForce(const std::vector<Triangle>& tris, const rt_float4& o, const rt_float4& d,
+                  uint32_t& prim) {
+    double best = 1e30;
+    prim = RT_NO_HIT;
+    for (size_t i = 0; i < tris.size(); ++i) {
+        const Triangle& t = tris[i];
+        double e1[3] = {t.v1.x - t.v0.x, t.v1.y - t.v0.y, t.v1.z - t.v0.z};
+        double e2[3] = {t.v2.x - t.v0.x, t.v2.y - t.v0.y, t.v2.z - t.v0.z};
+        double dv[3] = {d.x, d.y, d.z};
+        double p[3] = {dv[1] * e2[2] - dv[2] * e2[1], dv[2] * e2[0] - dv[0] * e2[2],
+                       dv[0] * e2[1] - dv[1] * e2[0]};
+        double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+        if (std::fabs(det) < 1e-12) continue;
+        double s[3] = {o.x - t.v0.x, o.y - t.v0.y, o.z - t.v0.z};
+        double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
+        double q[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2],
+                       s[0] * e1[1] - s[1] * e1[0]};
+        double v = (dv[0] * q[0] + dv[1] * q[1] + dv[2] * q[2]) / det;
+        double tt = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+        if (u < 0 || v < 0 || u + v > 1 || tt <= 0 || tt >= best) continue;
+        best = tt;
+        prim = uint32_t(i);
+    }
+    return best;
+}
+
+}  // namespace
+
+TEST(WideBvh, CollapsesKeepEveryTriangleOnce) {
+    std::vector<Triangle> tris = soup(5000, 1);
+    Scene s;
+    s.triangles = tris;
+    Bvh bvh = buildBvh(triangleBounds(s), sceneBvhSettings());
+    Bvh4 b4 = collapseToBvh4(bvh, tris);
+    Bvh8 b8 = collapseToBvh8(bvh, tris);
+    for (int c : primCounts(b4, tris.size())) ASSERT_EQ(c, 1);
+    for (int c : primCounts(b8, tris.size())) ASSERT_EQ(c, 1);
+    EXPECT_LT(b8.nodes.size(), b4.nodes.size()) << "eight-wide: fewer nodes";
+}
+
+TEST(WideBvh, EightWideTraversalFindsTheClosestHits) {
+    const ClContext& ctx = test::testContext();
+    std::vector<Triangle> tris = soup(3000, 2);
+    Scene s;
+    s.triangles = tris;
+    Bvh bvh = buildBvh(triangleBounds(s), sceneBvhSettings());
+    Bvh8 b8 = collapseToBvh8(bvh, tris);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+    const size_t n = 2048;
+    std::vector<rt_float4> org, dir;
+    for (size_t i = 0; i < n; ++i) {
+        float dx = U(rng), dy = U(rng), dz = U(rng), l = std::sqrt(dx * dx + dy * dy + dz * dz);
+        org.push_back({6 * U(rng), 6 * U(rng), 6 * U(rng), 0.0f});
+        dir.push_back({dx / l, dy / l, dz / l, 1e30f});
+    }
+    Program program(ctx, assembleClSource({"intersect8.cl"}), "-cl-std=CL1.2");
+    Profiler prof(ctx);
+    Kernel k(ctx, program.get(), "intersect_closest8", prof);
+    DeviceBuffer<Bvh8Node> nodes(ctx, b8.nodes);
+    DeviceBuffer<Triangle4> blocks(ctx, b8.blocks);
+    DeviceBuffer<rt_float4> ob(ctx, org), db(ctx, dir);
+    DeviceBuffer<RayState> state(ctx, std::vector<RayState>(n, RayState{1u, 0u, RT_NO_HIT, 0.0f}));
+    DeviceBuffer<RayHit> hits(ctx, n);
+    k.launch(n, cl_uint(n), nodes, blocks, ob, db, state, hits);
+    std::vector<RayHit> h = hits.download();
+    int hitsFound = 0, wrong = 0;
+    for (size_t i = 0; i < n; ++i) {
+        uint32_t prim;
+        double t = bruteForce(tris, org[i], dir[i], prim);
+        hitsFound += prim != RT_NO_HIT;
+        if (prim == RT_NO_HIT ? h[i].prim != RT_NO_HIT
+                              : std::fabs(h[i].t - t) > 1e-4 * std::max(1.0, t))
+            ++wrong;
+    }
+    EXPECT_GT(hitsFound, int(n) / 4);
+    EXPECT_EQ(wrong, 0) << "of " << n << " rays";
+}
