@@ -338,8 +338,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     auto retireJobs = [&](std::deque<PlannedJob>& pending) {
         const cl_uint window = cl_uint(ring.inFlight());
         if (window == 0) return;
-        const uint32_t init[3] = {window, 0u, 0u};
-        rp.progress.uploadRange(0, init, 3);
+        rp.progress.fill(window, 0, 1);  // not a blocking write: that would wait for the round
+        rp.progress.fill(0u, 1, 2);
         k.retire.launch(window, cl_uint(ring.frontPosition()), window,
                         cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()), rp.jobs,
                         rp.slotRays, rp.slotAbort, rp.totals, filmBuf, rp.aov, aovBuf,
