@@ -4,8 +4,8 @@
  * treelet (treelet_scatter, from the per-treelet counts the round before left); rays
  * entering other treelets are queued for the next round. The first round
  * (treelet_closest_root, treelet_shadow_root) takes the rays themselves into the root
- * treelet. After the last round treelet_resolve turns each
- * ray's closest-hit key into its RayHit, recomputing u, v for the winning triangle. */
+ * treelet. After the last round treelet_resolve turns each ray's closest-hit key into
+ * its RayHit, recomputing u, v for the winning triangle or object. */
 #ifdef RT_HAS_TREELETS
 #include "counters.clh"
 #include "ray.h"
