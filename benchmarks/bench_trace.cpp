@@ -1,7 +1,10 @@
 // bench_trace.cpp: ray throughput (issue 5). Primary, diffuse-bounce and shadow rays on
 // the same procedural meshes, traced by RayDrive's intersect kernels on the chosen OpenCL
 // device and by Embree 3 (rtcIntersect1/rtcOccluded1 over all cores) in the same run,
-// median of several runs, reported as Mrays/s and as the ratio RayDrive / Embree.
+// median of several runs, reported as Mrays/s and as the ratio RayDrive / Embree; then
+// the same rays through the treelet-streamed traversal (render/treelet_trace.h) at a few
+// treelet budgets, resident and streamed through a cache, with their ratio to Embree and
+// to the resident kernels.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -24,6 +27,7 @@
 #include "ocl/program.h"
 #include "render/device_scene.h"
 #include "render/scene_bvh.h"
+#include "render/treelet_trace.h"
 
 using namespace rd;
 using Clock = std::chrono::steady_clock;
@@ -247,6 +251,14 @@ int main(int argc, char** argv) {
     app.add_option("--variant", variants,
                    "extra OpenCL build options (e.g. -DRT_SOME_SWITCH): that kernel variant is "
                    "timed in the same runs, printed against the default");
+    std::vector<size_t> budgets{size_t(1) << 30, size_t(256) << 10, size_t(64) << 10,
+                                size_t(4) << 10};
+    double streamFraction = 0.25;
+    app.add_option("--treelet-budgets", budgets,
+                   "treelet budgets in bytes to time (1 GiB and more: the whole BVH)");
+    app.add_option("--stream-fraction", streamFraction,
+                   "also stream 64 KiB treelets through a cache of this fraction of the BVH "
+                   "(0: not)");
     CLI11_PARSE(app, argc, argv);
 
     ClContext ctx(selectDevice(device));
@@ -259,6 +271,9 @@ int main(int argc, char** argv) {
     for (const std::string& v : variants)
         programs.push_back(std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}),
                                                      "-cl-std=CL1.2 " + v));
+    Program treeletProgram(ctx, assembleClSource({"intersect.cl", "treelet.cl"}),
+                           "-cl-std=CL1.2 -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN");
+    std::vector<std::string> treeletRows;  // printed after the resident table
     std::printf("%-14s %-8s %10s %10s %10s %8s %9s %9s\n", "scene", "rays", "count",
                 "RayDrive", "Embree", "ratio", "agree", "cpu ratio");
     std::unique_ptr<Program> program8;
@@ -402,9 +417,68 @@ int main(int argc, char** argv) {
                 std::printf("  variant %-30s %10.2f Mrays/s, %.3f of default, %.3f of Embree\n",
                             variants[p - 1].c_str(), n / median(tv[p]) * 1e-6,
                             median(td) / median(tv[p]), median(te) / median(tv[p]));
+            std::fflush(stdout);
+            // The treelet path on the same rays; "agree" is bit-for-bit agreement with the
+            // resident kernels (hit, t, u, v; occlusion).
+            std::vector<RayHit> residentHits = hits.download();
+            std::vector<RayState> residentShadow = state.download();
+            std::vector<std::pair<size_t, size_t>> modes;  // (budget, scene memory)
+            for (size_t b : budgets) modes.push_back({b, 0});
+            if (streamFraction > 0)
+                modes.push_back({size_t(64) << 10,
+                                 std::max<size_t>(1, size_t(streamFraction * double(
+                                     bvh4.nodes.size() * sizeof(Bvh4Node) +
+                                     bvh4.blocks.size() * sizeof(Triangle4))))});
+            DeviceBuffer<Triangle> tris(ctx, mesh.tris);
+            const TraceScene sc{noQuadrics, noCsg, tris, noMotion, tris, noSample, noTime};
+            for (auto [budget, memory] : modes) {
+                TreeletStats ts;
+                TreeletTracer tracer(ctx, treeletProgram.get(), prof, bvh4, budget, memory, n, ts);
+                auto runTreelets = [&] {
+                    state.upload(st);
+                    ctx.finish();
+                    auto t0 = Clock::now();
+                    if (k.shadow) tracer.shadow(cl_uint(n), org, dir, state, sc, 1);
+                    else tracer.closest(cl_uint(n), org, dir, state, hits, sc);
+                    ctx.finish();
+                    return std::chrono::duration<double>(Clock::now() - t0).count();
+                };
+                runTreelets();
+                const TreeletStats once = ts;
+                std::vector<double> tt;
+                for (int r = 0; r < runs; ++r) tt.push_back(runTreelets());
+                size_t agree = 0;
+                if (k.shadow) {
+                    auto s2 = state.download();
+                    for (size_t i = 0; i < n; ++i) agree += s2[i].alive == residentShadow[i].alive;
+                } else {
+                    auto h2 = hits.download();
+                    for (size_t i = 0; i < n; ++i)
+                        agree += h2[i].prim == residentHits[i].prim && h2[i].t == residentHits[i].t &&
+                                 h2[i].u == residentHits[i].u && h2[i].v == residentHits[i].v;
+                }
+                double mt = n / median(tt) * 1e-6;
+                char label[64], row[320];
+                if (budget >= (size_t(1) << 30)) std::snprintf(label, sizeof label, "whole");
+                else std::snprintf(label, sizeof label, "%zuK%s", budget >> 10,
+                                   memory ? " stream" : "");
+                std::snprintf(row, sizeof row,
+                              "%-14s %-8s %-11s %8zu %7llu %10llu %8llu %10.2f %8.3f %8.3f %8.4f%%",
+                              mesh.name.c_str(), k.name, label, ts.treelets,
+                              (unsigned long long)once.rounds, (unsigned long long)once.pairs,
+                              (unsigned long long)once.uploads, mt, mt / me, mt / md,
+                              100.0 * double(agree) / double(n));
+                treeletRows.push_back(row);
+            }
         }
     }
     std::printf("(Mrays/s, wall time of one launch over all rays incl. launch overhead;\n"
-                " cpu ratio: Embree's CPU seconds over RayDrive's for the same rays)\n");
+                " cpu ratio: Embree's CPU seconds over RayDrive's for the same rays)\n\n");
+    std::printf("treelet-streamed traversal (rounds, pairs, uploads: of one trace; agree: "
+                "bit for bit with the resident kernels)\n");
+    std::printf("%-14s %-8s %-11s %8s %7s %10s %8s %10s %8s %8s %9s\n", "scene", "rays",
+                "budget", "treelets", "rounds", "pairs", "uploads", "Mrays/s", "/Embree",
+                "/resid.", "agree");
+    for (const std::string& r : treeletRows) std::printf("%s\n", r.c_str());
     return 0;
 }

@@ -182,6 +182,13 @@ int main(int argc, char** argv) {
     app.add_option("--texture-cache", textureTiles,
                    "device texture cache in tiles of 32x32 (default: Option \"limits\" "
                    "\"texturememory\", else every tile up to 256 MiB)");
+    size_t treeletBytes = 0, sceneMemory = 0;
+    app.add_option("--treelet-budget", treeletBytes,
+                   "trace through treelets of at most BYTES of BVH (default: Option \"limits\" "
+                   "\"treeletbytes\", else the resident BVH; triangle scenes only)");
+    app.add_option("--scene-memory", sceneMemory,
+                   "device BYTES for the treelets; less than the BVH streams them through a "
+                   "cache (default: Option \"limits\" \"scenememory\" in KiB, else all)");
     app.add_flag("--tessellate-quadrics", tessellateQuadrics,
                  "dice quadrics into triangles instead of intersecting them exactly");
     try {
@@ -220,6 +227,8 @@ int main(int argc, char** argv) {
             settings.errorTarget = errorTarget;
             settings.progress = !quiet;
             settings.textureCacheTiles = textureTiles;
+            settings.treeletBytes = treeletBytes;
+            settings.sceneMemoryBytes = sceneMemory;
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
             rd::Renderer renderer(ctx, settings);
             rd::Film film;

@@ -7,4 +7,5 @@
 #include "ray.h"
 #include "scene_types.h"
 #include "texture.h"
+#include "treelet.h"
 #endif

@@ -46,8 +46,10 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
                          const Features& f, const ShadingSetup& shading)
     : camera(scene.deviceCamera()),
       cameraBuf(ctx, std::vector<Camera>{camera}),
-      nodes(ctx, bvh.nodes),
-      blocks(ctx, bvh.blocks),
+      // the treelet path (treelet_trace.h) keeps its own copy of the tree, or a cache
+      nodes(f.treelets ? DeviceBuffer<Bvh4Node>(ctx, 0) : DeviceBuffer<Bvh4Node>(ctx, bvh.nodes)),
+      blocks(f.treelets ? DeviceBuffer<Triangle4>(ctx, 0)
+                        : DeviceBuffer<Triangle4>(ctx, bvh.blocks)),
       triangles(ctx, scene.triangles),
       attrs(ctx, scene.attrs),
       normals(f.smoothNormals ? DeviceBuffer<rt_float4>(ctx, scene.normals)

@@ -18,6 +18,7 @@ struct DeviceScene {
     DeviceBuffer<Camera> cameraBuf;
     DeviceBuffer<Bvh4Node> nodes;     // the four-wide layout the kernels traverse
     DeviceBuffer<Triangle4> blocks;   // leaf triangles, four to a block, for intersection
+                                      // (both empty with f.treelets: treelet_trace.h's)
     DeviceBuffer<Triangle> triangles; // by primitive index, for shading
     DeviceBuffer<TriangleAttr> attrs;
     DeviceBuffer<rt_float4> normals;

@@ -32,6 +32,8 @@ struct Features {
     bool procedurals = false;   // DelayedReadArchive bounds not loaded yet
     int pointParams = 0;        // shader parameters given per point: the most on a surface
     float pixelSpread = 0.0f;   // footprint growth per unit of ray length (perspective)
+    bool treelets = false;      // treelet-streamed traversal (render/treelet_trace.h)
+    bool int64Min = false;      // the device has 64-bit atomic min (its closest hits)
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)

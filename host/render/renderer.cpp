@@ -41,7 +41,7 @@ double secondsSince(Clock::time_point t0) {
 
 const std::vector<std::string> kRenderSources = {
     "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "accumulate.cl", "compact.cl",
-    "retire.cl"};
+    "retire.cl", "treelet.cl"};
 
 const char* signalName(int sig) { return sig == 2 ? "SIGINT" : sig == 15 ? "SIGTERM" : "signal"; }
 
@@ -77,6 +77,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     Features f = analyse(scene, shading);
     f.textures = shading.textures && !textures.empty();
     f.aovs = m_settings.geometricAovs;
+    // Treelet-streamed traversal when a budget is set and the scene allows it.
+    const size_t treeletBudget = m_settings.treeletBytes > 0 ? m_settings.treeletBytes
+                                                             : size_t(scene.render.treeletBytes);
+    configureTreelets(f, m_ctx, treeletBudget, st.treelets);
+    if (treeletBudget > 0 && !f.treelets)
+        diag.warning(rib::SourceLoc{scene.sourceFile, 0},
+                     "treelet budget not used: " + st.treelets.why);
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
@@ -115,6 +122,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         prepare.collectActive();
     }
     const Camera& cam = ds.camera;
+    std::unique_ptr<TreeletTracer> treelets;  // instead of the two intersect launches
 
     const uint32_t nl = f.shadowRays ? f.lightCount : 0;
     const size_t spawn = size_t(f.spawnSlots());
@@ -135,6 +143,14 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
     RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
                shaderCount + 1);
+    if (f.treelets)
+        treelets = std::make_unique<TreeletTracer>(
+            m_ctx, program.get(), prof, bvh4, treeletBudget,
+            m_settings.sceneMemoryBytes > 0 ? m_settings.sceneMemoryBytes
+                                            : size_t(scene.render.sceneMemoryKB) << 10,
+            pool, st.treelets);
+    const TraceScene traceScene{ds.quadrics,      ds.csg,    ds.triangles, ds.quadricMotion,
+                                ds.trianglesEnd, rp.sample, rp.sampleTime};
     // Textures: the device tile cache (Option "limits" "texturememory" or the command
     // line; else every tile when they fit in 256 MiB), and the lists of points to shade
     // again once the tiles they missed are there.
@@ -288,10 +304,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     };
     // One round over the pool's n rays: trace, sort by shader, shade, shadows.
     auto traceRound = [&] {
-        k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
-                                  rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
-                                  ds.quadricMotion, ds.trianglesEnd, rp.sample,
-                                  rp.sampleTime, rp.hitInstance);
+        if (treelets)
+            treelets->closest(n, rp.origin, rp.direction, rp.state, rp.hits, traceScene);
+        else
+            k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
+                                      rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
+                                      ds.quadricMotion, ds.trianglesEnd, rp.sample,
+                                      rp.sampleTime, rp.hitInstance);
         rp.keyCount.fillZero();
         k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics,
                           rp.hitInstance, rp.key, rp.keyCount, rp.nextState, rp.shState,
@@ -303,10 +322,15 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         shadeRuns(counts, offsets, rp.sorted, reshade.firstList());
         if (f.textures) reshade.run(offsets, shading.surfaceNames, shadeRuns);
         if (nl > 0) {
-            k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
-                                     rp.shOrigin, rp.shDirection, rp.shState, ds.quadrics,
-                                     ds.csg, ds.triangles, ds.quadricMotion, ds.trianglesEnd,
-                                     rp.sample, rp.sampleTime, nl, numerics);
+            if (treelets)
+                treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
+                                 traceScene, nl);
+            else
+                k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
+                                         rp.shOrigin, rp.shDirection, rp.shState, ds.quadrics,
+                                         ds.csg, ds.triangles, ds.quadricMotion,
+                                         ds.trianglesEnd, rp.sample, rp.sampleTime, nl,
+                                         numerics);
             k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
                                        rp.totals);
         }
@@ -350,7 +374,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         film.pixels = filmBuf.download();
         st.estimatedError = estimateFilmError(film.pixels);
         prof.collect();
-        uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive();
+        uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
+                        (treelets ? treelets->peekRays() : 0);
         st.errorVsTime.push_back({now, rays, st.estimatedError});
     };
     // The pass's jobs stream through the pool: refill, trace, compact, retire, until every
@@ -446,6 +471,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     m_ctx.finish();
     prof.collect();
     for (Kernel* kern : k.all()) kern->collectActive();
+    if (treelets) treelets->collectActive();
     st.kernels = prof.stats();
     if (f.textures) {
         std::vector<uint32_t> tc = textures.counterBuf.download();
@@ -457,10 +483,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         auto it = st.kernels.find(name);
         return it == st.kernels.end() ? uint64_t(0) : it->second.activeItems;
     };
-    st.continuationRays = active("intersect_closest") > st.eyeRays
-                              ? active("intersect_closest") - st.eyeRays
-                              : 0;
-    st.shadowRays = active("intersect_shadow");
+    // (the treelet path's first rounds take each ray once, as the intersect kernels do)
+    const uint64_t closestRays = active("intersect_closest") + active("treelet_closest_root");
+    st.continuationRays = closestRays > st.eyeRays ? closestRays - st.eyeRays : 0;
+    st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root");
     film.pixels = filmBuf.download();
     if (f.aovs) film.aovs = aovBuf.download();
     st.estimatedError = estimateFilmError(film.pixels);
@@ -492,7 +518,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // Pool fill: rays traced per round over the pool's capacity. Device busy: kernel time
     // over the sampling loop's wall time; the rest of the frame is host overhead: the
     // device waiting on the host (downloads of counts, offsets, planning) or idle.
-    if (auto it = st.kernels.find("intersect_closest");
+    if (auto it = st.kernels.find(treelets ? "treelet_closest_root" : "intersect_closest");
         it != st.kernels.end() && it->second.launches > 0)
         st.poolFill = double(it->second.activeItems) /
                       (double(it->second.launches) * double(st.poolCapacity));

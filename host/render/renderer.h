@@ -15,6 +15,7 @@
 #include "ocl/kernel.h"
 #include "ocl/program.h"
 #include "sampling.h"
+#include "treelet_trace.h"
 #include "scene/scene.h"
 
 namespace rd {
@@ -27,6 +28,11 @@ struct RenderSettings {
     bool geometricAovs = false;  // render z and N
     bool progress = false;       // progress bar on stderr (when it is a terminal)
     size_t textureCacheTiles = 0;  // device texture tiles (0: the scene's, else all that fit)
+    // Treelet-streamed traversal (treelet_trace.h): treelet budget in bytes (0: the
+    // scene's Option "limits" "treeletbytes", else the resident traversal), and the device
+    // bytes the BVH may take (0: the scene's "scenememory", else all: treelets resident).
+    size_t treeletBytes = 0;
+    size_t sceneMemoryBytes = 0;
 };
 
 // One point of the error-against-time series in --stats.
@@ -75,6 +81,7 @@ struct RenderStats {
     std::string device, platform;
     std::map<std::string, KernelStats> kernels;
     TextureStats textures;
+    TreeletStats treelets;
     // DelayedReadArchive calls (keys) rays reached before they were loaded: the render
     // stopped at once; read the RIB again with them loaded (render_with_archives.h)
     std::vector<std::string> proceduralsReached;

@@ -235,9 +235,13 @@ void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& pa
         }
         return;
     }
-    if (name == "limits") {  // PRMan's texture cache size, in KiB
+    if (name == "limits") {  // PRMan's texture cache size, in KiB; RayDrive's treelets
         int kb = params.getInt("texturememory", -1);
         if (kb > 0) m_options.render.textureMemoryKB = kb;
+        int tb = params.getInt("treeletbytes", -1);
+        if (tb > 0) m_options.render.treeletBytes = tb;
+        int sm = params.getInt("scenememory", -1);
+        if (sm > 0) m_options.render.sceneMemoryKB = sm;
         return;
     }
     if (name == "trace") traceDepthOption(params);

@@ -68,6 +68,8 @@ struct RenderOptionsSpec {
     float pixelError = 0.01f; // "float pixelerror": per-pixel relative error to refine to
     bool exactQuadrics = true; // "int exactquadrics": 0 tessellates quadrics into triangles
     int textureMemoryKB = 0;   // Option "limits" "texturememory": the device tile cache (0: auto)
+    int treeletBytes = 0;      // Option "limits" "treeletbytes": treelet budget (0: resident BVH)
+    int sceneMemoryKB = 0;     // Option "limits" "scenememory": device BVH bytes (0: all)
 };
 
 struct Scene {

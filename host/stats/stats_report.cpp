@@ -18,6 +18,12 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                          {"work_items_active", k.activeItems},
                          {"occupancy", k.occupancy()}};
     }
+    json rounds = json::array();
+    for (const TreeletRoundStats& r : st.treelets.byRound)
+        rounds.push_back({{"pairs", r.pairs},
+                          {"treelets_with_rays", r.treeletsWithRays},
+                          {"uploads", r.uploads}});
+    const TreeletStats& ts = st.treelets;
     json series = json::array();
     for (const ErrorSample& e : st.errorVsTime)
         series.push_back({e.seconds, e.rays, e.estimatedError});
@@ -72,6 +78,22 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                       {"estimated_error", st.estimatedError},
                       {"unsampled_pixels", st.unsampledPixels},
                       {"aborted_samples", st.abortedSamples}}},
+        {"treelets", {{"used", ts.used},
+                      {"streamed", ts.streamed},
+                      {"not_used_because", ts.why},
+                      {"budget_bytes", ts.budgetBytes},
+                      {"count", ts.treelets},
+                      {"bytes", ts.treeletBytes},
+                      {"cache_slots", ts.cacheSlots},
+                      {"slot_bytes", ts.slotBytes},
+                      {"traces", ts.traces},
+                      {"rounds", ts.rounds},
+                      {"pairs", ts.pairs},
+                      {"launches", ts.launches},
+                      {"uploads", ts.uploads},
+                      {"uploaded_bytes", ts.uploadedBytes},
+                      {"reruns", ts.reruns},
+                      {"by_round", rounds}}},
         {"error_vs_time", series},
         {"kernels", kernels},
         {"textures", {{"files", st.textures.textures},
@@ -123,6 +145,24 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
             << t["tiles_uploaded"] << " tiles (" << t["bytes_uploaded"] << " bytes) uploaded, "
             << t["reshade_passes"] << " reshade passes, " << t["unresolved_points"]
             << " unresolved\n";
+    if (const auto& t = s["treelets"]; t["used"].get<bool>()) {
+        out << "treelets  " << t["count"] << " of <= " << t["budget_bytes"] << " bytes ("
+            << t["bytes"] << " in all), "
+            << (t["streamed"].get<bool>() ? "streamed through " + t["cache_slots"].dump() +
+                                                " cache slots"
+                                          : std::string("resident"))
+            << "; " << t["traces"] << " traces, " << t["rounds"] << " rounds, " << t["pairs"]
+            << " pairs, " << t["uploads"] << " uploads (" << t["uploaded_bytes"]
+            << " bytes), " << t["reruns"] << " reruns\n";
+        out << "  round     pairs  treelets  uploads\n";
+        size_t r = 0;
+        for (const auto& x : t["by_round"])
+            out << std::setw(7) << r++ << std::setw(10) << x["pairs"].get<uint64_t>()
+                << std::setw(10) << x["treelets_with_rays"].get<uint64_t>() << std::setw(9)
+                << x["uploads"].get<uint64_t>() << "\n";
+    } else if (!t["not_used_because"].get<std::string>().empty()) {
+        out << "treelets  not used: " << t["not_used_because"].get<std::string>() << "\n";
+    }
     out << "features ";
     for (const auto& f : s["features"]) out << " " << f.get<std::string>();
     out << "\nprogram   " << (s["program"]["cache_hit"].get<bool>() ? "cache hit" : "built")

@@ -1,0 +1,190 @@
+/* treelet.cl: the treelet-streamed trace stage (DESIGN.md section 3, issue 5), built only
+ * with RT_HAS_TREELETS (host/render/treelet_trace.h drives it). A round runs
+ * treelet_closest or treelet_shadow over the queued (ray, treelet) pairs, grouped by
+ * treelet (treelet_scatter, from the per-treelet counts the round before left); rays
+ * entering other treelets are queued for the next round. The first round
+ * (treelet_closest_root, treelet_shadow_root) takes the rays themselves into the root
+ * treelet. After the last round treelet_resolve turns each ray's closest-hit key into
+ * its RayHit, recomputing u, v for the winning triangle or object. */
+#ifdef RT_HAS_TREELETS
+#include "counters.clh"
+#include "ray.h"
+#include "treelet_traverse.clh"
+
+/* The pair work-item i handles: in the first round (root_only) ray i in the root
+ * treelet, else pairs[first + i]. Returns 0 when there is none or the ray is dead. */
+inline int rt_treelet_pair(uint i, uint first, uint count, uint root_only,
+                           __global const TreeletPair* pairs, __global const RayState* state,
+                           TreeletPair* p) {
+    if (i >= count) return 0;
+    if (root_only) {
+        p->ray = i;
+        p->treelet = 0u;
+        p->tnear = -INFINITY;
+    } else {
+        *p = pairs[first + i];
+    }
+    return state[p->ray].alive != 0u;
+}
+
+/* One (ray, treelet) pair, closest hit: the ray's key lowered to the best hit found. */
+inline void rt_treelet_closest(TreeletPair p, uint root_only, __global const TreeletRef* refs,
+                               __global const Bvh4Node* nodes, __global const Triangle4* blocks,
+                               __global const float4* origin, __global const float4* direction,
+                               __global const RayState* state, __global ulong* keys,
+                               __global TreeletPair* next, uint next_cap,
+                               __global uint* counters, uint treelets RT_TL_OBJECTS_PARAM) {
+    float4 o = origin[p.ray], d = direction[p.ray];
+    ulong key = root_only ? RT_NO_KEY : keys[p.ray];
+    const ulong before = key;
+    /* entered behind the best hit: nothing in this treelet can be nearer */
+    if (p.tnear > rt_key_t(key, d.w)) return;
+    TreeletRef r = refs[p.treelet];
+    rt_treelet_traverse(nodes + r.node_base, blocks + r.block_base, o, d, o.w, d.w,
+                        state[p.ray].from_prim, 0, &key, p.ray, next, next_cap, counters,
+                        treelets RT_TL_OBJECTS_ARG);
+    if (root_only) keys[p.ray] = key; /* the ray's only pair this round */
+    else if (key < before) rt_key_min((volatile __global ulong*)&keys[p.ray], key);
+}
+
+/* One pair, any hit: an occluded ray dies, and its other queued pairs are skipped. */
+inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
+                              __global const Bvh4Node* nodes, __global const Triangle4* blocks,
+                              __global const float4* origin, __global const float4* direction,
+                              __global RayState* state, __global TreeletPair* next,
+                              uint next_cap, __global uint* counters,
+                              uint treelets RT_TL_OBJECTS_PARAM) {
+    float4 o = origin[p.ray], d = direction[p.ray];
+    ulong key = RT_NO_KEY;
+    TreeletRef r = refs[p.treelet];
+    if (rt_treelet_traverse(nodes + r.node_base, blocks + r.block_base, o, d, o.w, d.w,
+                            state[p.ray].from_prim, 1, &key, p.ray, next, next_cap, counters,
+                            treelets RT_TL_OBJECTS_ARG))
+        state[p.ray].alive = 0u;
+}
+
+/* What object blocks need (RT_HAS_QUADRICS; placeholders otherwise): the object scene
+ * and each ray's shutter time, from its sample (shadow ray i: shaded ray i / light_count). */
+#define RT_TL_SCENE_PARAMS                                                                 \
+    __global const Quadric *quadrics, __global const uint *csg, __global const Triangle *tris, \
+        __global const float4 *quadric_motion, __global const Triangle *tris_end,           \
+        __global const uint *ray_sample, __global const float *sample_time, uint light_count
+#ifdef RT_HAS_QUADRICS
+#ifdef RT_HAS_MOTION
+#define RT_TL_TIME(ray) sample_time[ray_sample[(ray) / light_count]]
+#else
+#define RT_TL_TIME(ray) 0.0f
+#endif
+#define RT_TL_DECLARE_OBJECTS(ray)                                                          \
+    const ObjectScene os = {quadrics, csg, tris, quadric_motion, tris_end, RT_TL_TIME(ray)}; \
+    const ObjectScene* objs = &os
+#else
+#define RT_TL_DECLARE_OBJECTS(ray)
+#endif
+
+/* The kernels: *_root is the first round (work-item i: ray i in the root treelet; its
+ * active count is the rays traced), the others run a round's queued pairs [first,
+ * first + count) (their active count is the pairs). Both take the same arguments. */
+#define RT_TREELET_CLOSEST_KERNEL(name, root_only)                                         \
+    __kernel void name(uint first, uint count, __global const TreeletPair* pairs,           \
+                       __global const TreeletRef* refs, __global const Bvh4Node* nodes,     \
+                       __global const Triangle4* blocks, __global const float4* origin,     \
+                       __global const float4* direction, __global const RayState* state,    \
+                       __global ulong* keys, __global TreeletPair* next, uint next_cap,      \
+                       __global uint* counters, uint treelets, RT_TL_SCENE_PARAMS,          \
+                       __global uint* active_counter) {                                     \
+        RT_DECLARE_ACTIVE_COUNTER;                                                          \
+        TreeletPair p;                                                                      \
+        int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
+        RT_COUNT_ACTIVE(active_counter, active);                                            \
+        if (!active) return;                                                                \
+        RT_TL_DECLARE_OBJECTS(p.ray);                                                       \
+        rt_treelet_closest(p, root_only, refs, nodes, blocks, origin, direction, state, keys, \
+                           next, next_cap, counters, treelets RT_TL_OBJECTS_ARG);           \
+    }
+RT_TREELET_CLOSEST_KERNEL(treelet_closest_root, 1u)
+RT_TREELET_CLOSEST_KERNEL(treelet_closest, 0u)
+
+#define RT_TREELET_SHADOW_KERNEL(name, root_only)                                          \
+    __kernel void name(uint first, uint count, __global const TreeletPair* pairs,           \
+                       __global const TreeletRef* refs, __global const Bvh4Node* nodes,     \
+                       __global const Triangle4* blocks, __global const float4* origin,     \
+                       __global const float4* direction, __global RayState* state,          \
+                       __global TreeletPair* next, uint next_cap, __global uint* counters,  \
+                       uint treelets, RT_TL_SCENE_PARAMS, __global uint* active_counter) {  \
+        RT_DECLARE_ACTIVE_COUNTER;                                                          \
+        TreeletPair p;                                                                      \
+        int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
+        RT_COUNT_ACTIVE(active_counter, active);                                            \
+        if (!active) return;                                                                \
+        RT_TL_DECLARE_OBJECTS(p.ray);                                                       \
+        rt_treelet_shadow(p, refs, nodes, blocks, origin, direction, state, next, next_cap,  \
+                          counters, treelets RT_TL_OBJECTS_ARG);                            \
+    }
+RT_TREELET_SHADOW_KERNEL(treelet_shadow_root, 1u)
+RT_TREELET_SHADOW_KERNEL(treelet_shadow, 0u)
+
+/* Groups a round's queue by treelet: cursor[t] starts at treelet t's offset. */
+__kernel void treelet_scatter(uint count,
+                              __global const TreeletPair* in,
+                              __global uint* cursor,
+                              __global TreeletPair* out,
+                              __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    uint i = get_global_id(0);
+    RT_COUNT_ACTIVE(active_counter, i < count);
+    if (i >= count) return;
+    TreeletPair p = in[i];
+    out[atomic_inc(&cursor[p.treelet])] = p;
+}
+
+/* The closest hit of each live ray as intersect_closest writes it: t from the key; u, v
+ * from the scalar watertight test of the winning triangle, whose edge functions and
+ * 1 / det are those of the four-wide test that found it, or from the winning object
+ * intersected again (which also gives the primitive to report). */
+__kernel void treelet_resolve(uint count,
+                              __global const float4* origin,
+                              __global const float4* direction,
+                              __global const RayState* state,
+                              __global const ulong* keys,
+                              __global RayHit* hits,
+                              RT_TL_SCENE_PARAMS,
+                              __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    uint i = get_global_id(0);
+    int active = i < count && state[i].alive;
+    RT_COUNT_ACTIVE(active_counter, active);
+    if (!active) return;
+    float4 o = origin[i], d = direction[i];
+    ulong key = keys[i];
+    RayHit h;
+    h.t = d.w;
+    h.u = h.v = 0.0f;
+    h.prim = RT_NO_HIT;
+    if (key != RT_NO_KEY) {
+        h.prim = (uint)(key & 0xffffffffUL);
+        h.t = rt_key_t(key, d.w);
+        WatertightRay w = rt_watertight_setup(d);
+        float t, u, v;
+        int again;
+#ifdef RT_HAS_QUADRICS
+        if (h.prim & RT_OBJECT_BIT) {
+            RT_TL_DECLARE_OBJECTS(i);
+            uint hp;
+            again = rt_object_hit(objs, &w, h.prim, o, d, o.w, d.w, &t, &u, &v, &hp);
+            h.prim = hp;
+        } else
+#endif
+        {
+            Triangle tri = tris[h.prim];
+            again = rt_intersect_triangle(&w, o, tri.v0, tri.v1, tri.v2, -INFINITY, INFINITY,
+                                          &t, &u, &v);
+        }
+        if (again) {
+            h.u = u;
+            h.v = v;
+        }
+    }
+    hits[i] = h;
+}
+#endif

@@ -1,0 +1,265 @@
+// treelet_trace.cpp: rounds of the treelet-streamed trace: queue growth, grouping by
+// treelet, and the device treelet cache with its chunked uploads.
+#include "treelet_trace.h"
+
+#include <algorithm>
+#include <deque>
+#include <functional>
+
+namespace rd {
+
+void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
+                       TreeletStats& stats) {
+    f.treelets = f.int64Min = false;
+    stats.budgetBytes = budgetBytes;
+    if (budgetBytes == 0) return;
+    size_t extBytes = 0;
+    clGetDeviceInfo(ctx.device(), CL_DEVICE_EXTENSIONS, 0, nullptr, &extBytes);
+    std::string ext(extBytes, '\0');
+    clGetDeviceInfo(ctx.device(), CL_DEVICE_EXTENSIONS, extBytes, ext.data(), nullptr);
+    if (f.instances || f.procedurals)
+        stats.why = "the scene has instances or deferred archives (the treelet cut does not "
+                    "cover their trees): resident traversal";
+    else if (ext.find("cl_khr_int64_base_atomics") == std::string::npos)
+        stats.why = "the device lacks cl_khr_int64_base_atomics: resident traversal";
+    if (!stats.why.empty()) return;
+    f.treelets = true;
+    f.int64Min = ext.find("cl_khr_int64_extended_atomics") != std::string::npos;
+}
+
+struct TreeletTracer::Impl {
+    Impl(const ClContext& c, cl_program p, Profiler& prof, const Bvh4& bvh, size_t budget,
+         TreeletStats& s)
+        : ctx(c), st(s), cut(cutTreelets(bvh, budget)),
+          closestRoot(c, p, "treelet_closest_root", prof),
+          closestPairs(c, p, "treelet_closest", prof),
+          shadowRoot(c, p, "treelet_shadow_root", prof),
+          shadowPairs(c, p, "treelet_shadow", prof),
+          scatter(c, p, "treelet_scatter", prof), resolve(c, p, "treelet_resolve", prof),
+          counters(c, cut.count() + 1), cursor(c, cut.count()) {}
+
+    const ClContext& ctx;
+    TreeletStats& st;
+    Treelets cut;
+    Kernel closestRoot, closestPairs, shadowRoot, shadowPairs, scatter, resolve;
+    DeviceBuffer<Bvh4Node> nodes;   // every treelet, or the cache's slots
+    DeviceBuffer<Triangle4> blocks;
+    DeviceBuffer<TreeletRef> refs;  // where each treelet is in nodes and blocks
+    DeviceBuffer<cl_ulong> keys;    // per ray: closest hit so far, (t bits << 32) | prim
+    DeviceBuffer<TreeletPair> queue, sorted;  // a round's queue as emitted, then grouped
+    DeviceBuffer<cl_uint> counters, cursor;
+    size_t capacity = 0;  // of queue and sorted
+    // The cache (streamed only): slot s holds treelet slotTreelet[s] (slot 0: the root,
+    // always), last used in chunk slotStamp[s]; treeletSlot[t] = -1 when not cached.
+    std::vector<int64_t> slotTreelet, treeletSlot;
+    std::vector<uint64_t> slotStamp;
+    uint64_t stamp = 0;
+
+    // Treelet t into cache slot s. The writes do not block (a round's uploads overlap
+    // the host's planning of the next chunk; the in-order queue runs them before the
+    // chunk's kernel): the nodes and blocks come from `cut`, which outlives them, and
+    // each new TreeletRef from `pendingRefs`, whose elements stay put until the trace's
+    // next blocking read, after which it is cleared.
+    void upload(uint32_t t, size_t slot) {
+        const TreeletRange& r = cut.ranges[t];
+        write(nodes.mem(), slot * cut.maxNodes * sizeof(Bvh4Node), &cut.nodes[r.nodeFirst],
+              r.nodeCount * sizeof(Bvh4Node));
+        write(blocks.mem(), slot * cut.maxBlocks * sizeof(Triangle4),
+              cut.blocks.data() + r.blockFirst, r.blockCount * sizeof(Triangle4));
+        pendingRefs.push_back({int32_t(slot * cut.maxNodes), int32_t(slot * cut.maxBlocks)});
+        write(refs.mem(), t * sizeof(TreeletRef), &pendingRefs.back(), sizeof(TreeletRef));
+        if (slotTreelet[slot] >= 0) treeletSlot[size_t(slotTreelet[slot])] = -1;
+        slotTreelet[slot] = t;
+        treeletSlot[t] = int64_t(slot);
+        ++st.uploads;
+        st.uploadedBytes += r.bytes();
+    }
+    void write(cl_mem m, size_t offset, const void* data, size_t bytes) {
+        if (bytes)
+            RD_CL_CHECK(clEnqueueWriteBuffer(ctx.queue(), m, CL_FALSE, offset, bytes, data, 0,
+                                             nullptr, nullptr),
+                        ctx.name());
+    }
+    std::deque<TreeletRef> pendingRefs;
+
+    // Runs one round's grouped pairs: at once when resident, else treelet by treelet in
+    // chunks whose treelets all fit in the cache (the root's slot is never given up; a
+    // slot used in the current chunk is not evicted). Returns the uploads.
+    uint64_t runGrouped(const std::vector<cl_uint>& counts, const std::vector<cl_uint>& offset,
+                        cl_uint total, const std::function<void(cl_uint, cl_uint)>& launch) {
+        if (!st.streamed) {
+            launch(0, total);
+            return 0;
+        }
+        const uint64_t uploadsBefore = st.uploads;
+        const size_t T = cut.count();
+        uint64_t chunk = ++stamp;
+        size_t chunkFirst = 0;
+        for (size_t t = 0; t < T; ++t) {
+            if (counts[t] == 0) continue;
+            if (treeletSlot[t] >= 0) {
+                slotStamp[size_t(treeletSlot[t])] = chunk;
+                continue;
+            }
+            auto lru = [&] {
+                size_t best = 0;
+                for (size_t s = 1; s < slotStamp.size(); ++s)
+                    if (slotStamp[s] != chunk && (best == 0 || slotStamp[s] < slotStamp[best]))
+                        best = s;
+                return best;  // 0: every slot serves this chunk
+            };
+            size_t slot = lru();
+            if (slot == 0) {  // the cache is full of this chunk's treelets: run them
+                launch(offset[chunkFirst], offset[t] - offset[chunkFirst]);
+                chunkFirst = t;
+                chunk = ++stamp;
+                slotStamp[0] = chunk;
+                slot = lru();
+            }
+            upload(uint32_t(t), slot);
+            slotStamp[slot] = chunk;
+        }
+        launch(offset[chunkFirst], total - offset[chunkFirst]);
+        return st.uploads - uploadsBefore;
+    }
+
+    // The rounds of one trace; `launch(rootOnly, first, count)` runs the closest or the
+    // shadow kernel over pairs [first, first + count) of `sorted` (or the rays, rootOnly).
+    void rounds(cl_uint n, const std::function<void(bool, cl_uint, cl_uint)>& launch) {
+        ++st.traces;
+        const size_t T = cut.count();
+        counters.fillZero();
+        std::function<void()> round = [&] { launch(true, 0, n); };
+        round();
+        if (st.byRound.empty()) st.byRound.resize(1);
+        st.byRound[0].pairs += n;
+        st.byRound[0].treeletsWithRays += 1;
+        st.pairs += n;
+        ++st.rounds;
+        for (size_t r = 1;; ++r) {
+            std::vector<cl_uint> counts = counters.download();  // blocks: uploads done
+            pendingRefs.clear();
+            const cl_uint total = counts[T];
+            if (total > capacity) {
+                // The queue overflowed: grow it and run the round again (keys and
+                // occlusion are the same the second time; the counts start again).
+                capacity = size_t(total) + total / 2;
+                queue = DeviceBuffer<TreeletPair>(ctx, capacity);
+                counters.fillZero();
+                ++st.reruns;
+                round();
+                --r;
+                continue;
+            }
+            if (sorted.size() < capacity) sorted = DeviceBuffer<TreeletPair>(ctx, capacity);
+            if (total == 0) break;
+            std::vector<cl_uint> offset(T, 0);
+            cl_uint sum = 0, nonEmpty = 0;
+            for (size_t t = 0; t < T; ++t) {
+                offset[t] = sum;
+                sum += counts[t];
+                nonEmpty += counts[t] > 0;
+            }
+            cursor.upload(offset);
+            scatter.launch(total, total, queue, cursor, sorted);
+            counters.fillZero();
+            if (st.byRound.size() <= r) st.byRound.resize(r + 1);
+            st.byRound[r].pairs += total;
+            st.byRound[r].treeletsWithRays += nonEmpty;
+            st.pairs += total;
+            ++st.rounds;
+            round = [this, counts, offset, total, r, &launch] {
+                st.byRound[r].uploads +=
+                    runGrouped(counts, offset, total, [&](cl_uint first, cl_uint count) {
+                        launch(false, first, count);
+                    });
+            };
+            round();
+        }
+    }
+};
+
+TreeletTracer::TreeletTracer(const ClContext& ctx, cl_program program, Profiler& prof,
+                             const Bvh4& bvh, size_t budgetBytes, size_t sceneMemoryBytes,
+                             size_t rays, TreeletStats& stats)
+    : m(std::make_unique<Impl>(ctx, program, prof, bvh, budgetBytes, stats)) {
+    Impl& s = *m;
+    const Treelets& cut = s.cut;
+    stats.used = true;
+    stats.treelets = cut.count();
+    stats.treeletBytes = cut.bytes();
+    stats.slotBytes = size_t(cut.maxNodes) * sizeof(Bvh4Node) + size_t(cut.maxBlocks) * sizeof(Triangle4);
+    // Streamed when the cut does not fit the scene memory and a cache of at least two
+    // slots (the root and one more) is smaller than the cut.
+    const size_t slots = sceneMemoryBytes > 0 ? std::max<size_t>(2, sceneMemoryBytes / stats.slotBytes) : 0;
+    stats.streamed = sceneMemoryBytes > 0 && sceneMemoryBytes < cut.bytes() && slots < cut.count();
+    if (stats.streamed) {
+        stats.cacheSlots = slots;
+        s.nodes = DeviceBuffer<Bvh4Node>(ctx, slots * cut.maxNodes, CL_MEM_READ_ONLY);
+        s.blocks = DeviceBuffer<Triangle4>(ctx, slots * cut.maxBlocks, CL_MEM_READ_ONLY);
+        s.refs = DeviceBuffer<TreeletRef>(ctx, cut.count(), CL_MEM_READ_ONLY);
+        s.slotTreelet.assign(slots, -1);
+        s.slotStamp.assign(slots, 0);
+        s.treeletSlot.assign(cut.count(), -1);
+        s.upload(0, 0);  // the root treelet stays resident
+    } else {
+        stats.cacheSlots = cut.count();
+        s.nodes = DeviceBuffer<Bvh4Node>(ctx, cut.nodes);
+        s.blocks = DeviceBuffer<Triangle4>(ctx, cut.blocks);
+        s.refs = DeviceBuffer<TreeletRef>(ctx, cut.residentRefs());
+    }
+    s.keys = DeviceBuffer<cl_ulong>(ctx, std::max<size_t>(rays, 1));
+    s.capacity = std::max<size_t>(2 * rays, 1024);
+    s.queue = DeviceBuffer<TreeletPair>(ctx, s.capacity);
+    s.sorted = DeviceBuffer<TreeletPair>(ctx, s.capacity);
+}
+
+// Uploads may still be queued: they read from the cut and pendingRefs.
+TreeletTracer::~TreeletTracer() { m->ctx.finish(); }
+
+void TreeletTracer::closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
+                            const DeviceBuffer<rt_float4>& direction,
+                            const DeviceBuffer<RayState>& state, DeviceBuffer<RayHit>& hits,
+                            const TraceScene& sc) {
+    Impl& s = *m;
+    if (s.keys.size() < n) s.keys = DeviceBuffer<cl_ulong>(s.ctx, n);
+    const cl_uint T = cl_uint(s.cut.count());
+    s.rounds(n, [&](bool root, cl_uint first, cl_uint count) {
+        ++s.st.launches;
+        (root ? s.closestRoot : s.closestPairs)
+            .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin, direction,
+                    state, s.keys, s.queue, cl_uint(s.capacity), s.counters, T, sc.quadrics,
+                    sc.csg, sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
+                    sc.sampleTime, cl_uint(1));
+    });
+    s.resolve.launch(n, n, origin, direction, state, s.keys, hits, sc.quadrics, sc.csg,
+                     sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
+                     sc.sampleTime, cl_uint(1));
+}
+
+void TreeletTracer::shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
+                           const DeviceBuffer<rt_float4>& direction,
+                           DeviceBuffer<RayState>& state, const TraceScene& sc, cl_uint lights) {
+    Impl& s = *m;
+    const cl_uint T = cl_uint(s.cut.count());
+    s.rounds(n, [&](bool root, cl_uint first, cl_uint count) {
+        ++s.st.launches;
+        (root ? s.shadowRoot : s.shadowPairs)
+            .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin, direction,
+                    state, s.queue, cl_uint(s.capacity), s.counters, T, sc.quadrics, sc.csg,
+                    sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
+                    sc.sampleTime, std::max<cl_uint>(lights, 1));
+    });
+}
+
+uint64_t TreeletTracer::peekRays() const {
+    return m->closestRoot.peekActive() + m->shadowRoot.peekActive();
+}
+
+void TreeletTracer::collectActive() {
+    for (Kernel* k : {&m->closestRoot, &m->closestPairs, &m->shadowRoot, &m->shadowPairs,
+                      &m->scatter, &m->resolve})
+        k->collectActive();
+}
+
+}  // namespace rd

@@ -1,0 +1,371 @@
+// treelet_trace_test.cpp: the treelet-streamed traversal (render/treelet_trace.h).
+// Direct: closest hits (t, u, v, primitive) and shadow occlusion through treelets equal
+// those of the resident intersect kernels, bit for bit, for every budget (one treelet,
+// 64 KiB, 4 KiB, one node per treelet), streamed through a cache of a few slots, with the
+// 32-bit compare-and-swap fallback for the 64-bit min, and with a queue that must grow.
+// Renders: a triangle scene with shadows and mirror reflections gives the same image
+// whatever the budget; a closed mesh shot from inside leaks no ray with small treelets;
+// quadrics, CSG and motion inside treelets give the resident image too; a scene with
+// instances keeps the resident traversal and says why.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <sstream>
+
+#include "bvh/collapse4.h"
+#include "ocl/program.h"
+#include "render/device_scene.h"
+#include "render/treelet_trace.h"
+#include "render_harness.h"
+
+using namespace rd;
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+struct Fixture {
+    std::vector<Triangle> tris;
+    Bvh4 bvh;
+    std::vector<rt_float4> org, dir;
+    std::vector<RayState> state;
+};
+
+// Small random triangles in a box, plus a 20 x 20 grid of shared edges across it; rays
+// from outside toward the box, from inside in every direction, and rays leaving a
+// triangle they started on (fromSurface), some with a finite tmax.
+const Fixture& fixture() {
+    static Fixture f = [] {
+        Fixture f;
+        std::mt19937 rng(5);
+        std::uniform_real_distribution<float> u(-1, 1), s(-0.08f, 0.08f);
+        for (int i = 0; i < 6000; ++i) {
+            float x = u(rng), y = u(rng), z = u(rng);
+            f.tris.push_back({{x, y, z, 0}, {x + s(rng), y + s(rng), z, 0},
+                              {x, y + s(rng), z + s(rng), 0}});
+        }
+        for (int j = 0; j < 20; ++j)
+            for (int i = 0; i < 20; ++i) {
+                float x0 = -1 + 0.1f * i, y0 = -1 + 0.1f * j, x1 = x0 + 0.1f, y1 = y0 + 0.1f;
+                f.tris.push_back({{x0, y0, 0.3f, 0}, {x1, y0, 0.3f, 0}, {x1, y1, 0.3f, 0}});
+                f.tris.push_back({{x0, y0, 0.3f, 0}, {x1, y1, 0.3f, 0}, {x0, y1, 0.3f, 0}});
+            }
+        Scene sc;
+        sc.triangles = f.tris;
+        f.bvh = collapseToBvh4(buildBvh(triangleBounds(sc)), f.tris);
+        for (int i = 0; i < 6000; ++i) {
+            float ox, oy, oz, dx = u(rng), dy = u(rng), dz = u(rng), tmax = 1e30f;
+            uint32_t from = RT_NO_HIT;
+            if (i % 3 == 0) {  // from outside, at a point of the box
+                ox = 0, oy = 0, oz = -4;
+                dx = u(rng) * 0.3f, dy = u(rng) * 0.3f, dz = 1;
+            } else if (i % 3 == 1) {  // from inside
+                ox = u(rng), oy = u(rng), oz = u(rng);
+            } else {  // off a triangle's centroid, skipping it, to a "light"
+                from = uint32_t(rng() % f.tris.size());
+                const Triangle& t = f.tris[from];
+                ox = (t.v0.x + t.v1.x + t.v2.x) / 3, oy = (t.v0.y + t.v1.y + t.v2.y) / 3;
+                oz = (t.v0.z + t.v1.z + t.v2.z) / 3;
+                tmax = 0.2f + 2 * std::fabs(u(rng));
+            }
+            float l = std::sqrt(dx * dx + dy * dy + dz * dz);
+            f.org.push_back({ox, oy, oz, 0});
+            f.dir.push_back({dx / l, dy / l, dz / l, tmax});
+            f.state.push_back({i % 17 == 5 ? 0u : 1u, 0u, from, 0.0f});  // a few dead rays
+        }
+        return f;
+    }();
+    return f;
+}
+
+struct Traced {
+    std::vector<RayHit> hits;
+    std::vector<RayState> shadow;
+    TreeletStats stats;
+};
+
+// budget 0: the resident kernels; else the treelet path.
+Traced trace(size_t budget, size_t sceneMemory, bool int64Min, size_t rays) {
+    const ClContext& ctx = test::testContext();
+    const Fixture& f = fixture();
+    std::string opts = "-cl-std=CL1.2 -DRT_HAS_TREELETS";
+    if (int64Min) opts += " -DRT_HAS_INT64_MIN";
+    Program program(ctx, assembleClSource({"intersect.cl", "treelet.cl"}), opts);
+    Profiler prof(ctx);
+    const cl_uint n = cl_uint(f.org.size());
+    DeviceBuffer<rt_float4> org(ctx, f.org), dir(ctx, f.dir);
+    DeviceBuffer<RayState> state(ctx, f.state, CL_MEM_READ_WRITE);
+    DeviceBuffer<RayHit> hits(ctx, n);
+    hits.fillZero();
+    DeviceBuffer<Triangle> tris(ctx, f.tris);
+    Traced out;
+    DeviceBuffer<Quadric> noQ(ctx, 1);
+    DeviceBuffer<uint32_t> noU(ctx, 1);
+    DeviceBuffer<rt_float4> noM(ctx, 1);
+    DeviceBuffer<float> noT(ctx, 1);
+    if (budget == 0) {
+        DeviceBuffer<Bvh4Node> nodes(ctx, f.bvh.nodes);
+        DeviceBuffer<Triangle4> blocks(ctx, f.bvh.blocks);
+        Kernel kc(ctx, program.get(), "intersect_closest", prof);
+        Kernel ks(ctx, program.get(), "intersect_shadow", prof);
+        kc.launch(n, n, nodes, blocks, org, dir, state, hits, noQ, noU, tris, noM, tris, noU,
+                  noT, noU);
+        out.hits = hits.download();
+        ks.launch(n, n, nodes, blocks, org, dir, state, noQ, noU, tris, noM, tris, noU, noT,
+                  cl_uint(1), noU);
+    } else {
+        TreeletTracer tracer(ctx, program.get(), prof, f.bvh, budget, sceneMemory, rays,
+                             out.stats);
+        const TraceScene sc{noQ, noU, tris, noM, tris, noU, noT};
+        tracer.closest(n, org, dir, state, hits, sc);
+        out.hits = hits.download();
+        tracer.shadow(n, org, dir, state, sc, 1);
+    }
+    out.shadow = state.download();
+    return out;
+}
+
+void expectSame(const Traced& a, const Traced& b) {
+    const Fixture& f = fixture();
+    size_t hit = 0, occluded = 0;
+    for (size_t i = 0; i < f.org.size(); ++i) {
+        if (!f.state[i].alive) continue;
+        ASSERT_EQ(a.hits[i].prim, b.hits[i].prim) << "ray " << i;
+        ASSERT_EQ(a.hits[i].t, b.hits[i].t) << "ray " << i;
+        ASSERT_EQ(a.hits[i].u, b.hits[i].u) << "ray " << i;
+        ASSERT_EQ(a.hits[i].v, b.hits[i].v) << "ray " << i;
+        ASSERT_EQ(a.shadow[i].alive, b.shadow[i].alive) << "shadow ray " << i;
+        hit += a.hits[i].prim != RT_NO_HIT;
+        occluded += a.shadow[i].alive == 0;
+    }
+    // the fixture is not trivial: most rays hit, some do not; some shadow rays get through
+    EXPECT_GT(hit, f.org.size() / 2);
+    EXPECT_LT(hit, f.org.size() * 99 / 100);
+    EXPECT_GT(occluded, f.org.size() / 4);
+    EXPECT_LT(occluded, f.org.size() * 99 / 100);
+}
+
+}  // namespace
+
+TEST(TreeletTrace, HitsEqualResidentKernelsAtEveryBudget) {
+    const Traced resident = trace(0, 0, true, 0);
+    size_t prevTreelets = 0;
+    for (size_t budget : {size_t(1) << 30, size_t(64) << 10, size_t(4) << 10, size_t(1)}) {
+        SCOPED_TRACE(budget);
+        Traced t = trace(budget, 0, true, fixture().org.size());
+        expectSame(resident, t);
+        EXPECT_GT(t.stats.treelets, prevTreelets);
+        prevTreelets = t.stats.treelets;
+        EXPECT_FALSE(t.stats.streamed);
+        EXPECT_EQ(t.stats.uploads, 0u);
+        EXPECT_EQ(t.stats.traces, 2u);
+        if (budget == size_t(1) << 30) EXPECT_EQ(t.stats.rounds, 2u) << "one round each";
+        else EXPECT_GT(t.stats.rounds, 4u);
+    }
+}
+
+TEST(TreeletTrace, StreamedThroughASmallCache) {
+    const Traced resident = trace(0, 0, true, 0);
+    // 4 KiB treelets through a cache of 12 KiB: two or three slots (a slot holds the
+    // largest treelet's nodes and the largest one's blocks), many chunks per round
+    Traced t = trace(4096, 3 * 4096, true, fixture().org.size());
+    expectSame(resident, t);
+    EXPECT_TRUE(t.stats.streamed);
+    EXPECT_GE(t.stats.cacheSlots, 2u);
+    EXPECT_LE(t.stats.cacheSlots, 3u);
+    EXPECT_GT(t.stats.uploads, t.stats.treelets) << "treelets are uploaded again after eviction";
+    EXPECT_GT(t.stats.launches, t.stats.rounds);
+    // one node per treelet, the AR250's level-by-level broadcast, two slots
+    Traced one = trace(1, 1, true, fixture().org.size());
+    expectSame(resident, one);
+    EXPECT_EQ(one.stats.cacheSlots, 2u);
+}
+
+TEST(TreeletTrace, CompareAndSwapFallbackAndQueueGrowth) {
+    const Traced resident = trace(0, 0, true, 0);
+    // without the extended 64-bit atomics (atom_min): the compare-and-swap loop; a
+    // traced-ray estimate of 1 starts the queue at 1024 pairs, which must grow
+    Traced t = trace(2048, 0, false, 1);
+    expectSame(resident, t);
+    EXPECT_GT(t.stats.reruns, 0u);
+}
+
+namespace {
+
+// Tessellated spheres (exactquadrics 0: triangles only) on a matte floor, one a mirror,
+// under a point light with ray-traced shadows.
+std::string mirrorScene() {
+    return "Option \"render\" \"int exactquadrics\" [0]\n"
+           "Format 48 36 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" 40\n"
+           "Rotate -15 1 0 0\nTranslate 0 -3 8\nWorldBegin\n"
+           "LightSource \"pointlight\" 1 \"from\" [3 4 -3] \"intensity\" 12\n"
+           "LightSource \"distantlight\" 2 \"from\" [-1 4 -2] \"to\" [0 0 0] \"intensity\" 0.6\n"
+           "AttributeBegin\nColor [0.8 0.8 0.8]\nSurface \"matte\"\n"
+           "Polygon \"P\" [-20 0 -20  -20 0 20  20 0 20  20 0 -20]\nAttributeEnd\n"
+           "AttributeBegin\nTranslate -1.2 1 0\nSurface \"mirror\" \"Kd\" 0.2\n"
+           "Sphere 1 -1 1 360\nAttributeEnd\n"
+           "AttributeBegin\nTranslate 1.2 1 0.5\nColor [0.2 0.7 0.25]\nSurface \"plastic\"\n"
+           "Sphere 1 -1 1 360\nAttributeEnd\n"
+           "AttributeBegin\nTranslate 0.2 0.4 -1.5\nColor [0.9 0.3 0.2]\nSurface \"matte\"\n"
+           "Sphere 0.4 -0.4 0.4 360\nAttributeEnd\nWorldEnd\n";
+}
+
+void expectSameImage(const Rendered& a, const Rendered& b) {
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        ASSERT_EQ(a.pixels[i].r, b.pixels[i].r) << "pixel " << i;
+        ASSERT_EQ(a.pixels[i].g, b.pixels[i].g) << "pixel " << i;
+        ASSERT_EQ(a.pixels[i].b, b.pixels[i].b) << "pixel " << i;
+        ASSERT_EQ(a.pixels[i].a, b.pixels[i].a) << "pixel " << i;
+    }
+}
+
+}  // namespace
+
+// Closest hits are an order-independent min on (t, primitive), so the image is the same,
+// bit for bit, whatever the budget, resident or streamed, and equal to the resident
+// traversal's.
+TEST(TreeletTrace, ImageIndependentOfTreeletBudget) {
+    const std::string rib = mirrorScene();
+    Rendered resident = renderRib(rib);
+    EXPECT_FALSE(resident.stats.treelets.used);
+    EXPECT_GT(resident.stats.shadowRays, 0u);
+    EXPECT_GT(resident.stats.continuationRays, 0u) << "mirror rays";
+    struct Case {
+        size_t budget, memory;
+    } cases[] = {{size_t(1) << 30, 0}, {64 << 10, 0}, {4 << 10, 0}, {1, 0}, {4 << 10, 40 << 10}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(std::to_string(c.budget) + " bytes, memory " + std::to_string(c.memory));
+        RenderSettings s;
+        s.treeletBytes = c.budget;
+        s.sceneMemoryBytes = c.memory;
+        Rendered t = renderRib(rib, s);
+        ASSERT_TRUE(t.stats.treelets.used) << t.stats.treelets.why;
+        EXPECT_EQ(t.stats.treelets.streamed, c.memory > 0);
+        EXPECT_EQ(t.stats.eyeRays, resident.stats.eyeRays);
+        EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
+        EXPECT_EQ(t.stats.continuationRays, resident.stats.continuationRays);
+        expectSameImage(resident, t);
+    }
+    // the RIB's Option "limits" "treeletbytes" does the same
+    Rendered opt = renderRib("Option \"limits\" \"int treeletbytes\" [4096]\n" + rib);
+    EXPECT_TRUE(opt.stats.treelets.used);
+    EXPECT_GT(opt.stats.treelets.treelets, 1u);
+    expectSameImage(resident, opt);
+}
+
+// A closed cube mesh (shared vertices, every face a 24 x 24 grid of two triangles per
+// cell) shot from inside with one node per treelet: every pixel sees the mesh.
+TEST(TreeletTrace, ClosedMeshFromInsideLeaksNothing) {
+    const int n = 24;
+    std::ostringstream rib;
+    rib << "Format 96 96 1\nPixelSamples 1 1\nProjection \"perspective\" \"fov\" 120\n"
+           "Rotate 31 1 0 0\nRotate 17 0 1 0\nWorldBegin\nSurface \"constant\"\n"
+           "Translate 0.1 -0.05 0.07\n";
+    // six faces, each its own PointsPolygons; a face's grid vertices are shared within it
+    // and its border vertices are exactly the neighbour's
+    for (int face = 0; face < 6; ++face) {
+        const int axis = face / 2;
+        const float side = face % 2 ? 1.0f : -1.0f;
+        rib << "PointsPolygons [";
+        for (int i = 0; i < 2 * n * n; ++i) rib << "3 ";
+        rib << "] [";
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+                if ((i + j) % 2) rib << a << " " << b << " " << c << " " << a << " " << c << " " << d << " ";
+                else rib << a << " " << b << " " << d << " " << b << " " << c << " " << d << " ";
+            }
+        rib << "] \"P\" [";
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                float p[3];
+                p[axis] = side;
+                p[(axis + 1) % 3] = -1 + 2.0f * i / n;
+                p[(axis + 2) % 3] = -1 + 2.0f * j / n;
+                rib << p[0] << " " << p[1] << " " << p[2] << " ";
+            }
+        rib << "]\n";
+    }
+    rib << "WorldEnd\n";
+    for (size_t budget : {size_t(1), size_t(2048)}) {
+        SCOPED_TRACE(budget);
+        RenderSettings s;
+        s.treeletBytes = budget;
+        Rendered img = renderRib(rib.str(), s);
+        ASSERT_TRUE(img.stats.treelets.used);
+        EXPECT_GT(img.stats.treelets.treelets, 20u);
+        size_t leaks = 0;
+        for (const Rgba& p : img.pixels) leaks += !(p.a == 1.0f && p.r == 1.0f);
+        EXPECT_EQ(leaks, 0u) << "pixels that saw through the mesh";
+    }
+}
+
+// Object blocks work inside treelets: exact quadrics, a CSG difference, a moving sphere
+// and a moving triangle mesh, with shadows, give the resident image bit for bit at every
+// budget, streamed too.
+TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
+    // a wall of 12 x 8 small spheres behind, so the tree has something to cut
+    std::ostringstream spheres;
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 12; ++i)
+            spheres << "AttributeBegin\nTranslate " << (-3.3 + 0.6 * i) << " " << (-0.7 + 0.6 * j)
+                    << " 3\nSphere 0.25 -0.25 0.25 360\nAttributeEnd\n";
+    const std::string rib =
+        "Format 40 30 1\nPixelSamples 2 2\nShutter 0 1\nProjection \"perspective\" \"fov\" 45\n"
+        "Translate 0 -0.5 6\nWorldBegin\n"
+        "LightSource \"distantlight\" 1 \"from\" [-1 3 -2] \"to\" [0 0 0]\n"
+        "Surface \"matte\"\nPolygon \"P\" [-9 -1 -9  -9 -1 9  9 -1 9  9 -1 -9]\n"
+        "AttributeBegin\nTranslate -1.5 0 0\nSphere 0.8 -0.8 0.8 360\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 0.2 0 0.5\nRotate 90 1 0 0\nCylinder 0.4 -0.8 0.8 360\n"
+        "Disk 0.8 0.4 360\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 1.6 0.2 0\nSolidBegin \"difference\"\n"
+        "SolidBegin \"primitive\"\nSphere 0.7 -0.7 0.7 360\nSolidEnd\n"
+        "SolidBegin \"primitive\"\nTranslate 0.3 0.3 -0.4\nSphere 0.5 -0.5 0.5 360\nSolidEnd\n"
+        "SolidEnd\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 0 1.6 0\nMotionBegin [0 1] Translate -0.5 0 0 Translate 0.5 0 0 "
+        "MotionEnd\nSphere 0.3 -0.3 0.3 360\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 0 -0.6 -1.5\nMotionBegin [0 1] Translate 0 0 0 Translate 0 0.3 0 "
+        "MotionEnd\nPolygon \"P\" [-0.3 -0.3 0  0.3 -0.3 0  0.3 0.3 0  -0.3 0.3 0]\nAttributeEnd\n"
+        + spheres.str() + "WorldEnd\n";
+    Rendered resident = renderRib(rib);
+    ASSERT_GT(resident.stats.quadrics, 0u);
+    ASSERT_GT(resident.stats.csgSolids, 0u);
+    const auto names = resident.stats.features.names();
+    ASSERT_NE(std::find(names.begin(), names.end(), "motion_blur"), names.end());
+    struct Case {
+        size_t budget, memory;
+    } cases[] = {{size_t(1) << 30, 0}, {1, 0}, {1024, 2048}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(std::to_string(c.budget) + " bytes, memory " + std::to_string(c.memory));
+        RenderSettings s;
+        s.treeletBytes = c.budget;
+        s.sceneMemoryBytes = c.memory;
+        Rendered t = renderRib(rib, s);
+        ASSERT_TRUE(t.stats.treelets.used) << t.stats.treelets.why;
+        EXPECT_EQ(t.stats.treelets.streamed, c.memory > 0);
+        if (c.budget < 4096) EXPECT_GT(t.stats.treelets.treelets, 8u);
+        EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
+        expectSameImage(resident, t);
+    }
+}
+
+// Instances are not in the treelet cut (their prototypes' trees are reached through
+// instance records): the render keeps the resident traversal, says why in --stats, and
+// the image is the resident one.
+TEST(TreeletTrace, InstancedSceneKeepsResidentTraversal) {
+    const std::string rib =
+        "Format 24 24 1\nProjection \"perspective\" \"fov\" 30\nWorldBegin\n"
+        "Surface \"constant\"\nObjectBegin \"sq\"\n"
+        "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\nObjectEnd\n"
+        "Translate 0 0 5\nAttributeBegin\nTranslate -0.5 0 0\nObjectInstance \"sq\"\n"
+        "AttributeEnd\nAttributeBegin\nTranslate 0.6 0.2 0\nObjectInstance \"sq\"\n"
+        "AttributeEnd\nWorldEnd\n";
+    RenderSettings s;
+    s.treeletBytes = 4096;
+    Rendered a = renderRib(rib), b = renderRib(rib, s);
+    EXPECT_FALSE(b.stats.treelets.used);
+    EXPECT_NE(b.stats.treelets.why.find("instances"), std::string::npos);
+    expectSameImage(a, b);
+}
