@@ -183,6 +183,10 @@ int main(int argc, char** argv) {
                    "device texture cache in tiles of 32x32 (default: Option \"limits\" "
                    "\"texturememory\", else every tile up to 256 MiB)");
     size_t treeletBytes = 0, sceneMemory = 0;
+    int bvhWidth = 0;
+    app.add_option("--bvh-width", bvhWidth,
+                   "resident BVH node width, 4 or 8 (default: 8 on a CPU device, else 4)")
+        ->check(CLI::IsMember({4, 8}));
     app.add_option("--treelet-budget", treeletBytes,
                    "trace through treelets of at most BYTES of BVH (default: Option \"limits\" "
                    "\"treeletbytes\", else the resident BVH; triangle scenes only)");
@@ -228,6 +232,7 @@ int main(int argc, char** argv) {
             settings.progress = !quiet;
             settings.textureCacheTiles = textureTiles;
             settings.treeletBytes = treeletBytes;
+            settings.bvhWidth = bvhWidth;
             settings.sceneMemoryBytes = sceneMemory;
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
             rd::Renderer renderer(ctx, settings);

@@ -26,7 +26,7 @@
 #endif
 
 __kernel void intersect_closest(uint count,
-                                __global const Bvh4Node* nodes,
+                                __global const RT_BVH_NODE* nodes, /* RT_BVH8: Bvh8Node */
                                 __global const Triangle4* blocks,
                                 __global const float4* origin,
                                 __global const float4* direction,
@@ -61,7 +61,7 @@ __kernel void intersect_closest(uint count,
 }
 
 __kernel void intersect_shadow(uint count,
-                               __global const Bvh4Node* nodes,
+                               __global const RT_BVH_NODE* nodes, /* RT_BVH8: Bvh8Node */
                                __global const Triangle4* blocks,
                                __global const float4* origin,
                                __global const float4* direction,

@@ -41,15 +41,15 @@ static std::vector<uint32_t> triangleParamsFor(const Scene& scene) {
     return t;
 }
 
-DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh,
-                         const std::vector<Quadric>& objects,
+DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const SceneBvh& bvh,
                          const Features& f, const ShadingSetup& shading)
     : camera(scene.deviceCamera()),
       cameraBuf(ctx, std::vector<Camera>{camera}),
       // the treelet path (treelet_trace.h) keeps its own copy of the tree, or a cache
-      nodes(f.treelets ? DeviceBuffer<Bvh4Node>(ctx, 0) : DeviceBuffer<Bvh4Node>(ctx, bvh.nodes)),
+      nodes(f.treelets ? DeviceBuffer<Bvh4Node>(ctx, 0)
+                       : DeviceBuffer<Bvh4Node>(ctx, deviceNodes(bvh))),
       blocks(f.treelets ? DeviceBuffer<Triangle4>(ctx, 0)
-                        : DeviceBuffer<Triangle4>(ctx, bvh.blocks)),
+                        : DeviceBuffer<Triangle4>(ctx, deviceBlocks(bvh))),
       triangles(ctx, scene.triangles),
       attrs(ctx, scene.attrs),
       normals(f.smoothNormals ? DeviceBuffer<rt_float4>(ctx, scene.normals)
@@ -57,7 +57,7 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& b
       vertexSt(ctx, scene.vertexSt),
       vertexCs(ctx, scene.vertexCs),
       vertexOs(ctx, scene.vertexOs),
-      quadrics(ctx, objects),
+      quadrics(ctx, bvh.objects),
       csg(ctx, scene.csg),
       quadricPrimvars(ctx, scene.quadricPrimvars),
       quadricMotion(ctx, scene.quadricMotion),

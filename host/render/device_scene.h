@@ -4,6 +4,7 @@
 #include "bvh/collapse4.h"
 #include "features.h"
 #include "ocl/buffer.h"
+#include "scene_bvh.h"
 #include "scene/scene.h"
 #include "shaders/shader_set.h"
 
@@ -11,12 +12,12 @@ namespace rd {
 
 struct DeviceScene {
     // `objects` are the scene's quadric records as the BVH build left them (scene_bvh.h).
-    DeviceScene(const ClContext& ctx, const Scene& scene, const Bvh4& bvh,
-                const std::vector<Quadric>& objects, const Features& f,
-                const ShadingSetup& shading);
+    DeviceScene(const ClContext& ctx, const Scene& scene, const SceneBvh& bvh,
+                const Features& f, const ShadingSetup& shading);
     Camera camera;
     DeviceBuffer<Camera> cameraBuf;
-    DeviceBuffer<Bvh4Node> nodes;     // the four-wide layout the kernels traverse
+    DeviceBuffer<Bvh4Node> nodes;     // the wide layout the kernels traverse (in 128-byte
+                                      // units: an eight-wide node takes two)
     DeviceBuffer<Triangle4> blocks;   // leaf triangles, four to a block, for intersection
                                       // (both empty with f.treelets: treelet_trace.h's)
     DeviceBuffer<Triangle> triangles; // by primitive index, for shading

@@ -85,6 +85,7 @@ std::vector<std::string> Features::names() const {
     if (trace) n.push_back("trace");
     if (aovs) n.push_back("aovs");
     if (treelets) n.push_back("treelets");
+    if (bvhWidth == 8) n.push_back("bvh8");
     if (depthOfField) n.push_back("depth_of_field");
     if (primvars & RT_PRIMVAR_ST) n.push_back("vertex_st");
     if (primvars & RT_PRIMVAR_CS) n.push_back("vertex_Cs");
@@ -125,6 +126,7 @@ std::string buildOptions(const Features& f) {
     if (f.procedurals) o += " -DRT_HAS_PROCEDURALS";
     if (f.pointParams > 0) o += " -DRSL_MAX_PARAM_PRIMVARS=" + std::to_string(f.pointParams);
     if (f.treelets) o += f.int64Min ? " -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN" : " -DRT_HAS_TREELETS";
+    if (f.bvhWidth == 8) o += " -DRT_BVH8";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";

@@ -34,6 +34,7 @@ struct Features {
     float pixelSpread = 0.0f;   // footprint growth per unit of ray length (perspective)
     bool treelets = false;      // treelet-streamed traversal (render/treelet_trace.h)
     bool int64Min = false;      // the device has 64-bit atomic min (its closest hits)
+    int bvhWidth = 4;           // the resident BVH's node width: 4, or 8 (RT_BVH8)
     uint32_t lightCount = 0;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)

@@ -84,6 +84,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     if (treeletBudget > 0 && !f.treelets)
         diag.warning(rib::SourceLoc{scene.sourceFile, 0},
                      "treelet budget not used: " + st.treelets.why);
+    // Node width by measurement (bench_trace --wide8): eight on a CPU device, where PoCL
+    // tests a node's boxes with AVX; four elsewhere, where no figures say otherwise. The
+    // treelet cut is four-wide.
+    f.bvhWidth = m_settings.bvhWidth == 4 || m_settings.bvhWidth == 8 ? m_settings.bvhWidth
+                 : (m_ctx.info().type & CL_DEVICE_TYPE_CPU)          ? 8
+                                                                      : 4;
+    if (f.treelets) f.bvhWidth = 4;
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
@@ -94,8 +101,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
 
     // Scene -> BVH -> specialised program -> device arrays
     auto tb = Clock::now();
-    SceneBvh sceneBvh = buildSceneBvh(scene);
-    const Bvh4& bvh4 = sceneBvh.bvh4;
+    SceneBvh sceneBvh = buildSceneBvh(scene, f.bvhWidth);
+    const Bvh4& bvh4 = sceneBvh.bvh4;  // the four-wide tree (treelets cut it)
     st.bvhBuildMs = secondsSince(tb) * 1e3;
     st.triangles = scene.triangles.size();
     for (const Quadric& q : scene.quadrics) {
@@ -103,11 +110,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         else if (q.kind == RT_Q_INSTANCE) ++st.instances;
         else if (q.kind != RT_Q_MOVING_TRIANGLE) ++st.quadrics;
     }
-    st.sceneBytes = bvh4.nodes.size() * sizeof(Bvh4Node) + bvh4.blocks.size() * sizeof(Triangle4) +
+    const size_t nodeBytes = sceneBvh.width == 8 ? sceneBvh.bvh8.nodes.size() * sizeof(Bvh8Node)
+                                                 : bvh4.nodes.size() * sizeof(Bvh4Node);
+    st.sceneBytes = nodeBytes + deviceBlocks(sceneBvh).size() * sizeof(Triangle4) +
                     scene.triangles.size() * (sizeof(Triangle) + sizeof(TriangleAttr)) +
                     scene.normals.size() * sizeof(rt_float4) +
                     scene.quadrics.size() * sizeof(Quadric) + scene.csg.size() * 4;
-    st.bvhNodes = bvh4.nodes.size();
+    st.bvhNodes = sceneBvh.width == 8 ? sceneBvh.bvh8.nodes.size() : bvh4.nodes.size();
     st.droppedPrims = sceneBvh.droppedPrims;
     std::vector<std::string> sources = kRenderSources;
     sources.insert(sources.end(), shading.sourceOrder.begin(), shading.sourceOrder.end());
@@ -115,7 +124,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     st.program = program.info();
     Profiler prof(m_ctx);
     RenderKernels k(m_ctx, program.get(), prof, shading.shadeKernels);
-    DeviceScene ds(m_ctx, scene, bvh4, sceneBvh.objects, f, shading);
+    DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     if (!shading.prepares.empty()) {  // the shaders' uniform work, once per instance
         Kernel prepare(m_ctx, program.get(), "rd_prepare_uniforms", prof);
         prepare.launch(shading.prepares.size(), cl_uint(shading.prepares.size()), ds.params);

@@ -21,6 +21,7 @@
 namespace rd {
 
 struct RenderSettings {
+    int bvhWidth = 0;         // resident BVH nodes: 4 or 8 wide; 0: 8 on a CPU device, else 4
     size_t poolCapacity = 0;  // rays per round; 0: 16k per compute unit within a memory budget
     double timeBudget = 0;    // seconds; 0 = none (also from Option "render" "time")
     double errorTarget = 0;   // relative film error; 0 = none ("render" "error")
@@ -66,6 +67,7 @@ struct RenderStats {
     uint64_t spilledRays = 0;   // spawned rays that waited on the spill stack
     uint64_t reissuedSamples = 0;  // samples aborted (a ray dropped) and traced again
     uint64_t retiredSamples = 0;   // samples that reached the film
+    int bvhWidth = 0;         // resident BVH nodes: 4 or 8 wide; 0: 8 on a CPU device, else 4
     size_t poolCapacity = 0;
     double poolFill = 0;    // mean rays per round / pool capacity
     double deviceBusy = 0;  // kernel time / wall time of the sampling loop

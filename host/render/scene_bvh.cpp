@@ -1,14 +1,19 @@
 // scene_bvh.cpp: top-level and prototype BVHs merged into one device layout.
 #include "scene_bvh.h"
 
+#include <cstring>
+
 #include "device_scene.h"
 
 namespace rd {
 
-int appendBvh4(Bvh4& into, const Bvh4& part) {
+namespace {
+
+template <class Node, int W>
+int appendWide(BvhWide<Node>& into, const BvhWide<Node>& part) {
     const int nodeOffset = int(into.nodes.size()), blockOffset = int(into.blocks.size());
-    for (Bvh4Node n : part.nodes) {
-        for (int k = 0; k < 4; ++k) {
+    for (Node n : part.nodes) {
+        for (int k = 0; k < W; ++k) {
             if (n.count[k] > 0) n.child[k] += blockOffset;       // a leaf: its first block
             else if (n.count[k] == 0) n.child[k] += nodeOffset;  // an interior child
         }
@@ -18,19 +23,11 @@ int appendBvh4(Bvh4& into, const Bvh4& part) {
     return nodeOffset;
 }
 
-BvhBuildSettings sceneBvhSettings() {
-    BvhBuildSettings s;
-    s.blockSize = 4;
-    return s;
-}
-
-SceneBvh buildSceneBvh(const Scene& scene) {
-    SceneBvh out;
-    BvhPrimitives top = bvhPrimitives(scene);
-    Bvh bvh = buildBvh(top.bounds, sceneBvhSettings());
-    out.droppedPrims = bvh.droppedPrims;
-    out.bvh4 = collapseToBvh4(bvh, scene.triangles, &top);
-    std::vector<int> roots;
+// The top level, then each prototype's tree appended, in the layout of width W.
+template <class Node, int W, class Collapse>
+BvhWide<Node> buildWide(const Scene& scene, const BvhPrimitives& top, const Bvh& bvh,
+                        Collapse collapse, std::vector<int>& roots) {
+    BvhWide<Node> out = collapse(bvh, scene.triangles, &top);
     for (const Scene::Prototype& p : scene.prototypes) {
         BvhPrimitives prims;
         for (uint32_t t = p.firstTriangle; t < p.firstTriangle + p.triangleCount; ++t) {
@@ -44,12 +41,46 @@ SceneBvh buildSceneBvh(const Scene& scene) {
             prims.bounds.push_back(b);
         }
         Bvh pb = buildBvh(prims.bounds, sceneBvhSettings());
-        roots.push_back(appendBvh4(out.bvh4, collapseToBvh4(pb, scene.triangles, &prims)));
+        roots.push_back(appendWide<Node, W>(out, collapse(pb, scene.triangles, &prims)));
     }
+    return out;
+}
+
+}  // namespace
+
+BvhBuildSettings sceneBvhSettings() {
+    BvhBuildSettings s;
+    s.blockSize = 4;
+    return s;
+}
+
+SceneBvh buildSceneBvh(const Scene& scene, int width) {
+    SceneBvh out;
+    out.width = width == 8 ? 8 : 4;
+    BvhPrimitives top = bvhPrimitives(scene);
+    Bvh bvh = buildBvh(top.bounds, sceneBvhSettings());
+    out.droppedPrims = bvh.droppedPrims;
+    std::vector<int> roots;
+    if (out.width == 8)
+        out.bvh8 = buildWide<Bvh8Node, 8>(scene, top, bvh, collapseToBvh8, roots);
+    else
+        out.bvh4 = buildWide<Bvh4Node, 4>(scene, top, bvh, collapseToBvh4, roots);
     out.objects = scene.quadrics;
     for (Quadric& q : out.objects)
         if (q.kind == RT_Q_INSTANCE) q.first_member = uint32_t(roots.at(q.first_member));
     return out;
+}
+
+std::vector<Bvh4Node> deviceNodes(const SceneBvh& bvh) {
+    if (bvh.width != 8) return bvh.bvh4.nodes;
+    static_assert(sizeof(Bvh8Node) == 2 * sizeof(Bvh4Node), "node units");
+    std::vector<Bvh4Node> out(2 * bvh.bvh8.nodes.size());
+    if (!out.empty()) std::memcpy(out.data(), bvh.bvh8.nodes.data(), out.size() * sizeof(Bvh4Node));
+    return out;
+}
+
+const std::vector<Triangle4>& deviceBlocks(const SceneBvh& bvh) {
+    return bvh.width == 8 ? bvh.bvh8.blocks : bvh.bvh4.blocks;
 }
 
 }  // namespace rd

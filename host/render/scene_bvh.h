@@ -11,7 +11,9 @@
 namespace rd {
 
 struct SceneBvh {
+    int width = 4;  // the layout built: bvh4 (four-wide) or bvh8 (eight-wide)
     Bvh4 bvh4;
+    Bvh8 bvh8;
     std::vector<Quadric> objects;  // scene.quadrics, instances pointing at their roots
     uint32_t droppedPrims = 0;     // primitives with unusable bounds (non-finite)
 };
@@ -20,10 +22,12 @@ struct SceneBvh {
 // primitives in the kernels' blocks of four.
 BvhBuildSettings sceneBvhSettings();
 
-SceneBvh buildSceneBvh(const Scene& scene);
+// width 4 or 8: the layout the resident traversal reads (RT_BVH8 for eight).
+SceneBvh buildSceneBvh(const Scene& scene, int width = 4);
 
-// Appends `part` (a tree with its own node and block indices) to `into`; returns the
-// index of its root there.
-int appendBvh4(Bvh4& into, const Bvh4& part);
+// The nodes as the device buffer holds them: raw node bytes in 128-byte units (an
+// eight-wide node takes two), so one buffer type serves both widths.
+std::vector<Bvh4Node> deviceNodes(const SceneBvh& bvh);
+const std::vector<Triangle4>& deviceBlocks(const SceneBvh& bvh);
 
 }  // namespace rd
