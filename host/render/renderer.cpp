@@ -375,7 +375,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         ring.popFront(prog[0]);
     };
 
-    double lastSample = -1;
+    double lastSample = 0;  // the first point after half a second: a film read costs ~10 ms
     auto sampleError = [&](bool force) {
         double now = secondsSince(t0);
         if (!force && now - lastSample < 0.5) return;
