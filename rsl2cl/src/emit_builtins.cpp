@@ -188,8 +188,9 @@ std::string Emitter::builtin(const Expr& e) {
 
     // ---- math ----
     static const std::set<std::string> direct = {"sin", "asin", "cos", "acos", "tan", "exp",
-                                                 "sqrt", "floor", "ceil", "round", "pow"};
+                                                 "sqrt", "floor", "ceil", "round"};
     if (direct.count(n)) return call(n);
+    if (n == "pow") return call("rsl_pow");
     if (n == "abs") return call("fabs");
     if (n == "inversesqrt") return call("rsqrt");
     if (n == "radians" || n == "degrees" || n == "mod" || n == "sign" || n == "step" ||

@@ -64,6 +64,13 @@ std::vector<Case> cases() {
          [](double x, double y, double, double) { return V3{asin(x * .9), acos(y * .9), atan(x * 3)}; }, 1e-5},
         {"Ci = color(atan(y, x), pow(s + 0.1, 2.5), exp(x));",
          [](double x, double y, double s, double) { return V3{atan2(y, x), pow(s + .1, 2.5), exp(x)}; }, 1e-5},
+        // rsl_pow: a positive base through exp2/log2 (a specular exponent of 100; the
+        // float base's own rounding, 6e-8, grows 100-fold, hence 2e-5), a negative base
+        // with an integer exponent, a zero base and a unit one keep pow's rules
+        {"Ci = color(pow(0.9 + 0.1 * s, 100), pow(-1.5 - s, 3), pow(s * 0, 2) + pow(1, 1e30));",
+         [](double, double, double s, double) {
+             return V3{pow(.9 + .1 * s, 100), pow(-1.5 - s, 3), 1.0};
+         }, 2e-5},
         {"Ci = color(sqrt(s), inversesqrt(s + 0.5), log(s + 0.1));",
          [](double, double, double s, double) { return V3{sqrt(s), 1 / sqrt(s + .5), log(s + .1)}; }, 1e-5},
         {"Ci = color(log(s + 0.1, 2), mod(x * 7, 1.3), abs(x));",
