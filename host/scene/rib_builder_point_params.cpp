@@ -39,6 +39,20 @@ bool kindOf(const rib::Param& p, Kind* kind) {
     }
 }
 
+// One per-vertex PointParam for each listed variable, its value at vertex i being
+// at(param, i): the loop every kind of geometry shares.
+template <class At>
+void appendPointParams(const std::vector<const rib::Param*>& list, VertexData& mesh, At at) {
+    for (const rib::Param* p : list) {
+        VertexData::PointParam out;
+        out.name = p->name;
+        kindOf(*p, &out.kind);
+        out.v.resize(mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i) out.v[i] = at(*p, i);
+        mesh.params.push_back(std::move(out));
+    }
+}
+
 glm::vec3 valueAt(const rib::Param& p, size_t i) {
     const size_t n = size_t(p.components());
     if (n == 1) return glm::vec3(i < p.floats.size() ? p.floats[i] : 0.0f, 0.0f, 0.0f);
@@ -163,23 +177,16 @@ void RibBuilder::readPointParams(const rib::ParamList& params, const std::vector
     std::vector<int> faceOf;  // face index of each face-vertex
     for (size_t f = 0; f < nverts.size(); ++f)
         faceOf.insert(faceOf.end(), size_t(std::max(nverts[f], 0)), int(f));
-    for (const rib::Param* p : list) {
-        VertexData::PointParam out;
-        out.name = p->name;
-        kindOf(*p, &out.kind);
-        out.v.resize(mesh.p.size());
-        for (size_t i = 0; i < out.v.size(); ++i) {
-            size_t src = i;  // the value's index for vertex i
-            if (perCorner) {
-                if (p->storage == rib::StorageClass::FaceVarying) src = i;
-                else if (p->storage == rib::StorageClass::Uniform)
-                    src = i < faceOf.size() ? size_t(faceOf[i]) : 0;
-                else src = verts[i] >= 0 && size_t(verts[i]) < np ? size_t(verts[i]) : 0;
-            }
-            out.v[i] = valueAt(*p, src);
+    appendPointParams(list, mesh, [&](const rib::Param& p, size_t i) {
+        size_t src = i;  // the value's index for vertex i
+        if (perCorner) {
+            if (p.storage == rib::StorageClass::FaceVarying) src = i;
+            else if (p.storage == rib::StorageClass::Uniform)
+                src = i < faceOf.size() ? size_t(faceOf[i]) : 0;
+            else src = verts[i] >= 0 && size_t(verts[i]) < np ? size_t(verts[i]) : 0;
         }
-        mesh.params.push_back(std::move(out));
-    }
+        return valueAt(p, src);
+    });
 }
 
 void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,
@@ -197,26 +204,19 @@ void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,
             first[f + 1] += size_t(std::max(nverts[l], 0));
     }
     const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
-    for (const rib::Param* p : list) {
-        VertexData::PointParam out;
-        out.name = p->name;
-        kindOf(*p, &out.kind);
-        out.v.resize(mesh.p.size());
-        for (size_t i = 0; i < out.v.size(); ++i) {
-            const size_t point = src[i].vertex;
-            const size_t face = src[i].triangle < faceIndex.size() ? size_t(faceIndex[src[i].triangle]) : 0;
-            size_t at = point;  // varying, vertex: the point's value
-            if (p->storage == rib::StorageClass::Uniform) at = face;
-            if (p->storage == rib::StorageClass::FaceVarying && face < nloops.size())
-                for (size_t j = first[face]; j < first[face + 1] && j < verts.size(); ++j)
-                    if (size_t(verts[j]) == point) {  // this polygon's corner at the point
-                        at = j;
-                        break;
-                    }
-            out.v[i] = valueAt(*p, at);
-        }
-        mesh.params.push_back(std::move(out));
-    }
+    appendPointParams(list, mesh, [&](const rib::Param& p, size_t i) {
+        const size_t point = src[i].vertex;
+        const size_t face = src[i].triangle < faceIndex.size() ? size_t(faceIndex[src[i].triangle]) : 0;
+        size_t at = point;  // varying, vertex: the point's value
+        if (p.storage == rib::StorageClass::Uniform) at = face;
+        if (p.storage == rib::StorageClass::FaceVarying && face < nloops.size())
+            for (size_t j = first[face]; j < first[face + 1] && j < verts.size(); ++j)
+                if (size_t(verts[j]) == point) {  // this polygon's corner at the point
+                    at = j;
+                    break;
+                }
+        return valueAt(p, at);
+    });
 }
 
 void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
@@ -239,38 +239,32 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
         if (!ok) return;  // vertex values of a bicubic mesh: not carried (surfaceFor warns)
     }
     const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
-    for (const rib::Param* p : list) {
-        VertexData::PointParam out;
-        out.name = p->name;
-        kindOf(*p, &out.kind);
-        out.v.resize(mesh.p.size());
-        const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
-        for (size_t i = 0; i < out.v.size(); ++i) {
-            const glm::vec2 at = uv[src[i].vertex];
-            if (p->storage == rib::StorageClass::Uniform) {
-                const size_t t = src[i].triangle;
-                out.v[i] = valueAt(*p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
-            } else if (bicubicVertex) {  // the patch's own basis over its 16 values
-                float wu[4], wv[4];
-                basisWeights(grid.ubasis, at.x, wu);
-                basisWeights(grid.vbasis, at.y, wv);
-                glm::vec3 v(0.0f);
-                for (int b = 0; b < 4; ++b)
-                    for (int a = 0; a < 4; ++a) v += wu[a] * wv[b] * valueAt(*p, size_t(4 * b + a));
-                out.v[i] = v;
-            } else {  // bilinear between the corners of the sub-patch the vertex is in
-                int i0, j0;
-                float fu, fv;
-                spanAt(at.x, grid.nupatches, grid.uknot, grid.uorder, &i0, &fu);
-                spanAt(at.y, grid.nvpatches, grid.vknot, grid.vorder, &j0, &fv);
-                const int i1 = (i0 + 1) % gu, j1 = (j0 + 1) % gv;
-                auto c = [&](int a, int b) { return valueAt(*p, size_t(b * gu + a)); };
-                out.v[i] = (1 - fu) * (1 - fv) * c(i0, j0) + fu * (1 - fv) * c(i1, j0) +
-                           (1 - fu) * fv * c(i0, j1) + fu * fv * c(i1, j1);
-            }
+    appendPointParams(list, mesh, [&](const rib::Param& p, size_t i) {
+        const glm::vec2 at = uv[src[i].vertex];
+        if (p.storage == rib::StorageClass::Uniform) {
+            const size_t t = src[i].triangle;
+            return valueAt(p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
         }
-        mesh.params.push_back(std::move(out));
-    }
+        if (grid.bicubic && p.storage == rib::StorageClass::Vertex) {
+            // the patch's own basis over its 16 values
+            float wu[4], wv[4];
+            basisWeights(grid.ubasis, at.x, wu);
+            basisWeights(grid.vbasis, at.y, wv);
+            glm::vec3 v(0.0f);
+            for (int b = 0; b < 4; ++b)
+                for (int a = 0; a < 4; ++a) v += wu[a] * wv[b] * valueAt(p, size_t(4 * b + a));
+            return v;
+        }
+        // bilinear between the corners of the sub-patch the vertex is in
+        int i0, j0;
+        float fu, fv;
+        spanAt(at.x, grid.nupatches, grid.uknot, grid.uorder, &i0, &fu);
+        spanAt(at.y, grid.nvpatches, grid.vknot, grid.vorder, &j0, &fv);
+        const int i1 = (i0 + 1) % gu, j1 = (j0 + 1) % gv;
+        auto c = [&](int a, int b) { return valueAt(p, size_t(b * gu + a)); };
+        return (1 - fu) * (1 - fv) * c(i0, j0) + fu * (1 - fv) * c(i1, j0) +
+               (1 - fu) * fv * c(i0, j1) + fu * fv * c(i1, j1);
+    });
 }
 
 void RibBuilder::pointsPointParams(const rib::ParamList& params,
@@ -343,35 +337,27 @@ void RibBuilder::curvesPointParams(const rib::ParamList& params, const CurvesInp
     std::vector<size_t> curveOf(mesh.p.size(), 0);  // a ribbon's vertices are its own
     for (size_t t = 0; 3 * t + 2 < mesh.tris.size() && t < faceIndex.size(); ++t)
         for (int k = 0; k < 3; ++k) curveOf[size_t(mesh.tris[3 * t + k])] = size_t(faceIndex[t]);
-    for (const rib::Param* p : list) {
-        VertexData::PointParam out;
-        out.name = p->name;
-        kindOf(*p, &out.kind);
-        out.v.resize(mesh.p.size());
-        for (size_t i = 0; i < out.v.size(); ++i) {
-            const size_t c = std::min(curveOf[i], in.nvertices.size() - 1);
-            const int n = in.nvertices[c];
-            const int segs = std::max(1, curveSegments(in.cubic, n, in.periodic, step));
-            const int nvar = std::max(1, curveVaryingCount(in.cubic, n, in.periodic, step));
-            // along the curve as its centre line is (tessellate_curves_points.cpp)
-            const float x = std::clamp(uv[i].y, 0.0f, 1.0f) * float(segs);
-            const int s = std::min(int(x), segs - 1);
-            const float t = x - float(s);
-            if (p->storage == rib::StorageClass::Uniform) {
-                out.v[i] = valueAt(*p, c);
-            } else if (p->storage == rib::StorageClass::Vertex && in.cubic) {
-                float w[4];
-                basisWeights(in.vbasis, t, w);
-                glm::vec3 v(0.0f);
-                for (int k = 0; k < 4; ++k) v += w[k] * valueAt(*p, p0[c] + size_t((s * step + k) % n));
-                out.v[i] = v;
-            } else {  // varying (and a linear curve's vertex values): along each segment
-                out.v[i] = (1 - t) * valueAt(*p, var0[c] + size_t(s)) +
-                           t * valueAt(*p, var0[c] + size_t((s + 1) % nvar));
-            }
+    appendPointParams(list, mesh, [&](const rib::Param& p, size_t i) {
+        const size_t c = std::min(curveOf[i], in.nvertices.size() - 1);
+        const int n = in.nvertices[c];
+        const int segs = std::max(1, curveSegments(in.cubic, n, in.periodic, step));
+        const int nvar = std::max(1, curveVaryingCount(in.cubic, n, in.periodic, step));
+        // along the curve as its centre line is (tessellate_curves_points.cpp)
+        const float x = std::clamp(uv[i].y, 0.0f, 1.0f) * float(segs);
+        const int s = std::min(int(x), segs - 1);
+        const float t = x - float(s);
+        if (p.storage == rib::StorageClass::Uniform) return valueAt(p, c);
+        if (p.storage == rib::StorageClass::Vertex && in.cubic) {
+            float w[4];
+            basisWeights(in.vbasis, t, w);
+            glm::vec3 v(0.0f);
+            for (int k = 0; k < 4; ++k) v += w[k] * valueAt(p, p0[c] + size_t((s * step + k) % n));
+            return v;
         }
-        mesh.params.push_back(std::move(out));
-    }
+        // varying (and a linear curve's vertex values): along each segment
+        return (1 - t) * valueAt(p, var0[c] + size_t(s)) +
+               t * valueAt(p, var0[c] + size_t((s + 1) % nvar));
+    });
 }
 
 void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh) {
