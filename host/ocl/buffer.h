@@ -60,6 +60,15 @@ public:
                                              sizeof(T) * count, data, 0, nullptr, nullptr),
                         m_ctx->name());
     }
+    // The same without waiting: `data` must stay unchanged until the queue has run the
+    // write (the next blocking read or finish on this in-order queue), which spares the
+    // render loop a round trip per small upload.
+    void uploadAsync(size_t first, const T* data, size_t count) {
+        if (count)
+            RD_CL_CHECK(clEnqueueWriteBuffer(m_ctx->queue(), m_mem, CL_FALSE, sizeof(T) * first,
+                                             sizeof(T) * count, data, 0, nullptr, nullptr),
+                        m_ctx->name());
+    }
     // Copies count elements from this buffer at srcFirst into dst at dstFirst, on the device.
     void copyTo(DeviceBuffer& dst, size_t srcFirst, size_t dstFirst, size_t count) const {
         if (count)

@@ -241,9 +241,14 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const bool spawns = f.trace || f.transparency;  // else a round leaves no ray behind
     // Refill: whole pixel jobs from the front of `pending` into the free end of the pool
     // (AR250: new eye rays whenever there is room, so eye and secondary rays share rounds).
+    // What a round uploads without waiting (uploadAsync): kept here, unchanged until the
+    // next round, by when the round's blocking reads have run every write before them.
+    std::vector<uint32_t> pixels, indices, keyOffsets, groupOffsets;
+    std::vector<PixelJob> recs;
     auto refill = [&](std::deque<PlannedJob>& pending) {
-        std::vector<uint32_t> pixels, indices;
-        std::vector<PixelJob> recs;
+        pixels.clear();
+        indices.clear();
+        recs.clear();
         const size_t jobPos = ring.nextJobPosition(), slotBase = ring.nextSlot();
         auto room = [&](uint32_t count) {  // an empty pool takes a job whatever the cap
             return n + pixels.size() + count <= roundCap || (n == 0 && pixels.empty());
@@ -260,10 +265,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         }
         if (pixels.empty()) return;
         const size_t wrap = std::min(recs.size(), ring.jobCapacity() - jobPos);
-        rp.jobs.uploadRange(jobPos, recs.data(), wrap);
-        if (wrap < recs.size()) rp.jobs.uploadRange(0, recs.data() + wrap, recs.size() - wrap);
-        rp.newPixel.uploadRange(0, pixels.data(), pixels.size());
-        rp.newIndex.uploadRange(0, indices.data(), indices.size());
+        rp.jobs.uploadAsync(jobPos, recs.data(), wrap);
+        if (wrap < recs.size()) rp.jobs.uploadAsync(0, recs.data() + wrap, recs.size() - wrap);
+        rp.newPixel.uploadAsync(0, pixels.data(), pixels.size());
+        rp.newIndex.uploadAsync(0, indices.data(), indices.size());
         const cl_uint add = cl_uint(pixels.size());
         k.generateEye.launch(add, ds.cameraBuf, add, n, cl_uint(slotBase),
                              cl_uint(ring.slotCapacity()), rp.newPixel, rp.newIndex,
@@ -280,11 +285,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         k.compactCount.launch(spawned, spawned, rp.nextState, rp.groupLive);
         const size_t groups = (spawned + 63) / 64;
         std::vector<uint32_t> live = rp.groupLive.downloadFirst(groups);
-        std::vector<uint32_t> offset(groups, 0);
+        groupOffsets.assign(groups, 0);
         size_t total = 0;
-        for (size_t g = 0; g < groups; ++g) offset[g] = uint32_t(total), total += live[g];
+        for (size_t g = 0; g < groups; ++g) groupOffsets[g] = uint32_t(total), total += live[g];
         if (total > 0) {
-            rp.groupOffset.uploadRange(0, offset.data(), groups);
+            rp.groupOffset.uploadAsync(0, groupOffsets.data(), groups);
             k.compactScatter.launch(spawned, spawned, cl_uint(pool), cl_uint(spillTop),
                                     cl_uint(spillCapacity), rp.groupOffset, rp.nextOrigin,
                                     rp.nextDirection, rp.nextWeight, rp.nextState,
@@ -324,12 +329,14 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics,
                           rp.hitInstance, rp.key, rp.keyCount, rp.nextState, rp.shState,
                           rp.sample, rp.slotRays);
-        std::vector<uint32_t> counts = rp.keyCount.download(), offsets(counts.size(), 0);
-        for (size_t s = 1; s < counts.size(); ++s) offsets[s] = offsets[s - 1] + counts[s - 1];
-        rp.keyCursor.upload(offsets);
+        std::vector<uint32_t> counts = rp.keyCount.download();
+        keyOffsets.assign(counts.size(), 0);
+        for (size_t s = 1; s < counts.size(); ++s)
+            keyOffsets[s] = keyOffsets[s - 1] + counts[s - 1];
+        rp.keyCursor.uploadAsync(0, keyOffsets.data(), keyOffsets.size());
         k.scatter.launch(n, n, shaderCount, rp.key, rp.keyCursor, rp.sorted);
-        shadeRuns(counts, offsets, rp.sorted, reshade.firstList());
-        if (f.textures) reshade.run(offsets, shading.surfaceNames, shadeRuns);
+        shadeRuns(counts, keyOffsets, rp.sorted, reshade.firstList());
+        if (f.textures) reshade.run(keyOffsets, shading.surfaceNames, shadeRuns);
         if (nl > 0) {
             if (treelets)
                 treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
