@@ -95,15 +95,6 @@ public:
                         m_ctx->name());
         return out;
     }
-    // Sets count elements from first to value without waiting (the pattern is copied
-    // when the command is enqueued), so it costs no synchronisation.
-    void fill(T value, size_t first, size_t count) {
-        if (count)
-            RD_CL_CHECK(clEnqueueFillBuffer(m_ctx->queue(), m_mem, &value, sizeof(T),
-                                            sizeof(T) * first, sizeof(T) * count, 0, nullptr,
-                                            nullptr),
-                        m_ctx->name());
-    }
     void fillZero() {
         const unsigned char zero = 0;
         RD_CL_CHECK(clEnqueueFillBuffer(m_ctx->queue(), m_mem, &zero, 1, 0,

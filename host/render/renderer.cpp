@@ -239,12 +239,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     size_t spillTop = 0;
     const size_t spillCapacity = RayPool::spillCapacity(pool, spawn);
     const bool spawns = f.trace || f.transparency;  // else a round leaves no ray behind
-    // Refill: whole pixel jobs from the front of `pending` into the free end of the pool
-    // (AR250: new eye rays whenever there is room, so eye and secondary rays share rounds).
     // What a round uploads without waiting (uploadAsync): kept here, unchanged until the
     // next round, by when the round's blocking reads have run every write before them.
     std::vector<uint32_t> pixels, indices, keyOffsets, groupOffsets;
     std::vector<PixelJob> recs;
+    // Refill: whole pixel jobs from the front of `pending` into the free end of the pool
+    // (AR250: new eye rays whenever there is room, so eye and secondary rays share rounds).
     auto refill = [&](std::deque<PlannedJob>& pending) {
         pixels.clear();
         indices.clear();
@@ -354,11 +354,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // Retire: jobs whose samples have no ray left go to the film; the oldest ones free
     // their slots. Aborted jobs (a ray dropped) are issued again, once.
     uint64_t nonfiniteRetired = 0;  // samples the film left out: a later pass replaces them
+    uint32_t progressInit[3] = {0u, 0u, 0u};  // uploaded without waiting: kept here
     auto retireJobs = [&](std::deque<PlannedJob>& pending) {
         const cl_uint window = cl_uint(ring.inFlight());
         if (window == 0) return;
-        rp.progress.fill(window, 0, 1);  // not a blocking write: that would wait for the round
-        rp.progress.fill(0u, 1, 2);
+        progressInit[0] = window;  // oldest in flight (none yet), aborted, NaN/Inf
+        rp.progress.uploadAsync(0, progressInit, 3);  // a blocking write would wait for the round
         k.retire.launch(window, cl_uint(ring.frontPosition()), window,
                         cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()), rp.jobs,
                         rp.slotRays, rp.slotAbort, rp.totals, filmBuf, rp.aov, aovBuf,
@@ -366,9 +367,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         std::vector<uint32_t> prog = rp.progress.download();
         nonfiniteRetired += prog[2];
         if (prog[1] > 0) {
-            std::vector<PixelJob> recs = rp.jobs.download();
+            std::vector<PixelJob> all = rp.jobs.download();
             for (size_t j = window; j-- > 0;) {
-                PixelJob& r = recs[(ring.frontPosition() + j) % ring.jobCapacity()];
+                PixelJob& r = all[(ring.frontPosition() + j) % ring.jobCapacity()];
                 if (r.state != RT_JOB_ABORTED) continue;
                 r.state = RT_JOB_RETIRED;
                 PlannedJob again = ring.at(j);
@@ -376,7 +377,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 pending.push_front(again);
                 st.reissuedSamples += again.count;
             }
-            rp.jobs.upload(recs);
+            rp.jobs.upload(all);
         }
         for (size_t j = 0; j < prog[0]; ++j) st.retiredSamples += ring.at(j).count;
         ring.popFront(prog[0]);
@@ -402,7 +403,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             if (timeBudget > 0 && raysPerSec > 0)
                 roundCap = std::clamp<size_t>(
                     size_t(raysPerSec * std::max(0.0, timeBudget - secondsSince(t0)) * 0.9),
-                    256, roundCap);
+                    std::min<size_t>(256, roundCap), roundCap);
             refill(pending);
             if (n == 0 && spillTop == 0 && ring.inFlight() == 0)
                 throw std::runtime_error("internal error: a pixel job larger than the ray pool");
