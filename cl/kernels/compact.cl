@@ -1,5 +1,7 @@
 /* compact.cl: stream compaction of the rays the shade stage spawned (the AR250's "rays
- * that hit are compacted onto a stack"). compact_count sums live rays per work-group;
+ * that hit are compacted onto a stack"). Each shaded ray leaves a mask of the spawn slots
+ * it filled (spawn_mask; classify clears it, so a ray reads one word, not its every
+ * slot). compact_count sums live rays per work-group of traced rays;
  * the host turns the group sums into offsets (a few thousand numbers); compact_scatter
  * moves each live ray to its offset, keeping their order, so the image does not depend
  * on scheduling. Live rays beyond the pool's capacity (a shader tracing several rays per
@@ -13,13 +15,13 @@
 #define RT_COMPACT_GROUP 64
 
 __kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
-void compact_count(uint count, __global const RayState* state, __global uint* group_live,
+void compact_count(uint count, __global const uint* spawn_mask, __global uint* group_live,
                    __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     __local uint live[RT_COMPACT_GROUP];
     uint i = get_global_id(0), lid = get_local_id(0);
     RT_COUNT_ACTIVE(active_counter, i < count);
-    live[lid] = (i < count && state[i].alive) ? 1u : 0u;
+    live[lid] = i < count ? popcount(spawn_mask[i]) : 0u;
     barrier(CLK_LOCAL_MEM_FENCE);
     if (lid == 0) {
         uint sum = 0;
@@ -29,11 +31,12 @@ void compact_count(uint count, __global const RayState* state, __global uint* gr
 }
 
 __kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
-void compact_scatter(uint count,
+void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_SPAWN_SLOTS + k */
                      uint capacity, /* the pool: live rays past it go to the spill stack */
                      uint spill_top,
                      uint spill_capacity,
                      __global const uint* group_offset, /* exclusive prefix of group_live */
+                     __global const uint* spawn_mask,
                      __global const float4* src_origin,
                      __global const float4* src_direction,
                      __global const float4* src_weight,
@@ -55,32 +58,37 @@ void compact_scatter(uint count,
     RT_DECLARE_ACTIVE_COUNTER;
     __local uint live[RT_COMPACT_GROUP];
     uint i = get_global_id(0), lid = get_local_id(0);
-    uint alive = (i < count && src_state[i].alive) ? 1u : 0u;
-    RT_COUNT_ACTIVE(active_counter, alive);
-    live[lid] = alive;
+    const uint mask = i < count ? spawn_mask[i] : 0u;
+    RT_COUNT_ACTIVE(active_counter, mask != 0u);
+    live[lid] = popcount(mask);
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (!alive) return;
+    if (!mask) return;
     /* position among the group's live rays: a fixed-length loop PoCL can vectorise */
     uint before = 0;
     for (uint k = 0; k < RT_COMPACT_GROUP; ++k) before += (k < lid) ? live[k] : 0u;
     uint j = group_offset[get_group_id(0)] + before;
-    const uint sample = src_sample[i];
-    if (j < capacity) {
-        dst_origin[j] = src_origin[i];
-        dst_direction[j] = src_direction[i];
-        dst_weight[j] = src_weight[i];
-        dst_state[j] = src_state[i];
-        dst_sample[j] = sample;
-    } else if (spill_top + (j - capacity) < spill_capacity) {
-        j = spill_top + (j - capacity);
-        spill_origin[j] = src_origin[i];
-        spill_direction[j] = src_direction[i];
-        spill_weight[j] = src_weight[i];
-        spill_state[j] = src_state[i];
-        spill_sample[j] = sample;
-    } else {
-        slot_abort[sample] = 1u;
-        return;
+    for (uint k = 0; k < RT_SPAWN_SLOTS; ++k) {
+        if (!(mask & (1u << k))) continue;
+        const uint from = i * RT_SPAWN_SLOTS + k;
+        const uint sample = src_sample[from];
+        if (j < capacity) {
+            dst_origin[j] = src_origin[from];
+            dst_direction[j] = src_direction[from];
+            dst_weight[j] = src_weight[from];
+            dst_state[j] = src_state[from];
+            dst_sample[j] = sample;
+            atomic_inc(&slot_rays[sample]);
+        } else if (spill_top + (j - capacity) < spill_capacity) {
+            const uint to = spill_top + (j - capacity);
+            spill_origin[to] = src_origin[from];
+            spill_direction[to] = src_direction[from];
+            spill_weight[to] = src_weight[from];
+            spill_state[to] = src_state[from];
+            spill_sample[to] = sample;
+            atomic_inc(&slot_rays[sample]);
+        } else {
+            slot_abort[sample] = 1u;
+        }
+        ++j;
     }
-    atomic_inc(&slot_rays[sample]);
 }

@@ -39,6 +39,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global float4* next_weight,
                             __global RayState* next_state,
                             __global uint* next_sample,
+                            __global uint* spawn_mask, /* bit k: slot k filled */
                             __global float4* shadow_origin, /* slot r * light_count + l */
                             __global float4* shadow_direction,
                             __global float4* shadow_weight,
@@ -234,6 +235,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
 
+    uint spawned = 0u; /* spawn_mask: the slots filled below */
 #if RT_SPAWN_SLOTS > 1
     /* trace(): one ray per call the base evaluation recorded */
     int traces = min(ev.trace_count, RSL_MAX_TRACE);
@@ -279,6 +281,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         RayState ts = {1u, rs.depth + 1u, h.prim, width_at_hit};
         next_state[s] = ts;
         next_sample[s] = sample;
+        spawned |= 2u << i;
     }
 #endif
 
@@ -301,6 +304,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
         RayState cs = {1u, rs.depth + RT_ONE_TRANSPARENT, h.prim, width_at_hit};
         next_state[s] = cs;
         next_sample[s] = sample;
+        spawned |= 1u;
     }
 #endif
+    spawn_mask[r] = spawned;
 }

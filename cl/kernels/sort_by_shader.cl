@@ -1,8 +1,11 @@
 /* sort_by_shader.cl: the sort stage. Hit rays are sorted by the compiled surface shader of
- * what they hit (a counting sort: classify counts rays per shader, the host turns counts
- * into offsets, scatter writes ray indices into each shader's run), so each shade kernel
- * runs over its own contiguous run with no idle work-items; misses are left out. Classify
- * also clears the spawn and shadow slots the shade stage may fill this round, and takes
+ * what they hit (a counting sort: classify counts rays per shader, the host reads the
+ * counts to size the shade launches, scatter writes ray indices into each shader's run),
+ * so each shade kernel runs over its own contiguous run with no idle work-items; misses
+ * are left out. The counts alternate between two halves of key_count by round parity:
+ * classify clears the other half and the cursors, scatter sums the offsets itself, so a
+ * round costs no fill and no upload, only the one read. Classify
+ * also clears the spawn mask and shadow slots the shade stage may fill this round, and takes
  * the ray off its sample's count of rays in flight (what it spawns is counted when the
  * compaction keeps it). */
 #include "counters.clh"
@@ -12,15 +15,16 @@
 
 #define RT_MAX_SHADER_KEYS 65 /* 64 shaders + the miss key */
 
-__kernel void classify_hits(uint count, uint shader_count, uint light_count,
+__kernel void classify_hits(uint count, uint shader_count, uint light_count, uint parity,
                             __global const RayHit* hits,
                             __global const TriangleAttr* attrs,
                             __global const Material* materials,
                             __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
                             __global const uint* hit_instance, /* RT_HAS_INSTANCES only */
                             __global uint* key,          /* per ray: shader, or shader_count */
-                            __global uint* key_count,    /* shader_count + 1 counters */
-                            __global RayState* next_state,
+                            __global uint* key_count,    /* 2 x (shader_count + 1) counters */
+                            __global uint* key_cursor,   /* shader_count + 1 */
+                            __global uint* spawn_mask,   /* the spawn slots a shader fills */
                             __global RayState* shadow_state,
                             __global const uint* ray_sample,
                             __global uint* slot_rays,
@@ -30,6 +34,11 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count,
     uint r = get_global_id(0), lid = get_local_id(0);
     RT_COUNT_ACTIVE(active_counter, r < count);
     for (uint k = lid; k <= shader_count; k += get_local_size(0)) hist[k] = 0;
+    /* last round's counts and the cursors are done with */
+    for (uint k = r; k <= shader_count; k += get_global_size(0)) {
+        key_count[(parity ^ 1u) * (shader_count + 1u) + k] = 0u;
+        key_cursor[k] = 0u;
+    }
     barrier(CLK_LOCAL_MEM_FENCE);
     if (r < count) {
         uint prim = hits[r].prim;
@@ -48,18 +57,19 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count,
         }
         key[r] = k;
         atomic_inc(&hist[k]);
-        for (uint s = 0; s < RT_SPAWN_SLOTS; ++s) next_state[r * RT_SPAWN_SLOTS + s].alive = 0u;
+        spawn_mask[r] = 0u;
         for (uint l = 0; l < light_count; ++l) shadow_state[r * light_count + l].alive = 0u;
         atomic_dec(&slot_rays[ray_sample[r]]);
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     for (uint k = lid; k <= shader_count; k += get_local_size(0))
-        if (hist[k]) atomic_add(&key_count[k], hist[k]);
+        if (hist[k]) atomic_add(&key_count[parity * (shader_count + 1u) + k], hist[k]);
 }
 
-__kernel void scatter_by_shader(uint count, uint shader_count,
+__kernel void scatter_by_shader(uint count, uint shader_count, uint parity,
                                 __global const uint* key,
-                                __global uint* key_cursor, /* starts at each run's offset */
+                                __global const uint* key_count, /* classify's, this parity */
+                                __global uint* key_cursor,      /* cleared by classify */
                                 __global uint* sorted,
                                 __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
@@ -67,5 +77,9 @@ __kernel void scatter_by_shader(uint count, uint shader_count,
     int hit = r < count && key[r] < shader_count;
     RT_COUNT_ACTIVE(active_counter, hit);
     if (!hit) return;
-    sorted[atomic_inc(&key_cursor[key[r]])] = r;
+    const uint k = key[r];
+    __global const uint* counts = key_count + parity * (shader_count + 1u);
+    uint offset = 0; /* the run's start: the counts before it, a loop of fixed length */
+    for (uint s = 0; s < shader_count; ++s) offset += s < k ? counts[s] : 0u;
+    sorted[offset + atomic_inc(&key_cursor[k])] = r;
 }

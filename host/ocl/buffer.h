@@ -78,10 +78,12 @@ public:
                         m_ctx->name());
     }
     // The first count elements (the rest need not be read).
-    std::vector<T> downloadFirst(size_t count) const {
-        std::vector<T> out(std::min(count, m_count));
+    std::vector<T> downloadFirst(size_t count) const { return downloadRange(0, count); }
+    // count elements from first on (clipped to the buffer).
+    std::vector<T> downloadRange(size_t first, size_t count) const {
+        std::vector<T> out(first < m_count ? std::min(count, m_count - first) : 0);
         if (!out.empty())
-            RD_CL_CHECK(clEnqueueReadBuffer(m_ctx->queue(), m_mem, CL_TRUE, 0,
+            RD_CL_CHECK(clEnqueueReadBuffer(m_ctx->queue(), m_mem, CL_TRUE, sizeof(T) * first,
                                             sizeof(T) * out.size(), out.data(), 0, nullptr,
                                             nullptr),
                         m_ctx->name());

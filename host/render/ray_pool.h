@@ -22,12 +22,12 @@ struct RayPool {
         : origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity),
           state(ctx, capacity), sample(ctx, capacity), hits(ctx, capacity),
           hitInstance(ctx, instances ? capacity : 0),
-          key(ctx, capacity), keyCount(ctx, shaderKeys), keyCursor(ctx, shaderKeys),
+          key(ctx, capacity), keyCount(ctx, 2 * shaderKeys), keyCursor(ctx, shaderKeys),
           sorted(ctx, capacity),
           nextOrigin(ctx, capacity * spawn), nextDirection(ctx, capacity * spawn),
           nextWeight(ctx, capacity * spawn), nextState(ctx, capacity * spawn),
-          nextSample(ctx, capacity * spawn), groupLive(ctx, capacity * spawn / 64 + 1),
-          groupOffset(ctx, capacity * spawn / 64 + 1),
+          nextSample(ctx, capacity * spawn), spawnMask(ctx, capacity),
+          groupLive(ctx, capacity / 64 + 1), groupOffset(ctx, capacity / 64 + 1),
           spillOrigin(ctx, spillCapacity(capacity, spawn)),
           spillDirection(ctx, spillCapacity(capacity, spawn)),
           spillWeight(ctx, spillCapacity(capacity, spawn)),
@@ -40,7 +40,9 @@ struct RayPool {
           sampleTime(ctx, motion ? slots : 0), aov(ctx, aovs ? slots : 0),
           slotRays(ctx, slots), slotAbort(ctx, slots), jobs(ctx, slots), progress(ctx, 3) {
         shState.fillZero();
-        nextState.fillZero();
+        spawnMask.fillZero();
+        keyCount.fillZero();
+        keyCursor.fillZero();
         slotRays.fillZero();
         slotAbort.fillZero();
     }
@@ -60,12 +62,14 @@ struct RayPool {
     DeviceBuffer<uint32_t> sample;  // the ray's sample slot
     DeviceBuffer<RayHit> hits;
     DeviceBuffer<uint32_t> hitInstance;                // instance of each closest hit
-    DeviceBuffer<uint32_t> key, keyCount, keyCursor, sorted;  // the sort by shader
+    // the sort by shader (keyCount: two halves, by round parity)
+    DeviceBuffer<uint32_t> key, keyCount, keyCursor, sorted;
     // what the shade stage spawns, compacted into the next round (and the spill stack)
     DeviceBuffer<rt_float4> nextOrigin, nextDirection, nextWeight;
     DeviceBuffer<RayState> nextState;
     DeviceBuffer<uint32_t> nextSample;
-    DeviceBuffer<uint32_t> groupLive, groupOffset;
+    DeviceBuffer<uint32_t> spawnMask;  // per traced ray: bit k set when slot k was filled
+    DeviceBuffer<uint32_t> groupLive, groupOffset;  // per 64 traced rays
     DeviceBuffer<rt_float4> spillOrigin, spillDirection, spillWeight;
     DeviceBuffer<RayState> spillState;
     DeviceBuffer<uint32_t> spillSample;

@@ -224,7 +224,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                rp.origin,
                                rp.direction, rp.weight, rp.state, rp.sample, rp.hits, rp.totals,
                                rp.nextOrigin, rp.nextDirection, rp.nextWeight, rp.nextState,
-                               rp.nextSample, rp.shOrigin, rp.shDirection, rp.shWeight,
+                               rp.nextSample, rp.spawnMask, rp.shOrigin, rp.shDirection, rp.shWeight,
                                rp.shState, rp.aov, nl, numerics, textures.infoBuf,
                                textures.pageBuf, textures.tileBuf, textures.requestBuf,
                                textures.counterBuf, textures.usedBuf, retry, reshade.counts(), s);
@@ -281,17 +281,18 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // Compacts the rays the shade stage spawned into the pool, past its capacity onto the
     // spill stack; then tops the pool up from the stack (newest first, as a stack keeps
     // ray trees shallow). Group counts on the device, their prefix on the host.
-    auto compactSpawned = [&](cl_uint spawned) {
-        k.compactCount.launch(spawned, spawned, rp.nextState, rp.groupLive);
-        const size_t groups = (spawned + 63) / 64;
+    auto compactSpawned = [&](cl_uint traced) {
+        k.compactCount.launch(traced, traced, rp.spawnMask, rp.groupLive);
+        const size_t groups = (traced + 63) / 64;
         std::vector<uint32_t> live = rp.groupLive.downloadFirst(groups);
         groupOffsets.assign(groups, 0);
         size_t total = 0;
         for (size_t g = 0; g < groups; ++g) groupOffsets[g] = uint32_t(total), total += live[g];
         if (total > 0) {
             rp.groupOffset.uploadAsync(0, groupOffsets.data(), groups);
-            k.compactScatter.launch(spawned, spawned, cl_uint(pool), cl_uint(spillTop),
-                                    cl_uint(spillCapacity), rp.groupOffset, rp.nextOrigin,
+            k.compactScatter.launch(traced, traced, cl_uint(pool), cl_uint(spillTop),
+                                    cl_uint(spillCapacity), rp.groupOffset, rp.spawnMask,
+                                    rp.nextOrigin,
                                     rp.nextDirection, rp.nextWeight, rp.nextState,
                                     rp.nextSample, rp.origin, rp.direction, rp.weight,
                                     rp.state, rp.sample, rp.spillOrigin, rp.spillDirection,
@@ -325,16 +326,17 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                       rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
                                       ds.quadricMotion, ds.trianglesEnd, rp.sample,
                                       rp.sampleTime, rp.hitInstance);
-        rp.keyCount.fillZero();
-        k.classify.launch(n, n, shaderCount, nl, rp.hits, ds.attrs, ds.materials, ds.quadrics,
-                          rp.hitInstance, rp.key, rp.keyCount, rp.nextState, rp.shState,
-                          rp.sample, rp.slotRays);
-        std::vector<uint32_t> counts = rp.keyCount.download();
+        const cl_uint parity = cl_uint(st.iterations & 1);
+        k.classify.launch(n, n, shaderCount, nl, parity, rp.hits, ds.attrs, ds.materials,
+                          ds.quadrics, rp.hitInstance, rp.key, rp.keyCount, rp.keyCursor,
+                          rp.spawnMask, rp.shState, rp.sample, rp.slotRays);
+        std::vector<uint32_t> counts =
+            rp.keyCount.downloadRange(parity * (shaderCount + 1), shaderCount + 1);
         keyOffsets.assign(counts.size(), 0);
         for (size_t s = 1; s < counts.size(); ++s)
             keyOffsets[s] = keyOffsets[s - 1] + counts[s - 1];
-        rp.keyCursor.uploadAsync(0, keyOffsets.data(), keyOffsets.size());
-        k.scatter.launch(n, n, shaderCount, rp.key, rp.keyCursor, rp.sorted);
+        k.scatter.launch(n, n, shaderCount, parity, rp.key, rp.keyCount, rp.keyCursor,
+                         rp.sorted);
         shadeRuns(counts, keyOffsets, rp.sorted, reshade.firstList());
         if (f.textures) reshade.run(keyOffsets, shading.surfaceNames, shadeRuns);
         if (nl > 0) {
@@ -414,7 +416,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 if (st.poolFillSeries.empty() ||
                     secondsSince(t0) - st.poolFillSeries.back().seconds >= 0.05)
                     st.poolFillSeries.push_back({secondsSince(t0), double(n) / double(pool)});
-                if (spawns) compactSpawned(cl_uint(n * spawn));
+                if (spawns) compactSpawned(n);
                 else n = 0;
             }
             const size_t inFlightBefore = ring.inFlight();
