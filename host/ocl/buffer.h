@@ -89,6 +89,15 @@ public:
                         m_ctx->name());
         return out;
     }
+    // The whole buffer into `out`, resized to fit: a vector kept from read to read is not
+    // allocated, cleared and faulted in again (the film: 12 MB at 512x512, 5 ms that way).
+    void downloadInto(std::vector<T>& out) const {
+        out.resize(m_count);
+        if (m_count)
+            RD_CL_CHECK(clEnqueueReadBuffer(m_ctx->queue(), m_mem, CL_TRUE, 0, bytes(),
+                                            out.data(), 0, nullptr, nullptr),
+                        m_ctx->name());
+    }
     std::vector<T> download() const {
         std::vector<T> out(m_count);
         if (m_count)

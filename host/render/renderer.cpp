@@ -13,7 +13,9 @@
 #include <cmath>
 #include <deque>
 #include <filesystem>
+#include <future>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "cl/include/ray.h"
@@ -99,6 +101,50 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const double errorTarget = m_settings.errorTarget > 0 ? m_settings.errorTarget
                                                           : scene.render.error;
 
+    const uint32_t nl = f.shadowRays ? f.lightCount : 0;
+    const size_t spawn = size_t(f.spawnSlots());
+    const cl_uint shaderCount = cl_uint(shading.shadeKernels.size());
+    // The pool: the rays of one round, enough to keep every compute unit busy (16k rays
+    // each), within a memory budget; the sample slots twice that, pixel jobs at most a
+    // quarter of it so several pixels share a round.
+    size_t wanted = m_settings.poolCapacity;
+    if (wanted == 0) wanted = std::clamp<size_t>(size_t(m_ctx.info().computeUnits) << 14,
+                                                 size_t(1) << 14, size_t(1) << 20);
+    const size_t memoryBudget = std::clamp<size_t>(m_ctx.info().globalMemBytes / 8,
+                                                   size_t(64) << 20, size_t(512) << 20);
+    const size_t pool = std::clamp<size_t>(
+        std::min(wanted, memoryBudget / RayPool::bytesPerRay(spawn, nl)), 64,
+        std::max<size_t>(64, wanted));
+    st.poolCapacity = pool;
+    SampleRing ring(2 * pool);
+    const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
+    // Sampling: the first pass needs no film, so it is planned on another thread while
+    // the BVH and the program are built (on a small frame it costs as much as a round).
+    const Camera cam0 = scene.deviceCamera();
+    SamplingSettings ss;
+    ss.firstPassBlock = m_settings.firstPassBlock > 0 ? m_settings.firstPassBlock
+                                                      : scene.render.firstPassBlock;
+    ss.pixelError = scene.render.pixelError;
+    const bool openEnded = timeBudget > 0 || errorTarget > 0;
+    ss.maxSamples = openEnded ? 1u << 16 : uint32_t(cam0.spp_x * cam0.spp_y);
+    ss.minSamples = std::min(2u, ss.maxSamples);
+    scene.camera.cropPixels(film.cropX0, film.cropX1, film.cropY0, film.cropY1);
+    std::optional<SamplePlanner> planner;
+    double firstPlanMs = 0;
+    std::future<std::deque<PlannedJob>> firstPass = std::async(std::launch::async, [&] {
+        const auto tp = Clock::now();
+        planner.emplace(cam0.width, cam0.height, film.cropX0, film.cropX1, film.cropY0,
+                        film.cropY1, ss);
+        // (a first pass without blocks reads the film: all zeros yet)
+        const std::vector<PixelAccum> none(
+            ss.firstPassBlock > 1 ? 0 : size_t(cam0.width) * size_t(cam0.height));
+        std::deque<PlannedJob> jobs = planJobs(
+            planner->nextPass(none, errorTarget > 0 ? float(errorTarget) : ss.pixelError),
+            maxJob);
+        firstPlanMs = secondsSince(tp) * 1e3;
+        return jobs;
+    });
+
     // Scene -> BVH -> specialised program -> device arrays
     auto tb = Clock::now();
     SceneBvh sceneBvh = buildSceneBvh(scene, f.bvhWidth);
@@ -133,23 +179,6 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const Camera& cam = ds.camera;
     std::unique_ptr<TreeletTracer> treelets;  // instead of the two intersect launches
 
-    const uint32_t nl = f.shadowRays ? f.lightCount : 0;
-    const size_t spawn = size_t(f.spawnSlots());
-    const cl_uint shaderCount = cl_uint(shading.shadeKernels.size());
-    // The pool: the rays of one round, enough to keep every compute unit busy (16k rays
-    // each), within a memory budget; the sample slots twice that, pixel jobs at most a
-    // quarter of it so several pixels share a round.
-    size_t wanted = m_settings.poolCapacity;
-    if (wanted == 0) wanted = std::clamp<size_t>(size_t(m_ctx.info().computeUnits) << 14,
-                                                 size_t(1) << 14, size_t(1) << 20);
-    const size_t memoryBudget = std::clamp<size_t>(m_ctx.info().globalMemBytes / 8,
-                                                   size_t(64) << 20, size_t(512) << 20);
-    const size_t pool = std::clamp<size_t>(
-        std::min(wanted, memoryBudget / RayPool::bytesPerRay(spawn, nl)), 64,
-        std::max<size_t>(64, wanted));
-    st.poolCapacity = pool;
-    SampleRing ring(2 * pool);
-    const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
     RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
                shaderCount + 1);
     if (f.treelets)
@@ -184,16 +213,6 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     film.pixels.assign(npix, PixelAccum{});
     st.sceneSetupMs = secondsSince(t0) * 1e3;
 
-    SamplingSettings ss;
-    ss.firstPassBlock = m_settings.firstPassBlock > 0 ? m_settings.firstPassBlock
-                                                      : scene.render.firstPassBlock;
-    ss.pixelError = scene.render.pixelError;
-    const bool openEnded = timeBudget > 0 || errorTarget > 0;
-    ss.maxSamples = openEnded ? 1u << 16 : uint32_t(cam.spp_x * cam.spp_y);
-    ss.minSamples = std::min(2u, ss.maxSamples);
-    scene.camera.cropPixels(film.cropX0, film.cropX1, film.cropY0, film.cropY1);
-    SamplePlanner planner(cam.width, cam.height, film.cropX0, film.cropX1, film.cropY0,
-                          film.cropY1, ss);
     Progress progress(m_settings.progress);
 
     auto stopNow = [&] {
@@ -390,7 +409,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         double now = secondsSince(t0);
         if (!force && now - lastSample < 0.5) return;
         lastSample = now;
-        film.pixels = filmBuf.download();
+        filmBuf.downloadInto(film.pixels);
         st.estimatedError = estimateFilmError(film.pixels);
         prof.collect();
         uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
@@ -455,22 +474,28 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     };
 
     for (;;) {
-        float pixelError = ss.pixelError;
-        if (errorTarget > 0) pixelError = float(errorTarget);
-        else if (timeBudget > 0 && st.estimatedError > 0)
-            pixelError = float(0.5 * st.estimatedError);  // refine the worse half
-        const auto tPlan = Clock::now();
-        std::vector<PixelRequest> pass = planner.nextPass(film.pixels, pixelError);
-        st.planMs += secondsSince(tPlan) * 1e3;
-        if (pass.empty()) {
+        std::deque<PlannedJob> jobs;
+        if (firstPass.valid()) {
+            jobs = firstPass.get();
+            st.planMs += firstPlanMs;
+        } else {
+            float pixelError = ss.pixelError;
+            if (errorTarget > 0) pixelError = float(errorTarget);
+            else if (timeBudget > 0 && st.estimatedError > 0)
+                pixelError = float(0.5 * st.estimatedError);  // refine the worse half
+            const auto tPlan = Clock::now();
+            jobs = planJobs(planner->nextPass(film.pixels, pixelError), maxJob);
+            st.planMs += secondsSince(tPlan) * 1e3;
+        }
+        if (jobs.empty()) {
             st.stopReason = "quality";
             break;
         }
-        if (!runPass(planJobs(pass, maxJob))) {
+        if (!runPass(std::move(jobs))) {
             st.abortedSamples = ring.samplesInFlight();  // in flight: never reach the film
             break;
         }
-        if (planner.firstPassIsFinal() && nonfiniteRetired == 0 && errorTarget <= 0) {
+        if (planner->firstPassIsFinal() && nonfiniteRetired == 0 && errorTarget <= 0) {
             st.stopReason = "quality";  // every pixel has all its samples: nothing to plan
             break;
         }
@@ -484,7 +509,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     }
     progress.finish();
     if (shading.imager) {  // the Imager shader on the finished image (also a stopped one)
-        film.pixels = filmBuf.download();
+        filmBuf.downloadInto(film.pixels);
         film.imaged = applyImager(m_ctx, program.get(), prof, film, ds.params);
     }
     m_ctx.finish();
@@ -506,7 +531,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const uint64_t closestRays = active("intersect_closest") + active("treelet_closest_root");
     st.continuationRays = closestRays > st.eyeRays ? closestRays - st.eyeRays : 0;
     st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root");
-    film.pixels = filmBuf.download();
+    filmBuf.downloadInto(film.pixels);
     if (f.aovs) film.aovs = aovBuf.download();
     st.estimatedError = estimateFilmError(film.pixels);
     st.nonfiniteSamples = film.nonfiniteCount();
@@ -532,7 +557,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                 " transparent surfaces; raise Attribute \"trace\" "
                                 "\"maxtransparentdepth\"");
     st.unsampledPixels = film.unsampledCount();
-    st.passes = planner.passes();
+    st.passes = planner->passes();
     st.elapsedSec = secondsSince(t0);
     // Pool fill: rays traced per round over the pool's capacity. Device busy: kernel time
     // over the sampling loop's wall time; the rest of the frame is host overhead: the
