@@ -7,7 +7,8 @@
  * on scheduling. Live rays beyond the pool's capacity (a shader tracing several rays per
  * hit) go onto the spill stack, traced in later rounds; past the stack's capacity they
  * are dropped, never written out of bounds, and their sample is marked to be issued
- * again. Each ray kept adds one to its sample's count of rays in flight.
+ * again. The shade stage counted every spawned ray in its sample's rays in flight; a
+ * dropped ray is taken off again.
  * Work-groups are RT_COMPACT_GROUP wide. */
 #include "counters.clh"
 #include "ray.h"
@@ -77,7 +78,6 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
             dst_weight[j] = src_weight[from];
             dst_state[j] = src_state[from];
             dst_sample[j] = sample;
-            atomic_inc(&slot_rays[sample]);
         } else if (spill_top + (j - capacity) < spill_capacity) {
             const uint to = spill_top + (j - capacity);
             spill_origin[to] = src_origin[from];
@@ -85,9 +85,9 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
             spill_weight[to] = src_weight[from];
             spill_state[to] = src_state[from];
             spill_sample[to] = sample;
-            atomic_inc(&slot_rays[sample]);
-        } else {
+        } else { /* dropped: no longer in flight, and its sample goes again */
             slot_abort[sample] = 1u;
+            atomic_dec(&slot_rays[sample]);
         }
         ++j;
     }

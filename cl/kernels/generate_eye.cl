@@ -1,5 +1,6 @@
 /* generate_eye.cl: the refill stage. New eye samples fill the free end of the ray pool:
- * new sample i is sample new_index[i] of pixel new_pixel[i] (the host's sample plan),
+ * new sample i is sample new_sample[2i + 1] of pixel new_sample[2i] (the host's sample
+ * plan, one upload),
  * its eye ray goes to pool slot ray_offset + i and its record to sample slot
  * (slot_base + i) modulo slot_capacity, placed in the pixel by the pixel's random
  * sequence (rng.clh), never by where it lands. Its running total starts at zero and its
@@ -16,8 +17,7 @@ __kernel void generate_eye(__constant Camera* cam,
                            uint ray_offset,
                            uint slot_base,
                            uint slot_capacity,
-                           __global const uint* new_pixel,
-                           __global const uint* new_index,
+                           __global const uint* new_sample, /* (pixel, index) pairs */
                            __global uint* sample_pixel, /* per sample slot */
                            __global uint* sample_index,
                            __global uint* slot_rays,
@@ -35,7 +35,7 @@ __kernel void generate_eye(__constant Camera* cam,
     uint k = get_global_id(0);
     RT_COUNT_ACTIVE(active_counter, k < count);
     if (k >= count) return;
-    const uint pixel = new_pixel[k], s = new_index[k];
+    const uint pixel = new_sample[2 * k], s = new_sample[2 * k + 1];
     const uint slot = (slot_base + k) % slot_capacity, i = ray_offset + k;
     sample_pixel[slot] = pixel;
     sample_index[slot] = s;

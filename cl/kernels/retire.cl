@@ -1,6 +1,6 @@
 /* retire.cl: the retire stage. A sample slot counts the rays of its sample still in flight
  * (generate_eye sets 1, the sort stage takes one off for each ray it classifies, the
- * compaction adds one for each spawned ray it keeps). Each pixel job whose slots all
+ * shade stage adds one for each ray it spawns, the compaction takes off those it drops). Each pixel job whose slots all
  * count zero adds its whole samples to the film, summed in slot order: a pixel has one
  * job per pass unless its samples outnumber the largest job, so the film is the same
  * whatever the pool's capacity. A job with a dropped ray (slot_abort: the pool in
@@ -13,11 +13,12 @@
 #include "math.clh"
 
 /* window: the jobs in flight, ring positions [window_start, + window_count) modulo
- * job_capacity. progress[0] (set to window_count by the host) becomes the rank of the
- * oldest job still in flight, so the host frees the retired prefix of the rings;
- * progress[1] counts jobs aborted by this launch, progress[2] samples left out as NaN/Inf. */
+ * job_capacity. Launches alternate between two halves of progress by parity; each
+ * launch clears the other half for the next. In its half, [0] (from ~0) becomes the rank
+ * of the oldest job still in flight, so the host frees the retired prefix of the rings;
+ * [1] counts jobs aborted by this launch, [2] samples left out as NaN/Inf. */
 __kernel void retire_samples(uint window_start, uint window_count, uint job_capacity,
-                             uint slot_capacity,
+                             uint slot_capacity, uint parity,
                              __global PixelJob* jobs,
                              __global const uint* slot_rays,
                              __global const uint* slot_abort,
@@ -29,6 +30,13 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
                              __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint k = get_global_id(0);
+    if (k == 0) {
+        __global uint* next = progress + 3u * (parity ^ 1u);
+        next[0] = 0xffffffffu;
+        next[1] = 0u;
+        next[2] = 0u;
+    }
+    progress += 3u * parity;
     uint job = (window_start + k) % job_capacity;
     int active = k < window_count &&
                  (jobs[job].state == RT_JOB_IN_FLIGHT || jobs[job].state == RT_JOB_LAST_TRY);

@@ -40,6 +40,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global RayState* next_state,
                             __global uint* next_sample,
                             __global uint* spawn_mask, /* bit k: slot k filled */
+                            __global uint* slot_rays,  /* + one per ray spawned */
                             __global float4* shadow_origin, /* slot r * light_count + l */
                             __global float4* shadow_direction,
                             __global float4* shadow_weight,
@@ -308,4 +309,6 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
     spawn_mask[r] = spawned;
+    /* counted now, so the retire stage may run before the compaction keeps them */
+    if (spawned) atomic_add(&slot_rays[sample], popcount(spawned));
 }

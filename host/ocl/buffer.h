@@ -89,6 +89,16 @@ public:
                         m_ctx->name());
         return out;
     }
+    // count elements from first on into out; without blocking, out must live until a
+    // later blocking command on the queue has returned.
+    void downloadRangeTo(size_t first, size_t count, T* out, bool blocking) const {
+        if (count)
+            RD_CL_CHECK(
+                clEnqueueReadBuffer(m_ctx->queue(), m_mem, blocking ? CL_TRUE : CL_FALSE,
+                                    sizeof(T) * first, sizeof(T) * count, out, 0, nullptr,
+                                    nullptr),
+                m_ctx->name());
+    }
     // The whole buffer into `out`, resized to fit: a vector kept from read to read is not
     // allocated, cleared and faulted in again (the film: 12 MB at 512x512, 5 ms that way).
     void downloadInto(std::vector<T>& out) const {

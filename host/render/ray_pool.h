@@ -35,14 +35,15 @@ struct RayPool {
           spillSample(ctx, spillCapacity(capacity, spawn)),
           shOrigin(ctx, capacity * shadowLights), shDirection(ctx, capacity * shadowLights),
           shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
-          newPixel(ctx, capacity), newIndex(ctx, capacity),
+          newSample(ctx, 2 * capacity),
           totals(ctx, slots), samplePixel(ctx, slots), sampleIndex(ctx, slots),
           sampleTime(ctx, motion ? slots : 0), aov(ctx, aovs ? slots : 0),
-          slotRays(ctx, slots), slotAbort(ctx, slots), jobs(ctx, slots), progress(ctx, 3) {
+          slotRays(ctx, slots), slotAbort(ctx, slots), jobs(ctx, slots), progress(ctx, 6) {
         shState.fillZero();
         spawnMask.fillZero();
         keyCount.fillZero();
         keyCursor.fillZero();
+        progress.upload({~0u, 0u, 0u, ~0u, 0u, 0u});
         slotRays.fillZero();
         slotAbort.fillZero();
     }
@@ -76,8 +77,8 @@ struct RayPool {
     // shadow rays
     DeviceBuffer<rt_float4> shOrigin, shDirection, shWeight;
     DeviceBuffer<RayState> shState;
-    // the refill: the new samples' pixels and indices
-    DeviceBuffer<uint32_t> newPixel, newIndex;
+    // the refill: the new samples' (pixel, index) pairs
+    DeviceBuffer<uint32_t> newSample;
     // sample slots and pixel jobs
     DeviceBuffer<SampleTotal> totals;
     DeviceBuffer<uint32_t> samplePixel, sampleIndex;
@@ -85,7 +86,8 @@ struct RayPool {
     DeviceBuffer<SampleAov> aov;
     DeviceBuffer<uint32_t> slotRays, slotAbort;
     DeviceBuffer<PixelJob> jobs;
-    DeviceBuffer<uint32_t> progress;  // retire_samples: oldest job in flight, aborted, NaN/Inf
+    // retire_samples, two halves by launch parity: oldest job in flight, aborted, NaN/Inf
+    DeviceBuffer<uint32_t> progress;
 };
 
 struct RenderKernels {

@@ -234,19 +234,18 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                          const DeviceBuffer<uint32_t>& sorted, DeviceBuffer<uint32_t>& retry) {
         for (cl_uint s = 0; s < shaderCount; ++s) {
             if (counts[s] == 0) continue;
-            k.shade[s]->launch(counts[s], cl_uint(offsets[s]), cl_uint(counts[s]), sorted,
-                               ds.triangles, ds.attrs, ds.normals, ds.vertexSt, ds.vertexCs,
-                               ds.vertexOs, ds.materials, ds.quadrics, ds.quadricPrimvars,
-                               ds.quadricMotion, ds.trianglesEnd, rp.sampleTime, rp.samplePixel,
-                               rp.sampleIndex, rp.hitInstance, ds.params,
-                               ds.triangleParams, ds.pointParamValues, ds.pointParamLayout,
-                               rp.origin,
-                               rp.direction, rp.weight, rp.state, rp.sample, rp.hits, rp.totals,
-                               rp.nextOrigin, rp.nextDirection, rp.nextWeight, rp.nextState,
-                               rp.nextSample, rp.spawnMask, rp.shOrigin, rp.shDirection, rp.shWeight,
-                               rp.shState, rp.aov, nl, numerics, textures.infoBuf,
-                               textures.pageBuf, textures.tileBuf, textures.requestBuf,
-                               textures.counterBuf, textures.usedBuf, retry, reshade.counts(), s);
+            k.shade[s]->launch(
+                counts[s], cl_uint(offsets[s]), cl_uint(counts[s]), sorted, ds.triangles,
+                ds.attrs, ds.normals, ds.vertexSt, ds.vertexCs, ds.vertexOs, ds.materials,
+                ds.quadrics, ds.quadricPrimvars, ds.quadricMotion, ds.trianglesEnd,
+                rp.sampleTime, rp.samplePixel, rp.sampleIndex, rp.hitInstance, ds.params,
+                ds.triangleParams, ds.pointParamValues, ds.pointParamLayout, rp.origin,
+                rp.direction, rp.weight, rp.state, rp.sample, rp.hits, rp.totals,
+                rp.nextOrigin, rp.nextDirection, rp.nextWeight, rp.nextState,
+                rp.nextSample, rp.spawnMask, rp.slotRays, rp.shOrigin, rp.shDirection,
+                rp.shWeight, rp.shState, rp.aov, nl, numerics, textures.infoBuf,
+                textures.pageBuf, textures.tileBuf, textures.requestBuf,
+                textures.counterBuf, textures.usedBuf, retry, reshade.counts(), s);
         }
     };
     // The rays in the pool now, and on the spill stack. Refill tops the pool up to
@@ -260,81 +259,43 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const bool spawns = f.trace || f.transparency;  // else a round leaves no ray behind
     // What a round uploads without waiting (uploadAsync): kept here, unchanged until the
     // next round, by when the round's blocking reads have run every write before them.
-    std::vector<uint32_t> pixels, indices, keyOffsets, groupOffsets;
+    std::vector<uint32_t> newSamples;  // (pixel, sample index) pairs
+    std::vector<uint32_t> keyOffsets, groupOffsets;
     std::vector<PixelJob> recs;
     // Refill: whole pixel jobs from the front of `pending` into the free end of the pool
     // (AR250: new eye rays whenever there is room, so eye and secondary rays share rounds).
     auto refill = [&](std::deque<PlannedJob>& pending) {
-        pixels.clear();
-        indices.clear();
+        newSamples.clear();
         recs.clear();
         const size_t jobPos = ring.nextJobPosition(), slotBase = ring.nextSlot();
         auto room = [&](uint32_t count) {  // an empty pool takes a job whatever the cap
-            return n + pixels.size() + count <= roundCap || (n == 0 && pixels.empty());
+            const size_t added = newSamples.size() / 2;
+            return n + added + count <= roundCap || (n == 0 && added == 0);
         };
         while (!pending.empty() && room(pending.front().count) &&
                ring.fits(pending.front().count)) {
             const PlannedJob& j = pending.front();
             recs.push_back(ring.push(j));
             for (uint32_t c = 0; c < j.count; ++c) {
-                pixels.push_back(j.pixel);
-                indices.push_back(j.firstSample + c);
+                newSamples.push_back(j.pixel);
+                newSamples.push_back(j.firstSample + c);
             }
             pending.pop_front();
         }
-        if (pixels.empty()) return;
+        if (newSamples.empty()) return;
         const size_t wrap = std::min(recs.size(), ring.jobCapacity() - jobPos);
         rp.jobs.uploadAsync(jobPos, recs.data(), wrap);
-        if (wrap < recs.size()) rp.jobs.uploadAsync(0, recs.data() + wrap, recs.size() - wrap);
-        rp.newPixel.uploadAsync(0, pixels.data(), pixels.size());
-        rp.newIndex.uploadAsync(0, indices.data(), indices.size());
-        const cl_uint add = cl_uint(pixels.size());
+        if (wrap < recs.size())
+            rp.jobs.uploadAsync(0, recs.data() + wrap, recs.size() - wrap);
+        rp.newSample.uploadAsync(0, newSamples.data(), newSamples.size());
+        const cl_uint add = cl_uint(newSamples.size() / 2);
         k.generateEye.launch(add, ds.cameraBuf, add, n, cl_uint(slotBase),
-                             cl_uint(ring.slotCapacity()), rp.newPixel, rp.newIndex,
-                             rp.samplePixel, rp.sampleIndex, rp.slotRays, rp.slotAbort,
-                             rp.origin, rp.direction, rp.weight, rp.state, rp.sample,
-                             rp.totals, rp.aov, rp.sampleTime);
+                             cl_uint(ring.slotCapacity()), rp.newSample, rp.samplePixel,
+                             rp.sampleIndex, rp.slotRays, rp.slotAbort, rp.origin,
+                             rp.direction, rp.weight, rp.state, rp.sample, rp.totals,
+                             rp.aov, rp.sampleTime);
         n += add;
         st.eyeRays += add;
-    };
-    // Compacts the rays the shade stage spawned into the pool, past its capacity onto the
-    // spill stack; then tops the pool up from the stack (newest first, as a stack keeps
-    // ray trees shallow). Group counts on the device, their prefix on the host.
-    auto compactSpawned = [&](cl_uint traced) {
-        k.compactCount.launch(traced, traced, rp.spawnMask, rp.groupLive);
-        const size_t groups = (traced + 63) / 64;
-        std::vector<uint32_t> live = rp.groupLive.downloadFirst(groups);
-        groupOffsets.assign(groups, 0);
-        size_t total = 0;
-        for (size_t g = 0; g < groups; ++g) groupOffsets[g] = uint32_t(total), total += live[g];
-        if (total > 0) {
-            rp.groupOffset.uploadAsync(0, groupOffsets.data(), groups);
-            k.compactScatter.launch(traced, traced, cl_uint(pool), cl_uint(spillTop),
-                                    cl_uint(spillCapacity), rp.groupOffset, rp.spawnMask,
-                                    rp.nextOrigin,
-                                    rp.nextDirection, rp.nextWeight, rp.nextState,
-                                    rp.nextSample, rp.origin, rp.direction, rp.weight,
-                                    rp.state, rp.sample, rp.spillOrigin, rp.spillDirection,
-                                    rp.spillWeight, rp.spillState, rp.spillSample,
-                                    rp.slotRays, rp.slotAbort);
-        }
-        n = cl_uint(std::min(total, pool));
-        if (total > pool) {
-            const size_t spilled = std::min(total - pool, spillCapacity - spillTop);
-            st.overflowRays += total - pool - spilled;  // dropped: the sample goes again
-            spillTop += spilled;
-            st.spilledRays += spilled;
-        } else if (spillTop > 0) {
-            const size_t take = std::min(pool - n, spillTop);
-            const size_t from = spillTop - take;
-            rp.spillOrigin.copyTo(rp.origin, from, n, take);
-            rp.spillDirection.copyTo(rp.direction, from, n, take);
-            rp.spillWeight.copyTo(rp.weight, from, n, take);
-            rp.spillState.copyTo(rp.state, from, n, take);
-            rp.spillSample.copyTo(rp.sample, from, n, take);
-            spillTop = from;
-            n += cl_uint(take);
-        }
     };
     // One round over the pool's n rays: trace, sort by shader, shade, shadows.
     auto traceRound = [&] {
@@ -372,36 +333,83 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                        rp.totals);
         }
     };
-    // Retire: jobs whose samples have no ray left go to the film; the oldest ones free
-    // their slots. Aborted jobs (a ray dropped) are issued again, once.
+    // The end of a round: count the rays the shade stage spawned (compact_count) and
+    // retire the jobs whose samples have no ray left, both read back at one wait; then
+    // compact the spawned rays into the pool, past its capacity onto the spill stack, and
+    // top the pool up from the stack (newest first, as a stack keeps ray trees shallow).
+    // Retired jobs go to the film and the oldest ones free their slots; aborted jobs (a
+    // ray dropped) are issued again, once.
     uint64_t nonfiniteRetired = 0;  // samples the film left out: a later pass replaces them
-    uint32_t progressInit[3] = {0u, 0u, 0u};  // uploaded without waiting: kept here
-    auto retireJobs = [&](std::deque<PlannedJob>& pending) {
+    uint32_t retireLaunches = 0;    // its parity picks retire_samples' progress half
+    uint32_t prog[3] = {0u, 0u, 0u};  // oldest in flight, aborted, NaN/Inf
+    auto finishRound = [&](std::deque<PlannedJob>& pending, cl_uint traced) {
+        const bool compact = spawns && traced > 0;
+        if (compact)
+            k.compactCount.launch(traced, traced, rp.spawnMask, rp.groupLive);
+        else
+            n = 0;
         const cl_uint window = cl_uint(ring.inFlight());
-        if (window == 0) return;
-        progressInit[0] = window;  // oldest in flight (none yet), aborted, NaN/Inf
-        rp.progress.uploadAsync(0, progressInit, 3);  // a blocking write would wait for the round
-        k.retire.launch(window, cl_uint(ring.frontPosition()), window,
-                        cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()), rp.jobs,
-                        rp.slotRays, rp.slotAbort, rp.totals, filmBuf, rp.aov, aovBuf,
-                        rp.progress);
-        std::vector<uint32_t> prog = rp.progress.download();
-        nonfiniteRetired += prog[2];
-        if (prog[1] > 0) {
-            std::vector<PixelJob> all = rp.jobs.download();
-            for (size_t j = window; j-- > 0;) {
-                PixelJob& r = all[(ring.frontPosition() + j) % ring.jobCapacity()];
-                if (r.state != RT_JOB_ABORTED) continue;
-                r.state = RT_JOB_RETIRED;
-                PlannedJob again = ring.at(j);
-                again.lastTry = true;
-                pending.push_front(again);
-                st.reissuedSamples += again.count;
-            }
-            rp.jobs.upload(all);
+        if (window > 0) {
+            const cl_uint parity = retireLaunches++ & 1u;
+            k.retire.launch(window, cl_uint(ring.frontPosition()), window,
+                            cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()),
+                            parity, rp.jobs, rp.slotRays, rp.slotAbort, rp.totals,
+                            filmBuf, rp.aov, aovBuf, rp.progress);
+            rp.progress.downloadRangeTo(3 * parity, 3, prog, /*blocking=*/!compact);
         }
-        for (size_t j = 0; j < prog[0]; ++j) st.retiredSamples += ring.at(j).count;
-        ring.popFront(prog[0]);
+        const size_t groups = (traced + 63) / 64;
+        std::vector<uint32_t> live =
+            compact ? rp.groupLive.downloadFirst(groups) : std::vector<uint32_t>{};
+        if (window > 0) {
+            nonfiniteRetired += prog[2];
+            if (prog[1] > 0) {
+                std::vector<PixelJob> all = rp.jobs.download();
+                for (size_t j = window; j-- > 0;) {
+                    PixelJob& r = all[(ring.frontPosition() + j) % ring.jobCapacity()];
+                    if (r.state != RT_JOB_ABORTED) continue;
+                    r.state = RT_JOB_RETIRED;
+                    PlannedJob again = ring.at(j);
+                    again.lastTry = true;
+                    pending.push_front(again);
+                    st.reissuedSamples += again.count;
+                }
+                rp.jobs.upload(all);
+            }
+            const size_t retired = std::min<size_t>(prog[0], window);
+            for (size_t j = 0; j < retired; ++j) st.retiredSamples += ring.at(j).count;
+            ring.popFront(retired);
+        }
+        if (!compact) return;
+        groupOffsets.assign(groups, 0);
+        size_t total = 0;
+        for (size_t g = 0; g < groups; ++g)
+            groupOffsets[g] = uint32_t(total), total += live[g];
+        if (total > 0) {
+            rp.groupOffset.uploadAsync(0, groupOffsets.data(), groups);
+            k.compactScatter.launch(
+                traced, traced, cl_uint(pool), cl_uint(spillTop), cl_uint(spillCapacity),
+                rp.groupOffset, rp.spawnMask, rp.nextOrigin, rp.nextDirection,
+                rp.nextWeight, rp.nextState, rp.nextSample, rp.origin, rp.direction,
+                rp.weight, rp.state, rp.sample, rp.spillOrigin, rp.spillDirection,
+                rp.spillWeight, rp.spillState, rp.spillSample, rp.slotRays, rp.slotAbort);
+        }
+        n = cl_uint(std::min(total, pool));
+        if (total > pool) {
+            const size_t spilled = std::min(total - pool, spillCapacity - spillTop);
+            st.overflowRays += total - pool - spilled;  // dropped: the sample goes again
+            spillTop += spilled;
+            st.spilledRays += spilled;
+        } else if (spillTop > 0) {
+            const size_t take = std::min(pool - n, spillTop);
+            const size_t from = spillTop - take;
+            rp.spillOrigin.copyTo(rp.origin, from, n, take);
+            rp.spillDirection.copyTo(rp.direction, from, n, take);
+            rp.spillWeight.copyTo(rp.weight, from, n, take);
+            rp.spillState.copyTo(rp.state, from, n, take);
+            rp.spillSample.copyTo(rp.sample, from, n, take);
+            spillTop = from;
+            n += cl_uint(take);
+        }
     };
 
     double lastSample = 0;  // the first point after half a second: a film read costs ~10 ms
@@ -434,12 +442,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 traceRound();
                 if (st.poolFillSeries.empty() ||
                     secondsSince(t0) - st.poolFillSeries.back().seconds >= 0.05)
-                    st.poolFillSeries.push_back({secondsSince(t0), double(n) / double(pool)});
-                if (spawns) compactSpawned(n);
-                else n = 0;
+                    st.poolFillSeries.push_back(
+                        {secondsSince(t0), double(n) / double(pool)});
             }
             const size_t inFlightBefore = ring.inFlight();
-            retireJobs(pending);  // its progress read waits for the round: time it here
+            finishRound(pending, traced);  // its read waits for the round: time it here
             // No ray anywhere yet a job still in flight would loop for ever: a sample's
             // count of rays went wrong. Never hang: stop with a clear error.
             if (traced == 0 && spillTop == 0 && ring.inFlight() == inFlightBefore &&
