@@ -1,8 +1,9 @@
 /* compact.cl: stream compaction of the rays the shade stage spawned (the AR250's "rays
  * that hit are compacted onto a stack"). Each shaded ray leaves a mask of the spawn slots
  * it filled (spawn_mask; classify clears it, so a ray reads one word, not its every
- * slot). compact_count sums live rays per work-group of traced rays;
- * the host turns the group sums into offsets (a few thousand numbers); compact_scatter
+ * slot). compact_count sums live rays per work-group of traced rays (the host reads the
+ * sums for the total); compact_scatter's work-group adds up the sums before its own for
+ * its offset (a strided sum over at most a few thousand numbers, no upload), then
  * moves each live ray to its offset, keeping their order, so the image does not depend
  * on scheduling. Live rays beyond the pool's capacity (a shader tracing several rays per
  * hit) go onto the spill stack, traced in later rounds; past the stack's capacity they
@@ -36,7 +37,7 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
                      uint capacity, /* the pool: live rays past it go to the spill stack */
                      uint spill_top,
                      uint spill_capacity,
-                     __global const uint* group_offset, /* exclusive prefix of group_live */
+                     __global const uint* group_live, /* compact_count's */
                      __global const uint* spawn_mask,
                      __global const float4* src_origin,
                      __global const float4* src_direction,
@@ -59,15 +60,22 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
     RT_DECLARE_ACTIVE_COUNTER;
     __local uint live[RT_COMPACT_GROUP];
     uint i = get_global_id(0), lid = get_local_id(0);
+    __local uint groups_before[RT_COMPACT_GROUP];
+    const uint group = get_group_id(0);
+    uint sum = 0;
+    for (uint g = lid; g < group; g += RT_COMPACT_GROUP) sum += group_live[g];
+    groups_before[lid] = sum;
     const uint mask = i < count ? spawn_mask[i] : 0u;
     RT_COUNT_ACTIVE(active_counter, mask != 0u);
     live[lid] = popcount(mask);
     barrier(CLK_LOCAL_MEM_FENCE);
     if (!mask) return;
-    /* position among the group's live rays: a fixed-length loop PoCL can vectorise */
+    /* the group's offset and the position among its live rays: fixed-length loops PoCL
+     * can vectorise */
     uint before = 0;
-    for (uint k = 0; k < RT_COMPACT_GROUP; ++k) before += (k < lid) ? live[k] : 0u;
-    uint j = group_offset[get_group_id(0)] + before;
+    for (uint k = 0; k < RT_COMPACT_GROUP; ++k)
+        before += groups_before[k] + ((k < lid) ? live[k] : 0u);
+    uint j = before;
     for (uint k = 0; k < RT_SPAWN_SLOTS; ++k) {
         if (!(mask & (1u << k))) continue;
         const uint from = i * RT_SPAWN_SLOTS + k;

@@ -27,7 +27,7 @@ struct RayPool {
           nextOrigin(ctx, capacity * spawn), nextDirection(ctx, capacity * spawn),
           nextWeight(ctx, capacity * spawn), nextState(ctx, capacity * spawn),
           nextSample(ctx, capacity * spawn), spawnMask(ctx, capacity),
-          groupLive(ctx, capacity / 64 + 1), groupOffset(ctx, capacity / 64 + 1),
+          groupLive(ctx, capacity / 64 + 1),
           spillOrigin(ctx, spillCapacity(capacity, spawn)),
           spillDirection(ctx, spillCapacity(capacity, spawn)),
           spillWeight(ctx, spillCapacity(capacity, spawn)),
@@ -70,7 +70,7 @@ struct RayPool {
     DeviceBuffer<RayState> nextState;
     DeviceBuffer<uint32_t> nextSample;
     DeviceBuffer<uint32_t> spawnMask;  // per traced ray: bit k set when slot k was filled
-    DeviceBuffer<uint32_t> groupLive, groupOffset;  // per 64 traced rays
+    DeviceBuffer<uint32_t> groupLive;  // live spawned rays per 64 traced rays
     DeviceBuffer<rt_float4> spillOrigin, spillDirection, spillWeight;
     DeviceBuffer<RayState> spillState;
     DeviceBuffer<uint32_t> spillSample;

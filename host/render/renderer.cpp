@@ -260,42 +260,70 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // What a round uploads without waiting (uploadAsync): kept here, unchanged until the
     // next round, by when the round's blocking reads have run every write before them.
     std::vector<uint32_t> newSamples;  // (pixel, sample index) pairs
-    std::vector<uint32_t> keyOffsets, groupOffsets;
+    std::vector<uint32_t> keyOffsets;
     std::vector<PixelJob> recs;
     // Refill: whole pixel jobs from the front of `pending` into the free end of the pool
     // (AR250: new eye rays whenever there is room, so eye and secondary rays share rounds).
-    auto refill = [&](std::deque<PlannedJob>& pending) {
+    // In two steps, so that the host's part overlaps the device's round: prepareRefill,
+    // before the round's wait, writes the records and (pixel, index) pairs of the jobs
+    // that surely fit (a round's worth, the slot ring as it is) without waiting;
+    // commitRefill, once the compaction has said how many rays the pool holds, launches
+    // generate_eye for the prefix that fits beside them.
+    struct PreparedRefill {
+        bool valid = false;
+        bool ringBound = false;      // the slot ring, not the round, cut it short
+        std::vector<uint32_t> ends;  // ends[j]: samples in prepared jobs 0..j
+    } prep;
+    auto prepareRefill = [&](const std::deque<PlannedJob>& pending) {
         newSamples.clear();
         recs.clear();
-        const size_t jobPos = ring.nextJobPosition(), slotBase = ring.nextSlot();
-        auto room = [&](uint32_t count) {  // an empty pool takes a job whatever the cap
-            const size_t added = newSamples.size() / 2;
-            return n + added + count <= roundCap || (n == 0 && added == 0);
-        };
-        while (!pending.empty() && room(pending.front().count) &&
-               ring.fits(pending.front().count)) {
-            const PlannedJob& j = pending.front();
-            recs.push_back(ring.push(j));
+        prep.ends.clear();
+        prep.ringBound = false;
+        size_t ahead = 0;
+        for (const PlannedJob& j : pending) {
+            if (ahead + j.count > roundCap && !recs.empty()) break;
+            if (!ring.fitsAhead(ahead, recs.size(), j.count)) {
+                prep.ringBound = true;
+                break;
+            }
+            recs.push_back(ring.recordAhead(ahead, j));
             for (uint32_t c = 0; c < j.count; ++c) {
                 newSamples.push_back(j.pixel);
                 newSamples.push_back(j.firstSample + c);
             }
-            pending.pop_front();
+            ahead += j.count;
+            prep.ends.push_back(uint32_t(ahead));
         }
-        if (newSamples.empty()) return;
+        prep.valid = true;
+        if (recs.empty()) return;
+        const size_t jobPos = ring.nextJobPosition();
         const size_t wrap = std::min(recs.size(), ring.jobCapacity() - jobPos);
         rp.jobs.uploadAsync(jobPos, recs.data(), wrap);
         if (wrap < recs.size())
             rp.jobs.uploadAsync(0, recs.data() + wrap, recs.size() - wrap);
         rp.newSample.uploadAsync(0, newSamples.data(), newSamples.size());
-        const cl_uint add = cl_uint(newSamples.size() / 2);
-        k.generateEye.launch(add, ds.cameraBuf, add, n, cl_uint(slotBase),
+    };
+    auto commitRefill = [&](std::deque<PlannedJob>& pending) {
+        if (!prep.valid || prep.ringBound) prepareRefill(pending);  // (slots freed since)
+        prep.valid = false;
+        // an empty pool takes a job whatever the cap
+        size_t take = 0;
+        while (take < prep.ends.size() &&
+               (n + prep.ends[take] <= roundCap || (n == 0 && take == 0)))
+            ++take;
+        if (take == 0) return;
+        const cl_uint add = prep.ends[take - 1];
+        k.generateEye.launch(add, ds.cameraBuf, add, n, cl_uint(ring.nextSlot()),
                              cl_uint(ring.slotCapacity()), rp.newSample, rp.samplePixel,
                              rp.sampleIndex, rp.slotRays, rp.slotAbort, rp.origin,
                              rp.direction, rp.weight, rp.state, rp.sample, rp.totals,
                              rp.aov, rp.sampleTime);
         n += add;
         st.eyeRays += add;
+        for (size_t j = 0; j < take; ++j) {  // the books, while the device starts
+            ring.push(pending.front());
+            pending.pop_front();
+        }
     };
     // One round over the pool's n rays: trace, sort by shader, shade, shadows.
     auto traceRound = [&] {
@@ -342,12 +370,17 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     uint64_t nonfiniteRetired = 0;  // samples the film left out: a later pass replaces them
     uint32_t retireLaunches = 0;    // its parity picks retire_samples' progress half
     uint32_t prog[3] = {0u, 0u, 0u};  // oldest in flight, aborted, NaN/Inf
+    std::vector<uint32_t> live;  // compact_count's live rays per group of 64
     auto finishRound = [&](std::deque<PlannedJob>& pending, cl_uint traced) {
         const bool compact = spawns && traced > 0;
-        if (compact)
+        const size_t groups = (traced + 63) / 64;
+        if (compact) {
             k.compactCount.launch(traced, traced, rp.spawnMask, rp.groupLive);
-        else
+            live.resize(groups);
+            rp.groupLive.downloadRangeTo(0, groups, live.data(), /*blocking=*/false);
+        } else {
             n = 0;
+        }
         const cl_uint window = cl_uint(ring.inFlight());
         if (window > 0) {
             const cl_uint parity = retireLaunches++ & 1u;
@@ -355,61 +388,58 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                             cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()),
                             parity, rp.jobs, rp.slotRays, rp.slotAbort, rp.totals,
                             filmBuf, rp.aov, aovBuf, rp.progress);
-            rp.progress.downloadRangeTo(3 * parity, 3, prog, /*blocking=*/!compact);
+            rp.progress.downloadRangeTo(3 * parity, 3, prog, /*blocking=*/false);
         }
-        const size_t groups = (traced + 63) / 64;
-        std::vector<uint32_t> live =
-            compact ? rp.groupLive.downloadFirst(groups) : std::vector<uint32_t>{};
-        if (window > 0) {
-            nonfiniteRetired += prog[2];
-            if (prog[1] > 0) {
-                std::vector<PixelJob> all = rp.jobs.download();
-                for (size_t j = window; j-- > 0;) {
-                    PixelJob& r = all[(ring.frontPosition() + j) % ring.jobCapacity()];
-                    if (r.state != RT_JOB_ABORTED) continue;
-                    r.state = RT_JOB_RETIRED;
-                    PlannedJob again = ring.at(j);
-                    again.lastTry = true;
-                    pending.push_front(again);
-                    st.reissuedSamples += again.count;
-                }
-                rp.jobs.upload(all);
+        prepareRefill(pending);  // while the device finishes the round
+        m_ctx.finish();
+        if (compact) {
+            size_t total = 0;
+            for (size_t g = 0; g < groups; ++g) total += live[g];
+            if (total > 0)
+                k.compactScatter.launch(traced, traced, cl_uint(pool), cl_uint(spillTop),
+                                        cl_uint(spillCapacity), rp.groupLive, rp.spawnMask,
+                                        rp.nextOrigin, rp.nextDirection, rp.nextWeight,
+                                        rp.nextState, rp.nextSample, rp.origin, rp.direction,
+                                        rp.weight, rp.state, rp.sample, rp.spillOrigin,
+                                        rp.spillDirection, rp.spillWeight, rp.spillState,
+                                        rp.spillSample, rp.slotRays, rp.slotAbort);
+            n = cl_uint(std::min(total, pool));
+            if (total > pool) {
+                const size_t spilled = std::min(total - pool, spillCapacity - spillTop);
+                st.overflowRays += total - pool - spilled;  // dropped: the sample goes again
+                spillTop += spilled;
+                st.spilledRays += spilled;
+            } else if (spillTop > 0) {
+                const size_t take = std::min(pool - n, spillTop);
+                const size_t from = spillTop - take;
+                rp.spillOrigin.copyTo(rp.origin, from, n, take);
+                rp.spillDirection.copyTo(rp.direction, from, n, take);
+                rp.spillWeight.copyTo(rp.weight, from, n, take);
+                rp.spillState.copyTo(rp.state, from, n, take);
+                rp.spillSample.copyTo(rp.sample, from, n, take);
+                spillTop = from;
+                n += cl_uint(take);
             }
-            const size_t retired = std::min<size_t>(prog[0], window);
-            for (size_t j = 0; j < retired; ++j) st.retiredSamples += ring.at(j).count;
-            ring.popFront(retired);
         }
-        if (!compact) return;
-        groupOffsets.assign(groups, 0);
-        size_t total = 0;
-        for (size_t g = 0; g < groups; ++g)
-            groupOffsets[g] = uint32_t(total), total += live[g];
-        if (total > 0) {
-            rp.groupOffset.uploadAsync(0, groupOffsets.data(), groups);
-            k.compactScatter.launch(
-                traced, traced, cl_uint(pool), cl_uint(spillTop), cl_uint(spillCapacity),
-                rp.groupOffset, rp.spawnMask, rp.nextOrigin, rp.nextDirection,
-                rp.nextWeight, rp.nextState, rp.nextSample, rp.origin, rp.direction,
-                rp.weight, rp.state, rp.sample, rp.spillOrigin, rp.spillDirection,
-                rp.spillWeight, rp.spillState, rp.spillSample, rp.slotRays, rp.slotAbort);
+        if (window == 0) return;
+        nonfiniteRetired += prog[2];
+        if (prog[1] > 0) {
+            std::vector<PixelJob> all = rp.jobs.download();
+            for (size_t j = window; j-- > 0;) {
+                PixelJob& r = all[(ring.frontPosition() + j) % ring.jobCapacity()];
+                if (r.state != RT_JOB_ABORTED) continue;
+                r.state = RT_JOB_RETIRED;
+                PlannedJob again = ring.at(j);
+                again.lastTry = true;
+                pending.push_front(again);
+                st.reissuedSamples += again.count;
+            }
+            rp.jobs.upload(all);
+            prep.valid = false;  // the front of `pending` changed
         }
-        n = cl_uint(std::min(total, pool));
-        if (total > pool) {
-            const size_t spilled = std::min(total - pool, spillCapacity - spillTop);
-            st.overflowRays += total - pool - spilled;  // dropped: the sample goes again
-            spillTop += spilled;
-            st.spilledRays += spilled;
-        } else if (spillTop > 0) {
-            const size_t take = std::min(pool - n, spillTop);
-            const size_t from = spillTop - take;
-            rp.spillOrigin.copyTo(rp.origin, from, n, take);
-            rp.spillDirection.copyTo(rp.direction, from, n, take);
-            rp.spillWeight.copyTo(rp.weight, from, n, take);
-            rp.spillState.copyTo(rp.state, from, n, take);
-            rp.spillSample.copyTo(rp.sample, from, n, take);
-            spillTop = from;
-            n += cl_uint(take);
-        }
+        const size_t retired = std::min<size_t>(prog[0], window);
+        for (size_t j = 0; j < retired; ++j) st.retiredSamples += ring.at(j).count;
+        ring.popFront(retired);
     };
 
     double lastSample = 0;  // the first point after half a second: a film read costs ~10 ms
@@ -427,13 +457,14 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // The pass's jobs stream through the pool: refill, trace, compact, retire, until every
     // job has retired. Returns false when a stop ends it early.
     auto runPass = [&](std::deque<PlannedJob> pending) {
+        prep.valid = false;
         while (!pending.empty() || ring.inFlight() > 0) {
             if (stopNow()) return false;
             if (timeBudget > 0 && raysPerSec > 0)
                 roundCap = std::clamp<size_t>(
                     size_t(raysPerSec * std::max(0.0, timeBudget - secondsSince(t0)) * 0.9),
                     std::min<size_t>(256, roundCap), roundCap);
-            refill(pending);
+            commitRefill(pending);
             if (n == 0 && spillTop == 0 && ring.inFlight() == 0)
                 throw std::runtime_error("internal error: a pixel job larger than the ray pool");
             const auto tRound = Clock::now();

@@ -17,9 +17,13 @@ std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t 
     return jobs;
 }
 
+PixelJob SampleRing::recordAhead(size_t slotsAhead, const PlannedJob& job) const {
+    return PixelJob{job.pixel, uint32_t((m_slotHead + slotsAhead) % m_slots), job.count,
+                    job.lastTry ? RT_JOB_LAST_TRY : RT_JOB_IN_FLIGHT};
+}
+
 PixelJob SampleRing::push(const PlannedJob& job) {
-    PixelJob rec{job.pixel, uint32_t(m_slotHead), job.count,
-                 job.lastTry ? RT_JOB_LAST_TRY : RT_JOB_IN_FLIGHT};
+    const PixelJob rec = recordAhead(0, job);
     m_slotHead = (m_slotHead + job.count) % m_slots;
     m_slotsUsed += job.count;
     m_jobs.push_back(job);

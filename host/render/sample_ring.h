@@ -30,9 +30,14 @@ public:
     explicit SampleRing(size_t slots) : m_slots(slots) {}
     size_t slotCapacity() const { return m_slots; }
     size_t jobCapacity() const { return m_slots; }  // a job takes at least one slot
-    bool fits(uint32_t count) const {
-        return m_slotsUsed + count <= m_slots && m_jobs.size() < jobCapacity();
+    bool fits(uint32_t count) const { return fitsAhead(0, 0, count); }
+    // Whether a job of `count` samples fits after `jobsAhead` jobs of `slotsAhead` samples
+    // not pushed yet, and the record push() will give it then.
+    bool fitsAhead(size_t slotsAhead, size_t jobsAhead, uint32_t count) const {
+        return m_slotsUsed + slotsAhead + count <= m_slots &&
+               m_jobs.size() + jobsAhead < jobCapacity();
     }
+    PixelJob recordAhead(size_t slotsAhead, const PlannedJob& job) const;
     // Records the job and returns its device record (state, first slot filled in).
     PixelJob push(const PlannedJob& job);
     size_t nextSlot() const { return m_slotHead; }

@@ -55,3 +55,27 @@ TEST(SampleRing, JobPositionsWrapAroundTheJobRing) {
         ring.popFront(1);
     }
 }
+
+// The refill prepares jobs before the round's wait (records written ahead of the pushes):
+// what recordAhead and fitsAhead say must be what push and fits say once the jobs before
+// are pushed.
+TEST(SampleRing, RecordsAheadMatchThePushesThatFollow) {
+    SampleRing ring(10);
+    ring.push({0, 0, 4, false});  // slots 0-3
+    ring.popFront(1);
+    ring.push({1, 0, 3, false});  // slots 4-6; 3 in flight, next slot 7
+    const PlannedJob a{2, 0, 4, false}, b{3, 0, 2, true}, c{4, 0, 2, false};
+    EXPECT_TRUE(ring.fitsAhead(0, 0, a.count));
+    const PixelJob ra = ring.recordAhead(0, a);
+    EXPECT_TRUE(ring.fitsAhead(4, 1, b.count));
+    const PixelJob rb = ring.recordAhead(4, b);
+    EXPECT_FALSE(ring.fitsAhead(6, 2, c.count));  // 3 + 4 + 2 + 2 > 10 slots
+    const PixelJob pa = ring.push(a), pb = ring.push(b);
+    EXPECT_EQ(ra.first_slot, pa.first_slot);
+    EXPECT_EQ(ra.first_slot, 7u);
+    EXPECT_EQ(rb.first_slot, pb.first_slot);
+    EXPECT_EQ(rb.first_slot, 1u);  // 7 + 4 wraps to 1
+    EXPECT_EQ(rb.state, RT_JOB_LAST_TRY);
+    EXPECT_EQ(ring.fits(c.count), ring.fitsAhead(0, 0, c.count));
+    EXPECT_FALSE(ring.fits(c.count));
+}
