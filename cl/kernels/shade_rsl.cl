@@ -7,6 +7,7 @@
  * with weight (1 - Oi). The kernel runs over this shader's run of the sorted ray list. */
 __kernel void shade_SURFACE(uint begin, uint count,
                             __global const uint* sorted,  /* ray indices, by shader */
+                            __global const uint* ray_key, /* classify's shader per ray */
                             __global const Triangle* tris,
                             __global const TriangleAttr* attrs,
                             __global const float4* normals,
@@ -63,9 +64,12 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global uint* active_counter) {
     RT_DECLARE_ACTIVE_COUNTER;
     uint j = get_global_id(0);
-    RT_COUNT_ACTIVE(active_counter, j < count);
+    /* a scene with one shader skips the sort: its run is every ray, with misses and hits
+     * on surfaces with no shader among them (their key is not this shader's) */
+    RT_COUNT_ACTIVE(active_counter, j < count && ray_key[sorted[begin + j]] == shader_index);
     if (j >= count) return;
     uint r = sorted[begin + j];
+    if (ray_key[r] != shader_index) return;
     RayHit h = hits[r];
     float4 org = origin[r], dir = direction[r], w = weight[r];
     RayState rs = state[r];

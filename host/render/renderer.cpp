@@ -181,6 +181,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
 
     RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
                shaderCount + 1);
+    if (shaderCount == 1) {  // the one shader's run: every ray in pool order
+        std::vector<uint32_t> order(pool);
+        for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
+        rp.sorted.upload(order);
+    }
     if (f.treelets)
         treelets = std::make_unique<TreeletTracer>(
             m_ctx, program.get(), prof, bvh4, treeletBudget,
@@ -235,7 +240,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         for (cl_uint s = 0; s < shaderCount; ++s) {
             if (counts[s] == 0) continue;
             k.shade[s]->launch(
-                counts[s], cl_uint(offsets[s]), cl_uint(counts[s]), sorted, ds.triangles,
+                counts[s], cl_uint(offsets[s]), cl_uint(counts[s]), sorted, rp.key, ds.triangles,
                 ds.attrs, ds.normals, ds.vertexSt, ds.vertexCs, ds.vertexOs, ds.materials,
                 ds.quadrics, ds.quadricPrimvars, ds.quadricMotion, ds.trianglesEnd,
                 rp.sampleTime, rp.samplePixel, rp.sampleIndex, rp.hitInstance, ds.params,
@@ -257,11 +262,15 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     size_t spillTop = 0;
     const size_t spillCapacity = RayPool::spillCapacity(pool, spawn);
     const bool spawns = f.trace || f.transparency;  // else a round leaves no ray behind
-    // What a round uploads without waiting (uploadAsync): kept here, unchanged until the
-    // next round, by when the round's blocking reads have run every write before them.
-    std::vector<uint32_t> newSamples;  // (pixel, sample index) pairs
     std::vector<uint32_t> keyOffsets;
-    std::vector<PixelJob> recs;
+    // What the refill uploads without waiting (uploadAsync) must stay put until the
+    // device has run the write: the end-of-round wait does. Two staging sets, used in
+    // turn, as a round may prepare twice before that wait (at its start and before it).
+    struct RefillStaging {
+        std::vector<uint32_t> newSamples;  // (pixel, sample index) pairs
+        std::vector<PixelJob> recs;
+    } staging[2];
+    int stagingSet = 0;
     // Refill: whole pixel jobs from the front of `pending` into the free end of the pool
     // (AR250: new eye rays whenever there is room, so eye and secondary rays share rounds).
     // In two steps, so that the host's part overlaps the device's round: prepareRefill,
@@ -275,6 +284,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         std::vector<uint32_t> ends;  // ends[j]: samples in prepared jobs 0..j
     } prep;
     auto prepareRefill = [&](const std::deque<PlannedJob>& pending) {
+        stagingSet ^= 1;
+        std::vector<uint32_t>& newSamples = staging[stagingSet].newSamples;
+        std::vector<PixelJob>& recs = staging[stagingSet].recs;
         newSamples.clear();
         recs.clear();
         prep.ends.clear();
@@ -338,13 +350,18 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         k.classify.launch(n, n, shaderCount, nl, parity, rp.hits, ds.attrs, ds.materials,
                           ds.quadrics, rp.hitInstance, rp.key, rp.keyCount, rp.keyCursor,
                           rp.spawnMask, rp.shState, rp.sample, rp.slotRays);
+        // One shader: no sort and no wait for the counts; its run is the whole pool in
+        // order (`sorted` holds 0, 1, 2, ...) and the shade kernel skips the misses.
         std::vector<uint32_t> counts =
-            rp.keyCount.downloadRange(parity * (shaderCount + 1), shaderCount + 1);
+            shaderCount == 1 ? std::vector<uint32_t>{n, 0u}
+                             : rp.keyCount.downloadRange(parity * (shaderCount + 1),
+                                                         shaderCount + 1);
         keyOffsets.assign(counts.size(), 0);
         for (size_t s = 1; s < counts.size(); ++s)
             keyOffsets[s] = keyOffsets[s - 1] + counts[s - 1];
-        k.scatter.launch(n, n, shaderCount, parity, rp.key, rp.keyCount, rp.keyCursor,
-                         rp.sorted);
+        if (shaderCount > 1)
+            k.scatter.launch(n, n, shaderCount, parity, rp.key, rp.keyCount, rp.keyCursor,
+                             rp.sorted);
         shadeRuns(counts, keyOffsets, rp.sorted, reshade.firstList());
         if (f.textures) reshade.run(keyOffsets, shading.surfaceNames, shadeRuns);
         if (nl > 0) {

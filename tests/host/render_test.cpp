@@ -150,17 +150,46 @@ TEST(Render, KernelStatsAreConsistent) {
                              "Surface \"matte\"\n" + std::string(kPlaneAt5) + "WorldEnd\n");
     const auto& k = img.stats.kernels;
     for (const char* name : {"generate_eye", "intersect_closest", "classify_hits",
-                             "scatter_by_shader", "shade_matte", "intersect_shadow",
-                             "accumulate_shadows", "retire_samples"}) {
+                             "shade_matte", "intersect_shadow", "accumulate_shadows",
+                             "retire_samples"}) {
         ASSERT_TRUE(k.count(name)) << name;
         EXPECT_GT(k.at(name).launches, 0u) << name;
         EXPECT_LE(k.at(name).activeItems, k.at(name).launchedItems) << name;
     }
+    // One shader: no sort (its run is the whole pool), so no scatter and no wait for it.
+    EXPECT_TRUE(!k.count("scatter_by_shader") || k.at("scatter_by_shader").launches == 0);
     // A flat, evenly lit plane: 1/4 ray per pixel first, then every pixel to the minimum
     // of 2 samples and no further (no variance, no contrast): 64 + 64*1 + 192*2 = 512.
     EXPECT_EQ(img.stats.eyeRays, 512u);
     EXPECT_EQ(k.at("intersect_closest").activeItems, img.stats.eyeRays);
     EXPECT_EQ(img.stats.shadowRays, img.stats.eyeRays);  // every hit sees the light
+}
+
+// Two shaders: the sort runs, each shade kernel takes its own run, and the misses and the
+// surfaces of the other shader are left out of a shader's work-items. Left half constant
+// 0.25, right half constant 0.75 (exact: constant is Cs), top rows empty sky.
+TEST(Render, TwoShadersAreSortedIntoTheirRuns) {
+    Rendered img = renderRib(
+        camera(16, 45, 2) +
+        "WorldBegin\nColor [0.25 0.25 0.25]\nSurface \"constant\"\n"
+        "Polygon \"P\" [-50 -50 5  0 -50 5  0 0 5  -50 0 5]\n"
+        "AttributeBegin\nColor [0.75 0.75 0.75]\nSurface \"matte\"\n"
+        "LightSource \"ambientlight\" 1 \"intensity\" 1\n"
+        "Polygon \"P\" [0 -50 5  50 -50 5  50 0 5  0 0 5]\nAttributeEnd\nWorldEnd\n");
+    const auto& k = img.stats.kernels;
+    ASSERT_TRUE(k.count("scatter_by_shader"));
+    EXPECT_GT(k.at("scatter_by_shader").launches, 0u);
+    // 16x16, at least 2 samples a pixel, the lower half hit: 64 pixels per shader; the
+    // sampler adds samples at the seam and the horizon, every one shaded once
+    const uint64_t constant = k.at("shade_constant").activeItems;
+    const uint64_t matte = k.at("shade_matte").activeItems;
+    EXPECT_GE(constant, 64u * 2);
+    EXPECT_GE(matte, 64u * 2);
+    EXPECT_LE(constant + matte, k.at("intersect_closest").activeItems);
+    // RI: y up, so the planes (y < 0) fill the lower rows 8-15 of the image
+    EXPECT_NEAR(img.mean(0, 0, 9, 7, 16), 0.25, 1e-6);
+    EXPECT_NEAR(img.mean(0, 9, 9, 16, 16), 0.75, 1e-5);  // matte: Ka ambient Cs
+    EXPECT_NEAR(img.mean(3, 0, 0, 16, 7), 0.0, 1e-6);
 }
 
 // An empty world renders a transparent black image, no hang, no crash.
