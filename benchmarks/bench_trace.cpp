@@ -331,23 +331,31 @@ int main(int argc, char** argv) {
                 kcs.push_back(std::make_unique<Kernel>(ctx, prog->get(), "intersect_closest", prof));
                 kss.push_back(std::make_unique<Kernel>(ctx, prog->get(), "intersect_shadow", prof));
             }
+            // a variant built with -DRT_BVH8 walks the eight-wide tree (needs --wide8)
+            auto eightWide = [&](size_t p) {
+                return p > 0 && variants[p - 1].find("RT_BVH8") != std::string::npos;
+            };
             auto runDevice = [&](size_t p) {
-                Kernel& kc = *kcs[p];
-                Kernel& ks = *kss[p];
-                if (k.shadow) {
-                    state.upload(st);
+                auto run = [&](auto& nodeBuf, auto& blockBuf) {
+                    Kernel& kc = *kcs[p];
+                    Kernel& ks = *kss[p];
+                    if (k.shadow) {
+                        state.upload(st);
+                        auto t0 = Clock::now();
+                        ks.launch(n, cl_uint(n), nodeBuf, blockBuf, org, dir, state, noQuadrics,
+                                  noCsg, noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
+                                  noNumerics);
+                        ctx.finish();
+                        return std::chrono::duration<double>(Clock::now() - t0).count();
+                    }
                     auto t0 = Clock::now();
-                    ks.launch(n, cl_uint(n), nodes, blocks, org, dir, state, noQuadrics, noCsg,
-                              noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
-                              noNumerics);
+                    kc.launch(n, cl_uint(n), nodeBuf, blockBuf, org, dir, state, hits,
+                              noQuadrics, noCsg, noTris, noMotion, noTris, noSample, noTime,
+                              noSample);
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
-                }
-                auto t0 = Clock::now();
-                kc.launch(n, cl_uint(n), nodes, blocks, org, dir, state, hits, noQuadrics, noCsg,
-                          noTris, noMotion, noTris, noSample, noTime, noSample);
-                ctx.finish();
-                return std::chrono::duration<double>(Clock::now() - t0).count();
+                };
+                return eightWide(p) ? run(nodes8, blocks8) : run(nodes, blocks);
             };
             std::unique_ptr<Kernel> kc8, ks8;
             DeviceBuffer<RayHit> hits8(ctx, n);
