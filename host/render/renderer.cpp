@@ -315,6 +315,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             rp.jobs.uploadAsync(0, recs.data() + wrap, recs.size() - wrap);
         rp.newSample.uploadAsync(0, newSamples.data(), newSamples.size());
     };
+    size_t toBook = 0;  // jobs launched, not yet in the ring's books
     auto commitRefill = [&](std::deque<PlannedJob>& pending) {
         if (!prep.valid || prep.ringBound) prepareRefill(pending);  // (slots freed since)
         prep.valid = false;
@@ -332,7 +333,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                              rp.aov, rp.sampleTime);
         n += add;
         st.eyeRays += add;
-        for (size_t j = 0; j < take; ++j) {  // the books, while the device starts
+        toBook = take;
+    };
+    // The ring's books of the jobs commitRefill launched, kept until the round's kernels
+    // are queued: thousands of one-sample jobs a round, booked while the device traces.
+    auto bookRefill = [&](std::deque<PlannedJob>& pending) {
+        for (; toBook > 0; --toBook) {
             ring.push(pending.front());
             pending.pop_front();
         }
@@ -455,7 +461,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             prep.valid = false;  // the front of `pending` changed
         }
         const size_t retired = std::min<size_t>(prog[0], window);
-        for (size_t j = 0; j < retired; ++j) st.retiredSamples += ring.at(j).count;
+        st.retiredSamples += ring.samplesInFront(retired);
         ring.popFront(retired);
     };
 
@@ -493,6 +499,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                     st.poolFillSeries.push_back(
                         {secondsSince(t0), double(n) / double(pool)});
             }
+            bookRefill(pending);
             const size_t inFlightBefore = ring.inFlight();
             finishRound(pending, traced);  // its read waits for the round: time it here
             // No ray anywhere yet a job still in flight would loop for ever: a sample's
@@ -588,7 +595,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root");
     filmBuf.downloadInto(film.pixels);
     if (f.aovs) film.aovs = aovBuf.download();
-    st.estimatedError = estimateFilmError(film.pixels);
+    // (no pixel has two samples to take a variance from: -1, without a pass over the film)
+    st.estimatedError = ss.maxSamples >= 2 ? estimateFilmError(film.pixels) : -1.0;
     st.nonfiniteSamples = film.nonfiniteCount();
     std::vector<uint32_t> num = numerics.download();
     st.shadeNonfinite = num[0], st.shadeNegative = num[1], st.shadeHuge = num[2];

@@ -18,24 +18,30 @@ std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t 
 }
 
 PixelJob SampleRing::recordAhead(size_t slotsAhead, const PlannedJob& job) const {
-    return PixelJob{job.pixel, uint32_t((m_slotHead + slotsAhead) % m_slots), job.count,
+    return PixelJob{job.pixel, uint32_t((m_pushed + slotsAhead) % m_slots), job.count,
                     job.lastTry ? RT_JOB_LAST_TRY : RT_JOB_IN_FLIGHT};
 }
 
 PixelJob SampleRing::push(const PlannedJob& job) {
     const PixelJob rec = recordAhead(0, job);
-    m_slotHead = (m_slotHead + job.count) % m_slots;
-    m_slotsUsed += job.count;
-    m_jobs.push_back(job);
+    const size_t pos = nextJobPosition();
+    m_jobs[pos] = job;
+    m_pushed += job.count;
+    m_jobEnd[pos] = m_pushed;
+    ++m_inFlight;
     return rec;
 }
 
+uint64_t SampleRing::samplesInFront(size_t n) const {
+    n = std::min(n, m_inFlight);
+    return n == 0 ? 0 : m_jobEnd[(m_frontPos + n - 1) % jobCapacity()] - m_popped;
+}
+
 void SampleRing::popFront(size_t n) {
-    for (size_t k = 0; k < n && !m_jobs.empty(); ++k) {
-        m_slotsUsed -= m_jobs.front().count;
-        m_jobs.pop_front();
-        m_frontPos = (m_frontPos + 1) % jobCapacity();
-    }
+    n = std::min(n, m_inFlight);
+    m_popped += samplesInFront(n);
+    m_frontPos = (m_frontPos + n) % jobCapacity();
+    m_inFlight -= n;
 }
 
 }  // namespace rd

@@ -27,33 +27,38 @@ std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t 
 
 class SampleRing {
 public:
-    explicit SampleRing(size_t slots) : m_slots(slots) {}
+    explicit SampleRing(size_t slots) : m_slots(slots), m_jobs(slots), m_jobEnd(slots) {}
     size_t slotCapacity() const { return m_slots; }
     size_t jobCapacity() const { return m_slots; }  // a job takes at least one slot
-    bool fits(uint32_t count) const { return fitsAhead(0, 0, count); }
     // Whether a job of `count` samples fits after `jobsAhead` jobs of `slotsAhead` samples
     // not pushed yet, and the record push() will give it then.
     bool fitsAhead(size_t slotsAhead, size_t jobsAhead, uint32_t count) const {
-        return m_slotsUsed + slotsAhead + count <= m_slots &&
-               m_jobs.size() + jobsAhead < jobCapacity();
+        return samplesInFlight() + slotsAhead + count <= m_slots &&
+               m_inFlight + jobsAhead < jobCapacity();
     }
     PixelJob recordAhead(size_t slotsAhead, const PlannedJob& job) const;
     // Records the job and returns its device record (state, first slot filled in).
     PixelJob push(const PlannedJob& job);
-    size_t nextSlot() const { return m_slotHead; }
-    size_t nextJobPosition() const { return (m_frontPos + m_jobs.size()) % jobCapacity(); }
+    bool fits(uint32_t count) const { return fitsAhead(0, 0, count); }
+    size_t nextSlot() const { return size_t(m_pushed % m_slots); }
+    size_t nextJobPosition() const { return (m_frontPos + m_inFlight) % jobCapacity(); }
     // The jobs in flight: ring positions [frontPosition(), + inFlight()).
     size_t frontPosition() const { return m_frontPos; }
-    size_t inFlight() const { return m_jobs.size(); }
-    const PlannedJob& at(size_t k) const { return m_jobs[k]; }
-    // The oldest `n` jobs retired (or were aborted): their slots are free again.
+    size_t inFlight() const { return m_inFlight; }
+    const PlannedJob& at(size_t k) const { return m_jobs[(m_frontPos + k) % jobCapacity()]; }
+    // The samples of the oldest `n` jobs in flight (n clipped to inFlight()).
+    uint64_t samplesInFront(size_t n) const;
+    // The oldest `n` jobs retired (or were aborted): their slots are free again. O(1): a
+    // round retires thousands of one-sample jobs.
     void popFront(size_t n);
-    uint64_t samplesInFlight() const { return m_slotsUsed; }
+    uint64_t samplesInFlight() const { return m_pushed - m_popped; }
 
 private:
     size_t m_slots;
-    size_t m_slotHead = 0, m_slotsUsed = 0, m_frontPos = 0;
-    std::deque<PlannedJob> m_jobs;
+    std::vector<PlannedJob> m_jobs;  // by ring position
+    std::vector<uint64_t> m_jobEnd;  // by ring position: samples pushed up to that job's end
+    uint64_t m_pushed = 0, m_popped = 0;  // samples ever pushed, ever freed
+    size_t m_frontPos = 0, m_inFlight = 0;
 };
 
 }  // namespace rd

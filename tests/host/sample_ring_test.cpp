@@ -79,3 +79,25 @@ TEST(SampleRing, RecordsAheadMatchThePushesThatFollow) {
     EXPECT_EQ(ring.fits(c.count), ring.fitsAhead(0, 0, c.count));
     EXPECT_FALSE(ring.fits(c.count));
 }
+
+// A round retires thousands of one-sample jobs: the samples of the oldest n jobs and
+// their release are O(1), and agree with the jobs' counts.
+TEST(SampleRing, SamplesInFrontAddUpTheOldestJobs) {
+    SampleRing ring(16);
+    ring.push({0, 0, 3, false});
+    ring.push({1, 0, 1, false});
+    ring.push({2, 0, 5, false});
+    EXPECT_EQ(ring.samplesInFront(0), 0u);
+    EXPECT_EQ(ring.samplesInFront(2), 4u);
+    EXPECT_EQ(ring.samplesInFront(9), 9u);  // clipped to the jobs in flight
+    ring.popFront(2);
+    EXPECT_EQ(ring.samplesInFlight(), 5u);
+    EXPECT_EQ(ring.samplesInFront(1), 5u);
+    ring.push({3, 0, 10, false});  // slots 9..18 wrap to 9..15, 0..2
+    EXPECT_FALSE(ring.fits(2));    // 15 in flight of 16
+    EXPECT_EQ(ring.samplesInFront(2), 15u);
+    ring.popFront(1);
+    EXPECT_TRUE(ring.fits(6));
+    EXPECT_EQ(ring.at(0).pixel, 3u);
+    EXPECT_EQ(ring.nextSlot(), 3u);
+}
