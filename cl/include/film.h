@@ -48,6 +48,10 @@ typedef struct PixelJob {
 #define RT_JOB_RETIRED 1u
 #define RT_JOB_ABORTED 2u   /* a ray of it was dropped: issue it again */
 #define RT_JOB_LAST_TRY 3u  /* in flight, issued again: retires with what it has */
+/* Or'ed into an in-flight state: the pixel's only job in its pass, so no other job adds
+ * to its film entry at the same time and retiring it needs no atomics. */
+#define RT_JOB_EXCLUSIVE 0x100u
+#define RT_JOB_STATE_MASK 0xffu
 #ifndef __OPENCL_C_VERSION__
 RT_ASSERT_SIZE(SampleTotal, 16);
 RT_ASSERT_SIZE(PixelJob, 16);

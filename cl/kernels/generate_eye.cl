@@ -36,7 +36,7 @@ __kernel void generate_eye(__constant Camera* cam,
     RT_COUNT_ACTIVE(active_counter, k < count);
     if (k >= count) return;
     const uint pixel = new_sample[2 * k], s = new_sample[2 * k + 1];
-    const uint slot = (slot_base + k) % slot_capacity, i = ray_offset + k;
+    const uint slot = rt_ring_add(slot_base, k, slot_capacity), i = ray_offset + k;
     sample_pixel[slot] = pixel;
     sample_index[slot] = s;
     slot_rays[slot] = 1u;

@@ -37,15 +37,16 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
         next[2] = 0u;
     }
     progress += 3u * parity;
-    uint job = (window_start + k) % job_capacity;
-    int active = k < window_count &&
-                 (jobs[job].state == RT_JOB_IN_FLIGHT || jobs[job].state == RT_JOB_LAST_TRY);
+    uint job = rt_ring_add(window_start, k, job_capacity);
+    const uint state = k < window_count ? jobs[job].state : RT_JOB_RETIRED;
+    int active = (state & RT_JOB_STATE_MASK) == RT_JOB_IN_FLIGHT ||
+                 (state & RT_JOB_STATE_MASK) == RT_JOB_LAST_TRY;
     RT_COUNT_ACTIVE(active_counter, active);
     if (!active) return;
     const uint first = jobs[job].first_slot, count = jobs[job].count;
     uint in_flight = 0, dropped = 0;
     for (uint s = 0; s < count; ++s) {
-        uint slot = (first + s) % slot_capacity;
+        uint slot = rt_ring_add(first, s, slot_capacity);
         in_flight += slot_rays[slot];
         dropped |= slot_abort[slot];
     }
@@ -53,7 +54,7 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
         atomic_min(&progress[0], k);
         return;
     }
-    if (dropped && jobs[job].state == RT_JOB_IN_FLIGHT) {
+    if (dropped && (state & RT_JOB_STATE_MASK) == RT_JOB_IN_FLIGHT) {
         jobs[job].state = RT_JOB_ABORTED;
         atomic_inc(&progress[1]);
         return;
@@ -62,7 +63,7 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
     float4 sum = (float4)(0.0f), sum_sq = (float4)(0.0f);
     uint n = 0, bad = 0;
     for (uint s = 0; s < count; ++s) {
-        float4 v = total[(first + s) % slot_capacity].value;
+        float4 v = total[rt_ring_add(first, s, slot_capacity)].value;
         if (rt_all_finite(v)) {
             sum += v;
             sum_sq += v * v;
@@ -71,19 +72,27 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
             ++bad;
         }
     }
-    /* atomics only for the rare pixel with two jobs retiring in one launch */
+    /* atomics only for a pixel with several jobs in the pass (two may retire in one
+     * launch); the pixel's only job owns its film entry */
     __global PixelAccum* acc = &film[jobs[job].pixel];
-    rt_atomic_add_float4(&acc->sum, sum);
-    rt_atomic_add_float4(&acc->sum_sq, sum_sq);
-    atomic_add(&acc->count, n);
-    atomic_add(&acc->nonfinite, bad);
+    if (state & RT_JOB_EXCLUSIVE) {
+        acc->sum += sum;
+        acc->sum_sq += sum_sq;
+        acc->count += n;
+        acc->nonfinite += bad;
+    } else {
+        rt_atomic_add_float4(&acc->sum, sum);
+        rt_atomic_add_float4(&acc->sum_sq, sum_sq);
+        atomic_add(&acc->count, n);
+        atomic_add(&acc->nonfinite, bad);
+    }
     if (bad) atomic_add(&progress[2], bad);
 #ifdef RT_HAS_AOVS
     float4 nsum = (float4)(0.0f);
     float zsum = 0.0f;
     uint hits = 0;
     for (uint s = 0; s < count; ++s) {
-        uint slot = (first + s) % slot_capacity;
+        uint slot = rt_ring_add(first, s, slot_capacity);
         if (aov[slot].hit) {
             nsum += aov[slot].normal;
             zsum += aov[slot].z;
@@ -91,8 +100,14 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
         }
     }
     __global AovAccum* a = &aov_film[jobs[job].pixel];
-    rt_atomic_add_float4(&a->normal_sum, nsum);
-    rt_atomic_add_float((volatile __global float*)&a->z_sum, zsum);
-    atomic_add(&a->hits, hits);
+    if (state & RT_JOB_EXCLUSIVE) {
+        a->normal_sum += nsum;
+        a->z_sum += zsum;
+        a->hits += hits;
+    } else {
+        rt_atomic_add_float4(&a->normal_sum, nsum);
+        rt_atomic_add_float((volatile __global float*)&a->z_sum, zsum);
+        atomic_add(&a->hits, hits);
+    }
 #endif
 }

@@ -140,7 +140,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             ss.firstPassBlock > 1 ? 0 : size_t(cam0.width) * size_t(cam0.height));
         std::deque<PlannedJob> jobs = planJobs(
             planner->nextPass(none, errorTarget > 0 ? float(errorTarget) : ss.pixelError),
-            maxJob);
+            maxJob, size_t(cam0.width) * size_t(cam0.height));
         firstPlanMs = secondsSince(tp) * 1e3;
         return jobs;
     });
@@ -546,7 +546,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             else if (timeBudget > 0 && st.estimatedError > 0)
                 pixelError = float(0.5 * st.estimatedError);  // refine the worse half
             const auto tPlan = Clock::now();
-            jobs = planJobs(planner->nextPass(film.pixels, pixelError), maxJob);
+            jobs = planJobs(planner->nextPass(film.pixels, pixelError), maxJob,
+                            film.pixels.size());
             st.planMs += secondsSince(tPlan) * 1e3;
         }
         if (jobs.empty()) {

@@ -5,13 +5,21 @@
 
 namespace rd {
 
-std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t maxJob) {
+std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t maxJob,
+                                size_t pixelCount) {
     std::deque<PlannedJob> jobs;
     maxJob = std::max(1u, maxJob);
+    std::vector<uint8_t> jobsOfPixel(pixelCount, 0);  // saturating at 2
+    for (const PixelRequest& r : pass)
+        if (r.pixel < pixelCount) {
+            const uint32_t n = (r.count + maxJob - 1) / maxJob;
+            jobsOfPixel[r.pixel] = uint8_t(std::min<uint32_t>(2, jobsOfPixel[r.pixel] + n));
+        }
     for (const PixelRequest& r : pass)
         for (uint32_t done = 0; done < r.count;) {
             uint32_t take = std::min(maxJob, r.count - done);
-            jobs.push_back({r.pixel, r.first + done, take, false});
+            const bool alone = r.pixel < pixelCount && jobsOfPixel[r.pixel] == 1;
+            jobs.push_back({r.pixel, r.first + done, take, false, alone});
             done += take;
         }
     return jobs;
@@ -19,7 +27,8 @@ std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t 
 
 PixelJob SampleRing::recordAhead(size_t slotsAhead, const PlannedJob& job) const {
     return PixelJob{job.pixel, uint32_t((m_pushed + slotsAhead) % m_slots), job.count,
-                    job.lastTry ? RT_JOB_LAST_TRY : RT_JOB_IN_FLIGHT};
+                    (job.lastTry ? RT_JOB_LAST_TRY : RT_JOB_IN_FLIGHT) |
+                        (job.exclusive ? RT_JOB_EXCLUSIVE : 0u)};
 }
 
 PixelJob SampleRing::push(const PlannedJob& job) {

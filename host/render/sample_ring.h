@@ -20,10 +20,13 @@ namespace rd {
 struct PlannedJob {
     uint32_t pixel = 0, firstSample = 0, count = 0;
     bool lastTry = false;
+    bool exclusive = false;  // the pixel's only job in its pass (RT_JOB_EXCLUSIVE)
 };
 
-// Cuts a pass's requests into jobs of at most `maxJob` samples, in the pass's order.
-std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t maxJob);
+// Cuts a pass's requests into jobs of at most `maxJob` samples, in the pass's order, and
+// marks the jobs that are their pixel's only one in the pass (pixels < pixelCount).
+std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t maxJob,
+                                size_t pixelCount);
 
 class SampleRing {
 public:

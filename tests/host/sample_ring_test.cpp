@@ -9,7 +9,7 @@ using rd::SampleRing;
 
 TEST(SampleRing, PassesAreCutIntoJobsOfAtMostMaxSamples) {
     std::vector<rd::PixelRequest> pass = {{7, 0, 3}, {9, 4, 10}};
-    auto jobs = rd::planJobs(pass, 4);
+    auto jobs = rd::planJobs(pass, 4, 100);
     ASSERT_EQ(jobs.size(), 4u);  // 3 | 4 + 4 + 2
     EXPECT_EQ(jobs[0].pixel, 7u);
     EXPECT_EQ(jobs[0].count, 3u);
@@ -17,7 +17,7 @@ TEST(SampleRing, PassesAreCutIntoJobsOfAtMostMaxSamples) {
     EXPECT_EQ(jobs[2].firstSample, 8u);
     EXPECT_EQ(jobs[3].firstSample, 12u);
     EXPECT_EQ(jobs[3].count, 2u);
-    EXPECT_EQ(rd::planJobs(pass, 0).size(), 13u) << "a zero limit still makes progress";
+    EXPECT_EQ(rd::planJobs(pass, 0, 100).size(), 13u) << "a zero limit still makes progress";
 }
 
 TEST(SampleRing, SlotsAreConsecutiveAndFreedOldestFirst) {
@@ -100,4 +100,25 @@ TEST(SampleRing, SamplesInFrontAddUpTheOldestJobs) {
     EXPECT_TRUE(ring.fits(6));
     EXPECT_EQ(ring.at(0).pixel, 3u);
     EXPECT_EQ(ring.nextSlot(), 3u);
+}
+
+// Retire adds a job to the film without atomics only when it is its pixel's one job in
+// the pass: a pixel with two requests (the first pass's block sample and its minimum) or
+// a request cut into several jobs must keep the atomics.
+TEST(SampleRing, OnlyAPixelsSoleJobIsExclusive) {
+    std::vector<rd::PixelRequest> pass = {{1, 0, 1}, {2, 0, 1}, {2, 1, 1}, {3, 0, 9}, {4, 0, 4}};
+    auto jobs = rd::planJobs(pass, 4, 8);
+    ASSERT_EQ(jobs.size(), 7u);  // 1 | 1 | 1 | 4 + 4 + 1 | 4
+    EXPECT_TRUE(jobs[0].exclusive);   // pixel 1: one job
+    EXPECT_FALSE(jobs[1].exclusive);  // pixel 2: two requests
+    EXPECT_FALSE(jobs[2].exclusive);
+    EXPECT_FALSE(jobs[3].exclusive);  // pixel 3: cut into three jobs
+    EXPECT_FALSE(jobs[5].exclusive);
+    EXPECT_TRUE(jobs[6].exclusive);   // pixel 4: exactly maxJob samples, one job
+    SampleRing ring(64);
+    EXPECT_EQ(ring.push(jobs[0]).state, RT_JOB_IN_FLIGHT | RT_JOB_EXCLUSIVE);
+    EXPECT_EQ(ring.push(jobs[1]).state, RT_JOB_IN_FLIGHT);
+    PlannedJob again = jobs[6];
+    again.lastTry = true;  // issued again after an abort: still the pixel's only job
+    EXPECT_EQ(ring.push(again).state, RT_JOB_LAST_TRY | RT_JOB_EXCLUSIVE);
 }
