@@ -28,7 +28,7 @@ __kernel void quadric_probe(uint count, uint object,
     uint prim = RT_OBJECT_BIT | object;
     int found = q->kind == RT_Q_CSG
                     ? rt_csg_intersect(&os, &w, q, o, d, o.w, d.w, &t, &u, &v, &prim)
-                    : rt_quadric_intersect(q, os.quadric_motion, 0.0f, o, d, o.w, d.w, &t, &u, &v);
+                    : rt_quadric_intersect(q, os.quadric_motion, 0.0f, o, d, o.w, d.w, &t, &u, &v, 1);
     hit[i] = (float4)(t, u, v, found ? 1.0f : 0.0f);
     hit_prim[i] = prim;
     float4 P = (float4)(0.0f), dPdu, dPdv, n = (float4)(0.0f);
