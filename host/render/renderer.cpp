@@ -1,11 +1,12 @@
 // renderer.cpp: the render loop. It reads as the algorithm: analyse the scene, build the
 // BVH and the specialised program, upload; then pass after pass of the sample plan. A
 // pass's pixel jobs stream through the ray pool in rounds: refill the free end of the
-// pool with eye rays (generate_eye), trace (intersect_closest), sort by shader, shade,
-// trace shadows (intersect_shadow), add them (accumulate_shadows), compact what the
-// shaders spawned into the next round, retire the samples with no ray left
-// (retire_samples). Between rounds it polls the stop conditions; samples still in
-// flight at a stop never reach the film, so it holds only whole samples.
+// pool with eye rays (generate_eye, refill.h), trace (intersect_closest), sort by shader
+// (none with one shader), shade, trace shadows (intersect_shadow), add them
+// (accumulate_shadows); then retire the samples with no ray left (retire_samples) and
+// compact what the shaders spawned into the next round, read back at the round's one
+// wait. Between rounds it polls the stop conditions; samples still in flight at a stop
+// never reach the film, so it holds only whole samples.
 #include "renderer.h"
 
 #include <algorithm>
@@ -26,6 +27,7 @@
 #include "film/film_error.h"
 #include "progress.h"
 #include "ray_pool.h"
+#include "refill.h"
 #include "sample_ring.h"
 #include "shaders/shader_set.h"
 #include "stop.h"
@@ -263,86 +265,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const size_t spillCapacity = RayPool::spillCapacity(pool, spawn);
     const bool spawns = f.trace || f.transparency;  // else a round leaves no ray behind
     std::vector<uint32_t> keyOffsets;
-    // What the refill uploads without waiting (uploadAsync) must stay put until the
-    // device has run the write: the end-of-round wait does. Two staging sets, used in
-    // turn, as a round may prepare twice before that wait (at its start and before it).
-    struct RefillStaging {
-        std::vector<uint32_t> newSamples;  // (pixel, sample index) pairs
-        std::vector<PixelJob> recs;
-    } staging[2];
-    int stagingSet = 0;
-    // Refill: whole pixel jobs from the front of `pending` into the free end of the pool
-    // (AR250: new eye rays whenever there is room, so eye and secondary rays share rounds).
-    // In two steps, so that the host's part overlaps the device's round: prepareRefill,
-    // before the round's wait, writes the records and (pixel, index) pairs of the jobs
-    // that surely fit (a round's worth, the slot ring as it is) without waiting;
-    // commitRefill, once the compaction has said how many rays the pool holds, launches
-    // generate_eye for the prefix that fits beside them.
-    struct PreparedRefill {
-        bool valid = false;
-        bool ringBound = false;      // the slot ring, not the round, cut it short
-        std::vector<uint32_t> ends;  // ends[j]: samples in prepared jobs 0..j
-    } prep;
-    auto prepareRefill = [&](const std::deque<PlannedJob>& pending) {
-        stagingSet ^= 1;
-        std::vector<uint32_t>& newSamples = staging[stagingSet].newSamples;
-        std::vector<PixelJob>& recs = staging[stagingSet].recs;
-        newSamples.clear();
-        recs.clear();
-        prep.ends.clear();
-        prep.ringBound = false;
-        size_t ahead = 0;
-        for (const PlannedJob& j : pending) {
-            if (ahead + j.count > roundCap && !recs.empty()) break;
-            if (!ring.fitsAhead(ahead, recs.size(), j.count)) {
-                prep.ringBound = true;
-                break;
-            }
-            recs.push_back(ring.recordAhead(ahead, j));
-            for (uint32_t c = 0; c < j.count; ++c) {
-                newSamples.push_back(j.pixel);
-                newSamples.push_back(j.firstSample + c);
-            }
-            ahead += j.count;
-            prep.ends.push_back(uint32_t(ahead));
-        }
-        prep.valid = true;
-        if (recs.empty()) return;
-        const size_t jobPos = ring.nextJobPosition();
-        const size_t wrap = std::min(recs.size(), ring.jobCapacity() - jobPos);
-        rp.jobs.uploadAsync(jobPos, recs.data(), wrap);
-        if (wrap < recs.size())
-            rp.jobs.uploadAsync(0, recs.data() + wrap, recs.size() - wrap);
-        rp.newSample.uploadAsync(0, newSamples.data(), newSamples.size());
-    };
-    size_t toBook = 0;  // jobs launched, not yet in the ring's books
-    auto commitRefill = [&](std::deque<PlannedJob>& pending) {
-        if (!prep.valid || prep.ringBound) prepareRefill(pending);  // (slots freed since)
-        prep.valid = false;
-        // an empty pool takes a job whatever the cap
-        size_t take = 0;
-        while (take < prep.ends.size() &&
-               (n + prep.ends[take] <= roundCap || (n == 0 && take == 0)))
-            ++take;
-        if (take == 0) return;
-        const cl_uint add = prep.ends[take - 1];
-        k.generateEye.launch(add, ds.cameraBuf, add, n, cl_uint(ring.nextSlot()),
-                             cl_uint(ring.slotCapacity()), rp.newSample, rp.samplePixel,
-                             rp.sampleIndex, rp.slotRays, rp.slotAbort, rp.origin,
-                             rp.direction, rp.weight, rp.state, rp.sample, rp.totals,
-                             rp.aov, rp.sampleTime);
-        n += add;
-        st.eyeRays += add;
-        toBook = take;
-    };
-    // The ring's books of the jobs commitRefill launched, kept until the round's kernels
-    // are queued: thousands of one-sample jobs a round, booked while the device traces.
-    auto bookRefill = [&](std::deque<PlannedJob>& pending) {
-        for (; toBook > 0; --toBook) {
-            ring.push(pending.front());
-            pending.pop_front();
-        }
-    };
+    Refill refill(ring, rp, k.generateEye, ds.cameraBuf);
     // One round over the pool's n rays: trace, sort by shader, shade, shadows.
     auto traceRound = [&] {
         if (treelets)
@@ -413,7 +336,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                             filmBuf, rp.aov, aovBuf, rp.progress);
             rp.progress.downloadRangeTo(3 * parity, 3, prog, /*blocking=*/false);
         }
-        prepareRefill(pending);  // while the device finishes the round
+        refill.prepare(pending, roundCap);  // while the device finishes the round
         m_ctx.finish();
         if (compact) {
             size_t total = 0;
@@ -458,7 +381,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 st.reissuedSamples += again.count;
             }
             rp.jobs.upload(all);
-            prep.valid = false;  // the front of `pending` changed
+            refill.invalidate();  // the front of `pending` changed
         }
         const size_t retired = std::min<size_t>(prog[0], window);
         st.retiredSamples += ring.samplesInFront(retired);
@@ -480,14 +403,16 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // The pass's jobs stream through the pool: refill, trace, compact, retire, until every
     // job has retired. Returns false when a stop ends it early.
     auto runPass = [&](std::deque<PlannedJob> pending) {
-        prep.valid = false;
+        refill.invalidate();
         while (!pending.empty() || ring.inFlight() > 0) {
             if (stopNow()) return false;
             if (timeBudget > 0 && raysPerSec > 0)
                 roundCap = std::clamp<size_t>(
                     size_t(raysPerSec * std::max(0.0, timeBudget - secondsSince(t0)) * 0.9),
                     std::min<size_t>(256, roundCap), roundCap);
-            commitRefill(pending);
+            const cl_uint added = refill.commit(pending, n, roundCap);
+            n += added;
+            st.eyeRays += added;
             if (n == 0 && spillTop == 0 && ring.inFlight() == 0)
                 throw std::runtime_error("internal error: a pixel job larger than the ray pool");
             const auto tRound = Clock::now();
@@ -499,7 +424,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                     st.poolFillSeries.push_back(
                         {secondsSince(t0), double(n) / double(pool)});
             }
-            bookRefill(pending);
+            refill.book(pending);
             const size_t inFlightBefore = ring.inFlight();
             finishRound(pending, traced);  // its read waits for the round: time it here
             // No ray anywhere yet a job still in flight would loop for ever: a sample's
