@@ -1,6 +1,7 @@
 // bench_trace.cpp: ray throughput (issue 5). Primary, diffuse-bounce and shadow rays on
 // the same procedural meshes, traced by RayDrive's intersect kernels on the chosen OpenCL
-// device and by Embree 3 (rtcIntersect1/rtcOccluded1 over all cores) in the same run,
+// device and by Embree 3 (rtcIntersect1/rtcOccluded1 over all cores; also its ray
+// streams, rtcIntersect1M/rtcOccluded1M, and its watertight RTC_SCENE_FLAG_ROBUST mode) in the same run,
 // median of several runs, reported as Mrays/s and as the ratio RayDrive / Embree; then
 // the same rays through the treelet-streamed traversal (render/treelet_trace.h) at a few
 // treelet budgets, resident and streamed through a cache, with their ratio to Embree and
@@ -122,9 +123,11 @@ Rays primaryRays(int side) {
 struct EmbreeScene {
     RTCDevice device;
     RTCScene scene;
-    explicit EmbreeScene(const Mesh& m) {
+    // robust: RTC_SCENE_FLAG_ROBUST, Embree's watertight mode (its default is not)
+    explicit EmbreeScene(const Mesh& m, bool robust = false) {
         device = rtcNewDevice(nullptr);
         scene = rtcNewScene(device);
+        if (robust) rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
         float* v = (float*)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
                                                    RTC_FORMAT_FLOAT3, 3 * sizeof(float),
@@ -149,31 +152,59 @@ struct EmbreeScene {
         rtcReleaseScene(scene);
         rtcReleaseDevice(device);
     }
-    // Closest hits (t, prim) or occlusion, over all hardware threads.
-    void trace(const Rays& r, bool shadow, std::vector<RayHit>& out) const {
+    // Closest hits (t, prim) or occlusion, over all hardware threads, each a contiguous
+    // share of the rays (as PoCL's work-groups take them): one rtcIntersect1 or
+    // rtcOccluded1 per ray, or with `stream` one rtcIntersect1M / rtcOccluded1M call per
+    // thread (`coherent`: the coherent-stream hint, for primary rays).
+    void trace(const Rays& r, bool shadow, std::vector<RayHit>& out, bool stream = false,
+               bool coherent = false) const {
         out.resize(r.org.size());
+        const size_t n = r.org.size();
         unsigned nt = std::max(1u, std::thread::hardware_concurrency());
         std::vector<std::thread> th;
         for (unsigned t = 0; t < nt; ++t)
             th.emplace_back([&, t] {
                 RTCIntersectContext ctx;
                 rtcInitIntersectContext(&ctx);
-                for (size_t i = t; i < r.org.size(); i += nt) {
+                if (stream)
+                    ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                         : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+                const size_t b = n * t / nt, e = n * (t + 1) / nt;
+                auto ray = [&](size_t i) {
                     RTCRayHit rh;
                     rh.ray.org_x = r.org[i].x, rh.ray.org_y = r.org[i].y, rh.ray.org_z = r.org[i].z;
                     rh.ray.dir_x = r.dir[i].x, rh.ray.dir_y = r.dir[i].y, rh.ray.dir_z = r.dir[i].z;
                     rh.ray.tnear = r.org[i].w, rh.ray.tfar = r.dir[i].w;
-                    rh.ray.mask = ~0u, rh.ray.flags = 0, rh.ray.time = 0;
+                    rh.ray.mask = ~0u, rh.ray.flags = 0, rh.ray.time = 0, rh.ray.id = unsigned(i);
+                    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                    return rh;
+                };
+                auto result = [&](size_t i, const RTCRayHit& rh) {
                     if (shadow) {
-                        rtcOccluded1(scene, &ctx, &rh.ray);
                         out[i].prim = rh.ray.tfar < 0 ? 0 : RT_NO_HIT;
                     } else {
-                        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                        rtcIntersect1(scene, &ctx, &rh);
                         out[i].t = rh.ray.tfar;
                         out[i].prim = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RT_NO_HIT
                                                                                 : rh.hit.primID;
                     }
+                };
+                if (stream) {
+                    std::vector<RTCRayHit> rays(e - b);
+                    for (size_t i = b; i < e; ++i) rays[i - b] = ray(i);
+                    if (shadow)
+                        rtcOccluded1M(scene, &ctx, &rays[0].ray, unsigned(e - b),
+                                      sizeof(RTCRayHit));
+                    else
+                        rtcIntersect1M(scene, &ctx, rays.data(), unsigned(e - b),
+                                       sizeof(RTCRayHit));
+                    for (size_t i = b; i < e; ++i) result(i, rays[i - b]);
+                    return;
+                }
+                for (size_t i = b; i < e; ++i) {
+                    RTCRayHit rh = ray(i);
+                    if (shadow) rtcOccluded1(scene, &ctx, &rh.ray);
+                    else rtcIntersect1(scene, &ctx, &rh);
+                    result(i, rh);
                 }
             });
         for (auto& t : th) t.join();
@@ -292,7 +323,7 @@ int main(int argc, char** argv) {
             s.triangles = mesh.tris;
             return triangleBounds(s);
         }(), bs);
-        EmbreeScene emb(mesh);
+        EmbreeScene emb(mesh), embRobust(mesh, true);
         Bvh4 bvh4 = collapseToBvh4(bvh, mesh.tris);
         DeviceBuffer<Bvh4Node> nodes(ctx, bvh4.nodes);
         DeviceBuffer<Triangle4> blocks(ctx, bvh4.blocks);
@@ -382,8 +413,14 @@ int main(int argc, char** argv) {
             if (wide8) runWide8();
             std::vector<std::vector<double>> tv(programs.size());
             for (size_t p = programs.size(); p-- > 0;) runDevice(p);  // PoCL compiles on first launch
-            std::vector<double> td, te, cd, ce;
-            std::vector<RayHit> eh;
+            std::vector<double> td, te, cd, ce, tes, ter;
+            std::vector<RayHit> eh, ehs, ehr;
+            auto timed = [](auto&& f) {
+                auto t0 = Clock::now();
+                f();
+                return std::chrono::duration<double>(Clock::now() - t0).count();
+            };
+            const bool coherent = k.rays == &primary;
             for (int r = 0; r < runs; ++r) {
                 for (size_t p = 1; p < programs.size(); ++p) tv[p].push_back(runDevice(p));
                 if (wide8) t8.push_back(runWide8());
@@ -395,6 +432,8 @@ int main(int argc, char** argv) {
                 te.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
                 ce.push_back(cpuSeconds() - c1);
                 cd.push_back(c1 - c0);
+                tes.push_back(timed([&] { emb.trace(*k.rays, k.shadow, ehs, true, coherent); }));
+                ter.push_back(timed([&] { embRobust.trace(*k.rays, k.shadow, ehr); }));
             }
             // Agreement: same hit / same occlusion as Embree.
             size_t same = 0;
@@ -413,6 +452,11 @@ int main(int argc, char** argv) {
             std::printf("%-14s %-8s %10zu %10.2f %10.2f %8.3f %8.4f%% %9.3f\n", mesh.name.c_str(),
                         k.name, n, md, me, md / me, 100.0 * double(same) / double(n),
                         median(ce) / median(cd));
+            std::printf("  Embree stream (rtc%s1M) %13.2f Mrays/s; robust (watertight) "
+                        "rtc%s1 %.2f Mrays/s; RayDrive / robust %.3f\n",
+                        k.shadow ? "Occluded" : "Intersect", n / median(tes) * 1e-6,
+                        k.shadow ? "Occluded" : "Intersect", n / median(ter) * 1e-6,
+                        median(ter) / median(td));
             if (wide8) {
                 size_t same8 = 0;
                 auto h8 = hits8.download();
@@ -424,8 +468,10 @@ int main(int argc, char** argv) {
                                              std::fabs(h8[i].t - eh[i].t) <=
                                                  1e-3f * std::max(1.0f, eh[i].t));
                 std::printf("  bvh8 %-33s %10.2f Mrays/s, %.3f of bvh4, %.3f of Embree, agree "
-                            "%.4f%%\n", "", n / median(t8) * 1e-6, median(td) / median(t8),
-                            median(te) / median(t8), 100.0 * double(same8) / double(n));
+                            "%.4f%%; %.3f of Embree stream, %.3f of Embree robust\n", "",
+                            n / median(t8) * 1e-6, median(td) / median(t8),
+                            median(te) / median(t8), 100.0 * double(same8) / double(n),
+                            median(tes) / median(t8), median(ter) / median(t8));
             }
             for (size_t p = 1; p < programs.size(); ++p)
                 std::printf("  variant %-30s %10.2f Mrays/s, %.3f of default, %.3f of Embree\n",
