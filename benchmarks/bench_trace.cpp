@@ -327,10 +327,14 @@ int main(int argc, char** argv) {
         Bvh4 bvh4 = collapseToBvh4(bvh, mesh.tris);
         DeviceBuffer<Bvh4Node> nodes(ctx, bvh4.nodes);
         DeviceBuffer<Triangle4> blocks(ctx, bvh4.blocks);
-        Bvh8 bvh8 = wide8 ? collapseToBvh8(bvh, mesh.tris) : Bvh8{};
+        // the eight-wide tree for --wide8 and for variants built with -DRT_BVH8
+        const bool need8 = wide8 || std::any_of(variants.begin(), variants.end(), [](auto& v) {
+                               return v.find("RT_BVH8") != std::string::npos;
+                           });
+        Bvh8 bvh8 = need8 ? collapseToBvh8(bvh, mesh.tris) : Bvh8{};
         DeviceBuffer<Bvh8Node> nodes8(ctx, bvh8.nodes.size());
         DeviceBuffer<Triangle4> blocks8(ctx, bvh8.blocks.size());
-        if (wide8) nodes8.upload(bvh8.nodes), blocks8.upload(bvh8.blocks);
+        if (need8) nodes8.upload(bvh8.nodes), blocks8.upload(bvh8.blocks);
         // the object, motion and sample buffers the kernels take; unused for a triangle
         // scene built without RT_HAS_QUADRICS and RT_HAS_MOTION
         DeviceBuffer<Quadric> noQuadrics(ctx, 1);
