@@ -287,6 +287,9 @@ int main(int argc, char** argv) {
     std::vector<size_t> budgets{size_t(1) << 30, size_t(256) << 10, size_t(64) << 10,
                                 size_t(4) << 10};
     double streamFraction = 0.25;
+    std::string treeletOptions;
+    app.add_option("--treelet-options", treeletOptions,
+                   "extra build options of the treelet kernels (e.g. -DRT_TREELET_NEAREST_FIRST)");
     app.add_option("--treelet-budgets", budgets,
                    "treelet budgets in bytes to time (1 GiB and more: the whole BVH)");
     app.add_option("--stream-fraction", streamFraction,
@@ -305,7 +308,7 @@ int main(int argc, char** argv) {
         programs.push_back(std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}),
                                                      "-cl-std=CL1.2 " + v));
     Program treeletProgram(ctx, assembleClSource({"intersect.cl", "treelet.cl"}),
-                           "-cl-std=CL1.2 -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN");
+                           "-cl-std=CL1.2 -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN " + treeletOptions);
     std::vector<std::string> treeletRows;  // printed after the resident table
     std::printf("%-14s %-8s %10s %10s %10s %8s %9s %9s\n", "scene", "rays", "count",
                 "RayDrive", "Embree", "ratio", "agree", "cpu ratio");
