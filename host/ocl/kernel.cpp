@@ -62,10 +62,14 @@ void Kernel::enqueue(size_t count) {
 
 uint64_t Kernel::peekActive() const { return m_active.download()[0]; }
 
-void Kernel::collectActive() {
-    std::vector<cl_uint> v = m_active.download();
-    m_profiler.addActive(m_name, v[0]);
-    m_active.fillZero();
+void Kernel::collectActive(const std::vector<Kernel*>& kernels) {
+    if (kernels.empty()) return;
+    for (Kernel* k : kernels) k->m_active.downloadRangeTo(0, 1, &k->m_activeRead, false);
+    kernels.front()->m_ctx.finish();
+    for (Kernel* k : kernels) {
+        k->m_profiler.addActive(k->m_name, cl_uint(k->m_activeRead - k->m_activeCollected));
+        k->m_activeCollected = k->m_activeRead;
+    }
 }
 
 }  // namespace rd

@@ -59,9 +59,12 @@ public:
         setArg(index, m_active);
         enqueue(count);
     }
-    // Reads the device counter into the profiler and zeroes it.
-    void collectActive();
-    // The device counter as it stands (a blocking read), without resetting it.
+    // Adds what the device counter gained since the last collection to the profiler.
+    void collectActive() { collectActive({this}); }
+    // The same for several kernels (of one context) at one wait: a blocking read each
+    // costs a round trip.
+    static void collectActive(const std::vector<Kernel*>& kernels);
+    // The device counter as it stands (a blocking read): work-items since the start.
     uint64_t peekActive() const;
     const std::string& name() const { return m_name; }
     size_t localSize() const { return m_localSize; }
@@ -77,6 +80,8 @@ private:
         RD_CL_CHECK(clSetKernelArg(m_kernel, i, sizeof(T), &v), m_ctx.name());
     }
     void enqueue(size_t count);
+    cl_uint m_activeRead = 0;       // the counter, read without blocking
+    cl_uint m_activeCollected = 0;  // its value at the last collection (it wraps)
 
     const ClContext& m_ctx;
     std::string m_name;

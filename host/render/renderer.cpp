@@ -502,7 +502,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     }
     m_ctx.finish();
     prof.collect();
-    for (Kernel* kern : k.all()) kern->collectActive();
+    Kernel::collectActive(k.all());
     if (treelets) treelets->collectActive();
     st.kernels = prof.stats();
     if (f.textures) {

@@ -257,9 +257,8 @@ uint64_t TreeletTracer::peekRays() const {
 }
 
 void TreeletTracer::collectActive() {
-    for (Kernel* k : {&m->closestRoot, &m->closestPairs, &m->shadowRoot, &m->shadowPairs,
-                      &m->scatter, &m->resolve})
-        k->collectActive();
+    Kernel::collectActive({&m->closestRoot, &m->closestPairs, &m->shadowRoot, &m->shadowPairs,
+                           &m->scatter, &m->resolve});
 }
 
 }  // namespace rd
