@@ -1,6 +1,7 @@
 /* retire.cl: the retire stage. A sample slot counts the rays of its sample still in flight
  * (generate_eye sets 1, the sort stage takes one off for each ray it classifies, the
- * shade stage adds one for each ray it spawns, the compaction takes off those it drops). Each pixel job whose slots all
+ * shade stage adds one for each ray it spawns, the compaction takes off those it drops).
+ * Each pixel job whose slots all
  * count zero adds its whole samples to the film, summed in slot order: a pixel has one
  * job per pass unless its samples outnumber the largest job, so the film is the same
  * whatever the pool's capacity. A job with a dropped ray (slot_abort: the pool in

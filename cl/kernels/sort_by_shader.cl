@@ -56,7 +56,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
             k = materials[mat].shader;
         }
         key[r] = k;
-        atomic_inc(&hist[k]);
+        if (shader_count > 1) atomic_inc(&hist[k]); /* one shader: no sort, no counts */
         spawn_mask[r] = 0u;
         for (uint l = 0; l < light_count; ++l) shadow_state[r * light_count + l].alive = 0u;
         atomic_dec(&slot_rays[ray_sample[r]]);

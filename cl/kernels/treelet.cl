@@ -82,6 +82,16 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
 #define RT_TL_DECLARE_OBJECTS(ray)
 #endif
 
+/* A pair kernel's start: its pair p, counted when its ray is live (else it returns), and
+ * the object scene at the ray's time. */
+#define RT_TREELET_PAIR_BEGIN(root_only)                                                  \
+    RT_DECLARE_ACTIVE_COUNTER;                                                            \
+    TreeletPair p;                                                                        \
+    int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
+    RT_COUNT_ACTIVE(active_counter, active);                                              \
+    if (!active) return;                                                                  \
+    RT_TL_DECLARE_OBJECTS(p.ray)
+
 /* The kernels: *_root is the first round (work-item i: ray i in the root treelet; its
  * active count is the rays traced), the others run a round's queued pairs [first,
  * first + count) (their active count is the pairs). Both take the same arguments. */
@@ -93,12 +103,7 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
                        __global ulong* keys, __global TreeletPair* next, uint next_cap,      \
                        __global uint* counters, uint treelets, RT_TL_SCENE_PARAMS,          \
                        __global uint* active_counter) {                                     \
-        RT_DECLARE_ACTIVE_COUNTER;                                                          \
-        TreeletPair p;                                                                      \
-        int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
-        RT_COUNT_ACTIVE(active_counter, active);                                            \
-        if (!active) return;                                                                \
-        RT_TL_DECLARE_OBJECTS(p.ray);                                                       \
+        RT_TREELET_PAIR_BEGIN(root_only);                                                   \
         rt_treelet_closest(p, root_only, refs, nodes, blocks, origin, direction, state, keys, \
                            next, next_cap, counters, treelets RT_TL_OBJECTS_ARG);           \
     }
@@ -112,12 +117,7 @@ RT_TREELET_CLOSEST_KERNEL(treelet_closest, 0u)
                        __global const float4* direction, __global RayState* state,          \
                        __global TreeletPair* next, uint next_cap, __global uint* counters,  \
                        uint treelets, RT_TL_SCENE_PARAMS, __global uint* active_counter) {  \
-        RT_DECLARE_ACTIVE_COUNTER;                                                          \
-        TreeletPair p;                                                                      \
-        int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
-        RT_COUNT_ACTIVE(active_counter, active);                                            \
-        if (!active) return;                                                                \
-        RT_TL_DECLARE_OBJECTS(p.ray);                                                       \
+        RT_TREELET_PAIR_BEGIN(root_only);                                                   \
         rt_treelet_shadow(p, refs, nodes, blocks, origin, direction, state, next, next_cap,  \
                           counters, treelets RT_TL_OBJECTS_ARG);                            \
     }

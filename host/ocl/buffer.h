@@ -47,27 +47,16 @@ public:
     size_t size() const { return m_count; }
     size_t bytes() const { return m_count * sizeof(T); }
 
-    void upload(const std::vector<T>& data) {
-        RD_CL_CHECK(clEnqueueWriteBuffer(m_ctx->queue(), m_mem, CL_TRUE, 0,
-                                         sizeof(T) * data.size(), data.data(), 0, nullptr,
-                                         nullptr),
-                    m_ctx->name());
-    }
+    void upload(const std::vector<T>& data) { write(0, data.data(), data.size(), true); }
     // Writes count elements from data at element offset first (texture tiles).
     void uploadRange(size_t first, const T* data, size_t count) {
-        if (count)
-            RD_CL_CHECK(clEnqueueWriteBuffer(m_ctx->queue(), m_mem, CL_TRUE, sizeof(T) * first,
-                                             sizeof(T) * count, data, 0, nullptr, nullptr),
-                        m_ctx->name());
+        write(first, data, count, true);
     }
     // The same without waiting: `data` must stay unchanged until the queue has run the
     // write (the next blocking read or finish on this in-order queue), which spares the
     // render loop a round trip per small upload.
     void uploadAsync(size_t first, const T* data, size_t count) {
-        if (count)
-            RD_CL_CHECK(clEnqueueWriteBuffer(m_ctx->queue(), m_mem, CL_FALSE, sizeof(T) * first,
-                                             sizeof(T) * count, data, 0, nullptr, nullptr),
-                        m_ctx->name());
+        write(first, data, count, false);
     }
     // Copies count elements from this buffer at srcFirst into dst at dstFirst, on the device.
     void copyTo(DeviceBuffer& dst, size_t srcFirst, size_t dstFirst, size_t count) const {
@@ -76,18 +65,6 @@ public:
                                             sizeof(T) * dstFirst, sizeof(T) * count, 0, nullptr,
                                             nullptr),
                         m_ctx->name());
-    }
-    // The first count elements (the rest need not be read).
-    std::vector<T> downloadFirst(size_t count) const { return downloadRange(0, count); }
-    // count elements from first on (clipped to the buffer).
-    std::vector<T> downloadRange(size_t first, size_t count) const {
-        std::vector<T> out(first < m_count ? std::min(count, m_count - first) : 0);
-        if (!out.empty())
-            RD_CL_CHECK(clEnqueueReadBuffer(m_ctx->queue(), m_mem, CL_TRUE, sizeof(T) * first,
-                                            sizeof(T) * out.size(), out.data(), 0, nullptr,
-                                            nullptr),
-                        m_ctx->name());
-        return out;
     }
     // count elements from first on into out; without blocking, out must live until a
     // later blocking command on the queue has returned.
@@ -99,22 +76,20 @@ public:
                                     nullptr),
                 m_ctx->name());
     }
+    // count elements from first on (clipped to the buffer).
+    std::vector<T> downloadRange(size_t first, size_t count) const {
+        std::vector<T> out(first < m_count ? std::min(count, m_count - first) : 0);
+        downloadRangeTo(first, out.size(), out.data(), true);
+        return out;
+    }
+    // The first count elements (the rest need not be read).
+    std::vector<T> downloadFirst(size_t count) const { return downloadRange(0, count); }
+    std::vector<T> download() const { return downloadRange(0, m_count); }
     // The whole buffer into `out`, resized to fit: a vector kept from read to read is not
     // allocated, cleared and faulted in again (the film: 12 MB at 512x512, 5 ms that way).
     void downloadInto(std::vector<T>& out) const {
         out.resize(m_count);
-        if (m_count)
-            RD_CL_CHECK(clEnqueueReadBuffer(m_ctx->queue(), m_mem, CL_TRUE, 0, bytes(),
-                                            out.data(), 0, nullptr, nullptr),
-                        m_ctx->name());
-    }
-    std::vector<T> download() const {
-        std::vector<T> out(m_count);
-        if (m_count)
-            RD_CL_CHECK(clEnqueueReadBuffer(m_ctx->queue(), m_mem, CL_TRUE, 0, bytes(),
-                                            out.data(), 0, nullptr, nullptr),
-                        m_ctx->name());
-        return out;
+        downloadRangeTo(0, m_count, out.data(), true);
     }
     void fillZero() {
         const unsigned char zero = 0;
@@ -125,6 +100,13 @@ public:
     }
 
 private:
+    void write(size_t first, const T* data, size_t count, bool blocking) {
+        if (count)
+            RD_CL_CHECK(clEnqueueWriteBuffer(m_ctx->queue(), m_mem, blocking ? CL_TRUE : CL_FALSE,
+                                             sizeof(T) * first, sizeof(T) * count, data, 0,
+                                             nullptr, nullptr),
+                        m_ctx->name());
+    }
     void release() {
         if (m_mem) clReleaseMemObject(m_mem);
         m_mem = nullptr;

@@ -65,6 +65,20 @@ double rowError(const Rendered& img, int c, F f) {
     return e;
 }
 
+// A two-face mesh (left face x < 0, right face x > 0) with "facevarying float Kd"
+// [0.2 0.2 0.2 0.2  0.6 1 1 0.6]: 0.2 on the left face (exact), 0.6 + 0.4 x on the right
+// (3e-3); with "uniform float Kd" [2 5]: 2 and 5 (exact).
+void expectPerFaceValues(const std::string& mesh) {
+    const std::string world = shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + mesh;
+    Rendered fv = renderRib(world + "\"facevarying float Kd\" [0.2 0.2 0.2 0.2  0.6 1 1 0.6]\n"
+                                    "WorldEnd\n");
+    EXPECT_LT(columnError(fv, 0, [](double) { return 0.2; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(fv, 0, [](double x) { return 0.6 + 0.4 * x; }, kSize / 2, kSize), 3e-3);
+    Rendered uni = renderRib(world + "\"uniform float Kd\" [2 5]\nWorldEnd\n");
+    EXPECT_LT(columnError(uni, 0, [](double) { return 2.0; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(uni, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
+}
+
 }  // namespace
 
 // "varying float Kd" 0 at the left edge, 1 at the right, through matte lit head-on by a
@@ -104,14 +118,7 @@ TEST(PointParams, VertexColorOnPointsPolygons) {
 TEST(PointParams, FaceVaryingAndUniformPerFace) {
     const std::string mesh = "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] "
                              "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] ";
-    Rendered fv = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + mesh +
-                            "\"facevarying float Kd\" [0.2 0.2 0.2 0.2  0.6 1 1 0.6]\nWorldEnd\n");
-    EXPECT_LT(columnError(fv, 0, [](double) { return 0.2; }, 0, kSize / 2), 1e-5);
-    EXPECT_LT(columnError(fv, 0, [](double x) { return 0.6 + 0.4 * x; }, kSize / 2, kSize), 3e-3);
-    Rendered uni = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + mesh +
-                             "\"uniform float Kd\" [2 5]\nWorldEnd\n");
-    EXPECT_LT(columnError(uni, 0, [](double) { return 2.0; }, 0, kSize / 2), 1e-5);
-    EXPECT_LT(columnError(uni, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
+    expectPerFaceValues(mesh);
 }
 
 // General polygons (triangulated by ear clipping, vertices shared): a square with a
@@ -138,14 +145,7 @@ TEST(PointParams, GeneralPolygons) {
     EXPECT_LT(e, 1.5e-2) << "single pixels (64 samples each)";
     const std::string mesh = "PointsGeneralPolygons [1 1] [4 4] [0 1 4 3  1 2 5 4] "
                              "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] ";
-    Rendered uni = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + mesh +
-                             "\"uniform float Kd\" [2 5]\nWorldEnd\n");
-    EXPECT_LT(columnError(uni, 0, [](double) { return 2.0; }, 0, kSize / 2), 1e-5);
-    EXPECT_LT(columnError(uni, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
-    Rendered fv = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + mesh +
-                            "\"facevarying float Kd\" [0.2 0.2 0.2 0.2  0.6 1 1 0.6]\nWorldEnd\n");
-    EXPECT_LT(columnError(fv, 0, [](double) { return 0.2; }, 0, kSize / 2), 1e-5);
-    EXPECT_LT(columnError(fv, 0, [](double x) { return 0.6 + 0.4 * x; }, kSize / 2, kSize), 3e-3);
+    expectPerFaceValues(mesh);
 }
 
 // Patches: a bilinear Patch's 4 varying values are bilinear in (u, v) (Kd = u = (x +

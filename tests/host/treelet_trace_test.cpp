@@ -221,6 +221,19 @@ void expectSameImage(const Rendered& a, const Rendered& b) {
     }
 }
 
+// The scene rendered through treelets of `budget` bytes (streamed through a cache of
+// `memory` bytes when it is not 0): the treelet path is used, and streamed exactly then.
+Rendered renderThroughTreelets(const std::string& rib, size_t budget, size_t memory) {
+    SCOPED_TRACE(std::to_string(budget) + " bytes, memory " + std::to_string(memory));
+    RenderSettings s;
+    s.treeletBytes = budget;
+    s.sceneMemoryBytes = memory;
+    Rendered t = renderRib(rib, s);
+    EXPECT_TRUE(t.stats.treelets.used) << t.stats.treelets.why;
+    EXPECT_EQ(t.stats.treelets.streamed, memory > 0);
+    return t;
+}
+
 }  // namespace
 
 // Closest hits are an order-independent min on (t, primitive), so the image is the same,
@@ -237,12 +250,7 @@ TEST(TreeletTrace, ImageIndependentOfTreeletBudget) {
     } cases[] = {{size_t(1) << 30, 0}, {64 << 10, 0}, {4 << 10, 0}, {1, 0}, {4 << 10, 40 << 10}};
     for (const Case& c : cases) {
         SCOPED_TRACE(std::to_string(c.budget) + " bytes, memory " + std::to_string(c.memory));
-        RenderSettings s;
-        s.treeletBytes = c.budget;
-        s.sceneMemoryBytes = c.memory;
-        Rendered t = renderRib(rib, s);
-        ASSERT_TRUE(t.stats.treelets.used) << t.stats.treelets.why;
-        EXPECT_EQ(t.stats.treelets.streamed, c.memory > 0);
+        Rendered t = renderThroughTreelets(rib, c.budget, c.memory);
         EXPECT_EQ(t.stats.eyeRays, resident.stats.eyeRays);
         EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
         EXPECT_EQ(t.stats.continuationRays, resident.stats.continuationRays);
@@ -290,11 +298,7 @@ TEST(TreeletTrace, ClosedMeshFromInsideLeaksNothing) {
     }
     rib << "WorldEnd\n";
     for (size_t budget : {size_t(1), size_t(2048)}) {
-        SCOPED_TRACE(budget);
-        RenderSettings s;
-        s.treeletBytes = budget;
-        Rendered img = renderRib(rib.str(), s);
-        ASSERT_TRUE(img.stats.treelets.used);
+        Rendered img = renderThroughTreelets(rib.str(), budget, 0);
         EXPECT_GT(img.stats.treelets.treelets, 20u);
         size_t leaks = 0;
         for (const Rgba& p : img.pixels) leaks += !(p.a == 1.0f && p.r == 1.0f);
@@ -339,12 +343,7 @@ TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
     } cases[] = {{size_t(1) << 30, 0}, {1, 0}, {1024, 2048}};
     for (const Case& c : cases) {
         SCOPED_TRACE(std::to_string(c.budget) + " bytes, memory " + std::to_string(c.memory));
-        RenderSettings s;
-        s.treeletBytes = c.budget;
-        s.sceneMemoryBytes = c.memory;
-        Rendered t = renderRib(rib, s);
-        ASSERT_TRUE(t.stats.treelets.used) << t.stats.treelets.why;
-        EXPECT_EQ(t.stats.treelets.streamed, c.memory > 0);
+        Rendered t = renderThroughTreelets(rib, c.budget, c.memory);
         if (c.budget < 4096) EXPECT_GT(t.stats.treelets.treelets, 8u);
         EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
         expectSameImage(resident, t);
