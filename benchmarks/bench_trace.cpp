@@ -272,7 +272,8 @@ int main(int argc, char** argv) {
     app.add_option("--side", side, "primary rays: side x side");
     app.add_option("--device", device, "OpenCL device (index or name)");
     std::vector<std::string> variants, meshFiles;
-    int sahBlock = 0;
+    int sahBlock = 0, sahBins = 0, sahLeaf = 0;
+    float sahTraversal = 0;
     bool wide8 = false;
     app.add_flag("--wide8", wide8,
                  "also time the eight-wide BVH (float8 node tests; the default columns are "
@@ -280,6 +281,10 @@ int main(int argc, char** argv) {
     std::string wide8Options;
     app.add_option("--wide8-options", wide8Options, "build options of the eight-wide kernels");
     app.add_option("--sah-block", sahBlock, "SAH block size (default: the renderer's)");
+    app.add_option("--sah-bins", sahBins, "SAH bins per axis (default: the renderer's)");
+    app.add_option("--sah-leaf", sahLeaf, "largest node always made a leaf (default: the renderer's)");
+    app.add_option("--sah-traversal", sahTraversal,
+                   "SAH traversal cost against one block's intersection (default: the renderer's)");
     app.add_option("--mesh", meshFiles, "also an OFF mesh (e.g. the Stanford bunny)");
     app.add_option("--variant", variants,
                    "extra OpenCL build options (e.g. -DRT_SOME_SWITCH): that kernel variant is "
@@ -321,6 +326,9 @@ int main(int argc, char** argv) {
     for (const Mesh& mesh : meshes) {
         BvhBuildSettings bs = sceneBvhSettings();
         if (sahBlock > 0) bs.blockSize = sahBlock;
+        if (sahBins > 0) bs.binCount = sahBins;
+        if (sahLeaf > 0) bs.maxLeafSize = sahLeaf;
+        if (sahTraversal > 0) bs.traversalCost = sahTraversal;
         Bvh bvh = buildBvh([&] {
             Scene s;
             s.triangles = mesh.tris;
@@ -338,6 +346,9 @@ int main(int argc, char** argv) {
         DeviceBuffer<Bvh8Node> nodes8(ctx, bvh8.nodes.size());
         DeviceBuffer<Triangle4> blocks8(ctx, bvh8.blocks.size());
         if (need8) nodes8.upload(bvh8.nodes), blocks8.upload(bvh8.blocks);
+        std::printf("%s: SAH cost %.2f, %zu four-wide nodes, %zu eight-wide nodes, %zu blocks\n",
+                    mesh.name.c_str(), bvhSahCost(bvh, bs.traversalCost, bs.intersectionCost),
+                    bvh4.nodes.size(), bvh8.nodes.size(), bvh4.blocks.size());
         // the object, motion and sample buffers the kernels take; unused for a triangle
         // scene built without RT_HAS_QUADRICS and RT_HAS_MOTION
         DeviceBuffer<Quadric> noQuadrics(ctx, 1);
