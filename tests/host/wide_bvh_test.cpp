@@ -85,6 +85,11 @@ TEST(WideBvh, CollapsesKeepEveryTriangleOnce) {
     EXPECT_LT(b8.nodes.size(), b4.nodes.size()) << "eight-wide: fewer nodes";
 }
 
+// Random rays through the eight-wide tree of a triangle soup, traced by the
+// intersect_closest and intersect_shadow kernels, against a brute-force double closest
+// hit: the same t within 1e-4 relative; shadow rays cut at half their closest hit are not
+// occluded, unbounded ones are exactly when they hit. Every fifth ray is dead and must be
+// left alone.
 TEST(WideBvh, EightWideTraversalFindsTheClosestHits) {
     const ClContext& ctx = test::testContext();
     std::vector<Triangle> tris = soup(3000, 2);
@@ -94,41 +99,67 @@ TEST(WideBvh, EightWideTraversalFindsTheClosestHits) {
     Bvh8 b8 = collapseToBvh8(bvh, tris);
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> U(-1.0f, 1.0f);
-    const size_t n = 2048;
+    const size_t n = 2045;
     std::vector<rt_float4> org, dir;
+    std::vector<RayState> alive(n, RayState{1u, 0u, RT_NO_HIT, 0.0f});
     for (size_t i = 0; i < n; ++i) {
         float dx = U(rng), dy = U(rng), dz = U(rng), l = std::sqrt(dx * dx + dy * dy + dz * dz);
         org.push_back({6 * U(rng), 6 * U(rng), 6 * U(rng), 0.0f});
         dir.push_back({dx / l, dy / l, dz / l, 1e30f});
+        if (i % 5 == 3) alive[i].alive = 0u;
     }
     Program program(ctx, assembleClSource({"intersect.cl"}), "-cl-std=CL1.2 -DRT_BVH8");
     Profiler prof(ctx);
-    Kernel k(ctx, program.get(), "intersect_closest", prof);
+    Kernel closest(ctx, program.get(), "intersect_closest", prof);
+    Kernel shadow(ctx, program.get(), "intersect_shadow", prof);
     DeviceBuffer<Bvh8Node> nodes(ctx, b8.nodes);
     DeviceBuffer<Triangle4> blocks(ctx, b8.blocks);
     DeviceBuffer<rt_float4> ob(ctx, org), db(ctx, dir);
-    DeviceBuffer<RayState> state(ctx, std::vector<RayState>(n, RayState{1u, 0u, RT_NO_HIT, 0.0f}));
-    DeviceBuffer<RayHit> hits(ctx, n);
+    DeviceBuffer<RayState> state(ctx, alive);
+    const RayHit untouched{-1.0f, -1.0f, -1.0f, 12345u};
+    DeviceBuffer<RayHit> hits(ctx, std::vector<RayHit>(n, untouched));
     // the object, motion and sample buffers a triangle-only build does not read
     DeviceBuffer<Quadric> noQuadrics(ctx, 1);
-    DeviceBuffer<uint32_t> noCsg(ctx, 1), noSample(ctx, 1);
+    DeviceBuffer<uint32_t> noCsg(ctx, 1), noSample(ctx, 1), noNumerics(ctx, 1);
     DeviceBuffer<Triangle> noTris(ctx, 1);
     DeviceBuffer<rt_float4> noMotion(ctx, 1);
     DeviceBuffer<float> noTime(ctx, 1);
-    k.launch(n, cl_uint(n), nodes, blocks, ob, db, state, hits, noQuadrics, noCsg, noTris,
-             noMotion, noTris, noSample, noTime, noSample);
+    closest.launch(n, cl_uint(n), nodes, blocks, ob, db, state, hits, noQuadrics, noCsg, noTris,
+                   noMotion, noTris, noSample, noTime, noSample);
     std::vector<RayHit> h = hits.download();
-    int hitsFound = 0, wrong = 0;
+    std::vector<double> best(n);
+    std::vector<uint32_t> bestPrim(n);
+    int hitsFound = 0, wrong = 0, touchedDead = 0;
     for (size_t i = 0; i < n; ++i) {
-        uint32_t prim;
-        double t = bruteForce(tris, org[i], dir[i], prim);
-        hitsFound += prim != RT_NO_HIT;
-        if (prim == RT_NO_HIT ? h[i].prim != RT_NO_HIT
-                              : std::fabs(h[i].t - t) > 1e-4 * std::max(1.0, t))
+        best[i] = bruteForce(tris, org[i], dir[i], bestPrim[i]);
+        if (!alive[i].alive) {
+            touchedDead += h[i].prim != untouched.prim;
+            continue;
+        }
+        hitsFound += bestPrim[i] != RT_NO_HIT;
+        if (bestPrim[i] == RT_NO_HIT ? h[i].prim != RT_NO_HIT
+                                     : std::fabs(h[i].t - best[i]) > 1e-4 * std::max(1.0, best[i]))
             ++wrong;
     }
-    EXPECT_GT(hitsFound, int(n) / 4);
+    EXPECT_GT(hitsFound, int(n) / 5);
     EXPECT_EQ(wrong, 0) << "of " << n << " rays";
+    EXPECT_EQ(touchedDead, 0);
+    // shadow rays: those that hit are cut at half their hit (occluded) or left unbounded
+    // (occluded); those that miss stay alive
+    std::vector<rt_float4> sdir = dir;
+    for (size_t i = 0; i < n; ++i)
+        if (bestPrim[i] != RT_NO_HIT && i % 2) sdir[i].w = float(best[i] * 0.5);
+    DeviceBuffer<rt_float4> sdb(ctx, sdir);
+    state.upload(alive);
+    shadow.launch(n, cl_uint(n), nodes, blocks, ob, sdb, state, noQuadrics, noCsg, noTris,
+                  noMotion, noTris, noSample, noTime, cl_uint(1), noNumerics);
+    std::vector<RayState> after = state.download();
+    int wrongShadow = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const bool blocked = alive[i].alive && bestPrim[i] != RT_NO_HIT && !(i % 2);
+        wrongShadow += (after[i].alive == 0) != (blocked || !alive[i].alive);
+    }
+    EXPECT_EQ(wrongShadow, 0) << "of " << n << " shadow rays";
 }
 
 // The renderer's two node widths give the same image: triangles, exact quadrics and
