@@ -371,7 +371,10 @@ int main(int argc, char** argv) {
         for (const Kind& k : kinds) {
             size_t n = k.rays->org.size();
             DeviceBuffer<rt_float4> org(ctx, k.rays->org), dir(ctx, k.rays->dir);
-            std::vector<RayState> st(n, RayState{1u, 0u, RT_NO_HIT, 0u});
+            // diffuse rays are bounces (trace depth 1: the kernels walk their nodes' hit
+            // masks); primary and shadow rays are coherent (the lane walk)
+            const uint32_t depth = k.rays == &diffuse ? 1u : 0u;
+            std::vector<RayState> st(n, RayState{1u, depth, RT_NO_HIT, 0u});
             DeviceBuffer<RayState> state(ctx, st, CL_MEM_READ_WRITE);
             DeviceBuffer<RayHit> hits(ctx, n);
             Profiler prof(ctx);

@@ -52,8 +52,9 @@ __kernel void intersect_closest(uint count,
     h.t = d.w;
     h.u = h.v = 0.0f;
     uint inst = RT_NO_HIT;
+    /* eye rays (and their continuations) walk the node's lanes, traced rays its mask */
     rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 0,
-                &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG);
+                RT_TRACE_DEPTH(state[i]) == 0u, &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG);
     hits[i] = h;
 #ifdef RT_HAS_INSTANCES
     hit_instance[i] = inst;
@@ -85,7 +86,8 @@ __kernel void intersect_shadow(uint count,
     float4 o = origin[i], d = direction[i];
     RayHit h;
     uint inst;
-    if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1,
+    /* shadow rays converge on their light: the lane walk */
+    if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, 1,
                     &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG)) {
         state[i].alive = 0u;
 #ifdef RT_HAS_PROCEDURALS

@@ -89,8 +89,9 @@ TEST(WideBvh, CollapsesKeepEveryTriangleOnce) {
 // intersect_closest and intersect_shadow kernels, against a brute-force double closest
 // hit: the same t within 1e-4 relative; shadow rays cut at half their closest hit are not
 // occluded, unbounded ones are exactly when they hit. Every fifth ray is dead and must be
-// left alone.
-TEST(WideBvh, EightWideTraversalFindsTheClosestHits) {
+// left alone. `depth`: the rays' trace depth (0: eye rays, which walk the nodes' lanes;
+// 1: traced rays, which walk the hit masks).
+static void expectEightWideHitsMatchBruteForce(uint32_t depth) {
     const ClContext& ctx = test::testContext();
     std::vector<Triangle> tris = soup(3000, 2);
     Scene s;
@@ -101,7 +102,7 @@ TEST(WideBvh, EightWideTraversalFindsTheClosestHits) {
     std::uniform_real_distribution<float> U(-1.0f, 1.0f);
     const size_t n = 2045;
     std::vector<rt_float4> org, dir;
-    std::vector<RayState> alive(n, RayState{1u, 0u, RT_NO_HIT, 0.0f});
+    std::vector<RayState> alive(n, RayState{1u, depth, RT_NO_HIT, 0.0f});
     for (size_t i = 0; i < n; ++i) {
         float dx = U(rng), dy = U(rng), dz = U(rng), l = std::sqrt(dx * dx + dy * dy + dz * dz);
         org.push_back({6 * U(rng), 6 * U(rng), 6 * U(rng), 0.0f});
@@ -160,6 +161,11 @@ TEST(WideBvh, EightWideTraversalFindsTheClosestHits) {
         wrongShadow += (after[i].alive == 0) != (blocked || !alive[i].alive);
     }
     EXPECT_EQ(wrongShadow, 0) << "of " << n << " shadow rays";
+}
+
+TEST(WideBvh, EightWideTraversalFindsTheClosestHits) {
+    expectEightWideHitsMatchBruteForce(0);  // the lane walk
+    expectEightWideHitsMatchBruteForce(1);  // the mask walk
 }
 
 // The renderer's two node widths give the same image: triangles, exact quadrics and
