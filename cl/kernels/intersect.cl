@@ -19,6 +19,14 @@
 #define RT_OBJECT_SCENE_ARG
 #define RT_DECLARE_OBJECT_SCENE(ray)
 #endif
+/* Which rays walk their nodes' lanes (coherent: eye rays, mirror and glass rays, whose
+ * neighbours in the pool train the branch predictor) and which the hit masks (the rays of
+ * shaders that trace in sampled directions, RT_INCOHERENT_TRACE; traverse.clh). */
+#ifdef RT_INCOHERENT_TRACE
+#define RT_COHERENT(rs) (RT_TRACE_DEPTH(rs) == 0u)
+#else
+#define RT_COHERENT(rs) 1
+#endif
 #ifdef RT_HAS_INSTANCES
 #define RT_INSTANCE_ARG , &inst
 #else
@@ -52,9 +60,8 @@ __kernel void intersect_closest(uint count,
     h.t = d.w;
     h.u = h.v = 0.0f;
     uint inst = RT_NO_HIT;
-    /* eye rays (and their continuations) walk the node's lanes, traced rays its mask */
-    rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 0,
-                RT_TRACE_DEPTH(state[i]) == 0u, &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG);
+    rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 0, RT_COHERENT(state[i]),
+                &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG);
     hits[i] = h;
 #ifdef RT_HAS_INSTANCES
     hit_instance[i] = inst;

@@ -20,6 +20,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.lightCount = shading.lightCount;
     f.shadowRays = shading.shadowRays;
     f.trace = shading.usesTrace;
+    f.sampledTrace = shading.sampledTrace;
     f.maxSpecularDepth = scene.maxSpecularDepth;
     f.maxTransparentDepth = scene.maxTransparentDepth;
     f.rouletteDepth = scene.rouletteDepth;
@@ -83,6 +84,7 @@ std::vector<std::string> Features::names() const {
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
     if (trace) n.push_back("trace");
+    if (sampledTrace) n.push_back("sampled_trace");
     if (aovs) n.push_back("aovs");
     if (treelets) n.push_back("treelets");
     if (bvhWidth == 8) n.push_back("bvh8");
@@ -127,6 +129,7 @@ std::string buildOptions(const Features& f) {
     if (f.pointParams > 0) o += " -DRSL_MAX_PARAM_PRIMVARS=" + std::to_string(f.pointParams);
     if (f.treelets) o += f.int64Min ? " -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN" : " -DRT_HAS_TREELETS";
     if (f.bvhWidth == 8) o += " -DRT_BVH8";
+    if (f.sampledTrace) o += " -DRT_INCOHERENT_TRACE";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";

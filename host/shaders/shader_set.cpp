@@ -429,6 +429,7 @@ ShadingSetup ShaderSet::prepare() {
                 k.replace(p, 7, sh->name);
             kernels << k << "\n";
             out.usesTrace |= sh->usesTrace;
+            out.sampledTrace |= sh->usesTrace && sh->usesRandom;
             out.derivatives |= sh->usesDerivatives;
         }
         refShader[r] = it->second;

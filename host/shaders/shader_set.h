@@ -38,6 +38,9 @@ struct ShadingSetup {
     uint32_t lightCount = 0;                // LightSource instances (ambient included)
     bool shadowRays = false;                // some light is not ambient
     bool usesTrace = false;                 // some surface calls trace()
+    // Some surface calls trace() and random(): its traced rays sample directions (glossy,
+    // diffuse), incoherent, unlike mirror and glass rays.
+    bool sampledTrace = false;
     int traceSlots = 0;                     // rays a hit may spawn with trace()
     bool atmosphere = false;                // some surface has an Atmosphere shader
     bool displacement = false;              // some surface has a Displacement shader

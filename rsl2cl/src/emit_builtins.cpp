@@ -255,6 +255,7 @@ std::string Emitter::builtin(const Expr& e) {
         m_out.usesDerivatives = true;
         return "rsl_" + n + "(g, ev, " + A(0) + ")";
     }
+    if (n == "random") m_out.usesRandom = true;
     if (n == "random") return "rsl_random" + vf + "(g, " + std::to_string(m_randomSite++) + ")";
     if (n == "noise" || n == "pnoise" || n == "cellnoise") {
         std::string dims = n == "pnoise" ? ac.substr(0, ac.size() / 2) : ac;

@@ -42,6 +42,7 @@ struct EmittedShader {
     std::string prepFunction;
     std::vector<std::string> hoisted;  // the variables it computes, for --info
     bool usesTrace = false, usesDerivatives = false, usesTexture = false;
+    bool usesRandom = false;  // calls random(): with trace(), rays in sampled directions
     bool usesLighting = false;  // illuminance, diffuse, specular, phong, ambient
     bool ambientLight = false;  // a light shader with no illuminate/solar
     bool ok = false;            // false when errors were reported

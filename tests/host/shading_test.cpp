@@ -39,6 +39,40 @@ TEST(Shading, MirrorTracesTheReflectedRay) {
     EXPECT_NE(std::find(img.stats.features.names().begin(), img.stats.features.names().end(),
                         std::string("trace")),
               img.stats.features.names().end());
+    EXPECT_FALSE(img.stats.features.sampledTrace) << "mirror rays are coherent";
+}
+
+// A glossy mirror (trace() in directions jittered by random()) over the same constant
+// plane: every jittered ray still meets the plane, so the pixel is Kr * (its colour)
+// exactly; the scene's traced rays are known to be sampled (RT_INCOHERENT_TRACE: they walk
+// the nodes' hit masks), and the image is the same at both node widths.
+TEST(Shading, SampledTraceWalksTheHitMasks) {
+    std::string dir = ::testing::TempDir() + "/raydrive_sampled_trace";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/glossy.sl")
+        << "surface glossy(float Kr = 0.8) {\n"
+           "  vector j = vector(random(), random(), random()) - 0.5;\n"
+           "  vector d = normalize(reflect(normalize(I), normalize(N)) + 0.2 * j);\n"
+           "  Oi = 1; Ci = Kr * trace(P, d);\n}\n";
+    const std::string rib =
+        std::string("Option \"searchpath\" \"shader\" [\"") + dir + ":&\"]\n" + kCamera +
+        "WorldBegin\n"
+        "AttributeBegin\nSurface \"glossy\"\n"
+        "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+        "AttributeEnd\n"
+        "AttributeBegin\nColor [0.2 0.4 1]\nSurface \"constant\"\n"
+        "Polygon \"P\" [-500 -500 -5  500 -500 -5  500 500 -5  -500 500 -5]\n"
+        "AttributeEnd\nWorldEnd\n";
+    rd::RenderSettings four, eight;
+    four.bvhWidth = 4;
+    eight.bvhWidth = 8;
+    Rendered a = renderRib(rib, four), b = renderRib(rib, eight);
+    EXPECT_TRUE(b.stats.features.sampledTrace);
+    EXPECT_NEAR(b.at(16, 16).r, 0.8 * 0.2, 1e-4);
+    EXPECT_NEAR(b.at(16, 16).b, 0.8 * 1.0, 1e-4);
+    int differ = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i].r != b.pixels[i].r;
+    EXPECT_EQ(differ, 0);
 }
 
 // spotlight: inside the cone a matte plane gets intensity * cos^beam / d^2 * N.L; outside
