@@ -56,9 +56,7 @@ __kernel void intersect_closest(uint count,
     if (!active) return;
     RT_DECLARE_OBJECT_SCENE(i);
     float4 o = origin[i], d = direction[i];
-    RayHit h;
-    h.t = d.w;
-    h.u = h.v = 0.0f;
+    RayHit h; /* all of it written by rt_traverse: no hit is t = tmax, u = v = 0 */
     uint inst = RT_NO_HIT;
     rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 0, RT_COHERENT(state[i]),
                 &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG);
