@@ -261,7 +261,7 @@ int main(int argc, char** argv) {
             opts.metadata["raydrive:scene"] = scenePath;
             opts.metadata["raydrive:stop"] = st.stopReason;
             opts.metadata["raydrive:estimated_error"] = std::to_string(st.estimatedError);
-            opts.metadata["raydrive:samples"] = std::to_string(film.sampleCount());
+            opts.metadata["raydrive:samples"] = std::to_string(st.filmSamples);
             // Pixels never reached are filled from neighbours: say which, always.
             if (st.unsampledPixels > 0) wanted.push_back("filled");
             std::sort(wanted.begin(), wanted.end());

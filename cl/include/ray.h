@@ -31,6 +31,10 @@ typedef struct RayState {
 
 #define RT_NO_HIT 0xffffffffu
 
+/* Compaction works on groups of this many traced rays (close_round.cl, compact.cl); the
+ * host sizes its per-group counts by it. */
+#define RT_COMPACT_GROUP 64
+
 #ifndef __OPENCL_C_VERSION__
 RT_ASSERT_SIZE(RayHit, 16);
 RT_ASSERT_SIZE(RayState, 16);

@@ -1,10 +1,10 @@
 /* compact.cl: stream compaction of the rays the shade stage spawned (the AR250's "rays
  * that hit are compacted onto a stack"). Each shaded ray leaves a mask of the spawn slots
  * it filled (spawn_mask; classify clears it, so a ray reads one word, not its every
- * slot). compact_count sums live rays per work-group of traced rays (the host reads the
- * sums for the total); compact_scatter's work-group adds up the sums before its own for
- * its offset (a strided sum over at most a few thousand numbers, no upload), then
- * moves each live ray to its offset, keeping their order, so the image does not depend
+ * slot). close_round (close_round.cl) sums live rays per work-group of traced rays
+ * (the host reads the sums for the total); compact_scatter's work-group adds up the
+ * sums before its own for its offset (a strided sum over at most a few thousand
+ * numbers, no upload), then moves each live ray to its offset, keeping their order, so the image does not depend
  * on scheduling. Live rays beyond the pool's capacity (a shader tracing several rays per
  * hit) go onto the spill stack, traced in later rounds; past the stack's capacity they
  * are dropped, never written out of bounds, and their sample is marked to be issued
@@ -14,30 +14,12 @@
 #include "counters.clh"
 #include "ray.h"
 
-#define RT_COMPACT_GROUP 64
-
-__kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
-void compact_count(uint count, __global const uint* spawn_mask, __global uint* group_live,
-                   __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
-    __local uint live[RT_COMPACT_GROUP];
-    uint i = get_global_id(0), lid = get_local_id(0);
-    RT_COUNT_ACTIVE(active_counter, i < count);
-    live[lid] = i < count ? popcount(spawn_mask[i]) : 0u;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (lid == 0) {
-        uint sum = 0;
-        for (int k = 0; k < RT_COMPACT_GROUP; ++k) sum += live[k];
-        group_live[get_group_id(0)] = sum;
-    }
-}
-
 __kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
 void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_SPAWN_SLOTS + k */
                      uint capacity, /* the pool: live rays past it go to the spill stack */
                      uint spill_top,
                      uint spill_capacity,
-                     __global const uint* group_live, /* compact_count's */
+                     __global const uint* group_live, /* close_round's */
                      __global const uint* spawn_mask,
                      __global const float4* src_origin,
                      __global const float4* src_direction,

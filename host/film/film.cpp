@@ -63,22 +63,15 @@ std::vector<float> Film::filledMask() const {
     return m;
 }
 
-uint64_t Film::sampleCount() const {
-    uint64_t n = 0;
-    for (const PixelAccum& p : pixels) n += p.count;
-    return n;
-}
-
-uint64_t Film::nonfiniteCount() const {
-    uint64_t n = 0;
-    for (const PixelAccum& p : pixels) n += p.nonfinite;
-    return n;
-}
-
-uint64_t Film::unsampledCount() const {
-    uint64_t n = 0;
-    for (size_t i = 0; i < pixels.size(); ++i) n += pixels[i].count == 0 && inCrop(i);
-    return n;
+Film::Tally Film::tally() const {
+    Tally t;
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        const PixelAccum& p = pixels[i];
+        t.samples += p.count;
+        t.nonfinite += p.nonfinite;
+        t.unsampled += p.count == 0 && inCrop(i);
+    }
+    return t;
 }
 
 std::vector<Channel> Film::aovChannels(const std::string& name) const {

@@ -87,9 +87,11 @@ public:
     std::vector<T> download() const { return downloadRange(0, m_count); }
     // The whole buffer into `out`, resized to fit: a vector kept from read to read is not
     // allocated, cleared and faulted in again (the film: 12 MB at 512x512, 5 ms that way).
-    void downloadInto(std::vector<T>& out) const {
+    // Not blocking: `out` holds the data after the queue's next finish, and must not be
+    // touched before (it overlaps the copy with the host's work).
+    void downloadInto(std::vector<T>& out, bool blocking = true) const {
         out.resize(m_count);
-        downloadRangeTo(0, m_count, out.data(), true);
+        downloadRangeTo(0, m_count, out.data(), blocking);
     }
     void fillZero() {
         const unsigned char zero = 0;

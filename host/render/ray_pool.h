@@ -27,7 +27,7 @@ struct RayPool {
           nextOrigin(ctx, capacity * spawn), nextDirection(ctx, capacity * spawn),
           nextWeight(ctx, capacity * spawn), nextState(ctx, capacity * spawn),
           nextSample(ctx, capacity * spawn), spawnMask(ctx, capacity),
-          groupLive(ctx, capacity / 64 + 1),
+          groupLive(ctx, capacity / RT_COMPACT_GROUP + 1),
           spillOrigin(ctx, spillCapacity(capacity, spawn)),
           spillDirection(ctx, spillCapacity(capacity, spawn)),
           spillWeight(ctx, spillCapacity(capacity, spawn)),
@@ -70,7 +70,7 @@ struct RayPool {
     DeviceBuffer<RayState> nextState;
     DeviceBuffer<uint32_t> nextSample;
     DeviceBuffer<uint32_t> spawnMask;  // per traced ray: bit k set when slot k was filled
-    DeviceBuffer<uint32_t> groupLive;  // live spawned rays per 64 traced rays
+    DeviceBuffer<uint32_t> groupLive;  // live spawned rays per group of traced rays
     DeviceBuffer<rt_float4> spillOrigin, spillDirection, spillWeight;
     DeviceBuffer<RayState> spillState;
     DeviceBuffer<uint32_t> spillSample;
@@ -98,20 +98,18 @@ struct RenderKernels {
           classify(ctx, p, "classify_hits", prof),
           scatter(ctx, p, "scatter_by_shader", prof),
           intersectShadow(ctx, p, "intersect_shadow", prof),
-          accumulateShadows(ctx, p, "accumulate_shadows", prof),
-          compactCount(ctx, p, "compact_count", prof),
+          closeRound(ctx, p, "close_round", prof),
           compactScatter(ctx, p, "compact_scatter", prof),
           retire(ctx, p, "retire_samples", prof) {
         for (const std::string& name : shadeKernels)
             shade.push_back(std::make_unique<Kernel>(ctx, p, name, prof));
     }
-    Kernel generateEye, intersectClosest, classify, scatter, intersectShadow,
-        accumulateShadows, compactCount, compactScatter, retire;
+    Kernel generateEye, intersectClosest, classify, scatter, intersectShadow, closeRound,
+        compactScatter, retire;
     std::vector<std::unique_ptr<Kernel>> shade;  // one per compiled surface shader
     std::vector<Kernel*> all() {
         std::vector<Kernel*> v{&generateEye, &intersectClosest, &classify, &scatter,
-                               &intersectShadow, &accumulateShadows, &compactCount,
-                               &compactScatter, &retire};
+                               &intersectShadow, &closeRound, &compactScatter, &retire};
         for (auto& s : shade) v.push_back(s.get());
         return v;
     }

@@ -2,10 +2,10 @@
 // BVH and the specialised program, upload; then pass after pass of the sample plan. A
 // pass's pixel jobs stream through the ray pool in rounds: refill the free end of the
 // pool with eye rays (generate_eye, refill.h), trace (intersect_closest), sort by shader
-// (none with one shader), shade, trace shadows (intersect_shadow), add them
-// (accumulate_shadows); then retire the samples with no ray left (retire_samples) and
-// compact what the shaders spawned into the next round, read back at the round's one
-// wait. Between rounds it polls the stop conditions; samples still in flight at a stop
+// (none with one shader), shade, trace shadows (intersect_shadow); then close the round
+// (close_round: add the shadows that reached their light, count the spawned rays),
+// retire the samples with no ray left (retire_samples) and compact what the shaders
+// spawned into the next round, read back at the round's one wait. Between rounds it polls the stop conditions; samples still in flight at a stop
 // never reach the film, so it holds only whole samples.
 #include "renderer.h"
 
@@ -44,7 +44,7 @@ double secondsSince(Clock::time_point t0) {
 }
 
 const std::vector<std::string> kRenderSources = {
-    "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "accumulate.cl", "compact.cl",
+    "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "close_round.cl", "compact.cl",
     "retire.cl", "treelet.cl"};
 
 const char* signalName(int sig) { return sig == 2 ? "SIGINT" : sig == 15 ? "SIGTERM" : "signal"; }
@@ -303,25 +303,25 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                          ds.csg, ds.triangles, ds.quadricMotion,
                                          ds.trianglesEnd, rp.sample, rp.sampleTime, nl,
                                          numerics);
-            k.accumulateShadows.launch(n, n, nl, rp.sample, rp.shWeight, rp.shState,
-                                       rp.totals);
         }
     };
-    // The end of a round: count the rays the shade stage spawned (compact_count) and
-    // retire the jobs whose samples have no ray left, both read back at one wait; then
-    // compact the spawned rays into the pool, past its capacity onto the spill stack, and
+    // The end of a round: add the shadow rays that reached their light and count the rays
+    // the shade stage spawned (close_round), retire the jobs whose samples have no ray
+    // left, both read back at one wait; then compact the spawned rays into the pool, past its capacity onto the spill stack, and
     // top the pool up from the stack (newest first, as a stack keeps ray trees shallow).
     // Retired jobs go to the film and the oldest ones free their slots; aborted jobs (a
     // ray dropped) are issued again, once.
     uint64_t nonfiniteRetired = 0;  // samples the film left out: a later pass replaces them
     uint32_t retireLaunches = 0;    // its parity picks retire_samples' progress half
     uint32_t prog[3] = {0u, 0u, 0u};  // oldest in flight, aborted, NaN/Inf
-    std::vector<uint32_t> live;  // compact_count's live rays per group of 64
+    std::vector<uint32_t> live;  // close_round's live rays per group of traced rays
     auto finishRound = [&](std::deque<PlannedJob>& pending, cl_uint traced) {
         const bool compact = spawns && traced > 0;
-        const size_t groups = (traced + 63) / 64;
+        const size_t groups = (traced + RT_COMPACT_GROUP - 1) / RT_COMPACT_GROUP;
+        if (traced > 0 && (compact || nl > 0))
+            k.closeRound.launch(traced, traced, nl, cl_uint(compact), rp.sample, rp.shWeight,
+                                rp.shState, rp.totals, rp.spawnMask, rp.groupLive);
         if (compact) {
-            k.compactCount.launch(traced, traced, rp.spawnMask, rp.groupLive);
             live.resize(groups);
             rp.groupLive.downloadRangeTo(0, groups, live.data(), /*blocking=*/false);
         } else {
@@ -499,16 +499,21 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     if (shading.imager) {  // the Imager shader on the finished image (also a stopped one)
         filmBuf.downloadInto(film.pixels);
         film.imaged = applyImager(m_ctx, program.get(), prof, film, ds.params);
+    } else {  // the film's copy overlaps the profiler's reads; collectActive waits for it
+        filmBuf.downloadInto(film.pixels, /*blocking=*/false);
     }
-    m_ctx.finish();
+    if (f.aovs) aovBuf.downloadInto(film.aovs, /*blocking=*/false);
+    std::vector<uint32_t> num, texCounts;
+    numerics.downloadInto(num, /*blocking=*/false);
+    if (f.textures) textures.counterBuf.downloadInto(texCounts, /*blocking=*/false);
     prof.collect();
     Kernel::collectActive(k.all());
     if (treelets) treelets->collectActive();
+    m_ctx.finish();  // the copies above
     st.kernels = prof.stats();
     if (f.textures) {
-        std::vector<uint32_t> tc = textures.counterBuf.download();
-        textures.stats().lookups = tc[1];
-        textures.stats().missedLookups = tc[2];
+        textures.stats().lookups = texCounts[1];
+        textures.stats().missedLookups = texCounts[2];
         st.textures = textures.stats();
     }
     auto active = [&](const char* name) {
@@ -519,12 +524,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const uint64_t closestRays = active("intersect_closest") + active("treelet_closest_root");
     st.continuationRays = closestRays > st.eyeRays ? closestRays - st.eyeRays : 0;
     st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root");
-    filmBuf.downloadInto(film.pixels);
-    if (f.aovs) film.aovs = aovBuf.download();
     // (no pixel has two samples to take a variance from: -1, without a pass over the film)
     st.estimatedError = ss.maxSamples >= 2 ? estimateFilmError(film.pixels) : -1.0;
-    st.nonfiniteSamples = film.nonfiniteCount();
-    std::vector<uint32_t> num = numerics.download();
+    const Film::Tally tally = film.tally();
+    st.nonfiniteSamples = tally.nonfinite;
+    st.unsampledPixels = tally.unsampled;
+    st.filmSamples = tally.samples;
     st.shadeNonfinite = num[0], st.shadeNegative = num[1], st.shadeHuge = num[2];
     st.shadeDenormal = num[3], st.transparentDepthCut = num[4], st.specularDepthCut = num[5];
     st.rouletteEnded = num[6];
@@ -545,7 +550,6 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                 " ray(s) stopped after " + std::to_string(f.maxTransparentDepth) +
                                 " transparent surfaces; raise Attribute \"trace\" "
                                 "\"maxtransparentdepth\"");
-    st.unsampledPixels = film.unsampledCount();
     st.passes = planner->passes();
     st.elapsedSec = secondsSince(t0);
     // Pool fill: rays traced per round over the pool's capacity. Device busy: kernel time

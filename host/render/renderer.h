@@ -57,6 +57,7 @@ struct RenderStats {
     uint64_t droppedPrims = 0;
     uint64_t sceneBytes = 0;  // device bytes of geometry: BVH, blocks, triangles, quadrics
     uint64_t nonfiniteSamples = 0, unsampledPixels = 0, abortedSamples = 0;
+    uint64_t filmSamples = 0;  // whole samples in the film (re-issued ones counted once)
     // Shader results dropped before they reached a sample or a ray weight (numerics.clh):
     // NaN/Inf, negative, huge (> 1e10); denormal channels flushed to zero; rays cut by
     // maxtransparentdepth and by maxspeculardepth.

@@ -150,7 +150,7 @@ TEST(Render, KernelStatsAreConsistent) {
                              "Surface \"matte\"\n" + std::string(kPlaneAt5) + "WorldEnd\n");
     const auto& k = img.stats.kernels;
     for (const char* name : {"generate_eye", "intersect_closest", "classify_hits",
-                             "shade_matte", "intersect_shadow", "accumulate_shadows",
+                             "shade_matte", "intersect_shadow", "close_round",
                              "retire_samples"}) {
         ASSERT_TRUE(k.count(name)) << name;
         EXPECT_GT(k.at(name).launches, 0u) << name;

@@ -88,7 +88,7 @@ TEST(Sampling, TimeBudgetStopsTheRender) {
     EXPECT_EQ(img.stats.stopReason, "time budget");
     // The budget counts set-up (a cold OpenCL build included); past it, one short batch.
     EXPECT_LT(img.stats.elapsedSec, std::max(0.3, img.stats.sceneSetupMs / 1000.0) + 1.0);
-    EXPECT_GT(img.film.sampleCount(), 0u);
+    EXPECT_GT(img.film.tally().samples, 0u);
     for (const auto& p : img.film.pixels) EXPECT_LE(p.count, 1u << 16);
 }
 
@@ -99,7 +99,7 @@ TEST(Sampling, StopSignalEndsTheRenderFailSoft) {
     Rendered img = renderRib(orthoCamera(32, 8) + stripes(32));
     rd::clearStop();
     EXPECT_EQ(img.stats.stopReason, "SIGINT");
-    EXPECT_EQ(img.film.sampleCount(), 0u);
+    EXPECT_EQ(img.film.tally().samples, 0u);
     EXPECT_EQ(img.stats.retiredSamples, 0u);
     EXPECT_EQ(img.stats.iterations, 0);
     EXPECT_EQ(img.stats.unsampledPixels, 32u * 32u);
@@ -120,7 +120,7 @@ TEST(Film, UnreachedPixelsAreFilledAndFlagged) {
     EXPECT_EQ(rgba[2].r, 9.0f);  // from pixel 3
     auto mask = film.filledMask();
     EXPECT_EQ(mask, (std::vector<float>{0, 1, 1, 0}));
-    EXPECT_EQ(film.unsampledCount(), 2u);
+    EXPECT_EQ(film.tally().unsampled, 2u);
 }
 
 // The estimate follows the definition: sqrt(mean variance of the mean) / mean.

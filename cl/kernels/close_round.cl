@@ -1,0 +1,48 @@
+/* close_round.cl: the end of a round, one pass over its traced rays: the shadow rays that
+ * reached their light go into their samples, and the rays the shade stage spawned are
+ * counted per work-group for the compaction (compact.cl; the host reads the sums for the
+ * total). One launch, not two: on PoCL each launch leaves the device idle between
+ * kernels, and a small scene's round is only a few milliseconds. */
+#include "atomics.clh"
+#include "counters.clh"
+#include "film.h"
+#include "ray.h"
+
+__kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
+void close_round(uint count, /* traced rays */
+                 uint light_count, /* 0: no shadow rays this round */
+                 uint count_spawns, /* 0: the shaders spawn no rays (group_live unused) */
+                 __global const uint* ray_sample,
+                 __global const float4* shadow_weight, /* ray i's: i * light_count + l */
+                 __global RayState* shadow_state,
+                 __global SampleTotal* total,
+                 __global const uint* spawn_mask,
+                 __global uint* group_live,
+                 __global uint* active_counter) {
+    RT_DECLARE_ACTIVE_COUNTER;
+    __local uint live[RT_COMPACT_GROUP];
+    uint i = get_global_id(0), lid = get_local_id(0);
+    RT_COUNT_ACTIVE(active_counter, i < count);
+#ifdef RT_HAS_SHADOW_RAYS
+    /* the lights in order and one atomic per ray, so a sample's total does not depend
+     * on which light's ray a work-item happened to add first */
+    if (i < count && light_count > 0) {
+        float4 sum = (float4)(0.0f);
+        for (uint l = 0; l < light_count; ++l) {
+            uint j = i * light_count + l;
+            if (shadow_state[j].alive) {
+                sum += shadow_weight[j];
+                shadow_state[j].alive = 0u;
+            }
+        }
+        rt_atomic_add_float4(&total[ray_sample[i]].value, sum);
+    }
+#endif
+    live[lid] = i < count && count_spawns ? popcount(spawn_mask[i]) : 0u;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (lid == 0 && count_spawns) {
+        uint sum = 0;
+        for (int k = 0; k < RT_COMPACT_GROUP; ++k) sum += live[k];
+        group_live[get_group_id(0)] = sum;
+    }
+}
