@@ -19,10 +19,9 @@ void close_round(uint count, /* traced rays */
                  __global const uint* spawn_mask,
                  __global uint* group_live,
                  __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     __local uint live[RT_COMPACT_GROUP];
     uint i = get_global_id(0), lid = get_local_id(0);
-    RT_COUNT_ACTIVE(active_counter, i < count);
+    RT_COUNT_RANGE(active_counter, count);
 #ifdef RT_HAS_SHADOW_RAYS
     /* the lights in order and one atomic per ray, so a sample's total does not depend
      * on which light's ray a work-item happened to add first */

@@ -39,7 +39,6 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
                      __global uint* slot_rays,
                      __global uint* slot_abort,
                      __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     __local uint live[RT_COMPACT_GROUP];
     uint i = get_global_id(0), lid = get_local_id(0);
     __local uint groups_before[RT_COMPACT_GROUP];
@@ -48,7 +47,7 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
     for (uint g = lid; g < group; g += RT_COMPACT_GROUP) sum += group_live[g];
     groups_before[lid] = sum;
     const uint mask = i < count ? spawn_mask[i] : 0u;
-    RT_COUNT_ACTIVE(active_counter, mask != 0u);
+    RT_COUNT_GROUP(active_counter, j, j < count && spawn_mask[j] != 0u);
     live[lid] = popcount(mask);
     barrier(CLK_LOCAL_MEM_FENCE);
     if (!mask) return;

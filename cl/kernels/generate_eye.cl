@@ -31,9 +31,8 @@ __kernel void generate_eye(__constant Camera* cam,
                            __global SampleAov* aov, /* used with RT_HAS_AOVS */
                            __global float* sample_time, /* RT_HAS_MOTION: in the shutter */
                            __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     uint k = get_global_id(0);
-    RT_COUNT_ACTIVE(active_counter, k < count);
+    RT_COUNT_RANGE(active_counter, count);
     if (k >= count) return;
     const uint pixel = new_sample[2 * k], s = new_sample[2 * k + 1];
     const uint slot = rt_ring_add(slot_base, k, slot_capacity), i = ray_offset + k;

@@ -1,5 +1,6 @@
 /* intersect.cl: the trace stage over the resident BVH. intersect_closest finds each live
- * ray's nearest hit; intersect_shadow kills the shadow rays that meet an occluder. */
+ * ray's nearest hit; intersect_shadow zeroes the weight of the shadow rays that meet an
+ * occluder (close_round adds the rest into their samples). */
 #include "numerics.clh"
 #include "counters.clh"
 #include "quadric.h"
@@ -49,10 +50,9 @@ __kernel void intersect_closest(uint count,
                                 __global const float* sample_time,
                                 __global uint* hit_instance, /* RT_HAS_INSTANCES only */
                                 __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
-    RT_COUNT_ACTIVE(active_counter, active);
+    RT_COUNT_GROUP(active_counter, j, j < count && state[j].alive);
     if (!active) return;
     RT_DECLARE_OBJECT_SCENE(i);
     float4 o = origin[i], d = direction[i];
@@ -71,7 +71,8 @@ __kernel void intersect_shadow(uint count,
                                __global const Triangle4* blocks,
                                __global const float4* origin,
                                __global const float4* direction,
-                               __global RayState* state,
+                               __global const RayState* state,
+                               __global float4* weight, /* zeroed when occluded */
                                __global const Quadric* quadrics,
                                __global const uint* csg,
                                __global const Triangle* tris,
@@ -82,10 +83,9 @@ __kernel void intersect_shadow(uint count,
                                uint light_count, /* shadow ray i: shaded ray i / count */
                                __global uint* numerics, /* RT_HAS_PROCEDURALS: flags */
                                __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
-    RT_COUNT_ACTIVE(active_counter, active);
+    RT_COUNT_GROUP(active_counter, j, j < count && state[j].alive);
     if (!active) return;
     RT_DECLARE_OBJECT_SCENE(i / light_count);
     float4 o = origin[i], d = direction[i];
@@ -94,7 +94,8 @@ __kernel void intersect_shadow(uint count,
     /* shadow rays converge on their light: the lane walk */
     if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, 1,
                     &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG)) {
-        state[i].alive = 0u;
+        /* an occluded ray carries nothing; its state stays as the group count read it */
+        weight[i] = (float4)(0.0f);
 #ifdef RT_HAS_PROCEDURALS
         if ((h.prim & RT_OBJECT_BIT) && quadrics[h.prim & RT_OBJECT_MASK].kind == RT_Q_PROCEDURAL)
             numerics[RT_NUM_PROCEDURAL_BASE + quadrics[h.prim & RT_OBJECT_MASK].first_member] = 1u;

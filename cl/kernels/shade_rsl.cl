@@ -62,11 +62,10 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global uint* retry_count,
                             uint shader_index,
                             __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     uint j = get_global_id(0);
     /* a scene with one shader skips the sort: its run is every ray, with misses and hits
      * on surfaces with no shader among them (their key is not this shader's) */
-    RT_COUNT_ACTIVE(active_counter, j < count && ray_key[sorted[begin + j]] == shader_index);
+    RT_COUNT_GROUP(active_counter, q, q < count && ray_key[sorted[begin + q]] == shader_index);
     if (j >= count) return;
     uint r = sorted[begin + j];
     if (ray_key[r] != shader_index) return;

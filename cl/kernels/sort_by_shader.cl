@@ -29,10 +29,9 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
                             __global const uint* ray_sample,
                             __global uint* slot_rays,
                             __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     __local uint hist[RT_MAX_SHADER_KEYS];
     uint r = get_global_id(0), lid = get_local_id(0);
-    RT_COUNT_ACTIVE(active_counter, r < count);
+    RT_COUNT_RANGE(active_counter, count);
     for (uint k = lid; k <= shader_count; k += get_local_size(0)) hist[k] = 0;
     /* last round's counts and the cursors are done with */
     for (uint k = r; k <= shader_count; k += get_global_size(0)) {
@@ -72,10 +71,9 @@ __kernel void scatter_by_shader(uint count, uint shader_count, uint parity,
                                 __global uint* key_cursor,      /* cleared by classify */
                                 __global uint* sorted,
                                 __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     uint r = get_global_id(0);
     int hit = r < count && key[r] < shader_count;
-    RT_COUNT_ACTIVE(active_counter, hit);
+    RT_COUNT_GROUP(active_counter, j, j < count && key[j] < shader_count);
     if (!hit) return;
     const uint k = key[r];
     __global const uint* counts = key_count + parity * (shader_count + 1u);

@@ -130,9 +130,8 @@ __kernel void treelet_scatter(uint count,
                               __global uint* cursor,
                               __global TreeletPair* out,
                               __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
-    RT_COUNT_ACTIVE(active_counter, i < count);
+    RT_COUNT_RANGE(active_counter, count);
     if (i >= count) return;
     TreeletPair p = in[i];
     out[atomic_inc(&cursor[p.treelet])] = p;
@@ -150,10 +149,9 @@ __kernel void treelet_resolve(uint count,
                               __global RayHit* hits,
                               RT_TL_SCENE_PARAMS,
                               __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
-    RT_COUNT_ACTIVE(active_counter, active);
+    RT_COUNT_GROUP(active_counter, j, j < count && state[j].alive);
     if (!active) return;
     float4 o = origin[i], d = direction[i];
     ulong key = keys[i];

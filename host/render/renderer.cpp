@@ -299,7 +299,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                  traceScene, nl);
             else
                 k.intersectShadow.launch(size_t(n) * nl, cl_uint(n * nl), ds.nodes, ds.blocks,
-                                         rp.shOrigin, rp.shDirection, rp.shState, ds.quadrics,
+                                         rp.shOrigin, rp.shDirection, rp.shState,
+                                         rp.shWeight, ds.quadrics,
                                          ds.csg, ds.triangles, ds.quadricMotion,
                                          ds.trianglesEnd, rp.sample, rp.sampleTime, nl,
                                          numerics);

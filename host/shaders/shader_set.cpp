@@ -472,9 +472,8 @@ ShadingSetup ShaderSet::prepare() {
                 "__kernel void imager_apply(uint width, uint count, __global float4* pixels,\n"
                 "                           __global const float* params,\n"
                 "                           __global uint* active_counter) {\n"
-                "    RT_DECLARE_ACTIVE_COUNTER;\n"
                 "    uint i = get_global_id(0);\n"
-                "    RT_COUNT_ACTIVE(active_counter, i < count);\n"
+                "    RT_COUNT_RANGE(active_counter, count);\n"
                 "    if (i >= count) return;\n"
                 "    float4 c = pixels[i];\n"
                 "    RslGlobals g;\n"
@@ -502,8 +501,8 @@ ShadingSetup ShaderSet::prepare() {
     if (!out.prepares.empty()) {
         prep << "__kernel void rd_prepare_uniforms(uint count, __global float* params,\n"
                 "                                  __global uint* active_counter) {\n"
-                "    RT_DECLARE_ACTIVE_COUNTER;\n    uint i = get_global_id(0);\n"
-                "    RT_COUNT_ACTIVE(active_counter, i < count);\n    switch (i) {\n";
+                "    uint i = get_global_id(0);\n"
+                "    RT_COUNT_RANGE(active_counter, count);\n    switch (i) {\n";
         for (size_t i = 0; i < out.prepares.size(); ++i)
             prep << "    case " << i << ": " << out.prepares[i].first << "(params + "
                  << out.prepares[i].second << "); break;\n";

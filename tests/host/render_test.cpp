@@ -163,6 +163,9 @@ TEST(Render, KernelStatsAreConsistent) {
     EXPECT_EQ(img.stats.eyeRays, 512u);
     EXPECT_EQ(k.at("intersect_closest").activeItems, img.stats.eyeRays);
     EXPECT_EQ(img.stats.shadowRays, img.stats.eyeRays);  // every hit sees the light
+    // the group counts (counters.clh): every index below the count, or every ray shaded
+    for (const char* name : {"generate_eye", "classify_hits", "shade_matte", "close_round"})
+        EXPECT_EQ(k.at(name).activeItems, img.stats.eyeRays) << name;
 }
 
 // Two shaders: the sort runs, each shade kernel takes its own run, and the misses and the
@@ -186,6 +189,7 @@ TEST(Render, TwoShadersAreSortedIntoTheirRuns) {
     EXPECT_GE(constant, 64u * 2);
     EXPECT_GE(matte, 64u * 2);
     EXPECT_LE(constant + matte, k.at("intersect_closest").activeItems);
+    EXPECT_EQ(k.at("scatter_by_shader").activeItems, constant + matte);  // the hits sorted
     // RI: y up, so the planes (y < 0) fill the lower rows 8-15 of the image
     EXPECT_NEAR(img.mean(0, 0, 9, 7, 16), 0.25, 1e-6);
     EXPECT_NEAR(img.mean(0, 9, 9, 16, 16), 0.75, 1e-5);  // matte: Ka ambient Cs

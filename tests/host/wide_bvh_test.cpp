@@ -148,22 +148,30 @@ static void expectEightWideHitsMatchBruteForce(uint32_t depth) {
     EXPECT_GT(hitsFound, int(n) / 5);
     EXPECT_EQ(wrong, 0) << "of " << n << " rays";
     EXPECT_EQ(touchedDead, 0);
-    // shadow rays: those that hit are cut at half their hit (occluded) or left unbounded
-    // (occluded); those that miss stay alive
+    // shadow rays: those that hit are cut at half their hit (reach the light) or left
+    // unbounded (occluded: their weight zeroed); dead ones are not touched
     std::vector<rt_float4> sdir = dir;
     for (size_t i = 0; i < n; ++i)
         if (bestPrim[i] != RT_NO_HIT && i % 2) sdir[i].w = float(best[i] * 0.5);
     DeviceBuffer<rt_float4> sdb(ctx, sdir);
     state.upload(alive);
-    shadow.launch(n, cl_uint(n), nodes, blocks, ob, sdb, state, noQuadrics, noCsg, noTris,
-                  noMotion, noTris, noSample, noTime, cl_uint(1), noNumerics);
+    const std::vector<rt_float4> weights(n, rt_float4{0.5f, 0.25f, 2.0f, 0.0f});
+    DeviceBuffer<rt_float4> weight(ctx, weights);
+    shadow.launch(n, cl_uint(n), nodes, blocks, ob, sdb, state, weight, noQuadrics, noCsg,
+                  noTris, noMotion, noTris, noSample, noTime, cl_uint(1), noNumerics);
     std::vector<RayState> after = state.download();
-    int wrongShadow = 0;
+    std::vector<rt_float4> wAfter = weight.download();
+    int wrongShadow = 0, stateChanged = 0;
     for (size_t i = 0; i < n; ++i) {
         const bool blocked = alive[i].alive && bestPrim[i] != RT_NO_HIT && !(i % 2);
-        wrongShadow += (after[i].alive == 0) != (blocked || !alive[i].alive);
+        const rt_float4 w = wAfter[i];
+        const bool zero = w.x == 0 && w.y == 0 && w.z == 0 && w.w == 0;
+        const bool kept = w.x == 0.5f && w.y == 0.25f && w.z == 2.0f && w.w == 0;
+        wrongShadow += blocked ? !zero : !kept;
+        stateChanged += after[i].alive != alive[i].alive;
     }
     EXPECT_EQ(wrongShadow, 0) << "of " << n << " shadow rays";
+    EXPECT_EQ(stateChanged, 0) << "the group count reads the states: the kernel keeps them";
 }
 
 TEST(WideBvh, EightWideTraversalFindsTheClosestHits) {
