@@ -26,6 +26,12 @@ inline int rt_treelet_pair(uint i, uint first, uint count, uint root_only,
     }
     return state[p->ray].alive != 0u;
 }
+inline int rt_treelet_pair_live(uint i, uint first, uint count, uint root_only,
+                                __global const TreeletPair* pairs,
+                                __global const RayState* state) {
+    TreeletPair p;
+    return rt_treelet_pair(i, first, count, root_only, pairs, state, &p);
+}
 
 /* One (ray, treelet) pair, closest hit: the ray's key lowered to the best hit found. */
 inline void rt_treelet_closest(TreeletPair p, uint root_only, __global const TreeletRef* refs,
@@ -83,8 +89,17 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
 #endif
 
 /* A pair kernel's start: its pair p, counted when its ray is live (else it returns), and
- * the object scene at the ray's time. */
+ * the object scene at the ray's time. The closest-hit kernels count without a barrier
+ * (they only read the states); the shadow kernels kill rays, so theirs sums between
+ * barriers the liveness each work-item saw. */
 #define RT_TREELET_PAIR_BEGIN(root_only)                                                  \
+    TreeletPair p;                                                                        \
+    int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
+    RT_COUNT_GROUP(active_counter, j,                                                     \
+                   rt_treelet_pair_live(j, first, count, root_only, pairs, state));       \
+    if (!active) return;                                                                  \
+    RT_TL_DECLARE_OBJECTS(p.ray)
+#define RT_TREELET_SHADOW_PAIR_BEGIN(root_only)                                           \
     RT_DECLARE_ACTIVE_COUNTER;                                                            \
     TreeletPair p;                                                                        \
     int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
@@ -117,7 +132,7 @@ RT_TREELET_CLOSEST_KERNEL(treelet_closest, 0u)
                        __global const float4* direction, __global RayState* state,          \
                        __global TreeletPair* next, uint next_cap, __global uint* counters,  \
                        uint treelets, RT_TL_SCENE_PARAMS, __global uint* active_counter) {  \
-        RT_TREELET_PAIR_BEGIN(root_only);                                                   \
+        RT_TREELET_SHADOW_PAIR_BEGIN(root_only);                                            \
         rt_treelet_shadow(p, refs, nodes, blocks, origin, direction, state, next, next_cap,  \
                           counters, treelets RT_TL_OBJECTS_ARG);                            \
     }
