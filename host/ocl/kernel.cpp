@@ -13,7 +13,8 @@ void Profiler::record(const std::string& kernel, cl_event ev, uint64_t launched)
     KernelStats& s = m_stats[kernel];
     ++s.launches;
     s.launchedItems += launched;
-    m_pending.push_back({kernel, ev});
+    m_pending.push_back({kernel, ev, m_waitPending});
+    m_waitPending = false;
 }
 
 void Profiler::collect() {
@@ -24,8 +25,14 @@ void Profiler::collect() {
                                     nullptr) == CL_SUCCESS &&
             clGetEventProfilingInfo(p.event, CL_PROFILING_COMMAND_END, sizeof end, &end,
                                     nullptr) == CL_SUCCESS &&
-            end >= start)
+            end >= start) {
             m_stats[p.kernel].deviceMs += double(end - start) * 1e-6;
+            // (an in-order queue: the events come in the order they ran)
+            if (m_lastEnd > 0 && start > m_lastEnd)
+                (p.afterWait ? m_idleAfterWaitsMs : m_launchGapsMs) +=
+                    double(start - m_lastEnd) * 1e-6;
+            m_lastEnd = std::max(m_lastEnd, end);
+        }
         clReleaseEvent(p.event);
     }
     m_pending.clear();

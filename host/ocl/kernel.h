@@ -32,15 +32,27 @@ public:
     // Waits for the recorded events and adds their device time; cheap to call often.
     void collect();
     const std::map<std::string, KernelStats>& stats() const { return m_stats; }
+    // The host is about to wait for the device (or has just waited): the idle time
+    // before the next kernel is the host's, not the runtime's.
+    void markHostWait() { m_waitPending = true; }
+    // Device idle time between consecutive kernels, in ms (event start after the end of
+    // the kernel before): after a host wait, and between kernels the host had already
+    // queued (the runtime's own cost of a launch).
+    double idleAfterWaitsMs() const { return m_idleAfterWaitsMs; }
+    double launchGapsMs() const { return m_launchGapsMs; }
 
 private:
     struct Pending {
         std::string kernel;
         cl_event event;
+        bool afterWait;
     };
     const ClContext& m_ctx;
     std::vector<Pending> m_pending;
     std::map<std::string, KernelStats> m_stats;
+    bool m_waitPending = false;
+    cl_ulong m_lastEnd = 0;  // device clock, ns; 0 before the first kernel
+    double m_idleAfterWaitsMs = 0, m_launchGapsMs = 0;
 };
 
 class Kernel {

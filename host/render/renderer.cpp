@@ -281,6 +281,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                           rp.spawnMask, rp.shState, rp.sample, rp.slotRays);
         // One shader: no sort and no wait for the counts; its run is the whole pool in
         // order (`sorted` holds 0, 1, 2, ...) and the shade kernel skips the misses.
+        if (shaderCount > 1) prof.markHostWait();
         std::vector<uint32_t> counts =
             shaderCount == 1 ? std::vector<uint32_t>{n, 0u}
                              : rp.keyCount.downloadRange(parity * (shaderCount + 1),
@@ -292,7 +293,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             k.scatter.launch(n, n, shaderCount, parity, rp.key, rp.keyCount, rp.keyCursor,
                              rp.sorted);
         shadeRuns(counts, keyOffsets, rp.sorted, reshade.firstList());
-        if (f.textures) reshade.run(keyOffsets, shading.surfaceNames, shadeRuns);
+        if (f.textures) {  // (it waits for the lists of points to shade again)
+            prof.markHostWait();
+            reshade.run(keyOffsets, shading.surfaceNames, shadeRuns);
+        }
         if (nl > 0) {
             if (treelets)
                 treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
@@ -338,6 +342,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             rp.progress.downloadRangeTo(3 * parity, 3, prog, /*blocking=*/false);
         }
         refill.prepare(pending, roundCap);  // while the device finishes the round
+        prof.markHostWait();
         m_ctx.finish();
         if (compact) {
             size_t total = 0;
@@ -394,6 +399,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         double now = secondsSince(t0);
         if (!force && now - lastSample < 0.5) return;
         lastSample = now;
+        prof.markHostWait();
         filmBuf.downloadInto(film.pixels);
         st.estimatedError = estimateFilmError(film.pixels);
         prof.collect();
@@ -440,6 +446,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             }
             ++st.iterations;
             if (f.procedurals) {  // a ray reached an archive's bound: load it first
+                prof.markHostWait();
                 std::vector<uint32_t> flags = numerics.download();
                 for (size_t a = 0; a < scene.procedurals.size(); ++a)
                     if (flags[kProceduralFlags + a])
@@ -461,6 +468,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         return true;
     };
 
+    prof.markHostWait();  // the set-up: the device had nothing to do before the loop
     for (;;) {
         std::deque<PlannedJob> jobs;
         if (firstPass.valid()) {
@@ -564,8 +572,15 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     for (const auto& [name, ks] : st.kernels) deviceMs += ks.deviceMs;
     const double loopMs = st.elapsedSec * 1e3 - st.sceneSetupMs;
     if (loopMs > 0) st.deviceBusy = std::min(1.0, deviceMs / loopMs);
-    if (st.elapsedSec > 0)
+    // Of that overhead, the runtime's own gaps between kernels the host had already
+    // queued are not waits on the host: the rest (the round ends' waits, planning, the
+    // film read at the end) is the host synchronisation overhead.
+    st.launchGapsMs = prof.launchGapsMs();
+    if (st.elapsedSec > 0) {
         st.hostOverhead = std::max(0.0, loopMs - deviceMs) / (st.elapsedSec * 1e3);
+        st.hostSyncOverhead =
+            std::max(0.0, loopMs - deviceMs - st.launchGapsMs) / (st.elapsedSec * 1e3);
+    }
     st.errorVsTime.push_back({st.elapsedSec, st.totalRays(), st.estimatedError});
     return st;
 }

@@ -73,6 +73,8 @@ struct RenderStats {
     double poolFill = 0;    // mean rays per round / pool capacity
     double deviceBusy = 0;  // kernel time / wall time of the sampling loop
     double hostOverhead = 0;  // sampling-loop time the device did not run kernels / frame
+    double launchGapsMs = 0;  // of which: idle between kernels queued back to back
+    double hostSyncOverhead = 0;  // the rest (the host's waits and work) / frame
     double planMs = 0;  // of which between passes: the film read back, the next pass planned
     std::vector<PoolFillSample> poolFillSeries;
     int passes = 0, iterations = 0;  // iterations: rounds of the ray pool

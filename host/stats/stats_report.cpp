@@ -55,6 +55,8 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                          {"spilled_rays", st.spilledRays},
                          {"device_busy", st.deviceBusy},
                          {"host_overhead", st.hostOverhead},
+                         {"host_sync_overhead", st.hostSyncOverhead},
+                         {"launch_gaps_ms", st.launchGapsMs},
                          {"plan_ms", st.planMs}}},
         {"features", st.features.names()},
         {"program", {{"build_options", st.program.options},
@@ -136,7 +138,8 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
         << ss["pool_fill"].get<double>() << " over " << ss["rounds"]
         << " rounds, device busy " << ss["device_busy"].get<double>()
         << " of the sampling loop, host overhead " << ss["host_overhead"].get<double>()
-        << " of the frame\n";
+        << " of the frame (host waits " << ss["host_sync_overhead"].get<double>()
+        << ", launch gaps " << ss["launch_gaps_ms"].get<double>() << " ms)\n";
     if (const auto& t = s["textures"]; t["files"].get<uint64_t>() > 0)
         out << "textures  " << t["files"] << " files, "
             << (t["resident"].get<bool>() ? "resident" : "streamed") << ", cache "

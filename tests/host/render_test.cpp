@@ -166,6 +166,10 @@ TEST(Render, KernelStatsAreConsistent) {
     // the group counts (counters.clh): every index below the count, or every ray shaded
     for (const char* name : {"generate_eye", "classify_hits", "shade_matte", "close_round"})
         EXPECT_EQ(k.at(name).activeItems, img.stats.eyeRays) << name;
+    // the loop's idle time: the host's part never more than the whole
+    EXPECT_GE(img.stats.launchGapsMs, 0.0);
+    EXPECT_GE(img.stats.hostSyncOverhead, 0.0);
+    EXPECT_LE(img.stats.hostSyncOverhead, img.stats.hostOverhead);
 }
 
 // Two shaders: the sort runs, each shade kernel takes its own run, and the misses and the
