@@ -18,6 +18,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
         if (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f) f.transparency = true;
     f.primvars = scene.primvarsUsed;
     f.lightCount = shading.lightCount;
+    f.specialisedLights = f.lightCount > 0 && f.lightCount <= Features::kSpecialisedLights;
     f.shadowRays = shading.shadowRays;
     f.trace = shading.usesTrace;
     f.sampledTrace = shading.sampledTrace;
@@ -83,6 +84,7 @@ std::vector<std::string> Features::names() const {
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
+    if (specialisedLights) n.push_back("specialised_lights");
     if (trace) n.push_back("trace");
     if (sampledTrace) n.push_back("sampled_trace");
     if (aovs) n.push_back("aovs");
@@ -130,6 +132,7 @@ std::string buildOptions(const Features& f) {
     if (f.treelets) o += f.int64Min ? " -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN" : " -DRT_HAS_TREELETS";
     if (f.bvhWidth == 8) o += " -DRT_BVH8";
     if (f.sampledTrace) o += " -DRT_INCOHERENT_TRACE";
+    if (f.specialisedLights) o += " -DRD_SPECIALISED_LIGHTS";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";

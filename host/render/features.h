@@ -37,6 +37,11 @@ struct Features {
     bool int64Min = false;      // the device has 64-bit atomic min (its closest hits)
     int bvhWidth = 4;           // the resident BVH's node width: 4, or 8 (RT_BVH8)
     uint32_t lightCount = 0;
+    // Each light instance's shader inlined where it is called, its baked parameters
+    // folded in (uniform work such as a spotlight's axis and cone cosines is done by the
+    // compiler): with at most kSpecialisedLights lights, as code grows with their number.
+    bool specialisedLights = false;
+    static constexpr uint32_t kSpecialisedLights = 16;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)
     // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a

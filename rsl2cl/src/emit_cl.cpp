@@ -283,7 +283,7 @@ void Emitter::emitShader() {
     bool light = m_sh.kind == ShaderKind::Light;
     std::string fn = m_out.functionName;
     if (light)
-        m_body << "void " << fn << "(RslGlobals* g, RSL_LIGHT_PARAMS params) {\n";
+        m_body << "RSL_LIGHT_FUNCTION void " << fn << "(RslGlobals* g, RSL_LIGHT_PARAMS params) {\n";
     else
         m_body << "void " << fn << "(RslGlobals* g, __global const float* params, RslEval* ev) {\n";
     m_indent = 1;

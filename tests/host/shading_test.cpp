@@ -88,6 +88,34 @@ TEST(Shading, SpotlightConeAndFalloff) {
     EXPECT_EQ(img.at(1, 1).r, 0.0f);
 }
 
+// One spotlight of intensity 25 and seventeen of 25/17 at the same place light the plane
+// alike. With up to 16 lights each instance's light shader is inlined with its constants
+// (feature specialised_lights: the cone's cosines and axis fold at compile time); with
+// 17 it is called: both forms must give the same image.
+TEST(Shading, SpecialisedAndCalledLightsAgree) {
+    auto spots = [](int n) {
+        std::string rib = std::string(kCamera) + "WorldBegin\n";
+        for (int i = 0; i < n; ++i)
+            rib += "LightSource \"spotlight\" " + std::to_string(i + 1) +
+                   " \"from\" [0 0 0] \"to\" [0.1 0 1] \"intensity\" " +
+                   std::to_string(25.0 / n) + " \"coneangle\" [0.3]\n";
+        return rib + "Surface \"matte\"\n"
+                     "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\nWorldEnd\n";
+    };
+    Rendered one = renderRib(spots(1)), many = renderRib(spots(17));
+    EXPECT_TRUE(one.stats.features.specialisedLights);
+    EXPECT_FALSE(many.stats.features.specialisedLights);
+    double lit = 0;
+    for (int y = 0; y < one.height; ++y)
+        for (int x = 0; x < one.width; ++x) {
+            const float a = one.at(x, y).r, b = many.at(x, y).r;
+            ASSERT_NEAR(a, b, 1e-5 + 1e-5 * a) << "pixel " << x << ", " << y;
+            lit += a > 0.1;
+        }
+    EXPECT_GT(lit, 20) << "inside the cone";
+    EXPECT_LT(lit, one.width * one.height - 20) << "and outside it";
+}
+
 // shadowspot with shadowname "raytrace": a spot at (0, 3, 2) aimed at the plane's centre
 // (0, 0, 5); a sphere of radius 0.3 half way, (0, 1.5, 3.5), shadows the centre (shadow
 // radius about 0.6 on the plane), which the eye sees unobstructed (the sphere is above
