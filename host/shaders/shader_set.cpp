@@ -527,9 +527,13 @@ ShadingSetup ShaderSet::prepare() {
     // Light parameters are baked constants; with few lights (RD_SPECIALISED_LIGHTS,
     // features.h) each instance's call is inlined, so the compiler folds its uniform work
     // (SPD gears, five spotlights: shade_spd 154 -> 127 ms, images bit for bit the same).
+    // Surface shaders are inlined into their shade kernel's few call sites (base, light
+    // and trace modes): the work a mode does not change is hoisted out of the light loop
+    // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).
     out.generated["rd_shading.cl"] = "#define RSL_LIGHT_PARAMS __constant float*\n"
                                      "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
                                      "inline __attribute__((always_inline))\n#endif\n"
+                                     "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"
                                      "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n"
                                      "#include \"area_light.clh\"\n" +
                                      lights.str() + shaders.str() + svc.str();

@@ -61,8 +61,10 @@
  * empty string 0 (exactly representable in a float slot). rsl::stringId() in
  * emit_cl.h computes the same value; texture/shadow map names reach the host that way.
  *
- * SURFACE SHADERS: void rsl_surface_<name>(RslGlobals* g, __global const float* params,
- *                                          RslEval* ev);
+ * SURFACE SHADERS: RSL_SHADER_FUNCTION void rsl_surface_<name>(RslGlobals* g,
+ *                                      __global const float* params, RslEval* ev);
+ *   (RSL_SHADER_FUNCTION, like RSL_LIGHT_FUNCTION below, is empty unless the renderer
+ *   defines it; RayDrive inlines the shader into its shade kernel.)
  *   Reads the globals, writes g->Ci and g->Oi. Ci is affine in every trace() result
  *   and every light's Cl (checked at compile time), so the renderer evaluates it in
  *   modes:
@@ -144,6 +146,9 @@
 #endif
 #ifndef RSL_LIGHT_FUNCTION
 #define RSL_LIGHT_FUNCTION
+#endif
+#ifndef RSL_SHADER_FUNCTION
+#define RSL_SHADER_FUNCTION
 #endif
 
 #define RSL_LIGHT_CACHE 8

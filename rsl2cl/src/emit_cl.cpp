@@ -285,7 +285,7 @@ void Emitter::emitShader() {
     if (light)
         m_body << "RSL_LIGHT_FUNCTION void " << fn << "(RslGlobals* g, RSL_LIGHT_PARAMS params) {\n";
     else
-        m_body << "void " << fn << "(RslGlobals* g, __global const float* params, RslEval* ev) {\n";
+        m_body << "RSL_SHADER_FUNCTION void " << fn << "(RslGlobals* g, __global const float* params, RslEval* ev) {\n";
     m_indent = 1;
     if (light) {
         line("RslEval _ev; _ev.deriv = 0; _ev.tex = g->texctx; _ev.mode_light = -1; _ev.mode_trace = -1; _ev.trace_count = 0;");
