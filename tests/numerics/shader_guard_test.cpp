@@ -3,12 +3,18 @@
 // none of it reaches the film (which stays finite), and every fault is counted (--stats).
 #include <gtest/gtest.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include "cl/include/compat.h"
 #include "numerics_util.h"
+#include "ocl/buffer.h"
+#include "ocl/kernel.h"
+#include "ocl/program.h"
+#include "render_harness.h"
 
 using namespace rd::numerics;
 
@@ -97,4 +103,56 @@ TEST(Numerics, GoodShadersCountNoFaults) {
     EXPECT_EQ(st.shadeNonfinite + st.shadeNegative + st.shadeHuge + st.shadeDenormal, 0u);
     EXPECT_EQ(d.warnings, 0) << d.messages;
     EXPECT_NEAR(d.image.at(1, 4).r, 0.25, 1e-6);  // 0.5 * diffuse = 0.5 cos 60
+}
+
+// rt_sanitize itself (cl/lib/numerics.clh) on edge values, through a probe kernel: its
+// fast path (every channel zero or a normal number up to RT_MAX_RADIANCE) passes them
+// unchanged; anything else takes the checks: the faulty part (colour or alpha) zeroed,
+// denormals flushed, each fault counted once.
+TEST(Numerics, SanitizeKeepsGoodValuesAndCountsEachFault) {
+    const rd::ClContext& ctx = rd::test::testContext();
+    const std::string probe =
+        "#include \"numerics.clh\"\n"
+        "__kernel void sanitize_probe(uint n, __global float4* v, __global uint* counters,\n"
+        "                             __global uint* active) {\n"
+        "    uint i = get_global_id(0);\n"
+        "    if (i < n) v[i] = rt_sanitize(v[i], counters);\n}\n";
+    rd::Program program(ctx, rd::assembleClSource({"sanitize_probe.cl"},
+                                                  {{"sanitize_probe.cl", probe}}),
+                        "-cl-std=CL1.2");
+    rd::Profiler prof(ctx);
+    rd::Kernel k(ctx, program.get(), "sanitize_probe", prof);
+    const float inf = INFINITY, nan = NAN, fmin = FLT_MIN;
+    // numerics.clh's counter slots
+    enum { RT_NUM_NONFINITE = 0, RT_NUM_NEGATIVE, RT_NUM_HUGE, RT_NUM_DENORMAL };
+    constexpr int RT_NUM_COUNTERS = 8;
+    struct Case {
+        rt_float4 in, out;
+        int counter;  // RT_NUM_* slot it adds one to, or -1
+    } cases[] = {
+        {{0.5f, 1.0f, 0.0f, -0.0f}, {0.5f, 1.0f, 0.0f, -0.0f}, -1},
+        {{fmin, 1e10f, 0.0f, 1.0f}, {fmin, 1e10f, 0.0f, 1.0f}, -1},
+        {{1e-40f, 1.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 1.0f, 0.0f}, RT_NUM_DENORMAL},
+        {{-1.0f, 1.0f, 1.0f, 1.0f}, {0.0f, 0.0f, 0.0f, 1.0f}, RT_NUM_NEGATIVE},
+        {{1.0f, 1.0f, 1.0f, nan}, {1.0f, 1.0f, 1.0f, 0.0f}, RT_NUM_NONFINITE},
+        {{2e10f, 0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f, 1.0f}, RT_NUM_HUGE},
+        {{0.0f, inf, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f, 1.0f}, RT_NUM_NONFINITE},
+    };
+    for (const Case& c : cases) {
+        rd::DeviceBuffer<rt_float4> v(ctx, std::vector<rt_float4>{c.in}, CL_MEM_READ_WRITE);
+        rd::DeviceBuffer<uint32_t> counters(ctx, RT_NUM_COUNTERS);
+        counters.fillZero();
+        k.launch(1, cl_uint(1), v, counters);
+        const rt_float4 got = v.download()[0];
+        const std::vector<uint32_t> n = counters.download();
+        const float* g = &got.x;
+        const float* want = &c.out.x;
+        for (int ch = 0; ch < 4; ++ch) {
+            EXPECT_EQ(g[ch], want[ch]) << "channel " << ch << " of case " << (&c - cases);
+            EXPECT_EQ(std::signbit(g[ch]), std::signbit(want[ch])) << "case " << (&c - cases);
+        }
+        for (int s = 0; s < RT_NUM_COUNTERS; ++s)
+            EXPECT_EQ(n[size_t(s)], s == c.counter ? 1u : 0u)
+                << "counter " << s << " of case " << (&c - cases);
+    }
 }
