@@ -156,7 +156,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
     rd_eval_init(&ev, dsites, tc, -1, -1);
-    if (!culled) rd_fill_light_cache(&g);
+    RslLightCache light_cache;
+    if (!culled) rd_fill_light_cache(&g, &light_cache);
     RslGlobals base = g;
     if (!culled) rsl_surface_SURFACE(&base, p, &ev);
 #ifdef RT_HAS_TEXTURES

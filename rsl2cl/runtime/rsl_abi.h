@@ -155,19 +155,25 @@
 
 struct RslTexContext; /* the renderer's texture state (TEXTURES) */
 
+/* The renderer's light cache (RslGlobals::light_cache): the first RSL_LIGHT_CACHE
+ * lights' surface-side L and unshadowed Cl at P (w: 1 for a solar light). */
+typedef struct RslLightCache {
+    float4 L[RSL_LIGHT_CACHE];
+    float4 Cl[RSL_LIGHT_CACHE];
+} RslLightCache;
+
 typedef struct RslGlobals {
     float4 P, N, Ng, I, E, dPdu, dPdv, Cs, Os, Ci, Oi, L, Cl, Ol, Ps;
     float u, v, s, t, du, dv, ncomps, time;
-    /* Renderer-owned, after every standard global: the first RSL_LIGHT_CACHE lights'
-     * surface-side L and unshadowed Cl at P, computed once per shading point and read by
-     * the renderer's rsl_light() in every evaluation mode. Generated code never touches
-     * them; copies of the globals carry them along. */
+    /* Renderer-owned, after every standard global: the light cache, computed once per
+     * shading point and read by the renderer's rsl_light() in every evaluation mode (its
+     * first light_cache_count entries). Generated code never touches it; copies of the
+     * globals share it through the pointer (a copy per evaluation mode stays small). */
     int light_cache_count;
+    RslLightCache* light_cache;
     unsigned int lights_off; /* lights 0..31 Illuminate turned off for this surface */
     unsigned int rng_pixel, rng_sample, rng_depth; /* the sample, for area light points */
     struct RslTexContext* texctx; /* the textures light shaders look up (0: none) */
-    float4 light_cache_L[RSL_LIGHT_CACHE];
-    float4 light_cache_Cl[RSL_LIGHT_CACHE]; /* w: 1 for a solar light */
     /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global
      * s, t, which texture lookups use at a shading point's neighbours (DERIVATIVES) */
     float4 st_footprint;
