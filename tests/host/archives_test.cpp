@@ -17,7 +17,7 @@ namespace {
 
 std::string archiveDir() {
     static std::string d = [] {
-        std::string p = ::testing::TempDir() + "/raydrive_archives";
+        std::string p = rd::test::scratchDir("raydrive_archives");
         std::filesystem::create_directories(p);
         std::ofstream(p + "/sphere.rib") << "Sphere 1 -1 1 360\n";
         std::ofstream(p + "/outer.rib") << "Procedural \"DelayedReadArchive\" [\"" + p +

@@ -20,7 +20,7 @@ const double kPi = 3.14159265358979;
 
 // Writes the test shaders into a folder on the search path; returns the RIB option.
 std::string shaderPath() {
-    std::string dir = ::testing::TempDir() + "/raydrive_derivative_shaders";
+    std::string dir = rd::test::scratchDir("raydrive_derivative_shaders");
     std::filesystem::create_directories(dir);
     // r, g: the change of s over one footprint along dPdu and dPdv (the film takes no
     // negative colours); b: area(P)

@@ -97,7 +97,7 @@ TEST(GraphicsState, AsciiBinaryAndGzipRibGiveTheSameImage) {
         rib::Diagnostics diag;
         ASSERT_TRUE(rib::readString(ascii, "scene.rib", writer, diag));
     }
-    std::string dir = ::testing::TempDir() + "/raydrive_encodings";
+    std::string dir = rd::test::scratchDir("raydrive_encodings");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/binary.rib", std::ios::binary) << bin.str();
     gzFile gz = gzopen((dir + "/scene.rib.gz").c_str(), "wb");
@@ -188,7 +188,7 @@ TEST(GraphicsState, SkewShearsAlongTheSecondAxis) {
 // TextureCoordinates give the default s, t of parametric surfaces: a disk whose v runs
 // rim to centre shows s = 2 - 2v ... here t = 1 at the rim, 3 at the centre.
 TEST(GraphicsState, TextureCoordinatesMapTheDefaultST) {
-    std::string dir = ::testing::TempDir() + "/raydrive_texcoords";
+    std::string dir = rd::test::scratchDir("raydrive_texcoords");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/showt.sl") << "surface showt() {\n    Oi = 1;\n    Ci = color(t, s, 0);\n}\n";
     Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +

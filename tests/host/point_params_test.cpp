@@ -29,7 +29,7 @@ double centre(int i) { return -1.0 + (i + 0.5) * 2.0 / kSize; }
 
 // A folder of test shaders on the search path.
 std::string shaders() {
-    std::string dir = ::testing::TempDir() + "/raydrive_point_params";
+    std::string dir = rd::test::scratchDir("raydrive_point_params");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/pp_value.sl") << "surface pp_value(float Kd = 0.25; color tint = 1;) {\n"
                                            "    Oi = 1;\n    Ci = tint * Kd;\n}\n";

@@ -5,13 +5,22 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <iostream>
+
+#include <unistd.h>
 
 #include "ocl/device.h"
 #include "rib/reader.h"
 #include "scene/rib_builder.h"
 
 namespace rd::test {
+
+std::string scratchDir(const std::string& name) {
+    std::string dir = ::testing::TempDir() + "/" + name + "." + std::to_string(getpid());
+    std::filesystem::create_directories(dir);
+    return dir;
+}
 
 double Rendered::mean(int channel, int x0, int y0, int x1, int y1) const {
     double sum = 0;

@@ -22,6 +22,11 @@ struct Rendered {
     double mean(int channel, int x0, int y0, int x1, int y1) const;
 };
 
+// A scratch folder of this test process, created: TempDir()/name.<pid>. CTest runs the
+// tests two at a time, each in its own process; a folder shared by name had one test
+// truncate a shader file while another compiled it.
+std::string scratchDir(const std::string& name);
+
 // The context every test shares (building one per test would dominate the run time).
 const ClContext& testContext();
 

@@ -47,7 +47,7 @@ TEST(Shading, MirrorTracesTheReflectedRay) {
 // exactly; the scene's traced rays are known to be sampled (RT_INCOHERENT_TRACE: they walk
 // the nodes' hit masks), and the image is the same at both node widths.
 TEST(Shading, SampledTraceWalksTheHitMasks) {
-    std::string dir = ::testing::TempDir() + "/raydrive_sampled_trace";
+    std::string dir = rd::test::scratchDir("raydrive_sampled_trace");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/glossy.sl")
         << "surface glossy(float Kr = 0.8) {\n"
@@ -135,7 +135,7 @@ TEST(Shading, ShadowspotCastsRayTracedShadows) {
 
 // A user shader found through Option "searchpath" "shader", with a parameter override.
 TEST(Shading, UserShaderOnTheSearchPath) {
-    std::string dir = ::testing::TempDir() + "/raydrive_shaders";
+    std::string dir = rd::test::scratchDir("raydrive_shaders");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/tint.sl") << "surface tint(color tint = 1; float gain = 1;) {\n"
                                        "    Oi = Os;\n    Ci = Os * tint * gain;\n}\n";
@@ -172,7 +172,7 @@ TEST(Shading, VertexPrimitiveVariables) {
     EXPECT_NEAR(cs.mean(0, 4, 0, 5, 16), (1 - (-0.4375)) / 2, 0.02);
     EXPECT_NEAR(cs.mean(2, 4, 0, 5, 16), (1 + (-0.4375)) / 2, 0.02);
 
-    std::string dir = ::testing::TempDir() + "/raydrive_st";
+    std::string dir = rd::test::scratchDir("raydrive_st");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/showst.sl") << "surface showst() {\n    Oi = 1;\n"
                                          "    Ci = color(s, t, 0);\n}\n";
@@ -188,7 +188,7 @@ TEST(Shading, VertexPrimitiveVariables) {
 // "shader" space is the coordinate system current at the Surface call: a shader that
 // prints transform("shader", P) sees world x shifted by the Translate before Surface.
 TEST(Shading, ShaderSpaceIsWhereTheSurfaceWasDeclared) {
-    std::string dir = ::testing::TempDir() + "/raydrive_space";
+    std::string dir = rd::test::scratchDir("raydrive_space");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/showspace.sl") << "surface showspace() {\n    Oi = 1;\n"
                                             "    Ci = color(xcomp(transform(\"shader\", P)) + 2, 0, 0);\n}\n";
@@ -206,7 +206,7 @@ TEST(Shading, ShaderSpaceIsWhereTheSurfaceWasDeclared) {
 // the eye (for precision far from the origin): a camera at world (10, 0, -5) looking at
 // the point (10, 0, 0) sees transform("world", P) = (10, 0, 0) at the image centre.
 TEST(Shading, WorldSpaceIsTheRibWorld) {
-    std::string dir = ::testing::TempDir() + "/raydrive_world";
+    std::string dir = rd::test::scratchDir("raydrive_world");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/showworld.sl")
         << "surface showworld() {\n    Oi = 1;\n    point w = transform(\"world\", P);\n"
@@ -243,7 +243,7 @@ TEST(Shading, FogAtmosphereFollowsItsClosedForm) {
 // computes at every point (its twin declares the variables varying, so nothing is
 // hoisted), and each instance keeps its own prepared values.
 TEST(Shading, HoistedUniformWorkEqualsPerPointWork) {
-    std::string dir = ::testing::TempDir() + "/raydrive_shaders";
+    std::string dir = rd::test::scratchDir("raydrive_shaders");
     std::filesystem::create_directories(dir);
     for (const char* storage : {"uniform", "varying"})
         std::ofstream(dir + "/prep_" + storage + ".sl")
@@ -277,7 +277,7 @@ TEST(Shading, HoistedUniformWorkEqualsPerPointWork) {
 // primitive (constant ones, and uniform ones of a single face, as the instance's value;
 // varying ones per point: point_params_test.cpp); varying strings warn.
 TEST(Shading, ConstantPrimitiveVariablesOverrideShaderParameters) {
-    std::string dir = ::testing::TempDir() + "/raydrive_shaders";
+    std::string dir = rd::test::scratchDir("raydrive_shaders");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/gained.sl") << "surface gained(float gain = 1; color tint = 1;) {\n"
                                          "    Oi = 1;\n    Ci = tint * gain;\n}\n";

@@ -73,7 +73,7 @@ TEST(StandardShaders, BackgroundImagerFillsUncoveredPixels) {
 // A user's imager sees the raster position in P and sets alpha; Exposure comes after
 // the imager (RI order), so gain 2 doubles what the imager wrote.
 TEST(StandardShaders, UserImagerSeesRasterPositionThenExposure) {
-    std::string dir = ::testing::TempDir() + "/raydrive_imagers";
+    std::string dir = rd::test::scratchDir("raydrive_imagers");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/ramp.sl") << "imager ramp(float scale = 1) {\n"
                                        "    Ci = color(xcomp(P), ycomp(P), alpha) * scale;\n"

@@ -28,7 +28,7 @@ namespace {
 
 std::string dir() {
     static std::string d = [] {
-        std::string p = ::testing::TempDir() + "/raydrive_textures";
+        std::string p = rd::test::scratchDir("raydrive_textures");
         std::filesystem::create_directories(p);
         std::ofstream(p + "/texcheck.sl")
             << "surface texcheck(string map = \"\"; float rep = 1; float width = 1;) {\n"

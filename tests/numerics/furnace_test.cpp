@@ -31,7 +31,7 @@ const char* kFurnaceShader =
     "}\n";
 
 std::string shaderDir() {
-    std::string dir = ::testing::TempDir() + "/raydrive_numerics_furnace";
+    std::string dir = rd::test::scratchDir("raydrive_numerics_furnace");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/furnace.sl") << kFurnaceShader;
     return dir;

@@ -33,7 +33,7 @@ const char* kBadShader =
     "}\n";
 
 std::string shaderDir() {
-    std::string dir = ::testing::TempDir() + "/raydrive_numerics_guard";
+    std::string dir = rd::test::scratchDir("raydrive_numerics_guard");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/bad.sl") << kBadShader;
     return dir;

@@ -71,7 +71,7 @@ namespace {
 // Two trace() calls per hit, each of weight 0.5, emission 1: D bounces give D + 1, with
 // 2^D rays per eye ray at depth D.
 std::string twins(int depth) {
-    std::string dir = ::testing::TempDir() + "/raydrive_numerics_twin";
+    std::string dir = rd::test::scratchDir("raydrive_numerics_twin");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/twin.sl")
         << "surface twin() {\n    normal Nf = faceforward(normalize(N), I);\n"

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <unistd.h>
 
 #include "rib/param_decl.h"
 #include "rib/reader.h"
@@ -612,7 +613,8 @@ TEST(RibErrors, GarbageDoesNotCrash) {
 // ------------------------------------------------------------------------------
 
 std::string tempPath(const std::string& leaf) {
-    return ::testing::TempDir() + "/rib_reader_test_" + leaf;
+    // (one name per test process: CTest runs two at a time)
+    return ::testing::TempDir() + "/rib_reader_test_" + std::to_string(getpid()) + "_" + leaf;
 }
 
 const char* kScene =

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "rib_corpus.h"
 
@@ -117,7 +118,8 @@ TEST(RibErrorHandler, ErrorHandlerRequest) {
 }
 
 std::string tempDir() {
-    std::string d = ::testing::TempDir() + "/rib_scope_test";
+    // (one per test process: CTest runs two at a time)
+    std::string d = ::testing::TempDir() + "/rib_scope_test." + std::to_string(getpid());
     mkdir(d.c_str(), 0755);
     mkdir((d + "/sub").c_str(), 0755);
     mkdir((d + "/lib").c_str(), 0755);
