@@ -4,11 +4,11 @@
  * slot). close_round (close_round.cl) sums live rays per work-group of traced rays
  * (the host reads the sums for the total); compact_scatter's work-group adds up the
  * sums before its own for its offset (a strided sum over at most a few thousand
- * numbers, no upload), then moves each live ray to its offset, keeping their order, so the image does not depend
- * on scheduling. Live rays beyond the pool's capacity (a shader tracing several rays per
- * hit) go onto the spill stack, traced in later rounds; past the stack's capacity they
- * are dropped, never written out of bounds, and their sample is marked to be issued
- * again. The shade stage counted every spawned ray in its sample's rays in flight; a
+ * numbers, no upload), then moves each live ray to its offset, keeping their order, so
+ * the image does not depend on scheduling. Live rays beyond the pool's capacity (a
+ * shader tracing several rays per hit) go onto the spill stack, traced in later rounds;
+ * past the stack's capacity they are dropped, never written out of bounds, and their
+ * sample is marked to be issued again. The shade stage counted every spawned ray in its sample's rays in flight; a
  * dropped ray is taken off again.
  * Work-groups are RT_COMPACT_GROUP wide. */
 #include "counters.clh"

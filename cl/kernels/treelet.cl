@@ -92,20 +92,19 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
  * the object scene at the ray's time. The closest-hit kernels count without a barrier
  * (they only read the states); the shadow kernels kill rays, so theirs sums between
  * barriers the liveness each work-item saw. */
-#define RT_TREELET_PAIR_BEGIN(root_only)                                                  \
+#define RT_TREELET_PAIR_BEGIN_COUNTED(root_only, COUNT)                                   \
     TreeletPair p;                                                                        \
     int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
-    RT_COUNT_GROUP(active_counter, j,                                                     \
-                   rt_treelet_pair_live(j, first, count, root_only, pairs, state));       \
+    COUNT;                                                                                \
     if (!active) return;                                                                  \
     RT_TL_DECLARE_OBJECTS(p.ray)
+#define RT_TREELET_PAIR_BEGIN(root_only)                                                  \
+    RT_TREELET_PAIR_BEGIN_COUNTED(root_only,                                              \
+        RT_COUNT_GROUP(active_counter, j,                                                 \
+                       rt_treelet_pair_live(j, first, count, root_only, pairs, state)))
 #define RT_TREELET_SHADOW_PAIR_BEGIN(root_only)                                           \
     RT_DECLARE_ACTIVE_COUNTER;                                                            \
-    TreeletPair p;                                                                        \
-    int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
-    RT_COUNT_ACTIVE(active_counter, active);                                              \
-    if (!active) return;                                                                  \
-    RT_TL_DECLARE_OBJECTS(p.ray)
+    RT_TREELET_PAIR_BEGIN_COUNTED(root_only, RT_COUNT_ACTIVE(active_counter, active))
 
 /* The kernels: *_root is the first round (work-item i: ray i in the root treelet; its
  * active count is the rays traced), the others run a round's queued pairs [first,

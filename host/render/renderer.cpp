@@ -5,8 +5,9 @@
 // (none with one shader), shade, trace shadows (intersect_shadow); then close the round
 // (close_round: add the shadows that reached their light, count the spawned rays),
 // retire the samples with no ray left (retire_samples) and compact what the shaders
-// spawned into the next round, read back at the round's one wait. Between rounds it polls the stop conditions; samples still in flight at a stop
-// never reach the film, so it holds only whole samples.
+// spawned into the next round, read back at the round's one wait. Between rounds it polls
+// the stop conditions; samples still in flight at a stop never reach the film, so it
+// holds only whole samples.
 #include "renderer.h"
 
 #include <algorithm>
@@ -312,8 +313,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     };
     // The end of a round: add the shadow rays that reached their light and count the rays
     // the shade stage spawned (close_round), retire the jobs whose samples have no ray
-    // left, both read back at one wait; then compact the spawned rays into the pool, past its capacity onto the spill stack, and
-    // top the pool up from the stack (newest first, as a stack keeps ray trees shallow).
+    // left, both read back at one wait; then compact the spawned rays into the pool, past
+    // its capacity onto the spill stack, and top the pool up from the stack (newest first,
+    // as a stack keeps ray trees shallow).
     // Retired jobs go to the film and the oldest ones free their slots; aborted jobs (a
     // ray dropped) are issued again, once.
     uint64_t nonfiniteRetired = 0;  // samples the film left out: a later pass replaces them
