@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cl/include/film.h"
+#include "host/film/film_error.h"
 
 namespace rd {
 
@@ -22,7 +23,7 @@ struct Channel {
 
 struct Film {
     int width = 0, height = 0;
-    std::vector<PixelAccum> pixels;
+    FilmPixels pixels;
     std::vector<AovAccum> aovs;  // empty unless an AOV was asked for
     // The crop window: the pixels rendered and written, [x0, x1) x [y0, y1).
     int cropX0 = 0, cropX1 = 0, cropY0 = 0, cropY1 = 0;

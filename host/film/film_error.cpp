@@ -26,7 +26,7 @@ PixelEstimate estimatePixel(const PixelAccum& p) {
     return e;
 }
 
-double estimateFilmError(const std::vector<PixelAccum>& film) {
+double estimateFilmError(const FilmPixels& film) {
     double varSum = 0, meanSum = 0;
     size_t withVar = 0, withMean = 0;
     for (const PixelAccum& p : film) {
@@ -43,7 +43,7 @@ double estimateFilmError(const std::vector<PixelAccum>& film) {
     return std::sqrt(varSum / double(withVar)) / (meanSum / double(withMean));
 }
 
-std::vector<float> pixelRelativeErrors(const std::vector<PixelAccum>& film) {
+std::vector<float> pixelRelativeErrors(const FilmPixels& film) {
     double meanSum = 0;
     size_t n = 0;
     for (const PixelAccum& p : film)

@@ -6,8 +6,13 @@
 #include <vector>
 
 #include "cl/include/film.h"
+#include "host/ocl/host_memory.h"
 
 namespace rd {
+
+// The film's pixels: page-aligned, so that the device's film buffer is this memory
+// itself on a CPU device (a read of the film there copies nothing).
+using FilmPixels = HostVector<PixelAccum>;
 
 // Per-pixel statistics derived from the film sums.
 struct PixelEstimate {
@@ -19,10 +24,10 @@ PixelEstimate estimatePixel(const PixelAccum& p);
 // The film's relative error: sqrt(mean over pixels of the variance of the pixel mean)
 // divided by the mean pixel value; the same definition as the true relative RMSE against
 // a reference, so the two can be compared. Negative when no pixel has two samples.
-double estimateFilmError(const std::vector<PixelAccum>& film);
+double estimateFilmError(const FilmPixels& film);
 
 // Per-pixel relative error as used for refinement (standard error over a floor of the
 // pixel's and the image's brightness).
-std::vector<float> pixelRelativeErrors(const std::vector<PixelAccum>& film);
+std::vector<float> pixelRelativeErrors(const FilmPixels& film);
 
 }  // namespace rd

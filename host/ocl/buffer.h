@@ -8,6 +8,7 @@
 
 #include "check.h"
 #include "context.h"
+#include "host_memory.h"
 
 namespace rd {
 
@@ -24,6 +25,19 @@ public:
                                &err);
         RD_CL_CHECK(err, ctx.name());
     }
+    // A buffer over host memory the host keeps (CL_MEM_USE_HOST_PTR), its first contents
+    // taken from there: `host` must outlive the buffer and stay where it is. The host
+    // sees the device's writes after syncToHost().
+    // (Only a HostVector: any other vector is copied, by the constructor below.)
+    DeviceBuffer(const ClContext& ctx, HostVector<T>& host)
+        : m_ctx(&ctx), m_count(host.size()), m_host(host.empty() ? nullptr : host.data()) {
+        cl_int err = CL_SUCCESS;
+        m_mem = m_host ? clCreateBuffer(ctx.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR,
+                                        bytes(), m_host, &err)
+                       : clCreateBuffer(ctx.context(), CL_MEM_READ_WRITE, sizeof(T), nullptr,
+                                        &err);
+        RD_CL_CHECK(err, ctx.name());
+    }
     DeviceBuffer(const ClContext& ctx, const std::vector<T>& data,
                  cl_mem_flags flags = CL_MEM_READ_ONLY)
         : DeviceBuffer(ctx, data.size(), flags) {
@@ -37,6 +51,7 @@ public:
             m_ctx = o.m_ctx;
             m_mem = std::exchange(o.m_mem, nullptr);
             m_count = std::exchange(o.m_count, 0);
+            m_host = std::exchange(o.m_host, nullptr);
         }
         return *this;
     }
@@ -93,6 +108,18 @@ public:
         out.resize(m_count);
         downloadRangeTo(0, m_count, out.data(), blocking);
     }
+    // A buffer over host memory: brings the device's writes into it (a map for reading and
+    // its unmap; on a CPU device nothing is copied). Without blocking, the memory holds
+    // them after the queue's next finish and must not be read before.
+    void syncToHost(bool blocking = true) {
+        if (!m_host) return;
+        cl_int err = CL_SUCCESS;
+        void* p = clEnqueueMapBuffer(m_ctx->queue(), m_mem, blocking ? CL_TRUE : CL_FALSE,
+                                     CL_MAP_READ, 0, bytes(), 0, nullptr, nullptr, &err);
+        RD_CL_CHECK(err, m_ctx->name());
+        RD_CL_CHECK(clEnqueueUnmapMemObject(m_ctx->queue(), m_mem, p, 0, nullptr, nullptr),
+                    m_ctx->name());
+    }
     void fillZero() {
         const unsigned char zero = 0;
         RD_CL_CHECK(clEnqueueFillBuffer(m_ctx->queue(), m_mem, &zero, 1, 0,
@@ -116,6 +143,7 @@ private:
     const ClContext* m_ctx = nullptr;
     cl_mem m_mem = nullptr;
     size_t m_count = 0;
+    T* m_host = nullptr;  // the host memory a buffer over it uses
 };
 
 }  // namespace rd

@@ -139,7 +139,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         planner.emplace(cam0.width, cam0.height, film.cropX0, film.cropX1, film.cropY0,
                         film.cropY1, ss);
         // (a first pass without blocks reads the film: all zeros yet)
-        const std::vector<PixelAccum> none(
+        const FilmPixels none(
             ss.firstPassBlock > 1 ? 0 : size_t(cam0.width) * size_t(cam0.height));
         std::deque<PlannedJob> jobs = planJobs(
             planner->nextPass(none, errorTarget > 0 ? float(errorTarget) : ss.pixelError),
@@ -211,14 +211,16 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     film.exposureGain = scene.camera.exposure[0];
     film.exposureGamma = scene.camera.exposure[1];
     film.height = cam.height;
-    DeviceBuffer<PixelAccum> filmBuf(m_ctx, npix);
-    filmBuf.fillZero();
+    film.pixels.assign(npix, PixelAccum{});
+    // The film buffer is the film's own memory (on a CPU device; a GPU copies it at each
+    // sync). The host reads it after syncToHost only, when no kernel that writes it is in
+    // flight: the round's finish precedes every sync, and planning runs between passes.
+    DeviceBuffer<PixelAccum> filmBuf(m_ctx, film.pixels);
     DeviceBuffer<AovAccum> aovBuf(m_ctx, f.aovs ? npix : 0);
     aovBuf.fillZero();
     // numerics.clh RT_NUM_* counters, then a flag per archive not loaded yet
     DeviceBuffer<uint32_t> numerics(m_ctx, kProceduralFlags + scene.procedurals.size());
     numerics.fillZero();
-    film.pixels.assign(npix, PixelAccum{});
     st.sceneSetupMs = secondsSince(t0) * 1e3;
 
     Progress progress(m_settings.progress);
@@ -396,13 +398,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         ring.popFront(retired);
     };
 
-    double lastSample = 0;  // the first point after half a second: a film read costs ~10 ms
+    double lastSample = 0;  // the first point after half a second: a pass over the film
     auto sampleError = [&](bool force) {
         double now = secondsSince(t0);
         if (!force && now - lastSample < 0.5) return;
         lastSample = now;
         prof.markHostWait();
-        filmBuf.downloadInto(film.pixels);
+        filmBuf.syncToHost();
         st.estimatedError = estimateFilmError(film.pixels);
         prof.collect();
         uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
@@ -508,10 +510,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     }
     progress.finish();
     if (shading.imager) {  // the Imager shader on the finished image (also a stopped one)
-        filmBuf.downloadInto(film.pixels);
+        filmBuf.syncToHost();
         film.imaged = applyImager(m_ctx, program.get(), prof, film, ds.params);
-    } else {  // the film's copy overlaps the profiler's reads; collectActive waits for it
-        filmBuf.downloadInto(film.pixels, /*blocking=*/false);
+    } else {  // the film's sync overlaps the profiler's reads; collectActive waits for it
+        filmBuf.syncToHost(/*blocking=*/false);
     }
     if (f.aovs) aovBuf.downloadInto(film.aovs, /*blocking=*/false);
     std::vector<uint32_t> num, texCounts;

@@ -21,7 +21,7 @@ SamplePlanner::SamplePlanner(int width, int height, int x0, int x1, int y0, int 
                     m_tileOrder.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
 }
 
-bool SamplePlanner::needsMore(const std::vector<PixelAccum>& film,
+bool SamplePlanner::needsMore(const FilmPixels& film,
                               const std::vector<float>& relErr, int x, int y,
                               float pixelError) const {
     size_t i = size_t(y) * size_t(m_width) + size_t(x);
@@ -45,7 +45,7 @@ bool SamplePlanner::needsMore(const std::vector<PixelAccum>& film,
     return false;
 }
 
-std::vector<PixelRequest> SamplePlanner::nextPass(const std::vector<PixelAccum>& film,
+std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film,
                                                   float pixelError) {
     std::vector<PixelRequest> out;
     const int b = m_settings.firstPassBlock;

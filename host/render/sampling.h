@@ -35,7 +35,7 @@ public:
     // The next pass, pixels in tile order (16x16 tiles, for coherent rays); empty when
     // every pixel has met the final quality. `pixelError` overrides the setting for this
     // pass (an error target or a time budget tightens it as the render goes on).
-    std::vector<PixelRequest> nextPass(const std::vector<PixelAccum>& film, float pixelError);
+    std::vector<PixelRequest> nextPass(const FilmPixels& film, float pixelError);
     int passes() const { return m_pass; }
     // After the first pass every pixel has the minimum; when that is also the maximum,
     // no later pass can add a sample (unless some were dropped as NaN/Inf), so the film
@@ -46,7 +46,7 @@ public:
     const SamplingSettings& settings() const { return m_settings; }
 
 private:
-    bool needsMore(const std::vector<PixelAccum>& film, const std::vector<float>& relErr,
+    bool needsMore(const FilmPixels& film, const std::vector<float>& relErr,
                    int x, int y, float pixelError) const;
     int m_width, m_height;
     SamplingSettings m_settings;

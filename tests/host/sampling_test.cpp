@@ -125,7 +125,7 @@ TEST(Film, UnreachedPixelsAreFilledAndFlagged) {
 
 // The estimate follows the definition: sqrt(mean variance of the mean) / mean.
 TEST(Film, ErrorEstimateFromWholeSamples) {
-    std::vector<PixelAccum> f(1);
+    rd::FilmPixels f(1);
     // samples 0 and 2 in every channel: mean 1, sample variance 2, variance of mean 1.
     f[0].sum = {2, 2, 2, 2};
     f[0].sum_sq = {4, 4, 4, 4};
