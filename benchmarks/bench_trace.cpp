@@ -300,7 +300,11 @@ int main(int argc, char** argv) {
     app.add_option("--stream-fraction", streamFraction,
                    "also stream 64 KiB treelets through a cache of this fraction of the BVH "
                    "(0: not)");
+    bool noTreelets = false;
+    app.add_flag("--no-treelets", noTreelets,
+                 "time the resident kernels only (e.g. under perf record)");
     CLI11_PARSE(app, argc, argv);
+    if (noTreelets) budgets.clear(), streamFraction = 0;
 
     ClContext ctx(selectDevice(device));
     std::printf("device: %s | Embree %d.%d.%d on %u threads | median of %d runs\n",

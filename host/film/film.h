@@ -24,7 +24,7 @@ struct Channel {
 struct Film {
     int width = 0, height = 0;
     FilmPixels pixels;
-    std::vector<AovAccum> aovs;  // empty unless an AOV was asked for
+    HostVector<AovAccum> aovs;  // empty unless an AOV was asked for (as pixels)
     // The crop window: the pixels rendered and written, [x0, x1) x [y0, y1).
     int cropX0 = 0, cropX1 = 0, cropY0 = 0, cropY1 = 0;
     // (cropX1 == 0: no crop window was set, the whole frame counts)

@@ -216,8 +216,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // sync). The host reads it after syncToHost only, when no kernel that writes it is in
     // flight: the round's finish precedes every sync, and planning runs between passes.
     DeviceBuffer<PixelAccum> filmBuf(m_ctx, film.pixels);
-    DeviceBuffer<AovAccum> aovBuf(m_ctx, f.aovs ? npix : 0);
-    aovBuf.fillZero();
+    film.aovs.assign(f.aovs ? npix : 0, AovAccum{});
+    DeviceBuffer<AovAccum> aovBuf(m_ctx, film.aovs);  // likewise
     // numerics.clh RT_NUM_* counters, then a flag per archive not loaded yet
     DeviceBuffer<uint32_t> numerics(m_ctx, kProceduralFlags + scene.procedurals.size());
     numerics.fillZero();
@@ -515,7 +515,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     } else {  // the film's sync overlaps the profiler's reads; collectActive waits for it
         filmBuf.syncToHost(/*blocking=*/false);
     }
-    if (f.aovs) aovBuf.downloadInto(film.aovs, /*blocking=*/false);
+    aovBuf.syncToHost(/*blocking=*/false);
     std::vector<uint32_t> num, texCounts;
     numerics.downloadInto(num, /*blocking=*/false);
     if (f.textures) textures.counterBuf.downloadInto(texCounts, /*blocking=*/false);
