@@ -5,47 +5,64 @@
 
 namespace rd {
 
-void Refill::prepare(const std::deque<PlannedJob>& pending, size_t roundCap) {
-    m_set ^= 1;
-    std::vector<uint32_t>& newSamples = m_staging[m_set].newSamples;
-    std::vector<PixelJob>& records = m_staging[m_set].records;
-    newSamples.clear();
-    records.clear();
-    m_ends.clear();
-    m_ringBound = false;
+void stageRefill(const SampleRing& ring, const std::deque<PlannedJob>& pending,
+                 size_t roundCap, RefillStage& out) {
+    out.newSamples.clear();
+    out.records.clear();
+    out.ends.clear();
+    out.ringBound = false;
     size_t ahead = 0;
     for (const PlannedJob& j : pending) {
-        if (ahead + j.count > roundCap && !records.empty()) break;
-        if (!m_ring.fitsAhead(ahead, records.size(), j.count)) {
-            m_ringBound = true;
+        if (ahead + j.count > roundCap && !out.records.empty()) break;
+        if (!ring.fitsAhead(ahead, out.records.size(), j.count)) {
+            out.ringBound = true;
             break;
         }
-        records.push_back(m_ring.recordAhead(ahead, j));
+        out.records.push_back(ring.recordAhead(ahead, j));
         for (uint32_t c = 0; c < j.count; ++c) {
-            newSamples.push_back(j.pixel);
-            newSamples.push_back(j.firstSample + c);
+            out.newSamples.push_back(j.pixel);
+            out.newSamples.push_back(j.firstSample + c);
         }
         ahead += j.count;
-        m_ends.push_back(uint32_t(ahead));
+        out.ends.push_back(uint32_t(ahead));
     }
+}
+
+void Refill::prepare(const std::deque<PlannedJob>& pending, size_t roundCap) {
+    m_set ^= 1;
+    stageRefill(m_ring, pending, roundCap, m_staging[m_set]);
+    upload();
+}
+
+void Refill::adopt(RefillStage&& stage) {
+    m_set ^= 1;
+    m_staging[m_set] = std::move(stage);
+    upload();
+}
+
+void Refill::upload() {
     m_valid = true;
+    const std::vector<PixelJob>& records = m_staging[m_set].records;
     if (records.empty()) return;
     const size_t jobPos = m_ring.nextJobPosition();
     const size_t wrap = std::min(records.size(), m_ring.jobCapacity() - jobPos);
     m_pool.jobs.uploadAsync(jobPos, records.data(), wrap);
     if (wrap < records.size())
         m_pool.jobs.uploadAsync(0, records.data() + wrap, records.size() - wrap);
+    const std::vector<uint32_t>& newSamples = m_staging[m_set].newSamples;
     m_pool.newSample.uploadAsync(0, newSamples.data(), newSamples.size());
 }
 
 cl_uint Refill::commit(const std::deque<PlannedJob>& pending, cl_uint n, size_t roundCap) {
-    if (!m_valid || m_ringBound) prepare(pending, roundCap);  // (slots freed since)
+    if (!m_valid || m_staging[m_set].ringBound)
+        prepare(pending, roundCap);  // (slots freed since)
     m_valid = false;
+    const std::vector<uint32_t>& ends = m_staging[m_set].ends;
     size_t take = 0;
-    while (take < m_ends.size() && (n + m_ends[take] <= roundCap || (n == 0 && take == 0)))
+    while (take < ends.size() && (n + ends[take] <= roundCap || (n == 0 && take == 0)))
         ++take;
     if (take == 0) return 0;
-    const cl_uint add = m_ends[take - 1];
+    const cl_uint add = ends[take - 1];
     RayPool& rp = m_pool;
     m_generateEye.launch(add, m_camera, add, n, cl_uint(m_ring.nextSlot()),
                          cl_uint(m_ring.slotCapacity()), rp.newSample, rp.samplePixel,

@@ -134,7 +134,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     scene.camera.cropPixels(film.cropX0, film.cropX1, film.cropY0, film.cropY1);
     std::optional<SamplePlanner> planner;
     double firstPlanMs = 0;
-    std::future<std::deque<PlannedJob>> firstPass = std::async(std::launch::async, [&] {
+    // (and its first refill staged: the ring is empty and the round cap the pool until then)
+    struct FirstPass {
+        std::deque<PlannedJob> jobs;
+        RefillStage refill;
+    };
+    std::future<FirstPass> firstPass = std::async(std::launch::async, [&] {
         const auto tp = Clock::now();
         planner.emplace(cam0.width, cam0.height, film.cropX0, film.cropX1, film.cropY0,
                         film.cropY1, ss);
@@ -144,8 +149,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         std::deque<PlannedJob> jobs = planJobs(
             planner->nextPass(none, errorTarget > 0 ? float(errorTarget) : ss.pixelError),
             maxJob, size_t(cam0.width) * size_t(cam0.height));
+        RefillStage stage;
+        stageRefill(ring, jobs, pool, stage);
         firstPlanMs = secondsSince(tp) * 1e3;
-        return jobs;
+        return FirstPass{std::move(jobs), std::move(stage)};
     });
 
     // Scene -> BVH -> specialised program -> device arrays
@@ -412,9 +419,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         st.errorVsTime.push_back({now, rays, st.estimatedError});
     };
     // The pass's jobs stream through the pool: refill, trace, compact, retire, until every
-    // job has retired. Returns false when a stop ends it early.
+    // job has retired (the caller has staged its first refill or invalidated the last
+    // pass's). Returns false when a stop ends it early.
     auto runPass = [&](std::deque<PlannedJob> pending) {
-        refill.invalidate();
         while (!pending.empty() || ring.inFlight() > 0) {
             if (stopNow()) return false;
             if (timeBudget > 0 && raysPerSec > 0)
@@ -476,7 +483,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     for (;;) {
         std::deque<PlannedJob> jobs;
         if (firstPass.valid()) {
-            jobs = firstPass.get();
+            FirstPass first = firstPass.get();
+            jobs = std::move(first.jobs);
+            refill.adopt(std::move(first.refill));
             st.planMs += firstPlanMs;
         } else {
             float pixelError = ss.pixelError;
@@ -487,6 +496,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             jobs = planJobs(planner->nextPass(film.pixels, pixelError), maxJob,
                             film.pixels.size());
             st.planMs += secondsSince(tPlan) * 1e3;
+            refill.invalidate();  // a new queue
         }
         if (jobs.empty()) {
             st.stopReason = "quality";

@@ -2,10 +2,12 @@
 // and job rings (host/render/sample_ring.h).
 #include <gtest/gtest.h>
 
+#include "render/refill.h"
 #include "render/sample_ring.h"
 
 using rd::PlannedJob;
 using rd::SampleRing;
+using rd::RefillStage;
 
 TEST(SampleRing, PassesAreCutIntoJobsOfAtMostMaxSamples) {
     std::vector<rd::PixelRequest> pass = {{7, 0, 3}, {9, 4, 10}};
@@ -78,6 +80,33 @@ TEST(SampleRing, RecordsAheadMatchThePushesThatFollow) {
     EXPECT_EQ(rb.state, RT_JOB_LAST_TRY);
     EXPECT_EQ(ring.fits(c.count), ring.fitsAhead(0, 0, c.count));
     EXPECT_FALSE(ring.fits(c.count));
+}
+
+// The refill's host part (stageRefill), which the first pass makes on the planning
+// thread: whole jobs from the queue's front up to the round cap (the first always), each
+// job's record as the ring will book it, (pixel, sample) pairs, running sample ends; the
+// ring's room cuts it too, and says so.
+TEST(SampleRing, RefillStageTakesWholeJobsUpToTheCapOrTheRing) {
+    SampleRing ring(8);
+    const std::deque<PlannedJob> queue{{5, 0, 2, false}, {6, 3, 3, true}, {7, 0, 4, false}};
+    RefillStage st;
+    rd::stageRefill(ring, queue, 6, st);  // 2 + 3 fit the cap of 6; + 4 would not
+    EXPECT_FALSE(st.ringBound);
+    EXPECT_EQ(st.ends, (std::vector<uint32_t>{2, 5}));
+    EXPECT_EQ(st.newSamples, (std::vector<uint32_t>{5, 0, 5, 1, 6, 3, 6, 4, 6, 5}));
+    ASSERT_EQ(st.records.size(), 2u);
+    EXPECT_EQ(st.records[1].first_slot, ring.recordAhead(2, queue[1]).first_slot);
+    EXPECT_EQ(st.records[1].state, RT_JOB_LAST_TRY);
+    rd::stageRefill(ring, queue, 1, st);  // a job over the cap still goes first, alone
+    EXPECT_EQ(st.ends, (std::vector<uint32_t>{2}));
+    rd::stageRefill(ring, queue, 100, st);  // 2 + 3 + 4 > the ring's 8 slots
+    EXPECT_TRUE(st.ringBound);
+    EXPECT_EQ(st.ends, (std::vector<uint32_t>{2, 5}));
+    const PixelJob p0 = ring.push(queue[0]), p1 = ring.push(queue[1]);  // as staged
+    EXPECT_EQ(st.records[0].first_slot, p0.first_slot);
+    EXPECT_EQ(st.records[1].first_slot, p1.first_slot);
+    EXPECT_EQ(st.records[1].pixel, p1.pixel);
+    EXPECT_EQ(st.records[1].count, 3u);
 }
 
 // A round retires thousands of one-sample jobs: the samples of the oldest n jobs and
