@@ -588,7 +588,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     if (loopMs > 0) st.deviceBusy = std::min(1.0, deviceMs / loopMs);
     // Of that overhead, the runtime's own gaps between kernels the host had already
     // queued are not waits on the host: the rest (the round ends' waits, planning, the
-    // film read at the end) is the host synchronisation overhead.
+    // film's sync and tally at the end) is the host synchronisation overhead.
     st.launchGapsMs = prof.launchGapsMs();
     if (st.elapsedSec > 0) {
         st.hostOverhead = std::max(0.0, loopMs - deviceMs) / (st.elapsedSec * 1e3);
