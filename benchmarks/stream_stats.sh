@@ -3,7 +3,7 @@
 # (512x512, one sample a pixel): pool fill (rays a round over the pool's capacity; issue
 # 5's goal >= 0.7), rounds, device busy (kernel time over the sampling loop) and host
 # overhead (loop time with no kernel running, over the frame; goal < 5%) and the part of
-# it that is the host's (host_sync: waits at round ends, planning, the final film read;
+# it that is the host's (host_sync: waits at round ends, planning, the film's final sync;
 # the rest is the OpenCL runtime's gap between kernels queued back to back), each the
 # median of N renders (default 3) after an untimed warm-up, from `raydrive --stats FILE`.
 # Usage: benchmarks/stream_stats.sh [runs] [extra raydrive options...]

@@ -8,8 +8,8 @@
  * the image does not depend on scheduling. Live rays beyond the pool's capacity (a
  * shader tracing several rays per hit) go onto the spill stack, traced in later rounds;
  * past the stack's capacity they are dropped, never written out of bounds, and their
- * sample is marked to be issued again. The shade stage counted every spawned ray in its sample's rays in flight; a
- * dropped ray is taken off again.
+ * sample is marked to be issued again. The shade stage counted every spawned ray in its
+ * sample's rays in flight; a dropped ray is taken off again.
  * Work-groups are RT_COMPACT_GROUP wide. */
 #include "counters.clh"
 #include "ray.h"

@@ -101,10 +101,9 @@ public:
     std::vector<T> downloadFirst(size_t count) const { return downloadRange(0, count); }
     std::vector<T> download() const { return downloadRange(0, m_count); }
     // The whole buffer into `out`, resized to fit: a vector kept from read to read is not
-    // allocated, cleared and faulted in again (a 12 MB film read took 5 ms that way; the
-    // film now lives in host memory the buffer uses, syncToHost). Not blocking: `out`
-    // holds the data after the queue's next finish, and must not be touched before (it
-    // overlaps the copy with the host's work).
+    // allocated, cleared and faulted in again. Not blocking: `out` holds the data after
+    // the queue's next finish, and must not be touched before (it overlaps the copy with
+    // the host's work).
     void downloadInto(std::vector<T>& out, bool blocking = true) const {
         out.resize(m_count);
         downloadRangeTo(0, m_count, out.data(), blocking);
