@@ -5,6 +5,9 @@
 #include "counters.clh"
 #include "quadric.h"
 #include "traverse.clh"
+#ifdef RT_SHADOW_PACKET
+#include "packet_traverse.clh"
+#endif
 
 /* The object scene a kernel's traversal sees: its quadric, CSG and triangle buffers. */
 #ifdef RT_HAS_QUADRICS
@@ -86,6 +89,25 @@ __kernel void intersect_shadow(uint count,
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
     RT_COUNT_GROUP(active_counter, j, j < count && state[j].alive);
+#ifdef RT_SHADOW_PACKET
+    if (i % RT_PACKET != 0 || i >= count) return;
+    {
+        float4 po[RT_PACKET], pd[RT_PACKET];
+        uint ps[RT_PACKET];
+        int pl[RT_PACKET];
+        for (int l = 0; l < RT_PACKET; ++l) {
+            uint r = min(i + l, count - 1);
+            pl[l] = i + l < count && state[r].alive ? -1 : 0;
+            po[l] = origin[r], pd[l] = direction[r], ps[l] = state[r].from_prim;
+        }
+        int8 occ = rt_packet_occluded(nodes, blocks, po, pd, ps, vload8(0, pl));
+        int ol[RT_PACKET];
+        vstore8(occ, 0, ol);
+        for (int l = 0; l < RT_PACKET; ++l)
+            if (ol[l]) weight[i + l] = (float4)(0.0f);
+    }
+    return;
+#endif
     if (!active) return;
     RT_DECLARE_OBJECT_SCENE(i / light_count);
     float4 o = origin[i], d = direction[i];
