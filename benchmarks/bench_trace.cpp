@@ -300,6 +300,10 @@ int main(int argc, char** argv) {
     app.add_option("--stream-fraction", streamFraction,
                    "also stream 64 KiB treelets through a cache of this fraction of the BVH "
                    "(0: not)");
+    bool noShadowPackets = false;
+    app.add_flag("--no-shadow-packets", noShadowPackets,
+                 "--wide8: shadow rays one a work-item (the renderer's packets of eight are the "
+                 "default for triangle scenes)");
     bool noTreelets = false;
     app.add_flag("--no-treelets", noTreelets,
                  "time the resident kernels only (e.g. under perf record)");
@@ -325,8 +329,18 @@ int main(int argc, char** argv) {
                 "RayDrive", "Embree", "ratio", "agree", "cpu ratio");
     std::unique_ptr<Program> program8;
     if (wide8)
-        program8 = std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}),
-                                             base + "-DRT_BVH8 " + wide8Options);
+        program8 = std::make_unique<Program>(
+            ctx, assembleClSource({"intersect.cl"}),
+            base + "-DRT_BVH8 " + (noShadowPackets ? "" : "-DRT_SHADOW_PACKETS ") + wide8Options);
+    // work-items of intersect_shadow for n rays to one light: a packet of
+    // RT_SHADOW_PACKET_RAYS each where the program was built with RT_SHADOW_PACKETS
+    auto shadowItems = [](size_t n, const std::string& options) {
+        return options.find("RT_SHADOW_PACKETS") == std::string::npos
+                   ? n
+                   : (n + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS;
+    };
+    const std::string options8 =
+        wide8 ? (noShadowPackets ? "" : "-DRT_SHADOW_PACKETS ") + wide8Options : "";
     std::vector<Mesh> meshes{sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")};
     for (const std::string& f : meshFiles) meshes.push_back(loadOff(f));
     for (const Mesh& mesh : meshes) {
@@ -403,7 +417,8 @@ int main(int argc, char** argv) {
                     if (k.shadow) {
                         weight.upload(ones);
                         auto t0 = Clock::now();
-                        ks.launch(n, cl_uint(n), nodeBuf, blockBuf, org, dir, state, weight,
+                        ks.launch(shadowItems(n, p > 0 ? variants[p - 1] : std::string()),
+                                  cl_uint(n), nodeBuf, blockBuf, org, dir, state, weight,
                                   noQuadrics,
                                   noCsg, noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
                                   noNumerics);
@@ -431,7 +446,8 @@ int main(int argc, char** argv) {
                 if (k.shadow) weight8.upload(ones);
                 auto t0 = Clock::now();
                 if (k.shadow)
-                    ks8->launch(n, cl_uint(n), nodes8, blocks8, org, dir, state8, weight8,
+                    ks8->launch(shadowItems(n, options8), cl_uint(n), nodes8, blocks8, org, dir,
+                                state8, weight8,
                                 noQuadrics,
                                 noCsg, noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
                                 noNumerics);

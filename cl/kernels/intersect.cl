@@ -5,7 +5,7 @@
 #include "counters.clh"
 #include "quadric.h"
 #include "traverse.clh"
-#ifdef RT_SHADOW_PACKET
+#ifdef RT_SHADOW_PACKETS
 #include "packet_traverse.clh"
 #endif
 
@@ -69,6 +69,7 @@ __kernel void intersect_closest(uint count,
 #endif
 }
 
+#ifndef RT_SHADOW_PACKETS
 __kernel void intersect_shadow(uint count,
                                __global const RT_BVH_NODE* nodes, /* RT_BVH8: Bvh8Node */
                                __global const Triangle4* blocks,
@@ -89,25 +90,6 @@ __kernel void intersect_shadow(uint count,
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
     RT_COUNT_GROUP(active_counter, j, j < count && state[j].alive);
-#ifdef RT_SHADOW_PACKET
-    if (i % RT_PACKET != 0 || i >= count) return;
-    {
-        float4 po[RT_PACKET], pd[RT_PACKET];
-        uint ps[RT_PACKET];
-        int pl[RT_PACKET];
-        for (int l = 0; l < RT_PACKET; ++l) {
-            uint r = min(i + l, count - 1);
-            pl[l] = i + l < count && state[r].alive ? -1 : 0;
-            po[l] = origin[r], pd[l] = direction[r], ps[l] = state[r].from_prim;
-        }
-        int8 occ = rt_packet_occluded(nodes, blocks, po, pd, ps, vload8(0, pl));
-        int ol[RT_PACKET];
-        vstore8(occ, 0, ol);
-        for (int l = 0; l < RT_PACKET; ++l)
-            if (ol[l]) weight[i + l] = (float4)(0.0f);
-    }
-    return;
-#endif
     if (!active) return;
     RT_DECLARE_OBJECT_SCENE(i / light_count);
     float4 o = origin[i], d = direction[i];
@@ -124,3 +106,76 @@ __kernel void intersect_shadow(uint count,
 #endif
     }
 }
+#else
+/* Lane j of packet w: the shadow ray toward light w % lights of shaded ray
+ * (w / lights) * RT_PACKET + j, so that a packet's rays leave neighbouring points for one
+ * light. Returns the slot, or count when the lane has no ray. */
+inline uint rt_shadow_packet_slot(uint w, uint j, uint count, uint lights) {
+    uint shaded = (w / lights) * RT_PACKET + j;
+    return shaded < count / lights ? shaded * lights + w % lights : count;
+}
+
+/* intersect_shadow with a packet of RT_PACKET shadow rays a work-item (packet_traverse.clh;
+ * triangle scenes, eight-wide BVH). The host launches ceil(shaded rays / RT_PACKET) *
+ * lights work-items; results equal the one-ray kernel's. A packet with fewer than
+ * RT_PACKET_MIN_LIVE live rays traces them one at a time. */
+#ifndef RT_PACKET_MIN_LIVE
+#define RT_PACKET_MIN_LIVE 3
+#endif
+__kernel void intersect_shadow(uint count,
+                               __global const Bvh8Node* nodes,
+                               __global const Triangle4* blocks,
+                               __global const float4* origin,
+                               __global const float4* direction,
+                               __global const RayState* state,
+                               __global float4* weight, /* zeroed when occluded */
+                               __global const Quadric* quadrics,
+                               __global const uint* csg,
+                               __global const Triangle* tris,
+                               __global const float4* quadric_motion,
+                               __global const Triangle* tris_end,
+                               __global const uint* ray_sample,
+                               __global const float* sample_time,
+                               uint light_count,
+                               __global uint* numerics,
+                               __global uint* active_counter) {
+    uint w = get_global_id(0);
+    /* active work: the live rays of the group's packets */
+    if (get_local_id(0) == 0) {
+        uint n = 0, b = (uint)(get_group_id(0) * get_local_size(0));
+        for (uint g = b; g < b + (uint)get_local_size(0); ++g)
+            for (uint j = 0; j < RT_PACKET; ++j) {
+                uint r = rt_shadow_packet_slot(g, j, count, light_count);
+                n += r < count && state[r].alive ? 1u : 0u;
+            }
+        if (n > 0) atomic_add(active_counter, n);
+    }
+    float4 po[RT_PACKET], pd[RT_PACKET];
+    uint ps[RT_PACKET], slot[RT_PACKET];
+    int pl[RT_PACKET];
+    int live = 0;
+    for (int j = 0; j < RT_PACKET; ++j) {
+        uint r = rt_shadow_packet_slot(w, j, count, light_count);
+        slot[j] = r;
+        pl[j] = r < count && state[r].alive ? -1 : 0;
+        live -= pl[j];
+        r = pl[j] ? r : 0u;
+        po[j] = origin[r], pd[j] = direction[r], ps[j] = state[r].from_prim;
+    }
+    if (!live) return;
+    if (live < RT_PACKET_MIN_LIVE) { /* a ray or two: one at a time */
+        for (int j = 0; j < RT_PACKET; ++j) {
+            RayHit h;
+            if (pl[j] && rt_traverse(nodes, blocks, po[j], pd[j], po[j].w, pd[j].w, ps[j], 1, 1, &h))
+                weight[slot[j]] = (float4)(0.0f);
+        }
+        return;
+    }
+    int8 occ = rt_packet_occluded(nodes, blocks, po, pd, ps, vload8(0, pl));
+    int ol[RT_PACKET];
+    vstore8(occ, 0, ol);
+    /* an occluded ray carries nothing; its state stays as the group count read it */
+    for (int j = 0; j < RT_PACKET; ++j)
+        if (ol[j]) weight[slot[j]] = (float4)(0.0f);
+}
+#endif

@@ -64,7 +64,7 @@ void Kernel::enqueue(size_t count) {
     RD_CL_CHECK(clEnqueueNDRangeKernel(m_ctx.queue(), m_kernel, 1, nullptr, &global,
                                        &m_localSize, 0, nullptr, &ev),
                 m_ctx.name() + "' running kernel '" + m_name);
-    m_profiler.record(m_name, ev, global);
+    m_profiler.record(m_name, ev, global * m_lanes);
 }
 
 uint64_t Kernel::peekActive() const { return m_active.download()[0]; }

@@ -80,6 +80,9 @@ public:
     uint64_t peekActive() const;
     const std::string& name() const { return m_name; }
     size_t localSize() const { return m_localSize; }
+    // A work-item of this kernel takes `lanes` rays (a packet kernel): its occupancy
+    // counts rays against lanes launched.
+    void setLanesPerItem(size_t lanes) { m_lanes = lanes; }
 
 private:
     template <typename T>
@@ -100,6 +103,7 @@ private:
     Profiler& m_profiler;
     cl_kernel m_kernel = nullptr;
     size_t m_localSize = 64;
+    size_t m_lanes = 1;
     DeviceBuffer<cl_uint> m_active;
 };
 

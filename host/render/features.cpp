@@ -1,6 +1,8 @@
 // features.cpp: scene analysis and kernel specialisation options.
 #include "features.h"
 
+#include "cl/include/ray.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -90,11 +92,17 @@ std::vector<std::string> Features::names() const {
     if (aovs) n.push_back("aovs");
     if (treelets) n.push_back("treelets");
     if (bvhWidth == 8) n.push_back("bvh8");
+    if (shadowPackets) n.push_back("shadow_packets");
     if (depthOfField) n.push_back("depth_of_field");
     if (primvars & RT_PRIMVAR_ST) n.push_back("vertex_st");
     if (primvars & RT_PRIMVAR_CS) n.push_back("vertex_Cs");
     if (primvars & RT_PRIMVAR_OS) n.push_back("vertex_Os");
     return n;
+}
+
+size_t Features::shadowItems(size_t rays, size_t lights) const {
+    return shadowPackets ? (rays + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS * lights
+                         : rays * lights;
 }
 
 std::string buildOptions(const Features& f) {
@@ -131,6 +139,7 @@ std::string buildOptions(const Features& f) {
     if (f.pointParams > 0) o += " -DRSL_MAX_PARAM_PRIMVARS=" + std::to_string(f.pointParams);
     if (f.treelets) o += f.int64Min ? " -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN" : " -DRT_HAS_TREELETS";
     if (f.bvhWidth == 8) o += " -DRT_BVH8";
+    if (f.shadowPackets) o += " -DRT_SHADOW_PACKETS";
     if (f.sampledTrace) o += " -DRT_INCOHERENT_TRACE";
     if (f.specialisedLights) o += " -DRD_SPECIALISED_LIGHTS";
     if (f.trace && f.rouletteDepth > 0)

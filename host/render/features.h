@@ -36,6 +36,11 @@ struct Features {
     bool treelets = false;      // treelet-streamed traversal (render/treelet_trace.h)
     bool int64Min = false;      // the device has 64-bit atomic min (its closest hits)
     int bvhWidth = 4;           // the resident BVH's node width: 4, or 8 (RT_BVH8)
+    // intersect_shadow traces packets of RT_SHADOW_PACKET_RAYS rays a work-item
+    // (RT_SHADOW_PACKETS): eight-wide resident BVH, no instances, motion or procedurals.
+    bool shadowPackets = false;
+    // The work-items intersect_shadow takes for `rays` shaded rays and `lights` lights.
+    size_t shadowItems(size_t rays, size_t lights) const;
     uint32_t lightCount = 0;
     // Each light instance's shader inlined where it is called, its baked parameters
     // folded in (uniform work such as a spotlight's axis and cone cosines is done by the
