@@ -69,24 +69,22 @@ __kernel void intersect_closest(uint count,
 #endif
 }
 
+/* intersect_shadow's arguments, the same in its one-ray and packet forms. */
+#define RT_INTERSECT_SHADOW_PARAMS                                                         \
+    uint count, __global const RT_BVH_NODE* nodes, /* RT_BVH8: Bvh8Node */                \
+        __global const Triangle4* blocks, __global const float4* origin,                  \
+        __global const float4* direction, __global const RayState* state,                \
+        __global float4* weight, /* zeroed when occluded */                                \
+        __global const Quadric* quadrics, __global const uint* csg,                       \
+        __global const Triangle* tris, __global const float4* quadric_motion,             \
+        __global const Triangle* tris_end, __global const uint* ray_sample,               \
+        __global const float* sample_time,                                                 \
+        uint light_count,        /* shadow ray i: shaded ray i / count */                  \
+        __global uint* numerics, /* RT_HAS_PROCEDURALS: flags */                           \
+        __global uint* active_counter
+
 #ifndef RT_SHADOW_PACKETS
-__kernel void intersect_shadow(uint count,
-                               __global const RT_BVH_NODE* nodes, /* RT_BVH8: Bvh8Node */
-                               __global const Triangle4* blocks,
-                               __global const float4* origin,
-                               __global const float4* direction,
-                               __global const RayState* state,
-                               __global float4* weight, /* zeroed when occluded */
-                               __global const Quadric* quadrics,
-                               __global const uint* csg,
-                               __global const Triangle* tris,
-                               __global const float4* quadric_motion, /* RT_HAS_MOTION */
-                               __global const Triangle* tris_end,
-                               __global const uint* ray_sample, /* of the shaded ray */
-                               __global const float* sample_time,
-                               uint light_count, /* shadow ray i: shaded ray i / count */
-                               __global uint* numerics, /* RT_HAS_PROCEDURALS: flags */
-                               __global uint* active_counter) {
+__kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
     RT_COUNT_GROUP(active_counter, j, j < count && state[j].alive);
@@ -122,23 +120,7 @@ inline uint rt_shadow_packet_slot(uint w, uint j, uint count, uint lights) {
 #ifndef RT_PACKET_MIN_LIVE
 #define RT_PACKET_MIN_LIVE 3
 #endif
-__kernel void intersect_shadow(uint count,
-                               __global const Bvh8Node* nodes,
-                               __global const Triangle4* blocks,
-                               __global const float4* origin,
-                               __global const float4* direction,
-                               __global const RayState* state,
-                               __global float4* weight, /* zeroed when occluded */
-                               __global const Quadric* quadrics,
-                               __global const uint* csg,
-                               __global const Triangle* tris,
-                               __global const float4* quadric_motion,
-                               __global const Triangle* tris_end,
-                               __global const uint* ray_sample,
-                               __global const float* sample_time,
-                               uint light_count,
-                               __global uint* numerics,
-                               __global uint* active_counter) {
+__kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     uint w = get_global_id(0);
     /* active work: the live rays of the group's packets */
     if (get_local_id(0) == 0) {
