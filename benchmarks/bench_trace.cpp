@@ -300,10 +300,12 @@ int main(int argc, char** argv) {
     app.add_option("--stream-fraction", streamFraction,
                    "also stream 64 KiB treelets through a cache of this fraction of the BVH "
                    "(0: not)");
-    bool noShadowPackets = false;
+    bool noShadowPackets = false, noClosestPackets = false;
     app.add_flag("--no-shadow-packets", noShadowPackets,
                  "--wide8: shadow rays one a work-item (the renderer's packets of eight are the "
                  "default for triangle scenes)");
+    app.add_flag("--no-closest-packets", noClosestPackets,
+                 "--wide8: closest-hit rays one a work-item (likewise)");
     bool noTreelets = false;
     app.add_flag("--no-treelets", noTreelets,
                  "time the resident kernels only (e.g. under perf record)");
@@ -327,20 +329,22 @@ int main(int argc, char** argv) {
     std::vector<std::string> treeletRows;  // printed after the resident table
     std::printf("%-14s %-8s %10s %10s %10s %8s %9s %9s\n", "scene", "rays", "count",
                 "RayDrive", "Embree", "ratio", "agree", "cpu ratio");
+    // the renderer's packets for a triangle scene on the eight-wide tree
+    const std::string packetOptions =
+        std::string(noShadowPackets ? "" : "-DRT_SHADOW_PACKETS ") +
+        (noClosestPackets ? "" : "-DRT_CLOSEST_PACKETS ");
     std::unique_ptr<Program> program8;
     if (wide8)
-        program8 = std::make_unique<Program>(
-            ctx, assembleClSource({"intersect.cl"}),
-            base + "-DRT_BVH8 " + (noShadowPackets ? "" : "-DRT_SHADOW_PACKETS ") + wide8Options);
-    // work-items of intersect_shadow for n rays to one light: a packet of
-    // RT_SHADOW_PACKET_RAYS each where the program was built with RT_SHADOW_PACKETS
-    auto shadowItems = [](size_t n, const std::string& options) {
-        return options.find("RT_SHADOW_PACKETS") == std::string::npos
+        program8 = std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}),
+                                             base + "-DRT_BVH8 " + packetOptions + wide8Options);
+    // work-items of a kernel for n rays (to one light): RT_SHADOW_PACKET_RAYS each where
+    // the program was built with that kernel's packets (`macro`)
+    auto items = [](size_t n, const std::string& options, const char* macro) {
+        return options.find(macro) == std::string::npos
                    ? n
                    : (n + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS;
     };
-    const std::string options8 =
-        wide8 ? (noShadowPackets ? "" : "-DRT_SHADOW_PACKETS ") + wide8Options : "";
+    const std::string options8 = wide8 ? packetOptions + wide8Options : "";
     std::vector<Mesh> meshes{sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")};
     for (const std::string& f : meshFiles) meshes.push_back(loadOff(f));
     for (const Mesh& mesh : meshes) {
@@ -417,7 +421,8 @@ int main(int argc, char** argv) {
                     if (k.shadow) {
                         weight.upload(ones);
                         auto t0 = Clock::now();
-                        ks.launch(shadowItems(n, p > 0 ? variants[p - 1] : std::string()),
+                        ks.launch(items(n, p > 0 ? variants[p - 1] : std::string(),
+                                        "RT_SHADOW_PACKETS"),
                                   cl_uint(n), nodeBuf, blockBuf, org, dir, state, weight,
                                   noQuadrics,
                                   noCsg, noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
@@ -426,7 +431,9 @@ int main(int argc, char** argv) {
                         return std::chrono::duration<double>(Clock::now() - t0).count();
                     }
                     auto t0 = Clock::now();
-                    kc.launch(n, cl_uint(n), nodeBuf, blockBuf, org, dir, state, hits,
+                    kc.launch(items(n, p > 0 ? variants[p - 1] : std::string(),
+                                    "RT_CLOSEST_PACKETS"),
+                              cl_uint(n), nodeBuf, blockBuf, org, dir, state, hits,
                               noQuadrics, noCsg, noTris, noMotion, noTris, noSample, noTime,
                               noSample);
                     ctx.finish();
@@ -446,13 +453,14 @@ int main(int argc, char** argv) {
                 if (k.shadow) weight8.upload(ones);
                 auto t0 = Clock::now();
                 if (k.shadow)
-                    ks8->launch(shadowItems(n, options8), cl_uint(n), nodes8, blocks8, org, dir,
+                    ks8->launch(items(n, options8, "RT_SHADOW_PACKETS"), cl_uint(n), nodes8, blocks8, org, dir,
                                 state8, weight8,
                                 noQuadrics,
                                 noCsg, noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
                                 noNumerics);
                 else
-                    kc8->launch(n, cl_uint(n), nodes8, blocks8, org, dir, state8, hits8,
+                    kc8->launch(items(n, options8, "RT_CLOSEST_PACKETS"), cl_uint(n), nodes8,
+                                blocks8, org, dir, state8, hits8,
                                 noQuadrics, noCsg, noTris, noMotion, noTris, noSample, noTime,
                                 noSample);
                 ctx.finish();

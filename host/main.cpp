@@ -187,9 +187,11 @@ int main(int argc, char** argv) {
     app.add_option("--bvh-width", bvhWidth,
                    "resident BVH node width, 4 or 8 (default: 8 on a CPU device, else 4)")
         ->check(CLI::IsMember({4, 8}));
-    bool noShadowPackets = false;
+    bool noShadowPackets = false, noClosestPackets = false;
     app.add_flag("--no-shadow-packets", noShadowPackets,
                  "trace shadow rays one a work-item, not in packets of eight (for comparison)");
+    app.add_flag("--no-closest-packets", noClosestPackets,
+                 "trace eye and other coherent rays one a work-item, not in packets of eight");
     app.add_option("--treelet-budget", treeletBytes,
                    "trace through treelets of at most BYTES of BVH (default: Option \"limits\" "
                    "\"treeletbytes\", else the resident BVH; triangle scenes only)");
@@ -237,6 +239,7 @@ int main(int argc, char** argv) {
             settings.treeletBytes = treeletBytes;
             settings.bvhWidth = bvhWidth;
             settings.shadowPackets = !noShadowPackets;
+            settings.closestPackets = !noClosestPackets;
             settings.sceneMemoryBytes = sceneMemory;
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
             rd::Renderer renderer(ctx, settings);

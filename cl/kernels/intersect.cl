@@ -5,7 +5,7 @@
 #include "counters.clh"
 #include "quadric.h"
 #include "traverse.clh"
-#ifdef RT_SHADOW_PACKETS
+#if defined(RT_SHADOW_PACKETS) || defined(RT_CLOSEST_PACKETS)
 #include "packet_traverse.clh"
 #endif
 
@@ -37,22 +37,21 @@
 #define RT_INSTANCE_ARG
 #endif
 
-__kernel void intersect_closest(uint count,
-                                __global const RT_BVH_NODE* nodes, /* RT_BVH8: Bvh8Node */
-                                __global const Triangle4* blocks,
-                                __global const float4* origin,
-                                __global const float4* direction,
-                                __global const RayState* state,
-                                __global RayHit* hits,
-                                __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
-                                __global const uint* csg,
-                                __global const Triangle* tris,
-                                __global const float4* quadric_motion, /* RT_HAS_MOTION */
-                                __global const Triangle* tris_end,
-                                __global const uint* ray_sample,
-                                __global const float* sample_time,
-                                __global uint* hit_instance, /* RT_HAS_INSTANCES only */
-                                __global uint* active_counter) {
+/* intersect_closest's arguments, the same in its one-ray and packet forms. */
+#define RT_INTERSECT_CLOSEST_PARAMS                                                        \
+    uint count, __global const RT_BVH_NODE* nodes, /* RT_BVH8: Bvh8Node */                \
+        __global const Triangle4* blocks, __global const float4* origin,                  \
+        __global const float4* direction, __global const RayState* state,                \
+        __global RayHit* hits, __global const Quadric* quadrics, /* RT_HAS_QUADRICS */     \
+        __global const uint* csg, __global const Triangle* tris,                          \
+        __global const float4* quadric_motion, /* RT_HAS_MOTION */                         \
+        __global const Triangle* tris_end, __global const uint* ray_sample,               \
+        __global const float* sample_time,                                                 \
+        __global uint* hit_instance, /* RT_HAS_INSTANCES only */                           \
+        __global uint* active_counter
+
+#ifndef RT_CLOSEST_PACKETS
+__kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
     uint i = get_global_id(0);
     int active = i < count && state[i].alive;
     RT_COUNT_GROUP(active_counter, j, j < count && state[j].alive);
@@ -68,6 +67,64 @@ __kernel void intersect_closest(uint count,
     hit_instance[i] = inst;
 #endif
 }
+#else
+/* Packets of RT_PACKET rays a work-item pay only where the rays run together. */
+#ifndef RT_PACKET_MIN_LIVE
+#define RT_PACKET_MIN_LIVE 3
+#endif
+/* intersect_closest with a work-item for RT_PACKET consecutive rays (packet_traverse.clh;
+ * triangle scenes, eight-wide BVH; the host launches ceil(count / RT_PACKET) work-items).
+ * When at least RT_PACKET_MIN_LIVE of them are live, coherent (RT_COHERENT) and share
+ * their direction signs they are traced as a packet, otherwise one at a time; every ray's
+ * hit is the one-ray kernel's. */
+__kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
+    uint w = get_global_id(0);
+    RT_COUNT_PACKET_GROUP(active_counter, RT_PACKET, g, l,
+                          g * RT_PACKET + l < count && state[g * RT_PACKET + l].alive);
+    float4 po[RT_PACKET], pd[RT_PACKET];
+    uint ps[RT_PACKET];
+    int pl[RT_PACKET];
+    int live = 0, coherent = 1;
+    for (int j = 0; j < RT_PACKET; ++j) {
+        uint r = w * RT_PACKET + j;
+        pl[j] = r < count && state[r].alive ? -1 : 0;
+        r = pl[j] ? r : 0u;
+        live -= pl[j];
+        coherent &= !pl[j] || RT_COHERENT(state[r]);
+        po[j] = origin[r], pd[j] = direction[r], ps[j] = state[r].from_prim;
+    }
+    if (!live) return;
+    RtPacket p;
+    int8 traced;
+    if (live < RT_PACKET_MIN_LIVE || !coherent ||
+        (traced = rt_packet_setup(&p, po, pd, ps, vload8(0, pl)), !p.uniform)) {
+        for (int j = 0; j < RT_PACKET; ++j) {
+            if (!pl[j]) continue;
+            uint r = w * RT_PACKET + j;
+            RayHit h;
+            rt_traverse(nodes, blocks, po[j], pd[j], po[j].w,
+                        pd[j].w, ps[j], 0, RT_COHERENT(state[r]), &h);
+            hits[r] = h;
+        }
+        return;
+    }
+    float8 hu, hv;
+    uint8 hp;
+    rt_packet_closest(nodes, blocks, &p, po, pd, traced, &hu, &hv, &hp);
+    float tl[RT_PACKET], ul[RT_PACKET], vl[RT_PACKET];
+    uint pr[RT_PACKET];
+    vstore8(p.tmax, 0, tl);
+    vstore8(hu, 0, ul);
+    vstore8(hv, 0, vl);
+    vstore8(hp, 0, pr);
+    for (int j = 0; j < RT_PACKET; ++j) {
+        if (!pl[j]) continue;
+        /* a lane not traced (a zero or non-finite direction) misses at its tmax */
+        RayHit h = {pr[j] == RT_NO_HIT ? pd[j].w : tl[j], ul[j], vl[j], pr[j]};
+        hits[w * RT_PACKET + j] = h;
+    }
+}
+#endif
 
 /* intersect_shadow's arguments, the same in its one-ray and packet forms. */
 #define RT_INTERSECT_SHADOW_PARAMS                                                         \
@@ -122,16 +179,9 @@ inline uint rt_shadow_packet_slot(uint w, uint j, uint count, uint lights) {
 #endif
 __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     uint w = get_global_id(0);
-    /* active work: the live rays of the group's packets */
-    if (get_local_id(0) == 0) {
-        uint n = 0, b = (uint)(get_group_id(0) * get_local_size(0));
-        for (uint g = b; g < b + (uint)get_local_size(0); ++g)
-            for (uint j = 0; j < RT_PACKET; ++j) {
-                uint r = rt_shadow_packet_slot(g, j, count, light_count);
-                n += r < count && state[r].alive ? 1u : 0u;
-            }
-        if (n > 0) atomic_add(active_counter, n);
-    }
+    RT_COUNT_PACKET_GROUP(active_counter, RT_PACKET, g, l,
+                          rt_shadow_packet_slot(g, l, count, light_count) < count &&
+                              state[rt_shadow_packet_slot(g, l, count, light_count)].alive);
     float4 po[RT_PACKET], pd[RT_PACKET];
     uint ps[RT_PACKET], slot[RT_PACKET];
     int pl[RT_PACKET];
@@ -153,7 +203,9 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
         }
         return;
     }
-    int8 occ = rt_packet_occluded(nodes, blocks, po, pd, ps, vload8(0, pl));
+    RtPacket p;
+    int8 traced = rt_packet_setup(&p, po, pd, ps, vload8(0, pl));
+    int8 occ = rt_packet_occluded(nodes, blocks, &p, po, pd, traced);
     int ol[RT_PACKET];
     vstore8(occ, 0, ol);
     /* an occluded ray carries nothing; its state stays as the group count read it */

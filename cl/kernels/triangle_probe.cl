@@ -20,7 +20,7 @@ __kernel void triangle_probe(uint count, uint ntris,
     uint ns = 0, nb = 0;
     for (uint k = 0; k < ntris; ++k) {
         float t, u, v;
-        uint prim;
+        uint prim = RT_NO_HIT;
         ns += rt_intersect_triangle(&w, o, tris[k].v0, tris[k].v1, tris[k].v2, 0.0f, INFINITY,
                                     &t, &u, &v);
         nb += rt_intersect_triangle4(&w, o, &blocks[k], 0.0f, INFINITY, RT_NO_HIT, &t, &u, &v,

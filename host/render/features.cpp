@@ -93,6 +93,7 @@ std::vector<std::string> Features::names() const {
     if (treelets) n.push_back("treelets");
     if (bvhWidth == 8) n.push_back("bvh8");
     if (shadowPackets) n.push_back("shadow_packets");
+    if (closestPackets) n.push_back("closest_packets");
     if (depthOfField) n.push_back("depth_of_field");
     if (primvars & RT_PRIMVAR_ST) n.push_back("vertex_st");
     if (primvars & RT_PRIMVAR_CS) n.push_back("vertex_Cs");
@@ -103,6 +104,10 @@ std::vector<std::string> Features::names() const {
 size_t Features::shadowItems(size_t rays, size_t lights) const {
     return shadowPackets ? (rays + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS * lights
                          : rays * lights;
+}
+
+size_t Features::closestItems(size_t rays) const {
+    return closestPackets ? (rays + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS : rays;
 }
 
 std::string buildOptions(const Features& f) {
@@ -140,6 +145,7 @@ std::string buildOptions(const Features& f) {
     if (f.treelets) o += f.int64Min ? " -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN" : " -DRT_HAS_TREELETS";
     if (f.bvhWidth == 8) o += " -DRT_BVH8";
     if (f.shadowPackets) o += " -DRT_SHADOW_PACKETS";
+    if (f.closestPackets) o += " -DRT_CLOSEST_PACKETS";
     if (f.sampledTrace) o += " -DRT_INCOHERENT_TRACE";
     if (f.specialisedLights) o += " -DRD_SPECIALISED_LIGHTS";
     if (f.trace && f.rouletteDepth > 0)

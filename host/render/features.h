@@ -39,8 +39,13 @@ struct Features {
     // intersect_shadow traces packets of RT_SHADOW_PACKET_RAYS rays a work-item
     // (RT_SHADOW_PACKETS): eight-wide resident BVH, no instances, motion or procedurals.
     bool shadowPackets = false;
-    // The work-items intersect_shadow takes for `rays` shaded rays and `lights` lights.
+    // intersect_closest takes RT_SHADOW_PACKET_RAYS consecutive rays a work-item, traced as
+    // a packet where they are coherent (RT_CLOSEST_PACKETS); the same conditions.
+    bool closestPackets = false;
+    // The work-items intersect_shadow takes for `rays` shaded rays and `lights` lights,
+    // and intersect_closest for `rays` rays.
     size_t shadowItems(size_t rays, size_t lights) const;
+    size_t closestItems(size_t rays) const;
     uint32_t lightCount = 0;
     // Each light instance's shader inlined where it is called, its baked parameters
     // folded in (uniform work such as a spotlight's axis and cone cosines is done by the

@@ -99,8 +99,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // Shadow rays in packets in triangle scenes (bench_trace: 1.1-1.6x the one-ray
     // kernel's rate; SPD gears 0.93 of its intersect_shadow time, teapot 1.0). With
     // quadrics, tested a lane at a time, packets cost balls 1.1-1.2x: none there.
-    f.shadowPackets = m_settings.shadowPackets && f.shadowRays && f.bvhWidth == 8 &&
-                      !f.treelets && !f.quadrics && !f.instances && !f.motion && !f.procedurals;
+    const bool packetsFit = f.bvhWidth == 8 && !f.treelets && !f.quadrics && !f.instances &&
+                            !f.motion && !f.procedurals;
+    f.shadowPackets = m_settings.shadowPackets && f.shadowRays && packetsFit;
+    f.closestPackets = m_settings.closestPackets && packetsFit;
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
@@ -186,6 +188,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     Profiler prof(m_ctx);
     RenderKernels k(m_ctx, program.get(), prof, shading.shadeKernels);
     if (f.shadowPackets) k.intersectShadow.setLanesPerItem(RT_SHADOW_PACKET_RAYS);
+    if (f.closestPackets) k.intersectClosest.setLanesPerItem(RT_SHADOW_PACKET_RAYS);
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     if (!shading.prepares.empty()) {  // the shaders' uniform work, once per instance
         Kernel prepare(m_ctx, program.get(), "rd_prepare_uniforms", prof);
@@ -287,7 +290,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         if (treelets)
             treelets->closest(n, rp.origin, rp.direction, rp.state, rp.hits, traceScene);
         else
-            k.intersectClosest.launch(n, n, ds.nodes, ds.blocks, rp.origin, rp.direction,
+            k.intersectClosest.launch(f.closestItems(n), n, ds.nodes, ds.blocks, rp.origin,
+                                      rp.direction,
                                       rp.state, rp.hits, ds.quadrics, ds.csg, ds.triangles,
                                       ds.quadricMotion, ds.trianglesEnd, rp.sample,
                                       rp.sampleTime, rp.hitInstance);

@@ -22,7 +22,8 @@ namespace rd {
 
 struct RenderSettings {
     int bvhWidth = 0;         // resident BVH nodes: 4 or 8 wide; 0: 8 on a CPU device, else 4
-    bool shadowPackets = true;  // shadow rays in packets where the scene allows (features.h)
+    bool shadowPackets = true;   // shadow rays in packets where the scene allows (features.h)
+    bool closestPackets = true;  // coherent closest-hit rays in packets, likewise
     size_t poolCapacity = 0;  // rays per round; 0: 16k per compute unit within a memory budget
     double timeBudget = 0;    // seconds; 0 = none (also from Option "render" "time")
     double errorTarget = 0;   // relative film error; 0 = none ("render" "error")

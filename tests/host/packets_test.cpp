@@ -1,8 +1,10 @@
-// shadow_packet_test.cpp: intersect_shadow built with RT_SHADOW_PACKETS (eight shadow rays
-// a work-item, cl/lib/packet_traverse.clh) occludes exactly the rays the one-ray kernel
-// does, bit for bit, for coherent and incoherent packets, rays along shared edges, rays
-// leaving a triangle, degenerate and dead rays and several lights; and the renderer's image
-// is the same with and without packets.
+// packets_test.cpp: the packet kernels (cl/lib/packet_traverse.clh, eight rays a
+// work-item) against the one-ray kernels, bit for bit: intersect_shadow built with
+// RT_SHADOW_PACKETS occludes exactly the rays the one-ray kernel does, intersect_closest
+// built with RT_CLOSEST_PACKETS finds the same hits (coherent and incoherent packets, rays
+// along shared edges and through coincident triangles, rays leaving a triangle, degenerate
+// and dead rays, several lights); and the renderer's image is the same with and without
+// packets.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -124,7 +126,7 @@ std::vector<rt_float4> traceShadows(const std::string& options, const Bvh8& b8,
 
 }  // namespace
 
-TEST(ShadowPackets, OccludeExactlyWhatTheOneRayKernelDoes) {
+TEST(Packets, ShadowRaysOccludeExactlyWhatTheOneRayKernelDoes) {
     std::vector<Triangle> tris = scene(5);
     Scene s;
     s.triangles = tris;
@@ -159,9 +161,101 @@ TEST(ShadowPackets, OccludeExactlyWhatTheOneRayKernelDoes) {
     }
 }
 
-// The renderer traces a triangle scene's shadow rays in packets unless told not to, and the
-// image is the same either way, pixel for pixel.
-TEST(ShadowPackets, ImageIsTheSameWithAndWithoutPackets) {
+// intersect_closest built with RT_CLOSEST_PACKETS (eight consecutive rays a work-item, a
+// packet where they are coherent and share their direction signs, one at a time otherwise)
+// finds every ray's hit of the one-ray kernel: t, u, v and triangle bit for bit. The rays:
+// coherent runs from a camera-like point (packets), runs straight down onto a grid's
+// shared edges and vertices (the watertight fallback; a tie between the two triangles of
+// an edge goes to the lower index), runs leaving a grid triangle (fromSurface), scattered
+// rays (one at a time), and dead lanes.
+TEST(Packets, ClosestHitsAreTheOneRayKernels) {
+    std::vector<Triangle> tris = scene(7);
+    // a second, coincident copy of part of the grid: exact ties in t
+    const size_t grid = tris.size() - 128;
+    for (size_t i = grid; i < grid + 40; ++i) tris.push_back(tris[i]);
+    Scene s;
+    s.triangles = tris;
+    Bvh8 b8 = collapseToBvh8(buildBvh(triangleBounds(s), sceneBvhSettings()), tris);
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+    const size_t n = 3001;
+    std::vector<rt_float4> org, dir;
+    std::vector<RayState> st;
+    for (size_t i = 0; i < n; ++i) {
+        const size_t kind = (i / 40) % 4;
+        rt_float4 o, d;
+        uint32_t from = RT_NO_HIT;
+        if (kind == 0) {  // a camera's rays over the scene
+            o = {0.1f, -0.2f, 12.0f, 0.0f};
+            d = {-0.4f + 0.02f * float(i % 40), -0.3f + 0.015f * float((i / 3) % 40), -1.0f, 0.0f};
+        } else if (kind == 1) {  // straight down onto edges and vertices of the grid
+            o = {float(int(i % 8) - 4) + 0.5f * float((i / 8) % 2), float(int(i % 5) - 2), 3.0f, 0.0f};
+            d = {0.0f, 0.0f, -1.0f, 0.0f};
+        } else if (kind == 2) {  // leaving a grid triangle upward
+            from = uint32_t(grid + (i * 5) % 128);
+            const Triangle& t = tris[from];
+            o = {(t.v0.x + t.v1.x + t.v2.x) / 3, (t.v0.y + t.v1.y + t.v2.y) / 3, 0.0f, 0.0f};
+            d = {0.1f * U(rng), 0.1f * U(rng), 1.0f, 0.0f};
+        } else {  // anywhere
+            o = {6 * U(rng), 6 * U(rng), 6 * U(rng), 0.0f};
+            d = {U(rng), U(rng), U(rng), 0.0f};
+        }
+        float l = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+        d = {d.x / l, d.y / l, d.z / l, i % 11 == 7 ? 4.0f : 1e30f};  // some with a finite tmax
+        org.push_back(o);
+        dir.push_back(d);
+        st.push_back(RayState{i % 9 == 4 ? 0u : 1u, 0u, from, 0.0f});
+    }
+    dir[17] = {0, 0, 0, 1e30f};  // a zero direction: no hit, t = tmax
+    const ClContext& ctx = test::testContext();
+    auto trace = [&](const std::string& options, size_t items, uint64_t* active) {
+        Program program(ctx, assembleClSource({"intersect.cl"}), "-cl-std=CL1.2 -DRT_BVH8 " + options);
+        Profiler prof(ctx);
+        Kernel closest(ctx, program.get(), "intersect_closest", prof);
+        DeviceBuffer<Bvh8Node> nodes(ctx, b8.nodes);
+        DeviceBuffer<Triangle4> blocks(ctx, b8.blocks);
+        DeviceBuffer<rt_float4> ob(ctx, org), db(ctx, dir);
+        DeviceBuffer<RayState> state(ctx, st);
+        DeviceBuffer<RayHit> hits(ctx, std::vector<RayHit>(n, RayHit{-1.0f, -1.0f, -1.0f, 12345u}));
+        DeviceBuffer<Quadric> noQuadrics(ctx, 1);
+        DeviceBuffer<uint32_t> noCsg(ctx, 1), noSample(ctx, 1);
+        DeviceBuffer<Triangle> noTris(ctx, 1);
+        DeviceBuffer<rt_float4> noMotion(ctx, 1);
+        DeviceBuffer<float> noTime(ctx, 1);
+        closest.launch(items, cl_uint(n), nodes, blocks, ob, db, state, hits, noQuadrics, noCsg,
+                       noTris, noMotion, noTris, noSample, noTime, noSample);
+        *active = closest.peekActive();
+        return hits.download();
+    };
+    uint64_t activeOne = 0, activePackets = 0;
+    std::vector<RayHit> one = trace("", n, &activeOne);
+    std::vector<RayHit> packets = trace("-DRT_CLOSEST_PACKETS",
+                                        (n + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS,
+                                        &activePackets);
+    int differ = 0, hit = 0, live = 0;
+    for (size_t i = 0; i < n; ++i) {
+        live += st[i].alive;
+        hit += st[i].alive && one[i].prim != RT_NO_HIT;
+        const bool same = one[i].t == packets[i].t && one[i].u == packets[i].u &&
+                          one[i].v == packets[i].v && one[i].prim == packets[i].prim;
+        differ += !same;
+        if (!same && differ < 5)
+            ADD_FAILURE() << "ray " << i << ": t " << one[i].t << " vs " << packets[i].t << ", prim "
+                          << one[i].prim << " vs " << packets[i].prim;
+    }
+    EXPECT_EQ(differ, 0) << "of " << n << " rays";
+    EXPECT_GT(hit, live / 3);
+    EXPECT_EQ(packets[4].prim, 12345u) << "a dead ray is left alone";
+    EXPECT_EQ(packets[17].prim, RT_NO_HIT);
+    EXPECT_EQ(packets[17].t, 1e30f);
+    EXPECT_EQ(activeOne, uint64_t(live));
+    EXPECT_EQ(activePackets, uint64_t(live));
+}
+
+// The renderer traces a triangle scene's shadow rays and its coherent closest-hit rays (eye
+// rays, and here mirror rays off a reflective floor) in packets unless told not to, and
+// the image is the same either way, pixel for pixel.
+TEST(Packets, ImageIsTheSameWithAndWithoutPackets) {
     const std::string rib =
         "Format 40 40 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" 40\n"
         "Translate 0 0 6\nWorldBegin\n"
@@ -173,13 +267,17 @@ TEST(ShadowPackets, ImageIsTheSameWithAndWithoutPackets) {
         "PointsPolygons [4 4 4 4 4 4] [0 1 3 2  4 6 7 5  0 4 5 1  2 3 7 6  0 2 6 4  1 5 7 3] "
         "\"P\" [-0.7 -0.7 -0.7 0.7 -0.7 -0.7 -0.7 0.7 -0.7 0.7 0.7 -0.7 -0.7 -0.7 0.7 0.7 -0.7 "
         "0.7 -0.7 0.7 0.7 0.7 0.7 0.7]\nAttributeEnd\n"
+        "Surface \"mirror\" \"Kd\" 0.4 \"Kr\" 0.5\n"
         "Polygon \"P\" [-3 -1.5 -2 3 -1.5 -2 3 -1.5 3 -3 -1.5 3]\nWorldEnd\n";
     RenderSettings with, without;
     without.shadowPackets = false;
+    without.closestPackets = false;
     test::Rendered a = test::renderRib(rib, with), b = test::renderRib(rib, without);
     EXPECT_TRUE(a.stats.features.shadowPackets || a.stats.features.bvhWidth != 8)
         << "an eight-wide triangle scene with shadows takes packets";
     EXPECT_FALSE(b.stats.features.shadowPackets);
+    EXPECT_TRUE(a.stats.features.closestPackets || a.stats.features.bvhWidth != 8);
+    EXPECT_FALSE(b.stats.features.closestPackets);
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     int differ = 0;
     for (size_t i = 0; i < a.pixels.size(); ++i)
@@ -188,4 +286,7 @@ TEST(ShadowPackets, ImageIsTheSameWithAndWithoutPackets) {
     EXPECT_EQ(differ, 0);
     EXPECT_GT(a.mean(0, 0, 0, 40, 40), 0.02);
     EXPECT_EQ(a.stats.shadowRays, b.stats.shadowRays) << "the same shadow rays, counted alike";
+    EXPECT_EQ(a.stats.eyeRays, b.stats.eyeRays);
+    EXPECT_EQ(a.stats.continuationRays, b.stats.continuationRays) << "the mirror's rays";
+    EXPECT_GT(a.stats.continuationRays, 0u);
 }
