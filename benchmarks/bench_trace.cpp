@@ -337,12 +337,12 @@ int main(int argc, char** argv) {
     if (wide8)
         program8 = std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}),
                                              base + "-DRT_BVH8 " + packetOptions + wide8Options);
-    // work-items of a kernel for n rays (to one light): RT_SHADOW_PACKET_RAYS each where
+    // work-items of a kernel for n rays (to one light): RT_PACKET_RAYS each where
     // the program was built with that kernel's packets (`macro`)
     auto items = [](size_t n, const std::string& options, const char* macro) {
         return options.find(macro) == std::string::npos
                    ? n
-                   : (n + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS;
+                   : (n + RT_PACKET_RAYS - 1) / RT_PACKET_RAYS;
     };
     const std::string options8 = wide8 ? packetOptions + wide8Options : "";
     std::vector<Mesh> meshes{sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")};

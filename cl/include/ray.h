@@ -35,9 +35,10 @@ typedef struct RayState {
  * host sizes its per-group counts by it. */
 #define RT_COMPACT_GROUP 64
 
-/* With RT_SHADOW_PACKETS, intersect_shadow's work-items take this many shadow rays each
- * (cl/lib/packet_traverse.clh): rays to one light from consecutive shaded rays. */
-#define RT_SHADOW_PACKET_RAYS 8
+/* The packet kernels' work-items take this many rays each (cl/lib/packet_traverse.clh):
+ * intersect_shadow with RT_SHADOW_PACKETS the rays to one light from consecutive shaded
+ * rays, intersect_closest with RT_CLOSEST_PACKETS consecutive rays. */
+#define RT_PACKET_RAYS 8
 
 #ifndef __OPENCL_C_VERSION__
 RT_ASSERT_SIZE(RayHit, 16);

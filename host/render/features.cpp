@@ -102,12 +102,12 @@ std::vector<std::string> Features::names() const {
 }
 
 size_t Features::shadowItems(size_t rays, size_t lights) const {
-    return shadowPackets ? (rays + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS * lights
+    return shadowPackets ? (rays + RT_PACKET_RAYS - 1) / RT_PACKET_RAYS * lights
                          : rays * lights;
 }
 
 size_t Features::closestItems(size_t rays) const {
-    return closestPackets ? (rays + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS : rays;
+    return closestPackets ? (rays + RT_PACKET_RAYS - 1) / RT_PACKET_RAYS : rays;
 }
 
 std::string buildOptions(const Features& f) {

@@ -36,10 +36,10 @@ struct Features {
     bool treelets = false;      // treelet-streamed traversal (render/treelet_trace.h)
     bool int64Min = false;      // the device has 64-bit atomic min (its closest hits)
     int bvhWidth = 4;           // the resident BVH's node width: 4, or 8 (RT_BVH8)
-    // intersect_shadow traces packets of RT_SHADOW_PACKET_RAYS rays a work-item
+    // intersect_shadow traces packets of RT_PACKET_RAYS rays a work-item
     // (RT_SHADOW_PACKETS): eight-wide resident BVH, no instances, motion or procedurals.
     bool shadowPackets = false;
-    // intersect_closest takes RT_SHADOW_PACKET_RAYS consecutive rays a work-item, traced as
+    // intersect_closest takes RT_PACKET_RAYS consecutive rays a work-item, traced as
     // a packet where they are coherent (RT_CLOSEST_PACKETS); the same conditions.
     bool closestPackets = false;
     // The work-items intersect_shadow takes for `rays` shaded rays and `lights` lights,

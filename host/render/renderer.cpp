@@ -187,8 +187,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     st.program = program.info();
     Profiler prof(m_ctx);
     RenderKernels k(m_ctx, program.get(), prof, shading.shadeKernels);
-    if (f.shadowPackets) k.intersectShadow.setLanesPerItem(RT_SHADOW_PACKET_RAYS);
-    if (f.closestPackets) k.intersectClosest.setLanesPerItem(RT_SHADOW_PACKET_RAYS);
+    if (f.shadowPackets) k.intersectShadow.setLanesPerItem(RT_PACKET_RAYS);
+    if (f.closestPackets) k.intersectClosest.setLanesPerItem(RT_PACKET_RAYS);
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     if (!shading.prepares.empty()) {  // the shaders' uniform work, once per instance
         Kernel prepare(m_ctx, program.get(), "rd_prepare_uniforms", prof);

@@ -116,7 +116,7 @@ std::vector<rt_float4> traceShadows(const std::string& options, const Bvh8& b8,
     DeviceBuffer<rt_float4> noMotion(ctx, 1);
     DeviceBuffer<float> noTime(ctx, 1);
     const size_t shaded = n / lights;
-    const size_t items = packets ? (shaded + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS * lights : n;
+    const size_t items = packets ? (shaded + RT_PACKET_RAYS - 1) / RT_PACKET_RAYS * lights : n;
     shadow.launch(items, cl_uint(n), nodes, blocks, ob, db, state, weight, noQuadrics, noCsg,
                   noTris, noMotion, noTris, noSample, noTime, cl_uint(lights), noNumerics);
     *active = shadow.peekActive();
@@ -230,7 +230,7 @@ TEST(Packets, ClosestHitsAreTheOneRayKernels) {
     uint64_t activeOne = 0, activePackets = 0;
     std::vector<RayHit> one = trace("", n, &activeOne);
     std::vector<RayHit> packets = trace("-DRT_CLOSEST_PACKETS",
-                                        (n + RT_SHADOW_PACKET_RAYS - 1) / RT_SHADOW_PACKET_RAYS,
+                                        (n + RT_PACKET_RAYS - 1) / RT_PACKET_RAYS,
                                         &activePackets);
     int differ = 0, hit = 0, live = 0;
     for (size_t i = 0; i < n; ++i) {
