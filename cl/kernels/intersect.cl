@@ -7,6 +7,26 @@
 #include "traverse.clh"
 #if defined(RT_SHADOW_PACKETS) || defined(RT_CLOSEST_PACKETS)
 #include "packet_traverse.clh"
+/* A packet with fewer live rays than this traces them one at a time. */
+#ifndef RT_PACKET_MIN_LIVE
+#define RT_PACKET_MIN_LIVE 3
+#endif
+
+/* Gathers a packet's rays from their slots (slot[j] = count: no ray): pl[j] is -1 for a
+ * live ray, its origin, direction and fromSurface in po, pd, ps. Returns how many live. */
+inline int rt_packet_gather(const uint* slot, uint count, __global const RayState* state,
+                            __global const float4* origin, __global const float4* direction,
+                            float4* po, float4* pd, uint* ps, int* pl) {
+    int live = 0;
+    for (int j = 0; j < RT_PACKET; ++j) {
+        uint r = slot[j];
+        pl[j] = r < count && state[r].alive ? -1 : 0;
+        live -= pl[j];
+        r = pl[j] ? r : 0u;
+        po[j] = origin[r], pd[j] = direction[r], ps[j] = state[r].from_prim;
+    }
+    return live;
+}
 #endif
 
 /* The object scene a kernel's traversal sees: its quadric, CSG and triangle buffers. */
@@ -68,10 +88,6 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
 #endif
 }
 #else
-/* Packets of RT_PACKET rays a work-item pay only where the rays run together. */
-#ifndef RT_PACKET_MIN_LIVE
-#define RT_PACKET_MIN_LIVE 3
-#endif
 /* intersect_closest with a work-item for RT_PACKET consecutive rays (packet_traverse.clh;
  * triangle scenes, eight-wide BVH; the host launches ceil(count / RT_PACKET) work-items).
  * When at least RT_PACKET_MIN_LIVE of them are live, coherent (RT_COHERENT) and share
@@ -82,29 +98,23 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
     RT_COUNT_PACKET_GROUP(active_counter, RT_PACKET, g, l,
                           g * RT_PACKET + l < count && state[g * RT_PACKET + l].alive);
     float4 po[RT_PACKET], pd[RT_PACKET];
-    uint ps[RT_PACKET];
+    uint ps[RT_PACKET], slot[RT_PACKET];
     int pl[RT_PACKET];
-    int live = 0, coherent = 1;
-    for (int j = 0; j < RT_PACKET; ++j) {
-        uint r = w * RT_PACKET + j;
-        pl[j] = r < count && state[r].alive ? -1 : 0;
-        r = pl[j] ? r : 0u;
-        live -= pl[j];
-        coherent &= !pl[j] || RT_COHERENT(state[r]);
-        po[j] = origin[r], pd[j] = direction[r], ps[j] = state[r].from_prim;
-    }
+    for (int j = 0; j < RT_PACKET; ++j) slot[j] = min(w * RT_PACKET + j, count);
+    int live = rt_packet_gather(slot, count, state, origin, direction, po, pd, ps, pl);
     if (!live) return;
+    int coherent = 1;
+    for (int j = 0; j < RT_PACKET; ++j) coherent &= !pl[j] || RT_COHERENT(state[slot[j]]);
     RtPacket p;
     int8 traced;
     if (live < RT_PACKET_MIN_LIVE || !coherent ||
         (traced = rt_packet_setup(&p, po, pd, ps, vload8(0, pl)), !p.uniform)) {
         for (int j = 0; j < RT_PACKET; ++j) {
             if (!pl[j]) continue;
-            uint r = w * RT_PACKET + j;
             RayHit h;
-            rt_traverse(nodes, blocks, po[j], pd[j], po[j].w,
-                        pd[j].w, ps[j], 0, RT_COHERENT(state[r]), &h);
-            hits[r] = h;
+            rt_traverse(nodes, blocks, po[j], pd[j], po[j].w, pd[j].w, ps[j], 0,
+                        RT_COHERENT(state[slot[j]]), &h);
+            hits[slot[j]] = h;
         }
         return;
     }
@@ -121,7 +131,7 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
         if (!pl[j]) continue;
         /* a lane not traced (a zero or non-finite direction) misses at its tmax */
         RayHit h = {pr[j] == RT_NO_HIT ? pd[j].w : tl[j], ul[j], vl[j], pr[j]};
-        hits[w * RT_PACKET + j] = h;
+        hits[slot[j]] = h;
     }
 }
 #endif
@@ -174,9 +184,6 @@ inline uint rt_shadow_packet_slot(uint w, uint j, uint count, uint lights) {
  * triangle scenes, eight-wide BVH). The host launches ceil(shaded rays / RT_PACKET) *
  * lights work-items; results equal the one-ray kernel's. A packet with fewer than
  * RT_PACKET_MIN_LIVE live rays traces them one at a time. */
-#ifndef RT_PACKET_MIN_LIVE
-#define RT_PACKET_MIN_LIVE 3
-#endif
 __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     uint w = get_global_id(0);
     RT_COUNT_PACKET_GROUP(active_counter, RT_PACKET, g, l,
@@ -185,15 +192,8 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     float4 po[RT_PACKET], pd[RT_PACKET];
     uint ps[RT_PACKET], slot[RT_PACKET];
     int pl[RT_PACKET];
-    int live = 0;
-    for (int j = 0; j < RT_PACKET; ++j) {
-        uint r = rt_shadow_packet_slot(w, j, count, light_count);
-        slot[j] = r;
-        pl[j] = r < count && state[r].alive ? -1 : 0;
-        live -= pl[j];
-        r = pl[j] ? r : 0u;
-        po[j] = origin[r], pd[j] = direction[r], ps[j] = state[r].from_prim;
-    }
+    for (int j = 0; j < RT_PACKET; ++j) slot[j] = rt_shadow_packet_slot(w, j, count, light_count);
+    int live = rt_packet_gather(slot, count, state, origin, direction, po, pd, ps, pl);
     if (!live) return;
     if (live < RT_PACKET_MIN_LIVE) { /* a ray or two: one at a time */
         for (int j = 0; j < RT_PACKET; ++j) {
