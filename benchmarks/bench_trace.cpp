@@ -453,11 +453,9 @@ int main(int argc, char** argv) {
                 if (k.shadow) weight8.upload(ones);
                 auto t0 = Clock::now();
                 if (k.shadow)
-                    ks8->launch(items(n, options8, "RT_SHADOW_PACKETS"), cl_uint(n), nodes8, blocks8, org, dir,
-                                state8, weight8,
-                                noQuadrics,
-                                noCsg, noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
-                                noNumerics);
+                    ks8->launch(items(n, options8, "RT_SHADOW_PACKETS"), cl_uint(n), nodes8,
+                                blocks8, org, dir, state8, weight8, noQuadrics, noCsg, noTris,
+                                noMotion, noTris, noSample, noTime, cl_uint(1), noNumerics);
                 else
                     kc8->launch(items(n, options8, "RT_CLOSEST_PACKETS"), cl_uint(n), nodes8,
                                 blocks8, org, dir, state8, hits8,

@@ -96,9 +96,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                  : (m_ctx.info().type & CL_DEVICE_TYPE_CPU)          ? 8
                                                                       : 4;
     if (f.treelets) f.bvhWidth = 4;
-    // Shadow rays in packets in triangle scenes (bench_trace: 1.1-1.6x the one-ray
-    // kernel's rate; SPD gears 0.93 of its intersect_shadow time, teapot 1.0). With
-    // quadrics, tested a lane at a time, packets cost balls 1.1-1.2x: none there.
+    // Packets of eight rays a work-item in triangle scenes (bench_trace: primary rays
+    // 1.3-1.4x, shadow rays 1.3-1.4x the one-ray kernels' rate; benchmarks/packets.sh:
+    // intersect_closest 0.54-0.91 of its time, intersect_shadow 0.75 on the bunny, 0.92-1.06
+    // on the small SPD scenes). With quadrics, tested a lane at a time, shadow packets cost
+    // balls 1.1-1.2x: none there.
     const bool packetsFit = f.bvhWidth == 8 && !f.treelets && !f.quadrics && !f.instances &&
                             !f.motion && !f.procedurals;
     f.shadowPackets = m_settings.shadowPackets && f.shadowRays && packetsFit;
