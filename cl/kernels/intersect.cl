@@ -120,7 +120,7 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
     }
     float8 hu, hv;
     uint8 hp;
-    rt_packet_closest(nodes, blocks, &p, po, pd, traced, &hu, &hv, &hp);
+    rt_packet_closest(nodes, blocks, &p, po, traced, &hu, &hv, &hp);
     float tl[RT_PACKET], ul[RT_PACKET], vl[RT_PACKET];
     uint pr[RT_PACKET];
     vstore8(p.tmax, 0, tl);
@@ -205,7 +205,7 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     }
     RtPacket p;
     int8 traced = rt_packet_setup(&p, po, pd, ps, vload8(0, pl));
-    int8 occ = rt_packet_occluded(nodes, blocks, &p, po, pd, traced);
+    int8 occ = rt_packet_occluded(nodes, blocks, &p, po, traced);
     int ol[RT_PACKET];
     vstore8(occ, 0, ol);
     /* an occluded ray carries nothing; its state stays as the group count read it */

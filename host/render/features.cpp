@@ -101,14 +101,16 @@ std::vector<std::string> Features::names() const {
     return n;
 }
 
-size_t Features::shadowItems(size_t rays, size_t lights) const {
-    return shadowPackets ? (rays + RT_PACKET_RAYS - 1) / RT_PACKET_RAYS * lights
-                         : rays * lights;
+// Work-items for `rays` rays, RT_PACKET_RAYS each when in packets.
+static size_t items(size_t rays, bool packets) {
+    return packets ? (rays + RT_PACKET_RAYS - 1) / RT_PACKET_RAYS : rays;
 }
 
-size_t Features::closestItems(size_t rays) const {
-    return closestPackets ? (rays + RT_PACKET_RAYS - 1) / RT_PACKET_RAYS : rays;
+size_t Features::shadowItems(size_t rays, size_t lights) const {
+    return items(rays, shadowPackets) * lights;
 }
+
+size_t Features::closestItems(size_t rays) const { return items(rays, closestPackets); }
 
 std::string buildOptions(const Features& f) {
     // No fast-math: watertight intersection and robust offsets rely on IEEE rounding.
