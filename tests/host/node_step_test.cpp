@@ -1,6 +1,6 @@
 // node_step_test.cpp: the wide node step's helpers on the device (cl/lib/node_test.clh
-// through node_probe.cl), four- and eight-wide: the lane mask that one multiply gathers
-// is exact for every compare pattern, the lowest lane and the distance order are right,
+// through node_probe.cl), four- and eight-wide: the lane mask (movmskps on x86, one
+// multiply elsewhere: both built here) is exact for every compare pattern, the lowest lane and the distance order are right,
 // and the box test (compare-and-select min/max, far planes padded through the inverse)
 // keeps a ray that lies in a box's face plane, where 0 * inf is NaN, and never passes an
 // unused slot.
@@ -20,17 +20,24 @@ using namespace rd;
 
 namespace {
 
-const Program& probeProgram(int width) {
+// portable: the lane masks by the multiply that non-x86 devices use, where x86 ones
+// (PoCL here) take movmskps (math.clh)
+const Program& probeProgram(int width, bool portable = false) {
     const ClContext& ctx = test::testContext();
     static Program four(ctx, assembleClSource({"node_probe.cl"}), "-cl-std=CL1.2");
     static Program eight(ctx, assembleClSource({"node_probe.cl"}), "-cl-std=CL1.2 -DRT_BVH8");
+    static Program fourPortable(ctx, assembleClSource({"node_probe.cl"}),
+                                "-cl-std=CL1.2 -DRT_PORTABLE_MASKS");
+    static Program eightPortable(ctx, assembleClSource({"node_probe.cl"}),
+                                 "-cl-std=CL1.2 -DRT_BVH8 -DRT_PORTABLE_MASKS");
+    if (portable) return width == 8 ? eightPortable : fourPortable;
     return width == 8 ? eight : four;
 }
 
-void expectLaneMasks(int width) {
+void expectLaneMasks(int width, bool portable) {
     const ClContext& ctx = test::testContext();
     Profiler prof(ctx);
-    Kernel k(ctx, probeProgram(width).get(), "lane_mask_probe", prof);
+    Kernel k(ctx, probeProgram(width, portable).get(), "lane_mask_probe", prof);
     const size_t n = size_t(1) << width;
     DeviceBuffer<uint32_t> mask(ctx, n);
     DeviceBuffer<int32_t> lowest(ctx, n), order(ctx, n * width);
@@ -107,8 +114,10 @@ void expectBoxTest(int width) {
 }  // namespace
 
 TEST(NodeStep, LaneMaskIsExactForEveryPattern) {
-    expectLaneMasks(4);
-    expectLaneMasks(8);
+    for (bool portable : {false, true}) {
+        expectLaneMasks(4, portable);
+        expectLaneMasks(8, portable);
+    }
 }
 
 TEST(NodeStep, BoxTestKeepsRaysInAFacePlaneAndSkipsUnusedSlots) {
