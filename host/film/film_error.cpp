@@ -6,12 +6,17 @@
 
 namespace rd {
 
+float pixelMean(const PixelAccum& p) {
+    if (p.count == 0) return 0.0f;
+    double sum = (double(p.sum.x) + p.sum.y + p.sum.z) / 3.0;
+    return float(sum / double(p.count));
+}
+
 PixelEstimate estimatePixel(const PixelAccum& p) {
     PixelEstimate e;
     if (p.count == 0) return e;
     double n = p.count;
-    double sum = (double(p.sum.x) + p.sum.y + p.sum.z) / 3.0;
-    e.mean = float(sum / n);
+    e.mean = pixelMean(p);
     if (p.count < 2) return e;
     // Variance of the mean, per channel, averaged over the three colour channels.
     double var = 0;
@@ -43,19 +48,23 @@ double estimateFilmError(const FilmPixels& film) {
     return std::sqrt(varSum / double(withVar)) / (meanSum / double(withMean));
 }
 
-std::vector<float> pixelRelativeErrors(const FilmPixels& film) {
+float relativeErrorFloor(const FilmPixels& film) {
     double meanSum = 0;
     size_t n = 0;
     for (const PixelAccum& p : film)
-        if (p.count) meanSum += estimatePixel(p).mean, ++n;
-    // Dark pixels are judged against a tenth of the image's brightness: a relative error
-    // of a nearly black pixel is invisible and would otherwise soak up all the samples.
-    float floor = std::max(1e-4f, 0.1f * float(n ? meanSum / double(n) : 0.0));
+        if (p.count) meanSum += pixelMean(p), ++n;
+    return std::max(1e-4f, 0.1f * float(n ? meanSum / double(n) : 0.0));
+}
+
+float pixelRelativeError(const PixelAccum& p, float floor) {
+    PixelEstimate e = estimatePixel(p);
+    return e.stdError / std::max(e.mean, floor);
+}
+
+std::vector<float> pixelRelativeErrors(const FilmPixels& film) {
+    const float floor = relativeErrorFloor(film);
     std::vector<float> out(film.size(), 0.0f);
-    for (size_t i = 0; i < film.size(); ++i) {
-        PixelEstimate e = estimatePixel(film[i]);
-        out[i] = e.stdError / std::max(e.mean, floor);
-    }
+    for (size_t i = 0; i < film.size(); ++i) out[i] = pixelRelativeError(film[i], floor);
     return out;
 }
 

@@ -20,14 +20,19 @@ struct PixelEstimate {
     float stdError = 0; // standard error of the mean (0 with fewer than two samples)
 };
 PixelEstimate estimatePixel(const PixelAccum& p);
+// estimatePixel(p).mean alone (the same bits), without the variance.
+float pixelMean(const PixelAccum& p);
 
 // The film's relative error: sqrt(mean over pixels of the variance of the pixel mean)
 // divided by the mean pixel value; the same definition as the true relative RMSE against
 // a reference, so the two can be compared. Negative when no pixel has two samples.
 double estimateFilmError(const FilmPixels& film);
 
-// Per-pixel relative error as used for refinement (standard error over a floor of the
-// pixel's and the image's brightness).
+// Per-pixel relative error as used for refinement: the standard error over the larger of
+// the pixel's mean and a floor, a tenth of the image's mean brightness
+// (relativeErrorFloor), so that nearly black pixels do not soak up the samples.
 std::vector<float> pixelRelativeErrors(const FilmPixels& film);
+float relativeErrorFloor(const FilmPixels& film);
+float pixelRelativeError(const PixelAccum& p, float floor);
 
 }  // namespace rd

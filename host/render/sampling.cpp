@@ -21,14 +21,13 @@ SamplePlanner::SamplePlanner(int width, int height, int x0, int x1, int y0, int 
                     m_tileOrder.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
 }
 
-bool SamplePlanner::needsMore(const FilmPixels& film,
-                              const std::vector<float>& relErr, int x, int y,
+bool SamplePlanner::needsMore(const FilmPixels& film, float floor, int x, int y,
                               float pixelError) const {
     size_t i = size_t(y) * size_t(m_width) + size_t(x);
     uint32_t n = film[i].count;
     if (n >= m_settings.maxSamples) return false;
     if (n < m_settings.minSamples) return true;
-    if (relErr[i] > pixelError) return true;
+    if (pixelRelativeError(film[i], floor) > pixelError) return true;
     // An edge both of whose samples fell on one side shows no variance: compare with the
     // neighbours' means instead.
     float m = estimatePixel(film[i]).mean;
@@ -72,19 +71,45 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film,
         ++m_pass;
         return out;
     }
-    std::vector<float> relErr = pixelRelativeErrors(film);
+    // A pixel's answer depends on its own samples, its neighbours' means and, through its
+    // relative error, on the floor when its mean is below it: one that none of these moved
+    // for answers "no" again (a "yes" would have sampled it).
+    const float floor = relativeErrorFloor(film);
+    const bool all = !m_settings.incremental || pixelError != m_lastPixelError;
+    const std::vector<uint8_t> test = pixelsToTest(all);
+    m_lastPass.clear();
     for (uint32_t pixel : m_tileOrder) {
+        if (!all && !test[pixel]) {
+            const float mean = pixelMean(film[pixel]);
+            if (mean >= floor && mean >= m_lastFloor) continue;
+        }
         int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
-        if (!needsMore(film, relErr, x, y, pixelError)) continue;
+        if (!needsMore(film, floor, x, y, pixelError)) continue;
         uint32_t n = film[pixel].count;
         // Sequence indices already used include samples dropped as NaN/Inf: never reuse.
         uint32_t used = n + film[pixel].nonfinite;
         uint32_t target = std::max(m_settings.minSamples, std::max(1u, 2 * n));
         target = std::min(target, m_settings.maxSamples);
-        if (target > n) out.push_back({pixel, used, target - n});
+        if (target > n) out.push_back({pixel, used, target - n}), m_lastPass.push_back(pixel);
     }
+    m_lastFloor = floor;
+    m_lastPixelError = pixelError;
     ++m_pass;
     return out;
+}
+
+std::vector<uint8_t> SamplePlanner::pixelsToTest(bool all) const {
+    std::vector<uint8_t> test(size_t(m_width) * size_t(m_height), all ? 1 : 0);
+    if (all) return test;
+    for (uint32_t pixel : m_lastPass) {
+        int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
+        test[pixel] = 1;
+        if (x > 0) test[pixel - 1] = 1;
+        if (x + 1 < m_width) test[pixel + 1] = 1;
+        if (y > 0) test[pixel - uint32_t(m_width)] = 1;
+        if (y + 1 < m_height) test[pixel + uint32_t(m_width)] = 1;
+    }
+    return test;
 }
 
 }  // namespace rd

@@ -20,6 +20,10 @@ struct SamplingSettings {
     uint32_t maxSamples = 4;    // per pixel; PixelSamples x*y unless a target is given
     float pixelError = 0.01f;   // per-pixel relative standard error to stop refining at
     float contrast = 0.05f;     // neighbour difference (relative) that marks an edge
+    // Each pass re-tests only the pixels whose answer can have changed (sampled in the
+    // last pass or next to one, or near the moving brightness floor); false re-tests
+    // every pixel. The passes are the same either way (Sampling.IncrementalPlanIsExact).
+    bool incremental = true;
 };
 
 // Samples of one pass for one pixel: indices [first, first + count) of its sequence.
@@ -46,12 +50,16 @@ public:
     const SamplingSettings& settings() const { return m_settings; }
 
 private:
-    bool needsMore(const FilmPixels& film, const std::vector<float>& relErr,
-                   int x, int y, float pixelError) const;
+    bool needsMore(const FilmPixels& film, float floor, int x, int y, float pixelError) const;
+    // Pixels a pass must test: the last pass's pixels and their four neighbours (a pixel
+    // nobody sampled answers as it did, so "no"), unless every pixel is to be tested.
+    std::vector<uint8_t> pixelsToTest(bool all) const;
     int m_width, m_height;
     SamplingSettings m_settings;
     std::vector<uint32_t> m_tileOrder;  // pixel indices in tile order
     int m_pass = 0;
+    std::vector<uint32_t> m_lastPass;  // the pixels the last pass sampled
+    float m_lastFloor = 0, m_lastPixelError = -1;
 };
 
 }  // namespace rd

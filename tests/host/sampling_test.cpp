@@ -1,11 +1,14 @@
-// sampling_test.cpp: adaptive sampling, the error estimate, budgets and fail-soft stops,
-// filling of unreached pixels, and the geometric AOVs. Render tests run on PoCL.
+// sampling_test.cpp: adaptive sampling (its incremental planning equal to testing every
+// pixel), the error estimate, budgets and fail-soft stops, filling of unreached pixels,
+// and the geometric AOVs. Render tests run on PoCL.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "film/film_error.h"
+#include "render/sampling.h"
 #include "render/stop.h"
 #include "render_harness.h"
 
@@ -39,6 +42,63 @@ std::string stripes(int res) {
 }
 
 }  // namespace
+
+// Each pass re-tests only the pixels whose answer can have changed; the passes must be
+// exactly those of testing every pixel. Both planners plan from one synthetic film (a
+// crop window of it) where each requested sample adds a value drawn per pixel and sample
+// index. Also with a pixel error that tightens pass by pass (a time
+// budget's), where every pixel is re-tested.
+TEST(Sampling, IncrementalPlanIsExact) {
+    for (bool tightening : {false, true}) {
+        const int w = 97, h = 61;
+        rd::SamplingSettings s;
+        s.maxSamples = 64;
+        s.pixelError = 0.02f;
+        rd::SamplingSettings full = s;
+        full.incremental = false;
+        rd::SamplePlanner inc(w, h, 3, 90, 2, 58, s), ref(w, h, 3, 90, 2, 58, full);
+        rd::FilmPixels film(size_t(w) * size_t(h));
+        auto sample = [&](uint32_t pixel, uint32_t index) {
+            const int x = int(pixel) % w, y = int(pixel) / w;
+            std::mt19937 rng(pixel * 7919u + index);
+            std::uniform_real_distribution<float> u(0.0f, 1.0f);
+            const float dx = float(x - 30), dy = float(y - 30);
+            // a dark disc; a bright band whose first samples are brighter still, so that
+            // the brightness floor (0.1 of the image's mean) falls as samples come in;
+            // elsewhere mild noise on a level that ramps across the floor, so that pixels
+            // near it change answers as it moves
+            float v = dx * dx + dy * dy < 300.0f ? 0.002f * u(rng)
+                      : x > 80 ? (index < 2 ? 6.0f : 2.0f)
+                               : (0.015f + 0.0004f * float(x)) * (0.9f + 0.2f * u(rng));
+            // and below, a flat region left of one whose mean drifts as it is sampled:
+            // the flat pixels at the border turn into edges only by their neighbour's
+            // samples
+            if (y >= 45) v = x < 40 ? 1.1f : (index < 2 ? 1.2f : 1.0f);
+            PixelAccum& p = film[pixel];
+            p.sum.x += v, p.sum.y += v, p.sum.z += v, p.sum.w += 1.0f;
+            p.sum_sq.x += v * v, p.sum_sq.y += v * v, p.sum_sq.z += v * v;
+            ++p.count;
+        };
+        size_t passes = 0, samples = 0;
+        for (float err = s.pixelError;; err *= tightening ? 0.7f : 1.0f) {
+            std::vector<rd::PixelRequest> a = inc.nextPass(film, err), b = ref.nextPass(film, err);
+            ASSERT_EQ(a.size(), b.size()) << "pass " << passes;
+            for (size_t i = 0; i < a.size(); ++i) {
+                ASSERT_EQ(a[i].pixel, b[i].pixel) << "pass " << passes << ", request " << i;
+                ASSERT_EQ(a[i].first, b[i].first);
+                ASSERT_EQ(a[i].count, b[i].count);
+            }
+            if (a.empty()) break;
+            for (const rd::PixelRequest& r : a)
+                for (uint32_t k = 0; k < r.count; ++k) sample(r.pixel, r.first + k), ++samples;
+            ++passes;
+            ASSERT_LT(passes, 40u);
+        }
+        std::printf("%s: %zu passes, %zu samples\n", tightening ? "tightening" : "fixed", passes,
+                    samples);
+        EXPECT_GE(passes, 5u);  // several adaptive passes, not just the first two
+    }
+}
 
 // An edge gets more samples than a flat region: left half covered, right half empty, the
 // edge at x = 0.37 inside a pixel column. PixelSamples 8x8 caps pixels at 64.
