@@ -418,12 +418,14 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     };
 
     double lastSample = 0;  // the first point after half a second: a pass over the film
-    auto sampleError = [&](bool force) {
+    auto sampleError = [&](bool force, bool filmSynced = false) {
         double now = secondsSince(t0);
         if (!force && now - lastSample < 0.5) return;
         lastSample = now;
-        prof.markHostWait();
-        filmBuf.syncToHost();
+        if (!filmSynced) {
+            prof.markHostWait();
+            filmBuf.syncToHost();
+        }
         st.estimatedError = estimateFilmError(film.pixels);
         prof.collect();
         uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
@@ -522,8 +524,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             st.stopReason = "quality";  // every pixel has all its samples: nothing to plan
             break;
         }
+        // The next pass is planned from the film. Its error estimate (a scan of every
+        // pixel, 4 ms at 512x512) is taken here when an error target or a time budget
+        // steers the planning, otherwise at the --stats series' interval.
         const auto tFilm = Clock::now();
-        sampleError(true);
+        prof.markHostWait();
+        filmBuf.syncToHost();
+        sampleError(openEnded, /*filmSynced=*/true);
         st.planMs += secondsSince(tFilm) * 1e3;
         if (errorTarget > 0 && st.estimatedError >= 0 && st.estimatedError <= errorTarget) {
             st.stopReason = "error target";

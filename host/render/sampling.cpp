@@ -30,14 +30,14 @@ bool SamplePlanner::needsMore(const FilmPixels& film, float floor, int x, int y,
     if (pixelRelativeError(film[i], floor) > pixelError) return true;
     // An edge both of whose samples fell on one side shows no variance: compare with the
     // neighbours' means instead.
-    float m = estimatePixel(film[i]).mean;
+    float m = pixelMean(film[i]);
     const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
     for (int k = 0; k < 4; ++k) {
         int nx = x + dx[k], ny = y + dy[k];
         if (nx < 0 || ny < 0 || nx >= m_width || ny >= m_height) continue;
         const PixelAccum& q = film[size_t(ny) * size_t(m_width) + size_t(nx)];
         if (q.count == 0) continue;
-        float mq = estimatePixel(q).mean;
+        float mq = pixelMean(q);
         if (std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq)))
             return true;
     }
@@ -71,17 +71,20 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film,
         ++m_pass;
         return out;
     }
-    // A pixel's answer depends on its own samples, its neighbours' means and, through its
-    // relative error, on the floor when its mean is below it: one that none of these moved
-    // for answers "no" again (a "yes" would have sampled it).
+    // A pixel's answer depends on its own samples, its neighbours' means and its relative
+    // error, which grows when the floor falls below the last one while the pixel's mean is
+    // under that: a pixel none of these moved for answers "no" again (a "yes" would have
+    // sampled it).
     const float floor = relativeErrorFloor(film);
     const bool all = !m_settings.incremental || pixelError != m_lastPixelError;
     const std::vector<uint8_t> test = pixelsToTest(all);
+    const bool floorFell = floor < m_lastFloor;
     m_lastPass.clear();
     for (uint32_t pixel : m_tileOrder) {
         if (!all && !test[pixel]) {
-            const float mean = pixelMean(film[pixel]);
-            if (mean >= floor && mean >= m_lastFloor) continue;
+            const PixelAccum& p = film[pixel];
+            if (!floorFell || pixelMean(p) >= m_lastFloor) continue;
+            if (p.sum_sq.x == 0.0f && p.sum_sq.y == 0.0f && p.sum_sq.z == 0.0f) continue;  // black
         }
         int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
         if (!needsMore(film, floor, x, y, pixelError)) continue;
