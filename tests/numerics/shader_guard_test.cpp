@@ -91,8 +91,9 @@ TEST(Numerics, BadShaderResultsNeverReachTheFilm) {
             EXPECT_TRUE(report(name, 1e-6, err));
             EXPECT_GT(img.stats.*f.counter, 0u) << name << " must be counted";
             EXPECT_EQ(img.stats.nonfiniteSamples, 0u) << name;
-            if (f.counter != &rd::RenderStats::shadeDenormal)
+            if (f.counter != &rd::RenderStats::shadeDenormal) {
                 EXPECT_EQ(countOf(d.messages, "left out of the image"), 1) << d.messages;
+            }
         }
 }
 
