@@ -20,7 +20,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
         if (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f) f.transparency = true;
     f.primvars = scene.primvarsUsed;
     f.lightCount = shading.lightCount;
-    f.specialisedLights = f.lightCount > 0 && f.lightCount <= Features::kSpecialisedLights;
+    f.specialisedLights = f.lightCount > 0;  // the first kInlinedLightInstances (shader_set.h)
     f.shadowRays = shading.shadowRays;
     f.trace = shading.usesTrace;
     f.sampledTrace = shading.sampledTrace;

@@ -47,11 +47,10 @@ struct Features {
     size_t shadowItems(size_t rays, size_t lights) const;
     size_t closestItems(size_t rays) const;
     uint32_t lightCount = 0;
-    // Each light instance's shader inlined where it is called, its baked parameters
+    // Light instances' shaders inlined where they are called, their baked parameters
     // folded in (uniform work such as a spotlight's axis and cone cosines is done by the
-    // compiler): with at most kSpecialisedLights lights, as code grows with their number.
+    // compiler): the first kInlinedLightInstances (shader_set.h); later ones are called.
     bool specialisedLights = false;
-    static constexpr uint32_t kSpecialisedLights = 16;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)
     // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a

@@ -254,6 +254,7 @@ ShadingSetup ShaderSet::prepare() {
     std::vector<bool> lightAmbient, lightMapShadowed;
     std::vector<const rsl::EmittedShader*> lightShaders;
     std::map<std::string, bool> lightEmitted;
+    std::set<std::string> calledLightShaders;  // past kInlinedLightInstances
     for (size_t sceneLight = 0; sceneLight < m_scene.lights.size(); ++sceneLight) {
         const ShaderRef& l = m_scene.lights[sceneLight];
         const rsl::EmittedShader* sh = find(l.name, "light", l.loc);
@@ -303,8 +304,10 @@ ShadingSetup ShaderSet::prepare() {
                     std::to_string(count) + ", g, " + std::to_string(index) +
                     ", &ap_, &an_); lg.P = ap_; lg.N = lg.Ng = an_; } ";
         }
-        lightCalls.push_back(place + sh->functionName + "(&lg, rd_light_params_" +
-                             std::to_string(index) + ")");
+        const bool inlined = uint32_t(index) < kInlinedLightInstances;
+        if (!inlined) calledLightShaders.insert(sh->functionName);
+        lightCalls.push_back(place + (inlined ? "" : "rd_called_") + sh->functionName +
+                             "(&lg, rd_light_params_" + std::to_string(index) + ")");
         lightAmbient.push_back(sh->ambientLight);
         // a light whose "shadowname" names a shadow map is shadowed by that map (its
         // shader's shadow() call) instead of by a traced shadow ray
@@ -343,6 +346,9 @@ ShadingSetup ShaderSet::prepare() {
         << fmt(std::min(m_scene.camera.clipFar, 1e30f)) << ";\n        return 1;\n    }\n"
            "    return 0;\n}\n";
     svc << "int rsl_light_count(void) { return " << out.lightCount << "; }\n";
+    for (const std::string& fn : calledLightShaders)
+        svc << "__attribute__((noinline)) static void rd_called_" << fn
+            << "(RslGlobals* g, RSL_LIGHT_PARAMS params) { " << fn << "(g, params); }\n";
     svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar light */\n"
            "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* out) {\n"
            "    RslGlobals lg = *g;\n    lg.Ps = Ps;\n    lg.L = (float4)(0.0f);\n"
@@ -526,9 +532,10 @@ ShadingSetup ShaderSet::prepare() {
         }
     }
     out.traceSlots = out.usesTrace ? 8 : 0;  // RSL_MAX_TRACE
-    // Light parameters are baked constants; with few lights (RD_SPECIALISED_LIGHTS,
-    // features.h) each instance's call is inlined, so the compiler folds its uniform work
-    // (SPD gears, five spotlights: shade_spd 154 -> 127 ms, images bit for bit the same).
+    // Light parameters are baked constants; each of the first kInlinedLightInstances
+    // instances' calls is inlined (RD_SPECIALISED_LIGHTS), so the compiler folds its
+    // uniform work (SPD gears, five spotlights: shade_spd 154 -> 127 ms, images bit for
+    // bit the same).
     // Surface shaders are inlined into their shade kernel's few call sites (base, light
     // and trace modes): the work a mode does not change is hoisted out of the light loop
     // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).

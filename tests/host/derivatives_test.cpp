@@ -137,8 +137,12 @@ TEST(Derivatives, FilterstepIsAntialiased) {
             double v = img.at(x, y).r;
             sum += v;
             if (v > 0.02 && v < 0.98) ++fractional;
-            if (x < 30) EXPECT_EQ(v, 0.0);
-            if (x > 33) EXPECT_EQ(v, 1.0);
+            if (x < 30) {
+                EXPECT_EQ(v, 0.0);
+            }
+            if (x > 33) {
+                EXPECT_EQ(v, 1.0);
+            }
         }
         worstSum = std::fmax(worstSum, std::fabs(sum - 32.0));
     }

@@ -148,7 +148,9 @@ TEST(Packets, ShadowRaysOccludeExactlyWhatTheOneRayKernelDoes) {
             differ += one[i].x != packets[i].x || one[i].y != packets[i].y ||
                       one[i].z != packets[i].z || one[i].w != packets[i].w;
             stateChanged += afterPackets[i].alive != r.state[i].alive;
-            if (!r.state[i].alive) EXPECT_EQ(packets[i].x, 0.5f) << "dead ray " << i << " touched";
+            if (!r.state[i].alive) {
+                EXPECT_EQ(packets[i].x, 0.5f) << "dead ray " << i << " touched";
+            }
         }
         EXPECT_EQ(differ, 0) << lights << " lights";
         EXPECT_EQ(stateChanged, 0);

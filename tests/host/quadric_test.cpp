@@ -230,8 +230,9 @@ TEST(Quadric, EveryKindMapsItsHitsBackThroughUV) {
         }
         EXPECT_GT(hits, 20);
         EXPECT_LE(worst, 2e-5) << "hit point and P(u, v) disagree";
-        if (std::string(shape) == "Sphere 1 -1 1 360" || std::string(shape).rfind("Torus 0.8 0.3 0 360", 0) == 0)
+        if (std::string(shape) == "Sphere 1 -1 1 360" || std::string(shape).rfind("Torus 0.8 0.3 0 360", 0) == 0) {
             EXPECT_EQ(odd, 0) << "a closed surface crossed an odd number of times";
+        }
     }
 }
 

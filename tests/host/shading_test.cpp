@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "render_harness.h"
+#include "shaders/shader_set.h"
 
 using rd::test::Rendered;
 using rd::test::renderRib;
@@ -88,10 +89,10 @@ TEST(Shading, SpotlightConeAndFalloff) {
     EXPECT_EQ(img.at(1, 1).r, 0.0f);
 }
 
-// One spotlight of intensity 25 and seventeen of 25/17 at the same place light the plane
-// alike. With up to 16 lights each instance's light shader is inlined with its constants
-// (feature specialised_lights: the cone's cosines and axis fold at compile time); with
-// 17 it is called: both forms must give the same image.
+// One spotlight of intensity 25 and forty of 25/40 at the same place light the plane
+// alike. The first kInlinedLightInstances (32) instances' light shader is inlined with
+// their constants (feature specialised_lights: the cone's cosines and axis fold at
+// compile time); the other eight call it: both forms must give the same image.
 TEST(Shading, SpecialisedAndCalledLightsAgree) {
     auto spots = [](int n) {
         std::string rib = std::string(kCamera) + "WorldBegin\n";
@@ -102,9 +103,10 @@ TEST(Shading, SpecialisedAndCalledLightsAgree) {
         return rib + "Surface \"matte\"\n"
                      "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\nWorldEnd\n";
     };
-    Rendered one = renderRib(spots(1)), many = renderRib(spots(17));
+    Rendered one = renderRib(spots(1)), many = renderRib(spots(40));
+    static_assert(rd::kInlinedLightInstances < 40, "some of the forty lights are called");
     EXPECT_TRUE(one.stats.features.specialisedLights);
-    EXPECT_FALSE(many.stats.features.specialisedLights);
+    EXPECT_TRUE(many.stats.features.specialisedLights);
     double lit = 0;
     for (int y = 0; y < one.height; ++y)
         for (int x = 0; x < one.width; ++x) {

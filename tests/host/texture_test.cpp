@@ -154,7 +154,7 @@ TEST(Textures, CacheOverflowEqualsResident) {
 // lookups give the default (0) and the render goes on.
 TEST(Textures, MissingAndCorruptFilesAreReportedAndRenderTheDefault) {
     std::ofstream(dir() + "/corrupt.tex") << "this is not an image";
-    for (const std::string name : {std::string("no_such_map.tex"), dir() + "/corrupt.tex"}) {
+    for (const std::string& name : {std::string("no_such_map.tex"), dir() + "/corrupt.tex"}) {
         ::testing::internal::CaptureStderr();
         Rendered img = renderRib(searchPath() +
                                  "Format 8 8 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"

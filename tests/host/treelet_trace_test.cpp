@@ -347,7 +347,9 @@ TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
     for (const Case& c : cases) {
         SCOPED_TRACE(std::to_string(c.budget) + " bytes, memory " + std::to_string(c.memory));
         Rendered t = renderThroughTreelets(rib, c.budget, c.memory);
-        if (c.budget < 4096) EXPECT_GT(t.stats.treelets.treelets, 8u);
+        if (c.budget < 4096) {
+            EXPECT_GT(t.stats.treelets.treelets, 8u);
+        }
         EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
         expectSameImage(resident, t);
     }
