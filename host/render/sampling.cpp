@@ -22,12 +22,16 @@ SamplePlanner::SamplePlanner(int width, int height, int x0, int x1, int y0, int 
 }
 
 bool SamplePlanner::needsMore(const FilmPixels& film, float floor, int x, int y,
-                              float pixelError) const {
+                              float pixelError, float* relErr) const {
     size_t i = size_t(y) * size_t(m_width) + size_t(x);
     uint32_t n = film[i].count;
-    if (n >= m_settings.maxSamples) return false;
+    if (n >= m_settings.maxSamples) {
+        *relErr = -INFINITY;  // never again
+        return false;
+    }
     if (n < m_settings.minSamples) return true;
-    if (pixelRelativeError(film[i], floor) > pixelError) return true;
+    *relErr = pixelRelativeError(film[i], floor);
+    if (*relErr > pixelError) return true;
     // An edge both of whose samples fell on one side shows no variance: compare with the
     // neighbours' means instead.
     float m = pixelMean(film[i]);
@@ -72,22 +76,25 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film,
         return out;
     }
     // A pixel's answer depends on its own samples, its neighbours' means and its relative
-    // error, which grows when the floor falls below the last one while the pixel's mean is
-    // under that: a pixel none of these moved for answers "no" again (a "yes" would have
-    // sampled it).
+    // error against the pass's pixel error. A pixel that answered "no" when last tested (a
+    // "yes" would have sampled it) and that neither it nor a neighbour was sampled since
+    // answers "no" again while its error then is within this pass's pixel error and has
+    // not grown: it grows only when the brightness floor falls below the last one while
+    // the pixel's mean is under that (and it is not black).
     const float floor = relativeErrorFloor(film);
-    const bool all = !m_settings.incremental || pixelError != m_lastPixelError;
+    const bool all = !m_settings.incremental || m_relErr.empty();
+    if (m_relErr.empty()) m_relErr.assign(size_t(m_width) * size_t(m_height), INFINITY);
     const std::vector<uint8_t> test = pixelsToTest(all);
     const bool floorFell = floor < m_lastFloor;
     m_lastPass.clear();
     for (uint32_t pixel : m_tileOrder) {
-        if (!all && !test[pixel]) {
+        if (!all && !test[pixel] && m_relErr[pixel] <= pixelError) {
             const PixelAccum& p = film[pixel];
             if (!floorFell || pixelMean(p) >= m_lastFloor) continue;
             if (p.sum_sq.x == 0.0f && p.sum_sq.y == 0.0f && p.sum_sq.z == 0.0f) continue;  // black
         }
         int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
-        if (!needsMore(film, floor, x, y, pixelError)) continue;
+        if (!needsMore(film, floor, x, y, pixelError, &m_relErr[pixel])) continue;
         uint32_t n = film[pixel].count;
         // Sequence indices already used include samples dropped as NaN/Inf: never reuse.
         uint32_t used = n + film[pixel].nonfinite;
@@ -96,7 +103,6 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film,
         if (target > n) out.push_back({pixel, used, target - n}), m_lastPass.push_back(pixel);
     }
     m_lastFloor = floor;
-    m_lastPixelError = pixelError;
     ++m_pass;
     return out;
 }

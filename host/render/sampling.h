@@ -21,8 +21,9 @@ struct SamplingSettings {
     float pixelError = 0.01f;   // per-pixel relative standard error to stop refining at
     float contrast = 0.05f;     // neighbour difference (relative) that marks an edge
     // Each pass re-tests only the pixels whose answer can have changed (sampled in the
-    // last pass or next to one, or near the moving brightness floor); false re-tests
-    // every pixel. The passes are the same either way (Sampling.IncrementalPlanIsExact).
+    // last pass or next to one, an error above this pass's pixel error, or near the
+    // moving brightness floor); false re-tests every pixel. The passes are the same
+    // either way (Sampling.IncrementalPlanIsExact).
     bool incremental = true;
 };
 
@@ -50,7 +51,10 @@ public:
     const SamplingSettings& settings() const { return m_settings; }
 
 private:
-    bool needsMore(const FilmPixels& film, float floor, int x, int y, float pixelError) const;
+    // Also sets *relErr to the pixel's relative error when it computes it (-inf when the
+    // pixel has its maximum: it never needs more).
+    bool needsMore(const FilmPixels& film, float floor, int x, int y, float pixelError,
+                   float* relErr) const;
     // Pixels a pass must test: the last pass's pixels and their four neighbours (a pixel
     // nobody sampled answers as it did, so "no"), unless every pixel is to be tested.
     std::vector<uint8_t> pixelsToTest(bool all) const;
@@ -59,7 +63,8 @@ private:
     std::vector<uint32_t> m_tileOrder;  // pixel indices in tile order
     int m_pass = 0;
     std::vector<uint32_t> m_lastPass;  // the pixels the last pass sampled
-    float m_lastFloor = 0, m_lastPixelError = -1;
+    std::vector<float> m_relErr;       // each pixel's relative error when last tested
+    float m_lastFloor = 0;
 };
 
 }  // namespace rd
