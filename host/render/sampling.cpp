@@ -108,8 +108,8 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film,
 }
 
 std::vector<uint8_t> SamplePlanner::pixelsToTest(bool all) const {
-    std::vector<uint8_t> test(size_t(m_width) * size_t(m_height), all ? 1 : 0);
-    if (all) return test;
+    if (all) return {};  // nextPass tests every pixel without looking
+    std::vector<uint8_t> test(size_t(m_width) * size_t(m_height), 0);
     for (uint32_t pixel : m_lastPass) {
         int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
         test[pixel] = 1;

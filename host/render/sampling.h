@@ -56,7 +56,7 @@ private:
     bool needsMore(const FilmPixels& film, float floor, int x, int y, float pixelError,
                    float* relErr) const;
     // Pixels a pass must test: the last pass's pixels and their four neighbours (a pixel
-    // nobody sampled answers as it did, so "no"), unless every pixel is to be tested.
+    // nobody sampled answers as it did, so "no"); empty when every pixel is to be tested.
     std::vector<uint8_t> pixelsToTest(bool all) const;
     int m_width, m_height;
     SamplingSettings m_settings;
