@@ -2,7 +2,9 @@
  * per shader, with the shader's name in place of the word SURFACE. Fire and forget
  * (DESIGN.md section 4): the shader runs in base mode for its emission E and opacity Oi,
  * which go to the sample at once; once per light, whose coefficient times the light's
- * Cl becomes the weight of a shadow ray toward it; once per trace() it asked for, whose
+ * Cl becomes the weight of a shadow ray toward it (unless the base evaluation gave
+ * every light's coefficient: RD_LIGHT_COEFS_SURFACE, rsl_abi.h LIGHT COEFFICIENTS);
+ * once per trace() it asked for, whose
  * coefficient becomes the weight of the traced ray. Oi < 1 continues the ray straight on
  * with weight (1 - Oi). The kernel runs over this shader's run of the sorted ray list. */
 __kernel void shade_SURFACE(uint begin, uint count,
@@ -156,6 +158,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
     rd_eval_init(&ev, dsites, tc, -1, -1);
+#if RD_LIGHT_COEFS_SURFACE
+    ev.coefs = 1; /* the base evaluation gives every light's coefficient too */
+#endif
     RslLightCache light_cache;
     if (!culled) rd_fill_light_cache(&g, &light_cache);
     RslGlobals base = g;
@@ -199,12 +204,16 @@ __kernel void shade_SURFACE(uint begin, uint count,
         rd_light_at((int)l, &g, g.P, &toward, &lcl);
         int solar = lcl.w == 1.0f;
         if (rd_light_is_ambient((int)l) || !rd_nonzero3(lcl)) continue;
+#if RD_LIGHT_COEFS_SURFACE
+        float4 coef = ev.Ci_light[l];
+#else
         RslEval le;
         rd_eval_init(&le, dsites, tc, (int)l, -1);
         if (dsites) dsites->count = 0;
         RslGlobals lgl = g;
         rsl_surface_SURFACE(&lgl, p, &le);
         float4 coef = lgl.Ci - base.Ci;
+#endif
         float4 sw = w * atmo_a * coef;
         sw.w = 0.0f;
         sw = rt_sanitize(sw, numerics);

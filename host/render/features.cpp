@@ -22,6 +22,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.lightCount = shading.lightCount;
     f.specialisedLights = f.lightCount > 0;  // the first kInlinedLightInstances (shader_set.h)
     f.shadowRays = shading.shadowRays;
+    f.lightCoefficients = shading.lightCoefs;
     f.trace = shading.usesTrace;
     f.sampledTrace = shading.sampledTrace;
     f.maxSpecularDepth = scene.maxSpecularDepth;
@@ -87,6 +88,7 @@ std::vector<std::string> Features::names() const {
     if (transparency) n.push_back("transparency");
     if (shadowRays) n.push_back("shadow_rays");
     if (specialisedLights) n.push_back("specialised_lights");
+    if (lightCoefficients) n.push_back("light_coefficients");
     if (trace) n.push_back("trace");
     if (sampledTrace) n.push_back("sampled_trace");
     if (aovs) n.push_back("aovs");

@@ -51,6 +51,9 @@ struct Features {
     // folded in (uniform work such as a spotlight's axis and cone cosines is done by the
     // compiler): the first kInlinedLightInstances (shader_set.h); later ones are called.
     bool specialisedLights = false;
+    // Some surface takes every light's coefficient from its base evaluation
+    // (ShadingSetup::lightCoefs).
+    bool lightCoefficients = false;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)
     // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a

@@ -366,22 +366,30 @@ ShadingSetup ShaderSet::prepare() {
     svc << "    default: return 0;\n    }\n}\n";
     // The light cache (rsl_abi.h): each light runs once per shading point, not once per
     // evaluation mode and illuminance loop.
+    // The cache lookup is inlined where lights are read (each shading point reads every
+    // light several times: builtins, illuminance loops, coefficients, shadow rays), so
+    // repeated reads of one light fold; running a light is a call.
     svc << "/* Runs light l at Ps: surface-side L, unshadowed Cl (w = 1: solar). */\n"
-           "static void rd_light_at(int l, const RslGlobals* g, float4 Ps, float4* L, float4* Cl) {\n"
+           "static void rd_light_run(int l, const RslGlobals* g, float4 Ps, float4* L, float4* Cl) {\n"
+           "    RslGlobals lg;\n    int solar = rd_run_light(l, g, Ps, &lg);\n"
+           "    *L = (float4)(-lg.L.x, -lg.L.y, -lg.L.z, 0.0f);\n"
+           "    *Cl = (float4)(lg.Cl.x, lg.Cl.y, lg.Cl.z, solar ? 1.0f : 0.0f);\n}\n"
+           "/* Light l at Ps: from the light cache when Ps is the shading point. */\n"
+           "static inline __attribute__((always_inline)) void rd_light_at(int l, const RslGlobals* g,\n"
+           "                                                              float4 Ps, float4* L, float4* Cl) {\n"
            "    if (l < 32 && ((g->lights_off >> l) & 1u)) {  /* Illuminate off */\n"
            "        *L = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n        *Cl = (float4)(0.0f);\n        return;\n    }\n"
            "    if (l < g->light_cache_count && Ps.x == g->P.x && Ps.y == g->P.y && Ps.z == g->P.z) {\n"
            "        *L = g->light_cache->L[l];\n        *Cl = g->light_cache->Cl[l];\n        return;\n    }\n"
-           "    RslGlobals lg;\n    int solar = rd_run_light(l, g, Ps, &lg);\n"
-           "    *L = (float4)(-lg.L.x, -lg.L.y, -lg.L.z, 0.0f);\n"
-           "    *Cl = (float4)(lg.Cl.x, lg.Cl.y, lg.Cl.z, solar ? 1.0f : 0.0f);\n}\n"
+           "    rd_light_run(l, g, Ps, L, Cl);\n}\n"
            "static void rd_fill_light_cache(RslGlobals* g, RslLightCache* cache) {\n"
            "    g->light_cache_count = 0;\n"
            "    g->light_cache = cache;\n"
            "    int n = min(rsl_light_count(), RSL_LIGHT_CACHE);\n"
            "    for (int l = 0; l < n; ++l) rd_light_at(l, g, g->P, &cache->L[l], &cache->Cl[l]);\n"
            "    g->light_cache_count = n;\n}\n"
-           "int rsl_light(int l, const RslGlobals* g, float4 Ps, float4* L, float4* Cl) {\n"
+           "inline __attribute__((always_inline)) int rsl_light(int l, const RslGlobals* g, float4 Ps,\n"
+           "                                                     float4* L, float4* Cl) {\n"
            "    if (rd_light_is_ambient(l)) return 0;\n"
            "    rd_light_at(l, g, Ps, L, Cl);\n    (*Cl).w = 0.0f;\n"
            "    return (*Cl).x != 0.0f || (*Cl).y != 0.0f || (*Cl).z != 0.0f;\n}\n"
@@ -418,6 +426,14 @@ ShadingSetup ShaderSet::prepare() {
     std::vector<std::vector<int32_t>> refPointParams(m_scene.surfaceRefs.size());
     std::ostringstream kernels;
     const std::string& kernelTemplate = embeddedClSources().at("shade_rsl.cl");
+    // Light coefficients (rsl_abi.h): the base evaluation of a surface gives each light's
+    // coefficient, where the kernel otherwise evaluated the surface once more per light.
+    const bool lightCoefs = out.lightCount >= 1 && out.lightCount <= kLightCoefLimit;
+    // The light cache holds every light up to the same limit (rsl_abi.h RslLightCache).
+    const std::string coefsDefine =
+        "#define RSL_LIGHT_CACHE " +
+        std::to_string(std::clamp<uint32_t>(out.lightCount, 1, kLightCoefLimit)) + "\n" +
+        (lightCoefs ? "#define RSL_LIGHT_COEFS " + std::to_string(out.lightCount) + "\n" : "");
     for (size_t r = 0; r < m_scene.surfaceRefs.size(); ++r) {
         const ShaderRef& ref = m_scene.surfaceRefs[r];
         const rsl::EmittedShader* sh = find(ref.name, "surface", ref.loc);
@@ -431,11 +447,14 @@ ShadingSetup ShaderSet::prepare() {
             out.shadeKernels.push_back("shade_" + sh->name);
             shaders << sh->source << "\n";
             std::string k = "#define RSL_DERIVS_" + sh->name + " " +
-                            (sh->usesDerivatives ? "1" : "0") + "\n" + kernelTemplate;
+                            (sh->usesDerivatives ? "1" : "0") + "\n#define RD_LIGHT_COEFS_" +
+                            sh->name + " " + (lightCoefs && sh->lightCoefs ? "1" : "0") + "\n" +
+                            kernelTemplate;
             for (size_t p = k.find("SURFACE"); p != std::string::npos; p = k.find("SURFACE", p))
                 k.replace(p, 7, sh->name);
             kernels << k << "\n";
             out.usesTrace |= sh->usesTrace;
+            out.lightCoefs |= lightCoefs && sh->lightCoefs;
             out.sampledTrace |= sh->usesTrace && sh->usesRandom;
             out.derivatives |= sh->usesDerivatives;
         }
@@ -539,7 +558,7 @@ ShadingSetup ShaderSet::prepare() {
     // Surface shaders are inlined into their shade kernel's few call sites (base, light
     // and trace modes): the work a mode does not change is hoisted out of the light loop
     // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).
-    out.generated["rd_shading.cl"] = "#define RSL_LIGHT_PARAMS __constant float*\n"
+    out.generated["rd_shading.cl"] = coefsDefine + "#define RSL_LIGHT_PARAMS __constant float*\n"
                                      "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
                                      "inline __attribute__((always_inline))\n#endif\n"
                                      "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"

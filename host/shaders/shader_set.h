@@ -29,6 +29,11 @@ namespace rd {
 // none: shade time 0.67x, the cold build unchanged).
 constexpr uint32_t kInlinedLightInstances = 32;
 
+// Scenes with at most this many lights take each light's coefficient from a surface's
+// base evaluation (rsl_abi.h, LIGHT COEFFICIENTS): its private arrays grow with the
+// lights, one float4 a light for Ci and for each light-dependent variable.
+constexpr uint32_t kLightCoefLimit = 64;
+
 struct ShadingSetup {
     // Extra OpenCL sources by name (generated), and the kernel files to assemble.
     std::map<std::string, std::string> generated;
@@ -44,6 +49,9 @@ struct ShadingSetup {
     std::vector<int32_t> pointParamLayout;
     uint32_t lightCount = 0;                // LightSource instances (ambient included)
     bool shadowRays = false;                // some light is not ambient
+    // Some surface's base evaluation gives every light's coefficient (rsl_abi.h, LIGHT
+    // COEFFICIENTS; at most kLightCoefLimit lights): it is not evaluated per light.
+    bool lightCoefs = false;
     bool usesTrace = false;                 // some surface calls trace()
     // Some surface calls trace() and random(): its traced rays sample directions (glossy,
     // diffuse), incoherent, unlike mirror and glass rays.

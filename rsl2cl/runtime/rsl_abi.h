@@ -78,6 +78,15 @@
  *     count in execution order) returns color(1), all else 0: Ci - E = the weight of
  *     the ray trace_org/dir[i] recorded in base mode.
  *   Each evaluation resets ev->trace_count to 0 first.
+ *   LIGHT COEFFICIENTS. A renderer that defines RSL_LIGHT_COEFS (the number of lights,
+ *   >= 1) may get every light mode's result from the base evaluation: with ev->coefs
+ *   set (0 in every other evaluation), a surface compiled with
+ *   EmittedShader::lightCoefs leaves ev->Ci_light[l] = Ci(light mode l) - E for each
+ *   light l < RSL_LIGHT_COEFS, up to rounding. Each value that depends on the lights
+ *   carries its part per light (the derivative by that light's Cl, exact since Ci is
+ *   affine in it), so the work that does not depend on a light is done once. Shaders
+ *   whose light-dependent values reach user functions, arrays, parameters or
+ *   non-linear casts are compiled without (lightCoefs false): evaluate them per light.
  * LIGHT SHADERS: RSL_LIGHT_FUNCTION void rsl_light_<name>(RslGlobals* g,
  *                                                     RSL_LIGHT_PARAMS params);
  *   RSL_LIGHT_PARAMS is `__global const float*` unless the renderer defines it first
@@ -151,7 +160,9 @@
 #define RSL_SHADER_FUNCTION
 #endif
 
+#ifndef RSL_LIGHT_CACHE /* the renderer may size it to its lights */
 #define RSL_LIGHT_CACHE 8
+#endif
 
 struct RslTexContext; /* the renderer's texture state (TEXTURES) */
 
@@ -213,6 +224,10 @@ typedef struct RslEval {
     float4 trace_org[RSL_MAX_TRACE];  /* base mode: the rays trace() asked for */
     float4 trace_dir[RSL_MAX_TRACE];
     float outputs[RSL_MAX_OUTPUT_FLOATS];  /* output parameters at ParamSlot::outputOffset */
+#ifdef RSL_LIGHT_COEFS
+    int coefs;                          /* LIGHT COEFFICIENTS: 1 to fill Ci_light */
+    float4 Ci_light[RSL_LIGHT_COEFS];   /* Ci's part of each light (times its Cl) */
+#endif
 } RslEval;
 
 typedef struct RslMatrix {

@@ -56,6 +56,15 @@ public:
         return !m_failed;
     }
 
+    // The symbols that depend on some light's Cl, and whether light-dependent values
+    // appear inside user functions (after run()).
+    void lightTaint(LightTaint* out) const {
+        out->symbols.clear();
+        for (const auto& kv : m_taint)
+            if (kv.second & T_LIGHT) out->symbols.insert(kv.first);
+        out->inFunctions = m_lightInFunction;
+    }
+
 private:
     void walk() {
         m_visited.clear();
@@ -81,6 +90,7 @@ private:
             m_changed = true;
         }
         if (s->kind == SymbolKind::Global && s->name == "Oi" && m_oiLoc.line == 0) m_oiLoc = loc;
+        if (m_fn && (m & T_LIGHT)) m_lightInFunction = true;
     }
 
     static const Symbol* target(const Expr& e) {
@@ -122,7 +132,9 @@ private:
         if (e.function) {
             for (size_t i = 0; i < a.size(); ++i)
                 if (a[i]) fail(e, a[i], describe(a[i]) + " passed to function '" + e.text + "'");
-            return function(*e.function);
+            unsigned r = function(*e.function);
+            if (r & T_LIGHT) m_lightInFunction = true;
+            return r;
         }
         const std::string& n = e.text;
         if (n == "mix" && a.size() == 3) {
@@ -132,7 +144,10 @@ private:
         for (size_t i = 0; i < a.size(); ++i)
             if (a[i]) fail(e, a[i], describe(a[i]) + " passed to " + n + "()");
         if (n == "trace") return T_TRACE;
-        if (n == "diffuse" || n == "specular" || n == "phong") return T_LIGHT;
+        if (n == "diffuse" || n == "specular" || n == "phong") {
+            if (m_fn) m_lightInFunction = true;
+            return T_LIGHT;
+        }
         return 0;
     }
 
@@ -153,7 +168,10 @@ private:
         case ExprKind::String: return 0;
         case ExprKind::Ident: {
             if (!e.symbol) return 0;
-            if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") return T_LIGHT;
+            if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") {
+                if (m_fn) m_lightInFunction = true;
+                return T_LIGHT;
+            }
             auto it = m_taint.find(e.symbol);
             return it == m_taint.end() ? 0 : it->second;
         }
@@ -251,12 +269,16 @@ private:
     const FunctionDecl* m_fn = nullptr;
     SourceLoc m_oiLoc;
     bool m_changed = false, m_report = false, m_failed = false;
+    bool m_lightInFunction = false;
 };
 
 }  // namespace
 
-bool checkAffine(const ShaderDecl& shader, const Program&, Diagnostics& diag) {
-    return Affine(shader, diag).run();
+bool checkAffine(const ShaderDecl& shader, const Program&, Diagnostics& diag, LightTaint* taint) {
+    Affine a(shader, diag);
+    bool ok = a.run();
+    if (taint) a.lightTaint(taint);
+    return ok;
 }
 
 }  // namespace rsl

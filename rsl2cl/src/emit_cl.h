@@ -3,6 +3,7 @@
 // The generated code includes nothing: compile it after rsl2cl/runtime/rsl_abi.h and
 // rsl_stdlib.clh (see rsl_abi.h for the contract with the renderer).
 #pragma once
+#include <set>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,10 @@ struct EmittedShader {
     bool usesRandom = false;  // calls random(): with trace(), rays in sampled directions
     bool usesLighting = false;  // illuminance, diffuse, specular, phong, ambient
     bool ambientLight = false;  // a light shader with no illuminate/solar
+    // A surface whose base evaluation also gives Ci's coefficient of every light's Cl
+    // (RslEval::Ci_light, rsl_abi.h LIGHT COEFFICIENTS), so the renderer needs no
+    // evaluation per light (emit_coefs.cpp).
+    bool lightCoefs = false;
     bool ok = false;            // false when errors were reported
     std::vector<std::string> strings;  // string literals used (id = stringId(text))
 };
@@ -56,9 +61,17 @@ int stringId(const std::string& s);
 // Errors (non-affine Ci, unsupported constructs) and warnings go to diag.
 EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnostics& diag);
 
+// What depends on the lights' Cl in an affine shader (affine.cpp).
+struct LightTaint {
+    std::set<const Symbol*> symbols;  // variables (and Ci) whose value depends on some Cl
+    bool inFunctions = false;  // light-dependent values inside user functions
+};
+
 // Static affinity check of Ci in trace() results and light Cl (affine.cpp); reports
-// errors to diag and returns false when the shader is not affine.
-bool checkAffine(const ShaderDecl& shader, const Program& prog, Diagnostics& diag);
+// errors to diag and returns false when the shader is not affine. *taint (optional):
+// what depends on the lights.
+bool checkAffine(const ShaderDecl& shader, const Program& prog, Diagnostics& diag,
+                 LightTaint* taint = nullptr);
 
 // Directory of rsl_abi.h and rsl_stdlib.clh in the source tree (for tests/tools).
 std::string runtimeDir();

@@ -19,6 +19,10 @@ std::string clNumber(double v);                 // 1.0f
 int spaceIdOf(const std::string& name);         // RSL_SPACE_* value or -1
 int colorIdOf(const std::string& name);         // RSL_COLOR_* value or -1
 int slotsOf(BaseType b);                        // float slots of one value in a block
+// Light coefficients (emit_coefs.cpp): whether e depends on some light's Cl, and whether
+// the shader's light-dependent values are all of the kinds the code generator carries.
+bool lightDependent(const Expr& e, const std::set<const Symbol*>& syms);
+bool coefsSupported(const ShaderDecl& sh, const LightTaint& t);
 
 class Emitter {
 public:
@@ -43,6 +47,18 @@ public:
     std::string message(const Expr& e);  // lightsource(), attribute(), option(), ...
     std::string textureCall(const Expr& e, bool vret);  // texture, environment, shadow, bump
     std::string textureInfo(const Expr& e);
+
+    // ---- light coefficients (emit_coefs.cpp) ----
+    std::string lin(const Expr& e, const std::string& k);  // light k's part of e ("": 0)
+    std::string linAs(const Expr& e, const TypeSpec& to, const std::string& k);
+    std::string coefName(const Symbol* s);  // the array of a variable's parts per light
+    void coefDecl(const VarDecl& d);
+    void coefAssign(const Expr& e);
+    void coefLines(const std::vector<std::string>& lines);  // under #ifdef RSL_LIGHT_COEFS
+    bool coefTarget(const Expr& e) const {  // an assignment to a light-dependent variable
+        return m_coefs && !m_func && e.kind == ExprKind::Assign &&
+               e.args[0]->kind == ExprKind::Ident && m_coefs->symbols.count(e.args[0]->symbol);
+    }
 
     void error(const SourceLoc& loc, const std::string& msg) { m_diag.error(loc, msg); }
 
@@ -86,6 +102,8 @@ public:
     std::set<const Symbol*> m_fnLocals;  // symbols declared in the function being emitted
     std::vector<std::string> m_pre;  // temporaries declared before the current line
     std::vector<std::string> m_lightVars;  // light index of each enclosing illuminance
+    std::vector<std::string> m_lightRaw;   // ... and its light's unshadowed Cl
+    const LightTaint* m_coefs = nullptr;   // emit light coefficients (emit_coefs.cpp)
     bool m_usesSpaces = false;  // the code being emitted uses sp (shader/object spaces)
     std::set<const FunctionDecl*> m_fnUsesSpaces;
     HoistPlan m_hoist;  // declarations computed once per instance

@@ -118,6 +118,54 @@ TEST(Shading, SpecialisedAndCalledLightsAgree) {
     EXPECT_LT(lit, one.width * one.height - 20) << "and outside it";
 }
 
+// Three coloured lights (point, spot, distant) on plastic: with light coefficients (the
+// base evaluation gives each light's part) and through a shader that does the same in a
+// user function (evaluated once more per light, as coefficients do not cross
+// functions), every pixel agrees to rounding. It fails when a light's coefficient is
+// taken from another light or lost.
+TEST(Shading, LightCoefficientsAgreeWithPerLightEvaluation) {
+    std::string dir = rd::test::scratchDir("raydrive_coef_shaders");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/plasticfn.sl")
+        << "surface plasticfn(float Ks = .5, Kd = .5, Ka = 1, roughness = .1;\n"
+           "                  color specularcolor = 1;) {\n"
+           "    color lit(normal Nf; vector V; float Kd, Ks, roughness; color sc) {\n"
+           "        return Cs * Kd * diffuse(Nf) + sc * Ks * specular(Nf, V, roughness);\n"
+           "    }\n"
+           "    normal Nf = faceforward(normalize(N), I);\n"
+           "    vector V = -normalize(I);\n"
+           "    Oi = Os;\n"
+           "    Ci = Os * (Cs * Ka * ambient() + lit(Nf, V, Kd, Ks, roughness, specularcolor));\n"
+           "}\n";
+    auto scene = [&](const std::string& surface) {
+        return "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" + std::string(kCamera) +
+               "WorldBegin\n"
+               "LightSource \"ambientlight\" 1 \"intensity\" 0.1\n"
+               "LightSource \"pointlight\" 2 \"from\" [1 1 3] \"intensity\" 4 "
+               "\"lightcolor\" [1 0.5 0.25]\n"
+               "LightSource \"spotlight\" 3 \"from\" [-1 0 0] \"to\" [0 0 5] \"intensity\" 30 "
+               "\"coneangle\" 0.3 \"lightcolor\" [0.2 1 0.4]\n"
+               "LightSource \"distantlight\" 4 \"from\" [0 2 0] \"to\" [0 0 5] "
+               "\"intensity\" 0.5 \"lightcolor\" [0.3 0.3 1]\n"
+               "Surface \"" + surface + "\" \"roughness\" 0.2\nColor [0.9 0.6 0.3]\n"
+               "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+               "Translate 0.3 -0.2 3.5\nSphere 0.6 -0.6 0.6 360\nWorldEnd\n";
+    };
+    Rendered coef = renderRib(scene("plastic")), per = renderRib(scene("plasticfn"));
+    EXPECT_TRUE(coef.stats.features.lightCoefficients);
+    EXPECT_FALSE(per.stats.features.lightCoefficients);
+    double lit = 0;
+    for (int y = 0; y < coef.height; ++y)
+        for (int x = 0; x < coef.width; ++x) {
+            const auto a = coef.at(x, y), b = per.at(x, y);
+            ASSERT_NEAR(a.r, b.r, 2e-5 + 1e-5 * b.r) << "pixel " << x << ", " << y;
+            ASSERT_NEAR(a.g, b.g, 2e-5 + 1e-5 * b.g) << "pixel " << x << ", " << y;
+            ASSERT_NEAR(a.b, b.b, 2e-5 + 1e-5 * b.b) << "pixel " << x << ", " << y;
+            lit += b.r > 0.2 && b.g > 0.2;
+        }
+    EXPECT_GT(lit, 50) << "the lights must light the frame for the test to mean anything";
+}
+
 // shadowspot with shadowname "raytrace": a spot at (0, 3, 2) aimed at the plane's centre
 // (0, 0, 5); a sphere of radius 0.3 half way, (0, 1.5, 3.5), shadows the centre (shadow
 // radius about 0.6 on the plane), which the eye sees unobstructed (the sphere is above

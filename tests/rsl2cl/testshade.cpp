@@ -50,7 +50,8 @@ std::string slurp(const std::string& path) {
 }
 
 const int kGlobalFloats = 68;           // RslGlobals: 15 float4 + 8 floats
-const int kEvalFloats = 4 + 2 * 8 * 4 + 32;  // 3 ints (+pad) + 2 x 8 float4 + outputs
+// 3 ints (+pad) + 2 x 8 float4 + outputs + up to 8 lights' coefficients (float4)
+const int kEvalFloats = 4 + 2 * 8 * 4 + 32 + 8 * 4;
 // field order of RslGlobals
 enum { fP, fN, fNg, fI, fE, fdPdu, fdPdv, fCs, fOs, fCi, fOi, fL, fCl, fOl, fPs };
 
@@ -156,6 +157,8 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
     std::string key = sceneKey(sc);
     if (m_program && m_builtFor == key) return true;
     std::ostringstream src;
+    // LIGHT COEFFICIENTS (rsl_abi.h): run(modeLight = kCoefficients) fills Out::CiLight
+    if (!sc.lights.empty()) src << "#define RSL_LIGHT_COEFS " << sc.lights.size() << "\n";
     src << rsl::runtimeSource();
     // the fake renderer services
     src << "__constant float ts_lights[] = {0";
@@ -198,7 +201,11 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  for (int k = 0; k < "
         << kGlobalFloats << "; ++k) gp[k] = gin[i * " << kGlobalFloats << " + k];\n"
            "  g.texctx = 0;\n"
-        << "  RslEval ev; ev.deriv = 0; ev.mode_light = mode_light; ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
+        << "  RslEval ev; ev.deriv = 0; ev.mode_light = max(mode_light, -1); ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
+           "#ifdef RSL_LIGHT_COEFS\n"
+           "  ev.coefs = mode_light == -2;\n"
+           "  for (int k = 0; k < RSL_LIGHT_COEFS; ++k) ev.Ci_light[k] = (float4)(-12345.0f);\n"
+           "#endif\n"
            "  for (int k = 0; k < RSL_MAX_TRACE; ++k) { ev.trace_org[k] = (float4)(0); ev.trace_dir[k] = (float4)(0); }\n"
            "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) ev.outputs[k] = -12345.0f;\n"
         << (light ? "  (void)ev; " + shader.functionName + "(&g, params);\n"
@@ -209,7 +216,10 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  for (int k = 0; k < RSL_MAX_TRACE; ++k) {\n"
            "    vstore4(ev.trace_org[k], 0, o + 4 + 4 * k); vstore4(ev.trace_dir[k], 0, o + 36 + 4 * k);\n"
            "  }\n"
-           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) o[68 + k] = ev.outputs[k];\n}\n";
+           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) o[68 + k] = ev.outputs[k];\n"
+           "#ifdef RSL_LIGHT_COEFS\n"
+           "  for (int k = 0; k < min(RSL_LIGHT_COEFS, 8); ++k) vstore4(ev.Ci_light[k], 0, o + 100 + 4 * k);\n"
+           "#endif\n}\n";
     std::string text = src.str();
     const char* p = text.c_str();
     cl_int err;
@@ -301,6 +311,8 @@ std::vector<Out> Shade::run(const std::vector<Point>& pts, const Scene& sc, int 
                 r.dir[t][c] = e[36 + 4 * t + c];
             }
         for (int k = 0; k < 32; ++k) r.outputs[k] = e[68 + k];
+        for (int l = 0; l < 8; ++l)
+            for (int c = 0; c < 3; ++c) r.CiLight[l][c] = e[100 + 4 * l + c];
         res.push_back(r);
     }
     return res;

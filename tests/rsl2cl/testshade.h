@@ -45,7 +45,11 @@ struct Out {
     int traceCount = 0;
     float org[8][3], dir[8][3];
     float outputs[32];  // RslEval::outputs after the evaluation
+    float CiLight[8][3];  // kCoefficients: RslEval::Ci_light of the first 8 lights
 };
+
+// run()'s modeLight for the base evaluation with light coefficients (rsl_abi.h).
+constexpr int kCoefficients = -2;
 
 // n x n points: s, t, u, v in [0, 1]; P = (4s - 2, 4t - 2, 0); E = (0, 0, 5);
 // Ps = P + (0, 0, 1) (for light shaders).
@@ -59,7 +63,8 @@ public:
     // Builds the generated OpenCL C with the runtime on the device; false + log.
     bool buildOnDevice(const Scene& scene, std::string* log);
     void setParam(const std::string& name, const std::vector<float>& values);
-    // Runs in a mode (light l / trace i; -1 -1 = base). Builds for `scene` if needed.
+    // Runs in a mode (light l / trace i; -1 -1 = base; kCoefficients: base, with the
+    // light coefficients). Builds for `scene` if needed.
     std::vector<Out> run(const std::vector<Point>& pts, const Scene& scene, int modeLight = -1,
                          int modeTrace = -1);
 

@@ -1,0 +1,300 @@
+// emit_coefs.cpp: light coefficients (rsl_abi.h, LIGHT COEFFICIENTS). Ci is affine in
+// every light's Cl (affine.cpp), so its part from light l is the derivative of Ci by that
+// light's Cl, which one evaluation can carry alongside the values: every variable that
+// depends on the lights gets an array v_x_light[RSL_LIGHT_COEFS] holding its part per
+// light, and every assignment to it updates that array with the linear part of its
+// right-hand side (lin()). The renderer then needs the base evaluation only, where it
+// ran the whole shader once more per light; the work that does not depend on a light
+// (normalisation, face-forwarding, reflection directions, textures...) is done once.
+// Supported where every light-dependent value lives in a local variable or Ci of the
+// shader body and is combined by + - * / (by independent values), ?:, mix(), casts and
+// triples; anything else (user functions, arrays, parameters, colour-space casts) and
+// the shader is compiled without, evaluated per light as before.
+#include "emit_internal.h"
+
+namespace rsl {
+
+bool lightDependent(const Expr& e, const std::set<const Symbol*>& syms) {
+    switch (e.kind) {
+    case ExprKind::Ident:
+        if (!e.symbol) return false;
+        if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") return true;
+        return syms.count(e.symbol) > 0;
+    case ExprKind::Call:
+        if (!e.function && (e.text == "diffuse" || e.text == "specular" || e.text == "phong"))
+            return true;
+        if (e.function) return false;  // coefsSupported: no light dependence in functions
+        break;
+    default: break;
+    }
+    for (const ExprPtr& a : e.args)
+        if (lightDependent(*a, syms)) return true;
+    return false;
+}
+
+namespace {
+
+bool linearType(const TypeSpec& t) { return !t.isArray() && (t.isFloat() || t.isTriple()); }
+
+// Whether the shader body keeps to what lin() and the statement rules handle.
+class CoefCheck {
+public:
+    explicit CoefCheck(const LightTaint& t) : m_t(t) {}
+
+    bool run(const ShaderDecl& sh) {
+        for (const Symbol* s : m_t.symbols) {
+            bool local = s->kind == SymbolKind::Local && linearType(s->type);
+            bool ci = s->kind == SymbolKind::Global && s->name == "Ci";
+            if (!local && !ci) return false;
+        }
+        stmt(*sh.body);
+        return m_ok;
+    }
+
+private:
+    bool dep(const Expr& e) const { return lightDependent(e, m_t.symbols); }
+    bool taintedTarget(const Expr& l) const {
+        return l.kind == ExprKind::Ident && l.symbol && m_t.symbols.count(l.symbol);
+    }
+    // No assignment inside e changes a light-dependent variable: only whole statements
+    // may (stmt), so that its part per light is updated with it.
+    void noTaintedAssign(const Expr& e) {
+        if (e.kind == ExprKind::Assign) {
+            const Expr* t = e.args[0].get();
+            while (t->kind == ExprKind::Index) t = t->args[0].get();
+            if (t->kind == ExprKind::Ident && t->symbol && m_t.symbols.count(t->symbol)) m_ok = false;
+        }
+        for (const ExprPtr& a : e.args) noTaintedAssign(*a);
+        if (e.channel) noTaintedAssign(*e.channel);
+    }
+    void independent(const Expr& e) {
+        if (dep(e)) m_ok = false;
+        noTaintedAssign(e);
+    }
+    void linear(const Expr& e) {
+        if (!dep(e)) {
+            noTaintedAssign(e);
+            return;
+        }
+        if (!linearType(e.type)) m_ok = false;
+        switch (e.kind) {
+        case ExprKind::Ident:
+            if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl" && m_illuminance == 0)
+                m_ok = false;
+            return;
+        case ExprKind::Unary:
+            if (e.text != "-") m_ok = false;
+            linear(*e.args[0]);
+            return;
+        case ExprKind::Binary:
+            if (e.text == "+" || e.text == "-" || e.text == "*") {
+                linear(*e.args[0]);
+                linear(*e.args[1]);
+            } else if (e.text == "/") {
+                linear(*e.args[0]);
+                independent(*e.args[1]);
+            } else {
+                m_ok = false;
+            }
+            return;
+        case ExprKind::Ternary:
+            independent(*e.args[0]);
+            linear(*e.args[1]);
+            linear(*e.args[2]);
+            return;
+        case ExprKind::Call:
+            if (e.text == "mix" && e.args.size() == 3) {
+                linear(*e.args[0]);
+                linear(*e.args[1]);
+                independent(*e.args[2]);
+            } else if (e.text == "diffuse" || e.text == "specular" || e.text == "phong") {
+                for (const ExprPtr& a : e.args) independent(*a);
+            } else {
+                m_ok = false;
+            }
+            return;
+        case ExprKind::Cast:
+            if (!e.text.empty() && e.text != "rgb") m_ok = false;
+            linear(*e.args[0]);
+            return;
+        case ExprKind::Tuple:
+            for (const ExprPtr& a : e.args) linear(*a);
+            return;
+        default: m_ok = false;
+        }
+    }
+    void stmt(const Stmt& s) {
+        switch (s.kind) {
+        case StmtKind::Expr:
+            if (s.expr->kind == ExprKind::Assign && taintedTarget(*s.expr->args[0])) {
+                const std::string& op = s.expr->text;
+                if (op == "*=" || op == "/=") independent(*s.expr->args[1]);
+                else if (op == "=" || op == "+=" || op == "-=") linear(*s.expr->args[1]);
+                else m_ok = false;
+            } else {
+                noTaintedAssign(*s.expr);
+            }
+            break;
+        case StmtKind::Decl:
+            for (const VarDecl& d : s.decls)
+                if (d.init) linear(*d.init);
+            break;
+        case StmtKind::Block:
+            for (const StmtPtr& c : s.stmts) stmt(*c);
+            break;
+        case StmtKind::If:
+        case StmtKind::While:
+            independent(*s.expr);
+            stmt(*s.body);
+            if (s.elseBody) stmt(*s.elseBody);
+            break;
+        case StmtKind::For:
+            if (s.init) stmt(*s.init);
+            if (s.expr) independent(*s.expr);
+            if (s.step) independent(*s.step);
+            stmt(*s.body);
+            break;
+        case StmtKind::Return:
+            if (s.expr) noTaintedAssign(*s.expr);
+            break;
+        case StmtKind::Illuminance:
+            for (const ExprPtr& a : s.args) independent(*a);
+            ++m_illuminance;
+            stmt(*s.body);
+            --m_illuminance;
+            break;
+        case StmtKind::Illuminate:
+        case StmtKind::Solar: m_ok = false; break;
+        default: break;
+        }
+    }
+
+    const LightTaint& m_t;
+    int m_illuminance = 0;
+    bool m_ok = true;
+};
+
+// Whether e's dependence on the lights comes from Cl alone (no variable, no builtin).
+bool onlyCl(const Expr& e, const std::set<const Symbol*>& syms) {
+    if (e.kind == ExprKind::Ident) return !(e.symbol && syms.count(e.symbol));
+    if (e.kind == ExprKind::Call && !e.function &&
+        (e.text == "diffuse" || e.text == "specular" || e.text == "phong"))
+        return false;
+    for (const ExprPtr& a : e.args)
+        if (!onlyCl(*a, syms)) return false;
+    return true;
+}
+
+}  // namespace
+
+bool coefsSupported(const ShaderDecl& sh, const LightTaint& t) {
+    return sh.kind == ShaderKind::Surface && !t.inFunctions && CoefCheck(t).run(sh);
+}
+
+std::string Emitter::coefName(const Symbol* s) {
+    if (s->kind == SymbolKind::Global) return "ev->Ci_light";
+    return varName(s) + "_light";
+}
+
+std::string Emitter::linAs(const Expr& e, const TypeSpec& to, const std::string& k) {
+    std::string l = lin(e, k);
+    return l.empty() ? clZero(to) : coerce(l, e.type, to);
+}
+
+// The part of e's value that comes from light k (empty: none), given that the value is
+// linear in the lights (CoefCheck).
+std::string Emitter::lin(const Expr& e, const std::string& k) {
+    if (!lightDependent(e, m_coefs->symbols)) return "";
+    switch (e.kind) {
+    case ExprKind::Ident:
+        if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") {
+            if (k == m_lightVars.back()) return m_lightRaw.back();
+            return "(" + k + " == " + m_lightVars.back() + " ? " + m_lightRaw.back() +
+                   " : rsl_f2v(0.0f))";
+        }
+        return coefName(e.symbol) + "[" + k + "]";
+    case ExprKind::Unary: return "(-" + lin(*e.args[0], k) + ")";
+    case ExprKind::Binary: {
+        const Expr &a = *e.args[0], &b = *e.args[1];
+        std::string la = lin(a, k), lb = lin(b, k);
+        if (e.text == "+" || e.text == "-") {
+            if (la.empty()) {
+                std::string r = coerce(lb, b.type, e.type);
+                return e.text == "+" ? r : "(-" + r + ")";
+            }
+            if (lb.empty()) return coerce(la, a.type, e.type);
+            return binop(e.text, la, a.type, lb, b.type, e.loc);
+        }
+        if (la.empty()) return binop(e.text, expr(a), a.type, lb, b.type, e.loc);
+        return binop(e.text, la, a.type, expr(b), b.type, e.loc);
+    }
+    case ExprKind::Ternary:
+        return "((" + expr(*e.args[0]) + ") != 0.0f ? " + linAs(*e.args[1], e.type, k) + " : " +
+               linAs(*e.args[2], e.type, k) + ")";
+    case ExprKind::Call: {
+        std::string v = builtin(e);
+        std::string fn = v.substr(0, v.find('('));
+        if (e.text == "mix")
+            return fn + "(" + linAs(*e.args[0], e.type, k) + ", " + linAs(*e.args[1], e.type, k) +
+                   ", " + exprAs(*e.args[2], BaseType::Float) + ")";
+        // rsl_diffuse(g, ev, ...) -> rsl_diffuse_light(g, k, ...)
+        const std::string head = fn + "(g, ev";
+        return fn + "_light(g, " + k + v.substr(head.size());
+    }
+    case ExprKind::Cast: return coerce(lin(*e.args[0], k), e.args[0]->type, e.castType);
+    case ExprKind::Tuple: {
+        std::string s = "rsl_v3(";
+        for (size_t i = 0; i < e.args.size(); ++i)
+            s += (i ? ", " : "") + linAs(*e.args[i], BaseType::Float, k);
+        return s + ")";
+    }
+    default: break;
+    }
+    error(e.loc, "internal: no light coefficient for '" + exprToString(e) + "'");
+    return "";
+}
+
+void Emitter::coefLines(const std::vector<std::string>& lines) {
+    line("#ifdef RSL_LIGHT_COEFS");
+    for (const std::string& s : lines) line(s);
+    line("#endif");
+}
+
+static const char* kEachLight = "if (ev->coefs) for (int _k = 0; _k < RSL_LIGHT_COEFS; ++_k) ";
+
+void Emitter::coefDecl(const VarDecl& d) {
+    std::string name = "v_" + d.name + "_light";
+    coefLines({std::string(clType(d.type)) + " " + name + "[RSL_LIGHT_COEFS];",
+               kEachLight + name + "[_k] = " +
+                   (d.init ? linAs(*d.init, d.type, "_k") : clZero(d.type)) + ";"});
+}
+
+// After the statement `e` (an assignment to a light-dependent variable) has set the
+// value: the same for its part of each light.
+void Emitter::coefAssign(const Expr& e) {
+    const Expr &l = *e.args[0], &r = *e.args[1];
+    const std::string x = coefName(l.symbol), op = e.text;
+    if ((op == "+=" || op == "-=") && !m_lightVars.empty() && onlyCl(r, m_coefs->symbols)) {
+        // in an illuminance loop, a term of the loop's own light: only its slot changes
+        const std::string& k = m_lightVars.back();
+        coefLines({"if (ev->coefs && " + k + " < RSL_LIGHT_COEFS) " + x + "[" + k + "] " + op +
+                   " " + linAs(r, l.type, k) + ";"});
+        return;
+    }
+    const std::string xk = x + "[_k]";
+    std::string v;
+    if (op == "=") {
+        v = linAs(r, l.type, "_k");
+    } else if (op == "+=" || op == "-=") {
+        std::string lr = lin(r, "_k");
+        if (lr.empty()) return;  // an independent term: the parts are unchanged
+        v = coerce(binop(op.substr(0, 1), xk, l.type, lr, r.type, e.loc),
+                   binaryResult(op.substr(0, 1), l.type, r.type), l.type);
+    } else {
+        v = coerce(binop(op.substr(0, 1), xk, l.type, expr(r), r.type, e.loc),
+                   binaryResult(op.substr(0, 1), l.type, r.type), l.type);
+    }
+    coefLines({kEachLight + xk + " = " + v + ";"});
+}
+
+}  // namespace rsl

@@ -1,0 +1,142 @@
+// light_coefs_test.cpp: light coefficients (rsl_abi.h, LIGHT COEFFICIENTS; rsl2cl
+// emit_coefs.cpp). One base evaluation with ev->coefs set must give, for every light l,
+// what the evaluation in light mode l adds to Ci: checked on the device over a grid of
+// points and three coloured lights for the standard shaders, spd.sl and shaders that use
+// every construct the code generator carries; shaders it cannot carry are compiled
+// without (and evaluated per light, as before).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "emit_cl.h"
+#include "test_util.h"
+#include "testshade.h"
+
+namespace {
+
+rsl::EmittedShader generate(const std::string& src, const std::string& name) {
+    rsltest::Result r;
+    rsltest::compile(src, r, name);
+    EXPECT_TRUE(r.ok) << r.diags;
+    rsl::Diagnostics diag;
+    if (!r.ok) return {};
+    rsl::EmittedShader em = rsl::emitOpenCL(*r.prog.shaders[0], r.prog, diag);
+    EXPECT_FALSE(diag.hasErrors()) << diag.text();
+    return em;
+}
+
+ts::Scene threeLights() {
+    ts::Scene sc;
+    sc.lights.push_back({{0.0f, 0.0f, 1.0f}, {0.8f, 0.4f, 0.2f}});
+    sc.lights.push_back({{1.0f, 0.5f, 0.7f}, {0.1f, 0.9f, 0.3f}});
+    sc.lights.push_back({{-0.6f, 0.2f, 0.4f}, {2.0f, 2.0f, 2.5f}});
+    sc.ambient[0] = sc.ambient[1] = sc.ambient[2] = 0.3f;
+    return sc;
+}
+
+// For every point and light: base + coefficient = Ci of that light's mode.
+void expectCoefsMatchModes(ts::Shade& sh, const std::string& what) {
+    ts::Scene sc = threeLights();
+    std::vector<ts::Point> pts = ts::grid(4);
+    for (size_t i = 0; i < pts.size(); ++i) {  // varied normals and colours
+        ts::Point& p = pts[i];
+        p.N[0] = 0.3f * std::sin(float(i)), p.N[1] = 0.2f * std::cos(float(i)), p.N[2] = 1.0f;
+        p.Cs[0] = 0.9f, p.Cs[1] = 0.5f + 0.02f * float(i), p.Cs[2] = 0.2f;
+        p.Os[0] = 1.0f, p.Os[1] = 0.75f, p.Os[2] = 0.5f;
+    }
+    std::vector<ts::Out> coefs = sh.run(pts, sc, ts::kCoefficients);
+    std::vector<ts::Out> base = sh.run(pts, sc);
+    ASSERT_EQ(coefs.size(), pts.size()) << what << sh.diagnostics;
+    ASSERT_EQ(base.size(), pts.size()) << what;
+    float largest = 0.0f;
+    for (int l = 0; l < int(sc.lights.size()); ++l) {
+        std::vector<ts::Out> mode = sh.run(pts, sc, l);
+        ASSERT_EQ(mode.size(), pts.size()) << what;
+        for (size_t i = 0; i < pts.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                float want = mode[i].Ci[c] - base[i].Ci[c];
+                largest = std::max(largest, std::fabs(want));
+                // the per-mode difference cancels E (ambient): a few ulp of Ci
+                EXPECT_NEAR(coefs[i].CiLight[l][c], want, 1e-5f + 1e-5f * std::fabs(mode[i].Ci[c]))
+                    << what << " light " << l << " point " << i << " channel " << c;
+            }
+    }
+    EXPECT_GT(largest, 0.01f) << what << ": the lights must contribute for the test to mean anything";
+    for (size_t i = 0; i < pts.size(); ++i)  // the value is still the base evaluation's
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(coefs[i].Ci[c], base[i].Ci[c]) << what;
+}
+
+TEST(LightCoefs, StandardShadersMatchTheirLightModes) {
+    if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
+    for (const char* n : {"plastic", "matte", "metal", "shinymetal", "paintedplastic"}) {
+        ts::Shade sh;
+        std::string err;
+        ASSERT_TRUE(sh.compileFile(std::string(RSL2CL_SHADER_DIR) + "/" + n + ".sl", &err)) << err;
+        EXPECT_TRUE(sh.shader.lightCoefs) << n;
+        expectCoefsMatchModes(sh, n);
+    }
+    ts::Shade spd;
+    std::string err;
+    ASSERT_TRUE(spd.compileFile(std::string(RSL2CL_TEST_DATA) + "/spd.sl", &err)) << err;
+    EXPECT_TRUE(spd.shader.lightCoefs);
+    spd.setParam("Ks", {0.5f});
+    spd.setParam("reflected", {0.3f});
+    expectCoefsMatchModes(spd, "spd");
+}
+
+// Every construct the coefficients are carried through: illuminance loops (a term of
+// the loop's light, and a whole-array update), declarations, = += -= *= /=, unary
+// minus, division, ?:, mix(), casts, a product with a trace() result's neighbour, and
+// a variable reset to an independent value.
+const char* kEveryConstruct =
+    "surface every(float Kd = .7, k = .25;)\n"
+    "{\n"
+    "    normal Nf = faceforward(normalize(N), I);\n"
+    "    color c = 0, d = Cs * diffuse(Nf);\n"
+    "    color unused = diffuse(Nf);\n"
+    "    unused = color(0.5);\n"
+    "    illuminance(P, Nf, PI / 2) {\n"
+    "        c += Cl * (normalize(L) . Nf) * Kd;\n"
+    "        c -= k * Cl / 4;\n"
+    "        d = d + Cl * Cs;\n"
+    "    }\n"
+    "    color t = trace(P, Nf);\n"
+    "    d *= 0.5;\n"
+    "    d += c * 0.5;\n"
+    "    d -= c * 0.25;\n"
+    "    d /= 2;\n"
+    "    color m = mix(c, -d, k) + (k > 0.5 ? c : d / 3) + color(specular(Nf, -I, .2));\n"
+    "    Oi = Os;\n"
+    "    Ci = Os * (0.1 + t - Cs * m - unused) ;\n"
+    "    Ci *= 2;\n"
+    "}\n";
+
+TEST(LightCoefs, EveryCarriedConstructMatchesLightModes) {
+    if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource(kEveryConstruct, "every.sl", &err)) << err;
+    ASSERT_TRUE(sh.shader.lightCoefs) << sh.shader.source;
+    expectCoefsMatchModes(sh, "every");
+}
+
+// Shaders whose light-dependent values go where the coefficients are not carried are
+// compiled without them (the renderer evaluates them per light); their code has none.
+TEST(LightCoefs, UnsupportedShadersCompileWithout) {
+    const char* cases[][2] = {
+        {"surface fn() { color f(normal n) { return diffuse(n); } Ci = f(N); }", "function"},
+        {"surface arr() { color a[2]; a[0] = diffuse(N); Ci = a[0]; }", "array"},
+        {"surface par(varying color x = 0;) { x = diffuse(N); Ci = x; }", "parameter"},
+        {"surface nested() { color a = 0, b = 0; a = (b = diffuse(N)) * 2; Ci = a; }", "nested"},
+    };
+    for (const auto& c : cases) {
+        rsl::EmittedShader em = generate(c[0], std::string(c[1]) + ".sl");
+        EXPECT_FALSE(em.lightCoefs) << c[1];
+        EXPECT_EQ(em.source.find("Ci_light"), std::string::npos) << c[1];
+    }
+    rsl::EmittedShader plain = generate("surface p() { Ci = Cs * diffuse(N); }", "p.sl");
+    EXPECT_TRUE(plain.lightCoefs);
+    EXPECT_NE(plain.source.find("rsl_diffuse_light(g, _k"), std::string::npos) << plain.source;
+}
+
+}  // namespace
