@@ -19,6 +19,13 @@ using rd::test::renderRib;
 
 namespace {
 const char* kCamera = "Format 32 32 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" 40\n";
+
+// A fresh scratch folder for a test's own shaders (Option "searchpath" "shader").
+std::string shaderDir(const std::string& name) {
+    std::string dir = rd::test::scratchDir(name);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
 }
 
 // A mirror facing the camera reflects a constant plane behind the camera: the pixel is
@@ -48,8 +55,7 @@ TEST(Shading, MirrorTracesTheReflectedRay) {
 // exactly; the scene's traced rays are known to be sampled (RT_INCOHERENT_TRACE: they walk
 // the nodes' hit masks), and the image is the same at both node widths.
 TEST(Shading, SampledTraceWalksTheHitMasks) {
-    std::string dir = rd::test::scratchDir("raydrive_sampled_trace");
-    std::filesystem::create_directories(dir);
+    std::string dir = shaderDir("raydrive_sampled_trace");
     std::ofstream(dir + "/glossy.sl")
         << "surface glossy(float Kr = 0.8) {\n"
            "  vector j = vector(random(), random(), random()) - 0.5;\n"
@@ -124,8 +130,7 @@ TEST(Shading, SpecialisedAndCalledLightsAgree) {
 // functions), every pixel agrees to rounding. It fails when a light's coefficient is
 // taken from another light or lost.
 TEST(Shading, LightCoefficientsAgreeWithPerLightEvaluation) {
-    std::string dir = rd::test::scratchDir("raydrive_coef_shaders");
-    std::filesystem::create_directories(dir);
+    std::string dir = shaderDir("raydrive_coef_shaders");
     std::ofstream(dir + "/plasticfn.sl")
         << "surface plasticfn(float Ks = .5, Kd = .5, Ka = 1, roughness = .1;\n"
            "                  color specularcolor = 1;) {\n"
@@ -185,8 +190,7 @@ TEST(Shading, ShadowspotCastsRayTracedShadows) {
 
 // A user shader found through Option "searchpath" "shader", with a parameter override.
 TEST(Shading, UserShaderOnTheSearchPath) {
-    std::string dir = rd::test::scratchDir("raydrive_shaders");
-    std::filesystem::create_directories(dir);
+    std::string dir = shaderDir("raydrive_shaders");
     std::ofstream(dir + "/tint.sl") << "surface tint(color tint = 1; float gain = 1;) {\n"
                                        "    Oi = Os;\n    Ci = Os * tint * gain;\n}\n";
     Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
@@ -222,8 +226,7 @@ TEST(Shading, VertexPrimitiveVariables) {
     EXPECT_NEAR(cs.mean(0, 4, 0, 5, 16), (1 - (-0.4375)) / 2, 0.02);
     EXPECT_NEAR(cs.mean(2, 4, 0, 5, 16), (1 + (-0.4375)) / 2, 0.02);
 
-    std::string dir = rd::test::scratchDir("raydrive_st");
-    std::filesystem::create_directories(dir);
+    std::string dir = shaderDir("raydrive_st");
     std::ofstream(dir + "/showst.sl") << "surface showst() {\n    Oi = 1;\n"
                                          "    Ci = color(s, t, 0);\n}\n";
     Rendered st = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" + cam +
@@ -238,8 +241,7 @@ TEST(Shading, VertexPrimitiveVariables) {
 // "shader" space is the coordinate system current at the Surface call: a shader that
 // prints transform("shader", P) sees world x shifted by the Translate before Surface.
 TEST(Shading, ShaderSpaceIsWhereTheSurfaceWasDeclared) {
-    std::string dir = rd::test::scratchDir("raydrive_space");
-    std::filesystem::create_directories(dir);
+    std::string dir = shaderDir("raydrive_space");
     std::ofstream(dir + "/showspace.sl") << "surface showspace() {\n    Oi = 1;\n"
                                             "    Ci = color(xcomp(transform(\"shader\", P)) + 2, 0, 0);\n}\n";
     Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
@@ -256,8 +258,7 @@ TEST(Shading, ShaderSpaceIsWhereTheSurfaceWasDeclared) {
 // the eye (for precision far from the origin): a camera at world (10, 0, -5) looking at
 // the point (10, 0, 0) sees transform("world", P) = (10, 0, 0) at the image centre.
 TEST(Shading, WorldSpaceIsTheRibWorld) {
-    std::string dir = rd::test::scratchDir("raydrive_world");
-    std::filesystem::create_directories(dir);
+    std::string dir = shaderDir("raydrive_world");
     std::ofstream(dir + "/showworld.sl")
         << "surface showworld() {\n    Oi = 1;\n    point w = transform(\"world\", P);\n"
            "    Ci = color(xcomp(w) / 10, ycomp(w) + 1, zcomp(w) + 1);\n}\n";
@@ -293,8 +294,7 @@ TEST(Shading, FogAtmosphereFollowsItsClosedForm) {
 // computes at every point (its twin declares the variables varying, so nothing is
 // hoisted), and each instance keeps its own prepared values.
 TEST(Shading, HoistedUniformWorkEqualsPerPointWork) {
-    std::string dir = rd::test::scratchDir("raydrive_shaders");
-    std::filesystem::create_directories(dir);
+    std::string dir = shaderDir("raydrive_shaders");
     for (const char* storage : {"uniform", "varying"})
         std::ofstream(dir + "/prep_" + storage + ".sl")
             << "surface prep_" << storage << "(float Kd = 0.5; float rough = 0.25;\n"
@@ -327,8 +327,7 @@ TEST(Shading, HoistedUniformWorkEqualsPerPointWork) {
 // primitive (constant ones, and uniform ones of a single face, as the instance's value;
 // varying ones per point: point_params_test.cpp); varying strings warn.
 TEST(Shading, ConstantPrimitiveVariablesOverrideShaderParameters) {
-    std::string dir = rd::test::scratchDir("raydrive_shaders");
-    std::filesystem::create_directories(dir);
+    std::string dir = shaderDir("raydrive_shaders");
     std::ofstream(dir + "/gained.sl") << "surface gained(float gain = 1; color tint = 1;) {\n"
                                          "    Oi = 1;\n    Ci = tint * gain;\n}\n";
     ::testing::internal::CaptureStderr();
