@@ -98,7 +98,9 @@ TEST(Shading, SpotlightConeAndFalloff) {
 // One spotlight of intensity 25 and forty of 25/40 at the same place light the plane
 // alike. The first kInlinedLightInstances (32) instances' light shader is inlined with
 // their constants (feature specialised_lights: the cone's cosines and axis fold at
-// compile time); the other eight call it: both forms must give the same image.
+// compile time); the other eight call it: both forms must give the same image. So must
+// seventy of 25/70: more than kLightCoefLimit, so the surface runs once per light (no
+// light coefficients) and lights past the cache are run where they are read.
 TEST(Shading, SpecialisedAndCalledLightsAgree) {
     auto spots = [](int n) {
         std::string rib = std::string(kCamera) + "WorldBegin\n";
@@ -109,15 +111,19 @@ TEST(Shading, SpecialisedAndCalledLightsAgree) {
         return rib + "Surface \"matte\"\n"
                      "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\nWorldEnd\n";
     };
-    Rendered one = renderRib(spots(1)), many = renderRib(spots(40));
+    Rendered one = renderRib(spots(1)), many = renderRib(spots(40)), most = renderRib(spots(70));
     static_assert(rd::kInlinedLightInstances < 40, "some of the forty lights are called");
+    static_assert(rd::kLightCoefLimit < 70, "seventy lights are shaded once per light");
     EXPECT_TRUE(one.stats.features.specialisedLights);
     EXPECT_TRUE(many.stats.features.specialisedLights);
+    EXPECT_TRUE(many.stats.features.lightCoefficients);
+    EXPECT_FALSE(most.stats.features.lightCoefficients);
     double lit = 0;
     for (int y = 0; y < one.height; ++y)
         for (int x = 0; x < one.width; ++x) {
-            const float a = one.at(x, y).r, b = many.at(x, y).r;
+            const float a = one.at(x, y).r, b = many.at(x, y).r, c = most.at(x, y).r;
             ASSERT_NEAR(a, b, 1e-5 + 1e-5 * a) << "pixel " << x << ", " << y;
+            ASSERT_NEAR(a, c, 1e-5 + 1e-5 * a) << "pixel " << x << ", " << y;
             lit += a > 0.1;
         }
     EXPECT_GT(lit, 20) << "inside the cone";
