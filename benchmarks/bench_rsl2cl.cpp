@@ -36,13 +36,6 @@ double median(std::vector<double> v) {
     return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 // The renderer's services, stubbed: no lights, identity spaces, no messages.
 const char* kServices =
     "int rsl_light_count(void) { return 0; }\n"

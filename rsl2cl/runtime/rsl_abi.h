@@ -84,9 +84,11 @@
  *   EmittedShader::lightCoefs leaves ev->Ci_light[l] = Ci(light mode l) - E for each
  *   light l < RSL_LIGHT_COEFS, up to rounding. Each value that depends on the lights
  *   carries its part per light (the derivative by that light's Cl, exact since Ci is
- *   affine in it), so the work that does not depend on a light is done once. Shaders
- *   whose light-dependent values reach user functions, arrays, parameters or
- *   non-linear casts are compiled without (lightCoefs false): evaluate them per light.
+ *   affine in it), so the work that does not depend on a light is done once. A user
+ *   function whose result depends on the lights takes one more argument,
+ *   RSL_COEF_ARG(array), where it leaves that result's parts. Shaders whose
+ *   light-dependent values go into arrays, parameters, output parameters or
+ *   colour-space casts are compiled without (lightCoefs false): evaluate them per light.
  * LIGHT SHADERS: RSL_LIGHT_FUNCTION void rsl_light_<name>(RslGlobals* g,
  *                                                     RSL_LIGHT_PARAMS params);
  *   RSL_LIGHT_PARAMS is `__global const float*` unless the renderer defines it first
@@ -147,6 +149,13 @@
 #define RSL_ABI_H
 
 #define RSL_MAX_TRACE 8
+/* LIGHT COEFFICIENTS: the extra argument of user functions whose result depends on the
+ * lights (the array of its parts per light) */
+#ifdef RSL_LIGHT_COEFS
+#define RSL_COEF_ARG(x) , x
+#else
+#define RSL_COEF_ARG(x)
+#endif
 #define RSL_MAX_OUTPUT_FLOATS 32  /* RslEval::outputs: output parameters' final values */
 #define RSL_SPACE_FLOATS 32       /* after each parameter block: shader, object matrices */
 

@@ -60,9 +60,11 @@ public:
     // appear inside user functions (after run()).
     void lightTaint(LightTaint* out) const {
         out->symbols.clear();
+        out->functions.clear();
         for (const auto& kv : m_taint)
             if (kv.second & T_LIGHT) out->symbols.insert(kv.first);
-        out->inFunctions = m_lightInFunction;
+        for (const auto& kv : m_fnRet)
+            if (kv.second & T_LIGHT) out->functions.insert(kv.first);
     }
 
 private:
@@ -90,7 +92,6 @@ private:
             m_changed = true;
         }
         if (s->kind == SymbolKind::Global && s->name == "Oi" && m_oiLoc.line == 0) m_oiLoc = loc;
-        if (m_fn && (m & T_LIGHT)) m_lightInFunction = true;
     }
 
     static const Symbol* target(const Expr& e) {
@@ -132,9 +133,7 @@ private:
         if (e.function) {
             for (size_t i = 0; i < a.size(); ++i)
                 if (a[i]) fail(e, a[i], describe(a[i]) + " passed to function '" + e.text + "'");
-            unsigned r = function(*e.function);
-            if (r & T_LIGHT) m_lightInFunction = true;
-            return r;
+            return function(*e.function);
         }
         const std::string& n = e.text;
         if (n == "mix" && a.size() == 3) {
@@ -144,10 +143,7 @@ private:
         for (size_t i = 0; i < a.size(); ++i)
             if (a[i]) fail(e, a[i], describe(a[i]) + " passed to " + n + "()");
         if (n == "trace") return T_TRACE;
-        if (n == "diffuse" || n == "specular" || n == "phong") {
-            if (m_fn) m_lightInFunction = true;
-            return T_LIGHT;
-        }
+        if (n == "diffuse" || n == "specular" || n == "phong") return T_LIGHT;
         return 0;
     }
 
@@ -168,10 +164,7 @@ private:
         case ExprKind::String: return 0;
         case ExprKind::Ident: {
             if (!e.symbol) return 0;
-            if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") {
-                if (m_fn) m_lightInFunction = true;
-                return T_LIGHT;
-            }
+            if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") return T_LIGHT;
             auto it = m_taint.find(e.symbol);
             return it == m_taint.end() ? 0 : it->second;
         }
@@ -269,7 +262,6 @@ private:
     const FunctionDecl* m_fn = nullptr;
     SourceLoc m_oiLoc;
     bool m_changed = false, m_report = false, m_failed = false;
-    bool m_lightInFunction = false;
 };
 
 }  // namespace

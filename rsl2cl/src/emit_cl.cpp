@@ -170,6 +170,8 @@ void Emitter::emitFunction(const FunctionDecl& f, bool prototypeOnly) {
         sig += std::string(", ") + clType(p.type) + (ptr ? "* v_" : " v_") + p.name;
         if (p.output && !p.type.isArray()) m_pointerParams.insert(p.symbol);
     }
+    if (coefFunction(&f))  // where its result's parts per light go (emit_coefs.cpp)
+        sig += std::string(" RSL_COEF_ARG(") + clType(f.returnType) + "* _ret_light)";
     sig += ")";
     if (prototypeOnly) {
         m_body << sig << ";\n";
@@ -185,6 +187,9 @@ void Emitter::emitFunction(const FunctionDecl& f, bool prototypeOnly) {
     line("float _g_alpha = 0.0f, _g_dtime = 0.0f; float4 _g_dPdtime = rsl_f2v(0.0f);");
     line("(void)g; (void)ev; (void)sp; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
     for (const StmtPtr& s : f.body->stmts) stmt(*s);
+    if (coefFunction(&f))
+        coefLines({"if (ev->coefs) for (int _k = 0; _k < RSL_LIGHT_COEFS; ++_k) _ret_light[_k] = " +
+                   clZero(f.returnType) + ";"});
     if (!f.returnType.isVoid()) line("return " + clZero(f.returnType) + ";");
     m_body << "}\n\n";
     if (m_usesSpaces) m_fnUsesSpaces.insert(&f);
@@ -358,7 +363,7 @@ void Emitter::decl(const VarDecl& d) {
         return;
     }
     line(t + " " + name + " = " + (d.init ? exprAs(*d.init, d.type) : clZero(d.type)) + ";");
-    if (m_coefs && !m_func && m_coefs->symbols.count(d.symbol)) coefDecl(d);
+    if (m_coefs && m_coefs->symbols.count(d.symbol)) coefDecl(d);
 }
 
 void Emitter::loopBody(const Stmt& body) {
@@ -389,7 +394,7 @@ void Emitter::lightLoop(const Stmt& s) {
         line("int _nl" + k + " = rsl_light_count();");
         line("for (int _l" + k + " = 0; _l" + k + " < _nl" + k + "; ++_l" + k + ") {");
         ++m_indent;
-        if (m_coefs && !m_func) {  // the unshadowed Cl too: the light's coefficient
+        if (m_coefs) {  // the unshadowed Cl too: the light's coefficient
             line("float4 _L" + k + ", _Clr" + k + ";");
             line("if (!rsl_light_raw(_l" + k + ", g, _ilP" + k + ", _ilA" + k + ", _ilT" + k +
                  ", &_L" + k + ", &_Clr" + k + ")) continue;");
@@ -508,7 +513,8 @@ void Emitter::stmt(const Stmt& s) {
         break;
     }
     case StmtKind::Return:
-        if (m_func && s.expr) line("return " + exprAs(*s.expr, m_func->returnType) + ";");
+        if (m_func && s.expr && coefFunction(m_func)) coefReturn(*s.expr, m_func->returnType);
+        else if (m_func && s.expr) line("return " + exprAs(*s.expr, m_func->returnType) + ";");
         else if (m_func || m_sh.kind == ShaderKind::Light ||
                  (m_out.outputFloats == 0 && m_sh.kind != ShaderKind::Imager))
             line("return;");

@@ -64,7 +64,7 @@ EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnost
 // What depends on the lights' Cl in an affine shader (affine.cpp).
 struct LightTaint {
     std::set<const Symbol*> symbols;  // variables (and Ci) whose value depends on some Cl
-    bool inFunctions = false;  // light-dependent values inside user functions
+    std::set<const FunctionDecl*> functions;  // user functions returning such values
 };
 
 // Static affinity check of Ci in trace() results and light Cl (affine.cpp); reports

@@ -6,29 +6,31 @@
 // right-hand side (lin()). The renderer then needs the base evaluation only, where it
 // ran the whole shader once more per light; the work that does not depend on a light
 // (normalisation, face-forwarding, reflection directions, textures...) is done once.
-// Supported where every light-dependent value lives in a local variable or Ci of the
-// shader body and is combined by + - * / (by independent values), ?:, mix(), casts and
-// triples; anything else (user functions, arrays, parameters, colour-space casts) and
-// the shader is compiled without, evaluated per light as before.
+// A user function whose result depends on the lights (an illumination model written as
+// a function, as in Advanced RenderMan's material.h) takes one more argument under
+// RSL_LIGHT_COEFS, the array its result's parts per light go to, filled at each return.
+// Supported where every light-dependent value lives in a local variable, Ci or such a
+// result and is combined by + - * / (by independent values), ?:, mix(), casts and
+// triples; anything else (arrays, parameters, output parameters, colour-space casts)
+// and the shader is compiled without, evaluated per light as before.
 #include "emit_internal.h"
 
 namespace rsl {
 
-bool lightDependent(const Expr& e, const std::set<const Symbol*>& syms) {
+bool lightDependent(const Expr& e, const LightTaint& t) {
     switch (e.kind) {
     case ExprKind::Ident:
         if (!e.symbol) return false;
         if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") return true;
-        return syms.count(e.symbol) > 0;
+        return t.symbols.count(e.symbol) > 0;
     case ExprKind::Call:
-        if (!e.function && (e.text == "diffuse" || e.text == "specular" || e.text == "phong"))
-            return true;
-        if (e.function) return false;  // coefsSupported: no light dependence in functions
+        if (e.function) return t.functions.count(e.function) > 0;  // its arguments never
+        if (e.text == "diffuse" || e.text == "specular" || e.text == "phong") return true;
         break;
     default: break;
     }
     for (const ExprPtr& a : e.args)
-        if (lightDependent(*a, syms)) return true;
+        if (lightDependent(*a, t)) return true;
     return false;
 }
 
@@ -47,18 +49,34 @@ public:
             bool ci = s->kind == SymbolKind::Global && s->name == "Ci";
             if (!local && !ci) return false;
         }
+        for (const FunctionDecl* f : m_t.functions)
+            if (!linearType(f->returnType)) return false;
         stmt(*sh.body);
+        // the user functions called, each once (their bodies do not depend on the caller)
+        while (!m_pending.empty()) {
+            const FunctionDecl* f = m_pending.back();
+            m_pending.pop_back();
+            m_fn = f;
+            stmt(*f->body);
+        }
         return m_ok;
     }
 
 private:
-    bool dep(const Expr& e) const { return lightDependent(e, m_t.symbols); }
+    bool dep(const Expr& e) const { return lightDependent(e, m_t); }
+    void calls(const Expr& e) {
+        if (e.kind == ExprKind::Call && e.function && m_seen.insert(e.function).second)
+            m_pending.push_back(e.function);
+        for (const ExprPtr& a : e.args) calls(*a);
+        if (e.channel) calls(*e.channel);
+    }
     bool taintedTarget(const Expr& l) const {
         return l.kind == ExprKind::Ident && l.symbol && m_t.symbols.count(l.symbol);
     }
     // No assignment inside e changes a light-dependent variable: only whole statements
     // may (stmt), so that its part per light is updated with it.
     void noTaintedAssign(const Expr& e) {
+        calls(e);
         if (e.kind == ExprKind::Assign) {
             const Expr* t = e.args[0].get();
             while (t->kind == ExprKind::Index) t = t->args[0].get();
@@ -72,6 +90,7 @@ private:
         noTaintedAssign(e);
     }
     void linear(const Expr& e) {
+        calls(e);
         if (!dep(e)) {
             noTaintedAssign(e);
             return;
@@ -103,7 +122,9 @@ private:
             linear(*e.args[2]);
             return;
         case ExprKind::Call:
-            if (e.text == "mix" && e.args.size() == 3) {
+            if (e.function) {  // a light-dependent result: its arguments are independent
+                for (const ExprPtr& a : e.args) independent(*a);
+            } else if (e.text == "mix" && e.args.size() == 3) {
                 linear(*e.args[0]);
                 linear(*e.args[1]);
                 independent(*e.args[2]);
@@ -155,7 +176,8 @@ private:
             stmt(*s.body);
             break;
         case StmtKind::Return:
-            if (s.expr) noTaintedAssign(*s.expr);
+            if (s.expr && m_fn && m_t.functions.count(m_fn)) linear(*s.expr);
+            else if (s.expr) noTaintedAssign(*s.expr);
             break;
         case StmtKind::Illuminance:
             for (const ExprPtr& a : s.args) independent(*a);
@@ -170,25 +192,29 @@ private:
     }
 
     const LightTaint& m_t;
+    const FunctionDecl* m_fn = nullptr;  // the function being checked (none: the shader)
+    std::set<const FunctionDecl*> m_seen;
+    std::vector<const FunctionDecl*> m_pending;
     int m_illuminance = 0;
     bool m_ok = true;
 };
 
-// Whether e's dependence on the lights comes from Cl alone (no variable, no builtin).
-bool onlyCl(const Expr& e, const std::set<const Symbol*>& syms) {
-    if (e.kind == ExprKind::Ident) return !(e.symbol && syms.count(e.symbol));
-    if (e.kind == ExprKind::Call && !e.function &&
-        (e.text == "diffuse" || e.text == "specular" || e.text == "phong"))
+// Whether e's dependence on the lights comes from Cl alone (no variable, no call).
+bool onlyCl(const Expr& e, const LightTaint& t) {
+    if (e.kind == ExprKind::Ident) return !(e.symbol && t.symbols.count(e.symbol));
+    if (e.kind == ExprKind::Call && (e.function ? t.functions.count(e.function) > 0
+                                                : e.text == "diffuse" || e.text == "specular" ||
+                                                      e.text == "phong"))
         return false;
     for (const ExprPtr& a : e.args)
-        if (!onlyCl(*a, syms)) return false;
+        if (!onlyCl(*a, t)) return false;
     return true;
 }
 
 }  // namespace
 
 bool coefsSupported(const ShaderDecl& sh, const LightTaint& t) {
-    return sh.kind == ShaderKind::Surface && !t.inFunctions && CoefCheck(t).run(sh);
+    return sh.kind == ShaderKind::Surface && CoefCheck(t).run(sh);
 }
 
 std::string Emitter::coefName(const Symbol* s) {
@@ -204,7 +230,7 @@ std::string Emitter::linAs(const Expr& e, const TypeSpec& to, const std::string&
 // The part of e's value that comes from light k (empty: none), given that the value is
 // linear in the lights (CoefCheck).
 std::string Emitter::lin(const Expr& e, const std::string& k) {
-    if (!lightDependent(e, m_coefs->symbols)) return "";
+    if (!lightDependent(e, *m_coefs)) return "";
     switch (e.kind) {
     case ExprKind::Ident:
         if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") {
@@ -232,6 +258,7 @@ std::string Emitter::lin(const Expr& e, const std::string& k) {
         return "((" + expr(*e.args[0]) + ") != 0.0f ? " + linAs(*e.args[1], e.type, k) + " : " +
                linAs(*e.args[2], e.type, k) + ")";
     case ExprKind::Call: {
+        if (e.function) return m_callCoefs.at(&e) + "[" + k + "]";  // filled by the call
         std::string v = builtin(e);
         std::string fn = v.substr(0, v.find('('));
         if (e.text == "mix")
@@ -274,7 +301,7 @@ void Emitter::coefDecl(const VarDecl& d) {
 void Emitter::coefAssign(const Expr& e) {
     const Expr &l = *e.args[0], &r = *e.args[1];
     const std::string x = coefName(l.symbol), op = e.text;
-    if ((op == "+=" || op == "-=") && !m_lightVars.empty() && onlyCl(r, m_coefs->symbols)) {
+    if ((op == "+=" || op == "-=") && !m_lightVars.empty() && onlyCl(r, *m_coefs)) {
         // in an illuminance loop, a term of the loop's own light: only its slot changes
         const std::string& k = m_lightVars.back();
         coefLines({"if (ev->coefs && " + k + " < RSL_LIGHT_COEFS) " + x + "[" + k + "] " + op +
@@ -295,6 +322,27 @@ void Emitter::coefAssign(const Expr& e) {
                    binaryResult(op.substr(0, 1), l.type, r.type), l.type);
     }
     coefLines({kEachLight + xk + " = " + v + ";"});
+}
+
+// A call of a user function whose result depends on the lights: the array its parts
+// per light come back in, declared before the statement (rsl_abi.h RSL_COEF_ARG).
+std::string Emitter::coefCallArg(const Expr& e) {
+    if (!m_coefs || !e.function || !m_coefs->functions.count(e.function)) return "";
+    std::string name = "_cl" + std::to_string(m_tmp++);
+    m_pre.push_back("#ifdef RSL_LIGHT_COEFS");
+    m_pre.push_back(std::string(clType(e.function->returnType)) + " " + name + "[RSL_LIGHT_COEFS];");
+    m_pre.push_back("#endif");
+    m_callCoefs[&e] = name;
+    return " RSL_COEF_ARG(" + name + ")";
+}
+
+// `return e` in a function whose result depends on the lights: the value, then its
+// parts per light for the caller (the value first: a call in e fills what they read).
+void Emitter::coefReturn(const Expr& e, const TypeSpec& type) {
+    std::string v = exprAs(e, type), ret = "_ret" + std::to_string(m_tmp++);
+    line(std::string(clType(type)) + " " + ret + " = " + v + ";");
+    coefLines({kEachLight + std::string("_ret_light[_k] = ") + linAs(e, type, "_k") + ";"});
+    line("return " + ret + ";");
 }
 
 }  // namespace rsl

@@ -173,7 +173,7 @@ std::string Emitter::userCall(const Expr& e) {
         if (p.output && !p.type.isArray()) s += ", &" + lvalue(*e.args[i]);
         else s += ", " + exprAs(*e.args[i], p.type);
     }
-    return s + ")";
+    return s + coefCallArg(e) + ")";
 }
 
 std::string Emitter::expr(const Expr& e) {

@@ -21,7 +21,7 @@ int colorIdOf(const std::string& name);         // RSL_COLOR_* value or -1
 int slotsOf(BaseType b);                        // float slots of one value in a block
 // Light coefficients (emit_coefs.cpp): whether e depends on some light's Cl, and whether
 // the shader's light-dependent values are all of the kinds the code generator carries.
-bool lightDependent(const Expr& e, const std::set<const Symbol*>& syms);
+bool lightDependent(const Expr& e, const LightTaint& t);
 bool coefsSupported(const ShaderDecl& sh, const LightTaint& t);
 
 class Emitter {
@@ -55,8 +55,13 @@ public:
     void coefDecl(const VarDecl& d);
     void coefAssign(const Expr& e);
     void coefLines(const std::vector<std::string>& lines);  // under #ifdef RSL_LIGHT_COEFS
+    std::string coefCallArg(const Expr& e);  // a light-dependent user call's extra argument
+    void coefReturn(const Expr& e, const TypeSpec& type);
+    bool coefFunction(const FunctionDecl* f) const {
+        return m_coefs && f && m_coefs->functions.count(f);
+    }
     bool coefTarget(const Expr& e) const {  // an assignment to a light-dependent variable
-        return m_coefs && !m_func && e.kind == ExprKind::Assign &&
+        return m_coefs && e.kind == ExprKind::Assign &&
                e.args[0]->kind == ExprKind::Ident && m_coefs->symbols.count(e.args[0]->symbol);
     }
 
@@ -104,6 +109,7 @@ public:
     std::vector<std::string> m_lightVars;  // light index of each enclosing illuminance
     std::vector<std::string> m_lightRaw;   // ... and its light's unshadowed Cl
     const LightTaint* m_coefs = nullptr;   // emit light coefficients (emit_coefs.cpp)
+    std::map<const Expr*, std::string> m_callCoefs;  // a user call's parts per light
     bool m_usesSpaces = false;  // the code being emitted uses sp (shader/object spaces)
     std::set<const FunctionDecl*> m_fnUsesSpaces;
     HoistPlan m_hoist;  // declarations computed once per instance

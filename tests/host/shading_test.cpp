@@ -131,22 +131,22 @@ TEST(Shading, SpecialisedAndCalledLightsAgree) {
 }
 
 // Three coloured lights (point, spot, distant) on plastic: with light coefficients (the
-// base evaluation gives each light's part) and through a shader that does the same in a
-// user function (evaluated once more per light, as coefficients do not cross
-// functions), every pixel agrees to rounding. It fails when a light's coefficient is
-// taken from another light or lost.
+// base evaluation gives each light's part) and through a shader that computes the same
+// into an array (evaluated once more per light, as coefficients are not carried through
+// arrays), every pixel agrees to rounding. It fails when a light's coefficient is taken
+// from another light or lost.
 TEST(Shading, LightCoefficientsAgreeWithPerLightEvaluation) {
     std::string dir = shaderDir("raydrive_coef_shaders");
-    std::ofstream(dir + "/plasticfn.sl")
-        << "surface plasticfn(float Ks = .5, Kd = .5, Ka = 1, roughness = .1;\n"
-           "                  color specularcolor = 1;) {\n"
-           "    color lit(normal Nf; vector V; float Kd, Ks, roughness; color sc) {\n"
-           "        return Cs * Kd * diffuse(Nf) + sc * Ks * specular(Nf, V, roughness);\n"
-           "    }\n"
+    std::ofstream(dir + "/plasticarr.sl")
+        << "surface plasticarr(float Ks = .5, Kd = .5, Ka = 1, roughness = .1;\n"
+           "                   color specularcolor = 1;) {\n"
            "    normal Nf = faceforward(normalize(N), I);\n"
            "    vector V = -normalize(I);\n"
+           "    color lit[2];\n"
+           "    lit[0] = Kd * diffuse(Nf);\n"
+           "    lit[1] = specularcolor * Ks * specular(Nf, V, roughness);\n"
            "    Oi = Os;\n"
-           "    Ci = Os * (Cs * Ka * ambient() + lit(Nf, V, Kd, Ks, roughness, specularcolor));\n"
+           "    Ci = Os * (Cs * (Ka * ambient() + lit[0]) + lit[1]);\n"
            "}\n";
     auto scene = [&](const std::string& surface) {
         return "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" + std::string(kCamera) +
@@ -162,7 +162,7 @@ TEST(Shading, LightCoefficientsAgreeWithPerLightEvaluation) {
                "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
                "Translate 0.3 -0.2 3.5\nSphere 0.6 -0.6 0.6 360\nWorldEnd\n";
     };
-    Rendered coef = renderRib(scene("plastic")), per = renderRib(scene("plasticfn"));
+    Rendered coef = renderRib(scene("plastic")), per = renderRib(scene("plasticarr"));
     EXPECT_TRUE(coef.stats.features.lightCoefficients);
     EXPECT_FALSE(per.stats.features.lightCoefficients);
     double lit = 0;

@@ -120,11 +120,51 @@ TEST(LightCoefs, EveryCarriedConstructMatchesLightModes) {
     expectCoefsMatchModes(sh, "every");
 }
 
+// Illumination models written as user functions (as Advanced RenderMan's material.h
+// does): a function's light-dependent result carries its parts per light back to the
+// caller, through nested calls, several returns, a ternary, and a void function that
+// adds to Ci itself.
+const char* kFunctions =
+    "surface fns(float Ka = 1, Kd = .6, Ks = .4, roughness = .2;)\n"
+    "{\n"
+    "    color plasticish(normal Nf; vector V; float Kd, Ks, roughness) {\n"
+    "        color C = 0;\n"
+    "        illuminance(P, Nf, PI / 2) {\n"
+    "            C += Cl * Kd * (normalize(L) . Nf);\n"
+    "        }\n"
+    "        if (Ks <= 0) return C;\n"
+    "        return C + Ks * specular(Nf, V, roughness);\n"
+    "    }\n"
+    "    color twice(normal Nf; vector V; float Kd, Ks, roughness) {\n"
+    "        return 2 * plasticish(Nf, V, Kd, Ks, roughness) - diffuse(Nf);\n"
+    "    }\n"
+    "    void addto(normal Nf; color k) { Ci += k * diffuse(Nf); }\n"
+    "    normal Nf = faceforward(normalize(N), I);\n"
+    "    vector V = -normalize(I);\n"
+    "    Oi = Os;\n"
+    "    Ci = Os * (Cs * Ka * ambient() + (Kd > 0.5 ? twice(Nf, V, Kd, Ks, roughness)\n"
+    "                                               : plasticish(Nf, V, 0.3, 0, 0.1)));\n"
+    "    addto(Nf, Cs * 0.25);\n"
+    "    Ci += plasticish(Nf, V, 0.2, 0.3, 0.3);\n"
+    "}\n";
+
+TEST(LightCoefs, UserFunctionsCarryTheirResultsParts) {
+    if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource(kFunctions, "fns.sl", &err)) << err;
+    ASSERT_TRUE(sh.shader.lightCoefs) << sh.shader.source;
+    expectCoefsMatchModes(sh, "functions, Kd .6");
+    sh.setParam("Kd", {0.4f});  // the ternary's other branch
+    expectCoefsMatchModes(sh, "functions, Kd .4");
+}
+
 // Shaders whose light-dependent values go where the coefficients are not carried are
 // compiled without them (the renderer evaluates them per light); their code has none.
 TEST(LightCoefs, UnsupportedShadersCompileWithout) {
     const char* cases[][2] = {
-        {"surface fn() { color f(normal n) { return diffuse(n); } Ci = f(N); }", "function"},
+        {"surface out() { void f(output color c) { c = diffuse(N); } color x = 0; f(x); Ci = x; }",
+         "output"},
         {"surface arr() { color a[2]; a[0] = diffuse(N); Ci = a[0]; }", "array"},
         {"surface par(varying color x = 0;) { x = diffuse(N); Ci = x; }", "parameter"},
         {"surface nested() { color a = 0, b = 0; a = (b = diffuse(N)) * 2; Ci = a; }", "nested"},
