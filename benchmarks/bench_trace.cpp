@@ -264,7 +264,7 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int benchMain(int argc, char** argv) {
     CLI::App app{"RayDrive vs Embree: Mrays/s for primary, diffuse and shadow rays"};
     int runs = 5, side = 1024;
     std::string device;
@@ -597,4 +597,15 @@ int main(int argc, char** argv) {
                 "/resid.", "agree");
     for (const std::string& r : treeletRows) std::printf("%s\n", r.c_str());
     return 0;
+}
+
+// A kernel variant that does not build, a mesh that cannot be read, an OpenCL error:
+// a message and a non-zero exit, not an abort.
+int main(int argc, char** argv) {
+    try {
+        return benchMain(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_trace: %s\n", e.what());
+        return 1;
+    }
 }
