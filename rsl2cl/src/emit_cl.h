@@ -73,6 +73,10 @@ struct LightTaint {
 bool checkAffine(const ShaderDecl& shader, const Program& prog, Diagnostics& diag,
                  LightTaint* taint = nullptr);
 
+// Whether a surface's light coefficients are carried (EmittedShader::lightCoefs, without
+// generating code); *why: the first reason they are not ("file:line:col: ...").
+bool lightCoefsSupported(const ShaderDecl& shader, std::string* why);
+
 // Directory of rsl_abi.h and rsl_stdlib.clh in the source tree (for tests/tools).
 std::string runtimeDir();
 // rsl_abi.h then rsl_stdlib.clh with the runtime files it includes inlined: what generated

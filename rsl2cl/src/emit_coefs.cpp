@@ -47,10 +47,18 @@ public:
         for (const Symbol* s : m_t.symbols) {
             bool local = s->kind == SymbolKind::Local && linearType(s->type);
             bool ci = s->kind == SymbolKind::Global && s->name == "Ci";
-            if (!local && !ci) return false;
+            if (local || ci) continue;
+            fail(s->loc, "'" + s->name + "' depends on the lights and is " +
+                             (s->kind == SymbolKind::Param ? (s->output ? "an output parameter" : "a parameter")
+                              : s->type.isArray()           ? "an array"
+                                                            : "a " + s->type.str()));
+            return false;
         }
         for (const FunctionDecl* f : m_t.functions)
-            if (!linearType(f->returnType)) return false;
+            if (!linearType(f->returnType)) {
+                fail(f->loc, "function '" + f->name + "' returns a light-dependent " + f->returnType.str());
+                return false;
+            }
         stmt(*sh.body);
         // the user functions called, each once (their bodies do not depend on the caller)
         while (!m_pending.empty()) {
@@ -80,13 +88,14 @@ private:
         if (e.kind == ExprKind::Assign) {
             const Expr* t = e.args[0].get();
             while (t->kind == ExprKind::Index) t = t->args[0].get();
-            if (t->kind == ExprKind::Ident && t->symbol && m_t.symbols.count(t->symbol)) m_ok = false;
+            if (t->kind == ExprKind::Ident && t->symbol && m_t.symbols.count(t->symbol))
+                fail(e.loc, "'" + t->symbol->name + "' is assigned inside an expression");
         }
         for (const ExprPtr& a : e.args) noTaintedAssign(*a);
         if (e.channel) noTaintedAssign(*e.channel);
     }
     void independent(const Expr& e) {
-        if (dep(e)) m_ok = false;
+        if (dep(e)) fail(e.loc, "a light-dependent value where only independent ones are carried");
         noTaintedAssign(e);
     }
     void linear(const Expr& e) {
@@ -95,14 +104,14 @@ private:
             noTaintedAssign(e);
             return;
         }
-        if (!linearType(e.type)) m_ok = false;
+        if (!linearType(e.type)) fail(e.loc, "a light-dependent " + e.type.str());
         switch (e.kind) {
         case ExprKind::Ident:
             if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl" && m_illuminance == 0)
-                m_ok = false;
+                fail(e.loc, "Cl outside an illuminance loop");
             return;
         case ExprKind::Unary:
-            if (e.text != "-") m_ok = false;
+            if (e.text != "-") fail(e.loc, "operator " + e.text + " on a light-dependent value");
             linear(*e.args[0]);
             return;
         case ExprKind::Binary:
@@ -113,7 +122,7 @@ private:
                 linear(*e.args[0]);
                 independent(*e.args[1]);
             } else {
-                m_ok = false;
+                fail(e.loc, "operator " + e.text + " on a light-dependent value");
             }
             return;
         case ExprKind::Ternary:
@@ -131,17 +140,18 @@ private:
             } else if (e.text == "diffuse" || e.text == "specular" || e.text == "phong") {
                 for (const ExprPtr& a : e.args) independent(*a);
             } else {
-                m_ok = false;
+                fail(e.loc, e.text + "() of a light-dependent value");
             }
             return;
         case ExprKind::Cast:
-            if (!e.text.empty() && e.text != "rgb") m_ok = false;
+            if (!e.text.empty() && e.text != "rgb")
+                fail(e.loc, "a light-dependent value cast to \"" + e.text + "\"");
             linear(*e.args[0]);
             return;
         case ExprKind::Tuple:
             for (const ExprPtr& a : e.args) linear(*a);
             return;
-        default: m_ok = false;
+        default: fail(e.loc, "a light-dependent array element or assignment");
         }
     }
     void stmt(const Stmt& s) {
@@ -151,7 +161,7 @@ private:
                 const std::string& op = s.expr->text;
                 if (op == "*=" || op == "/=") independent(*s.expr->args[1]);
                 else if (op == "=" || op == "+=" || op == "-=") linear(*s.expr->args[1]);
-                else m_ok = false;
+                else fail(s.loc, "operator " + op + " on a light-dependent variable");
             } else {
                 noTaintedAssign(*s.expr);
             }
@@ -186,9 +196,18 @@ private:
             --m_illuminance;
             break;
         case StmtKind::Illuminate:
-        case StmtKind::Solar: m_ok = false; break;
+        case StmtKind::Solar: fail(s.loc, "illuminate or solar in a surface"); break;
         default: break;
         }
+    }
+
+public:
+    std::string m_why;  // the first reason the coefficients cannot be carried
+
+private:
+    void fail(const SourceLoc& loc, const std::string& why) {
+        if (m_ok) m_why = loc.str() + ": " + why;
+        m_ok = false;
     }
 
     const LightTaint& m_t;
@@ -213,8 +232,22 @@ bool onlyCl(const Expr& e, const LightTaint& t) {
 
 }  // namespace
 
-bool coefsSupported(const ShaderDecl& sh, const LightTaint& t) {
-    return sh.kind == ShaderKind::Surface && CoefCheck(t).run(sh);
+bool coefsSupported(const ShaderDecl& sh, const LightTaint& t, std::string* why) {
+    if (sh.kind != ShaderKind::Surface) return false;
+    CoefCheck check(t);
+    bool ok = check.run(sh);
+    if (why) *why = check.m_why;
+    return ok;
+}
+
+bool lightCoefsSupported(const ShaderDecl& shader, std::string* why) {
+    Diagnostics quiet;
+    LightTaint taint;
+    if (!checkAffine(shader, Program(), quiet, &taint)) {
+        if (why) *why = "Ci is not affine in the lights";
+        return false;
+    }
+    return coefsSupported(shader, taint, why);
 }
 
 std::string Emitter::coefName(const Symbol* s) {

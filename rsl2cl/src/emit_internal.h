@@ -22,7 +22,7 @@ int slotsOf(BaseType b);                        // float slots of one value in a
 // Light coefficients (emit_coefs.cpp): whether e depends on some light's Cl, and whether
 // the shader's light-dependent values are all of the kinds the code generator carries.
 bool lightDependent(const Expr& e, const LightTaint& t);
-bool coefsSupported(const ShaderDecl& sh, const LightTaint& t);
+bool coefsSupported(const ShaderDecl& sh, const LightTaint& t, std::string* why = nullptr);
 
 class Emitter {
 public:

@@ -2,6 +2,7 @@
 #include "info.h"
 
 #include "builtins.h"
+#include "emit_cl.h"
 #include "hoist.h"
 
 namespace rsl {
@@ -144,6 +145,10 @@ ShaderInfo collectInfo(const ShaderDecl& shader) {
         for (const VarDecl* d : planHoisting(shader, computed).decls)
             info.oncePerInstance.push_back(d->name);
     }
+    if (shader.kind == ShaderKind::Surface) {
+        std::string why;
+        info.lightCoefficients = lightCoefsSupported(shader, &why) ? "yes" : "no (" + why + ")";
+    }
     return info;
 }
 
@@ -159,6 +164,8 @@ std::string formatInfo(const ShaderInfo& info) {
     out += "    globals read: " + join(info.globalsRead) + "\n";
     out += "    globals written: " + join(info.globalsWritten) + "\n";
     out += "    services: " + join(info.services) + "\n";
+    if (!info.lightCoefficients.empty())
+        out += "    light coefficients: " + info.lightCoefficients + "\n";
     if (!info.textures.empty()) out += "    textures: " + join(info.textures) + "\n";
     if (!info.derivatives.empty()) out += "    derivatives: " + join(info.derivatives) + "\n";
     if (!info.oncePerInstance.empty()) {

@@ -32,6 +32,9 @@ struct ShaderInfo {
     std::set<std::string> textures;   // literal map names given to texture() & co
     std::set<std::string> derivatives;  // Du Dv Deriv area calculatenormal filterstep
     std::vector<std::string> oncePerInstance;  // hoisted uniform variables (hoist.h)
+    // Surfaces: "yes" when one evaluation gives every light's coefficient (rsl_abi.h LIGHT
+    // COEFFICIENTS), else "no (file:line:col: why)": the renderer then runs it per light.
+    std::string lightCoefficients;
 };
 
 // Walks the typed shader (and the user functions it calls).

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "emit_cl.h"
+#include "info.h"
 #include "test_util.h"
 #include "testshade.h"
 
@@ -173,6 +174,14 @@ TEST(LightCoefs, UnsupportedShadersCompileWithout) {
         rsl::EmittedShader em = generate(c[0], std::string(c[1]) + ".sl");
         EXPECT_FALSE(em.lightCoefs) << c[1];
         EXPECT_EQ(em.source.find("Ci_light"), std::string::npos) << c[1];
+    }
+    {  // rsl2cl --info says why
+        rsltest::Result r;
+        rsltest::compile("surface arr() {\n  color a[2];\n  a[0] = diffuse(N);\n  Ci = a[0];\n}\n",
+                         r, "arr.sl");
+        ASSERT_TRUE(r.ok) << r.diags;
+        EXPECT_EQ(rsl::collectInfo(*r.prog.shaders[0]).lightCoefficients,
+                  "no (arr.sl:2:9: 'a' depends on the lights and is an array)");
     }
     rsl::EmittedShader plain = generate("surface p() { Ci = Cs * diffuse(N); }", "p.sl");
     EXPECT_TRUE(plain.lightCoefs);
