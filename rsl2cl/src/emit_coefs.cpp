@@ -38,6 +38,28 @@ namespace {
 
 bool linearType(const TypeSpec& t) { return !t.isArray() && (t.isFloat() || t.isTriple()); }
 
+// Whether evaluating e again changes nothing: lin() evaluates a light-dependent
+// expression's independent operands (multiplicands, divisors, conditions, mix weights,
+// the lighting builtins' arguments) once more per light, after the value. An assignment,
+// a user function, random() (a new site each time it is emitted), derivatives and
+// texture lookups (each call a site of the shading point's derivative sequence) and
+// builtins with output arguments would not give the same, or would move later sites.
+bool pure(const Expr& e) {
+    if (e.kind == ExprKind::Assign) return false;
+    if (e.kind == ExprKind::Call) {
+        if (e.function || !e.builtin || e.text == "random") return false;
+        const unsigned impure =
+            BF_DERIV | BF_TRACE | BF_TEXTURE | BF_ENVIRONMENT | BF_SHADOW | BF_MESSAGE;
+        if (e.builtin->flags & impure) return false;
+        for (const BuiltinSig& sig : e.builtin->sigs)
+            for (const BuiltinArg& a : sig.args)
+                if (a.output) return false;
+    }
+    for (const ExprPtr& a : e.args)
+        if (!pure(*a)) return false;
+    return !e.channel || pure(*e.channel);
+}
+
 // Whether the shader body keeps to what lin() and the statement rules handle.
 class CoefCheck {
 public:
@@ -98,6 +120,11 @@ private:
         if (dep(e)) fail(e.loc, "a light-dependent value where only independent ones are carried");
         noTaintedAssign(e);
     }
+    // An independent operand lin() evaluates again for each light (pure()).
+    void reevaluated(const Expr& e) {
+        independent(e);
+        if (!pure(e)) fail(e.loc, "'" + exprToString(e) + "' would be evaluated again per light");
+    }
     void linear(const Expr& e) {
         calls(e);
         if (!dep(e)) {
@@ -115,18 +142,22 @@ private:
             linear(*e.args[0]);
             return;
         case ExprKind::Binary:
-            if (e.text == "+" || e.text == "-" || e.text == "*") {
+            if (e.text == "+" || e.text == "-") {
                 linear(*e.args[0]);
                 linear(*e.args[1]);
+            } else if (e.text == "*") {  // one side depends on the lights (affine.cpp)
+                for (const ExprPtr& a : e.args)
+                    if (dep(*a)) linear(*a);
+                    else reevaluated(*a);
             } else if (e.text == "/") {
                 linear(*e.args[0]);
-                independent(*e.args[1]);
+                reevaluated(*e.args[1]);
             } else {
                 fail(e.loc, "operator " + e.text + " on a light-dependent value");
             }
             return;
         case ExprKind::Ternary:
-            independent(*e.args[0]);
+            reevaluated(*e.args[0]);
             linear(*e.args[1]);
             linear(*e.args[2]);
             return;
@@ -136,9 +167,9 @@ private:
             } else if (e.text == "mix" && e.args.size() == 3) {
                 linear(*e.args[0]);
                 linear(*e.args[1]);
-                independent(*e.args[2]);
+                reevaluated(*e.args[2]);
             } else if (e.text == "diffuse" || e.text == "specular" || e.text == "phong") {
-                for (const ExprPtr& a : e.args) independent(*a);
+                for (const ExprPtr& a : e.args) reevaluated(*a);
             } else {
                 fail(e.loc, e.text + "() of a light-dependent value");
             }
@@ -159,7 +190,7 @@ private:
         case StmtKind::Expr:
             if (s.expr->kind == ExprKind::Assign && taintedTarget(*s.expr->args[0])) {
                 const std::string& op = s.expr->text;
-                if (op == "*=" || op == "/=") independent(*s.expr->args[1]);
+                if (op == "*=" || op == "/=") reevaluated(*s.expr->args[1]);
                 else if (op == "=" || op == "+=" || op == "-=") linear(*s.expr->args[1]);
                 else fail(s.loc, "operator " + op + " on a light-dependent variable");
             } else {

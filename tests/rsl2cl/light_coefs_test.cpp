@@ -160,8 +160,10 @@ TEST(LightCoefs, UserFunctionsCarryTheirResultsParts) {
     expectCoefsMatchModes(sh, "functions, Kd .4");
 }
 
-// Shaders whose light-dependent values go where the coefficients are not carried are
-// compiled without them (the renderer evaluates them per light); their code has none.
+// Shaders whose light-dependent values go where the coefficients are not carried, or
+// whose coefficients would evaluate an operand with side effects again (random(),
+// derivatives, texture lookups, user functions), are compiled without them (the renderer
+// evaluates them per light); their code has none.
 TEST(LightCoefs, UnsupportedShadersCompileWithout) {
     const char* cases[][2] = {
         {"surface out() { void f(output color c) { c = diffuse(N); } color x = 0; f(x); Ci = x; }",
@@ -169,6 +171,11 @@ TEST(LightCoefs, UnsupportedShadersCompileWithout) {
         {"surface arr() { color a[2]; a[0] = diffuse(N); Ci = a[0]; }", "array"},
         {"surface par(varying color x = 0;) { x = diffuse(N); Ci = x; }", "parameter"},
         {"surface nested() { color a = 0, b = 0; a = (b = diffuse(N)) * 2; Ci = a; }", "nested"},
+        // operands evaluated again per light must give the same and move nothing
+        {"surface rnd() { Ci = random() * diffuse(N); }", "random"},
+        {"surface der() { Ci = area(P) * diffuse(N); }", "derivative"},
+        {"surface tex() { Ci = color texture(\"map.tx\") * diffuse(N); }", "texture"},
+        {"surface fnm() { float k() { return 2; } Ci = k() * diffuse(N); }", "function"},
     };
     for (const auto& c : cases) {
         rsl::EmittedShader em = generate(c[0], std::string(c[1]) + ".sl");
