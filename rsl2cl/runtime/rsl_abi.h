@@ -88,10 +88,9 @@
  *   function whose result depends on the lights takes one more argument,
  *   RSL_COEF_ARG(array), where it leaves that result's parts. Shaders whose
  *   light-dependent values go into arrays, parameters, output parameters or
- *   colour-space casts, or whose light-dependent expressions multiply by random(), a
- *   derivative, a texture lookup or a user function call (evaluated again per light,
- *   they would not give the same), are compiled without (lightCoefs false): evaluate
- *   them per light.
+ *   colour-space casts, or that assign inside a light-dependent expression or call
+ *   random(), a derivative, a texture lookup or a user function inside one of its ?:
+ *   branches, are compiled without (lightCoefs false): evaluate them per light.
  * LIGHT SHADERS: RSL_LIGHT_FUNCTION void rsl_light_<name>(RslGlobals* g,
  *                                                     RSL_LIGHT_PARAMS params);
  *   RSL_LIGHT_PARAMS is `__global const float*` unless the renderer defines it first

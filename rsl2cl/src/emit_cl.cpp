@@ -362,8 +362,11 @@ void Emitter::decl(const VarDecl& d) {
         if (d.init) error(d.loc, "array initialisers other than {...} lists are not supported");
         return;
     }
+    const bool coefs = m_coefs && m_coefs->symbols.count(d.symbol);
+    if (coefs && d.init) hoistOperands(*d.init);
     line(t + " " + name + " = " + (d.init ? exprAs(*d.init, d.type) : clZero(d.type)) + ";");
-    if (m_coefs && m_coefs->symbols.count(d.symbol)) coefDecl(d);
+    if (coefs) coefDecl(d);
+    m_exprTemps.clear();
 }
 
 void Emitter::loopBody(const Stmt& body) {
@@ -442,8 +445,10 @@ void Emitter::stmt(const Stmt& s) {
     switch (s.kind) {
     case StmtKind::Empty: break;
     case StmtKind::Expr:
+        if (coefTarget(*s.expr)) hoistAssign(*s.expr);
         line(expr(*s.expr) + ";");
         if (coefTarget(*s.expr)) coefAssign(*s.expr);
+        m_exprTemps.clear();
         break;
     case StmtKind::Decl:
         for (const VarDecl& d : s.decls) decl(d);

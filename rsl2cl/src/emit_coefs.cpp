@@ -38,23 +38,35 @@ namespace {
 
 bool linearType(const TypeSpec& t) { return !t.isArray() && (t.isFloat() || t.isTriple()); }
 
-// Whether evaluating e again changes nothing: lin() evaluates a light-dependent
-// expression's independent operands (multiplicands, divisors, conditions, mix weights,
-// the lighting builtins' arguments) once more per light, after the value. An assignment,
-// a user function, random() (a new site each time it is emitted), derivatives and
-// texture lookups (each call a site of the shading point's derivative sequence) and
-// builtins with output arguments would not give the same, or would move later sites.
+// lin() evaluates a light-dependent expression's independent operands (multiplicands,
+// divisors, conditions, mix weights, the lighting builtins' arguments) again for each
+// light. That is right only where evaluating them again changes nothing: not for a
+// user function, random() (a new site each time it is emitted), derivatives and texture
+// lookups (each call a site of the point's derivative sequence). Such an operand is
+// computed once into a temporary that the value and the parts both read (hoistOperands),
+// unless it sits in a ?: branch (it would then run when the branch does not). An
+// assignment, or a builtin with output arguments, there is not carried at all.
+bool writes(const Expr& e) {
+    if (e.kind == ExprKind::Assign) return true;
+    if (e.kind == ExprKind::Call && e.function)
+        for (const VarDecl& p : e.function->params)
+            if (p.output) return true;
+    if (e.kind == ExprKind::Call && e.builtin)
+        for (const BuiltinSig& sig : e.builtin->sigs)
+            for (const BuiltinArg& a : sig.args)
+                if (a.output) return true;
+    for (const ExprPtr& a : e.args)
+        if (writes(*a)) return true;
+    return e.channel && writes(*e.channel);
+}
 bool pure(const Expr& e) {
-    if (e.kind == ExprKind::Assign) return false;
     if (e.kind == ExprKind::Call) {
         if (e.function || !e.builtin || e.text == "random") return false;
         const unsigned impure =
             BF_DERIV | BF_TRACE | BF_TEXTURE | BF_ENVIRONMENT | BF_SHADOW | BF_MESSAGE;
         if (e.builtin->flags & impure) return false;
-        for (const BuiltinSig& sig : e.builtin->sigs)
-            for (const BuiltinArg& a : sig.args)
-                if (a.output) return false;
     }
+    if (writes(e)) return false;
     for (const ExprPtr& a : e.args)
         if (!pure(*a)) return false;
     return !e.channel || pure(*e.channel);
@@ -120,10 +132,13 @@ private:
         if (dep(e)) fail(e.loc, "a light-dependent value where only independent ones are carried");
         noTaintedAssign(e);
     }
-    // An independent operand lin() evaluates again for each light (pure()).
+    // An independent operand lin() reads for each light (pure(), hoistOperands()).
     void reevaluated(const Expr& e) {
         independent(e);
-        if (!pure(e)) fail(e.loc, "'" + exprToString(e) + "' would be evaluated again per light");
+        if (writes(e))
+            fail(e.loc, "'" + exprToString(e) + "' assigns in a light-dependent expression");
+        else if (!pure(e) && m_branch > 0)
+            fail(e.loc, "'" + exprToString(e) + "' in a ?: branch would run in every case");
     }
     void linear(const Expr& e) {
         calls(e);
@@ -158,8 +173,10 @@ private:
             return;
         case ExprKind::Ternary:
             reevaluated(*e.args[0]);
+            ++m_branch;
             linear(*e.args[1]);
             linear(*e.args[2]);
+            --m_branch;
             return;
         case ExprKind::Call:
             if (e.function) {  // a light-dependent result: its arguments are independent
@@ -246,6 +263,7 @@ private:
     std::set<const FunctionDecl*> m_seen;
     std::vector<const FunctionDecl*> m_pending;
     int m_illuminance = 0;
+    int m_branch = 0;  // inside ?: branches of a light-dependent expression
     bool m_ok = true;
 };
 
@@ -403,10 +421,63 @@ std::string Emitter::coefCallArg(const Expr& e) {
 // `return e` in a function whose result depends on the lights: the value, then its
 // parts per light for the caller (the value first: a call in e fills what they read).
 void Emitter::coefReturn(const Expr& e, const TypeSpec& type) {
+    hoistOperands(e);
     std::string v = exprAs(e, type), ret = "_ret" + std::to_string(m_tmp++);
     line(std::string(clType(type)) + " " + ret + " = " + v + ";");
     coefLines({kEachLight + std::string("_ret_light[_k] = ") + linAs(e, type, "_k") + ";"});
     line("return " + ret + ";");
+    m_exprTemps.clear();
+}
+
+// Before a statement that sets a light-dependent value: each impure independent operand
+// lin() would read (pure()) into a temporary, in evaluation order; expr() then gives the
+// temporary, to the value and to the parts alike.
+void Emitter::hoistOperands(const Expr& e) {
+    if (!lightDependent(e, *m_coefs)) return;
+    auto once = [&](const Expr& op) {
+        if (pure(op) || m_exprTemps.count(&op)) return;
+        std::string v = expr(op), name = "_h" + std::to_string(m_tmp++);
+        line(std::string(clType(op.type)) + " " + name + " = " + v + ";");
+        m_exprTemps[&op] = name;
+    };
+    switch (e.kind) {
+    case ExprKind::Binary:
+        if (e.text == "*")
+            for (const ExprPtr& a : e.args)
+                lightDependent(*a, *m_coefs) ? hoistOperands(*a) : once(*a);
+        else if (e.text == "/")
+            hoistOperands(*e.args[0]), once(*e.args[1]);
+        else
+            hoistOperands(*e.args[0]), hoistOperands(*e.args[1]);
+        return;
+    case ExprKind::Ternary:  // (CoefCheck: nothing impure in the branches)
+        once(*e.args[0]);
+        return;
+    case ExprKind::Call:
+        if (e.function) return;  // its arguments are evaluated once, by the call
+        if (e.text == "mix") {
+            hoistOperands(*e.args[0]), hoistOperands(*e.args[1]), once(*e.args[2]);
+            return;
+        }
+        for (const ExprPtr& a : e.args) once(*a);  // diffuse(), specular(), phong()
+        return;
+    default:
+        for (const ExprPtr& a : e.args) hoistOperands(*a);
+    }
+}
+
+void Emitter::hoistAssign(const Expr& assign) {
+    const std::string& op = assign.text;
+    if (op == "*=" || op == "/=") {  // the right-hand side is the independent operand
+        const Expr& r = *assign.args[1];
+        if (!pure(r) && !m_exprTemps.count(&r)) {
+            std::string v = expr(r), name = "_h" + std::to_string(m_tmp++);
+            line(std::string(clType(r.type)) + " " + name + " = " + v + ";");
+            m_exprTemps[&r] = name;
+        }
+        return;
+    }
+    hoistOperands(*assign.args[1]);
 }
 
 }  // namespace rsl

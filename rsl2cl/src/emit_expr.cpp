@@ -177,6 +177,8 @@ std::string Emitter::userCall(const Expr& e) {
 }
 
 std::string Emitter::expr(const Expr& e) {
+    if (!m_exprTemps.empty())  // computed once before the statement (emit_coefs.cpp)
+        if (auto it = m_exprTemps.find(&e); it != m_exprTemps.end()) return it->second;
     switch (e.kind) {
     case ExprKind::Number: return clNumber(e.number);
     case ExprKind::String: return stringLiteral(e.text);

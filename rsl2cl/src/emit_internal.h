@@ -57,6 +57,8 @@ public:
     void coefLines(const std::vector<std::string>& lines);  // under #ifdef RSL_LIGHT_COEFS
     std::string coefCallArg(const Expr& e);  // a light-dependent user call's extra argument
     void coefReturn(const Expr& e, const TypeSpec& type);
+    void hoistOperands(const Expr& e);   // impure operands the parts read, computed once
+    void hoistAssign(const Expr& assign);
     bool coefFunction(const FunctionDecl* f) const {
         return m_coefs && f && m_coefs->functions.count(f);
     }
@@ -110,6 +112,7 @@ public:
     std::vector<std::string> m_lightRaw;   // ... and its light's unshadowed Cl
     const LightTaint* m_coefs = nullptr;   // emit light coefficients (emit_coefs.cpp)
     std::map<const Expr*, std::string> m_callCoefs;  // a user call's parts per light
+    std::map<const Expr*, std::string> m_exprTemps;  // hoisted operands, this statement
     bool m_usesSpaces = false;  // the code being emitted uses sp (shader/object spaces)
     std::set<const FunctionDecl*> m_fnUsesSpaces;
     HoistPlan m_hoist;  // declarations computed once per instance

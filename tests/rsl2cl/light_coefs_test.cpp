@@ -160,10 +160,33 @@ TEST(LightCoefs, UserFunctionsCarryTheirResultsParts) {
     expectCoefsMatchModes(sh, "functions, Kd .4");
 }
 
-// Shaders whose light-dependent values go where the coefficients are not carried, or
-// whose coefficients would evaluate an operand with side effects again (random(),
-// derivatives, texture lookups, user functions), are compiled without them (the renderer
-// evaluates them per light); their code has none.
+// Operands with side effects in light-dependent expressions: random() (a site per
+// call), a derivative, a texture lookup, a user function. Each is computed once, before
+// the statement, for the value and the parts alike; evaluated again per light, random()
+// would draw from another site (this test then fails).
+const char* kImpureOperands =
+    "surface impure(float Kd = .8;)\n"
+    "{\n"
+    "    float k(float x) { return 2 * x; }\n"
+    "    normal Nf = faceforward(normalize(N), I);\n"
+    "    color c = random() * diffuse(Nf);\n"
+    "    c += (0.5 + area(P)) * k(Kd) * specular(Nf, -I, .3);\n"
+    "    c *= 0.5 + random();\n"
+    "    Oi = Os;\n"
+    "    Ci = Os * color texture(\"map.tx\", \"fill\", 0.75) * (c + diffuse(normalize(N + random())));\n"
+    "}\n";
+
+TEST(LightCoefs, ImpureOperandsAreEvaluatedOnce) {
+    if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource(kImpureOperands, "impure.sl", &err)) << err;
+    ASSERT_TRUE(sh.shader.lightCoefs) << sh.shader.source;
+    expectCoefsMatchModes(sh, "impure");
+}
+
+// Shaders whose light-dependent values go where the coefficients are not carried are
+// compiled without them (the renderer evaluates them per light); their code has none.
 TEST(LightCoefs, UnsupportedShadersCompileWithout) {
     const char* cases[][2] = {
         {"surface out() { void f(output color c) { c = diffuse(N); } color x = 0; f(x); Ci = x; }",
@@ -171,11 +194,9 @@ TEST(LightCoefs, UnsupportedShadersCompileWithout) {
         {"surface arr() { color a[2]; a[0] = diffuse(N); Ci = a[0]; }", "array"},
         {"surface par(varying color x = 0;) { x = diffuse(N); Ci = x; }", "parameter"},
         {"surface nested() { color a = 0, b = 0; a = (b = diffuse(N)) * 2; Ci = a; }", "nested"},
-        // operands evaluated again per light must give the same and move nothing
-        {"surface rnd() { Ci = random() * diffuse(N); }", "random"},
-        {"surface der() { Ci = area(P) * diffuse(N); }", "derivative"},
-        {"surface tex() { Ci = color texture(\"map.tx\") * diffuse(N); }", "texture"},
-        {"surface fnm() { float k() { return 2; } Ci = k() * diffuse(N); }", "function"},
+        // an impure operand in a ?: branch would run whichever branch is taken
+        {"surface br() { Ci = u > 0.5 ? random() * diffuse(N) : diffuse(N); }", "branch"},
+        {"surface asg() { float k = 0; Ci = (k = 2) * diffuse(N); }", "assignment"},
     };
     for (const auto& c : cases) {
         rsl::EmittedShader em = generate(c[0], std::string(c[1]) + ".sl");
