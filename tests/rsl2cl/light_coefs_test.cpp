@@ -185,6 +185,26 @@ TEST(LightCoefs, ImpureOperandsAreEvaluatedOnce) {
     expectCoefsMatchModes(sh, "impure");
 }
 
+// A light just below the horizon: the hemisphere test lets it in (its tolerance is
+// 1e-6), and diffuse() must add nothing rather than a negative amount (which the
+// renderer counts as a bad shader result and leaves out), in its mode and as a part.
+TEST(LightCoefs, DiffuseAtTheHorizonIsNotNegative) {
+    if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource("surface d() { Oi = 1; Ci = diffuse(N); }\n", "d.sl", &err)) << err;
+    ts::Scene sc;
+    sc.lights.push_back({{1.0f, 0.0f, -4e-7f}, {1.0f, 1.0f, 1.0f}});
+    std::vector<ts::Point> pts = ts::grid(1);
+    std::vector<ts::Out> mode = sh.run(pts, sc, 0), coefs = sh.run(pts, sc, ts::kCoefficients);
+    ASSERT_EQ(mode.size(), 1u);
+    ASSERT_EQ(coefs.size(), 1u);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_GE(mode[0].Ci[c], 0.0f);
+        EXPECT_GE(coefs[0].CiLight[0][c], 0.0f);
+    }
+}
+
 // Shaders whose light-dependent values go where the coefficients are not carried are
 // compiled without them (the renderer evaluates them per light); their code has none.
 TEST(LightCoefs, UnsupportedShadersCompileWithout) {
