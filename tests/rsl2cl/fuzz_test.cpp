@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "emit_cl.h"
 #include "test_util.h"
 
 namespace {
@@ -20,6 +21,11 @@ void run(const std::string& src) {
     rsltest::compile(src, r);
     if (r.ok) rsl::dumpAst(r.prog);
     for (const auto& sh : r.prog.shaders) rsl::formatInfo(rsl::collectInfo(*sh));
+    if (!r.ok) return;
+    for (const auto& sh : r.prog.shaders) {  // the code generator too (light coefficients...)
+        rsl::Diagnostics d;
+        rsl::emitOpenCL(*sh, r.prog, d);
+    }
 }
 
 TEST(Fuzz, Truncation) {
@@ -61,6 +67,45 @@ TEST(Fuzz, ByteMutations) {
             for (int k = 0; k < 4; ++k) s[rng() % s.size()] = alphabet[rng() % alphabet.size()];
             run(s);
         }
+    }
+}
+
+// Light coefficients (emit_coefs.cpp): illumination models in functions, illuminance
+// loops, impure operands, ?:, compound assignments; token swaps and drops that still
+// compile must generate code without a crash (or give errors).
+TEST(Fuzz, LightCoefficientShaders) {
+    const char* src =
+        "surface f(float Kd = .5, Ks = .5; color sc = 1;) {\n"
+        "  color m(normal Nf; vector V; float r; color sc) {\n"
+        "    color C = 0;\n"
+        "    illuminance(P, Nf, PI / 2) { C += Cl * (normalize(L) . Nf) * r; C -= Cl / 8; }\n"
+        "    if (r > 1) return C * random();\n"
+        "    return C + sc * specular(Nf, V, r) / 2;\n"
+        "  }\n"
+        "  normal Nf = faceforward(normalize(N), I);\n"
+        "  color c = area(P) * diffuse(Nf), d = u > .5 ? c : -c;\n"
+        "  c *= 1 + random();\n"
+        "  d = mix(c, d, v) + color texture(\"t.tx\") * m(Nf, -I, Ks, sc);\n"
+        "  Oi = Os;\n"
+        "  Ci = Os * (Cs * Kd * (c + d) + trace(P, Nf));\n"
+        "}\n";
+    std::mt19937 rng(4321);
+    rsl::Diagnostics d;
+    std::vector<rsl::Token> toks = rsl::lexText(src, "f.sl", d);
+    toks.pop_back();
+    {  // the unmutated shader compiles, with coefficients
+        rsltest::Result r;
+        rsltest::compile(src, r);
+        ASSERT_TRUE(r.ok) << r.diags;
+        rsl::Diagnostics diag;
+        EXPECT_TRUE(rsl::emitOpenCL(*r.prog.shaders[0], r.prog, diag).lightCoefs) << diag.text();
+    }
+    for (int iter = 0; iter < 3000; ++iter) {
+        std::vector<rsl::Token> t = toks;
+        size_t a = rng() % t.size(), b = rng() % t.size();
+        if (rng() % 2) std::swap(t[a], t[b]);
+        else t.erase(t.begin() + static_cast<long>(a));
+        run(rsl::tokensToText(t));
     }
 }
 
