@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "coef_shader.h"
 #include "emit_cl.h"
 #include "test_util.h"
 
@@ -70,25 +71,10 @@ TEST(Fuzz, ByteMutations) {
     }
 }
 
-// Light coefficients (emit_coefs.cpp): illumination models in functions, illuminance
-// loops, impure operands, ?:, compound assignments; token swaps and drops that still
+// Light coefficients (emit_coefs.cpp, coef_shader.h): token swaps and drops that still
 // compile must generate code without a crash (or give errors).
 TEST(Fuzz, LightCoefficientShaders) {
-    const char* src =
-        "surface f(float Kd = .5, Ks = .5; color sc = 1;) {\n"
-        "  color m(normal Nf; vector V; float r; color sc) {\n"
-        "    color C = 0;\n"
-        "    illuminance(P, Nf, PI / 2) { C += Cl * (normalize(L) . Nf) * r; C -= Cl / 8; }\n"
-        "    if (r > 1) return C * random();\n"
-        "    return C + sc * specular(Nf, V, r) / 2;\n"
-        "  }\n"
-        "  normal Nf = faceforward(normalize(N), I);\n"
-        "  color c = area(P) * diffuse(Nf), d = u > .5 ? c : -c;\n"
-        "  c *= 1 + random();\n"
-        "  d = mix(c, d, v) + color texture(\"t.tx\") * m(Nf, -I, Ks, sc);\n"
-        "  Oi = Os;\n"
-        "  Ci = Os * (Cs * Kd * (c + d) + trace(P, Nf));\n"
-        "}\n";
+    const char* src = rsltest::coefShader();
     std::mt19937 rng(4321);
     rsl::Diagnostics d;
     std::vector<rsl::Token> toks = rsl::lexText(src, "f.sl", d);

@@ -7,9 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
+#include "coef_shader.h"
 #include "emit_cl.h"
 #include "info.h"
+#include "lexer.h"
 #include "test_util.h"
 #include "testshade.h"
 
@@ -203,6 +206,45 @@ TEST(LightCoefs, DiffuseAtTheHorizonIsNotNegative) {
         EXPECT_GE(mode[0].Ci[c], 0.0f);
         EXPECT_GE(coefs[0].CiLight[0][c], 0.0f);
     }
+}
+
+// Differential: mutants of coef_shader.h (token swaps and drops) that still compile with
+// light coefficients build on the device, and their coefficients match their per-light
+// evaluation modes (within 1e-4 + 1e-4 |Ci|: mutants may sum large terms).
+TEST(LightCoefs, MutantsMatchTheirLightModes) {
+    if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
+    rsl::Diagnostics d;
+    std::vector<rsl::Token> toks = rsl::lexText(rsltest::coefShader(), "f.sl", d);
+    toks.pop_back();
+    std::mt19937 rng(777);
+    const ts::Scene sc = threeLights();
+    const std::vector<ts::Point> pts = ts::grid(2);
+    int checked = 0;
+    for (int iter = 0; iter < 2000 && checked < 12; ++iter) {
+        std::vector<rsl::Token> t = toks;
+        size_t a = rng() % t.size(), b = rng() % t.size();
+        if (rng() % 2) std::swap(t[a], t[b]);
+        else t.erase(t.begin() + static_cast<long>(a));
+        const std::string src = rsl::tokensToText(t);
+        ts::Shade sh;
+        std::string err;
+        if (!sh.compileSource(src, "m.sl", &err) || !sh.shader.lightCoefs) continue;
+        std::string log;
+        ASSERT_TRUE(sh.buildOnDevice(sc, &log)) << src << log;
+        ++checked;
+        std::vector<ts::Out> coefs = sh.run(pts, sc, ts::kCoefficients), base = sh.run(pts, sc);
+        ASSERT_EQ(coefs.size(), pts.size());
+        for (int l = 0; l < int(sc.lights.size()); ++l) {
+            std::vector<ts::Out> mode = sh.run(pts, sc, l);
+            ASSERT_EQ(mode.size(), pts.size());
+            for (size_t i = 0; i < pts.size(); ++i)
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(coefs[i].CiLight[l][c], mode[i].Ci[c] - base[i].Ci[c],
+                                1e-4f + 1e-4f * std::fabs(mode[i].Ci[c]))
+                        << src << "light " << l << " point " << i;
+        }
+    }
+    EXPECT_EQ(checked, 12);
 }
 
 // Shaders whose light-dependent values go where the coefficients are not carried are
