@@ -70,6 +70,13 @@ void expectCoefsMatchModes(ts::Shade& sh, const std::string& what) {
         for (int c = 0; c < 3; ++c) EXPECT_EQ(coefs[i].Ci[c], base[i].Ci[c]) << what;
 }
 
+// Compiles src into sh, which must carry light coefficients.
+void compileWithCoefs(ts::Shade& sh, const char* src, const char* name) {
+    std::string err;
+    ASSERT_TRUE(sh.compileSource(src, name, &err)) << err;
+    ASSERT_TRUE(sh.shader.lightCoefs) << sh.shader.source;
+}
+
 TEST(LightCoefs, StandardShadersMatchTheirLightModes) {
     if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
     for (const char* n : {"plastic", "matte", "metal", "shinymetal", "paintedplastic"}) {
@@ -118,9 +125,7 @@ const char* kEveryConstruct =
 TEST(LightCoefs, EveryCarriedConstructMatchesLightModes) {
     if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
     ts::Shade sh;
-    std::string err;
-    ASSERT_TRUE(sh.compileSource(kEveryConstruct, "every.sl", &err)) << err;
-    ASSERT_TRUE(sh.shader.lightCoefs) << sh.shader.source;
+    ASSERT_NO_FATAL_FAILURE(compileWithCoefs(sh, kEveryConstruct, "every.sl"));
     expectCoefsMatchModes(sh, "every");
 }
 
@@ -155,9 +160,7 @@ const char* kFunctions =
 TEST(LightCoefs, UserFunctionsCarryTheirResultsParts) {
     if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
     ts::Shade sh;
-    std::string err;
-    ASSERT_TRUE(sh.compileSource(kFunctions, "fns.sl", &err)) << err;
-    ASSERT_TRUE(sh.shader.lightCoefs) << sh.shader.source;
+    ASSERT_NO_FATAL_FAILURE(compileWithCoefs(sh, kFunctions, "fns.sl"));
     expectCoefsMatchModes(sh, "functions, Kd .6");
     sh.setParam("Kd", {0.4f});  // the ternary's other branch
     expectCoefsMatchModes(sh, "functions, Kd .4");
@@ -182,9 +185,7 @@ const char* kImpureOperands =
 TEST(LightCoefs, ImpureOperandsAreEvaluatedOnce) {
     if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
     ts::Shade sh;
-    std::string err;
-    ASSERT_TRUE(sh.compileSource(kImpureOperands, "impure.sl", &err)) << err;
-    ASSERT_TRUE(sh.shader.lightCoefs) << sh.shader.source;
+    ASSERT_NO_FATAL_FAILURE(compileWithCoefs(sh, kImpureOperands, "impure.sl"));
     expectCoefsMatchModes(sh, "impure");
 }
 
