@@ -430,7 +430,7 @@ ShadingSetup ShaderSet::prepare() {
     // coefficient, where the kernel otherwise evaluated the surface once more per light.
     const bool lightCoefs = out.lightCount >= 1 && out.lightCount <= kLightCoefLimit;
     // The light cache holds every light up to the same limit (rsl_abi.h RslLightCache).
-    const std::string coefsDefine =
+    const std::string lightDefines =
         "#define RSL_LIGHT_CACHE " +
         std::to_string(std::clamp<uint32_t>(out.lightCount, 1, kLightCoefLimit)) + "\n" +
         (lightCoefs ? "#define RSL_LIGHT_COEFS " + std::to_string(out.lightCount) + "\n" : "");
@@ -558,7 +558,7 @@ ShadingSetup ShaderSet::prepare() {
     // Surface shaders are inlined into their shade kernel's few call sites (base, light
     // and trace modes): the work a mode does not change is hoisted out of the light loop
     // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).
-    out.generated["rd_shading.cl"] = coefsDefine + "#define RSL_LIGHT_PARAMS __constant float*\n"
+    out.generated["rd_shading.cl"] = lightDefines + "#define RSL_LIGHT_PARAMS __constant float*\n"
                                      "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
                                      "inline __attribute__((always_inline))\n#endif\n"
                                      "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"

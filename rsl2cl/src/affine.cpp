@@ -56,8 +56,8 @@ public:
         return !m_failed;
     }
 
-    // The symbols that depend on some light's Cl, and whether light-dependent values
-    // appear inside user functions (after run()).
+    // The symbols that depend on some light's Cl, and the user functions whose result
+    // does (after run()).
     void lightTaint(LightTaint* out) const {
         out->symbols.clear();
         out->functions.clear();

@@ -187,9 +187,7 @@ void Emitter::emitFunction(const FunctionDecl& f, bool prototypeOnly) {
     line("float _g_alpha = 0.0f, _g_dtime = 0.0f; float4 _g_dPdtime = rsl_f2v(0.0f);");
     line("(void)g; (void)ev; (void)sp; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
     for (const StmtPtr& s : f.body->stmts) stmt(*s);
-    if (coefFunction(&f))
-        coefLines({"if (ev->coefs) for (int _k = 0; _k < RSL_LIGHT_COEFS; ++_k) _ret_light[_k] = " +
-                   clZero(f.returnType) + ";"});
+    if (coefFunction(&f)) coefZero("_ret_light", f.returnType);  // fell off its end
     if (!f.returnType.isVoid()) line("return " + clZero(f.returnType) + ";");
     m_body << "}\n\n";
     if (m_usesSpaces) m_fnUsesSpaces.insert(&f);
@@ -298,9 +296,7 @@ void Emitter::emitShader() {
         line("g->Cl = rsl_f2v(0.0f);");
     } else {
         line("ev->trace_count = 0;");
-        if (m_coefs)
-            coefLines({"if (ev->coefs) for (int _k = 0; _k < RSL_LIGHT_COEFS; ++_k) "
-                       "ev->Ci_light[_k] = rsl_f2v(0.0f);"});
+        if (m_coefs) coefZero("ev->Ci_light", BaseType::Color);
     }
     line("float _g_alpha = 0.0f, _g_dtime = 0.0f; float4 _g_dPdtime = rsl_f2v(0.0f);");
     line("(void)params; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
@@ -397,16 +393,11 @@ void Emitter::lightLoop(const Stmt& s) {
         line("int _nl" + k + " = rsl_light_count();");
         line("for (int _l" + k + " = 0; _l" + k + " < _nl" + k + "; ++_l" + k + ") {");
         ++m_indent;
-        if (m_coefs) {  // the unshadowed Cl too: the light's coefficient
-            line("float4 _L" + k + ", _Clr" + k + ";");
-            line("if (!rsl_light_raw(_l" + k + ", g, _ilP" + k + ", _ilA" + k + ", _ilT" + k +
-                 ", &_L" + k + ", &_Clr" + k + ")) continue;");
-            line("float4 _Cl" + k + " = rsl_light_mode(ev, _l" + k + ", _Clr" + k + ");");
-        } else {
-            line("float4 _L" + k + ", _Cl" + k + ";");
-            line("if (!rsl_light_eval(_l" + k + ", g, ev, _ilP" + k + ", _ilA" + k + ", _ilT" + k +
-                 ", &_L" + k + ", &_Cl" + k + ")) continue;");
-        }
+        // the unshadowed Cl (_Clr: what light coefficients read), then this mode's
+        line("float4 _L" + k + ", _Clr" + k + ";");
+        line("if (!rsl_light_raw(_l" + k + ", g, _ilP" + k + ", _ilA" + k + ", _ilT" + k +
+             ", &_L" + k + ", &_Clr" + k + ")) continue;");
+        line("float4 _Cl" + k + " = rsl_light_mode(ev, _l" + k + ", _Clr" + k + ");");
         line("g->L = _L" + k + "; g->Cl = _Cl" + k + ";");
         m_lightVars.push_back("_l" + k);
         m_lightRaw.push_back("_Clr" + k);

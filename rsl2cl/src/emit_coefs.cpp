@@ -371,6 +371,10 @@ void Emitter::coefLines(const std::vector<std::string>& lines) {
 
 static const char* kEachLight = "if (ev->coefs) for (int _k = 0; _k < RSL_LIGHT_COEFS; ++_k) ";
 
+void Emitter::coefZero(const std::string& array, const TypeSpec& type) {
+    coefLines({kEachLight + array + "[_k] = " + clZero(type) + ";"});
+}
+
 void Emitter::coefDecl(const VarDecl& d) {
     std::string name = "v_" + d.name + "_light";
     coefLines({std::string(clType(d.type)) + " " + name + "[RSL_LIGHT_COEFS];",
@@ -432,34 +436,35 @@ void Emitter::coefReturn(const Expr& e, const TypeSpec& type) {
 // Before a statement that sets a light-dependent value: each impure independent operand
 // lin() would read (pure()) into a temporary, in evaluation order; expr() then gives the
 // temporary, to the value and to the parts alike.
+void Emitter::hoistOnce(const Expr& op) {
+    if (pure(op) || m_exprTemps.count(&op)) return;
+    std::string v = expr(op), name = "_h" + std::to_string(m_tmp++);
+    line(std::string(clType(op.type)) + " " + name + " = " + v + ";");
+    m_exprTemps[&op] = name;
+}
+
 void Emitter::hoistOperands(const Expr& e) {
     if (!lightDependent(e, *m_coefs)) return;
-    auto once = [&](const Expr& op) {
-        if (pure(op) || m_exprTemps.count(&op)) return;
-        std::string v = expr(op), name = "_h" + std::to_string(m_tmp++);
-        line(std::string(clType(op.type)) + " " + name + " = " + v + ";");
-        m_exprTemps[&op] = name;
-    };
     switch (e.kind) {
     case ExprKind::Binary:
         if (e.text == "*")
             for (const ExprPtr& a : e.args)
-                lightDependent(*a, *m_coefs) ? hoistOperands(*a) : once(*a);
+                lightDependent(*a, *m_coefs) ? hoistOperands(*a) : hoistOnce(*a);
         else if (e.text == "/")
-            hoistOperands(*e.args[0]), once(*e.args[1]);
+            hoistOperands(*e.args[0]), hoistOnce(*e.args[1]);
         else
             hoistOperands(*e.args[0]), hoistOperands(*e.args[1]);
         return;
     case ExprKind::Ternary:  // (CoefCheck: nothing impure in the branches)
-        once(*e.args[0]);
+        hoistOnce(*e.args[0]);
         return;
     case ExprKind::Call:
         if (e.function) return;  // its arguments are evaluated once, by the call
         if (e.text == "mix") {
-            hoistOperands(*e.args[0]), hoistOperands(*e.args[1]), once(*e.args[2]);
+            hoistOperands(*e.args[0]), hoistOperands(*e.args[1]), hoistOnce(*e.args[2]);
             return;
         }
-        for (const ExprPtr& a : e.args) once(*a);  // diffuse(), specular(), phong()
+        for (const ExprPtr& a : e.args) hoistOnce(*a);  // diffuse(), specular(), phong()
         return;
     default:
         for (const ExprPtr& a : e.args) hoistOperands(*a);
@@ -468,16 +473,8 @@ void Emitter::hoistOperands(const Expr& e) {
 
 void Emitter::hoistAssign(const Expr& assign) {
     const std::string& op = assign.text;
-    if (op == "*=" || op == "/=") {  // the right-hand side is the independent operand
-        const Expr& r = *assign.args[1];
-        if (!pure(r) && !m_exprTemps.count(&r)) {
-            std::string v = expr(r), name = "_h" + std::to_string(m_tmp++);
-            line(std::string(clType(r.type)) + " " + name + " = " + v + ";");
-            m_exprTemps[&r] = name;
-        }
-        return;
-    }
-    hoistOperands(*assign.args[1]);
+    if (op == "*=" || op == "/=") hoistOnce(*assign.args[1]);  // the independent operand
+    else hoistOperands(*assign.args[1]);
 }
 
 }  // namespace rsl

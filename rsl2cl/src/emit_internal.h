@@ -55,8 +55,10 @@ public:
     void coefDecl(const VarDecl& d);
     void coefAssign(const Expr& e);
     void coefLines(const std::vector<std::string>& lines);  // under #ifdef RSL_LIGHT_COEFS
+    void coefZero(const std::string& array, const TypeSpec& type);  // every light's part 0
     std::string coefCallArg(const Expr& e);  // a light-dependent user call's extra argument
     void coefReturn(const Expr& e, const TypeSpec& type);
+    void hoistOnce(const Expr& op);      // an impure operand into a temporary
     void hoistOperands(const Expr& e);   // impure operands the parts read, computed once
     void hoistAssign(const Expr& assign);
     bool coefFunction(const FunctionDecl* f) const {
