@@ -192,6 +192,9 @@ int main(int argc, char** argv) {
                  "trace shadow rays one a work-item, not in packets of eight (for comparison)");
     app.add_flag("--no-closest-packets", noClosestPackets,
                  "trace eye and other coherent rays one a work-item, not in packets of eight");
+    bool noOverlapPasses = false;
+    app.add_flag("--no-overlap-passes", noOverlapPasses,
+                 "let each adaptive pass drain before the next is planned (for comparison)");
     app.add_option("--treelet-budget", treeletBytes,
                    "trace through treelets of at most BYTES of BVH (default: Option \"limits\" "
                    "\"treeletbytes\", else the resident BVH; triangle scenes only)");
@@ -240,6 +243,7 @@ int main(int argc, char** argv) {
             settings.bvhWidth = bvhWidth;
             settings.shadowPackets = !noShadowPackets;
             settings.closestPackets = !noClosestPackets;
+            settings.overlapPasses = !noOverlapPasses;
             settings.sceneMemoryBytes = sceneMemory;
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
             rd::Renderer renderer(ctx, settings);

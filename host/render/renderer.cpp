@@ -48,6 +48,19 @@ const std::vector<std::string> kRenderSources = {
     "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "close_round.cl", "compact.cl",
     "retire.cl", "treelet.cl"};
 
+// The samples of the queued jobs, counted up to `cap`.
+size_t queuedSamples(const std::deque<PlannedJob>& pending, size_t cap) {
+    size_t total = 0;
+    for (auto it = pending.begin(); it != pending.end() && total < cap; ++it) total += it->count;
+    return total;
+}
+
+// The next pass is planned once the next round takes all that is left of the queue (the
+// rays left and the queued jobs fill at most this much of it): planned during that round,
+// it refills the pool in the round after (stream_stats.sh at 9 samples a pixel, pool fill
+// and host sync alike from 0.7 to 1.0; more passes beyond).
+constexpr double kOverlapFill = 1.0;
+
 const char* signalName(int sig) { return sig == 2 ? "SIGINT" : sig == 15 ? "SIGTERM" : "signal"; }
 
 }  // namespace
@@ -117,8 +130,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const size_t spawn = size_t(f.spawnSlots());
     const cl_uint shaderCount = cl_uint(shading.shadeKernels.size());
     // The pool: the rays of one round, enough to keep every compute unit busy (16k rays
-    // each), within a memory budget; the sample slots twice that, pixel jobs at most a
-    // quarter of it so several pixels share a round.
+    // each), within a memory budget; the sample slots kSlotsPerRay times that, pixel jobs
+    // at most a quarter of it so several pixels share a round.
     size_t wanted = m_settings.poolCapacity;
     if (wanted == 0) wanted = std::clamp<size_t>(size_t(m_ctx.info().computeUnits) << 14,
                                                  size_t(1) << 14, size_t(1) << 20);
@@ -128,7 +141,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         std::min(wanted, memoryBudget / RayPool::bytesPerRay(spawn, nl)), 64,
         std::max<size_t>(64, wanted));
     st.poolCapacity = pool;
-    SampleRing ring(2 * pool);
+    SampleRing ring(RayPool::kSlotsPerRay * pool);
     const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
     // Sampling: the first pass needs no film, so it is planned on another thread while
     // the BVH and the program are built (on a small frame it costs as much as a round).
@@ -432,10 +445,48 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                         (treelets ? treelets->peekRays() : 0);
         st.errorVsTime.push_back({now, rays, st.estimatedError});
     };
+    // Passes overlap (RenderSettings::overlapPasses) when a pass can follow the first.
+    const bool overlapPasses =
+        m_settings.overlapPasses && (ss.maxSamples > ss.minSamples || errorTarget > 0);
+    std::vector<uint8_t> busy;  // pixels with samples in flight when a pass is planned
+    // The next pass, planned from the film (synced) and cut into pixel jobs. Pixels with
+    // samples still in flight or queued in `pending` are set aside: their film entries
+    // are partial (they wait a pass).
+    auto planPass = [&](const std::deque<PlannedJob>& pending) {
+        float pixelError = ss.pixelError;
+        if (errorTarget > 0) pixelError = float(errorTarget);
+        else if (timeBudget > 0 && st.estimatedError > 0)
+            pixelError = float(0.5 * st.estimatedError);  // refine the worse half
+        const auto tPlan = Clock::now();
+        busy.assign(ring.inFlight() > 0 || !pending.empty() ? film.pixels.size() : 0, 0);
+        ring.markPixelsInFlight(busy);
+        for (const PlannedJob& j : pending) busy[j.pixel] = 1;
+        std::deque<PlannedJob> jobs = planJobs(planner->nextPass(film.pixels, pixelError, busy),
+                                               maxJob, film.pixels.size());
+        st.planMs += secondsSince(tPlan) * 1e3;
+        refill.invalidate();  // a new queue
+        return jobs;
+    };
+    // The film as the retired samples left it, and its error estimate (a scan of every
+    // pixel, 4 ms at 512x512) when an error target or a time budget steers the planning
+    // (otherwise at the --stats series' interval). Returns whether the error target is met.
+    auto readFilm = [&] {
+        const auto tFilm = Clock::now();
+        prof.markHostWait();
+        filmBuf.syncToHost();
+        sampleError(openEnded, /*filmSynced=*/true);
+        st.planMs += secondsSince(tFilm) * 1e3;
+        return errorTarget > 0 && st.estimatedError >= 0 && st.estimatedError <= errorTarget;
+    };
     // The pass's jobs stream through the pool: refill, trace, compact, retire, until every
     // job has retired (the caller has staged its first refill or invalidated the last
-    // pass's). Returns false when a stop ends it early.
+    // pass's). With overlapPasses, once the next round takes all that is left (the rays
+    // and the queued jobs: kOverlapFill), the next pass is planned from the film as the
+    // round left it, during the next round's kernels (none of which writes the film
+    // before that round's retire), and streams on beside the tail: its eye rays keep the
+    // pool full. Returns false when a stop ends it early.
     auto runPass = [&](std::deque<PlannedJob> pending) {
+        bool overlap = overlapPasses, planDue = false;
         while (!pending.empty() || ring.inFlight() > 0) {
             if (stopNow()) return false;
             if (timeBudget > 0 && raysPerSec > 0)
@@ -457,6 +508,14 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                         {secondsSince(t0), double(n) / double(pool)});
             }
             refill.book(pending);
+            if (planDue) {
+                planDue = false;
+                std::deque<PlannedJob> next = planPass(pending);
+                // nothing to add beside the tail: drain it, then plan with every pixel known
+                overlap = !next.empty();
+                st.overlappedPasses += overlap;
+                pending.insert(pending.end(), next.begin(), next.end());
+            }
             const size_t inFlightBefore = ring.inFlight();
             finishRound(pending, traced);  // its read waits for the round: time it here
             // No ray anywhere yet a job still in flight would loop for ever: a sample's
@@ -489,6 +548,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                         std::log(1.0 / errorTarget))
                     : double(st.retiredSamples) / double(film.cropPixelCount() * ss.maxSamples);
             progress.update(fraction, secondsSince(t0), st.eyeRays, st.estimatedError);
+            if (overlap && (ring.inFlight() > 0 || !pending.empty()) && spillTop == 0 &&
+                double(n + queuedSamples(pending, roundCap)) <= kOverlapFill * double(roundCap)) {
+                planDue = !readFilm();  // the error target met: drain, then stop
+                overlap = planDue;
+            }
         }
         return true;
     };
@@ -502,15 +566,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             refill.adopt(std::move(first.refill));
             st.planMs += firstPlanMs;
         } else {
-            float pixelError = ss.pixelError;
-            if (errorTarget > 0) pixelError = float(errorTarget);
-            else if (timeBudget > 0 && st.estimatedError > 0)
-                pixelError = float(0.5 * st.estimatedError);  // refine the worse half
-            const auto tPlan = Clock::now();
-            jobs = planJobs(planner->nextPass(film.pixels, pixelError), maxJob,
-                            film.pixels.size());
-            st.planMs += secondsSince(tPlan) * 1e3;
-            refill.invalidate();  // a new queue
+            jobs = planPass({});
         }
         if (jobs.empty()) {
             st.stopReason = "quality";
@@ -524,15 +580,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             st.stopReason = "quality";  // every pixel has all its samples: nothing to plan
             break;
         }
-        // The next pass is planned from the film. Its error estimate (a scan of every
-        // pixel, 4 ms at 512x512) is taken here when an error target or a time budget
-        // steers the planning, otherwise at the --stats series' interval.
-        const auto tFilm = Clock::now();
-        prof.markHostWait();
-        filmBuf.syncToHost();
-        sampleError(openEnded, /*filmSynced=*/true);
-        st.planMs += secondsSince(tFilm) * 1e3;
-        if (errorTarget > 0 && st.estimatedError >= 0 && st.estimatedError <= errorTarget) {
+        if (readFilm()) {
             st.stopReason = "error target";
             break;
         }

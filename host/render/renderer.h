@@ -25,6 +25,9 @@ struct RenderSettings {
     bool shadowPackets = true;   // shadow rays in packets where the scene allows (features.h)
     bool closestPackets = true;  // coherent closest-hit rays in packets, likewise
     size_t poolCapacity = 0;  // rays per round; 0: 16k per compute unit within a memory budget
+    // Plan the next adaptive pass while the last one's tail drains (its pixels in flight
+    // wait a pass), so that eye rays keep the pool full; false: each pass drains first.
+    bool overlapPasses = true;
     double timeBudget = 0;    // seconds; 0 = none (also from Option "render" "time")
     double errorTarget = 0;   // relative film error; 0 = none ("render" "error")
     int firstPassBlock = 0;   // 0 = the scene's option (default 2: 1/4 ray per pixel)
@@ -80,6 +83,7 @@ struct RenderStats {
     double planMs = 0;  // of which between passes: the film read back, the next pass planned
     std::vector<PoolFillSample> poolFillSeries;
     int passes = 0, iterations = 0;  // iterations: rounds of the ray pool
+    int overlappedPasses = 0;  // passes planned while the last one's tail was in flight
     double estimatedError = -1;
     std::string stopReason;  // "quality", "error target", "time budget", "SIGINT", ...
     std::vector<ErrorSample> errorVsTime;

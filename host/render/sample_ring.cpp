@@ -53,4 +53,9 @@ void SampleRing::popFront(size_t n) {
     m_inFlight -= n;
 }
 
+void SampleRing::markPixelsInFlight(std::vector<uint8_t>& busy) const {
+    for (size_t k = 0; k < m_inFlight; ++k)
+        if (const uint32_t p = at(k).pixel; p < busy.size()) busy[p] = 1;
+}
+
 }  // namespace rd

@@ -55,6 +55,9 @@ public:
     // round retires thousands of one-sample jobs.
     void popFront(size_t n);
     uint64_t samplesInFlight() const { return m_pushed - m_popped; }
+    // Marks busy[pixel] for every job in flight (jobs retired behind an older one still
+    // in flight included: the host has not freed them yet).
+    void markPixelsInFlight(std::vector<uint8_t>& busy) const;
 
 private:
     size_t m_slots;

@@ -2,6 +2,7 @@
 #include "sampling.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace rd {
@@ -14,11 +15,15 @@ SamplePlanner::SamplePlanner(int width, int height, int x0, int x1, int y0, int 
     m_settings.minSamples = std::clamp(m_settings.minSamples, 1u, m_settings.maxSamples);
     const int tile = 16;
     m_tileOrder.reserve(size_t(width) * size_t(height));
+    m_tileRank.assign(size_t(width) * size_t(height), kOutside);
     for (int ty = y0; ty < y1; ty += tile)
         for (int tx = x0; tx < x1; tx += tile)
             for (int y = ty; y < std::min(ty + tile, y1); ++y)
-                for (int x = tx; x < std::min(tx + tile, x1); ++x)
-                    m_tileOrder.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
+                for (int x = tx; x < std::min(tx + tile, x1); ++x) {
+                    const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
+                    m_tileRank[pixel] = uint32_t(m_tileOrder.size());
+                    m_tileOrder.push_back(pixel);
+                }
 }
 
 bool SamplePlanner::needsMore(const FilmPixels& film, float floor, int x, int y,
@@ -48,8 +53,8 @@ bool SamplePlanner::needsMore(const FilmPixels& film, float floor, int x, int y,
     return false;
 }
 
-std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film,
-                                                  float pixelError) {
+std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float pixelError,
+                                                  const std::vector<uint8_t>& busy) {
     std::vector<PixelRequest> out;
     const int b = m_settings.firstPassBlock;
     if (m_pass == 0 && b > 1) {
@@ -81,14 +86,35 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film,
     // answers "no" again while its error then is within this pass's pixel error and has
     // not grown: it grows only when the brightness floor falls below the last one while
     // the pixel's mean is under that (and it is not black).
-    const float floor = relativeErrorFloor(film);
+    const float floor = brightnessFloor(film);
     const bool all = !m_settings.incremental || m_relErr.empty();
     if (m_relErr.empty()) m_relErr.assign(size_t(m_width) * size_t(m_height), INFINITY);
-    const std::vector<uint8_t> test = pixelsToTest(all);
     const bool floorFell = floor < m_lastFloor;
+    // When the pixel error did not tighten and the floor did not fall, every pixel off the
+    // test set answers "no" again: visit the test set alone (in tile order), not every
+    // pixel, so that a pass costs what it samples (a 512x512 frame took 0.7 ms a pass
+    // just to walk its pixels).
+    const bool testedOnly = !all && !floorFell && pixelError >= m_lastPixelError;
+    std::vector<uint32_t> visit;
+    if (testedOnly) {  // the test set as bits by tile rank: sorted, each pixel once
+        std::vector<uint64_t> bits((m_tileOrder.size() + 63) / 64, 0);
+        for (uint32_t pixel : m_lastPass)
+            for (uint32_t q : neighbourhood(pixel))
+                if (const uint32_t r = m_tileRank[q]; r != kOutside) bits[r >> 6] |= 1ull << (r & 63);
+        for (size_t i = 0; i < bits.size(); ++i)
+            for (uint64_t w = bits[i]; w; w &= w - 1)
+                visit.push_back(m_tileOrder[i * 64 + size_t(__builtin_ctzll(w))]);
+    }
+    // (visiting the test set alone, every pixel visited is in it)
+    const std::vector<uint8_t> test = pixelsToTest(all || testedOnly);
     m_lastPass.clear();
-    for (uint32_t pixel : m_tileOrder) {
-        if (!all && !test[pixel] && m_relErr[pixel] <= pixelError) {
+    std::vector<uint32_t> deferred;  // busy: tested next pass, with their neighbours
+    for (uint32_t pixel : testedOnly ? visit : m_tileOrder) {
+        if (!busy.empty() && busy[pixel]) {
+            deferred.push_back(pixel);
+            continue;
+        }
+        if (!test.empty() && !test[pixel] && m_relErr[pixel] <= pixelError) {
             const PixelAccum& p = film[pixel];
             if (!floorFell || pixelMean(p) >= m_lastFloor) continue;
             if (p.sum_sq.x == 0.0f && p.sum_sq.y == 0.0f && p.sum_sq.z == 0.0f) continue;  // black
@@ -102,21 +128,43 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film,
         target = std::min(target, m_settings.maxSamples);
         if (target > n) out.push_back({pixel, used, target - n}), m_lastPass.push_back(pixel);
     }
+    m_lastPass.insert(m_lastPass.end(), deferred.begin(), deferred.end());
     m_lastFloor = floor;
+    m_lastPixelError = pixelError;
     ++m_pass;
     return out;
+}
+
+std::array<uint32_t, 5> SamplePlanner::neighbourhood(uint32_t pixel) const {
+    const uint32_t w = uint32_t(m_width), x = pixel % w, y = pixel / w;
+    return {pixel, x > 0 ? pixel - 1 : pixel, x + 1 < w ? pixel + 1 : pixel,
+            y > 0 ? pixel - w : pixel, y + 1 < uint32_t(m_height) ? pixel + w : pixel};
+}
+
+float SamplePlanner::brightnessFloor(const FilmPixels& film) {
+    auto account = [&](uint32_t pixel, float sign) {
+        if (m_meanOf[pixel] >= 0.0f) m_meanSum += sign * double(m_meanOf[pixel]), m_meanCount += sign;
+    };
+    if (m_meanOf.empty()) {  // after the first pass: every pixel
+        m_meanOf.assign(film.size(), -1.0f);
+        m_meanSum = 0, m_meanCount = 0;
+        for (uint32_t pixel = 0; pixel < film.size(); ++pixel)
+            if (film[pixel].count) m_meanOf[pixel] = pixelMean(film[pixel]), account(pixel, 1.0f);
+    } else {  // only the pixels sampled (or left busy) in the last pass have changed
+        for (uint32_t pixel : m_lastPass) {
+            account(pixel, -1.0f);
+            m_meanOf[pixel] = film[pixel].count ? pixelMean(film[pixel]) : -1.0f;
+            account(pixel, 1.0f);
+        }
+    }
+    return std::max(1e-4f, 0.1f * float(m_meanCount > 0 ? m_meanSum / m_meanCount : 0.0));
 }
 
 std::vector<uint8_t> SamplePlanner::pixelsToTest(bool all) const {
     if (all) return {};  // nextPass tests every pixel without looking
     std::vector<uint8_t> test(size_t(m_width) * size_t(m_height), 0);
     for (uint32_t pixel : m_lastPass) {
-        int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
-        test[pixel] = 1;
-        if (x > 0) test[pixel - 1] = 1;
-        if (x + 1 < m_width) test[pixel + 1] = 1;
-        if (y > 0) test[pixel - uint32_t(m_width)] = 1;
-        if (y + 1 < m_height) test[pixel + uint32_t(m_width)] = 1;
+        for (uint32_t q : neighbourhood(pixel)) test[q] = 1;
     }
     return test;
 }

@@ -6,6 +6,7 @@
 // until the final quality: PixelSamples, an error target or a time budget. The film's
 // error is estimated from whole-sample variance.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -40,8 +41,15 @@ public:
     // The next pass, pixels in tile order (16x16 tiles, for coherent rays); empty when
     // every pixel has met the final quality. `pixelError` overrides the setting for this
     // pass (an error target or a time budget tightens it as the render goes on).
-    std::vector<PixelRequest> nextPass(const FilmPixels& film, float pixelError);
+    // Pixels marked in `busy` (samples of theirs still in flight, when a pass is planned
+    // while the last one's tail drains) are neither tested nor sampled: their film entries
+    // are partial. The next pass tests them and their neighbours.
+    std::vector<PixelRequest> nextPass(const FilmPixels& film, float pixelError,
+                                       const std::vector<uint8_t>& busy = {});
     int passes() const { return m_pass; }
+    // The last pass's brightness floor of the relative error: a tenth of the mean pixel
+    // value (relativeErrorFloor), kept up to date from the pixels each pass changed.
+    float lastFloor() const { return m_lastFloor; }
     // After the first pass every pixel has the minimum; when that is also the maximum,
     // no later pass can add a sample (unless some were dropped as NaN/Inf), so the film
     // need not be read back to plan one.
@@ -58,13 +66,22 @@ private:
     // Pixels a pass must test: the last pass's pixels and their four neighbours (a pixel
     // nobody sampled answers as it did, so "no"); empty when every pixel is to be tested.
     std::vector<uint8_t> pixelsToTest(bool all) const;
+    // A pixel and its four neighbours (itself again at the image's border).
+    std::array<uint32_t, 5> neighbourhood(uint32_t pixel) const;
+    // relativeErrorFloor(film), updated from the pixels the last pass changed.
+    float brightnessFloor(const FilmPixels& film);
+    static constexpr uint32_t kOutside = ~0u;  // m_tileRank of a pixel off the crop window
     int m_width, m_height;
     SamplingSettings m_settings;
     std::vector<uint32_t> m_tileOrder;  // pixel indices in tile order
+    std::vector<uint32_t> m_tileRank;   // each pixel's place in m_tileOrder
     int m_pass = 0;
-    std::vector<uint32_t> m_lastPass;  // the pixels the last pass sampled
+    std::vector<uint32_t> m_lastPass;  // the pixels the last pass sampled or left busy
     std::vector<float> m_relErr;       // each pixel's relative error when last tested
     float m_lastFloor = 0;
+    float m_lastPixelError = 0;
+    std::vector<float> m_meanOf;  // each pixel's mean in the floor's sum (< 0: not in it)
+    double m_meanSum = 0, m_meanCount = 0;
 };
 
 }  // namespace rd

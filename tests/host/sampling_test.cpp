@@ -48,7 +48,11 @@ std::string stripes(int res) {
 // crop window of it) where each requested sample adds a value drawn per pixel and sample
 // index. Also with a pixel error that tightens pass by pass (a time
 // budget's), where every pixel is re-tested.
+// With `overlap`, a third of each pass's pixels are still in flight when the next pass is
+// planned (the renderer plans while a pass's tail drains): both planners get them as busy,
+// must not sample them, and see their samples only after that plan.
 TEST(Sampling, IncrementalPlanIsExact) {
+    for (bool overlap : {false, true})
     for (bool tightening : {false, true}) {
         const int w = 97, h = 61;
         rd::SamplingSettings s;
@@ -79,24 +83,49 @@ TEST(Sampling, IncrementalPlanIsExact) {
             p.sum_sq.x += v * v, p.sum_sq.y += v * v, p.sum_sq.z += v * v;
             ++p.count;
         };
-        size_t passes = 0, samples = 0;
+        size_t passes = 0, samples = 0, deferred = 0;
+        std::vector<rd::PixelRequest> inFlight;  // overlap: requests not retired yet
+        auto retire = [&](const rd::PixelRequest& r) {
+            for (uint32_t k = 0; k < r.count; ++k) sample(r.pixel, r.first + k), ++samples;
+        };
         for (float err = s.pixelError;; err *= tightening ? 0.7f : 1.0f) {
-            std::vector<rd::PixelRequest> a = inc.nextPass(film, err), b = ref.nextPass(film, err);
+            std::vector<uint8_t> busy(overlap ? film.size() : 0, 0);
+            for (const rd::PixelRequest& r : inFlight) busy[r.pixel] = 1;
+            std::vector<rd::PixelRequest> a = inc.nextPass(film, err, busy),
+                                          b = ref.nextPass(film, err, busy);
             ASSERT_EQ(a.size(), b.size()) << "pass " << passes;
+            if (passes > 0) {  // the floor kept up to date pass by pass, against a full scan
+                const float floor = rd::relativeErrorFloor(film);
+                ASSERT_NEAR(inc.lastFloor(), floor, 1e-6f * floor) << "pass " << passes;
+            }
             for (size_t i = 0; i < a.size(); ++i) {
                 ASSERT_EQ(a[i].pixel, b[i].pixel) << "pass " << passes << ", request " << i;
                 ASSERT_EQ(a[i].first, b[i].first);
                 ASSERT_EQ(a[i].count, b[i].count);
+                if (overlap) {
+                    ASSERT_FALSE(busy[a[i].pixel]) << "a busy pixel sampled";
+                }
             }
-            if (a.empty()) break;
-            for (const rd::PixelRequest& r : a)
-                for (uint32_t k = 0; k < r.count; ++k) sample(r.pixel, r.first + k), ++samples;
+            const bool anyBusy = !inFlight.empty();
+            for (const rd::PixelRequest& r : inFlight) retire(r);
+            inFlight.clear();
+            if (a.empty() && !anyBusy) break;
+            for (const rd::PixelRequest& r : a) {
+                if (overlap && (r.pixel * 2654435761u + uint32_t(passes)) % 3u == 0u)
+                    inFlight.push_back(r), ++deferred;
+                else
+                    retire(r);
+            }
             ++passes;
-            ASSERT_LT(passes, 40u);
+            ASSERT_LT(passes, 60u);
         }
-        std::printf("%s: %zu passes, %zu samples\n", tightening ? "tightening" : "fixed", passes,
-                    samples);
+        std::printf("%s%s: %zu passes, %zu samples, %zu requests planned beside busy pixels\n",
+                    tightening ? "tightening" : "fixed", overlap ? ", overlapped" : "", passes,
+                    samples, deferred);
         EXPECT_GE(passes, 5u);  // several adaptive passes, not just the first two
+        if (overlap) {
+            EXPECT_GT(deferred, 100u);
+        }
     }
 }
 
@@ -119,6 +148,40 @@ TEST(Sampling, EdgePixelsGetMoreSamplesThanFlatOnes) {
     EXPECT_LE(flat, 2.0);
     // Coverage of the edge column: 64 iid samples per pixel, 32 pixels: sigma ~ 0.011.
     EXPECT_NEAR(img.mean(3, edgeColumn, 0, edgeColumn + 1, 32), 0.37, 0.045);
+}
+
+// A small pool (many rounds a pass): each pass after the first is planned while the last
+// one's tail is in flight, around its pixels. A pixel planned while its samples were in
+// flight would reuse their sample indices and end with a count off the planner's doubling
+// (6, 10, ...); two of its jobs in flight at once would race in the film. The image is
+// the same Monte Carlo estimate either way.
+TEST(Sampling, OverlappedPassesPlanAroundTheTail) {
+    const std::string opts = "Option \"render\" \"int firstpassblock\" [1]\n";
+    const std::string rib = orthoCamera(32, 4, opts) + stripes(32);
+    rd::RenderSettings overlapped, drained;
+    overlapped.poolCapacity = drained.poolCapacity = 256;
+    drained.overlapPasses = false;
+    double covered = 0;
+    for (double x = -16; x < 16; x += 0.713) covered += std::min(0.3, 16 - x);
+    for (const rd::RenderSettings& settings : {overlapped, drained}) {
+        Rendered img = renderRib(rib, settings);
+        const bool on = settings.overlapPasses;
+        std::printf("%s: %d passes, %d overlapped, %d rounds\n", on ? "overlapped" : "drained",
+                    img.stats.passes, img.stats.overlappedPasses, img.stats.iterations);
+        if (on) {
+            EXPECT_GE(img.stats.overlappedPasses, 2);
+        } else {
+            EXPECT_EQ(img.stats.overlappedPasses, 0);
+        }
+        EXPECT_EQ(img.stats.filmSamples, img.stats.retiredSamples);
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) {
+                const uint32_t n = img.count(x, y);
+                EXPECT_TRUE(n == 2 || n == 4 || n == 8 || n == 16) << x << "," << y << ": " << n;
+            }
+        // 0.3 px of every 0.713 covered: the mean coverage, 2-16 coin tosses a pixel
+        EXPECT_NEAR(img.mean(3, 0, 0, 32, 32), covered / 32, 0.01);
+    }
 }
 
 // The estimate falls as 1/sqrt(samples) on a noisy scene: 16 -> 256 samples per pixel
