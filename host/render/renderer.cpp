@@ -29,6 +29,7 @@
 #include "progress.h"
 #include "ray_pool.h"
 #include "refill.h"
+#include "render_summary.h"
 #include "sample_ring.h"
 #include "shaders/shader_set.h"
 #include "stop.h"
@@ -606,62 +607,16 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         textures.stats().missedLookups = texCounts[2];
         st.textures = textures.stats();
     }
-    auto active = [&](const char* name) {
-        auto it = st.kernels.find(name);
-        return it == st.kernels.end() ? uint64_t(0) : it->second.activeItems;
-    };
-    // (the treelet path's first rounds take each ray once, as the intersect kernels do)
-    const uint64_t closestRays = active("intersect_closest") + active("treelet_closest_root");
-    st.continuationRays = closestRays > st.eyeRays ? closestRays - st.eyeRays : 0;
-    st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root");
+    summariseRays(st, num, f.maxTransparentDepth, diag, rib::SourceLoc{scene.sourceFile, 0});
     // (no pixel has two samples to take a variance from: -1, without a pass over the film)
     st.estimatedError = ss.maxSamples >= 2 ? estimateFilmError(film.pixels) : -1.0;
     const Film::Tally tally = film.tally();
     st.nonfiniteSamples = tally.nonfinite;
     st.unsampledPixels = tally.unsampled;
     st.filmSamples = tally.samples;
-    st.shadeNonfinite = num[0], st.shadeNegative = num[1], st.shadeHuge = num[2];
-    st.shadeDenormal = num[3], st.transparentDepthCut = num[4], st.specularDepthCut = num[5];
-    st.rouletteEnded = num[6];
-    const rib::SourceLoc where{scene.sourceFile, 0};
-    if (st.shadeNonfinite + st.shadeNegative + st.shadeHuge > 0)
-        diag.warning(where, "shaders produced " + std::to_string(st.shadeNonfinite) +
-                                " NaN/Inf, " + std::to_string(st.shadeNegative) +
-                                " negative and " + std::to_string(st.shadeHuge) +
-                                " huge (> 1e10) results; left out of the image");
-    if (st.overflowRays > 0)
-        diag.warning(where, std::to_string(st.overflowRays) +
-                                " traced ray(s) dropped: more in flight than the ray pool and "
-                                "its spill stack hold; " + std::to_string(st.reissuedSamples) +
-                                " sample(s) traced again, the rest kept what they had "
-                                "(lower maxspeculardepth or trace fewer rays per hit)");
-    if (st.transparentDepthCut > 0)
-        diag.warning(where, std::to_string(st.transparentDepthCut) +
-                                " ray(s) stopped after " + std::to_string(f.maxTransparentDepth) +
-                                " transparent surfaces; raise Attribute \"trace\" "
-                                "\"maxtransparentdepth\"");
     st.passes = planner->passes();
     st.elapsedSec = secondsSince(t0);
-    // Pool fill: rays traced per round over the pool's capacity. Device busy: kernel time
-    // over the sampling loop's wall time; the rest of the frame is host overhead: the
-    // device waiting on the host (downloads of counts, offsets, planning) or idle.
-    if (auto it = st.kernels.find(treelets ? "treelet_closest_root" : "intersect_closest");
-        it != st.kernels.end() && it->second.launches > 0)
-        st.poolFill = double(it->second.activeItems) /
-                      (double(it->second.launches) * double(st.poolCapacity));
-    double deviceMs = 0;
-    for (const auto& [name, ks] : st.kernels) deviceMs += ks.deviceMs;
-    const double loopMs = st.elapsedSec * 1e3 - st.sceneSetupMs;
-    if (loopMs > 0) st.deviceBusy = std::min(1.0, deviceMs / loopMs);
-    // Of that overhead, the runtime's own gaps between kernels the host had already
-    // queued are not waits on the host: the rest (the round ends' waits, planning, the
-    // film's sync and tally at the end) is the host synchronisation overhead.
-    st.launchGapsMs = prof.launchGapsMs();
-    if (st.elapsedSec > 0) {
-        st.hostOverhead = std::max(0.0, loopMs - deviceMs) / (st.elapsedSec * 1e3);
-        st.hostSyncOverhead =
-            std::max(0.0, loopMs - deviceMs - st.launchGapsMs) / (st.elapsedSec * 1e3);
-    }
+    summariseOccupancy(st, treelets != nullptr, prof.launchGapsMs());
     st.errorVsTime.push_back({st.elapsedSec, st.totalRays(), st.estimatedError});
     return st;
 }

@@ -1,0 +1,24 @@
+// render_summary.h: the figures a finished render reports (--stats), derived from the
+// kernels' counters and the numerics counters, and the warnings they call for.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "renderer.h"
+#include "rib/diagnostics.h"
+
+namespace rd {
+
+// Rays by kind from the kernels' active counts (st.kernels, st.eyeRays set), the shader
+// numerics (numerics.clh's RT_NUM_* order), and warnings for shader results left out,
+// rays dropped and rays cut by maxtransparentdepth.
+void summariseRays(RenderStats& st, const std::vector<uint32_t>& numerics,
+                   int maxTransparentDepth, rib::Diagnostics& diag, const rib::SourceLoc& where);
+
+// Pool fill (rays traced a round over the capacity), device busy (kernel time over the
+// sampling loop's wall time), host overhead (the rest, over the frame) and, of that, the
+// host synchronisation overhead (without the runtime's gaps between kernels already
+// queued). st.kernels, elapsedSec and sceneSetupMs set.
+void summariseOccupancy(RenderStats& st, bool treelets, double launchGapsMs);
+
+}  // namespace rd
