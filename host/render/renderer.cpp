@@ -49,10 +49,10 @@ const std::vector<std::string> kRenderSources = {
     "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "close_round.cl", "compact.cl",
     "retire.cl", "treelet.cl"};
 
-// The samples of the queued jobs, counted up to `cap`.
+// The samples of the queued jobs, counted until they pass `cap`.
 size_t queuedSamples(const std::deque<PlannedJob>& pending, size_t cap) {
     size_t total = 0;
-    for (auto it = pending.begin(); it != pending.end() && total < cap; ++it) total += it->count;
+    for (auto it = pending.begin(); it != pending.end() && total <= cap; ++it) total += it->count;
     return total;
 }
 
@@ -500,6 +500,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             if (n == 0 && spillTop == 0 && ring.inFlight() == 0)
                 throw std::runtime_error("internal error: a pixel job larger than the ray pool");
             const auto tRound = Clock::now();
+            double planSec = 0;  // of the round's time: planning the next pass
             const cl_uint traced = n;
             if (n > 0) {
                 traceRound();
@@ -511,7 +512,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             refill.book(pending);
             if (planDue) {
                 planDue = false;
+                const auto tPlan = Clock::now();
                 std::deque<PlannedJob> next = planPass(pending);
+                planSec = secondsSince(tPlan);
+                // the device may have run out of queued kernels meanwhile: the host's time
+                prof.markHostWait();
                 // nothing to add beside the tail: drain it, then plan with every pixel known
                 overlap = !next.empty();
                 st.overlappedPasses += overlap;
@@ -524,7 +529,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             if (traced == 0 && spillTop == 0 && ring.inFlight() == inFlightBefore &&
                 inFlightBefore > 0)
                 throw std::runtime_error("internal error: samples in flight with no ray left");
-            if (const double dt = secondsSince(tRound); traced > 0 && dt > 0) {
+            // (a round of a few rays is its fixed costs: no measure of the rate)
+            if (const double dt = secondsSince(tRound) - planSec;
+                dt > 0 && (traced >= pool / 8 || (traced > 0 && raysPerSec == 0))) {
                 raysPerSec = double(traced) / dt;
                 roundCap = std::clamp<size_t>(size_t(raysPerSec * 0.25),
                                               std::min<size_t>(1024, pool), pool);

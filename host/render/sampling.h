@@ -26,6 +26,10 @@ struct SamplingSettings {
     // moving brightness floor); false re-tests every pixel. The passes are the same
     // either way (Sampling.IncrementalPlanIsExact).
     bool incremental = true;
+    // A visit of at least this many pixels (a full test) is split across planThreads
+    // threads (0: the host's cores, at most 8); the pass is the same for any count.
+    size_t parallelPixels = 32768;
+    unsigned planThreads = 0;
 };
 
 // Samples of one pass for one pixel: indices [first, first + count) of its sequence.
@@ -50,6 +54,9 @@ public:
     // The last pass's brightness floor of the relative error: a tenth of the mean pixel
     // value (relativeErrorFloor), kept up to date from the pixels each pass changed.
     float lastFloor() const { return m_lastFloor; }
+    // The mean the last pass used for a pixel (its own and as a neighbour): pixelMean of
+    // its film entry then; negative for a pixel without samples.
+    float meanUsed(uint32_t pixel) const { return m_meanOf.empty() ? -1.0f : m_meanOf[pixel]; }
     // After the first pass every pixel has the minimum; when that is also the maximum,
     // no later pass can add a sample (unless some were dropped as NaN/Inf), so the film
     // need not be read back to plan one.

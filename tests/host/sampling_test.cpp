@@ -60,6 +60,8 @@ TEST(Sampling, IncrementalPlanIsExact) {
         s.pixelError = 0.02f;
         rd::SamplingSettings full = s;
         full.incremental = false;
+        full.parallelPixels = 1;  // every pass's visit split across three threads
+        full.planThreads = 3;
         rd::SamplePlanner inc(w, h, 3, 90, 2, 58, s), ref(w, h, 3, 90, 2, 58, full);
         rd::FilmPixels film(size_t(w) * size_t(h));
         auto sample = [&](uint32_t pixel, uint32_t index) {
@@ -94,9 +96,12 @@ TEST(Sampling, IncrementalPlanIsExact) {
             std::vector<rd::PixelRequest> a = inc.nextPass(film, err, busy),
                                           b = ref.nextPass(film, err, busy);
             ASSERT_EQ(a.size(), b.size()) << "pass " << passes;
-            if (passes > 0) {  // the floor kept up to date pass by pass, against a full scan
+            if (passes > 0) {  // the floor and the means kept up to date pass by pass
                 const float floor = rd::relativeErrorFloor(film);
                 ASSERT_NEAR(inc.lastFloor(), floor, 1e-6f * floor) << "pass " << passes;
+                for (uint32_t p = 0; p < film.size(); ++p)
+                    ASSERT_EQ(inc.meanUsed(p), film[p].count ? rd::pixelMean(film[p]) : -1.0f)
+                        << "pass " << passes << ", pixel " << p;
             }
             for (size_t i = 0; i < a.size(); ++i) {
                 ASSERT_EQ(a[i].pixel, b[i].pixel) << "pass " << passes << ", request " << i;
