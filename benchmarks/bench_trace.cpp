@@ -306,6 +306,10 @@ int benchMain(int argc, char** argv) {
                  "default for triangle scenes)");
     app.add_flag("--no-closest-packets", noClosestPackets,
                  "--wide8: closest-hit rays one a work-item (likewise)");
+    std::vector<std::string> onlyKinds;
+    app.add_option("--kind", onlyKinds, "time only these ray kinds (primary, diffuse, shadow; "
+                                        "e.g. under perf record)")
+        ->check(CLI::IsMember({"primary", "diffuse", "shadow"}));
     bool noTreelets = false;
     app.add_flag("--no-treelets", noTreelets,
                  "time the resident kernels only (e.g. under perf record)");
@@ -393,6 +397,9 @@ int benchMain(int argc, char** argv) {
         } kinds[] = {{"primary", &primary, false}, {"diffuse", &diffuse, false},
                      {"shadow", &shadow, true}};
         for (const Kind& k : kinds) {
+            if (!onlyKinds.empty() &&
+                std::find(onlyKinds.begin(), onlyKinds.end(), k.name) == onlyKinds.end())
+                continue;
             size_t n = k.rays->org.size();
             DeviceBuffer<rt_float4> org(ctx, k.rays->org), dir(ctx, k.rays->dir);
             // diffuse rays are bounces (trace depth 1: the kernels walk their nodes' hit
