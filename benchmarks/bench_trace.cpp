@@ -556,11 +556,13 @@ int benchMain(int argc, char** argv) {
             for (auto [budget, memory] : modes) {
                 TreeletStats ts;
                 TreeletTracer tracer(ctx, treeletProgram.get(), prof, bvh4, budget, memory, n, ts);
+                DeviceBuffer<rt_float4> treeletWeight(ctx, ones, CL_MEM_READ_WRITE);
                 auto runTreelets = [&] {
                     state.upload(st);
+                    treeletWeight.upload(ones);
                     ctx.finish();
                     auto t0 = Clock::now();
-                    if (k.shadow) tracer.shadow(cl_uint(n), org, dir, state, sc, 1);
+                    if (k.shadow) tracer.shadow(cl_uint(n), org, dir, state, treeletWeight, sc, 1);
                     else tracer.closest(cl_uint(n), org, dir, state, hits, sc);
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -571,9 +573,9 @@ int benchMain(int argc, char** argv) {
                 for (int r = 0; r < runs; ++r) tt.push_back(runTreelets());
                 size_t agree = 0;
                 if (k.shadow) {
-                    auto s2 = state.download();
-                    for (size_t i = 0; i < n; ++i)  // treelets kill an occluded ray instead
-                        agree += (s2[i].alive == 0) == (residentShadow[i].x == 0.0f);
+                    auto w2 = treeletWeight.download();
+                    for (size_t i = 0; i < n; ++i)
+                        agree += (w2[i].x == 0.0f) == (residentShadow[i].x == 0.0f);
                 } else {
                     auto h2 = hits.download();
                     for (size_t i = 0; i < n; ++i)

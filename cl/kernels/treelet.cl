@@ -53,20 +53,24 @@ inline void rt_treelet_closest(TreeletPair p, uint root_only, __global const Tre
     else if (key < before) rt_key_min((volatile __global ulong*)&keys[p.ray], key);
 }
 
-/* One pair, any hit: an occluded ray dies, and its other queued pairs are skipped. */
+/* One pair, any hit: an occluded ray's weight is zeroed (as intersect_shadow does; its
+ * state stays as the group count read it), and its other queued pairs are skipped. */
 inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
                               __global const Bvh4Node* nodes, __global const Triangle4* blocks,
                               __global const float4* origin, __global const float4* direction,
-                              __global RayState* state, __global TreeletPair* next,
-                              uint next_cap, __global uint* counters,
+                              __global const RayState* state, __global float4* weight,
+                              __global TreeletPair* next, uint next_cap, __global uint* counters,
                               uint treelets RT_TL_OBJECTS_PARAM) {
+    /* (an occluder met through another of its pairs, or a ray that carries nothing) */
+    const float4 w = weight[p.ray];
+    if (w.x == 0.0f && w.y == 0.0f && w.z == 0.0f && w.w == 0.0f) return;
     float4 o = origin[p.ray], d = direction[p.ray];
     ulong key = RT_NO_KEY;
     TreeletRef r = refs[p.treelet];
     if (rt_treelet_traverse(nodes + r.node_base, blocks + r.block_base, o, d, o.w, d.w,
                             state[p.ray].from_prim, 1, &key, p.ray, next, next_cap, counters,
                             treelets RT_TL_OBJECTS_ARG))
-        state[p.ray].alive = 0u;
+        weight[p.ray] = (float4)(0.0f);
 }
 
 /* What object blocks need (RT_HAS_QUADRICS; placeholders otherwise): the object scene
@@ -89,9 +93,8 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
 #endif
 
 /* A pair kernel's start: its pair p, counted when its ray is live (else it returns), and
- * the object scene at the ray's time. The closest-hit kernels count without a barrier
- * (they only read the states); the shadow kernels kill rays, so theirs sums between
- * barriers the liveness each work-item saw. */
+ * the object scene at the ray's time. The count needs no barrier: no pair kernel writes
+ * the states it reads (RT_COUNT_GROUP). */
 #define RT_TREELET_PAIR_BEGIN_COUNTED(root_only, COUNT)                                   \
     TreeletPair p;                                                                        \
     int active = rt_treelet_pair(get_global_id(0), first, count, root_only, pairs, state, &p); \
@@ -102,9 +105,6 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
     RT_TREELET_PAIR_BEGIN_COUNTED(root_only,                                              \
         RT_COUNT_GROUP(active_counter, j,                                                 \
                        rt_treelet_pair_live(j, first, count, root_only, pairs, state)))
-#define RT_TREELET_SHADOW_PAIR_BEGIN(root_only)                                           \
-    RT_DECLARE_ACTIVE_COUNTER;                                                            \
-    RT_TREELET_PAIR_BEGIN_COUNTED(root_only, RT_COUNT_ACTIVE(active_counter, active))
 
 /* The kernels: *_root is the first round (work-item i: ray i in the root treelet; its
  * active count is the rays traced), the others run a round's queued pairs [first,
@@ -128,12 +128,13 @@ RT_TREELET_CLOSEST_KERNEL(treelet_closest, 0u)
     __kernel void name(uint first, uint count, __global const TreeletPair* pairs,           \
                        __global const TreeletRef* refs, __global const Bvh4Node* nodes,     \
                        __global const Triangle4* blocks, __global const float4* origin,     \
-                       __global const float4* direction, __global RayState* state,          \
-                       __global TreeletPair* next, uint next_cap, __global uint* counters,  \
-                       uint treelets, RT_TL_SCENE_PARAMS, __global uint* active_counter) {  \
-        RT_TREELET_SHADOW_PAIR_BEGIN(root_only);                                            \
-        rt_treelet_shadow(p, refs, nodes, blocks, origin, direction, state, next, next_cap,  \
-                          counters, treelets RT_TL_OBJECTS_ARG);                            \
+                       __global const float4* direction, __global const RayState* state,    \
+                       __global float4* weight, __global TreeletPair* next, uint next_cap,  \
+                       __global uint* counters, uint treelets, RT_TL_SCENE_PARAMS,          \
+                       __global uint* active_counter) {                                     \
+        RT_TREELET_PAIR_BEGIN(root_only);                                                   \
+        rt_treelet_shadow(p, refs, nodes, blocks, origin, direction, state, weight, next,   \
+                          next_cap, counters, treelets RT_TL_OBJECTS_ARG);                  \
     }
 RT_TREELET_SHADOW_KERNEL(treelet_shadow_root, 1u)
 RT_TREELET_SHADOW_KERNEL(treelet_shadow, 0u)

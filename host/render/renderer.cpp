@@ -336,7 +336,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         if (nl > 0) {
             if (treelets)
                 treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
-                                 traceScene, nl);
+                                 rp.shWeight, traceScene, nl);
             else
                 k.intersectShadow.launch(f.shadowItems(n, nl), cl_uint(n * nl), ds.nodes, ds.blocks,
                                          rp.shOrigin, rp.shDirection, rp.shState,

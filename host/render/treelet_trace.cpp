@@ -239,14 +239,15 @@ void TreeletTracer::closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
 
 void TreeletTracer::shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                            const DeviceBuffer<rt_float4>& direction,
-                           DeviceBuffer<RayState>& state, const TraceScene& sc, cl_uint lights) {
+                           const DeviceBuffer<RayState>& state, DeviceBuffer<rt_float4>& weight,
+                           const TraceScene& sc, cl_uint lights) {
     Impl& s = *m;
     const cl_uint T = cl_uint(s.cut.count());
     s.rounds(n, [&](bool root, cl_uint first, cl_uint count) {
         ++s.st.launches;
         (root ? s.shadowRoot : s.shadowPairs)
             .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin, direction,
-                    state, s.queue, cl_uint(s.capacity), s.counters, T, sc.quadrics, sc.csg,
+                    state, weight, s.queue, cl_uint(s.capacity), s.counters, T, sc.quadrics, sc.csg,
                     sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
                     sc.sampleTime, std::max<cl_uint>(lights, 1));
     });

@@ -70,11 +70,11 @@ public:
     void closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                  const DeviceBuffer<rt_float4>& direction, const DeviceBuffer<RayState>& state,
                  DeviceBuffer<RayHit>& hits, const TraceScene& scene);
-    // intersect_shadow's work: state[i].alive = 0 for the occluded ones; `lights` shadow
-    // rays per shaded ray (for their time).
+    // intersect_shadow's work: weight[i] zeroed for the occluded ones (their states left
+    // as they were); `lights` shadow rays per shaded ray (for their time).
     void shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
-                const DeviceBuffer<rt_float4>& direction, DeviceBuffer<RayState>& state,
-                const TraceScene& scene, cl_uint lights);
+                const DeviceBuffer<rt_float4>& direction, const DeviceBuffer<RayState>& state,
+                DeviceBuffer<rt_float4>& weight, const TraceScene& scene, cl_uint lights);
 
     // Rays traced so far (the first rounds' active counters, read without resetting), and
     // the per-kernel active counts handed to the profiler for --stats.

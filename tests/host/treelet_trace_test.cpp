@@ -123,8 +123,25 @@ Traced trace(size_t budget, size_t sceneMemory, bool int64Min, size_t rays) {
         const TraceScene sc{noQ, noU, tris, noM, tris, noU, noT};
         tracer.closest(n, org, dir, state, hits, sc);
         out.hits = hits.download();
-        tracer.shadow(n, org, dir, state, sc, 1);  // kills an occluded ray
-        for (const RayState& s : state.download()) out.occluded.push_back(s.alive == 0);
+        // zeroes an occluded ray's weight, leaves every state as it was
+        DeviceBuffer<rt_float4> weight(ctx, std::vector<rt_float4>(n, {1, 1, 1, 1}));
+        tracer.shadow(n, org, dir, state, weight, sc, 1);
+        for (const rt_float4& w : weight.download()) out.occluded.push_back(w.x == 0);
+        const std::vector<RayState> after = state.download();
+        for (cl_uint i = 0; i < n; ++i) EXPECT_EQ(after[i].alive, f.state[i].alive) << i;
+        // counted without a barrier (RT_COUNT_GROUP): the first rounds take every live ray
+        // (once, or again for each rerun after a queue grew)
+        tracer.collectActive();
+        const auto k = prof.stats();
+        const uint64_t live = uint64_t(std::count_if(f.state.begin(), f.state.end(),
+                                                     [](const RayState& s) { return s.alive; }));
+        for (const char* name : {"treelet_shadow_root", "treelet_closest_root"}) {
+            const uint64_t counted = k.at(name).activeItems;
+            if (out.stats.reruns == 0) {
+                EXPECT_EQ(counted, live) << name;
+            }
+            EXPECT_EQ(counted % live, 0u) << name;
+        }
     }
     return out;
 }
