@@ -5,9 +5,11 @@
 // (none with one shader), shade, trace shadows (intersect_shadow); then close the round
 // (close_round: add the shadows that reached their light, count the spawned rays),
 // retire the samples with no ray left (retire_samples) and compact what the shaders
-// spawned into the next round, read back at the round's one wait. Between rounds it polls
-// the stop conditions; samples still in flight at a stop never reach the film, so it
-// holds only whole samples.
+// spawned into the next round, read back at the round's one wait. When a pass's queue is
+// about to run dry, the next pass is planned during a round, beside the tail still in
+// flight, so the pool stays full from pass to pass. Between rounds it polls the stop
+// conditions; samples still in flight at a stop never reach the film, so it holds only
+// whole samples.
 #include "renderer.h"
 
 #include <algorithm>
