@@ -108,34 +108,34 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
 
 /* The kernels: *_root is the first round (work-item i: ray i in the root treelet; its
  * active count is the rays traced), the others run a round's queued pairs [first,
- * first + count) (their active count is the pairs). Both take the same arguments. */
-#define RT_TREELET_CLOSEST_KERNEL(name, root_only)                                         \
-    __kernel void name(uint first, uint count, __global const TreeletPair* pairs,           \
-                       __global const TreeletRef* refs, __global const Bvh4Node* nodes,     \
-                       __global const Triangle4* blocks, __global const float4* origin,     \
-                       __global const float4* direction, __global const RayState* state,    \
-                       __global ulong* keys, __global TreeletPair* next, uint next_cap,      \
-                       __global uint* counters, uint treelets, RT_TL_SCENE_PARAMS,          \
-                       __global uint* active_counter) {                                     \
-        RT_TREELET_PAIR_BEGIN(root_only);                                                   \
-        rt_treelet_closest(p, root_only, refs, nodes, blocks, origin, direction, state, keys, \
-                           next, next_cap, counters, treelets RT_TL_OBJECTS_ARG);           \
+ * first + count) (their active count is the pairs). Both take the same arguments, which
+ * begin with the pairs, the cut and the rays. */
+#define RT_TL_PAIR_PARAMS                                                                  \
+    uint first, uint count, __global const TreeletPair *pairs,                            \
+        __global const TreeletRef *refs, __global const Bvh4Node *nodes,                  \
+        __global const Triangle4 *blocks, __global const float4 *origin,                  \
+        __global const float4 *direction, __global const RayState *state
+/* A pair kernel: its own output buffer (out_param), then the next round's queue, the
+ * counters and the object scene; its body the pair's work (after RT_TREELET_PAIR_BEGIN). */
+#define RT_TREELET_PAIR_KERNEL(name, root_only, out_param, ...)                            \
+    __kernel void name(RT_TL_PAIR_PARAMS, out_param, __global TreeletPair* next,          \
+                       uint next_cap, __global uint* counters, uint treelets,             \
+                       RT_TL_SCENE_PARAMS, __global uint* active_counter) {                \
+        RT_TREELET_PAIR_BEGIN(root_only);                                                 \
+        __VA_ARGS__;                                                                      \
     }
+#define RT_TREELET_CLOSEST_KERNEL(name, root_only)                                         \
+    RT_TREELET_PAIR_KERNEL(name, root_only, __global ulong* keys,                         \
+                           rt_treelet_closest(p, root_only, refs, nodes, blocks, origin,  \
+                                              direction, state, keys, next, next_cap,     \
+                                              counters, treelets RT_TL_OBJECTS_ARG))
+#define RT_TREELET_SHADOW_KERNEL(name, root_only)                                          \
+    RT_TREELET_PAIR_KERNEL(name, root_only, __global float4* weight,                      \
+                           rt_treelet_shadow(p, refs, nodes, blocks, origin, direction,   \
+                                             state, weight, next, next_cap, counters,     \
+                                             treelets RT_TL_OBJECTS_ARG))
 RT_TREELET_CLOSEST_KERNEL(treelet_closest_root, 1u)
 RT_TREELET_CLOSEST_KERNEL(treelet_closest, 0u)
-
-#define RT_TREELET_SHADOW_KERNEL(name, root_only)                                          \
-    __kernel void name(uint first, uint count, __global const TreeletPair* pairs,           \
-                       __global const TreeletRef* refs, __global const Bvh4Node* nodes,     \
-                       __global const Triangle4* blocks, __global const float4* origin,     \
-                       __global const float4* direction, __global const RayState* state,    \
-                       __global float4* weight, __global TreeletPair* next, uint next_cap,  \
-                       __global uint* counters, uint treelets, RT_TL_SCENE_PARAMS,          \
-                       __global uint* active_counter) {                                     \
-        RT_TREELET_PAIR_BEGIN(root_only);                                                   \
-        rt_treelet_shadow(p, refs, nodes, blocks, origin, direction, state, weight, next,   \
-                          next_cap, counters, treelets RT_TL_OBJECTS_ARG);                  \
-    }
 RT_TREELET_SHADOW_KERNEL(treelet_shadow_root, 1u)
 RT_TREELET_SHADOW_KERNEL(treelet_shadow, 0u)
 
