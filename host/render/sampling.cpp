@@ -127,6 +127,14 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
                 const PixelAccum& p = film[pixel];
                 if (!floorFell || m_meanOf[pixel] >= m_lastFloor) continue;
                 if (p.sum_sq.x == 0.0f && p.sum_sq.y == 0.0f && p.sum_sq.z == 0.0f) continue;  // black
+                // Under the fallen floor its error grew by at most the floors' ratio: while
+                // that bound stays within the pixel error it answers "no" again, and the
+                // bound is kept as its error (an upper bound from here on).
+                const float bound = m_relErr[pixel] * (m_lastFloor / floor);
+                if (bound <= pixelError) {
+                    m_relErr[pixel] = bound;
+                    continue;
+                }
             }
             int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
             if (!needsMore(film, floor, x, y, pixelError, &m_relErr[pixel])) continue;
