@@ -122,7 +122,8 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
     out << "elapsed   " << s["elapsed_s"].get<double>() << " s\n";
     out << "rays      eye " << s["rays"]["eye"] << ", continuation "
         << s["rays"]["continuation"] << ", shadow " << s["rays"]["shadow"] << "\n";
-    out << "sampling  " << s["sampling"]["passes"] << " passes, stopped by "
+    out << "sampling  " << s["sampling"]["passes"] << " passes ("
+        << s["sampling"]["overlapped_passes"] << " overlapped), stopped by "
         << s["sampling"]["stop_reason"].get<std::string>() << ", estimated error "
         << s["sampling"]["estimated_error"].get<double>() << "\n";
     out << "numerics  nonfinite samples " << s["nonfinite_samples"] << ", shader NaN/Inf "
