@@ -55,7 +55,11 @@ float relativeErrorFloor(const FilmPixels& film) {
     size_t n = 0;
     for (const PixelAccum& p : film)
         if (p.count) meanSum += pixelMean(p), ++n;
-    return std::max(1e-4f, 0.1f * float(n ? meanSum / double(n) : 0.0));
+    return relativeErrorFloorOf(meanSum, double(n));
+}
+
+float relativeErrorFloorOf(double meanSum, double pixels) {
+    return std::max(1e-4f, 0.1f * float(pixels > 0 ? meanSum / pixels : 0.0));
 }
 
 float pixelRelativeError(const PixelAccum& p, float floor) {

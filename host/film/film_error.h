@@ -33,6 +33,9 @@ double estimateFilmError(const FilmPixels& film);
 // (relativeErrorFloor), so that nearly black pixels do not soak up the samples.
 std::vector<float> pixelRelativeErrors(const FilmPixels& film);
 float relativeErrorFloor(const FilmPixels& film);
+// The same from the sum of the sampled pixels' means and their number (a planner that
+// keeps the sum up to date pass by pass).
+float relativeErrorFloorOf(double meanSum, double pixels);
 float pixelRelativeError(const PixelAccum& p, float floor);
 
 }  // namespace rd

@@ -51,11 +51,14 @@ const std::vector<std::string> kRenderSources = {
     "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "close_round.cl", "compact.cl",
     "retire.cl", "treelet.cl"};
 
-// The samples of the queued jobs, counted until they pass `cap`.
-size_t queuedSamples(const std::deque<PlannedJob>& pending, size_t cap) {
+// Whether the queued jobs hold at most `room` samples. Asked every round: a queue of more
+// jobs than that is not walked (a job holds one sample or more).
+bool queueWithin(const std::deque<PlannedJob>& pending, size_t room) {
+    if (pending.size() > room) return false;
     size_t total = 0;
-    for (auto it = pending.begin(); it != pending.end() && total <= cap; ++it) total += it->count;
-    return total;
+    for (const PlannedJob& j : pending)
+        if ((total += j.count) > room) return false;
+    return true;
 }
 
 // The next pass is planned once the next round takes all that is left of the queue (the
@@ -558,8 +561,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                         std::log(1.0 / errorTarget))
                     : double(st.retiredSamples) / double(film.cropPixelCount() * ss.maxSamples);
             progress.update(fraction, secondsSince(t0), st.eyeRays, st.estimatedError);
+            const size_t fill = size_t(kOverlapFill * double(roundCap));
             if (overlap && (ring.inFlight() > 0 || !pending.empty()) && spillTop == 0 &&
-                double(n + queuedSamples(pending, roundCap)) <= kOverlapFill * double(roundCap)) {
+                n <= fill && queueWithin(pending, fill - n)) {
                 planDue = !readFilm();  // the error target met: drain, then stop
                 overlap = planDue;
             }

@@ -41,15 +41,13 @@ bool SamplePlanner::needsMore(const FilmPixels& film, float floor, int x, int y,
     if (*relErr > pixelError) return true;
     // An edge both of whose samples fell on one side shows no variance: compare with the
     // neighbours' means instead (kept by brightnessFloor, up to date for every pixel).
-    float m = m_meanOf[i];
-    const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
-    for (int k = 0; k < 4; ++k) {
-        int nx = x + dx[k], ny = y + dy[k];
-        if (nx < 0 || ny < 0 || nx >= m_width || ny >= m_height) continue;
-        const size_t j = size_t(ny) * size_t(m_width) + size_t(nx);
-        if (film[j].count == 0) continue;
-        float mq = m_meanOf[j];
-        if (std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq)))
+    // (a neighbour off the image is the pixel itself: no contrast; without samples, < 0)
+    const float m = m_meanOf[i];
+    const std::array<uint32_t, 5> around = neighbourhood(uint32_t(i));
+    for (int k = 1; k < 5; ++k) {
+        const float mq = m_meanOf[around[k]];
+        if (mq >= 0.0f &&
+            std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq)))
             return true;
     }
     return false;
@@ -194,7 +192,7 @@ float SamplePlanner::brightnessFloor(const FilmPixels& film) {
             account(pixel, 1.0f);
         }
     }
-    return std::max(1e-4f, 0.1f * float(m_meanCount > 0 ? m_meanSum / m_meanCount : 0.0));
+    return relativeErrorFloorOf(m_meanSum, m_meanCount);
 }
 
 std::vector<uint8_t> SamplePlanner::pixelsToTest(bool all) const {
