@@ -5,6 +5,7 @@
 // Declare, the predefined names or the values themselves. The token source is the file
 // being read, an archive it reads (ReadArchive swaps the lexer and recurses), or the
 // recorded tokens of an inline archive.
+#include <algorithm>
 #include <zlib.h>
 
 #include <cerrno>
@@ -263,8 +264,7 @@ bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
                 return false;
             }
             args.floatArrays.emplace_back(got.begin(), got.end());
-            if (c == 'C' && m_target.wantsRgbColors() && !m_nRGB.empty())
-                args.floatArrays.back() = toRgb(args.floatArrays.back());
+            if (c == 'C') args.floatArrays.back() = targetColors(args.floatArrays.back());
             ++si;
         } else if (c == 'B') {
             if (vi < vals.size() && !vals[vi].array && vals[vi].isString) {
@@ -434,11 +434,25 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
                               std::to_string(count));
         return false;
     }
-    if (p.type == ParamType::Color && m_target.wantsRgbColors() && !m_nRGB.empty()) {
-        p.floats = toRgb(p.floats);
-        p.colorComponents = 3;
+    if (p.type == ParamType::Color && !m_nRGB.empty()) {
+        p.floats = targetColors(p.floats);
+        p.colorComponents = m_nColor <= m_target.keptColorSamples() || m_target.wantsRgbColors()
+                                ? 3 : m_nColor;
     }
     return true;
+}
+
+std::vector<float> Reader::targetColors(const std::vector<float>& n) const {
+    if (m_nRGB.empty()) return n;
+    const size_t k = m_nRGB.size() / 3;
+    if (int(k) <= m_target.keptColorSamples()) {  // padded to three: the last one repeated
+        std::vector<float> out;
+        out.reserve(n.size() / k * 3);
+        for (size_t base = 0; base + k <= n.size(); base += k)
+            for (size_t j = 0; j < 3; ++j) out.push_back(n[base + std::min(j, k - 1)]);
+        return out;
+    }
+    return m_target.wantsRgbColors() ? toRgb(n) : n;
 }
 
 std::vector<float> Reader::toRgb(const std::vector<float>& n) const {

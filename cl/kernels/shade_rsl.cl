@@ -194,7 +194,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
     float4 add = culled ? (float4)(0.0f) : w * E;
-    add.w = w.w * (Oi.x + Oi.y + Oi.z) * (1.0f / 3.0f); /* coverage */
+    add.w = w.w * RSL_CHANNEL_MEAN(Oi); /* coverage */
     rt_atomic_add_float4(&total[sample].value, rt_sanitize(add, numerics));
 
 #ifdef RT_HAS_SHADOW_RAYS
@@ -302,7 +302,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #ifdef RT_HAS_TRANSPARENCY
     /* Oi < 1: the same ray continues behind the surface with the transmitted weight */
     float4 wt = w * ((float4)(1.0f) - Oi);
-    wt.w = w.w * (1.0f - (Oi.x + Oi.y + Oi.z) * (1.0f / 3.0f));
+    wt.w = w.w * (1.0f - RSL_CHANNEL_MEAN(Oi));
     wt = rt_sanitize(wt, numerics);
     if (rt_max3(wt) > 1e-6f && RT_TRANSPARENT_DEPTH(rs) >= RT_MAX_TRANSPARENT_DEPTH)
         atomic_inc(&numerics[RT_NUM_TRANSPARENT_DEPTH]);

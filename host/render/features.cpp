@@ -37,6 +37,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
             if (b.lo[k] <= b.hi[k])
                 extent = std::fmax(extent, std::fmax(std::fabs(b.lo[k]), std::fabs(b.hi[k])));
     while (f.sceneScale > 1e-30f && f.sceneScale * 0.5f >= extent) f.sceneScale *= 0.5f;
+    f.colors = scene.colors;
     f.depthOfField = scene.deviceCamera().lens_radius > 0;
     f.quadrics = !scene.quadrics.empty();
     f.csg = !scene.csg.empty();
@@ -97,6 +98,7 @@ std::vector<std::string> Features::names() const {
     if (shadowPackets) n.push_back("shadow_packets");
     if (closestPackets) n.push_back("closest_packets");
     if (depthOfField) n.push_back("depth_of_field");
+    if (!colors.isRgb()) n.push_back("color_samples_" + std::to_string(colors.n));
     if (primvars & RT_PRIMVAR_ST) n.push_back("vertex_st");
     if (primvars & RT_PRIMVAR_CS) n.push_back("vertex_Cs");
     if (primvars & RT_PRIMVAR_OS) n.push_back("vertex_Os");
@@ -130,6 +132,16 @@ std::string buildOptions(const Features& f) {
     }
     if (f.aovs) o += " -DRT_HAS_AOVS";
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
+    if (!f.colors.isRgb()) {
+        auto matrix = [](const std::array<float, 9>& m) {
+            std::string v;
+            char buf[32];
+            for (float x : m) std::snprintf(buf, sizeof buf, "%s%.9ef", v.empty() ? "" : ",", double(x)), v += buf;
+            return v;
+        };
+        o += " -DRSL_COLOR_SAMPLES=" + std::to_string(f.colors.n) + " -DRSL_NRGB=" +
+             matrix(f.colors.toRgb) + " -DRSL_RGBN=" + matrix(f.colors.fromRgb);
+    }
     if (f.quadrics) o += " -DRT_HAS_QUADRICS";
     if (f.quadricPrimvars) o += " -DRT_HAS_QUADRIC_PRIMVARS";
     if (f.motion) o += " -DRT_HAS_MOTION";

@@ -59,6 +59,9 @@ struct Features {
     // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a
     // surface scale with it (math.clh), so a scene scaled to 1e-6 does not leak light.
     float sceneScale = 1.0f;
+    // ColorSamples n <= 3 other than RGB: colours are n channels, converted to RGB as a
+    // sample retires (RSL_COLOR_SAMPLES, RSL_NRGB, RSL_RGBN; rsl_abi.h COLOURS)
+    ColorSamples colors;
 
     std::vector<std::string> names() const;
     // Rays a shaded hit may spawn: its continuation, plus RSL_MAX_TRACE traced rays.

@@ -163,9 +163,17 @@ void RibBuilder::perspective(L loc, float fov) {
                         "projective transform) is not supported; ignored");
 }
 
-// ColorSamples n: the reader hands every colour over as RGB through the nRGB matrix
-// (wantsRgbColors), so the renderer, its rays and its film stay RGB.
-void RibBuilder::colorSamples(L, Floats, Floats) {}
+// ColorSamples n <= 3: the reader hands colours over as their n values (keptColorSamples)
+// and the renderer shades, traces and sums samples in those channels, converting each
+// sample to RGB for the film. More channels: the reader converts every colour to RGB
+// through nRGB as it reads it, and the renderer stays RGB.
+void RibBuilder::colorSamples(L loc, Floats nRGB, Floats RGBn) {
+    if (m_inWorld)
+        m_diag.warning(loc, "ColorSamples is an option: inside the world block it applies to "
+                            "the whole image, colours given before it included");
+    for (Scene* s : {&m_options, &m_world})
+        if (!s->colors.set(nRGB, RGBn)) s->colors = ColorSamples{};
+}
 
 void RibBuilder::textureCoordinates(L, float s1, float t1, float s2, float t2, float s3,
                                     float t3, float s4, float t4) {

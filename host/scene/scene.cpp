@@ -9,6 +9,27 @@
 
 namespace rd {
 
+bool ColorSamples::isRgb() const {
+    const ColorSamples rgb;
+    return n == 3 && toRgb == rgb.toRgb && fromRgb == rgb.fromRgb;
+}
+
+bool ColorSamples::set(const std::vector<float>& nRGB, const std::vector<float>& RGBn) {
+    const size_t k = nRGB.size() / 3;
+    if (k < 1 || k > 3 || nRGB.size() != 3 * k || RGBn.size() != 3 * k) return false;
+    n = int(k);
+    toRgb.fill(0.0f);
+    for (size_t i = 0; i < 3 * k; ++i) toRgb[i] = nRGB[i];
+    for (size_t j = 0; j < 3; ++j)
+        for (size_t i = 0; i < 3; ++i) fromRgb[3 * j + i] = RGBn[j * k + std::min(i, k - 1)];
+    return true;
+}
+
+void ColorSamples::fromRgbValues(float* rgb) const {
+    const float r = rgb[0], g = rgb[1], b = rgb[2];
+    for (int i = 0; i < 3; ++i) rgb[i] = r * fromRgb[i] + g * fromRgb[3 + i] + b * fromRgb[6 + i];
+}
+
 Camera Scene::deviceCamera() const {
     Camera d{};
     const CameraSpec& c = camera;

@@ -72,8 +72,23 @@ struct RenderOptionsSpec {
     int sceneMemoryKB = 0;     // Option "limits" "scenememory": device BVH bytes (0: all)
 };
 
+// ColorSamples n, n <= 3: colours are n channels through shading, rays and sample totals
+// (three lanes, those past n repeating the last); a sample reaches the film as RGB.
+// Both matrices are padded to 3x3, row-vector convention (out_j = sum_i in_i m[3i + j]):
+// toRgb's rows past n are zero; fromRgb's columns past n repeat its last column.
+struct ColorSamples {
+    int n = 3;
+    std::array<float, 9> toRgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    std::array<float, 9> fromRgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    bool isRgb() const;  // three channels, identity matrices: nothing to convert
+    // from nRGB (n x 3) and RGBn (3 x n) as RiColorSamples gives them; false if n > 3
+    bool set(const std::vector<float>& nRGB, const std::vector<float>& RGBn);
+    void fromRgbValues(float* rgb) const;  // an RGB triple to the n channels, in place
+};
+
 struct Scene {
     std::string sourceFile;
+    ColorSamples colors;
     std::vector<Triangle> triangles;
     std::vector<TriangleAttr> attrs;
     std::vector<rt_float4> normals; // 3 per triangle with has_normals, else unused entries

@@ -48,7 +48,7 @@ bool isTripleType(rib::ParamType t) {
 }  // namespace
 
 std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef& call,
-                                  rib::Diagnostics& diag) {
+                                  rib::Diagnostics& diag, const ColorSamples& colors) {
     std::vector<float> block(size_t(sh.paramFloats), 0.0f);
     for (const rsl::ParamSlot& slot : sh.params) {
         const rsl::BaseType base = slot.type.base;
@@ -59,6 +59,8 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
         // Defaults, moved out of the space they were written in.
         for (int i = 0; i < slot.size && i < int(slot.defaults.size()); ++i)
             block[size_t(slot.offset + i)] = slot.defaults[size_t(i)];
+        if (slot.rgbDefault && !colors.isRgb())  // RIB colours come in the scene's channels
+            for (int e = 0; e < elem; ++e) colors.fromRgbValues(&block[size_t(slot.offset + e * per)]);
         if (!slot.constantDefault) block[size_t(slot.offset)] = NAN;
         if (pointLike && slot.constantDefault && slot.space == "shader")
             for (int e = 0; e < elem; ++e)
@@ -234,7 +236,7 @@ bool ShaderSet::bindCases(const std::vector<ShaderRef>& refs, const std::string&
     for (size_t i = 0; i < refs.size(); ++i) {
         const rsl::EmittedShader* sh = find(refs[i].name, kind, refs[i].loc);
         if (!sh) continue;
-        std::vector<float> block = bindParameters(*sh, refs[i], m_diag);
+        std::vector<float> block = bindParameters(*sh, refs[i], m_diag, m_scene.colors);
         addPrepare(out, *sh);
         noteTextures(out, *sh, refs[i]);
         cases << "    case " << i << ": " << sh->functionName << "(g, params + "
@@ -260,7 +262,7 @@ ShadingSetup ShaderSet::prepare() {
         const rsl::EmittedShader* sh = find(l.name, "light", l.loc);
         if (!sh) continue;
         int index = int(lightCalls.size());
-        std::vector<float> block = bindParameters(*sh, l, m_diag);
+        std::vector<float> block = bindParameters(*sh, l, m_diag, m_scene.colors);
         noteTextures(out, *sh, l);
         lights << "__constant float rd_light_params_" << index << "[] = {";
         for (size_t i = 0; i < block.size(); ++i) lights << (i ? ", " : "") << fmt(block[i]);
@@ -461,7 +463,7 @@ ShadingSetup ShaderSet::prepare() {
         refShader[r] = it->second;
         refBlock[r] = uint32_t(out.params.size());
         refPointParams[r] = pointParamOffsets(*sh, call, m_diag);
-        std::vector<float> block = bindParameters(*sh, call, m_diag);
+        std::vector<float> block = bindParameters(*sh, call, m_diag, m_scene.colors);
         addPrepare(out, *sh);
         noteTextures(out, *sh, call);
         out.params.insert(out.params.end(), block.begin(), block.end());
@@ -487,7 +489,7 @@ ShadingSetup ShaderSet::prepare() {
     if (!m_scene.imager.name.empty()) {
         const ShaderRef& ref = m_scene.imager;
         if (const rsl::EmittedShader* sh = find(ref.name, "imager", ref.loc)) {
-            std::vector<float> block = bindParameters(*sh, ref, m_diag);
+            std::vector<float> block = bindParameters(*sh, ref, m_diag, m_scene.colors);
             addPrepare(out, *sh);
             noteTextures(out, *sh, ref);
             const size_t offset = out.params.size();

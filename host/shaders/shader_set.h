@@ -95,9 +95,10 @@ private:
 };
 
 // Binds a shader call's parameters: defaults, then the RIB's values (by name, checked
-// against the declared type), points/vectors/normals moved to world space.
+// against the declared type), points/vectors/normals moved to world space, RGB colour
+// defaults in the scene's colour channels.
 std::vector<float> bindParameters(const rsl::EmittedShader& shader, const ShaderRef& call,
-                                  rib::Diagnostics& diag);
+                                  rib::Diagnostics& diag, const ColorSamples& colors = {});
 
 // Where each of the call's per-point parameters (ShaderRef::pointParams) goes in its
 // block: the offset of the shader's parameter of that name, or -1 (none, or one of

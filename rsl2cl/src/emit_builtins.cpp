@@ -131,7 +131,10 @@ std::string Emitter::textureCall(const Expr& e, bool vret) {
                ", " + V(2) + ", " + V(3) + ", " + s + ", " + t + ", " + opt["width"] + ", " +
                opt["blur"] + ")";
     }
-    return vret ? "rsl_w0(" + call + ")" : "(" + call + ").x";
+    if (!vret) return "(" + call + ").x";
+    // a texture's or environment's texels are RGB: in the renderer's colour channels
+    // (a shadow's fraction is the same in every channel)
+    return n == "shadow" ? "rsl_w0(" + call + ")" : "rsl_rgb_color(rsl_w0(" + call + "))";
 }
 
 // textureinfo(name, "resolution" | "channels" | "type", var)

@@ -30,9 +30,11 @@ std::string slurpRuntime(const std::string& name) {
 
 std::string runtimeSource() {
     std::string lib = slurpRuntime("rsl_stdlib.clh");
-    const std::string inc = "#include \"rsl_derivatives.clh\"";
-    if (size_t at = lib.find(inc); at != std::string::npos)
-        lib.replace(at, inc.size(), slurpRuntime("rsl_derivatives.clh"));
+    for (const char* header : {"rsl_derivatives.clh", "rsl_color_samples.clh"}) {
+        const std::string inc = std::string("#include \"") + header + "\"";
+        if (size_t at = lib.find(inc); at != std::string::npos)
+            lib.replace(at, inc.size(), slurpRuntime(header));
+    }
     return slurpRuntime("rsl_abi.h") + "\n" + lib + "\n";
 }
 
@@ -107,6 +109,8 @@ void Emitter::layoutParams() {
                 } else {
                     for (size_t i = 0; i < total && i < cv.values.size(); ++i)
                         slot.defaults[i] = float(cv.values[i]);
+                    slot.rgbDefault = p.type.base == BaseType::Color &&
+                                      (cv.space.empty() || cv.space == "rgb");
                 }
             }
         } else if (p.init) {

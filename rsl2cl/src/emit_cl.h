@@ -26,6 +26,9 @@ struct ParamSlot {
     std::vector<float> defaults;     // `size` values (string ids for strings)
     std::vector<std::string> stringDefaults;  // string parameters: the text
     std::string space;       // space/colour space the default is written in ("" none)
+    // a colour default written as RGB triples (not a float promoted to every channel):
+    // a renderer shading in other colour channels converts it (rsl_abi.h, COLOURS)
+    bool rgbDefault = false;
 };
 
 struct EmittedShader {

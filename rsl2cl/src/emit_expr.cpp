@@ -224,7 +224,11 @@ std::string Emitter::expr(const Expr& e) {
                 error(e.loc, "unknown colour space \"" + e.text + "\"");
                 return a;
             }
-            return c == 0 ? a : "rsl_ctransform(" + std::to_string(c) + ", RSL_COLOR_RGB, " + a + ")";
+            if (c == 0) return a;
+            // the triple's own components are in that space: not an RGB colour yet
+            const Expr& in = *e.args[0];
+            if (in.kind == ExprKind::Tuple && !in.type.isArray()) a = tupleOf(in);
+            return "rsl_ctransform(" + std::to_string(c) + ", RSL_COLOR_RGB, " + a + ")";
         }
         int sp = spaceIdOf(e.text);
         if (sp < 0) {
@@ -245,15 +249,21 @@ std::string Emitter::expr(const Expr& e) {
             error(e.loc, "array values are only supported as initialisers");
             return "0";
         }
-        std::string s = e.args.size() == 16 ? "rsl_matrix16(" : "rsl_v3(";
-        for (size_t i = 0; i < e.args.size(); ++i)
-            s += (i ? ", " : "") + exprAs(*e.args[i], BaseType::Float);
-        return s + ")";
+        // a colour written as three numbers is RGB: in the renderer's colour channels
+        // (rsl_color_samples.clh)
+        return e.type.isColor() ? "rsl_rgb_color(" + tupleOf(e) + ")" : tupleOf(e);
     }
     case ExprKind::Index:
         return expr(*e.args[0]) + "[(int)(" + expr(*e.args[1]) + ")]";
     }
     return "0";
+}
+
+std::string Emitter::tupleOf(const Expr& e) {
+    std::string s = e.args.size() == 16 ? "rsl_matrix16(" : "rsl_v3(";
+    for (size_t i = 0; i < e.args.size(); ++i)
+        s += (i ? ", " : "") + exprAs(*e.args[i], BaseType::Float);
+    return s + ")";
 }
 
 }  // namespace rsl

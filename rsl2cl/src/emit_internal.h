@@ -33,6 +33,7 @@ public:
     // ---- expressions (emit_expr.cpp) ----
     std::string expr(const Expr& e);
     std::string exprAs(const Expr& e, const TypeSpec& to);
+    std::string tupleOf(const Expr& e);  // a Tuple's components as written (colours: not converted)
     std::string coerce(const std::string& code, const TypeSpec& from, const TypeSpec& to);
     std::string binop(const std::string& op, const std::string& a, const TypeSpec& ta,
                       const std::string& b, const TypeSpec& tb, const SourceLoc& loc);

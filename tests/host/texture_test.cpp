@@ -150,6 +150,38 @@ TEST(Textures, CacheOverflowEqualsResident) {
     EXPECT_EQ(differ, 0u);
 }
 
+// Texels are RGB: under ColorSamples they come into the scene's channels through RGBn.
+// With red and blue swapped the image is the RGB one exactly; with one luminance channel
+// (shown grey) every pixel is the RGB image's luminance (the lookups are linear).
+TEST(Textures, TexelsEnterTheScenesColourChannels) {
+    std::string tex = texture("colours", 512, 16, true);
+    auto scene = [&](const std::string& colorSamples) {
+        // (a pixel error of 1e-9: every pixel takes all its samples, whatever its channels show)
+        return renderRib(searchPath() + colorSamples + "Option \"render\" \"float pixelerror\" [1e-9]\n"
+                         "Format 32 32 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" 50\n"
+                         "WorldBegin\nSurface \"texcheck\" \"map\" \"" + tex + "\" \"rep\" 2\n"
+                         "Polygon \"P\" [-3 -1 2  3 -1 2  3 1 8  -3 1 8] \"st\" [0 0  1 0  1 1  0 1]\n"
+                         "WorldEnd\n");
+    };
+    Rendered rgb = scene("");
+    Rendered swapped = scene("ColorSamples [0 0 1 0 1 0 1 0 0] [0 0 1 0 1 0 1 0 0]\n");
+    Rendered grey = scene("ColorSamples [1 1 1] [0.299 0.587 0.114]\n");
+    double spread = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const rd::Rgba &a = rgb.at(x, y), &b = swapped.at(x, y), &c = grey.at(x, y);
+            ASSERT_EQ(a.r, b.r);
+            ASSERT_EQ(a.g, b.g);
+            ASSERT_EQ(a.b, b.b);
+            const float lum = 0.299f * a.r + 0.587f * a.g + 0.114f * a.b;
+            ASSERT_NEAR(c.r, lum, 1e-5f) << x << ", " << y;
+            ASSERT_EQ(c.r, c.g);
+            ASSERT_EQ(c.r, c.b);
+            spread += std::fabs(a.r - a.b);
+        }
+    EXPECT_GT(spread, 1.0);  // the texture is coloured: the swap is no identity
+}
+
 // Missing and corrupt files: a warning names the map, the shader that asked and why; the
 // lookups give the default (0) and the render goes on.
 TEST(Textures, MissingAndCorruptFilesAreReportedAndRenderTheDefault) {

@@ -1,0 +1,142 @@
+// color_samples_test.cpp: ColorSamples n <= 3 shades, traces and sums samples in the n
+// colour channels and converts each sample to RGB for the film (nRGB); RGB written in a
+// shader (literals, colour-space casts, textures) comes in through RGBn. Analytic pixels
+// for one and two channels, and a permutation of the channels that must give the RGB
+// image exactly (products commute with it, the conversions are exact).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "render_harness.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+// Shaders of these tests, in a scratch folder on the shader search path.
+std::string shaderPath() {
+    static const std::string dir = [] {
+        std::string d = rd::test::scratchDir("raydrive_color_samples");
+        std::filesystem::create_directories(d);
+        std::ofstream(d + "/csproduct.sl")
+            << "surface csproduct() {\n    Ci = color(1, 0, 0) * color(0, 1, 0);\n    Oi = 1;\n}\n";
+        std::ofstream(d + "/cshsv.sl")
+            << "surface cshsv(float h = 0) {\n    Ci = color \"hsv\" (h, 1, 1);\n    Oi = 1;\n}\n";
+        std::ofstream(d + "/cstinted.sl")
+            << "surface cstinted(color tint = color(1, 0.5, 0.25)) {\n"
+               "    normal Nf = faceforward(normalize(N), I);\n"
+               "    Ci = Os * (Cs * tint * diffuse(Nf) + 0.1 * color \"hsv\" (0.6, 0.5, 1)\n"
+               "               + ctransform(\"hsv\", \"rgb\", ctransform(\"hsv\", Cs)) * 0.05);\n"
+               "    Oi = Os;\n}\n";
+        return d;
+    }();
+    return "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n";
+}
+
+const char* kFlat = "Format 8 8 1\nPixelSamples 1 1\nProjection \"orthographic\"\n";
+const char* kQuad = "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5]\n";
+
+// One channel: grey out (nRGB 1 1 1), luminance in (RGBn 0.299 0.587 0.114).
+const char* kGrey = "ColorSamples [1 1 1] [0.299 0.587 0.114]\n";
+
+Rendered flat(const std::string& options, const std::string& world) {
+    return renderRib(shaderPath() + options + kFlat + "WorldBegin\n" + world + kQuad + "WorldEnd\n");
+}
+
+void expectGrey(const Rendered& img, float v, float tol, const char* what) {
+    SCOPED_TRACE(what);
+    EXPECT_NEAR(img.at(4, 4).r, v, tol);
+    EXPECT_NEAR(img.at(4, 4).g, v, tol);
+    EXPECT_NEAR(img.at(4, 4).b, v, tol);
+}
+
+}  // namespace
+
+// A colour of one value is that channel; the film shows it through nRGB.
+TEST(ColorSamples, OneChannelColoursReachTheFilmThroughNRGB) {
+    expectGrey(flat(kGrey, "Color [0.5]\nSurface \"constant\"\n"), 0.5f, 1e-6f, "Color [0.5]");
+    // matte lit by an ambient light of one channel: 0.8 * 0.5
+    expectGrey(flat(kGrey, "LightSource \"ambientlight\" 1 \"lightcolor\" [0.5]\n"
+                           "Color [0.8]\nSurface \"matte\" \"Ka\" 1 \"Kd\" 0\n"),
+               0.4f, 1e-6f, "ambient");
+    // coverage is the opacity's mean over the channels
+    Rendered half = flat(kGrey, "Opacity [0.5]\nSurface \"constant\"\n");
+    EXPECT_NEAR(half.at(4, 4).a, 0.5f, 1e-6f);
+    EXPECT_NEAR(half.at(4, 4).r, 0.5f, 1e-6f);
+}
+
+// Colours multiply in the scene's channels: red times green is black in RGB, but both are
+// 0.299 and 0.587 of the one luminance channel, whose product the film shows as grey.
+// (Converting colours to RGB as they are read, as before, gives 0 here.)
+TEST(ColorSamples, ShaderColoursMultiplyInTheScenesChannels) {
+    expectGrey(flat("", "Surface \"csproduct\"\n"), 0.0f, 0.0f, "RGB");
+    expectGrey(flat(kGrey, "Surface \"csproduct\"\n"), 0.299f * 0.587f, 1e-6f, "one channel");
+    // a colour-space cast is RGB too: hue 0 is red, hue 1/3 green
+    expectGrey(flat(kGrey, "Surface \"cshsv\"\n"), 0.299f, 1e-6f, "hsv red");
+    expectGrey(flat(kGrey, "Surface \"cshsv\" \"h\" 0.333333333\n"), 0.587f, 1e-5f, "hsv green");
+}
+
+// Two channels: channel 0 shows red, channel 1 cyan; coverage is the mean of the two
+// channels' opacities (not of three lanes).
+TEST(ColorSamples, TwoChannels) {
+    const std::string two = "ColorSamples [1 0 0  0 1 1] [1 0  0 0.5  0 0.5]\n";
+    Rendered img = flat(two, "Color [0.2 0.6]\nOpacity [1 0.5]\nSurface \"constant\"\n");
+    EXPECT_NEAR(img.at(4, 4).a, 0.75f, 1e-6f);
+    // Ci = Os * Cs = (0.2, 0.3): RGB (0.2, 0.3, 0.3)
+    EXPECT_NEAR(img.at(4, 4).r, 0.2f, 1e-6f);
+    EXPECT_NEAR(img.at(4, 4).g, 0.3f, 1e-6f);
+    EXPECT_NEAR(img.at(4, 4).b, 0.3f, 1e-6f);
+    const std::vector<std::string> names = img.stats.features.names();
+    EXPECT_NE(std::find(names.begin(), names.end(), "color_samples_2"), names.end());
+    EXPECT_EQ(img.stats.features.colors.n, 2);
+}
+
+// Three channels that are RGB's with red and blue swapped: every colour the RIB gives is
+// written swapped, and the image must be the RGB one exactly - through lights, a shader
+// parameter's RGB default, literals, colour-space casts and ctransform, partial opacity
+// (continuation rays) and a mirror's traced rays.
+TEST(ColorSamples, PermutedChannelsGiveTheRgbImage) {
+    auto scene = [](bool swapped) {
+        auto c = [&](const char* r, const char* g, const char* b) {
+            return std::string("[") + (swapped ? b : r) + " " + g + " " + (swapped ? r : b) + "]";
+        };
+        return renderRib(
+            shaderPath() + (swapped ? "ColorSamples [0 0 1 0 1 0 1 0 0] [0 0 1 0 1 0 1 0 0]\n" : "") +
+            "Format 24 24 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" 40\n"
+            "WorldBegin\nLightSource \"distantlight\" 1 \"lightcolor\" " + c("1", "0.8", "0.6") +
+            " \"from\" [1 1 -1] \"to\" [0 0 0]\n"
+            "LightSource \"ambientlight\" 2 \"intensity\" 0.2 \"lightcolor\" " + c("0.3", "0.6", "1") + "\n"
+            "AttributeBegin\nColor " + c("0.9", "0.5", "0.2") + "\nOpacity " + c("1", "0.5", "0.25") +
+            "\nSurface \"cstinted\"\nTranslate -0.5 0 4\nSphere 1 -1 1 360\nAttributeEnd\n"
+            "AttributeBegin\nColor " + c("0.2", "0.4", "0.9") + "\nSurface \"shinymetal\" \"Kr\" 0.5\n"
+            "Translate 0.8 0 5\nSphere 1 -1 1 360\nAttributeEnd\n"
+            "AttributeBegin\nColor " + c("0.3", "0.9", "0.4") + "\nSurface \"plastic\"\n"
+            "Polygon \"P\" [-6 -6 8  6 -6 8  6 6 8  -6 6 8]\nAttributeEnd\nWorldEnd\n");
+    };
+    Rendered rgb = scene(false), swapped = scene(true);
+    // Continuation rays through the transparent sphere reach opaque surfaces: their
+    // transmitted coverage is exactly 0, never -3e-8 (1932 "negative results" were
+    // reported here when the channels' mean was taken as a product with 1/3).
+    EXPECT_EQ(rgb.stats.shadeNegative, 0u);
+    EXPECT_EQ(swapped.stats.shadeNegative, 0u);
+    ASSERT_EQ(rgb.pixels.size(), swapped.pixels.size());
+    double sum = 0;
+    for (size_t i = 0; i < rgb.pixels.size(); ++i) {
+        const rd::Rgba &a = rgb.pixels[i], &b = swapped.pixels[i];
+        ASSERT_NEAR(a.r, b.r, 1e-6f) << "pixel " << i;
+        ASSERT_NEAR(a.g, b.g, 1e-6f) << "pixel " << i;
+        ASSERT_NEAR(a.b, b.b, 1e-6f) << "pixel " << i;
+        ASSERT_NEAR(a.a, b.a, 1e-6f) << "pixel " << i;
+        sum += a.r + 2 * a.g + 3 * a.b;
+    }
+    EXPECT_GT(sum, 1.0);  // not black
+    // and a swap is no identity: the red and blue channels differ somewhere
+    double rb = 0;
+    for (const rd::Rgba& a : rgb.pixels) rb += std::fabs(a.r - a.b);
+    EXPECT_GT(rb, 1.0);
+}
