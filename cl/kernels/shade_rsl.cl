@@ -121,7 +121,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #ifdef RT_HAS_ONE_SIDED
     const int culled = (m.flags & RT_MATERIAL_ONE_SIDED) && rt_dot3(dir, g.Ng) > 0.0f;
 #else
-    const int culled = 0;
+    int culled = 0; /* (not const: a constant operand of && makes the compiler warn) */
 #endif
     RslEval ev;
     RslDeriv* dsites = 0; /* the surface shader's derivatives, when it takes any */
@@ -137,7 +137,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #ifdef RT_HAS_DERIVATIVES
     RslDeriv deriv;
     uint disp = (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT;
-    if (!culled && (RSL_DERIVS_SURFACE || disp)) {
+    /* (a variable: a constant operand of && makes the compiler print a warning) */
+    int take_derivs = RSL_DERIVS_SURFACE || disp;
+    if (!culled && take_derivs) {
         RslGlobals g1, g2;
         RD_NEIGHBOUR_GLOBALS(g, g1, g2, h, rs, dir, RD_HIT_BUFFERS);
 #ifdef RT_HAS_DISPLACEMENT

@@ -1,5 +1,5 @@
 // scene.cpp: deriving the device camera (screen window, fov scale, camera-to-world) from
-// the RenderMan camera options.
+// the RenderMan camera options, and the scene's colour channels (ColorSamples).
 #include "scene.h"
 
 #include <algorithm>

@@ -7,6 +7,15 @@
  * p' = (p, 1) * M, translation in row 3); string -> int id (RSL_STRING_ID below).
  * Points are in "current" space, which is world space in RayDrive.
  *
+ * COLOURS. Colours are RGB unless the renderer defines RSL_COLOR_SAMPLES (n = 1..3) with
+ * RSL_NRGB and RSL_RGBN (rsl_color_samples.clh): then a colour's first n lanes are its n
+ * channels (the other lanes repeat the last), and what is written as RGB comes in
+ * through RGBn: colour literals (three numbers), colour-space casts and ctransform() to
+ * "rgb", texture() and environment() texels. A float promoted to a colour fills every
+ * channel; ctransform() to another space converts through nRGB and gives that space's
+ * components. Constant colour defaults written as three numbers are listed with
+ * ParamSlot::rgbDefault for the host to convert.
+ *
  * GLOBALS. RslGlobals holds the standard globals. I is the unnormalised incident
  * vector from the eye E to P. In a light shader Ps is the surface point being lit.
  *
