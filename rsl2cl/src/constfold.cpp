@@ -69,6 +69,50 @@ std::string ConstValue::text() const {
     return s + "]";
 }
 
+bool colorSpaceToRgb(const std::string& space, double* c) {
+    const double a = c[0], b = c[1], d = c[2];
+    auto fromXyz = [&](double x, double y, double z) {
+        c[0] = 3.240479 * x - 1.537150 * y - 0.498535 * z;
+        c[1] = -0.969256 * x + 1.875992 * y + 0.041556 * z;
+        c[2] = 0.055648 * x - 0.204043 * y + 1.057311 * z;
+    };
+    if (space.empty() || space == "rgb") return true;
+    if (space == "hsv") {
+        const double h = (a - std::floor(a)) * 6, s = b, v = d;
+        const int i = int(std::floor(h));
+        const double f = h - i, p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+        const double rgb[6][3] = {{v, t, p}, {q, v, p}, {p, v, t}, {p, q, v}, {t, p, v}, {v, p, q}};
+        for (int k = 0; k < 3; ++k) c[k] = rgb[i % 6][k];
+        return true;
+    }
+    if (space == "hsl") {
+        const double h = a, s = b, l = d;
+        if (s == 0) return c[0] = c[1] = c[2] = l, true;
+        const double m2 = l <= 0.5 ? l * (1 + s) : l + s - l * s, m1 = 2 * l - m2;
+        auto v = [&](double hh) {
+            hh -= std::floor(hh);
+            if (hh < 1.0 / 6) return m1 + (m2 - m1) * hh * 6;
+            if (hh < 0.5) return m2;
+            if (hh < 2.0 / 3) return m1 + (m2 - m1) * (2.0 / 3 - hh) * 6;
+            return m1;
+        };
+        c[0] = v(h + 1.0 / 3), c[1] = v(h), c[2] = v(h - 1.0 / 3);
+        return true;
+    }
+    if (space == "XYZ" || space == "xyz") return fromXyz(a, b, d), true;
+    if (space == "xyY") {  // chromaticity x, y and luminance Y
+        if (b == 0) return fromXyz(0, 0, 0), true;
+        return fromXyz(a * d / b, d, (1 - a - b) * d / b), true;
+    }
+    if (space == "YIQ") {
+        c[0] = a + 0.956 * b + 0.621 * d;
+        c[1] = a - 0.272 * b - 0.647 * d;
+        c[2] = a - 1.105 * b + 1.702 * d;
+        return true;
+    }
+    return false;
+}
+
 bool evalConst(const Expr& e, ConstValue& out) {
     out = ConstValue();
     switch (e.kind) {

@@ -20,4 +20,9 @@ struct ConstValue {
 // a call other than a few pure math builtins...).
 bool evalConst(const Expr& e, ConstValue& out);
 
+// A triple in a named colour space ("hsv", "hsl", "XYZ"/"xyz", "xyY", "YIQ"; "rgb" or ""
+// as it is) to RGB, in place, as rsl_stdlib.clh's rsl_to_rgb does; false for an unknown
+// space.
+bool colorSpaceToRgb(const std::string& space, double* c);
+
 }  // namespace rsl

@@ -109,8 +109,15 @@ void Emitter::layoutParams() {
                 } else {
                     for (size_t i = 0; i < total && i < cv.values.size(); ++i)
                         slot.defaults[i] = float(cv.values[i]);
-                    slot.rgbDefault = p.type.base == BaseType::Color &&
-                                      (cv.space.empty() || cv.space == "rgb");
+                    // a colour written in another space ("hsv"...): its RGB value
+                    if (p.type.base == BaseType::Color) {
+                        for (size_t i = 0; i + 3 <= total && i + 3 <= cv.values.size(); i += 3) {
+                            double c[3] = {cv.values[i], cv.values[i + 1], cv.values[i + 2]};
+                            colorSpaceToRgb(cv.space, c);
+                            for (int k = 0; k < 3; ++k) slot.defaults[i + size_t(k)] = float(c[k]);
+                        }
+                        slot.rgbDefault = true;
+                    }
                 }
             }
         } else if (p.init) {

@@ -164,6 +164,9 @@ std::vector<Case> cases() {
         {"Ci = ctransform(\"hsl\", \"rgb\", ctransform(\"hsl\", color(s, t, 0.3))) + "
          "ctransform(\"xyz\", \"rgb\", ctransform(\"xyz\", color(t, 0.2, s)));",
          [](double, double, double s, double t) { return V3{s + t, t + .2, .3 + s}; }, 1e-4},
+        {"Ci = ctransform(\"xyY\", \"rgb\", ctransform(\"xyY\", color(s, t, 0.3))) + "
+         "color \"xyY\" (0.3127, 0.3290, 1);",  // and D65's white point at Y = 1
+         [](double, double, double s, double t) { return V3{s + 1, t + 1, 1.3}; }, 2e-3},
         {"Ci = ctransform(\"xyz\", color(s, t, 0.3));",
          [](double, double, double s, double t) {  // Rec. 709 / sRGB primaries, D65
              return V3{.412453 * s + .357580 * t + .180423 * .3, .212671 * s + .715160 * t + .072169 * .3,

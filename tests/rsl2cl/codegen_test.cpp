@@ -90,6 +90,34 @@ TEST(Codegen, ParamLayoutAndMetadata) {
     EXPECT_FALSE(sh.shader.params[1].constantDefault);
 }
 
+// Colour defaults reach the host as RGB, whatever space they are written in, and say
+// whether they were written as RGB triples (rgbDefault: a renderer shading in other
+// colour channels converts them) or as one float for every channel.
+TEST(Codegen, ColourDefaultsAreRgb) {
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource(
+        "surface s(color a = color \"hsv\" (0.5, 1, 1); color b = color \"hsl\" (0, 1, 0.5);\n"
+        "          color c = color \"YIQ\" (0.5, 0, 0); color d = color \"xyY\" (0.3127, 0.3290, 1);\n"
+        "          color e = (0.2, 0.4, 0.6); color f = 0.5;) { Ci = a + b + c + d + e + f; }",
+        "s.sl", &err)) << err;
+    const auto& p = sh.shader.params;
+    auto expectRgb = [&](size_t i, float r, float g, float b, float tol) {
+        SCOPED_TRACE(p[i].name);
+        EXPECT_NEAR(p[i].defaults[0], r, tol);
+        EXPECT_NEAR(p[i].defaults[1], g, tol);
+        EXPECT_NEAR(p[i].defaults[2], b, tol);
+        EXPECT_TRUE(p[i].rgbDefault);
+    };
+    expectRgb(0, 0, 1, 1, 1e-6f);         // hue 0.5: cyan
+    expectRgb(1, 1, 0, 0, 1e-6f);         // hue 0, lightness 0.5: red
+    expectRgb(2, 0.5f, 0.5f, 0.5f, 1e-6f);
+    expectRgb(3, 1, 1, 1, 2e-3f);         // D65's white point at Y = 1
+    expectRgb(4, 0.2f, 0.4f, 0.6f, 1e-6f);
+    EXPECT_EQ(p[5].defaults[1], 0.5f);
+    EXPECT_FALSE(p[5].rgbDefault);
+}
+
 TEST(Codegen, NonConstantDefaultIsComputedUnlessOverridden) {
     REQUIRE_DEVICE();
     ts::Shade sh;
