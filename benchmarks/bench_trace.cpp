@@ -556,10 +556,11 @@ int benchMain(int argc, char** argv) {
             for (auto [budget, memory] : modes) {
                 TreeletStats ts;
                 TreeletTracer tracer(ctx, treeletProgram.get(), prof, bvh4, budget, memory, n, ts);
-                DeviceBuffer<rt_float4> treeletWeight(ctx, ones, CL_MEM_READ_WRITE);
+                const std::vector<float> onesFlat(4 * n, 1.0f);  // RGB weights: 4 floats a ray
+                DeviceBuffer<float> treeletWeight(ctx, onesFlat, CL_MEM_READ_WRITE);
                 auto runTreelets = [&] {
                     state.upload(st);
-                    treeletWeight.upload(ones);
+                    treeletWeight.upload(onesFlat);
                     ctx.finish();
                     auto t0 = Clock::now();
                     if (k.shadow) tracer.shadow(cl_uint(n), org, dir, state, treeletWeight, sc, 1);
@@ -575,7 +576,7 @@ int benchMain(int argc, char** argv) {
                 if (k.shadow) {
                     auto w2 = treeletWeight.download();
                     for (size_t i = 0; i < n; ++i)
-                        agree += (w2[i].x == 0.0f) == (residentShadow[i].x == 0.0f);
+                        agree += (w2[4 * i] == 0.0f) == (residentShadow[i].x == 0.0f);
                 } else {
                     auto h2 = hits.download();
                     for (size_t i = 0; i < n; ++i)

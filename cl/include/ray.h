@@ -7,7 +7,21 @@
 #include "compat.h"
 
 /* origin: xyz, w = tmin.  direction: xyz (unit), w = tmax.
- * weight: the N=3 colour channels in xyz; w carries the alpha (coverage) weight. */
+ * weight: the colour channels, then the alpha (coverage) weight. Under ColorSamples 1
+ * (RSL_COLOR_SAMPLES == 1) two floats, the channel and alpha; otherwise four, up to three
+ * channels in xyz (lanes past the scene's repeat its last) and alpha in w. Shading works
+ * on the four lanes: rt_weight4 widens a stored weight, rt_weight_of narrows one back. */
+#ifdef __OPENCL_C_VERSION__
+#if defined(RSL_COLOR_SAMPLES) && RSL_COLOR_SAMPLES == 1
+typedef float2 rt_weight;
+#define rt_weight4(w) ((float4)((w).x, (w).x, (w).x, (w).y))
+#define rt_weight_of(v) ((float2)((v).x, (v).w))
+#else
+typedef float4 rt_weight;
+#define rt_weight4(w) (w)
+#define rt_weight_of(v) (v)
+#endif
+#endif
 
 typedef struct RayHit {
     float t, u, v;  /* distance and barycentrics of the closest hit */

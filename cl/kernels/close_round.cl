@@ -13,7 +13,7 @@ void close_round(uint count, /* traced rays */
                  uint light_count, /* 0: no shadow rays this round */
                  uint count_spawns, /* 0: the shaders spawn no rays (group_live unused) */
                  __global const uint* ray_sample,
-                 __global const float4* shadow_weight, /* ray i's: i * light_count + l */
+                 __global const rt_weight* shadow_weight, /* ray i's: i * light_count + l */
                  __global RayState* shadow_state,
                  __global SampleTotal* total,
                  __global const uint* spawn_mask,
@@ -30,7 +30,7 @@ void close_round(uint count, /* traced rays */
         for (uint l = 0; l < light_count; ++l) {
             uint j = i * light_count + l;
             if (shadow_state[j].alive) {
-                sum += shadow_weight[j];
+                sum += rt_weight4(shadow_weight[j]);
                 shadow_state[j].alive = 0u;
             }
         }

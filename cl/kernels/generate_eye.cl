@@ -24,7 +24,7 @@ __kernel void generate_eye(__constant Camera* cam,
                            __global uint* slot_abort,
                            __global float4* origin,      /* xyz, w = tmin */
                            __global float4* direction,   /* xyz, w = tmax */
-                           __global float4* weight,
+                           __global rt_weight* weight,
                            __global RayState* state,
                            __global uint* ray_sample,
                            __global SampleTotal* total,
@@ -92,7 +92,7 @@ __kernel void generate_eye(__constant Camera* cam,
     d.w = tmax * len;
     origin[i] = o;
     direction[i] = d;
-    weight[i] = (float4)(1.0f);
+    weight[i] = (rt_weight)(1.0f);
     /* an eye ray's footprint: a pixel wide where an orthographic ray starts; a
      * perspective one starts as a point and widens by RT_PIXEL_SPREAD per unit */
     float width = cam->perspective ? 0.0f : (cam->screen[1] - cam->screen[0]) / (float)cam->width * len;

@@ -141,7 +141,7 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
     uint count, __global const RT_BVH_NODE* nodes, /* RT_BVH8: Bvh8Node */                \
         __global const Triangle4* blocks, __global const float4* origin,                  \
         __global const float4* direction, __global const RayState* state,                \
-        __global float4* weight, /* zeroed when occluded */                                \
+        __global rt_weight* weight, /* zeroed when occluded */                                \
         __global const Quadric* quadrics, __global const uint* csg,                       \
         __global const Triangle* tris, __global const float4* quadric_motion,             \
         __global const Triangle* tris_end, __global const uint* ray_sample,               \
@@ -164,7 +164,7 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, 1,
                     &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG)) {
         /* an occluded ray carries nothing; its state stays as the group count read it */
-        weight[i] = (float4)(0.0f);
+        weight[i] = (rt_weight)(0.0f);
 #ifdef RT_HAS_PROCEDURALS
         if ((h.prim & RT_OBJECT_BIT) && quadrics[h.prim & RT_OBJECT_MASK].kind == RT_Q_PROCEDURAL)
             numerics[RT_NUM_PROCEDURAL_BASE + quadrics[h.prim & RT_OBJECT_MASK].first_member] = 1u;
@@ -199,7 +199,7 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
         for (int j = 0; j < RT_PACKET; ++j) {
             RayHit h;
             if (pl[j] && rt_traverse(nodes, blocks, po[j], pd[j], po[j].w, pd[j].w, ps[j], 1, 1, &h))
-                weight[slot[j]] = (float4)(0.0f);
+                weight[slot[j]] = (rt_weight)(0.0f);
         }
         return;
     }
@@ -210,6 +210,6 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     vstore8(occ, 0, ol);
     /* an occluded ray carries nothing; its state stays as the group count read it */
     for (int j = 0; j < RT_PACKET; ++j)
-        if (ol[j]) weight[slot[j]] = (float4)(0.0f);
+        if (ol[j]) weight[slot[j]] = (rt_weight)(0.0f);
 }
 #endif

@@ -32,21 +32,21 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const int* param_layout,
                             __global const float4* origin,
                             __global const float4* direction,
-                            __global const float4* weight,
+                            __global const rt_weight* weight,
                             __global const RayState* state,
                             __global const uint* ray_sample,
                             __global const RayHit* hits,
                             __global SampleTotal* total,
                             __global float4* next_origin, /* slot r * RT_SPAWN_SLOTS + k */
                             __global float4* next_direction,
-                            __global float4* next_weight,
+                            __global rt_weight* next_weight,
                             __global RayState* next_state,
                             __global uint* next_sample,
                             __global uint* spawn_mask, /* bit k: slot k filled */
                             __global uint* slot_rays,  /* + one per ray spawned */
                             __global float4* shadow_origin, /* slot r * light_count + l */
                             __global float4* shadow_direction,
-                            __global float4* shadow_weight,
+                            __global rt_weight* shadow_weight,
                             __global RayState* shadow_state,
                             __global SampleAov* aov,
                             uint light_count,
@@ -72,7 +72,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     uint r = sorted[begin + j];
     if (ray_key[r] != shader_index) return;
     RayHit h = hits[r];
-    float4 org = origin[r], dir = direction[r], w = weight[r];
+    float4 org = origin[r], dir = direction[r], w = rt_weight4(weight[r]);
     RayState rs = state[r];
     uint sample = ray_sample[r];
 #ifdef RT_HAS_MOTION
@@ -245,7 +245,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         uint s = r * light_count + l;
         shadow_origin[s] = so;
         shadow_direction[s] = sd;
-        shadow_weight[s] = sw;
+        shadow_weight[s] = rt_weight_of(sw);
         RayState ss = {1u, 0u, h.prim, 0.0f};
         shadow_state[s] = ss;
     }
@@ -293,7 +293,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         uint s = r * RT_SPAWN_SLOTS + 1 + (uint)i;
         next_origin[s] = to;
         next_direction[s] = td;
-        next_weight[s] = tw;
+        next_weight[s] = rt_weight_of(tw);
         RayState ts = {1u, rs.depth + 1u, h.prim, width_at_hit};
         next_state[s] = ts;
         next_sample[s] = sample;
@@ -316,7 +316,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         uint s = r * RT_SPAWN_SLOTS;
         next_origin[s] = o;
         next_direction[s] = d;
-        next_weight[s] = wt;
+        next_weight[s] = rt_weight_of(wt);
         RayState cs = {1u, rs.depth + RT_ONE_TRANSPARENT, h.prim, width_at_hit};
         next_state[s] = cs;
         next_sample[s] = sample;

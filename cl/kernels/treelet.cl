@@ -58,11 +58,11 @@ inline void rt_treelet_closest(TreeletPair p, uint root_only, __global const Tre
 inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
                               __global const Bvh4Node* nodes, __global const Triangle4* blocks,
                               __global const float4* origin, __global const float4* direction,
-                              __global const RayState* state, __global float4* weight,
+                              __global const RayState* state, __global rt_weight* weight,
                               __global TreeletPair* next, uint next_cap, __global uint* counters,
                               uint treelets RT_TL_OBJECTS_PARAM) {
     /* (an occluder met through another of its pairs, or a ray that carries nothing) */
-    const float4 w = weight[p.ray];
+    const float4 w = rt_weight4(weight[p.ray]);
     if (w.x == 0.0f && w.y == 0.0f && w.z == 0.0f && w.w == 0.0f) return;
     float4 o = origin[p.ray], d = direction[p.ray];
     ulong key = RT_NO_KEY;
@@ -70,7 +70,7 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
     if (rt_treelet_traverse(nodes + r.node_base, blocks + r.block_base, o, d, o.w, d.w,
                             state[p.ray].from_prim, 1, &key, p.ray, next, next_cap, counters,
                             treelets RT_TL_OBJECTS_ARG))
-        weight[p.ray] = (float4)(0.0f);
+        weight[p.ray] = (rt_weight)(0.0f);
 }
 
 /* What object blocks need (RT_HAS_QUADRICS; placeholders otherwise): the object scene
@@ -130,7 +130,7 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
                                               direction, state, keys, next, next_cap,     \
                                               counters, treelets RT_TL_OBJECTS_ARG))
 #define RT_TREELET_SHADOW_KERNEL(name, root_only)                                          \
-    RT_TREELET_PAIR_KERNEL(name, root_only, __global float4* weight,                      \
+    RT_TREELET_PAIR_KERNEL(name, root_only, __global rt_weight* weight,                      \
                            rt_treelet_shadow(p, refs, nodes, blocks, origin, direction,   \
                                              state, weight, next, next_cap, counters,     \
                                              treelets RT_TL_OBJECTS_ARG))

@@ -18,23 +18,25 @@ namespace rd {
 
 struct RayPool {
     RayPool(const ClContext& ctx, size_t capacity, size_t spawn, uint32_t shadowLights,
-            size_t slots, bool aovs, bool motion, bool instances, size_t shaderKeys)
-        : origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity),
+            size_t slots, bool aovs, bool motion, bool instances, size_t shaderKeys,
+            size_t weightFloats)
+        : weightFloats(weightFloats),
+          origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity * weightFloats),
           state(ctx, capacity), sample(ctx, capacity), hits(ctx, capacity),
           hitInstance(ctx, instances ? capacity : 0),
           key(ctx, capacity), keyCount(ctx, 2 * shaderKeys), keyCursor(ctx, shaderKeys),
           sorted(ctx, capacity),
           nextOrigin(ctx, capacity * spawn), nextDirection(ctx, capacity * spawn),
-          nextWeight(ctx, capacity * spawn), nextState(ctx, capacity * spawn),
+          nextWeight(ctx, capacity * spawn * weightFloats), nextState(ctx, capacity * spawn),
           nextSample(ctx, capacity * spawn), spawnMask(ctx, capacity),
           groupLive(ctx, capacity / RT_COMPACT_GROUP + 1),
           spillOrigin(ctx, spillCapacity(capacity, spawn)),
           spillDirection(ctx, spillCapacity(capacity, spawn)),
-          spillWeight(ctx, spillCapacity(capacity, spawn)),
+          spillWeight(ctx, spillCapacity(capacity, spawn) * weightFloats),
           spillState(ctx, spillCapacity(capacity, spawn)),
           spillSample(ctx, spillCapacity(capacity, spawn)),
           shOrigin(ctx, capacity * shadowLights), shDirection(ctx, capacity * shadowLights),
-          shWeight(ctx, capacity * shadowLights), shState(ctx, capacity * shadowLights),
+          shWeight(ctx, capacity * shadowLights * weightFloats), shState(ctx, capacity * shadowLights),
           newSample(ctx, 2 * capacity),
           totals(ctx, slots), samplePixel(ctx, slots), sampleIndex(ctx, slots),
           sampleTime(ctx, motion ? slots : 0), aov(ctx, aovs ? slots : 0),
@@ -53,17 +55,22 @@ struct RayPool {
     // and traced rounds of 3-30% of the pool (pool fill 0.47; four: 0.57).
     static constexpr size_t kSlotsPerRay = 4;
     // Device bytes per ray of capacity, for sizing the pool to a memory budget.
-    static size_t bytesPerRay(size_t spawn, uint32_t shadowLights) {
+    static size_t bytesPerRay(size_t spawn, uint32_t shadowLights, size_t weightFloats = 4) {
+        const size_t weights = 1 + spawn + spillCapacity(1, spawn) + shadowLights;
         return 140 + 2 * 100 + spawn * 72 + spillCapacity(1, spawn) * 68 +
-               size_t(shadowLights) * 64 + kSlotsPerRay * 56;
+               size_t(shadowLights) * 64 + kSlotsPerRay * 56 - weights * (4 - weightFloats) * 4;
     }
+    // Floats of a ray's weight (cl/include/ray.h rt_weight): 2 under ColorSamples 1, else 4.
+    static size_t weightFloatsOf(int colorChannels) { return colorChannels == 1 ? 2 : 4; }
+    const size_t weightFloats;
     // Only a scene whose shaders trace can spawn more rays than it traced: the rest
     // (continuations through Opacity < 1 at most one a ray) never need the stack.
     static size_t spillCapacity(size_t capacity, size_t spawn) {
         return spawn > 1 ? capacity * spawn : 0;
     }
     // the round's rays
-    DeviceBuffer<rt_float4> origin, direction, weight;
+    DeviceBuffer<rt_float4> origin, direction;
+    DeviceBuffer<float> weight;  // weightFloats a ray
     DeviceBuffer<RayState> state;
     DeviceBuffer<uint32_t> sample;  // the ray's sample slot
     DeviceBuffer<RayHit> hits;
@@ -71,16 +78,19 @@ struct RayPool {
     // the sort by shader (keyCount: two halves, by round parity)
     DeviceBuffer<uint32_t> key, keyCount, keyCursor, sorted;
     // what the shade stage spawns, compacted into the next round (and the spill stack)
-    DeviceBuffer<rt_float4> nextOrigin, nextDirection, nextWeight;
+    DeviceBuffer<rt_float4> nextOrigin, nextDirection;
+    DeviceBuffer<float> nextWeight;
     DeviceBuffer<RayState> nextState;
     DeviceBuffer<uint32_t> nextSample;
     DeviceBuffer<uint32_t> spawnMask;  // per traced ray: bit k set when slot k was filled
     DeviceBuffer<uint32_t> groupLive;  // live spawned rays per group of traced rays
-    DeviceBuffer<rt_float4> spillOrigin, spillDirection, spillWeight;
+    DeviceBuffer<rt_float4> spillOrigin, spillDirection;
+    DeviceBuffer<float> spillWeight;
     DeviceBuffer<RayState> spillState;
     DeviceBuffer<uint32_t> spillSample;
     // shadow rays
-    DeviceBuffer<rt_float4> shOrigin, shDirection, shWeight;
+    DeviceBuffer<rt_float4> shOrigin, shDirection;
+    DeviceBuffer<float> shWeight;
     DeviceBuffer<RayState> shState;
     // the refill: the new samples' (pixel, index) pairs
     DeviceBuffer<uint32_t> newSample;

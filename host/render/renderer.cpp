@@ -138,13 +138,14 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // The pool: the rays of one round, enough to keep every compute unit busy (16k rays
     // each), within a memory budget; the sample slots kSlotsPerRay times that, pixel jobs
     // at most a quarter of it so several pixels share a round.
+    const size_t weightFloats = RayPool::weightFloatsOf(f.colors.n);
     size_t wanted = m_settings.poolCapacity;
     if (wanted == 0) wanted = std::clamp<size_t>(size_t(m_ctx.info().computeUnits) << 14,
                                                  size_t(1) << 14, size_t(1) << 20);
     const size_t memoryBudget = std::clamp<size_t>(m_ctx.info().globalMemBytes / 8,
                                                    size_t(64) << 20, size_t(512) << 20);
     const size_t pool = std::clamp<size_t>(
-        std::min(wanted, memoryBudget / RayPool::bytesPerRay(spawn, nl)), 64,
+        std::min(wanted, memoryBudget / RayPool::bytesPerRay(spawn, nl, weightFloats)), 64,
         std::max<size_t>(64, wanted));
     st.poolCapacity = pool;
     SampleRing ring(RayPool::kSlotsPerRay * pool);
@@ -220,7 +221,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     std::unique_ptr<TreeletTracer> treelets;  // instead of the two intersect launches
 
     RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
-               shaderCount + 1);
+               shaderCount + 1, weightFloats);
     if (shaderCount == 1) {  // the one shader's run: every ray in pool order
         std::vector<uint32_t> order(pool);
         for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
@@ -408,7 +409,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 const size_t from = spillTop - take;
                 rp.spillOrigin.copyTo(rp.origin, from, n, take);
                 rp.spillDirection.copyTo(rp.direction, from, n, take);
-                rp.spillWeight.copyTo(rp.weight, from, n, take);
+                rp.spillWeight.copyTo(rp.weight, from * rp.weightFloats, n * rp.weightFloats,
+                                      take * rp.weightFloats);
                 rp.spillState.copyTo(rp.state, from, n, take);
                 rp.spillSample.copyTo(rp.sample, from, n, take);
                 spillTop = from;

@@ -239,7 +239,7 @@ void TreeletTracer::closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
 
 void TreeletTracer::shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                            const DeviceBuffer<rt_float4>& direction,
-                           const DeviceBuffer<RayState>& state, DeviceBuffer<rt_float4>& weight,
+                           const DeviceBuffer<RayState>& state, DeviceBuffer<float>& weight,
                            const TraceScene& sc, cl_uint lights) {
     Impl& s = *m;
     const cl_uint T = cl_uint(s.cut.count());

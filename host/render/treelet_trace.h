@@ -74,7 +74,7 @@ public:
     // as they were); `lights` shadow rays per shaded ray (for their time).
     void shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                 const DeviceBuffer<rt_float4>& direction, const DeviceBuffer<RayState>& state,
-                DeviceBuffer<rt_float4>& weight, const TraceScene& scene, cl_uint lights);
+                DeviceBuffer<float>& weight, const TraceScene& scene, cl_uint lights);
 
     // Rays traced so far (the first rounds' active counters, read without resetting), and
     // the per-kernel active counts handed to the profiler for --stats.

@@ -140,3 +140,42 @@ TEST(ColorSamples, PermutedChannelsGiveTheRgbImage) {
     for (const rd::Rgba& a : rgb.pixels) rb += std::fabs(a.r - a.b);
     EXPECT_GT(rb, 1.0);
 }
+
+// ColorSamples 1: a ray's weight is two floats (the channel, alpha) instead of four. A
+// grey scene (every colour one value, shaders that write no RGB literal) gives the RGB
+// render of the same greys: eye, shadow, mirror and glass (trace) and continuation rays,
+// a pool of 256 rays whose spawned rays spill and come back.
+TEST(ColorSamples, OneChannelRaysCarryTwoFloats) {
+    auto scene = [](bool oneChannel) {
+        auto c = [&](const char* v) {
+            return std::string("[") + v + (oneChannel ? "" : std::string(" ") + v + " " + v) + "]";
+        };
+        rd::RenderSettings small;
+        small.poolCapacity = 256;
+        return renderRib(
+            std::string(oneChannel ? "ColorSamples [1 1 1] [0.333333 0.333333 0.333333]\n" : "") +
+                "Format 24 24 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" 40\n"
+                "WorldBegin\nLightSource \"distantlight\" 1 \"lightcolor\" " + c("0.9") +
+                " \"from\" [1 1 -1] \"to\" [0 0 0]\n"
+                "LightSource \"pointlight\" 2 \"lightcolor\" " + c("0.5") + " \"from\" [0 2 2]\n"
+                "AttributeBegin\nColor " + c("0.8") + "\nOpacity " + c("0.4") +
+                "\nSurface \"plastic\"\nTranslate -0.5 0 4\nSphere 1 -1 1 360\nAttributeEnd\n"
+                "AttributeBegin\nSurface \"mirror\"\nTranslate 0.8 0 5\nSphere 1 -1 1 360\nAttributeEnd\n"
+                "AttributeBegin\nSurface \"glass\"\nTranslate 0 0 2.5\nSphere 1 -1 1 360\nAttributeEnd\n"
+                "AttributeBegin\nColor " + c("0.6") + "\nSurface \"matte\"\n"
+                "Polygon \"P\" [-6 -6 8  6 -6 8  6 6 8  -6 6 8]\nAttributeEnd\nWorldEnd\n",
+            small);
+    };
+    Rendered rgb = scene(false), grey = scene(true);
+    EXPECT_EQ(grey.stats.features.colors.n, 1);
+    EXPECT_GT(grey.stats.spilledRays, 0u) << grey.stats.spilledRays;  // the spill stack's weights are two floats too
+    double sum = 0;
+    for (size_t i = 0; i < rgb.pixels.size(); ++i) {
+        const rd::Rgba &a = rgb.pixels[i], &b = grey.pixels[i];
+        ASSERT_NEAR(a.r, b.r, 1e-6f) << "pixel " << i;
+        ASSERT_NEAR(a.g, b.r, 1e-6f) << "pixel " << i;
+        ASSERT_NEAR(a.a, b.a, 1e-6f) << "pixel " << i;
+        sum += a.r;
+    }
+    EXPECT_GT(sum, 1.0);
+}

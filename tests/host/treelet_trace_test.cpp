@@ -124,9 +124,10 @@ Traced trace(size_t budget, size_t sceneMemory, bool int64Min, size_t rays) {
         tracer.closest(n, org, dir, state, hits, sc);
         out.hits = hits.download();
         // zeroes an occluded ray's weight, leaves every state as it was
-        DeviceBuffer<rt_float4> weight(ctx, std::vector<rt_float4>(n, {1, 1, 1, 1}));
+        DeviceBuffer<float> weight(ctx, std::vector<float>(4 * n, 1.0f));  // 4 floats a ray
         tracer.shadow(n, org, dir, state, weight, sc, 1);
-        for (const rt_float4& w : weight.download()) out.occluded.push_back(w.x == 0);
+        const std::vector<float> w = weight.download();
+        for (size_t i = 0; i < n; ++i) out.occluded.push_back(w[4 * i] == 0);
         const std::vector<RayState> after = state.download();
         for (cl_uint i = 0; i < n; ++i) EXPECT_EQ(after[i].alive, f.state[i].alive) << i;
         // counted without a barrier (RT_COUNT_GROUP): the first rounds take every live ray
