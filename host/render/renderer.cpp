@@ -148,6 +148,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         std::min(wanted, memoryBudget / RayPool::bytesPerRay(spawn, nl, weightFloats)), 64,
         std::max<size_t>(64, wanted));
     st.poolCapacity = pool;
+    st.poolBytesPerRay = RayPool::bytesPerRay(spawn, nl, weightFloats);
     SampleRing ring(RayPool::kSlotsPerRay * pool);
     const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
     // Sampling: the first pass needs no film, so it is planned on another thread while

@@ -75,6 +75,7 @@ struct RenderStats {
     uint64_t retiredSamples = 0;   // samples that reached the film
     int bvhWidth = 0;         // resident BVH nodes: 4 or 8 wide; 0: 8 on a CPU device, else 4
     size_t poolCapacity = 0;
+    size_t poolBytesPerRay = 0;  // device bytes a ray of capacity takes (RayPool::bytesPerRay)
     double poolFill = 0;    // mean rays per round / pool capacity
     double deviceBusy = 0;  // kernel time / wall time of the sampling loop
     double hostOverhead = 0;  // sampling-loop time the device did not run kernels / frame

@@ -49,6 +49,7 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                          {"setup_ms", st.sceneSetupMs},
 
                          {"pool_capacity", st.poolCapacity},
+                         {"pool_bytes_per_ray", st.poolBytesPerRay},
                          {"pool_fill", st.poolFill},
                          {"pool_fill_series", fillSeries},
                          {"rounds", st.iterations},
@@ -136,7 +137,8 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
     out << "scene     " << ss["triangles"] << " triangles, " << ss["quadrics"] << " quadrics, "
         << ss["csg_solids"] << " CSG solids, " << ss["instances"] << " instances, "
         << ss["bvh_nodes"] << " BVH nodes, " << ss["geometry_bytes"] << " geometry bytes\n";
-    out << "pool      capacity " << ss["pool_capacity"] << ", fill "
+    out << "pool      capacity " << ss["pool_capacity"] << " (" << ss["pool_bytes_per_ray"]
+        << " bytes a ray), fill "
         << ss["pool_fill"].get<double>() << " over " << ss["rounds"]
         << " rounds, device busy " << ss["device_busy"].get<double>()
         << " of the sampling loop, host overhead " << ss["host_overhead"].get<double>()
