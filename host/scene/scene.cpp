@@ -30,6 +30,11 @@ void ColorSamples::fromRgbValues(float* rgb) const {
     for (int i = 0; i < 3; ++i) rgb[i] = r * fromRgb[i] + g * fromRgb[3 + i] + b * fromRgb[6 + i];
 }
 
+void ColorSamples::toRgbValues(float* c) const {
+    const float a = c[0], b = c[1], d = c[2];
+    for (int j = 0; j < 3; ++j) c[j] = a * toRgb[j] + b * toRgb[3 + j] + d * toRgb[6 + j];
+}
+
 Camera Scene::deviceCamera() const {
     Camera d{};
     const CameraSpec& c = camera;

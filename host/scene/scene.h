@@ -84,6 +84,7 @@ struct ColorSamples {
     // from nRGB (n x 3) and RGBn (3 x n) as RiColorSamples gives them; false if n > 3
     bool set(const std::vector<float>& nRGB, const std::vector<float>& RGBn);
     void fromRgbValues(float* rgb) const;  // an RGB triple to the n channels, in place
+    void toRgbValues(float* c) const;      // n channels (padded to three) to RGB, in place
 };
 
 struct Scene {

@@ -96,7 +96,8 @@ private:
 
 // Binds a shader call's parameters: defaults, then the RIB's values (by name, checked
 // against the declared type), points/vectors/normals moved to world space, RGB colour
-// defaults in the scene's colour channels.
+// defaults in the scene's colour channels; for an imager (which works on the film's RGB)
+// the RIB's colours are made RGB instead.
 std::vector<float> bindParameters(const rsl::EmittedShader& shader, const ShaderRef& call,
                                   rib::Diagnostics& diag, const ColorSamples& colors = {});
 

@@ -14,7 +14,8 @@
  * "rgb", texture() and environment() texels. A float promoted to a colour fills every
  * channel; ctransform() to another space converts through nRGB and gives that space's
  * components. Constant colour defaults written as three numbers are listed with
- * ParamSlot::rgbDefault for the host to convert.
+ * ParamSlot::rgbDefault for the host to convert. An imager works on the film's RGB: its
+ * colours (literals, texels, ctransform) stay RGB, and the host gives it RGB values.
  *
  * GLOBALS. RslGlobals holds the standard globals. I is the unnormalised incident
  * vector from the eye E to P. In a light shader Ps is the surface point being lit.

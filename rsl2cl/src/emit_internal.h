@@ -34,6 +34,9 @@ public:
     std::string expr(const Expr& e);
     std::string exprAs(const Expr& e, const TypeSpec& to);
     std::string tupleOf(const Expr& e);  // a Tuple's components as written (colours: not converted)
+    // Colours are RGB in this shader whatever the renderer's channels: an imager works on
+    // the film (rsl_abi.h, COLOURS).
+    bool rgbShader() const { return m_sh.kind == ShaderKind::Imager; }
     std::string coerce(const std::string& code, const TypeSpec& from, const TypeSpec& to);
     std::string binop(const std::string& op, const std::string& a, const TypeSpec& ta,
                       const std::string& b, const TypeSpec& tb, const SourceLoc& loc);

@@ -33,6 +33,9 @@ std::string shaderPath() {
                "    Ci = Os * (Cs * tint * diffuse(Nf) + 0.1 * color \"hsv\" (0.6, 0.5, 1)\n"
                "               + ctransform(\"hsv\", \"rgb\", ctransform(\"hsv\", Cs)) * 0.05);\n"
                "    Oi = Os;\n}\n";
+        std::ofstream(d + "/cstint.sl")
+            << "imager cstint() {\n    Ci = Ci * color(1, 0.5, 0.25) + (1 - alpha) * color \"hsv\" (0.6, 1, 1);\n"
+               "    alpha = 1;\n}\n";
         return d;
     }();
     return "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n";
@@ -180,4 +183,24 @@ TEST(ColorSamples, OneChannelRaysCarryTwoFloats) {
     EXPECT_EQ(rgb.stats.poolBytesPerRay - grey.stats.poolBytesPerRay, (1u + 9 + 9 + 2) * 8);
     EXPECT_GT(grey.stats.spilledRays, 0u) << grey.stats.spilledRays;  // the spill stack's weights are two floats too
     EXPECT_GT(expectSameImage(rgb, grey, true), 1.0);
+}
+
+// An imager works on the film's RGB: under swapped channels its RGB literals, colour-space
+// casts and the RIB's colours (given in the scene's channels) give the RGB image.
+TEST(ColorSamples, ImagersWorkOnTheFilmsRgb) {
+    for (const char* imager : {"Imager \"background\" \"bgcolor\" ", "Imager \"cstint\" "}) {
+        auto scene = [&](bool swapped) {
+            const bool bg = std::string(imager).find("background") != std::string::npos;
+            return renderRib(shaderPath() +
+                             (swapped ? "ColorSamples [0 0 1 0 1 0 1 0 0] [0 0 1 0 1 0 1 0 0]\n" : "") +
+                             imager + (bg ? (swapped ? "[0.6 0.4 0.2]" : "[0.2 0.4 0.6]") : "") + "\n" +
+                             "Format 16 16 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"
+                             "WorldBegin\nColor " + (swapped ? "[0.3 0.8 0.9]" : "[0.9 0.8 0.3]") +
+                             "\nSurface \"constant\"\nTranslate 0 0 5\nSphere 0.6 -0.6 0.6 360\nWorldEnd\n");
+        };
+        SCOPED_TRACE(imager);
+        Rendered rgb = scene(false), swapped = scene(true);
+        EXPECT_GT(expectSameImage(rgb, swapped, false), 1.0);
+        EXPECT_NE(rgb.at(0, 0).r, rgb.at(0, 0).b);  // the background is coloured
+    }
 }
