@@ -173,6 +173,10 @@ void RibBuilder::colorSamples(L loc, Floats nRGB, Floats RGBn) {
                             "the whole image, colours given before it included");
     for (Scene* s : {&m_options, &m_world})
         if (!s->colors.set(nRGB, RGBn)) s->colors = ColorSamples{};
+    if (nRGB.size() > 9)
+        m_diag.warning(loc, "ColorSamples " + std::to_string(nRGB.size() / 3) +
+                                ": more than 3 channels are converted to RGB as they are read "
+                                "(colours then multiply in RGB)");
 }
 
 void RibBuilder::textureCoordinates(L, float s1, float t1, float s2, float t2, float s3,

@@ -234,6 +234,13 @@ TEST(GraphicsState, ColorSamplesConvertThroughNRGB) {
     // Cs = (1.5, 0.5, 0.5), ambient (0.5, 0.5, 1.5)
     EXPECT_NEAR(lit.at(4, 4).r, 0.75f, 1e-5f);
     EXPECT_NEAR(lit.at(4, 4).b, 0.75f, 1e-5f);
+    // (and the conversion is said once, where ColorSamples is)
+    std::ostringstream err;
+    rib::Diagnostics diag(&err);
+    rd::RibBuilder b(diag, "c.rib");
+    rib::readString(cs + "WorldEnd\n", "c.rib", b, diag);
+    EXPECT_NE(err.str().find("c.rib:1: warning: ColorSamples 4: more than 3 channels"),
+              std::string::npos) << err.str();
 }
 
 // Exposure gain gamma: the resolved colour is (gain * colour)^(1 / gamma).
