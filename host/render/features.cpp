@@ -136,7 +136,10 @@ std::string buildOptions(const Features& f) {
         auto matrix = [](const std::array<float, 9>& m) {
             std::string v;
             char buf[32];
-            for (float x : m) std::snprintf(buf, sizeof buf, "%s%.9ef", v.empty() ? "" : ",", double(x)), v += buf;
+            for (float x : m) {
+                std::snprintf(buf, sizeof buf, "%s%.9ef", v.empty() ? "" : ",", double(x));
+                v += buf;
+            }
             return v;
         };
         o += " -DRSL_COLOR_SAMPLES=" + std::to_string(f.colors.n) + " -DRSL_NRGB=" +
