@@ -97,8 +97,9 @@ public:
     void perspective(L, float fovDeg) override;
     void exposure(L, float gain, float gamma) override;
     void colorSamples(L, Floats nRGB, Floats RGBn) override;
+    // ColorSamples n <= 3: kept as n channels (scene.h ColorSamples); more: made RGB as read
     bool wantsRgbColors() const override { return true; }
-    int keptColorSamples() const override { return 3; }  // more: converted to RGB as read  // ColorSamples n: converted
+    int keptColorSamples() const override { return 3; }
     void primitiveVariables(const rib::ParamList* params) override { m_primVars = params; }
     void textureCoordinates(L, float s1, float t1, float s2, float t2, float s3, float t3,
                             float s4, float t4) override;

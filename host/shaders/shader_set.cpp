@@ -61,7 +61,8 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
             block[size_t(slot.offset + i)] = slot.defaults[size_t(i)];
         const bool imager = sh.kind == "imager";  // it works on the film's RGB
         if (slot.rgbDefault && !colors.isRgb() && !imager)  // RIB colours are in the channels
-            for (int e = 0; e < elem; ++e) colors.fromRgbValues(&block[size_t(slot.offset + e * per)]);
+            for (int e = 0; e < elem; ++e)
+                colors.fromRgbValues(&block[size_t(slot.offset + e * per)]);
         if (!slot.constantDefault) block[size_t(slot.offset)] = NAN;
         if (pointLike && slot.constantDefault && slot.space == "shader")
             for (int e = 0; e < elem; ++e)
@@ -93,7 +94,8 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
         }
         for (int i = 0; i < slot.size; ++i) block[size_t(slot.offset + i)] = values[size_t(i)];
         if (base == rsl::BaseType::Color && imager && !colors.isRgb())
-            for (int e = 0; e < elem; ++e) colors.toRgbValues(&block[size_t(slot.offset + e * per)]);
+            for (int e = 0; e < elem; ++e)
+                colors.toRgbValues(&block[size_t(slot.offset + e * per)]);
         // RIB values are in the coordinate system current at the call: "shader" space.
         if (pointLike)
             for (int e = 0; e < elem; ++e)
