@@ -116,6 +116,24 @@ size_t Features::shadowItems(size_t rays, size_t lights) const {
 
 size_t Features::closestItems(size_t rays) const { return items(rays, closestPackets); }
 
+void chooseTraversal(Features& f, int bvhWidth, bool shadowPackets, bool closestPackets,
+                     bool cpuDevice) {
+    // Node width by measurement (bench_trace --wide8): eight on a CPU device, where PoCL
+    // tests a node's boxes with AVX; four elsewhere, where no figures say otherwise. The
+    // treelet cut is four-wide.
+    f.bvhWidth = bvhWidth == 4 || bvhWidth == 8 ? bvhWidth : cpuDevice ? 8 : 4;
+    if (f.treelets) f.bvhWidth = 4;
+    // Packets of eight rays a work-item in triangle scenes (bench_trace: primary rays
+    // 1.3-1.4x, shadow rays 1.3-1.4x the one-ray kernels' rate; benchmarks/packets.sh:
+    // intersect_closest 0.54-0.91 of its time, intersect_shadow 0.75 on the bunny, 0.92-1.06
+    // on the small SPD scenes). With quadrics, tested a lane at a time, shadow packets cost
+    // balls 1.1-1.2x: none there.
+    const bool packetsFit = f.bvhWidth == 8 && !f.treelets && !f.quadrics && !f.instances &&
+                            !f.motion && !f.procedurals;
+    f.shadowPackets = shadowPackets && f.shadowRays && packetsFit;
+    f.closestPackets = closestPackets && packetsFit;
+}
+
 std::string buildOptions(const Features& f) {
     // No fast-math: watertight intersection and robust offsets rely on IEEE rounding.
     std::string o = "-cl-std=CL1.2 -DRT_SPAWN_SLOTS=" + std::to_string(f.spawnSlots()) +

@@ -69,6 +69,11 @@ struct Features {
 };
 
 Features analyse(const Scene& scene, const ShadingSetup& shading);
+// The traversal the device gets: node width (bvhWidth 4 or 8 as asked, else by device)
+// and packets (when asked and the scene allows them). After f.treelets is settled.
+void chooseTraversal(Features& f, int bvhWidth, bool shadowPackets, bool closestPackets,
+                     bool cpuDevice);
+
 std::string buildOptions(const Features& f);
 
 }  // namespace rd

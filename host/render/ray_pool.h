@@ -5,6 +5,7 @@
 // total, its pixel and index, its count of rays in flight) and the pixel-job ring.
 // Buffers a scene does not need (AOVs, motion times, instance ids) keep one element.
 #pragma once
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "cl/include/film.h"
 #include "cl/include/ray.h"
 #include "ocl/buffer.h"
+#include "ocl/device.h"
 #include "ocl/kernel.h"
 
 namespace rd {
@@ -59,6 +61,19 @@ struct RayPool {
         const size_t weights = 1 + spawn + spillCapacity(1, spawn) + shadowLights;
         return 140 + 2 * 100 + spawn * 72 + spillCapacity(1, spawn) * 68 +
                size_t(shadowLights) * 64 + kSlotsPerRay * 56 - weights * (4 - weightFloats) * 4;
+    }
+    // Rays of one round: `wanted`, or (0) enough to keep every compute unit busy (16k rays
+    // each), within a memory budget of an eighth of the device's memory (64-512 MiB).
+    static size_t capacityFor(size_t wanted, const DeviceInfo& device, size_t spawn,
+                              uint32_t shadowLights, size_t weightFloats) {
+        if (wanted == 0)
+            wanted = std::clamp<size_t>(size_t(device.computeUnits) << 14, size_t(1) << 14,
+                                        size_t(1) << 20);
+        const size_t memoryBudget = std::clamp<size_t>(device.globalMemBytes / 8,
+                                                       size_t(64) << 20, size_t(512) << 20);
+        return std::clamp<size_t>(
+            std::min(wanted, memoryBudget / bytesPerRay(spawn, shadowLights, weightFloats)), 64,
+            std::max<size_t>(64, wanted));
     }
     // Floats of a ray's weight (cl/include/ray.h rt_weight): 2 under ColorSamples 1, else 4.
     static size_t weightFloatsOf(int colorChannels) { return colorChannels == 1 ? 2 : 4; }

@@ -108,22 +108,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     if (treeletBudget > 0 && !f.treelets)
         diag.warning(rib::SourceLoc{scene.sourceFile, 0},
                      "treelet budget not used: " + st.treelets.why);
-    // Node width by measurement (bench_trace --wide8): eight on a CPU device, where PoCL
-    // tests a node's boxes with AVX; four elsewhere, where no figures say otherwise. The
-    // treelet cut is four-wide.
-    f.bvhWidth = m_settings.bvhWidth == 4 || m_settings.bvhWidth == 8 ? m_settings.bvhWidth
-                 : (m_ctx.info().type & CL_DEVICE_TYPE_CPU)          ? 8
-                                                                      : 4;
-    if (f.treelets) f.bvhWidth = 4;
-    // Packets of eight rays a work-item in triangle scenes (bench_trace: primary rays
-    // 1.3-1.4x, shadow rays 1.3-1.4x the one-ray kernels' rate; benchmarks/packets.sh:
-    // intersect_closest 0.54-0.91 of its time, intersect_shadow 0.75 on the bunny, 0.92-1.06
-    // on the small SPD scenes). With quadrics, tested a lane at a time, shadow packets cost
-    // balls 1.1-1.2x: none there.
-    const bool packetsFit = f.bvhWidth == 8 && !f.treelets && !f.quadrics && !f.instances &&
-                            !f.motion && !f.procedurals;
-    f.shadowPackets = m_settings.shadowPackets && f.shadowRays && packetsFit;
-    f.closestPackets = m_settings.closestPackets && packetsFit;
+    chooseTraversal(f, m_settings.bvhWidth, m_settings.shadowPackets, m_settings.closestPackets,
+                    m_ctx.info().type & CL_DEVICE_TYPE_CPU);
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
@@ -135,18 +121,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const uint32_t nl = f.shadowRays ? f.lightCount : 0;
     const size_t spawn = size_t(f.spawnSlots());
     const cl_uint shaderCount = cl_uint(shading.shadeKernels.size());
-    // The pool: the rays of one round, enough to keep every compute unit busy (16k rays
-    // each), within a memory budget; the sample slots kSlotsPerRay times that, pixel jobs
+    // The pool (RayPool::capacityFor); the sample slots kSlotsPerRay times it, pixel jobs
     // at most a quarter of it so several pixels share a round.
     const size_t weightFloats = RayPool::weightFloatsOf(f.colors.n);
-    size_t wanted = m_settings.poolCapacity;
-    if (wanted == 0) wanted = std::clamp<size_t>(size_t(m_ctx.info().computeUnits) << 14,
-                                                 size_t(1) << 14, size_t(1) << 20);
-    const size_t memoryBudget = std::clamp<size_t>(m_ctx.info().globalMemBytes / 8,
-                                                   size_t(64) << 20, size_t(512) << 20);
-    const size_t pool = std::clamp<size_t>(
-        std::min(wanted, memoryBudget / RayPool::bytesPerRay(spawn, nl, weightFloats)), 64,
-        std::max<size_t>(64, wanted));
+    const size_t pool = RayPool::capacityFor(m_settings.poolCapacity, m_ctx.info(), spawn, nl,
+                                             weightFloats);
     st.poolCapacity = pool;
     st.poolBytesPerRay = RayPool::bytesPerRay(spawn, nl, weightFloats);
     SampleRing ring(RayPool::kSlotsPerRay * pool);
