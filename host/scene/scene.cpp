@@ -25,15 +25,15 @@ bool ColorSamples::set(const std::vector<float>& nRGB, const std::vector<float>&
     return true;
 }
 
-void ColorSamples::fromRgbValues(float* rgb) const {
-    const float r = rgb[0], g = rgb[1], b = rgb[2];
-    for (int i = 0; i < 3; ++i) rgb[i] = r * fromRgb[i] + g * fromRgb[3 + i] + b * fromRgb[6 + i];
+// c * m in place (row-vector convention), as rsl_color_mul3 does on the device
+static void mul3(const std::array<float, 9>& m, float* c) {
+    const float a = c[0], b = c[1], d = c[2];
+    for (int j = 0; j < 3; ++j) c[j] = a * m[j] + b * m[3 + j] + d * m[6 + j];
 }
 
-void ColorSamples::toRgbValues(float* c) const {
-    const float a = c[0], b = c[1], d = c[2];
-    for (int j = 0; j < 3; ++j) c[j] = a * toRgb[j] + b * toRgb[3 + j] + d * toRgb[6 + j];
-}
+void ColorSamples::fromRgbValues(float* rgb) const { mul3(fromRgb, rgb); }
+
+void ColorSamples::toRgbValues(float* c) const { mul3(toRgb, c); }
 
 Camera Scene::deviceCamera() const {
     Camera d{};

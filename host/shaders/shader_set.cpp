@@ -50,6 +50,7 @@ bool isTripleType(rib::ParamType t) {
 std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef& call,
                                   rib::Diagnostics& diag, const ColorSamples& colors) {
     std::vector<float> block(size_t(sh.paramFloats), 0.0f);
+    const bool imager = sh.kind == "imager";  // it works on the film's RGB
     for (const rsl::ParamSlot& slot : sh.params) {
         const rsl::BaseType base = slot.type.base;
         const bool pointLike = base == rsl::BaseType::Point || base == rsl::BaseType::Vector ||
@@ -59,7 +60,6 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
         // Defaults, moved out of the space they were written in.
         for (int i = 0; i < slot.size && i < int(slot.defaults.size()); ++i)
             block[size_t(slot.offset + i)] = slot.defaults[size_t(i)];
-        const bool imager = sh.kind == "imager";  // it works on the film's RGB
         if (slot.rgbDefault && !colors.isRgb() && !imager)  // RIB colours are in the channels
             for (int e = 0; e < elem; ++e)
                 colors.fromRgbValues(&block[size_t(slot.offset + e * per)]);

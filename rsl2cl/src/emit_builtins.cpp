@@ -132,9 +132,10 @@ std::string Emitter::textureCall(const Expr& e, bool vret) {
                opt["blur"] + ")";
     }
     if (!vret) return "(" + call + ").x";
-    // a texture's or environment's texels are RGB: in the renderer's colour channels
-    // (a shadow's fraction is the same in every channel)
-    return n == "shadow" || rgbShader() ? "rsl_w0(" + call + ")" : "rsl_rgb_color(rsl_w0(" + call + "))";
+    // a texture's or environment's texels are RGB (a shadow's fraction is the same in
+    // every channel)
+    const std::string texel = "rsl_w0(" + call + ")";
+    return n == "shadow" ? texel : rgbIn(texel);
 }
 
 // textureinfo(name, "resolution" | "channels" | "type", var)
@@ -309,7 +310,7 @@ std::string Emitter::builtin(const Expr& e) {
         return "rsl_setcomp(&" + lvalue(*e.args[0]) + ", " + I(1) + ", " + A(2) + ")";
     }
     if (n == "ctransform") {
-        const std::string fn = rgbShader() ? "rsl_ctransform_rgb(" : "rsl_ctransform(";
+        const std::string fn = ctransformFn();
         if (na == 2) return fn + "RSL_COLOR_RGB, " + colorSpaceArg(*e.args[0]) + ", " + A(1) + ")";
         return fn + colorSpaceArg(*e.args[0]) + ", " + colorSpaceArg(*e.args[1]) +
                ", " + A(2) + ")";

@@ -228,8 +228,7 @@ std::string Emitter::expr(const Expr& e) {
             // the triple's own components are in that space: not an RGB colour yet
             const Expr& in = *e.args[0];
             if (in.kind == ExprKind::Tuple && !in.type.isArray()) a = tupleOf(in);
-            return std::string(rgbShader() ? "rsl_ctransform_rgb(" : "rsl_ctransform(") +
-                   std::to_string(c) + ", RSL_COLOR_RGB, " + a + ")";
+            return ctransformFn() + std::to_string(c) + ", RSL_COLOR_RGB, " + a + ")";
         }
         int sp = spaceIdOf(e.text);
         if (sp < 0) {
@@ -250,9 +249,8 @@ std::string Emitter::expr(const Expr& e) {
             error(e.loc, "array values are only supported as initialisers");
             return "0";
         }
-        // a colour written as three numbers is RGB: in the renderer's colour channels
-        // (rsl_color_samples.clh), except in an imager, which works on the film's RGB
-        return e.type.isColor() && !rgbShader() ? "rsl_rgb_color(" + tupleOf(e) + ")" : tupleOf(e);
+        // a colour written as three numbers is RGB
+        return e.type.isColor() ? rgbIn(tupleOf(e)) : tupleOf(e);
     }
     case ExprKind::Index:
         return expr(*e.args[0]) + "[(int)(" + expr(*e.args[1]) + ")]";

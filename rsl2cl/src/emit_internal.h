@@ -34,9 +34,14 @@ public:
     std::string expr(const Expr& e);
     std::string exprAs(const Expr& e, const TypeSpec& to);
     std::string tupleOf(const Expr& e);  // a Tuple's components as written (colours: not converted)
-    // Colours are RGB in this shader whatever the renderer's channels: an imager works on
-    // the film (rsl_abi.h, COLOURS).
+    // What a shader writes as RGB (a colour literal, a texel) in the renderer's colour
+    // channels, and the ctransform that does the same; in an imager, which works on the
+    // film's RGB, colours stay RGB (rsl_abi.h, COLOURS).
     bool rgbShader() const { return m_sh.kind == ShaderKind::Imager; }
+    std::string rgbIn(const std::string& rgb) const {
+        return rgbShader() ? rgb : "rsl_rgb_color(" + rgb + ")";
+    }
+    const char* ctransformFn() const { return rgbShader() ? "rsl_ctransform_rgb(" : "rsl_ctransform("; }
     std::string coerce(const std::string& code, const TypeSpec& from, const TypeSpec& to);
     std::string binop(const std::string& op, const std::string& a, const TypeSpec& ta,
                       const std::string& b, const TypeSpec& tb, const SourceLoc& loc);
