@@ -46,3 +46,29 @@ __kernel void quadric_probe(uint count, uint object,
     int nc = q->kind == RT_Q_CSG ? 0 : rt_quadric_crossings(q, os.quadric_motion, 0.0f, o, d, ts, us, vs);
     crossing[i] = (float4)(ts[0], ts[1], ts[2], (float)nc);
 }
+
+/* One object block (blocks[block], followed in `blocks` by any QuadricBlock records)
+ * against each ray, as the traversal's leaf test sees it: hit = (t, u, v, 1) or 0, and
+ * the primitive. Tests compare a block of plain quadrics intersected four at once with
+ * the same block through the lane loop (its record offset cleared). */
+__kernel void object_block_probe(uint count, uint block, uint want_uv,
+                                 __global const Triangle4* blocks,
+                                 __global const Quadric* quadrics,
+                                 __global const float4* origin,    /* w = tmin */
+                                 __global const float4* direction, /* w = tmax */
+                                 __global float4* hit, __global uint* hit_prim,
+                                 __global uint* active_counter) {
+    uint i = get_global_id(0);
+    if (i >= count) return;
+    const ObjectScene os = {quadrics, (__global const uint*)0, (__global const Triangle*)0,
+                            (__global const float4*)0, (__global const Triangle*)0, 0.0f};
+    float4 o = origin[i], d = direction[i];
+    WatertightRay w = rt_watertight_setup(d);
+    float4 inv = (float4)(1.0f / d.x, 1.0f / d.y, 1.0f / d.z, 0.0f);
+    float t = 0.0f, u = 0.0f, v = 0.0f;
+    uint prim = RT_EMPTY_LANE;
+    int found = rt_intersect_object_block(&os, &w, &blocks[block], o, d, inv, o.w, d.w, &t, &u,
+                                          &v, &prim, (int)want_uv);
+    hit[i] = found ? (float4)(t, u, v, 1.0f) : (float4)(0.0f);
+    hit_prim[i] = found ? prim : RT_EMPTY_LANE;
+}

@@ -3,6 +3,7 @@
 
 #include <cstring>
 
+#include "bvh/quadric_blocks.h"
 #include "device_scene.h"
 
 namespace rd {
@@ -73,6 +74,7 @@ SceneBvh buildSceneBvh(const Scene& scene, int width) {
     out.objects = scene.quadrics;
     for (Quadric& q : out.objects)
         if (q.kind == RT_Q_INSTANCE) q.first_member = uint32_t(roots.at(q.first_member));
+    appendQuadricBlocks(out.width == 8 ? out.bvh8.blocks : out.bvh4.blocks, out.objects);
     return out;
 }
 

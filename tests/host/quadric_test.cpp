@@ -35,16 +35,6 @@ struct ProbeResult {
     float cross[3];
 };
 
-// The scene of one RIB world (quadrics and solids in the order declared).
-Scene sceneOf(const std::string& world) {
-    std::ostringstream err;
-    rib::Diagnostics diag(&err);
-    RibBuilder b(diag, "probe.rib");
-    rib::readString("WorldBegin\n" + world + "\nWorldEnd\n", "probe.rib", b, diag);
-    EXPECT_EQ(diag.errorCount(), 0) << err.str();
-    return b.scenes().empty() ? Scene() : b.scenes().back();
-}
-
 // Intersects every ray with scene object `object` on the default device.
 std::vector<ProbeResult> probe(const Scene& s, uint32_t object, const std::vector<Ray>& rays) {
     const ClContext& ctx = test::testContext();
@@ -87,7 +77,7 @@ void report(const char* name, double tol, double measured) {
 
 // Distances to a moved and scaled sphere against the long-double root of |o + t d - c| = r.
 TEST(Quadric, SphereDistancesMatchTheAnalyticRoot) {
-    Scene s = sceneOf("Translate 3 -2 5 Scale 2 2 2 Sphere 1 -1 1 360");
+    Scene s = test::sceneOfWorld("Translate 3 -2 5 Scale 2 2 2 Sphere 1 -1 1 360");
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> U(-1, 1);
     const glm::vec3 c(3, -2, 5);
@@ -129,7 +119,7 @@ TEST(Quadric, SphereDistancesMatchTheAnalyticRoot) {
 // angle is about sqrt(2 delta / r), down to 1.4e-7 rad; every one must hit (two
 // crossings), every ray above the plane must miss.
 TEST(Quadric, GrazingRaysOnASphereNeverMiss) {
-    Scene s = sceneOf("Translate 0 -1 0 Sphere 1 -1 1 360");
+    Scene s = test::sceneOfWorld("Translate 0 -1 0 Sphere 1 -1 1 360");
     std::vector<Ray> rays;
     std::vector<double> deltas;
     for (int k = 2; k <= 14; ++k) {
@@ -159,7 +149,7 @@ TEST(Quadric, GrazingRaysOnASphereNeverMiss) {
 // roots on each side (x = +-R +- sqrt(2 r delta - delta^2)); the depressed quartic must
 // give all four, near and far from the origin, against long double.
 TEST(Quadric, TorusNearTangencyGivesAllFourRoots) {
-    Scene s = sceneOf("Translate 0 0 -0.25 Torus 1 0.25 0 360 360");
+    Scene s = test::sceneOfWorld("Translate 0 0 -0.25 Torus 1 0.25 0 360 360");
     struct Case {
         double delta, x0;
     };
@@ -210,7 +200,7 @@ TEST(Quadric, EveryKindMapsItsHitsBackThroughUV) {
     std::uniform_real_distribution<float> U(-1, 1);
     for (const char* shape : shapes) {
         SCOPED_TRACE(shape);
-        Scene s = sceneOf(std::string("Translate 0.3 -0.2 0.1 Rotate 35 1 1 0 Scale 1 1.5 0.8 ") + shape);
+        Scene s = test::sceneOfWorld(std::string("Translate 0.3 -0.2 0.1 Rotate 35 1 1 0 Scale 1 1.5 0.8 ") + shape);
         ASSERT_EQ(s.quadrics.size(), 1u);
         std::vector<Ray> rays;
         for (int i = 0; i < 400; ++i) {
@@ -239,7 +229,7 @@ TEST(Quadric, EveryKindMapsItsHitsBackThroughUV) {
 // A sphere of radius 100 at 1e5 from the origin, seen from the origin: distances stay
 // exact to float precision and P(u, v) lies on the surface to the float spacing there.
 TEST(Quadric, FarFromTheOriginKeepsItsPrecision) {
-    Scene s = sceneOf("Translate 100000 0 0 Sphere 100 -100 100 360");
+    Scene s = test::sceneOfWorld("Translate 100000 0 0 Sphere 100 -100 100 360");
     std::vector<Ray> rays;
     for (int i = 0; i < 64; ++i) {
         float y = -90.0f + 180.0f * float(i) / 63.0f;
@@ -263,7 +253,7 @@ TEST(Quadric, FarFromTheOriginKeepsItsPrecision) {
 // CSG: whatever the ray, the visible boundary's normal faces it (for a subtracted
 // surface that is the reversed normal), and no hit lies inside a subtracted part.
 TEST(Quadric, CsgBoundariesFaceTheRay) {
-    Scene s = sceneOf(R"(SolidBegin "difference"
+    Scene s = test::sceneOfWorld(R"(SolidBegin "difference"
         SolidBegin "primitive" Sphere 1 -1 1 360 SolidEnd
         SolidBegin "primitive" Cylinder 0.5 -2 2 360 Disk -2 0.5 360 Disk 2 0.5 360 SolidEnd
         SolidBegin "intersection"

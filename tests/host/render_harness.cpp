@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -36,6 +37,15 @@ double Rendered::mean(int channel, int x0, int y0, int x1, int y1) const {
 const ClContext& testContext() {
     static ClContext ctx(selectDevice(""));
     return ctx;
+}
+
+Scene sceneOfWorld(const std::string& world) {
+    std::ostringstream err;
+    rib::Diagnostics diag(&err);
+    RibBuilder b(diag, "probe.rib");
+    rib::readString("WorldBegin\n" + world + "\nWorldEnd\n", "probe.rib", b, diag);
+    EXPECT_EQ(diag.errorCount(), 0) << err.str();
+    return b.scenes().empty() ? Scene() : b.scenes().back();
 }
 
 Rendered renderRib(const std::string& rib, const RenderSettings& settings) {

@@ -30,6 +30,10 @@ std::string scratchDir(const std::string& name);
 // The context every test shares (building one per test would dominate the run time).
 const ClContext& testContext();
 
+// The scene of one RIB world (WorldBegin and WorldEnd added), failing the calling test on
+// any error: its quadrics and solids in the order declared.
+Scene sceneOfWorld(const std::string& world);
+
 // Fails the calling test (gtest) if the RIB has errors; renders the first world block.
 Rendered renderRib(const std::string& rib, const RenderSettings& settings = {});
 

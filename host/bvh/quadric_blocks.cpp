@@ -1,0 +1,52 @@
+// quadric_blocks.cpp: an object block's plain quadrics side by side, after the leaf blocks.
+#include "quadric_blocks.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace rd {
+
+bool isPlainQuadric(const Quadric& q) {
+    const bool shape = q.kind == RT_Q_SPHERE || q.kind == RT_Q_CYLINDER ||
+                       q.kind == RT_Q_CONE || q.kind == RT_Q_PARABOLOID ||
+                       (q.kind == RT_Q_HYPERBOLOID && q.shape.w == 0.0f);
+    // (rt_quadric_uv_test's test of a full sweep, in the same precision)
+    return shape && !(q.flags & RT_QF_MOVING) &&
+           std::fabs(double(q.range.w)) >= 6.283185307179586 * double(1 - 1e-6f);
+}
+
+size_t appendQuadricBlocks(std::vector<Triangle4>& blocks, const std::vector<Quadric>& objects) {
+    static_assert(sizeof(QuadricBlock) == 2 * sizeof(Triangle4), "two slots a record");
+    const size_t leafBlocks = blocks.size();
+    size_t made = 0;
+    for (size_t i = 0; i < leafBlocks; ++i) {
+        const uint32_t first = blocks[i].prim[0];
+        if (first == RT_EMPTY_LANE || !(first & RT_OBJECT_BIT)) continue;
+        bool plain = true;
+        for (uint32_t prim : blocks[i].prim)
+            plain = plain && (prim == RT_EMPTY_LANE ||
+                              ((prim & RT_OBJECT_BIT) &&
+                               isPlainQuadric(objects.at(prim & RT_OBJECT_MASK))));
+        if (!plain) continue;
+        QuadricBlock qb{};
+        for (int lane = 0; lane < 4; ++lane) {
+            const uint32_t prim = blocks[i].prim[lane];
+            if (prim == RT_EMPTY_LANE) continue;
+            const Quadric& q = objects[prim & RT_OBJECT_MASK];
+            const float* c = &q.center.x;
+            for (int a = 0; a < 3; ++a) (&qb.center[a].x)[lane] = c[a];
+            for (int r = 0; r < 3; ++r)
+                for (int a = 0; a < 3; ++a) (&qb.to_object[3 * r + a].x)[lane] = (&q.to_object[r].x)[a];
+            for (int a = 0; a < 4; ++a) (&qb.coef[a].x)[lane] = (&q.coef.x)[a];
+            for (int a = 0; a < 3; ++a) (&qb.range[a].x)[lane] = (&q.range.x)[a];
+        }
+        const int32_t offset = int32_t(blocks.size() - i);
+        std::memcpy(&blocks[i].v2x.x, &offset, sizeof offset);
+        blocks.resize(blocks.size() + 2);
+        std::memcpy(&blocks[blocks.size() - 2], &qb, sizeof qb);
+        ++made;
+    }
+    return made;
+}
+
+}  // namespace rd

@@ -1,0 +1,20 @@
+// quadric_blocks.h: the records that let the trace kernels intersect an object block's
+// plain quadrics four at once (cl/include/quadric.h QuadricBlock, cl/lib/quadric4.clh).
+#pragma once
+#include <vector>
+
+#include "cl/include/quadric.h"
+#include "cl/include/scene_types.h"
+
+namespace rd {
+
+// Can this quadric go in a QuadricBlock: one quadratic, z its only clip, a full sweep, not
+// moving (the lane loop's rt_quadric_uv_test then accepts a crossing by z alone).
+bool isPlainQuadric(const Quadric& q);
+
+// Appends a QuadricBlock (two Triangle4 slots) for every object block of `blocks` whose
+// lanes are all plain quadrics of `objects`, and points the block at it (v2x.x).
+// Returns how many blocks got one.
+size_t appendQuadricBlocks(std::vector<Triangle4>& blocks, const std::vector<Quadric>& objects);
+
+}  // namespace rd
