@@ -41,71 +41,90 @@ __kernel void generate_eye(__constant Camera* cam,
     slot_rays[slot] = 1u;
     slot_abort[slot] = 0u;
     int px = (int)(pixel % (uint)cam->width), py = (int)(pixel / (uint)cam->width);
-    float2 j = rt_pixel_sample(pixel, s);
-    float jx = j.x, jy = j.y;
+    float jx = rt_random(pixel, s, 0), jy = rt_random(pixel, s, 1);
     /* raster -> screen window: x grows right, y grows up */
     float sx = cam->screen[0] + ((float)px + jx) / (float)cam->width *
                                     (cam->screen[1] - cam->screen[0]);
     float sy = cam->screen[3] - ((float)py + jy) / (float)cam->height *
                                     (cam->screen[3] - cam->screen[2]);
-    float4 o_cam, d_cam;
-    float tmin, tmax;
+    /* (scalars, and no private array: PoCL keeps a work-item's private arrays in memory,
+     * its context; the float4 form with the camera matrix in an array took 1.2-1.4x the
+     * time, `ab_binaries.sh ... generate_eye`, same images) */
+    float ox, oy, oz, dx, dy, dz, tmin, tmax;
     if (cam->perspective) {
-        o_cam = (float4)(0.0f, 0.0f, 0.0f, 1.0f);
-        d_cam = rt_normalize3(rt_vec(sx * cam->tan_half_fov, sy * cam->tan_half_fov, 1.0f));
+        ox = oy = oz = 0.0f;
+        float vx = sx * cam->tan_half_fov, vy = sy * cam->tan_half_fov, vz = 1.0f;
+        float len2 = vx * vx + vy * vy + vz * vz;
+        float inv = len2 > 0.0f ? rsqrt(len2) : 0.0f;
+        dx = vx * inv, dy = vy * inv, dz = vz * inv;
 #ifdef RT_HAS_DEPTH_OF_FIELD
         /* thin lens: start on the lens disc, aim at where the pinhole ray meets the plane
          * in focus (uniform disc sampling by the square-root map) */
         float r = cam->lens_radius * sqrt(rt_random(pixel, s, 2));
         float phi = 6.28318531f * rt_random(pixel, s, 3);
-        float4 focus = d_cam * (cam->focal_distance / d_cam.z);
-        o_cam = (float4)(r * cos(phi), r * sin(phi), 0.0f, 1.0f);
-        d_cam = rt_normalize3(focus - o_cam);
+        float f = cam->focal_distance / dz;
+        float fx = dx * f, fy = dy * f, fz = dz * f;
+        ox = r * cos(phi), oy = r * sin(phi);
+        vx = fx - ox, vy = fy - oy, vz = fz - oz;
+        len2 = vx * vx + vy * vy + vz * vz;
+        inv = len2 > 0.0f ? rsqrt(len2) : 0.0f;
+        dx = vx * inv, dy = vy * inv, dz = vz * inv;
 #endif
         /* Clipping planes are z distances: convert them to distances along the ray */
-        tmin = cam->clip_near / d_cam.z;
-        tmax = cam->clip_far / d_cam.z;
+        tmin = cam->clip_near / dz;
+        tmax = cam->clip_far / dz;
     } else {
-        o_cam = (float4)(sx, sy, 0.0f, 1.0f);
-        d_cam = rt_vec(0.0f, 0.0f, 1.0f);
+        ox = sx, oy = sy, oz = 0.0f;
+        dx = 0.0f, dy = 0.0f, dz = 1.0f;
         tmin = cam->clip_near;
         tmax = cam->clip_far;
     }
-    float4 r0 = cam->camera_to_world[0], r1 = cam->camera_to_world[1],
-           r2 = cam->camera_to_world[2];
+    __constant float* c2w = (__constant float*)cam->camera_to_world;
+    float m00 = c2w[0], m01 = c2w[1], m02 = c2w[2], m03 = c2w[3];
+    float m10 = c2w[4], m11 = c2w[5], m12 = c2w[6], m13 = c2w[7];
+    float m20 = c2w[8], m21 = c2w[9], m22 = c2w[10], m23 = c2w[11];
 #ifdef RT_HAS_MOTION
     const float time = mix(cam->shutter[0], cam->shutter[1], rt_random(pixel, s, 4));
     if (cam->moving) { /* the camera's placement at the sample's time */
         float t0 = cam->motion_times[0], t1 = cam->motion_times[1];
         float a = t1 > t0 ? clamp((time - t0) / (t1 - t0), 0.0f, 1.0f) : 0.0f;
-        r0 = mix(r0, cam->camera_to_world_end[0], a);
-        r1 = mix(r1, cam->camera_to_world_end[1], a);
-        r2 = mix(r2, cam->camera_to_world_end[2], a);
+        __constant float* e = (__constant float*)cam->camera_to_world_end;
+        m00 = mix(m00, e[0], a), m01 = mix(m01, e[1], a), m02 = mix(m02, e[2], a);
+        m03 = mix(m03, e[3], a), m10 = mix(m10, e[4], a), m11 = mix(m11, e[5], a);
+        m12 = mix(m12, e[6], a), m13 = mix(m13, e[7], a), m20 = mix(m20, e[8], a);
+        m21 = mix(m21, e[9], a), m22 = mix(m22, e[10], a), m23 = mix(m23, e[11], a);
     }
 #endif
-    float4 o = (float4)(dot(r0, o_cam), dot(r1, o_cam), dot(r2, o_cam), 0.0f);
-    float4 dw = (float4)(rt_dot3(r0, d_cam), rt_dot3(r1, d_cam), rt_dot3(r2, d_cam), 0.0f);
+    const float wox = m00 * ox + m01 * oy + m02 * oz + m03,
+                woy = m10 * ox + m11 * oy + m12 * oz + m13,
+                woz = m20 * ox + m21 * oy + m22 * oz + m23;
+    const float wdx = m00 * dx + m01 * dy + m02 * dz, wdy = m10 * dx + m11 * dy + m12 * dz,
+                wdz = m20 * dx + m21 * dy + m22 * dz;
     /* the world direction is renormalised, so camera-space distances grow by its length */
-    float len = sqrt(rt_dot3(dw, dw));
-    float4 d = dw / len;
-    o.w = tmin * len;
-    d.w = tmax * len;
-    origin[i] = o;
-    direction[i] = d;
-    weight[i] = (rt_weight)(1.0f);
+    float len = sqrt(wdx * wdx + wdy * wdy + wdz * wdz);
+    __global float* o = (__global float*)(origin + i);
+    __global float* d = (__global float*)(direction + i);
+    o[0] = wox, o[1] = woy, o[2] = woz, o[3] = tmin * len;
+    d[0] = wdx / len, d[1] = wdy / len, d[2] = wdz / len, d[3] = tmax * len;
+    __global float* w = (__global float*)(weight + i);
+    for (int c = 0; c < (int)(sizeof(rt_weight) / sizeof(float)); ++c) w[c] = 1.0f;
     /* an eye ray's footprint: a pixel wide where an orthographic ray starts; a
      * perspective one starts as a point and widens by RT_PIXEL_SPREAD per unit */
-    float width = cam->perspective ? 0.0f : (cam->screen[1] - cam->screen[0]) / (float)cam->width * len;
-    RayState st = {1u, 0u, RT_NO_HIT, width};
-    state[i] = st;
+    state[i].alive = 1u;
+    state[i].depth = 0u;
+    state[i].from_prim = RT_NO_HIT;
+    state[i].width =
+        cam->perspective ? 0.0f : (cam->screen[1] - cam->screen[0]) / (float)cam->width * len;
     ray_sample[i] = slot;
 #ifdef RT_HAS_MOTION
     sample_time[slot] = time;
 #endif
-    total[slot].value = (float4)(0.0f);
+    __global float* tot = (__global float*)(total + slot);
+    tot[0] = tot[1] = tot[2] = tot[3] = 0.0f;
 #ifdef RT_HAS_AOVS
     /* camera z per unit of world ray distance: the unit camera direction's z over len */
-    SampleAov a = {(float4)(0.0f), d_cam.z / len, 0u, {0u, 0u}};
-    aov[slot] = a;
+    aov[slot].normal = (float4)(0.0f);
+    aov[slot].z = dz / len;
+    aov[slot].hit = 0u;
 #endif
 }
