@@ -9,7 +9,7 @@ namespace rd {
 bool isPlainQuadric(const Quadric& q) {
     const bool shape = q.kind == RT_Q_SPHERE || q.kind == RT_Q_CYLINDER ||
                        q.kind == RT_Q_CONE || q.kind == RT_Q_PARABOLOID ||
-                       (q.kind == RT_Q_HYPERBOLOID && q.shape.w == 0.0f);
+                       (q.kind == RT_Q_HYPERBOLOID && q.shape.w == 0.0f) || q.kind == RT_Q_DISK;
     // (rt_quadric_uv_test's test of a full sweep, in the same precision)
     return shape && !(q.flags & RT_QF_MOVING) &&
            std::fabs(double(q.range.w)) >= 6.283185307179586 * double(1 - 1e-6f);
@@ -39,6 +39,13 @@ size_t appendQuadricBlocks(std::vector<Triangle4>& blocks, const std::vector<Qua
                 for (int a = 0; a < 3; ++a) (&qb.to_object[3 * r + a].x)[lane] = (&q.to_object[r].x)[a];
             for (int a = 0; a < 4; ++a) (&qb.coef[a].x)[lane] = (&q.coef.x)[a];
             for (int a = 0; a < 3; ++a) (&qb.range[a].x)[lane] = (&q.range.x)[a];
+            if (q.kind == RT_Q_DISK) {  // no quadratic (no roots), and the plane for z's clip
+                for (int a = 0; a < 4; ++a) (&qb.coef[a].x)[lane] = 0.0f;
+                (&qb.range[0].x)[lane] = 0.0f;
+                (&qb.range[1].x)[lane] = q.shape.x;
+                (&qb.range[2].x)[lane] = std::fabs(q.shape.y);
+                (&qb.disk.x)[lane] = 1.0f;
+            }
         }
         const int32_t offset = int32_t(blocks.size() - i);
         std::memcpy(&blocks[i].v2x.x, &offset, sizeof offset);

@@ -8,8 +8,9 @@
 
 namespace rd {
 
-// Can this quadric go in a QuadricBlock: one quadratic, z its only clip, a full sweep, not
-// moving (the lane loop's rt_quadric_uv_test then accepts a crossing by z alone).
+// Can this quadric go in a QuadricBlock: one quadratic with z its only clip, or a disk; a
+// full sweep, not moving (the lane loop's rt_quadric_uv_test then accepts a crossing by z,
+// or a disk's by its radius, alone).
 bool isPlainQuadric(const Quadric& q);
 
 // Appends a QuadricBlock (two Triangle4 slots) for every object block of `blocks` whose

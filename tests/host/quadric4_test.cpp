@@ -1,11 +1,12 @@
 // quadric4_test.cpp: object blocks of plain quadrics intersected four at once
 // (cl/lib/quadric4.clh, host/bvh/quadric_blocks.cpp) against the lane loop they stand in
 // for: which blocks get a record, and for random rays through overlapping spheres,
-// cylinders, cones, paraboloids and hyperboloids (near the origin, 1e5 from it, scaled by
+// cylinders, cones, paraboloids, hyperboloids and disks (near the origin, 1e5 from it, scaled by
 // 1e-4 and 1e4; from outside and inside, with clipped ray intervals) the same hit bit for
 // bit, with and without (u, v).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <random>
 
@@ -72,8 +73,8 @@ std::vector<uint32_t> probeBlock(const std::vector<Triangle4>& blocks, uint32_t 
 
 }  // namespace
 
-// Blocks all of whose lanes are plain quadrics get a record; a partial sweep, a torus, a
-// disk, a planar hyperboloid, a moving sphere or a triangle block keeps the lane loop.
+// Blocks all of whose lanes are plain quadrics (disks too) get a record; a partial sweep, a
+// torus, a planar hyperboloid, a moving sphere or a triangle block keeps the lane loop.
 TEST(QuadricBlocks, OnlyPlainBlocksGetARecord) {
     Scene s = test::sceneOfWorld(
         "Sphere 1 -1 1 360\nCylinder 1 -1 1 360\nCone 2 1 360\nParaboloid 1 0 2 360\n"
@@ -81,12 +82,11 @@ TEST(QuadricBlocks, OnlyPlainBlocksGetARecord) {
         "Disk 0 1 360\nHyperboloid 1 0 0 2 0 0 360\nSphere 1 -1 1 -360\n");
     ASSERT_EQ(s.quadrics.size(), 10u);
     s.quadrics[9].flags |= RT_QF_MOVING;
-    for (uint32_t i : {0u, 1u, 2u, 3u, 4u, 9u}) EXPECT_EQ(isPlainQuadric(s.quadrics[i]), i != 9) << i;
-    for (uint32_t i : {5u, 6u, 7u, 8u}) EXPECT_FALSE(isPlainQuadric(s.quadrics[i])) << i;
-    std::vector<Triangle4> blocks = {objectBlock(s, {0, 1, 2, 3}), objectBlock(s, {4, 0}),
+    for (uint32_t i : {0u, 1u, 2u, 3u, 4u, 7u, 9u}) EXPECT_EQ(isPlainQuadric(s.quadrics[i]), i != 9) << i;
+    for (uint32_t i : {5u, 6u, 8u}) EXPECT_FALSE(isPlainQuadric(s.quadrics[i])) << i;
+    std::vector<Triangle4> blocks = {objectBlock(s, {0, 1, 2, 3}), objectBlock(s, {4, 0, 7}),
                                      objectBlock(s, {0, 5}),       objectBlock(s, {6, 0}),
-                                     objectBlock(s, {7}),          objectBlock(s, {8}),
-                                     objectBlock(s, {9, 1})};
+                                     objectBlock(s, {8}),          objectBlock(s, {9, 1})};
     Triangle4 tri{};
     tri.prim[0] = 0, tri.prim[1] = tri.prim[2] = tri.prim[3] = RT_EMPTY_LANE;
     blocks.push_back(tri);
@@ -111,8 +111,17 @@ TEST(QuadricBlocks, OnlyPlainBlocksGetARecord) {
             EXPECT_EQ((&qb.to_object[4].x)[lane], q.to_object[1].y);
             EXPECT_EQ((&qb.to_object[7].x)[lane], q.to_object[2].y);
             EXPECT_EQ((&qb.coef[3].x)[lane], q.coef.w);
+            if (q.kind == RT_Q_DISK) {  // no quadratic; its height and radius for z's clip
+                for (int a = 0; a < 4; ++a) EXPECT_EQ((&qb.coef[a].x)[lane], 0.0f);
+                EXPECT_EQ((&qb.range[0].x)[lane], 0.0f);
+                EXPECT_EQ((&qb.range[1].x)[lane], q.shape.x);
+                EXPECT_EQ((&qb.range[2].x)[lane], std::fabs(q.shape.y));
+                EXPECT_EQ((&qb.disk.x)[lane], 1.0f);
+                continue;
+            }
             EXPECT_EQ((&qb.range[0].x)[lane], q.range.x);
             EXPECT_EQ((&qb.range[2].x)[lane], q.range.z);
+            EXPECT_EQ((&qb.disk.x)[lane], 0.0f);
         }
     }
 }
@@ -127,7 +136,11 @@ TEST(QuadricBlocks, FourAtOnceEqualTheLaneLoop) {
         "TransformBegin Translate 0.3 0.6 0.2 Rotate 80 0 0 1 Hyperboloid 0.3 -0.4 -0.6 0.9 0.2 0.7 360 TransformEnd\n"
         "TransformBegin Translate 0.2 0.3 -0.2 Sphere 0.7 -0.7 0.7 360 TransformEnd\n"
         // the same sphere again: ties in t go to the lower lane
-        "TransformBegin Translate 0.2 0.3 -0.2 Sphere 0.7 -0.7 0.7 360 TransformEnd\n";
+        "TransformBegin Translate 0.2 0.3 -0.2 Sphere 0.7 -0.7 0.7 360 TransformEnd\n"
+        // a cylinder's cap, a tilted disk of negative radius, a disk through the others
+        "TransformBegin Translate 0.5 0.2 0 Rotate 50 1 1 0 Disk 1 0.4 360 TransformEnd\n"
+        "TransformBegin Rotate 70 0 1 0 Disk -0.2 -0.9 -360 TransformEnd\n"
+        "TransformBegin Rotate 20 1 0 0 Disk 0.1 1.2 360 TransformEnd\n";
     struct Placement {
         const char* name;
         std::string transform;
@@ -140,11 +153,12 @@ TEST(QuadricBlocks, FourAtOnceEqualTheLaneLoop) {
     for (const Placement& pl : placements) {
         SCOPED_TRACE(pl.name);
         Scene s = test::sceneOfWorld(pl.transform + "\n" + objects);
-        ASSERT_EQ(s.quadrics.size(), 7u);
-        std::vector<Triangle4> fast = {objectBlock(s, {0, 1, 2, 3}), objectBlock(s, {4, 5, 6})};
-        ASSERT_EQ(appendQuadricBlocks(fast, s.quadrics), 2u);
+        ASSERT_EQ(s.quadrics.size(), 10u);
+        std::vector<Triangle4> fast = {objectBlock(s, {0, 1, 2, 3}), objectBlock(s, {4, 5, 6}),
+                                       objectBlock(s, {7, 0, 8, 9})};
+        ASSERT_EQ(appendQuadricBlocks(fast, s.quadrics), 3u);
         std::vector<Triangle4> loop = fast;
-        for (size_t i = 0; i < 2; ++i) std::memset(&loop[i].v2x.x, 0, sizeof(float));
+        for (size_t i = 0; i < 3; ++i) std::memset(&loop[i].v2x.x, 0, sizeof(float));
         std::mt19937 rng(11);
         std::uniform_real_distribution<double> U(-1, 1);
         auto at = [&](double x, double y, double z) {
@@ -171,7 +185,7 @@ TEST(QuadricBlocks, FourAtOnceEqualTheLaneLoop) {
             r.d.w = i % 4 == 2 ? float((5 + 2 * U(rng)) * pl.scale) : INFINITY;
             rays.push_back(r);
         }
-        for (uint32_t block = 0; block < 2; ++block)
+        for (uint32_t block = 0; block < 3; ++block)
             for (bool wantUv : {false, true}) {
                 const std::vector<uint32_t> a = probeBlock(fast, block, s, rays, wantUv),
                                             b = probeBlock(loop, block, s, rays, wantUv);
