@@ -7,12 +7,13 @@
 namespace rd {
 
 bool isPlainQuadric(const Quadric& q) {
+    // (rt_quadric_uv_test's test of a full sweep, in the same precision: a hyperboloid's
+    // angle is measured from its generating line, which the four-wide test does not do)
+    const bool full = std::fabs(double(q.range.w)) >= 6.283185307179586 * double(1 - 1e-6f);
     const bool shape = q.kind == RT_Q_SPHERE || q.kind == RT_Q_CYLINDER ||
-                       q.kind == RT_Q_CONE || q.kind == RT_Q_PARABOLOID ||
-                       (q.kind == RT_Q_HYPERBOLOID && q.shape.w == 0.0f) || q.kind == RT_Q_DISK;
-    // (rt_quadric_uv_test's test of a full sweep, in the same precision)
-    return shape && !(q.flags & RT_QF_MOVING) &&
-           std::fabs(double(q.range.w)) >= 6.283185307179586 * double(1 - 1e-6f);
+                       q.kind == RT_Q_CONE || q.kind == RT_Q_PARABOLOID || q.kind == RT_Q_DISK ||
+                       (q.kind == RT_Q_HYPERBOLOID && q.shape.w == 0.0f && full);
+    return shape && !(q.flags & RT_QF_MOVING);
 }
 
 size_t appendQuadricBlocks(std::vector<Triangle4>& blocks, const std::vector<Quadric>& objects) {
@@ -39,12 +40,12 @@ size_t appendQuadricBlocks(std::vector<Triangle4>& blocks, const std::vector<Qua
                 for (int a = 0; a < 3; ++a) (&qb.to_object[3 * r + a].x)[lane] = (&q.to_object[r].x)[a];
             for (int a = 0; a < 4; ++a) (&qb.coef[a].x)[lane] = (&q.coef.x)[a];
             for (int a = 0; a < 3; ++a) (&qb.range[a].x)[lane] = (&q.range.x)[a];
+            (&qb.sweep.x)[lane] = q.range.w;
             if (q.kind == RT_Q_DISK) {  // no quadratic (no roots), and the plane for z's clip
                 for (int a = 0; a < 4; ++a) (&qb.coef[a].x)[lane] = 0.0f;
                 (&qb.range[0].x)[lane] = 0.0f;
                 (&qb.range[1].x)[lane] = q.shape.x;
                 (&qb.range[2].x)[lane] = std::fabs(q.shape.y);
-                (&qb.disk.x)[lane] = 1.0f;
             }
         }
         const int32_t offset = int32_t(blocks.size() - i);

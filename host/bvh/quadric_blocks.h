@@ -8,9 +8,9 @@
 
 namespace rd {
 
-// Can this quadric go in a QuadricBlock: one quadratic with z its only clip, or a disk; a
-// full sweep, not moving (the lane loop's rt_quadric_uv_test then accepts a crossing by z,
-// or a disk's by its radius, alone).
+// Can this quadric go in a QuadricBlock: one quadratic clipped by z, or a disk (by its
+// radius), any sweep (a hyperboloid only the full circle), not moving: the crossings the
+// lane loop's rt_quadric_uv_test accepts by z or radius and by angle alone.
 bool isPlainQuadric(const Quadric& q);
 
 // Appends a QuadricBlock (two Triangle4 slots) for every object block of `blocks` whose

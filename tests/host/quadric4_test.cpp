@@ -1,9 +1,9 @@
 // quadric4_test.cpp: object blocks of plain quadrics intersected four at once
 // (cl/lib/quadric4.clh, host/bvh/quadric_blocks.cpp) against the lane loop they stand in
 // for: which blocks get a record, and for random rays through overlapping spheres,
-// cylinders, cones, paraboloids, hyperboloids and disks (near the origin, 1e5 from it, scaled by
-// 1e-4 and 1e4; from outside and inside, with clipped ray intervals) the same hit bit for
-// bit, with and without (u, v).
+// cylinders, cones, paraboloids, hyperboloids and disks, some swept part of the circle
+// (near the origin, 1e5 from it, scaled by 1e-4 and 1e4; from outside and inside, with
+// clipped ray intervals) the same hit bit for bit, with and without (u, v).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -73,20 +73,22 @@ std::vector<uint32_t> probeBlock(const std::vector<Triangle4>& blocks, uint32_t 
 
 }  // namespace
 
-// Blocks all of whose lanes are plain quadrics (disks too) get a record; a partial sweep, a
-// torus, a planar hyperboloid, a moving sphere or a triangle block keeps the lane loop.
+// Blocks all of whose lanes are plain quadrics (disks and partial sweeps too) get a record;
+// a torus, a planar hyperboloid, a partly swept hyperboloid, a moving sphere or a triangle
+// block keeps the lane loop.
 TEST(QuadricBlocks, OnlyPlainBlocksGetARecord) {
     Scene s = test::sceneOfWorld(
         "Sphere 1 -1 1 360\nCylinder 1 -1 1 360\nCone 2 1 360\nParaboloid 1 0 2 360\n"
         "Hyperboloid 1 0 -1 1 1 1 360\nSphere 1 -1 1 180\nTorus 1 0.25 0 360 360\n"
-        "Disk 0 1 360\nHyperboloid 1 0 0 2 0 0 360\nSphere 1 -1 1 -360\n");
-    ASSERT_EQ(s.quadrics.size(), 10u);
+        "Disk 0 1 360\nHyperboloid 1 0 0 2 0 0 360\nSphere 1 -1 1 -360\n"
+        "Hyperboloid 1 0 -1 1 1 1 270\n");
+    ASSERT_EQ(s.quadrics.size(), 11u);
     s.quadrics[9].flags |= RT_QF_MOVING;
-    for (uint32_t i : {0u, 1u, 2u, 3u, 4u, 7u, 9u}) EXPECT_EQ(isPlainQuadric(s.quadrics[i]), i != 9) << i;
-    for (uint32_t i : {5u, 6u, 8u}) EXPECT_FALSE(isPlainQuadric(s.quadrics[i])) << i;
-    std::vector<Triangle4> blocks = {objectBlock(s, {0, 1, 2, 3}), objectBlock(s, {4, 0, 7}),
-                                     objectBlock(s, {0, 5}),       objectBlock(s, {6, 0}),
-                                     objectBlock(s, {8}),          objectBlock(s, {9, 1})};
+    for (uint32_t i : {0u, 1u, 2u, 3u, 4u, 5u, 7u}) EXPECT_TRUE(isPlainQuadric(s.quadrics[i])) << i;
+    for (uint32_t i : {6u, 8u, 9u, 10u}) EXPECT_FALSE(isPlainQuadric(s.quadrics[i])) << i;
+    std::vector<Triangle4> blocks = {objectBlock(s, {0, 1, 2, 3}), objectBlock(s, {4, 5, 7}),
+                                     objectBlock(s, {6, 0}),       objectBlock(s, {8}),
+                                     objectBlock(s, {9, 1}),       objectBlock(s, {10})};
     Triangle4 tri{};
     tri.prim[0] = 0, tri.prim[1] = tri.prim[2] = tri.prim[3] = RT_EMPTY_LANE;
     blocks.push_back(tri);
@@ -101,12 +103,13 @@ TEST(QuadricBlocks, OnlyPlainBlocksGetARecord) {
         for (int lane = 0; lane < 4; ++lane) {
             const uint32_t prim = blocks[i].prim[lane];
             const float* rec[] = {&qb.center[0].x, &qb.to_object[4].x, &qb.coef[3].x,
-                                  &qb.range[2].x};
+                                  &qb.range[2].x, &qb.sweep.x};
             if (prim == RT_EMPTY_LANE) {  // zero: no NaN from an empty lane
                 for (const float* f : rec) EXPECT_EQ(f[lane], 0.0f);
                 continue;
             }
             const Quadric& q = s.quadrics[prim & RT_OBJECT_MASK];
+            EXPECT_EQ((&qb.sweep.x)[lane], q.range.w);
             EXPECT_EQ((&qb.center[0].x)[lane], q.center.x);
             EXPECT_EQ((&qb.to_object[4].x)[lane], q.to_object[1].y);
             EXPECT_EQ((&qb.to_object[7].x)[lane], q.to_object[2].y);
@@ -116,12 +119,10 @@ TEST(QuadricBlocks, OnlyPlainBlocksGetARecord) {
                 EXPECT_EQ((&qb.range[0].x)[lane], 0.0f);
                 EXPECT_EQ((&qb.range[1].x)[lane], q.shape.x);
                 EXPECT_EQ((&qb.range[2].x)[lane], std::fabs(q.shape.y));
-                EXPECT_EQ((&qb.disk.x)[lane], 1.0f);
                 continue;
             }
             EXPECT_EQ((&qb.range[0].x)[lane], q.range.x);
             EXPECT_EQ((&qb.range[2].x)[lane], q.range.z);
-            EXPECT_EQ((&qb.disk.x)[lane], 0.0f);
         }
     }
 }
@@ -140,7 +141,13 @@ TEST(QuadricBlocks, FourAtOnceEqualTheLaneLoop) {
         // a cylinder's cap, a tilted disk of negative radius, a disk through the others
         "TransformBegin Translate 0.5 0.2 0 Rotate 50 1 1 0 Disk 1 0.4 360 TransformEnd\n"
         "TransformBegin Rotate 70 0 1 0 Disk -0.2 -0.9 -360 TransformEnd\n"
-        "TransformBegin Rotate 20 1 0 0 Disk 0.1 1.2 360 TransformEnd\n";
+        "TransformBegin Rotate 20 1 0 0 Disk 0.1 1.2 360 TransformEnd\n"
+        // partial sweeps, both ways
+        "TransformBegin Translate 0.1 -0.2 0.1 Rotate 30 0 1 1 Sphere 0.8 -0.5 0.8 250 TransformEnd\n"
+        "TransformBegin Rotate -40 1 0 1 Cylinder 0.6 -0.9 0.9 -200 TransformEnd\n"
+        "TransformBegin Translate 0 0.3 0 Rotate 60 1 0 0 Disk 0.2 1 100 TransformEnd\n"
+        "TransformBegin Translate -0.2 0 -0.3 Rotate 15 0 0 1 Cone 1.2 0.9 -120 TransformEnd\n"
+        "TransformBegin Rotate 110 0 1 0 Paraboloid 0.9 0.2 1.1 300 TransformEnd\n";
     struct Placement {
         const char* name;
         std::string transform;
@@ -153,12 +160,14 @@ TEST(QuadricBlocks, FourAtOnceEqualTheLaneLoop) {
     for (const Placement& pl : placements) {
         SCOPED_TRACE(pl.name);
         Scene s = test::sceneOfWorld(pl.transform + "\n" + objects);
-        ASSERT_EQ(s.quadrics.size(), 10u);
+        ASSERT_EQ(s.quadrics.size(), 15u);
         std::vector<Triangle4> fast = {objectBlock(s, {0, 1, 2, 3}), objectBlock(s, {4, 5, 6}),
-                                       objectBlock(s, {7, 0, 8, 9})};
-        ASSERT_EQ(appendQuadricBlocks(fast, s.quadrics), 3u);
+                                       objectBlock(s, {7, 0, 8, 9}),
+                                       objectBlock(s, {10, 11, 12, 13}),
+                                       objectBlock(s, {14, 2, 10})};
+        ASSERT_EQ(appendQuadricBlocks(fast, s.quadrics), 5u);
         std::vector<Triangle4> loop = fast;
-        for (size_t i = 0; i < 3; ++i) std::memset(&loop[i].v2x.x, 0, sizeof(float));
+        for (size_t i = 0; i < 5; ++i) std::memset(&loop[i].v2x.x, 0, sizeof(float));
         std::mt19937 rng(11);
         std::uniform_real_distribution<double> U(-1, 1);
         auto at = [&](double x, double y, double z) {
@@ -185,7 +194,7 @@ TEST(QuadricBlocks, FourAtOnceEqualTheLaneLoop) {
             r.d.w = i % 4 == 2 ? float((5 + 2 * U(rng)) * pl.scale) : INFINITY;
             rays.push_back(r);
         }
-        for (uint32_t block = 0; block < 3; ++block)
+        for (uint32_t block = 0; block < 5; ++block)
             for (bool wantUv : {false, true}) {
                 const std::vector<uint32_t> a = probeBlock(fast, block, s, rays, wantUv),
                                             b = probeBlock(loop, block, s, rays, wantUv);
