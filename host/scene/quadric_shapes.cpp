@@ -195,13 +195,36 @@ glm::vec3 quadricToObject(const Quadric& q, glm::vec3 p) {
 
 Aabb quadricWorldBounds(const Quadric& q, glm::vec3 lo, glm::vec3 hi) {
     Aabb b;
-    for (int c = 0; c < 8; ++c) {
+    // Every shape's object box is [-rho, rho]^2 x [z0, z1] about its axis with rho its
+    // largest radius: the surface lies in the cylinder of radius rho over [z0, z1], whose
+    // world box is its end circles' (a circle of radius rho at height z spans
+    // c + T z +- rho |(Tx, Ty)| along a world axis whose row of the map is T). A rotated
+    // shape's box is up to sqrt(2) narrower per axis than its object box's corners; a
+    // sphere's is also clipped to its ellipsoid's, up to sqrt(3) narrower. A cone narrows
+    // to its apex.
+    const bool aboutZ = lo.x == -hi.x && lo.y == -hi.y && hi.x == hi.y;
+    for (int c = 0; c < 8 && !aboutZ; ++c) {  // any other box: its corners
         glm::vec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
         glm::vec3 w = quadricToWorld(q, p);
         const float f[3] = {w.x, w.y, w.z};
         b.grow(f);
     }
-    // pad by a few ulps of the extent so rounding in the corners never clips the surface
+    for (int a = 0; a < 3 && aboutZ; ++a) {
+        const double tx = q.to_world[a].x, ty = q.to_world[a].y, tz = q.to_world[a].z;
+        const double c = (&q.center.x)[a];
+        const double rho = double(hi.x) * std::sqrt(tx * tx + ty * ty);
+        double z0 = c + tz * lo.z, z1 = c + tz * hi.z, r0 = rho, r1 = rho;
+        if (q.kind == RT_Q_CONE) {  // base circle at z = 0, apex at z = height
+            z0 = c, z1 = c + tz * q.shape.x, r1 = 0;
+        }
+        double blo = std::min(z0 - r0, z1 - r1), bhi = std::max(z0 + r0, z1 + r1);
+        if (q.kind == RT_Q_SPHERE) {
+            const double e = std::fabs(double(q.shape.x)) * std::sqrt(tx * tx + ty * ty + tz * tz);
+            blo = std::max(blo, c - e), bhi = std::min(bhi, c + e);
+        }
+        b.lo[a] = float(blo), b.hi[a] = float(bhi);
+    }
+    // pad by a few ulps of the extent so rounding in the map never clips the surface
     for (int a = 0; a < 3; ++a) {
         float pad = 1e-6f * (std::fabs(b.lo[a]) + std::fabs(b.hi[a]) + (b.hi[a] - b.lo[a]));
         b.lo[a] -= pad;
