@@ -195,14 +195,15 @@ glm::vec3 quadricToObject(const Quadric& q, glm::vec3 p) {
 
 Aabb quadricWorldBounds(const Quadric& q, glm::vec3 lo, glm::vec3 hi) {
     Aabb b;
-    // Every shape's object box is [-rho, rho]^2 x [z0, z1] about its axis with rho its
+    // Every quadric's object box is [-rho, rho]^2 x [z0, z1] about its axis with rho its
     // largest radius: the surface lies in the cylinder of radius rho over [z0, z1], whose
     // world box is its end circles' (a circle of radius rho at height z spans
     // c + T z +- rho |(Tx, Ty)| along a world axis whose row of the map is T). A rotated
     // shape's box is up to sqrt(2) narrower per axis than its object box's corners; a
     // sphere's is also clipped to its ellipsoid's, up to sqrt(3) narrower. A cone narrows
     // to its apex.
-    const bool aboutZ = lo.x == -hi.x && lo.y == -hi.y && hi.x == hi.y;
+    // (an instance's box is its prototype's, no surface of revolution: its corners)
+    const bool aboutZ = q.kind <= RT_Q_TORUS && lo.x == -hi.x && lo.y == -hi.y && hi.x == hi.y;
     for (int c = 0; c < 8 && !aboutZ; ++c) {  // any other box: its corners
         glm::vec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
         glm::vec3 w = quadricToWorld(q, p);

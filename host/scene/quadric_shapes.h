@@ -39,7 +39,9 @@ bool placeQuadric(Quadric& q, const glm::mat4& objectToWorld);
 // The object-to-world matrix a placed quadric was given.
 glm::mat4 quadricPlacement(const Quadric& q);
 
-// World-space box of a placed quadric whose object-space box is [lo, hi].
+// World-space box of a placed quadric whose object-space box is [lo, hi] (for a quadric,
+// the box of the cylinder about its axis that holds it; for an instance, the corners of
+// its prototype's box).
 Aabb quadricWorldBounds(const Quadric& q, glm::vec3 lo, glm::vec3 hi);
 
 // Object-space position on a placed quadric's surface at (u, v) (host mirror of the

@@ -1,7 +1,7 @@
 // quadric_bounds_test.cpp: the world boxes of placed quadrics (quadricWorldBounds): every
 // kind, rotated, scaled and moved at random, contains its whole surface (points on a
 // (u, v) grid), and a rotated shape's box is its end circles' (a sphere's its
-// ellipsoid's), not the rotated corners of its object box.
+// ellipsoid's), not the rotated corners of its object box; an instance keeps its corners.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -70,4 +70,16 @@ TEST(QuadricBounds, RotatedShapesGetTightBoxes) {
     EXPECT_NEAR(b.hi[0] - b.lo[0], 2.0f, 4e-4f);
     EXPECT_NEAR(b.hi[1] - b.lo[1], 3 * s30 + 2 * c30, 4e-4f);
     EXPECT_NEAR(b.hi[2] - b.lo[2], 3 * c30 + 2 * s30, 4e-4f);
+}
+
+// An instance of a square centred on its axis (a box that looks like a quadric's) keeps the
+// corners of its prototype's box: turned 45 degrees it spans sqrt(2) on x and y.
+TEST(QuadricBounds, InstancesKeepTheirPrototypesCorners) {
+    const Scene s = test::sceneOfWorld(
+        "ObjectBegin \"sq\" Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0] "
+        "ObjectEnd Rotate 45 0 0 1 ObjectInstance \"sq\"");
+    ASSERT_EQ(s.quadrics.size(), 1u);
+    ASSERT_EQ(s.quadrics[0].kind, RT_Q_INSTANCE);
+    for (int a = 0; a < 2; ++a)
+        EXPECT_NEAR(s.quadricBounds[0].hi[a] - s.quadricBounds[0].lo[a], std::sqrt(2.0f), 1e-4f);
 }
