@@ -91,9 +91,10 @@ typedef struct Quadric {
 #define RT_CSG_MAX_LEAVES 32
 
 /* The plain quadrics of an object block side by side, lane k of each vector the block's
- * lane k (cl/lib/quadric4.clh intersects them four at once): a block all of whose lanes
- * are spheres, cylinders, cones, paraboloids or disks of any sweep, or non-planar
- * hyperboloids swept the full circle, none moving (a disk's lane: its quadratic 0). Their records follow the BVH's leaf blocks in the same buffer,
+ * lane k (cl/lib/quadric4.clh intersects them four at once): spheres, cylinders, cones,
+ * paraboloids or disks of any sweep, or non-planar hyperboloids swept the full circle,
+ * none moving (a disk's lane: its quadratic 0), in a block whose other lanes are
+ * quadrics too (tested one at a time). Their records follow the BVH's leaf blocks in the same buffer,
  * two Triangle4 slots each, and such a block's v2x.x holds, as an int's bits, how many
  * slots on its record is (0 for any other block). Empty lanes are zero. */
 typedef struct QuadricBlock {
@@ -101,7 +102,8 @@ typedef struct QuadricBlock {
     rt_float4 to_object[9]; /* Quadric.to_object: row r, column c at 3 r + c */
     rt_float4 coef[4];      /* Quadric.coef: qx, qy, qz, lz */
     rt_float4 range[3];     /* Quadric.range: c, zmin, zmax; a disk's: 0, height, |radius| */
-    rt_float4 sweep;        /* Quadric.range.w: thetamax (radians, signed) */
+    rt_float4 sweep;        /* Quadric.range.w: thetamax (radians, signed); NaN: a lane
+                             * that is not plain, intersected on its own */
 } QuadricBlock;
 
 #ifndef __OPENCL_C_VERSION__

@@ -23,17 +23,26 @@ size_t appendQuadricBlocks(std::vector<Triangle4>& blocks, const std::vector<Qua
     for (size_t i = 0; i < leafBlocks; ++i) {
         const uint32_t first = blocks[i].prim[0];
         if (first == RT_EMPTY_LANE || !(first & RT_OBJECT_BIT)) continue;
-        bool plain = true;
-        for (uint32_t prim : blocks[i].prim)
-            plain = plain && (prim == RT_EMPTY_LANE ||
-                              ((prim & RT_OBJECT_BIT) &&
-                               isPlainQuadric(objects.at(prim & RT_OBJECT_MASK))));
-        if (!plain) continue;
+        // every lane a quadric (the others, one at a time beside the plain ones), one plain
+        int quadrics = 0, plain = 0, live = 0;
+        for (uint32_t prim : blocks[i].prim) {
+            if (prim == RT_EMPTY_LANE) continue;
+            ++live;
+            if (!(prim & RT_OBJECT_BIT)) continue;
+            const Quadric& q = objects.at(prim & RT_OBJECT_MASK);
+            quadrics += q.kind <= RT_Q_TORUS;
+            plain += isPlainQuadric(q);
+        }
+        if (quadrics < live || plain == 0) continue;
         QuadricBlock qb{};
         for (int lane = 0; lane < 4; ++lane) {
             const uint32_t prim = blocks[i].prim[lane];
             if (prim == RT_EMPTY_LANE) continue;
             const Quadric& q = objects[prim & RT_OBJECT_MASK];
+            if (!isPlainQuadric(q)) {  // intersected on its own: marked by a NaN sweep
+                (&qb.sweep.x)[lane] = NAN;
+                continue;
+            }
             const float* c = &q.center.x;
             for (int a = 0; a < 3; ++a) (&qb.center[a].x)[lane] = c[a];
             for (int r = 0; r < 3; ++r)

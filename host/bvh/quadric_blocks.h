@@ -14,8 +14,10 @@ namespace rd {
 bool isPlainQuadric(const Quadric& q);
 
 // Appends a QuadricBlock (two Triangle4 slots) for every object block of `blocks` whose
-// lanes are all plain quadrics of `objects`, and points the block at it (v2x.x).
-// Returns how many blocks got one.
+// lanes are all quadrics of `objects`, one of them at least plain, and points the block at
+// it (v2x.x); a lane that is not plain (a torus, an annulus, a partly swept hyperboloid,
+// a moving quadric) is marked by a NaN sweep and intersected on its own. Returns how many
+// blocks got one.
 size_t appendQuadricBlocks(std::vector<Triangle4>& blocks, const std::vector<Quadric>& objects);
 
 }  // namespace rd
