@@ -41,15 +41,17 @@ __kernel void generate_eye(__constant Camera* cam,
     slot_rays[slot] = 1u;
     slot_abort[slot] = 0u;
     int px = (int)(pixel % (uint)cam->width), py = (int)(pixel / (uint)cam->width);
-    float jx = rt_random(pixel, s, 0), jy = rt_random(pixel, s, 1);
+    float2 j = rt_pixel_sample(pixel, s);
+    float jx = j.x, jy = j.y;
     /* raster -> screen window: x grows right, y grows up */
     float sx = cam->screen[0] + ((float)px + jx) / (float)cam->width *
                                     (cam->screen[1] - cam->screen[0]);
     float sy = cam->screen[3] - ((float)py + jy) / (float)cam->height *
                                     (cam->screen[3] - cam->screen[2]);
-    /* (scalars, and no private array: PoCL keeps a work-item's private arrays in memory,
-     * its context; the float4 form with the camera matrix in an array took 1.2-1.4x the
-     * time, `ab_binaries.sh ... generate_eye`, same images) */
+    /* (scalars, no private array and scalar stores: PoCL keeps a work-item's private
+     * arrays in memory, its context; the float4 form with the camera matrix in an array
+     * took 1.2-1.4x the time, `ab_binaries.sh ... generate_eye`, same images, and float4
+     * and struct stores of the scalar results 1.4x) */
     float ox, oy, oz, dx, dy, dz, tmin, tmax;
     if (cam->perspective) {
         ox = oy = oz = 0.0f;
