@@ -67,8 +67,11 @@ __kernel void object_block_probe(uint count, uint block, uint want_uv,
     float4 inv = (float4)(1.0f / d.x, 1.0f / d.y, 1.0f / d.z, 0.0f);
     float t = 0.0f, u = 0.0f, v = 0.0f;
     uint prim = RT_EMPTY_LANE;
+    rt_real pt[3];
+    int pending = 0;
     int found = rt_intersect_object_block(&os, &w, &blocks[block], o, d, inv, o.w, d.w, &t, &u,
-                                          &v, &prim, (int)want_uv);
+                                          &v, &prim, (int)want_uv, pt, &pending);
+    if (found && pending) rt_deferred_uv(&os, prim, pt, &u, &v);
     hit[i] = found ? (float4)(t, u, v, 1.0f) : (float4)(0.0f);
     hit_prim[i] = found ? prim : RT_EMPTY_LANE;
 }

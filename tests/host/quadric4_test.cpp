@@ -48,7 +48,7 @@ struct Ray {
 
 // Each ray against blocks[block]: (t, u, v, 1) or zeros, and the primitive, as raw words.
 std::vector<uint32_t> probeBlock(const std::vector<Triangle4>& blocks, uint32_t block,
-                                 const Scene& s, const std::vector<Ray>& rays, bool wantUv) {
+                                 const Scene& s, const std::vector<Ray>& rays, uint32_t wantUv) {
     const ClContext& ctx = test::testContext();
     static Program program(ctx, assembleClSource({"quadric_probe.cl"}), "-cl-std=CL1.2");
     Profiler prof(ctx);
@@ -211,8 +211,10 @@ TEST(QuadricBlocks, FourAtOnceEqualTheLaneLoop) {
             r.d.w = i % 4 == 2 ? float((5 + 2 * U(rng)) * pl.scale) : INFINITY;
             rays.push_back(r);
         }
-        for (uint32_t block = 0; block < 7; ++block)
-            for (bool wantUv : {false, true}) {
+        for (uint32_t block = 0; block < 7; ++block) {
+            // (u, v): none, at once, or deferred to the closest hit's point (RT_UV_*)
+            std::vector<uint32_t> now;
+            for (uint32_t wantUv : {0u, 1u, 2u}) {
                 const std::vector<uint32_t> a = probeBlock(fast, block, s, rays, wantUv),
                                             b = probeBlock(loop, block, s, rays, wantUv);
                 size_t hits = 0, differ = 0;
@@ -222,6 +224,13 @@ TEST(QuadricBlocks, FourAtOnceEqualTheLaneLoop) {
                 }
                 EXPECT_EQ(differ, 0u) << "block " << block << " uv " << wantUv;
                 EXPECT_GT(hits, rays.size() / 4) << "block " << block;  // not a test of misses
+                if (wantUv == 1) now = a;
+                // a deferred (u, v) is the one given at once, bit for bit, on either path
+                if (wantUv == 2) {
+                    EXPECT_EQ(a, now) << "block " << block << ": deferred (u, v), four at once";
+                    EXPECT_EQ(b, now) << "block " << block << ": deferred (u, v), lane loop";
+                }
             }
+        }
     }
 }
