@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <functional>
+#include <random>
 
 #include "testshade.h"
 
@@ -223,6 +224,54 @@ TEST(Builtins, AgainstHostImplementations) {
                     << "case " << i << ": " << cs[i].rsl << "\n at s=" << s << " t=" << t << " channel " << c;
         }
     }
+}
+
+// pow of a positive base (rsl_pow: exp2(y log2 x), not OpenCL's pow) against pow in
+// double, over bases from 1e-6 to 1e6 and around 1 and exponents to 400: the relative
+// error stays within (4 + 2 |y log2 x|) float ulps (the product's rounding alone is
+// |y log2 x| ulps). Powers below 2^-126 come out as at most that (rsl_pow: 0).
+TEST(Builtins, PowOfAPositiveBaseIsWithinUlpsOfPow) {
+    if (!ts::deviceAvailable()) GTEST_SKIP() << "no OpenCL device";
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource("surface p() { Ci = color(pow(s, t), pow(u, v), 0); }", "p.sl", &err))
+        << err;
+    ts::Scene sc;
+    std::string log;
+    ASSERT_TRUE(sh.buildOnDevice(sc, &log)) << log;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> U(0, 1);
+    std::vector<ts::Point> pts(4096);
+    for (size_t k = 0; k < pts.size(); ++k) {
+        const double around1 = 1 + (U(rng) - 0.5) * std::pow(10.0, -7 * U(rng));
+        pts[k].s = float(std::pow(10.0, 12 * U(rng) - 6));
+        pts[k].t = float(k % 8 == 0 ? std::round(40 * U(rng) - 20) : 440 * U(rng) - 40);
+        pts[k].u = float(k % 2 ? around1 : 0.5 + U(rng));
+        pts[k].v = float(k % 3 ? 1 / (0.05 + U(rng)) : -1000 * U(rng));
+    }
+    const std::vector<ts::Out> out = sh.run(pts, sc);
+    ASSERT_EQ(out.size(), pts.size());
+    const double ulp = std::ldexp(1.0, -24);
+    size_t checked = 0;
+    double worst = 0;
+    for (size_t k = 0; k < pts.size(); ++k)
+        for (int c = 0; c < 2; ++c) {
+            const double x = c ? pts[k].u : pts[k].s, y = c ? pts[k].v : pts[k].t;
+            const double want = std::pow(x, y), got = out[k].Ci[c];
+            if (x == 1 || !(want < 3e38)) continue;
+            if (want < std::ldexp(1.0, -126)) {
+                EXPECT_GE(got, 0.0);
+                EXPECT_LE(got, std::ldexp(1.0, -126)) << "pow(" << x << ", " << y << ")";
+                continue;
+            }
+            const double err = std::fabs(got - want) / want / ulp,
+                         bound = 4 + 2 * std::fabs(y * std::log2(x));
+            EXPECT_LE(err, bound) << "pow(" << x << ", " << y << "): " << got << " against " << want;
+            worst = std::max(worst, err / bound);
+            ++checked;
+        }
+    EXPECT_GT(checked, pts.size());  // both columns mostly in range
+    std::printf("pow: %zu values, worst error %.2f of the bound\n", checked, worst);
 }
 
 // ---- noise ---------------------------------------------------------------------------------
