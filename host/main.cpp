@@ -23,6 +23,7 @@
 #include "scene/depth_map.h"
 #include "scene/rib_builder.h"
 #include "stats/stats_report.h"
+#include "stats/timeline_trace.h"
 #include "texture/texture_maker.h"
 
 namespace {
@@ -151,13 +152,21 @@ std::string outputName(const rd::Scene& scene, const std::string& override, size
     return name;
 }
 
+// Writes a JSON document to `path` (indented by `indent`, -1: compact); false when it
+// cannot be written.
+bool writeJson(const std::string& path, const nlohmann::json& doc, int indent = -1) {
+    std::ofstream f(path);
+    f << doc.dump(indent) << "\n";
+    return bool(f);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc > 1 && std::string(argv[1]) == "txmake") return txmakeCommand(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "catrib") return catribCommand(argc - 1, argv + 1);
     CLI::App app{"RayDrive: a RenderMan renderer on OpenCL, after ART's RenderDrive"};
-    std::string scenePath, output, deviceSpec, statsPath;
+    std::string scenePath, output, deviceSpec, statsPath, timelinePath;
     bool quiet = false, halfFloat = false, tessellateQuadrics = false;
     double timeBudget = 0, errorTarget = 0;
     std::vector<std::string> aovs;
@@ -170,6 +179,9 @@ int main(int argc, char** argv) {
                    "OpenCL device: index or name substring (default: RAYDRIVE_DEVICE, "
                    "else PoCL CPU)");
     app.add_option("--stats", statsPath, "write statistics as JSON to FILE, or a table to -");
+    app.add_option("--timeline", timelinePath,
+                   "write every kernel run and the device's idle gaps to FILE, a Chrome trace "
+                   "(open in ui.perfetto.dev or chrome://tracing)");
     app.add_option("--time", timeBudget, "stop after SECONDS and write what is done")
         ->check(CLI::PositiveNumber);
     app.add_option("--error", errorTarget, "stop at this relative error (e.g. 0.01)")
@@ -230,7 +242,7 @@ int main(int argc, char** argv) {
         rd::DeviceInfo device = rd::selectDevice(deviceSpec);
         rd::ClContext ctx(device);
         rd::installStopSignals();
-        nlohmann::json allStats = nlohmann::json::array();
+        nlohmann::json allStats = nlohmann::json::array(), traceEvents = nlohmann::json::array();
         for (size_t i = 0; i < scenes.size() && !rd::stopSignal(); ++i) {
             std::vector<std::string> wanted = scenes[i].aovs;
             wanted.insert(wanted.end(), aovs.begin(), aovs.end());
@@ -245,6 +257,7 @@ int main(int argc, char** argv) {
             settings.closestPackets = !noClosestPackets;
             settings.overlapPasses = !noOverlapPasses;
             settings.sceneMemoryBytes = sceneMemory;
+            settings.timeline = !timelinePath.empty();
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
             rd::Renderer renderer(ctx, settings);
             rd::Film film;
@@ -303,19 +316,21 @@ int main(int argc, char** argv) {
                 std::cerr << "raydrive: warning: " << st.nonfiniteSamples
                           << " sample(s) with NaN or Inf were left out of the image\n";
             allStats.push_back(rd::statsToJson(st, scenePath, out));
+            for (nlohmann::json& e : rd::timelineTraceEvents(
+                     st.timeline, int(i) + 1, "frame " + std::to_string(i + 1) + " (" + out + ")"))
+                traceEvents.push_back(std::move(e));
         }
-        if (!statsPath.empty()) {
-            nlohmann::json doc = allStats.size() == 1 ? allStats[0] : allStats;
-            if (statsPath == "-") {
-                for (const auto& s : allStats) rd::printStatsTable(std::cout, s);
-            } else {
-                std::ofstream f(statsPath);
-                f << doc.dump(2) << "\n";
-                if (!f) {
-                    std::cerr << "raydrive: error: cannot write stats to " << statsPath << "\n";
-                    return 4;
-                }
-            }
+        if (statsPath == "-") {
+            for (const auto& s : allStats) rd::printStatsTable(std::cout, s);
+        } else if (!statsPath.empty() &&
+                   !writeJson(statsPath, allStats.size() == 1 ? allStats[0] : allStats, 2)) {
+            std::cerr << "raydrive: error: cannot write stats to " << statsPath << "\n";
+            return 4;
+        }
+        if (!timelinePath.empty() &&
+            !writeJson(timelinePath, {{"traceEvents", traceEvents}, {"displayTimeUnit", "ms"}})) {
+            std::cerr << "raydrive: error: cannot write the timeline to " << timelinePath << "\n";
+            return 4;
         }
     } catch (const rd::ClError& e) {
         std::cerr << "raydrive: error: " << e.what() << "\n";

@@ -13,7 +13,7 @@ void Profiler::record(const std::string& kernel, cl_event ev, uint64_t launched)
     KernelStats& s = m_stats[kernel];
     ++s.launches;
     s.launchedItems += launched;
-    m_pending.push_back({kernel, ev, m_waitPending});
+    m_pending.push_back({kernel, ev, m_waitPending, launched});
     m_waitPending = false;
 }
 
@@ -28,9 +28,15 @@ void Profiler::collect() {
             end >= start) {
             m_stats[p.kernel].deviceMs += double(end - start) * 1e-6;
             // (an in-order queue: the events come in the order they ran)
-            if (m_lastEnd > 0 && start > m_lastEnd)
-                (p.afterWait ? m_idleAfterWaitsMs : m_launchGapsMs) +=
-                    double(start - m_lastEnd) * 1e-6;
+            const double idleMs =
+                m_lastEnd > 0 && start > m_lastEnd ? double(start - m_lastEnd) * 1e-6 : 0.0;
+            (p.afterWait ? m_idleAfterWaitsMs : m_launchGapsMs) += idleMs;
+            if (m_keepTimeline) {
+                if (m_timeline.empty()) m_firstStart = start;
+                m_timeline.push_back({p.kernel, double(start - std::min(start, m_firstStart)) * 1e-3,
+                                      double(end - start) * 1e-3, idleMs * 1e3, p.launched,
+                                      p.afterWait});
+            }
             m_lastEnd = std::max(m_lastEnd, end);
         }
         clReleaseEvent(p.event);

@@ -21,6 +21,16 @@ struct KernelStats {
     }
 };
 
+// One kernel run as the device ran it (Profiler::keepTimeline, raydrive --timeline):
+// microseconds on the device clock from the profiler's first kernel, and the device's idle
+// time just before it, the host's (after a host wait) or the runtime's (a launch gap).
+struct TimelineEvent {
+    std::string kernel;
+    double startUs = 0, durationUs = 0, idleBeforeUs = 0;
+    uint64_t launchedItems = 0;
+    bool afterWait = false;
+};
+
 class Profiler {
 public:
     explicit Profiler(const ClContext& ctx) : m_ctx(ctx) {}
@@ -40,12 +50,16 @@ public:
     // queued (the runtime's own cost of a launch).
     double idleAfterWaitsMs() const { return m_idleAfterWaitsMs; }
     double launchGapsMs() const { return m_launchGapsMs; }
+    // Keep every kernel run from now on, in the order they ran (collect() adds them).
+    void keepTimeline() { m_keepTimeline = true; }
+    const std::vector<TimelineEvent>& timeline() const { return m_timeline; }
 
 private:
     struct Pending {
         std::string kernel;
         cl_event event;
         bool afterWait;
+        uint64_t launched;
     };
     const ClContext& m_ctx;
     std::vector<Pending> m_pending;
@@ -53,6 +67,9 @@ private:
     bool m_waitPending = false;
     cl_ulong m_lastEnd = 0;  // device clock, ns; 0 before the first kernel
     double m_idleAfterWaitsMs = 0, m_launchGapsMs = 0;
+    bool m_keepTimeline = false;
+    cl_ulong m_firstStart = 0;  // the timeline's zero, device clock, ns
+    std::vector<TimelineEvent> m_timeline;
 };
 
 class Kernel {

@@ -188,6 +188,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     Program program(m_ctx, assembleClSource(sources, shading.generated), buildOptions(f));
     st.program = program.info();
     Profiler prof(m_ctx);
+    if (m_settings.timeline) prof.keepTimeline();
     RenderKernels k(m_ctx, program.get(), prof, shading.shadeKernels);
     if (f.shadowPackets) k.intersectShadow.setLanesPerItem(RT_PACKET_RAYS);
     if (f.closestPackets) k.intersectClosest.setLanesPerItem(RT_PACKET_RAYS);
@@ -597,6 +598,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     if (treelets) treelets->collectActive();
     m_ctx.finish();  // the copies above
     st.kernels = prof.stats();
+    st.timeline = prof.timeline();
     if (f.textures) {
         textures.stats().lookups = texCounts[1];
         textures.stats().missedLookups = texCounts[2];

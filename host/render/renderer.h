@@ -39,6 +39,7 @@ struct RenderSettings {
     // bytes the BVH may take (0: the scene's "scenememory", else all: treelets resident).
     size_t treeletBytes = 0;
     size_t sceneMemoryBytes = 0;
+    bool timeline = false;  // keep every kernel run in RenderStats::timeline (--timeline)
 };
 
 // One point of the error-against-time series in --stats.
@@ -92,6 +93,7 @@ struct RenderStats {
     ProgramBuildInfo program;
     std::string device, platform;
     std::map<std::string, KernelStats> kernels;
+    std::vector<TimelineEvent> timeline;  // every kernel run (RenderSettings::timeline)
     TextureStats textures;
     TreeletStats treelets;
     // DelayedReadArchive calls (keys) rays reached before they were loaded: the render
