@@ -3,6 +3,7 @@
 
 #include "cl/include/ray.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -24,6 +25,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.shadowRays = shading.shadowRays;
     f.lightCoefficients = shading.lightCoefs;
     f.trace = shading.usesTrace;
+    f.traceSlots = shading.usesTrace ? std::max(1, shading.traceSlots) : 0;
     f.sampledTrace = shading.sampledTrace;
     f.maxSpecularDepth = scene.maxSpecularDepth;
     f.maxTransparentDepth = scene.maxTransparentDepth;
@@ -137,6 +139,7 @@ void chooseTraversal(Features& f, int bvhWidth, bool shadowPackets, bool closest
 std::string buildOptions(const Features& f) {
     // No fast-math: watertight intersection and robust offsets rely on IEEE rounding.
     std::string o = "-cl-std=CL1.2 -DRT_SPAWN_SLOTS=" + std::to_string(f.spawnSlots()) +
+                    " -DRSL_MAX_TRACE=" + std::to_string(std::max(1, f.traceSlots)) +
                     " -DRT_MAX_SPECULAR_DEPTH=" + std::to_string(f.maxSpecularDepth);
     if (f.smoothNormals) o += " -DRT_HAS_SMOOTH_NORMALS";
     if (f.transparency)

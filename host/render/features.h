@@ -64,8 +64,9 @@ struct Features {
     ColorSamples colors;
 
     std::vector<std::string> names() const;
-    // Rays a shaded hit may spawn: its continuation, plus RSL_MAX_TRACE traced rays.
-    int spawnSlots() const { return trace ? 1 + 8 : 1; }
+    int traceSlots = 0;         // the most trace() rays a surface's evaluation spawns
+    // Rays a shaded hit may spawn: its continuation, plus its traced rays.
+    int spawnSlots() const { return trace ? 1 + traceSlots : 1; }
 };
 
 Features analyse(const Scene& scene, const ShadingSetup& shading);

@@ -461,6 +461,7 @@ ShadingSetup ShaderSet::prepare() {
                 k.replace(p, 7, sh->name);
             kernels << k << "\n";
             out.usesTrace |= sh->usesTrace;
+            out.traceSlots = std::max(out.traceSlots, sh->traceBound);
             out.lightCoefs |= lightCoefs && sh->lightCoefs;
             out.sampledTrace |= sh->usesTrace && sh->usesRandom;
             out.derivatives |= sh->usesDerivatives;
@@ -557,7 +558,6 @@ ShadingSetup ShaderSet::prepare() {
             out.pointParamLayout.insert(out.pointParamLayout.end(), lay.begin(), lay.end());
         }
     }
-    out.traceSlots = out.usesTrace ? 8 : 0;  // RSL_MAX_TRACE
     // Light parameters are baked constants; each of the first kInlinedLightInstances
     // instances' calls is inlined (RD_SPECIALISED_LIGHTS), so the compiler folds its
     // uniform work (SPD gears, five spotlights: shade_spd 154 -> 127 ms, images bit for

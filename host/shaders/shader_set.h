@@ -56,7 +56,7 @@ struct ShadingSetup {
     // Some surface calls trace() and random(): its traced rays sample directions (glossy,
     // diffuse), incoherent, unlike mirror and glass rays.
     bool sampledTrace = false;
-    int traceSlots = 0;                     // rays a hit may spawn with trace()
+    int traceSlots = 0;  // rays a hit may spawn with trace(): the surfaces' most a run
     bool atmosphere = false;                // some surface has an Atmosphere shader
     bool displacement = false;              // some surface has a Displacement shader
     bool derivatives = false;               // some surface shader takes derivatives

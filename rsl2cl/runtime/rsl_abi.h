@@ -160,7 +160,11 @@
 #ifndef RSL_ABI_H
 #define RSL_ABI_H
 
+/* The trace() rays one evaluation records (trace_org/trace_dir). A renderer may define it
+ * smaller: the most its shaders' evaluations make (rsl2cl's EmittedShader::traceBound). */
+#ifndef RSL_MAX_TRACE
 #define RSL_MAX_TRACE 8
+#endif
 /* LIGHT COEFFICIENTS: the extra argument of user functions whose result depends on the
  * lights (the array of its parts per light) */
 #ifdef RSL_LIGHT_COEFS

@@ -346,6 +346,8 @@ std::string Emitter::builtin(const Expr& e) {
     }
     if (n == "trace") {
         m_out.usesTrace = true;
+        if (m_func || !m_loops.empty() || !m_lightVars.empty()) m_traceRepeats = true;
+        else m_traceSites.insert(&e);
         return "rsl_trace(ev, " + A(0) + ", " + A(1) + ")";
     }
     if (n == "transmission") return "rsl_f2v(1.0f)";

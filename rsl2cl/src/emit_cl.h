@@ -46,6 +46,12 @@ struct EmittedShader {
     std::string prepFunction;
     std::vector<std::string> hoisted;  // the variables it computes, for --info
     bool usesTrace = false, usesDerivatives = false, usesTexture = false;
+    // The most trace() calls one evaluation can make: one per call site in the shader's
+    // body outside loops; kMaxTrace (RSL_MAX_TRACE's default) when a call may repeat (in
+    // a loop, an illuminance loop or a user function). The renderer sizes its spawned
+    // rays by it (rsl_abi.h RSL_MAX_TRACE).
+    int traceBound = 0;
+    static constexpr int kMaxTrace = 8;
     bool usesRandom = false;  // calls random(): with trace(), rays in sampled directions
     bool usesLighting = false;  // illuminance, diffuse, specular, phong, ambient
     bool ambientLight = false;  // a light shader with no illuminate/solar

@@ -128,6 +128,8 @@ public:
     std::set<const FunctionDecl*> m_fnUsesSpaces;
     HoistPlan m_hoist;  // declarations computed once per instance
     std::vector<int> m_loops;  // ids of the enclosing loops, innermost last
+    std::set<const Expr*> m_traceSites;  // trace() calls met once per evaluation
+    bool m_traceRepeats = false;         // a trace() call that may run more than once
     std::set<int> m_breakTargets, m_continueTargets;  // loops a break/continue N names
 };
 

@@ -48,6 +48,37 @@ TEST(Shading, MirrorTracesTheReflectedRay) {
                         std::string("trace")),
               img.stats.features.names().end());
     EXPECT_FALSE(img.stats.features.sampledTrace) << "mirror rays are coherent";
+    // one trace() a run: a hit spawns its continuation and that ray, no more slots
+    EXPECT_NE(img.stats.program.options.find("-DRT_SPAWN_SLOTS=2 "), std::string::npos)
+        << img.stats.program.options;
+}
+
+// A shader whose trace() runs in a loop (four rays a hit, each a quarter of the plane's
+// colour) gets the ABI's eight slots (RSL_MAX_TRACE), so no ray is dropped: the pixel is
+// Kr * (the colour) exactly; with fewer slots than calls it would come out darker.
+TEST(Shading, TraceInALoopGetsEverySlot) {
+    std::string dir = shaderDir("raydrive_trace_loop");
+    std::ofstream(dir + "/fourrays.sl")
+        << "surface fourrays(float Kr = 0.8) {\n"
+           "  vector r = reflect(normalize(I), normalize(N));\n"
+           "  color c = 0; float i;\n"
+           "  for (i = 0; i < 4; i += 1) c += 0.25 * trace(P, normalize(r + 0.05 * (i - 1.5) * vector(1, 0, 0)));\n"
+           "  Oi = 1; Ci = Kr * c;\n}\n";
+    Rendered img = renderRib(std::string("Option \"searchpath\" \"shader\" [\"") + dir +
+                             ":&\"]\n" + kCamera +
+                             "WorldBegin\n"
+                             "AttributeBegin\nSurface \"fourrays\"\n"
+                             "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+                             "AttributeEnd\n"
+                             "AttributeBegin\nColor [0.2 0.4 1]\nSurface \"constant\"\n"
+                             "Polygon \"P\" [-500 -500 -5  500 -500 -5  500 500 -5  -500 500 -5]\n"
+                             "AttributeEnd\nWorldEnd\n");
+    EXPECT_NE(img.stats.program.options.find("-DRT_SPAWN_SLOTS=9 "), std::string::npos)
+        << img.stats.program.options;
+    const rd::Rgba& c = img.at(16, 16);
+    EXPECT_NEAR(c.r, 0.8 * 0.2, 1e-4);
+    EXPECT_NEAR(c.g, 0.8 * 0.4, 1e-4);
+    EXPECT_NEAR(c.b, 0.8 * 1.0, 1e-4);
 }
 
 // A glossy mirror (trace() in directions jittered by random()) over the same constant

@@ -90,6 +90,38 @@ TEST(Codegen, ParamLayoutAndMetadata) {
     EXPECT_FALSE(sh.shader.params[1].constantDefault);
 }
 
+// The most trace() calls one evaluation makes (traceBound, what the renderer sizes its
+// spawned rays by): a call site each in the body, whatever branches it sits in; the ABI's
+// RSL_MAX_TRACE (8) when a call may run more than once: in a loop, an illuminance loop or
+// a user function (called from anywhere, any number of times).
+TEST(Codegen, TraceBoundCountsCallsOnceEach) {
+    ts::Shade sh;
+    std::string err;
+    auto bound = [&](const std::string& body, const std::string& functions = "") {
+        err.clear();
+        EXPECT_TRUE(sh.compileSource(functions + "surface s(float k = 1;) {\n" + body + "\n}",
+                                     "s.sl", &err))
+            << err;
+        return sh.shader.traceBound;
+    };
+    EXPECT_EQ(bound("Ci = Cs;"), 0);
+    EXPECT_EQ(bound("Ci = trace(P, N);"), 1);
+    EXPECT_EQ(bound("color c = 0; if (k > 0) c = trace(P, N); else c = trace(P, -N);\n"
+                    "Ci = c + (k > 2 ? trace(P, I) : color(0));"),
+              3);
+    EXPECT_EQ(bound("color c = 0; float i; for (i = 0; i < 2; i += 1) c += trace(P, N);\n"
+                    "Ci = c;"),
+              8);
+    EXPECT_EQ(bound("color c = 0; while (k < 0) { c += trace(P, N); }\nCi = c;"), 8);
+    EXPECT_EQ(bound("color c = 0; illuminance(P) { c += trace(P, L); }\nCi = c;"), 8);
+    EXPECT_EQ(bound("Ci = refl(N);", "color refl(normal n) { return trace(P, n); }\n"), 8);
+    std::string many = "color c = 0;";
+    for (int i = 0; i < 10; ++i) many += " c += trace(P, N + " + std::to_string(i) + ");";
+    EXPECT_EQ(bound(many + "\nCi = c;"), 8);
+    ASSERT_TRUE(sh.compileFile(shaderPath("spd"), &err)) << err;
+    EXPECT_EQ(sh.shader.traceBound, 2) << "a reflected and a refracted ray";
+}
+
 // Colour defaults reach the host as RGB, whatever space they are written in, and say
 // whether they were written as RGB triples (rgbDefault: a renderer shading in other
 // colour channels converts them) or as one float for every channel.
