@@ -26,6 +26,19 @@ std::string shaderDir(const std::string& name) {
     std::filesystem::create_directories(dir);
     return dir;
 }
+
+// A reflector with the shader `surface` (found in `dir`) facing the camera, and behind the
+// camera a wide constant plane of colour (0.2, 0.4, 1) that every reflected ray meets.
+std::string reflectorOverPlane(const std::string& dir, const std::string& surface) {
+    return std::string("Option \"searchpath\" \"shader\" [\"") + dir + ":&\"]\n" + kCamera +
+           "WorldBegin\n"
+           "AttributeBegin\nSurface \"" + surface + "\"\n"
+           "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
+           "AttributeEnd\n"
+           "AttributeBegin\nColor [0.2 0.4 1]\nSurface \"constant\"\n"
+           "Polygon \"P\" [-500 -500 -5  500 -500 -5  500 500 -5  -500 500 -5]\n"
+           "AttributeEnd\nWorldEnd\n";
+}
 }
 
 // A mirror facing the camera reflects a constant plane behind the camera: the pixel is
@@ -64,15 +77,7 @@ TEST(Shading, TraceInALoopGetsEverySlot) {
            "  color c = 0; float i;\n"
            "  for (i = 0; i < 4; i += 1) c += 0.25 * trace(P, normalize(r + 0.05 * (i - 1.5) * vector(1, 0, 0)));\n"
            "  Oi = 1; Ci = Kr * c;\n}\n";
-    Rendered img = renderRib(std::string("Option \"searchpath\" \"shader\" [\"") + dir +
-                             ":&\"]\n" + kCamera +
-                             "WorldBegin\n"
-                             "AttributeBegin\nSurface \"fourrays\"\n"
-                             "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
-                             "AttributeEnd\n"
-                             "AttributeBegin\nColor [0.2 0.4 1]\nSurface \"constant\"\n"
-                             "Polygon \"P\" [-500 -500 -5  500 -500 -5  500 500 -5  -500 500 -5]\n"
-                             "AttributeEnd\nWorldEnd\n");
+    Rendered img = renderRib(reflectorOverPlane(dir, "fourrays"));
     EXPECT_NE(img.stats.program.options.find("-DRT_SPAWN_SLOTS=9 "), std::string::npos)
         << img.stats.program.options;
     const rd::Rgba& c = img.at(16, 16);
@@ -92,15 +97,7 @@ TEST(Shading, SampledTraceWalksTheHitMasks) {
            "  vector j = vector(random(), random(), random()) - 0.5;\n"
            "  vector d = normalize(reflect(normalize(I), normalize(N)) + 0.2 * j);\n"
            "  Oi = 1; Ci = Kr * trace(P, d);\n}\n";
-    const std::string rib =
-        std::string("Option \"searchpath\" \"shader\" [\"") + dir + ":&\"]\n" + kCamera +
-        "WorldBegin\n"
-        "AttributeBegin\nSurface \"glossy\"\n"
-        "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\n"
-        "AttributeEnd\n"
-        "AttributeBegin\nColor [0.2 0.4 1]\nSurface \"constant\"\n"
-        "Polygon \"P\" [-500 -500 -5  500 -500 -5  500 500 -5  -500 500 -5]\n"
-        "AttributeEnd\nWorldEnd\n";
+    const std::string rib = reflectorOverPlane(dir, "glossy");
     rd::RenderSettings four, eight;
     four.bvhWidth = 4;
     eight.bvhWidth = 8;
