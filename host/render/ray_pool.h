@@ -79,9 +79,14 @@ struct RayPool {
     static size_t weightFloatsOf(int colorChannels) { return colorChannels == 1 ? 2 : 4; }
     const size_t weightFloats;
     // Only a scene whose shaders trace can spawn more rays than it traced: the rest
-    // (continuations through Opacity < 1 at most one a ray) never need the stack.
+    // (continuations through Opacity < 1 at most one a ray) never need the stack. Ray
+    // trees outgrow the pool over rounds, not in one, so the stack is as deep as a pool
+    // of hits spawning the ABI's most (1 + RSL_MAX_TRACE, 9) whatever the scene's own
+    // slots (sized by its shaders' trace() bound, it lost the rays of 127-ray trees
+    // through a pool of 64: Numerics.RayTreesSpillAndTheImageDoesNotDependOnThePool).
+    static constexpr size_t kSpillPerRay = 9;
     static size_t spillCapacity(size_t capacity, size_t spawn) {
-        return spawn > 1 ? capacity * spawn : 0;
+        return spawn > 1 ? capacity * kSpillPerRay : 0;
     }
     // the round's rays
     DeviceBuffer<rt_float4> origin, direction;

@@ -179,9 +179,9 @@ TEST(ColorSamples, OneChannelRaysCarryTwoFloats) {
     };
     Rendered rgb = scene(false), grey = scene(true);
     EXPECT_EQ(grey.stats.features.colors.n, 1);
-    // eye, spawned (3 a ray: its continuation and glass's two traced rays), spilled (3)
+    // eye, spawned (3 a ray: its continuation and glass's two traced rays), spilled (9)
     // and shadow (2 lights) weights: 8 bytes less each
-    EXPECT_EQ(rgb.stats.poolBytesPerRay - grey.stats.poolBytesPerRay, (1u + 3 + 3 + 2) * 8);
+    EXPECT_EQ(rgb.stats.poolBytesPerRay - grey.stats.poolBytesPerRay, (1u + 3 + 9 + 2) * 8);
     EXPECT_GT(grey.stats.spilledRays, 0u) << grey.stats.spilledRays;  // the spill stack's weights are two floats too
     EXPECT_GT(expectSameImage(rgb, grey, true), 1.0);
 }
