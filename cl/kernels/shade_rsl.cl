@@ -255,6 +255,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #if RT_SPAWN_SLOTS > 1
     /* trace(): one ray per call the base evaluation recorded */
     int traces = min(ev.trace_count, RSL_MAX_TRACE);
+    if (ev.trace_count > RSL_MAX_TRACE) /* (their rays are not traced: say so) */
+        atomic_add(&numerics[RT_NUM_TRACE_LIMIT], (uint)(ev.trace_count - RSL_MAX_TRACE));
     if (traces > 0 && RT_TRACE_DEPTH(rs) >= RT_MAX_SPECULAR_DEPTH)
         atomic_add(&numerics[RT_NUM_SPECULAR_DEPTH], (uint)traces);
     for (int i = 0; i < traces && RT_TRACE_DEPTH(rs) < RT_MAX_SPECULAR_DEPTH; ++i) {

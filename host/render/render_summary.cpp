@@ -18,7 +18,7 @@ void summariseRays(RenderStats& st, const std::vector<uint32_t>& num, int maxTra
     st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root");
     st.shadeNonfinite = num[0], st.shadeNegative = num[1], st.shadeHuge = num[2];
     st.shadeDenormal = num[3], st.transparentDepthCut = num[4], st.specularDepthCut = num[5];
-    st.rouletteEnded = num[6];
+    st.rouletteEnded = num[6], st.traceCallsIgnored = num[7];
     if (st.shadeNonfinite + st.shadeNegative + st.shadeHuge > 0)
         diag.warning(where, "shaders produced " + std::to_string(st.shadeNonfinite) +
                                 " NaN/Inf, " + std::to_string(st.shadeNegative) +
@@ -30,6 +30,10 @@ void summariseRays(RenderStats& st, const std::vector<uint32_t>& num, int maxTra
                                 "its spill stack hold; " + std::to_string(st.reissuedSamples) +
                                 " sample(s) traced again, the rest kept what they had "
                                 "(lower maxspeculardepth or trace fewer rays per hit)");
+    if (st.traceCallsIgnored > 0)
+        diag.warning(where, std::to_string(st.traceCallsIgnored) +
+                                " trace() call(s) past the " + std::to_string(st.features.traceSlots) +
+                                " a shaded point records were ignored (their rays not traced)");
     if (st.transparentDepthCut > 0)
         diag.warning(where, std::to_string(st.transparentDepthCut) +
                                 " ray(s) stopped after " + std::to_string(maxTransparentDepth) +

@@ -68,7 +68,8 @@ TEST(Shading, MirrorTracesTheReflectedRay) {
 
 // A shader whose trace() runs in a loop (four rays a hit, each a quarter of the plane's
 // colour) gets the ABI's eight slots (RSL_MAX_TRACE), so no ray is dropped: the pixel is
-// Kr * (the colour) exactly; with fewer slots than calls it would come out darker.
+// Kr * (the colour) exactly; with fewer slots than calls it would come out darker. Past
+// the eight a run records, calls are counted and warned of (stats: trace_calls_ignored).
 TEST(Shading, TraceInALoopGetsEverySlot) {
     std::string dir = shaderDir("raydrive_trace_loop");
     std::ofstream(dir + "/fourrays.sl")
@@ -84,6 +85,19 @@ TEST(Shading, TraceInALoopGetsEverySlot) {
     EXPECT_NEAR(c.r, 0.8 * 0.2, 1e-4);
     EXPECT_NEAR(c.g, 0.8 * 0.4, 1e-4);
     EXPECT_NEAR(c.b, 0.8 * 1.0, 1e-4);
+    EXPECT_EQ(img.stats.traceCallsIgnored, 0u);
+    // ten calls a run, past the eight a shaded point records: eight tenths of the colour,
+    // and the two others counted (and warned of), not lost in silence
+    std::ofstream(dir + "/tenrays.sl")
+        << "surface tenrays(float Kr = 0.8) {\n"
+           "  vector r = reflect(normalize(I), normalize(N));\n"
+           "  color c = 0; float i;\n"
+           "  for (i = 0; i < 10; i += 1) c += 0.1 * trace(P, r);\n"
+           "  Oi = 1; Ci = Kr * c;\n}\n";
+    Rendered ten = renderRib(reflectorOverPlane(dir, "tenrays"));
+    EXPECT_NEAR(ten.at(16, 16).b, 0.8 * 0.8 * 1.0, 1e-4);
+    EXPECT_EQ(ten.stats.traceCallsIgnored % 2, 0u);
+    EXPECT_GE(ten.stats.traceCallsIgnored, 2u * 32 * 32);
 }
 
 // A glossy mirror (trace() in directions jittered by random()) over the same constant
