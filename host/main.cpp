@@ -207,6 +207,10 @@ int main(int argc, char** argv) {
     bool noOverlapPasses = false;
     app.add_flag("--no-overlap-passes", noOverlapPasses,
                  "let each adaptive pass drain before the next is planned (for comparison)");
+    bool noPipelineRounds = false;
+    app.add_flag("--no-pipeline-rounds", noPipelineRounds,
+                 "queue each round's eye rays after the last round's wait, not before it "
+                 "(for comparison)");
     app.add_option("--treelet-budget", treeletBytes,
                    "trace through treelets of at most BYTES of BVH (default: Option \"limits\" "
                    "\"treeletbytes\", else the resident BVH; triangle scenes only)");
@@ -256,6 +260,7 @@ int main(int argc, char** argv) {
             settings.shadowPackets = !noShadowPackets;
             settings.closestPackets = !noClosestPackets;
             settings.overlapPasses = !noOverlapPasses;
+            settings.pipelineRounds = !noPipelineRounds;
             settings.sceneMemoryBytes = sceneMemory;
             settings.timeline = !timelinePath.empty();
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";

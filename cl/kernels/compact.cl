@@ -5,7 +5,8 @@
  * (the host reads the sums for the total); compact_scatter's work-group adds up the
  * sums before its own for its offset (a strided sum over at most a few thousand
  * numbers, no upload), then moves each live ray to its offset, keeping their order, so
- * the image does not depend on scheduling. Live rays beyond the pool's capacity (a
+ * the image does not depend on scheduling. They go behind the next round's eye rays, when
+ * the host queued those first (`base`), so that neither waits for the round's count. Live rays beyond the pool's capacity (a
  * shader tracing several rays per hit) go onto the spill stack, traced in later rounds;
  * past the stack's capacity they are dropped, never written out of bounds, and their
  * sample is marked to be issued again. The shade stage counted every spawned ray in its
@@ -16,6 +17,8 @@
 
 __kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
 void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_SPAWN_SLOTS + k */
+                     uint base, /* the first pool position (~0u: fit[1]): eye rays lie before */
+                     __global const uint* fit,
                      uint capacity, /* the pool: live rays past it go to the spill stack */
                      uint spill_top,
                      uint spill_capacity,
@@ -53,7 +56,7 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
     if (!mask) return;
     /* the group's offset and the position among its live rays: fixed-length loops PoCL
      * can vectorise */
-    uint before = 0;
+    uint before = base == ~0u ? fit[1] : base;
     for (uint k = 0; k < RT_COMPACT_GROUP; ++k)
         before += groups_before[k] + ((k < lid) ? live[k] : 0u);
     uint j = before;

@@ -13,7 +13,8 @@
 #include "scene_types.h"
 
 __kernel void generate_eye(__constant Camera* cam,
-                           uint count,
+                           uint count, /* ~0u: fit[1], what fit_refill found fits */
+                           __global const uint* fit,
                            uint ray_offset,
                            uint slot_base,
                            uint slot_capacity,
@@ -32,6 +33,7 @@ __kernel void generate_eye(__constant Camera* cam,
                            __global float* sample_time, /* RT_HAS_MOTION: in the shutter */
                            __global uint* active_counter) {
     uint k = get_global_id(0);
+    if (count == ~0u) count = fit[1];
     RT_COUNT_RANGE(active_counter, count);
     if (k >= count) return;
     const uint pixel = new_sample[2 * k], s = new_sample[2 * k + 1];
@@ -129,4 +131,40 @@ __kernel void generate_eye(__constant Camera* cam,
     aov[slot].z = dz / len;
     aov[slot].hit = 0u;
 #endif
+}
+
+/* A refill queued before the round's wait (so that the device works on while the host
+ * wakes up) does not know how many rays the round spawned: this counts them (close_round's
+ * sums per group) and finds how many of the staged jobs fit within round_cap beside them
+ * and the rays the pool takes back from the spill stack, as the host would (with no ray
+ * held, one job whatever the cap). fit = {jobs, their
+ * samples, rays spawned}; generate_eye and compact_scatter read the samples, the host all
+ * three after its wait. One work-group. */
+__kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
+void fit_refill(uint groups, __global const uint* group_live,
+                uint capacity, /* the pool */
+                uint spill_top, uint jobs,
+                __global const uint* ends, /* increasing */
+                uint round_cap, __global uint* fit, __global uint* active_counter) {
+    __local uint part[RT_COMPACT_GROUP];
+    const uint lid = get_local_id(0);
+    RT_COUNT_RANGE(active_counter, 1u);
+    uint sum = 0;
+    for (uint g = lid; g < groups; g += RT_COMPACT_GROUP) sum += group_live[g];
+    part[lid] = sum;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (lid != 0) return;
+    uint spawned = 0;
+    for (uint k = 0; k < RT_COMPACT_GROUP; ++k) spawned += part[k];
+    const uint held = spawned < capacity ? spawned + min(capacity - spawned, spill_top) : spawned;
+    uint lo = 0, hi = jobs; /* jobs [0, lo) fit; none past hi does */
+    while (lo < hi) {
+        const uint mid = (lo + hi + 1u) / 2u;
+        if (held <= round_cap && ends[mid - 1u] <= round_cap - held) lo = mid;
+        else hi = mid - 1u;
+    }
+    if (lo == 0 && held == 0 && jobs > 0) lo = 1;
+    fit[0] = lo;
+    fit[1] = lo > 0 ? ends[lo - 1u] : 0u;
+    fit[2] = spawned;
 }

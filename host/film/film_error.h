@@ -30,7 +30,11 @@ double estimateFilmError(const FilmPixels& film);
 
 // Per-pixel relative error as used for refinement: the standard error over the larger of
 // the pixel's mean and a floor, a tenth of the image's mean brightness
-// (relativeErrorFloor), so that nearly black pixels do not soak up the samples.
+// (relativeErrorFloor), so that nearly black pixels do not soak up the samples. The floor
+// moves on a grid of 2^(1/8) steps, rounded down (at most 8% under a tenth of the mean):
+// each time it falls the planner must visit every pixel, and the mean drifts by parts in
+// a million from pass to pass (SPD tetra at 9 samples a pixel: three such visits of 2-3 ms
+// each in its tail, for nothing).
 std::vector<float> pixelRelativeErrors(const FilmPixels& film);
 float relativeErrorFloor(const FilmPixels& film);
 // The same from the sum of the sampled pixels' means and their number (a planner that

@@ -82,13 +82,15 @@ public:
                         m_ctx->name());
     }
     // count elements from first on into out; without blocking, out must live until a
-    // later blocking command on the queue has returned.
-    void downloadRangeTo(size_t first, size_t count, T* out, bool blocking) const {
+    // later blocking command on the queue has returned, or `done` (when given: the read's
+    // event, for ClContext::wait; none when count is 0) has completed.
+    void downloadRangeTo(size_t first, size_t count, T* out, bool blocking,
+                         cl_event* done = nullptr) const {
         if (count)
             RD_CL_CHECK(
                 clEnqueueReadBuffer(m_ctx->queue(), m_mem, blocking ? CL_TRUE : CL_FALSE,
                                     sizeof(T) * first, sizeof(T) * count, out, 0, nullptr,
-                                    nullptr),
+                                    done),
                 m_ctx->name());
     }
     // count elements from first on (clipped to the buffer).

@@ -26,4 +26,12 @@ ClContext::~ClContext() {
 
 void ClContext::finish() const { RD_CL_CHECK(clFinish(m_queue), m_info.name); }
 
+void ClContext::wait(cl_event done) const {
+    struct Release {
+        cl_event ev;
+        ~Release() { clReleaseEvent(ev); }
+    } release{done};
+    RD_CL_CHECK(clWaitForEvents(1, &done), m_info.name);
+}
+
 }  // namespace rd

@@ -20,6 +20,9 @@ public:
     const DeviceInfo& info() const { return m_info; }
     const std::string& name() const { return m_info.name; }
     void finish() const;
+    // Waits for one command (and, the queue being in order, all before it) and releases
+    // its event; the commands queued after it go on running.
+    void wait(cl_event done) const;
 
 private:
     DeviceInfo m_info;

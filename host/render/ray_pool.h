@@ -39,7 +39,7 @@ struct RayPool {
           spillSample(ctx, spillCapacity(capacity, spawn)),
           shOrigin(ctx, capacity * shadowLights), shDirection(ctx, capacity * shadowLights),
           shWeight(ctx, capacity * shadowLights * weightFloats), shState(ctx, capacity * shadowLights),
-          newSample(ctx, 2 * capacity),
+          newSample(ctx, 2 * capacity), refillEnds(ctx, capacity), refillFit(ctx, 3),
           totals(ctx, slots), samplePixel(ctx, slots), sampleIndex(ctx, slots),
           sampleTime(ctx, motion ? slots : 0), aov(ctx, aovs ? slots : 0),
           slotRays(ctx, slots), slotAbort(ctx, slots), jobs(ctx, slots), progress(ctx, 6) {
@@ -59,7 +59,7 @@ struct RayPool {
     // Device bytes per ray of capacity, for sizing the pool to a memory budget.
     static size_t bytesPerRay(size_t spawn, uint32_t shadowLights, size_t weightFloats = 4) {
         const size_t weights = 1 + spawn + spillCapacity(1, spawn) + shadowLights;
-        return 140 + 2 * 100 + spawn * 72 + spillCapacity(1, spawn) * 68 +
+        return 144 + 2 * 100 + spawn * 72 + spillCapacity(1, spawn) * 68 +
                size_t(shadowLights) * 64 + kSlotsPerRay * 56 - weights * (4 - weightFloats) * 4;
     }
     // Rays of one round: `wanted`, or (0) enough to keep every compute unit busy (16k rays
@@ -112,8 +112,10 @@ struct RayPool {
     DeviceBuffer<rt_float4> shOrigin, shDirection;
     DeviceBuffer<float> shWeight;
     DeviceBuffer<RayState> shState;
-    // the refill: the new samples' (pixel, index) pairs
-    DeviceBuffer<uint32_t> newSample;
+    // the refill: the new samples' (pixel, index) pairs; for a refill queued before the
+    // round's wait, the staged jobs' ends (samples in jobs 0..j) and what fit_refill
+    // found fits: jobs, samples, and the rays the round spawned
+    DeviceBuffer<uint32_t> newSample, refillEnds, refillFit;
     // sample slots and pixel jobs
     DeviceBuffer<SampleTotal> totals;
     DeviceBuffer<uint32_t> samplePixel, sampleIndex;
@@ -134,13 +136,13 @@ struct RenderKernels {
           scatter(ctx, p, "scatter_by_shader", prof),
           intersectShadow(ctx, p, "intersect_shadow", prof),
           closeRound(ctx, p, "close_round", prof),
-          compactScatter(ctx, p, "compact_scatter", prof),
+          compactScatter(ctx, p, "compact_scatter", prof), fitRefill(ctx, p, "fit_refill", prof),
           retire(ctx, p, "retire_samples", prof) {
         for (const std::string& name : shadeKernels)
             shade.push_back(std::make_unique<Kernel>(ctx, p, name, prof));
     }
     Kernel generateEye, intersectClosest, classify, scatter, intersectShadow, closeRound,
-        compactScatter, retire;
+        compactScatter, fitRefill, retire;
     std::vector<std::unique_ptr<Kernel>> shade;  // one per compiled surface shader
     std::vector<Kernel*> all() {
         std::vector<Kernel*> v{&generateEye, &intersectClosest, &classify, &scatter,

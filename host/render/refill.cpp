@@ -29,13 +29,13 @@ void stageRefill(const SampleRing& ring, const std::deque<PlannedJob>& pending,
 }
 
 void Refill::prepare(const std::deque<PlannedJob>& pending, size_t roundCap) {
-    m_set ^= 1;
+    m_set = (m_set + 1) % kStagingSets;
     stageRefill(m_ring, pending, roundCap, m_staging[m_set]);
     upload();
 }
 
 void Refill::adopt(RefillStage&& stage) {
-    m_set ^= 1;
+    m_set = (m_set + 1) % kStagingSets;
     m_staging[m_set] = std::move(stage);
     upload();
 }
@@ -51,25 +51,52 @@ void Refill::upload() {
         m_pool.jobs.uploadAsync(0, records.data() + wrap, records.size() - wrap);
     const std::vector<uint32_t>& newSamples = m_staging[m_set].newSamples;
     m_pool.newSample.uploadAsync(0, newSamples.data(), newSamples.size());
+    const std::vector<uint32_t>& ends = m_staging[m_set].ends;
+    m_pool.refillEnds.uploadAsync(0, ends.data(), ends.size());
 }
 
-cl_uint Refill::commit(const std::deque<PlannedJob>& pending, cl_uint n, size_t roundCap) {
+cl_uint Refill::commit(const std::deque<PlannedJob>& pending, cl_uint offset, size_t reserved,
+                       size_t roundCap) {
     if (!m_valid || m_staging[m_set].ringBound)
         prepare(pending, roundCap);  // (slots freed since)
     m_valid = false;
     const std::vector<uint32_t>& ends = m_staging[m_set].ends;
     size_t take = 0;
-    while (take < ends.size() && (n + ends[take] <= roundCap || (n == 0 && take == 0)))
+    while (take < ends.size() && (reserved + ends[take] <= roundCap || (reserved == 0 && take == 0)))
         ++take;
     if (take == 0) return 0;
     const cl_uint add = ends[take - 1];
-    RayPool& rp = m_pool;
-    m_generateEye.launch(add, m_camera, add, n, cl_uint(m_ring.nextSlot()),
-                         cl_uint(m_ring.slotCapacity()), rp.newSample, rp.samplePixel,
-                         rp.sampleIndex, rp.slotRays, rp.slotAbort, rp.origin, rp.direction,
-                         rp.weight, rp.state, rp.sample, rp.totals, rp.aov, rp.sampleTime);
+    launchEye(add, add, offset);
     m_toBook = take;
     return add;
+}
+
+bool Refill::fit(size_t groups, size_t spillTop, size_t roundCap) {
+    const std::vector<uint32_t>& ends = m_staging[m_set].ends;
+    if (!m_valid || ends.empty()) return false;
+    m_fitRefill.launch(RT_COMPACT_GROUP, cl_uint(groups), m_pool.groupLive,
+                       cl_uint(m_pool.origin.size()), cl_uint(spillTop), cl_uint(ends.size()), m_pool.refillEnds, cl_uint(roundCap),
+                       m_pool.refillFit);
+    return true;
+}
+
+void Refill::commitFitted() {
+    m_valid = false;
+    launchEye(m_staging[m_set].ends.back(), ~0u, 0);
+}
+
+void Refill::bookFitted(std::deque<PlannedJob>& pending, uint32_t jobs) {
+    m_toBook = jobs;
+    book(pending);
+}
+
+void Refill::launchEye(cl_uint items, cl_uint count, cl_uint offset) {
+    RayPool& rp = m_pool;
+    m_generateEye.launch(items, m_camera, count, rp.refillFit, offset,
+                         cl_uint(m_ring.nextSlot()), cl_uint(m_ring.slotCapacity()),
+                         rp.newSample, rp.samplePixel, rp.sampleIndex, rp.slotRays,
+                         rp.slotAbort, rp.origin, rp.direction, rp.weight, rp.state, rp.sample,
+                         rp.totals, rp.aov, rp.sampleTime);
 }
 
 void Refill::book(std::deque<PlannedJob>& pending) {

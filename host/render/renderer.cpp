@@ -287,7 +287,14 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     const size_t spillCapacity = RayPool::spillCapacity(pool, spawn);
     const bool spawns = f.trace || f.transparency;  // else a round leaves no ray behind
     std::vector<uint32_t> keyOffsets;
-    Refill refill(ring, rp, k.generateEye, ds.cameraBuf);
+    Refill refill(ring, rp, k.generateEye, k.fitRefill, ds.cameraBuf);
+    // Near the end of a time budget, a round takes only what the device traces before it.
+    auto capRound = [&] {
+        if (timeBudget > 0 && raysPerSec > 0)
+            roundCap = std::clamp<size_t>(
+                size_t(raysPerSec * std::max(0.0, timeBudget - secondsSince(t0)) * 0.9),
+                std::min<size_t>(256, roundCap), roundCap);
+    };
     // One round over the pool's n rays: trace, sort by shader, shade, shadows.
     auto traceRound = [&] {
         if (treelets)
@@ -337,52 +344,82 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // the shade stage spawned (close_round), retire the jobs whose samples have no ray
     // left, both read back at one wait; then compact the spawned rays into the pool, past
     // its capacity onto the spill stack, and top the pool up from the stack (newest first,
-    // as a stack keeps ray trees shallow).
+    // as a stack keeps ray trees shallow). Pipelined (RenderSettings::pipelineRounds), the
+    // next round's eye rays and the compaction behind them are queued before the wait,
+    // which waits for the reads alone: the eye rays take the room the spawned rays leave
+    // if they are as many, against the rays traced, as the last round's were.
     // Retired jobs go to the film and the oldest ones free their slots; aborted jobs (a
     // ray dropped) are issued again, once.
     uint64_t nonfiniteRetired = 0;  // samples the film left out: a later pass replaces them
     uint32_t retireLaunches = 0;    // its parity picks retire_samples' progress half
     uint32_t prog[3] = {0u, 0u, 0u};  // oldest in flight, aborted, NaN/Inf
     std::vector<uint32_t> live;  // close_round's live rays per group of traced rays
+    uint32_t fitted[3] = {0u, 0u, 0u};  // fit_refill's: jobs, their samples, rays spawned
+    bool eyeQueued = false;  // the next round's eye rays are queued (pipelined)
     auto finishRound = [&](std::deque<PlannedJob>& pending, cl_uint traced) {
         const bool compact = spawns && traced > 0;
         const size_t groups = (traced + RT_COMPACT_GROUP - 1) / RT_COMPACT_GROUP;
+        const cl_uint window = cl_uint(ring.inFlight());
+        const cl_uint parity = retireLaunches & 1u;
         if (traced > 0 && (compact || nl > 0))
             k.closeRound.launch(traced, traced, nl, cl_uint(compact), rp.sample, rp.shWeight,
                                 rp.shState, rp.totals, rp.spawnMask, rp.groupLive);
-        if (compact) {
-            live.resize(groups);
-            rp.groupLive.downloadRangeTo(0, groups, live.data(), /*blocking=*/false);
-        } else {
-            n = 0;
-        }
-        const cl_uint window = cl_uint(ring.inFlight());
         if (window > 0) {
-            const cl_uint parity = retireLaunches++ & 1u;
+            ++retireLaunches;
             k.retire.launch(window, cl_uint(ring.frontPosition()), window,
                             cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()),
                             parity, rp.jobs, rp.slotRays, rp.slotAbort, rp.totals,
                             filmBuf, rp.aov, aovBuf, rp.progress);
-            rp.progress.downloadRangeTo(3 * parity, 3, prog, /*blocking=*/false);
         }
         refill.prepare(pending, roundCap);  // while the device finishes the round
+        // Pipelined, the wait is for the retire's read (none without jobs in flight).
+        capRound();
+        const bool pipelined = m_settings.pipelineRounds && window > 0 &&
+                               refill.fit(compact ? groups : 0, spillTop, roundCap);
+        if (pipelined) {
+            rp.refillFit.downloadRangeTo(0, 3, fitted, /*blocking=*/false);
+        } else if (compact) {
+            live.resize(groups);
+            rp.groupLive.downloadRangeTo(0, groups, live.data(), /*blocking=*/false);
+        }
+        cl_event readsDone = nullptr;
+        if (window > 0)
+            rp.progress.downloadRangeTo(3 * parity, 3, prog, /*blocking=*/false, &readsDone);
+        auto compactBehind = [&](cl_uint base) {
+            k.compactScatter.launch(traced, traced, base, rp.refillFit, cl_uint(pool),
+                                    cl_uint(spillTop), cl_uint(spillCapacity), rp.groupLive,
+                                    rp.spawnMask, rp.nextOrigin, rp.nextDirection,
+                                    rp.nextWeight, rp.nextState, rp.nextSample, rp.origin,
+                                    rp.direction, rp.weight, rp.state, rp.sample,
+                                    rp.spillOrigin, rp.spillDirection, rp.spillWeight,
+                                    rp.spillState, rp.spillSample, rp.slotRays, rp.slotAbort);
+        };
+        if (pipelined) {  // eye rays at the pool's front, the spawned rays behind them
+            refill.commitFitted();
+            if (compact) compactBehind(~0u);
+        }
         prof.markHostWait();
-        m_ctx.finish();
-        if (compact) {
-            size_t total = 0;
+        if (pipelined) m_ctx.wait(readsDone);
+        else {
+            if (readsDone) clReleaseEvent(readsDone);
+            m_ctx.finish();
+        }
+        size_t added = 0, total = 0;
+        if (pipelined) {
+            refill.bookFitted(pending, fitted[0]);
+            added = fitted[1], total = fitted[2];
+            st.eyeRays += added;
+            eyeQueued = added > 0;  // (else the next round's start commits after all)
+        } else if (compact) {
             for (size_t g = 0; g < groups; ++g) total += live[g];
-            if (total > 0)
-                k.compactScatter.launch(traced, traced, cl_uint(pool), cl_uint(spillTop),
-                                        cl_uint(spillCapacity), rp.groupLive, rp.spawnMask,
-                                        rp.nextOrigin, rp.nextDirection, rp.nextWeight,
-                                        rp.nextState, rp.nextSample, rp.origin, rp.direction,
-                                        rp.weight, rp.state, rp.sample, rp.spillOrigin,
-                                        rp.spillDirection, rp.spillWeight, rp.spillState,
-                                        rp.spillSample, rp.slotRays, rp.slotAbort);
-            n = cl_uint(std::min(total, pool));
-            if (total > pool) {
-                const size_t spilled = std::min(total - pool, spillCapacity - spillTop);
-                st.overflowRays += total - pool - spilled;  // dropped: the sample goes again
+            if (total > 0) compactBehind(0);
+        }
+        const size_t held = added + total;  // (compact_scatter spills past the pool)
+        n = cl_uint(std::min(held, pool));
+        if (compact) {
+            if (held > pool) {
+                const size_t spilled = std::min(held - pool, spillCapacity - spillTop);
+                st.overflowRays += held - pool - spilled;  // dropped: the sample goes again
                 spillTop += spilled;
                 st.spilledRays += spilled;
             } else if (spillTop > 0) {
@@ -478,13 +515,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         bool overlap = overlapPasses, planDue = false;
         while (!pending.empty() || ring.inFlight() > 0) {
             if (stopNow()) return false;
-            if (timeBudget > 0 && raysPerSec > 0)
-                roundCap = std::clamp<size_t>(
-                    size_t(raysPerSec * std::max(0.0, timeBudget - secondsSince(t0)) * 0.9),
-                    std::min<size_t>(256, roundCap), roundCap);
-            const cl_uint added = refill.commit(pending, n, roundCap);
-            n += added;
-            st.eyeRays += added;
+            if (!eyeQueued) {
+                capRound();
+                const cl_uint added = refill.commit(pending, n, n, roundCap);
+                n += added;
+                st.eyeRays += added;
+            }
+            eyeQueued = false;
             if (n == 0 && spillTop == 0 && ring.inFlight() == 0)
                 throw std::runtime_error("internal error: a pixel job larger than the ray pool");
             const auto tRound = Clock::now();

@@ -28,6 +28,10 @@ struct RenderSettings {
     // Plan the next adaptive pass while the last one's tail drains (its pixels in flight
     // wait a pass), so that eye rays keep the pool full; false: each pass drains first.
     bool overlapPasses = true;
+    // Queue the next round's eye rays (at the pool's front) and the compaction of the
+    // spawned rays (behind them) before the round's wait, so that the device does not
+    // idle while the host wakes up; false: both after it (the rays as many as fit).
+    bool pipelineRounds = true;
     double timeBudget = 0;    // seconds; 0 = none (also from Option "render" "time")
     double errorTarget = 0;   // relative film error; 0 = none ("render" "error")
     int firstPassBlock = 0;   // 0 = the scene's option (default 2: 1/4 ray per pixel)

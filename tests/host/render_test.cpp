@@ -218,3 +218,39 @@ TEST(Render, EmptyWorld) {
     Rendered img = renderRib(camera(8, 45, 1) + "WorldBegin\nWorldEnd\n");
     EXPECT_EQ(img.mean(3, 0, 0, 8, 8), 0.0);
 }
+
+// Pipelined rounds (the default) queue the next round's eye rays at the pool's front and
+// the spawned rays' compaction behind them before the round's wait, fit_refill finding
+// on the device how many jobs fit beside the rays spawned. The same rays are traced in
+// the same rounds as with both queued after the wait: the same image, up to the order
+// in which a sample's rays add to its total, and the same number of rounds and rays,
+// through a pool small enough that glass spawns past it onto the spill stack.
+TEST(Render, PipelinedRoundsTraceTheSameRays) {
+    const std::string rib = camera(32, 45, 3) +
+                            "WorldBegin\nLightSource \"pointlight\" 1 \"from\" [1 2 0] "
+                            "\"intensity\" 20\nSurface \"plastic\"\n" + kPlaneAt5 +
+                            "AttributeBegin\nSurface \"glass\"\nTranslate -0.6 0 3.5\n"
+                            "Sphere 0.8 -0.8 0.8 360\nAttributeEnd\n"
+                            "AttributeBegin\nSurface \"mirror\"\nTranslate 0.7 0 4\n"
+                            "Sphere 0.7 -0.7 0.7 360\nAttributeEnd\nWorldEnd\n";
+    rd::RenderSettings after, before;
+    after.pipelineRounds = false;
+    after.overlapPasses = before.overlapPasses = false;  // passes by pixel error alone
+    after.poolCapacity = before.poolCapacity = 256;
+    Rendered a = renderRib(rib, after), b = renderRib(rib, before);
+    EXPECT_EQ(a.stats.kernels.count("fit_refill") ? a.stats.kernels.at("fit_refill").launches : 0u,
+              0u);
+    ASSERT_TRUE(b.stats.kernels.count("fit_refill"));
+    EXPECT_GT(b.stats.kernels.at("fit_refill").launches, 0u);
+    EXPECT_GT(b.stats.spilledRays, 0u);
+    EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+    EXPECT_EQ(a.stats.eyeRays, b.stats.eyeRays);
+    EXPECT_EQ(a.stats.totalRays(), b.stats.totalRays());
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    float worst = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        worst = std::max({worst, std::fabs(a.pixels[i].r - b.pixels[i].r),
+                          std::fabs(a.pixels[i].g - b.pixels[i].g),
+                          std::fabs(a.pixels[i].a - b.pixels[i].a)});
+    EXPECT_LT(worst, 1e-5f);
+}
