@@ -6,8 +6,6 @@
 #include <cmath>
 #include <functional>
 #include <thread>
-#include <cstdio>
-#include <cstdlib>
 
 namespace rd {
 
@@ -92,7 +90,6 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
     const bool all = !m_settings.incremental || m_relErr.empty();
     if (m_relErr.empty()) m_relErr.assign(size_t(m_width) * size_t(m_height), INFINITY);
     const bool floorFell = floor < m_lastFloor;
-    if (getenv("RD_PLANDBG")) fprintf(stderr, "floor %.6g last %.6g fell %d pe %g\n", floor, m_lastFloor, int(floorFell), pixelError);
     // When the pixel error did not tighten and the floor did not fall, every pixel off the
     // test set answers "no" again: visit the test set alone (in tile order), not every
     // pixel, so that a pass costs what it samples (a 512x512 frame took 0.7 ms a pass
