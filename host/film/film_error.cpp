@@ -6,33 +6,6 @@
 
 namespace rd {
 
-// (The planner evaluates these for every pixel it tests, and its neighbours' means: one
-// and three divisions where there were two and eleven; a 512x512 frame's full test took
-// 10 ms, now 8.8.)
-float pixelMean(const PixelAccum& p) {
-    if (p.count == 0) return 0.0f;
-    return float((double(p.sum.x) + p.sum.y + p.sum.z) / (3.0 * double(p.count)));
-}
-
-PixelEstimate estimatePixel(const PixelAccum& p) {
-    PixelEstimate e;
-    if (p.count == 0) return e;
-    const double n = p.count, inv = 1.0 / n;
-    e.mean = pixelMean(p);
-    if (p.count < 2) return e;
-    // Variance of the mean, per channel (sum of squared deviations / (n - 1) / n),
-    // averaged over the three colour channels.
-    double dev = 0;
-    const float* s = &p.sum.x;
-    const float* q = &p.sum_sq.x;
-    for (int c = 0; c < 3; ++c) {
-        const double m = s[c] * inv;
-        dev += std::max(0.0, q[c] - n * m * m);
-    }
-    e.stdError = float(std::sqrt(dev / (3.0 * n * (n - 1.0))));
-    return e;
-}
-
 double estimateFilmError(const FilmPixels& film) {
     double varSum = 0, meanSum = 0;
     size_t withVar = 0, withMean = 0;
@@ -63,10 +36,6 @@ float relativeErrorFloorOf(double meanSum, double pixels) {
     return std::exp2(std::floor(std::log2(tenth) * 8.0f) * 0.125f);
 }
 
-float pixelRelativeError(const PixelAccum& p, float floor) {
-    PixelEstimate e = estimatePixel(p);
-    return e.stdError / std::max(e.mean, floor);
-}
 
 std::vector<float> pixelRelativeErrors(const FilmPixels& film) {
     const float floor = relativeErrorFloor(film);
