@@ -252,5 +252,7 @@ TEST(Render, PipelinedRoundsTraceTheSameRays) {
         worst = std::max({worst, std::fabs(a.pixels[i].r - b.pixels[i].r),
                           std::fabs(a.pixels[i].g - b.pixels[i].g),
                           std::fabs(a.pixels[i].a - b.pixels[i].a)});
+    std::printf("%u rounds, %llu rays spilled; largest pixel difference %.2e\n",
+                unsigned(b.stats.iterations), (unsigned long long)b.stats.spilledRays, worst);
     EXPECT_LT(worst, 1e-5f);
 }
