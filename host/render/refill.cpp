@@ -82,6 +82,7 @@ bool Refill::fit(size_t groups, size_t spillTop, size_t roundCap) {
 
 void Refill::commitFitted() {
     m_valid = false;
+    m_fittedRingBound = m_staging[m_set].ringBound;
     launchEye(m_staging[m_set].ends.back(), ~0u, 0);
 }
 

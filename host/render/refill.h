@@ -62,6 +62,9 @@ public:
     // the host has read refillFit, book the jobs it says with bookFitted.
     bool fit(size_t groups, size_t spillTop, size_t roundCap);
     void commitFitted();
+    // The jobs commitFitted() launched were cut by the slot ring (as it was before the
+    // round's retire): more may fit now.
+    bool fittedRingBound() const { return m_fittedRingBound; }
     void bookFitted(std::deque<PlannedJob>& pending, uint32_t jobs);
     void book(std::deque<PlannedJob>& pending);
 
@@ -80,6 +83,7 @@ private:
     int m_set = 0;
     bool m_valid = false;
     size_t m_toBook = 0;  // jobs launched, not yet in the ring's books
+    bool m_fittedRingBound = false;
     void upload();
     // generate_eye over `items` work-items for `count` samples (~0u: fit_refill's)
     void launchEye(cl_uint items, cl_uint count, cl_uint offset);

@@ -409,7 +409,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             refill.bookFitted(pending, fitted[0]);
             added = fitted[1], total = fitted[2];
             st.eyeRays += added;
-            eyeQueued = added > 0;  // (else the next round's start commits after all)
+            // (else the next round's start commits after all; and it adds what the slot
+            // ring held back before the retire freed slots)
+            eyeQueued = added > 0 && !refill.fittedRingBound();
         } else if (compact) {
             for (size_t g = 0; g < groups; ++g) total += live[g];
             if (total > 0) compactBehind(0);
