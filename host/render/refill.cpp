@@ -80,15 +80,19 @@ bool Refill::fit(size_t groups, size_t spillTop, size_t roundCap) {
     return true;
 }
 
-void Refill::commitFitted() {
+void Refill::commitFitted(std::deque<PlannedJob>& pending) {
     m_valid = false;
     m_fittedRingBound = m_staging[m_set].ringBound;
     launchEye(m_staging[m_set].ends.back(), ~0u, 0);
+    m_toBook = m_staging[m_set].ends.size();
+    book(pending);
 }
 
 void Refill::bookFitted(std::deque<PlannedJob>& pending, uint32_t jobs) {
-    m_toBook = jobs;
-    book(pending);
+    for (size_t k = m_staging[m_set].ends.size(); k > jobs; --k) {
+        pending.push_front(m_ring.at(m_ring.inFlight() - 1));
+        m_ring.popBack(1);
+    }
 }
 
 void Refill::launchEye(cl_uint items, cl_uint count, cl_uint offset) {

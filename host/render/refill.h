@@ -58,10 +58,12 @@ public:
                    size_t roundCap);
     // Queues fit_refill over the prepared jobs beside the rays close_round counted in
     // `groups` groups and those the pool takes back from the spill stack's `spillTop`
-    // (RayPool::refillFit); returns false, queuing nothing, when no job is prepared. commitFitted() then queues their generate_eye at the pool's front; once
-    // the host has read refillFit, book the jobs it says with bookFitted.
+    // (RayPool::refillFit); returns false, queuing nothing, when no job is prepared.
+    // commitFitted() then queues their generate_eye at the pool's front and books every
+    // prepared job while the device works; once the host has read refillFit,
+    // bookFitted takes back those that did not fit (usually none).
     bool fit(size_t groups, size_t spillTop, size_t roundCap);
-    void commitFitted();
+    void commitFitted(std::deque<PlannedJob>& pending);
     // The jobs commitFitted() launched were cut by the slot ring (as it was before the
     // round's retire): more may fit now.
     bool fittedRingBound() const { return m_fittedRingBound; }

@@ -395,7 +395,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                     rp.spillState, rp.spillSample, rp.slotRays, rp.slotAbort);
         };
         if (pipelined) {  // eye rays at the pool's front, the spawned rays behind them
-            refill.commitFitted();
+            refill.commitFitted(pending);
             if (compact) compactBehind(~0u);
         }
         prof.markHostWait();

@@ -53,6 +53,12 @@ void SampleRing::popFront(size_t n) {
     m_inFlight -= n;
 }
 
+void SampleRing::popBack(size_t n) {
+    n = std::min(n, m_inFlight);
+    m_inFlight -= n;
+    m_pushed = m_inFlight == 0 ? m_popped : m_jobEnd[(m_frontPos + m_inFlight - 1) % jobCapacity()];
+}
+
 void SampleRing::markPixelsInFlight(std::vector<uint8_t>& busy) const {
     for (size_t k = 0; k < m_inFlight; ++k)
         if (const uint32_t p = at(k).pixel; p < busy.size()) busy[p] = 1;

@@ -54,6 +54,9 @@ public:
     // The oldest `n` jobs retired (or were aborted): their slots are free again. O(1): a
     // round retires thousands of one-sample jobs.
     void popFront(size_t n);
+    // The newest `n` jobs taken back, never issued (their slots free again): pushed
+    // before the device said how many of them fit.
+    void popBack(size_t n);
     uint64_t samplesInFlight() const { return m_pushed - m_popped; }
     // Marks busy[pixel] for every job in flight (jobs retired behind an older one still
     // in flight included: the host has not freed them yet).

@@ -151,3 +151,32 @@ TEST(SampleRing, OnlyAPixelsSoleJobIsExclusive) {
     again.lastTry = true;  // issued again after an abort: still the pixel's only job
     EXPECT_EQ(ring.push(again).state, RT_JOB_LAST_TRY | RT_JOB_EXCLUSIVE);
 }
+
+// A pipelined refill books every staged job before the device says how many fit, then
+// takes the rest back (popBack): the ring is as if only those had been pushed, across the
+// slot ring's wrap.
+TEST(SampleRing, JobsTakenBackLeaveTheRingAsBefore) {
+    SampleRing ring(10);
+    ring.push({1, 0, 4, false});
+    ring.push({2, 0, 3, false});
+    ring.popFront(1);  // slots 4..6 in flight, the next is 7
+    const size_t slot = ring.nextSlot(), pos = ring.nextJobPosition();
+    const uint64_t inFlight = ring.samplesInFlight();
+    ring.push({3, 0, 2, false});  // slots 7, 8
+    ring.push({4, 0, 3, true});   // slots 9, 0, 1
+    ring.popBack(1);
+    EXPECT_EQ(ring.inFlight(), 2u);
+    EXPECT_EQ(ring.samplesInFlight(), inFlight + 2);
+    EXPECT_EQ(ring.nextSlot(), 9u);
+    ring.popBack(1);
+    EXPECT_EQ(ring.nextSlot(), slot);
+    EXPECT_EQ(ring.nextJobPosition(), pos);
+    EXPECT_EQ(ring.samplesInFlight(), inFlight);
+    EXPECT_EQ(ring.at(0).pixel, 2u);
+    PixelJob again = ring.push({4, 0, 3, true});  // pushed again: the same slots as before
+    EXPECT_EQ(again.first_slot, 7u);
+    ring.popBack(5);  // more than in flight: all of them, job 2 too
+    EXPECT_EQ(ring.inFlight(), 0u);
+    EXPECT_EQ(ring.samplesInFlight(), 0u);
+    EXPECT_EQ(ring.nextSlot(), 4u);  // job 2's slots, after the retired job 1's
+}
