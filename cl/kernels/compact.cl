@@ -6,11 +6,12 @@
  * sums before its own for its offset (a strided sum over at most a few thousand
  * numbers, no upload), then moves each live ray to its offset, keeping their order, so
  * the image does not depend on scheduling. They go behind the next round's eye rays, when
- * the host queued those first (`base`), so that neither waits for the round's count. Live rays beyond the pool's capacity (a
- * shader tracing several rays per hit) go onto the spill stack, traced in later rounds;
- * past the stack's capacity they are dropped, never written out of bounds, and their
- * sample is marked to be issued again. The shade stage counted every spawned ray in its
- * sample's rays in flight; a dropped ray is taken off again.
+ * the host queued those first (`base`), so that neither waits for the round's count.
+ * Live rays beyond the pool's capacity (a shader tracing several rays per hit) go onto
+ * the spill stack, traced in later rounds; past the stack's capacity they are dropped,
+ * never written out of bounds, and their sample is marked to be issued again. The shade
+ * stage counted every spawned ray in its sample's rays in flight; a dropped ray is taken
+ * off again.
  * Work-groups are RT_COMPACT_GROUP wide. */
 #include "counters.clh"
 #include "ray.h"

@@ -137,9 +137,9 @@ __kernel void generate_eye(__constant Camera* cam,
  * wakes up) does not know how many rays the round spawned: this counts them (close_round's
  * sums per group) and finds how many of the staged jobs fit within round_cap beside them
  * and the rays the pool takes back from the spill stack, as the host would (with no ray
- * held, one job whatever the cap). fit = {jobs, their
- * samples, rays spawned}; generate_eye and compact_scatter read the samples, the host all
- * three after its wait. One work-group. */
+ * held, one job whatever the cap). fit = {jobs, their samples, rays spawned};
+ * generate_eye and compact_scatter read the samples, the host all three after its wait.
+ * One work-group. */
 __kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
 void fit_refill(uint groups, __global const uint* group_live,
                 uint capacity, /* the pool */

@@ -36,7 +36,6 @@ float relativeErrorFloorOf(double meanSum, double pixels) {
     return std::exp2(std::floor(std::log2(tenth) * 8.0f) * 0.125f);
 }
 
-
 std::vector<float> pixelRelativeErrors(const FilmPixels& film) {
     const float floor = relativeErrorFloor(film);
     std::vector<float> out(film.size(), 0.0f);

@@ -345,9 +345,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // left, both read back at one wait; then compact the spawned rays into the pool, past
     // its capacity onto the spill stack, and top the pool up from the stack (newest first,
     // as a stack keeps ray trees shallow). Pipelined (RenderSettings::pipelineRounds), the
-    // next round's eye rays and the compaction behind them are queued before the wait,
-    // which waits for the reads alone: the eye rays take the room the spawned rays leave
-    // if they are as many, against the rays traced, as the last round's were.
+    // compaction is queued before the wait, which waits for the round's reads alone, and
+    // so are the next round's eye rays, at the pool's front, as many of the staged jobs
+    // as fit_refill finds fit beside the spawned rays.
     // Retired jobs go to the film and the oldest ones free their slots; aborted jobs (a
     // ray dropped) are issued again, once.
     uint64_t nonfiniteRetired = 0;  // samples the film left out: a later pass replaces them
@@ -374,9 +374,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         refill.prepare(pending, roundCap);  // while the device finishes the round
         // Pipelined, the wait is for the retire's read (none without jobs in flight).
         capRound();
-        const bool pipelined = m_settings.pipelineRounds && window > 0 &&
-                               refill.fit(compact ? groups : 0, spillTop, roundCap);
-        if (pipelined) {
+        const bool pipelined = m_settings.pipelineRounds && window > 0;
+        const bool refilled = pipelined && refill.fit(compact ? groups : 0, spillTop, roundCap);
+        if (refilled) {
             rp.refillFit.downloadRangeTo(0, 3, fitted, /*blocking=*/false);
         } else if (compact) {
             live.resize(groups);
@@ -394,10 +394,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                     rp.spillOrigin, rp.spillDirection, rp.spillWeight,
                                     rp.spillState, rp.spillSample, rp.slotRays, rp.slotAbort);
         };
-        if (pipelined) {  // eye rays at the pool's front, the spawned rays behind them
-            refill.commitFitted(pending);
-            if (compact) compactBehind(~0u);
-        }
+        if (refilled) refill.commitFitted(pending);  // eye rays at the pool's front
+        if (pipelined && compact) compactBehind(refilled ? ~0u : 0u);  // spawned rays behind
         prof.markHostWait();
         if (pipelined) m_ctx.wait(readsDone);
         else {
@@ -405,7 +403,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             m_ctx.finish();
         }
         size_t added = 0, total = 0;
-        if (pipelined) {
+        if (refilled) {
             refill.bookFitted(pending, fitted[0]);
             added = fitted[1], total = fitted[2];
             st.eyeRays += added;
@@ -414,7 +412,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             eyeQueued = added > 0 && !refill.fittedRingBound();
         } else if (compact) {
             for (size_t g = 0; g < groups; ++g) total += live[g];
-            if (total > 0) compactBehind(0);
+            if (!pipelined && total > 0) compactBehind(0);
         }
         const size_t held = added + total;  // (compact_scatter spills past the pool)
         n = cl_uint(std::min(held, pool));
