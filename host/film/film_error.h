@@ -30,14 +30,11 @@ inline float pixelMean(const PixelAccum& p) {
     return float((double(p.sum.x) + p.sum.y + p.sum.z) / (3.0 * double(p.count)));
 }  // estimatePixel(p).mean alone (the same bits), without the variance
 
-inline PixelEstimate estimatePixel(const PixelAccum& p) {
-    PixelEstimate e;
-    if (p.count == 0) return e;
+// The standard error of the pixel's mean: the variance of the mean per channel (sum of
+// squared deviations / (n - 1) / n), averaged over the three colour channels; in double,
+// as the sums of squares cancel. Only for two samples or more.
+inline float pixelStdError(const PixelAccum& p) {
     const double n = p.count, inv = 1.0 / n;
-    e.mean = pixelMean(p);
-    if (p.count < 2) return e;
-    // Variance of the mean, per channel (sum of squared deviations / (n - 1) / n),
-    // averaged over the three colour channels.
     double dev = 0;
     const float* s = &p.sum.x;
     const float* q = &p.sum_sq.x;
@@ -45,7 +42,14 @@ inline PixelEstimate estimatePixel(const PixelAccum& p) {
         const double m = s[c] * inv;
         dev += std::max(0.0, q[c] - n * m * m);
     }
-    e.stdError = float(std::sqrt(dev / (3.0 * n * (n - 1.0))));
+    return float(std::sqrt(dev / (3.0 * n * (n - 1.0))));
+}
+
+inline PixelEstimate estimatePixel(const PixelAccum& p) {
+    PixelEstimate e;
+    if (p.count == 0) return e;
+    e.mean = pixelMean(p);
+    if (p.count >= 2) e.stdError = pixelStdError(p);
     return e;
 }
 

@@ -1,9 +1,12 @@
 // sampling.cpp: the sample planner and the error estimates it and --stats use.
 #include "sampling.h"
 
+#include "film/film_error_batch.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <thread>
 
@@ -28,29 +31,69 @@ SamplePlanner::SamplePlanner(int width, int height, int x0, int x1, int y0, int 
                 }
 }
 
-bool SamplePlanner::needsMore(const FilmPixels& film, float floor, int x, int y,
-                              float pixelError, float* relErr) const {
-    size_t i = size_t(y) * size_t(m_width) + size_t(x);
-    uint32_t n = film[i].count;
+inline std::array<uint32_t, 5> SamplePlanner::neighbourhood(uint32_t pixel) const {
+    const uint32_t w = uint32_t(m_width), x = pixel % w, y = pixel / w;
+    return {pixel, x > 0 ? pixel - 1 : pixel, x + 1 < w ? pixel + 1 : pixel,
+            y > 0 ? pixel - w : pixel, y + 1 < uint32_t(m_height) ? pixel + w : pixel};
+}
+
+namespace {
+
+// Runs f(begin, end, part) over [0, n) cut into `parts` contiguous parts, the first on the
+// calling thread: a visit's result is the same for any number of parts.
+template <class F>
+void runInParts(size_t n, size_t parts, F&& f) {
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < parts; ++t)
+        pool.emplace_back([&f, n, parts, t] { f(n * t / parts, n * (t + 1) / parts, t); });
+    f(0, n / parts, 0);
+    for (std::thread& th : pool) th.join();
+}
+
+}  // namespace
+
+void SamplePlanner::measure(const FilmPixels& film, const uint32_t* pixels, size_t count,
+                            float floor, float* relErr, uint8_t* edge) const {
+    PixelSumsBatch b;
+    for (size_t j = 0; j < kPixelBatch; ++j) {
+        if (j >= count) {  // (a short batch: padded, its answers unused)
+            b.n[j] = 2.0, b.mean[j] = 1.0f;
+            for (int c = 0; c < 3; ++c) b.s[c][j] = 0.0, b.q[c][j] = 0.0;
+            continue;
+        }
+        const uint32_t pixel = pixels[j];
+        const PixelAccum& p = film[pixel];
+        // (m_meanOf holds pixelMean of every pixel with samples: brightnessFloor)
+        const float m = m_meanOf[pixel];
+        b.n[j] = p.count, b.mean[j] = m;
+        b.s[0][j] = p.sum.x, b.s[1][j] = p.sum.y, b.s[2][j] = p.sum.z;
+        b.q[0][j] = p.sum_sq.x, b.q[1][j] = p.sum_sq.y, b.q[2][j] = p.sum_sq.z;
+        // An edge both of whose samples fell on one side shows no variance: compare with
+        // the neighbours' means instead (a neighbour off the image is the pixel itself:
+        // no contrast; without samples, < 0).
+        const std::array<uint32_t, 5> around = neighbourhood(pixel);
+        unsigned contrast = 0;  // (bitwise: no branch per neighbour)
+        for (int k = 1; k < 5; ++k) {
+            const float mq = m_meanOf[around[k]];
+            contrast |= unsigned(mq >= 0.0f) &
+                        unsigned(std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq)));
+        }
+        edge[j] = uint8_t(contrast);
+    }
+    float all[kPixelBatch];
+    relativeErrors(b, floor, all);
+    std::copy(all, all + count, relErr);
+}
+
+bool SamplePlanner::needsMore(uint32_t n, float relErr, bool edge, float pixelError,
+                              float* keptErr) const {
     if (n >= m_settings.maxSamples) {
-        *relErr = -INFINITY;  // never again
+        *keptErr = -INFINITY;  // never again
         return false;
     }
     if (n < m_settings.minSamples) return true;
-    *relErr = pixelRelativeError(film[i], floor);
-    if (*relErr > pixelError) return true;
-    // An edge both of whose samples fell on one side shows no variance: compare with the
-    // neighbours' means instead (kept by brightnessFloor, up to date for every pixel).
-    // (a neighbour off the image is the pixel itself: no contrast; without samples, < 0)
-    const float m = m_meanOf[i];
-    const std::array<uint32_t, 5> around = neighbourhood(uint32_t(i));
-    for (int k = 1; k < 5; ++k) {
-        const float mq = m_meanOf[around[k]];
-        if (mq >= 0.0f &&
-            std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq)))
-            return true;
-    }
-    return false;
+    *keptErr = relErr;
+    return relErr > pixelError || edge;
 }
 
 std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float pixelError,
@@ -82,8 +125,8 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
     }
     // A pixel's answer depends on its own samples, its neighbours' means and its relative
     // error against the pass's pixel error. A pixel that answered "no" when last tested (a
-    // "yes" would have sampled it) and that neither it nor a neighbour was sampled since
-    // answers "no" again while its error then is within this pass's pixel error and has
+    // "yes" would have sampled it), whose samples have not changed since and whose
+    // neighbours' means have not moved, answers "no" again while its error then is within this pass's pixel error and has
     // not grown: it grows only when the brightness floor falls below the last one while
     // the pixel's mean is under that (and it is not black).
     const float floor = brightnessFloor(film);
@@ -98,9 +141,9 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
     std::vector<uint32_t> visit;
     if (testedOnly) {  // the test set as bits by tile rank: sorted, each pixel once
         std::vector<uint64_t> bits((m_tileOrder.size() + 63) / 64, 0);
-        for (uint32_t pixel : m_lastPass)
-            for (uint32_t q : neighbourhood(pixel))
-                if (const uint32_t r = m_tileRank[q]; r != kOutside) bits[r >> 6] |= 1ull << (r & 63);
+        forEachToTest([&](uint32_t q) {
+            if (const uint32_t r = m_tileRank[q]; r != kOutside) bits[r >> 6] |= 1ull << (r & 63);
+        });
         for (size_t i = 0; i < bits.size(); ++i)
             for (uint64_t w = bits[i]; w; w &= w - 1)
                 visit.push_back(m_tileOrder[i * 64 + size_t(__builtin_ctzll(w))]);
@@ -114,50 +157,50 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
         std::vector<uint32_t> sampled, deferred;
     };
     const std::vector<uint32_t>& order = testedOnly ? visit : m_tileOrder;
+    // A batch of pixels is measured before any is decided: with no branch between them
+    // the core overlaps their loads and divisions (a 512x512 full test on one thread took
+    // 8-9 ms measured and decided pixel by pixel).
     auto plan = [&](size_t begin, size_t end, Part& part) {
-        for (size_t k = begin; k < end; ++k) {
-            const uint32_t pixel = order[k];
-            if (!busy.empty() && busy[pixel]) {
-                part.deferred.push_back(pixel);
-                continue;
-            }
-            if (!test.empty() && !test[pixel] && m_relErr[pixel] <= pixelError) {
-                const PixelAccum& p = film[pixel];
-                if (!floorFell || m_meanOf[pixel] >= m_lastFloor) continue;
-                if (p.sum_sq.x == 0.0f && p.sum_sq.y == 0.0f && p.sum_sq.z == 0.0f) continue;  // black
-                // Under the fallen floor its error grew by at most the floors' ratio: while
-                // that bound stays within the pixel error it answers "no" again, and the
-                // bound is kept as its error (an upper bound from here on).
-                const float bound = m_relErr[pixel] * (m_lastFloor / floor);
-                if (bound <= pixelError) {
-                    m_relErr[pixel] = bound;
+        float relErr[kPixelBatch];
+        uint8_t edge[kPixelBatch];
+        for (size_t base = begin; base < end; base += kPixelBatch) {
+            const size_t count = std::min(kPixelBatch, end - base);
+            measure(film, &order[base], count, floor, relErr, edge);
+            for (size_t j = 0; j < count; ++j) {
+                const uint32_t pixel = order[base + j];
+                if (!busy.empty() && busy[pixel]) {
+                    part.deferred.push_back(pixel);
                     continue;
                 }
+                const PixelAccum& p = film[pixel];
+                if (!test.empty() && !test[pixel] && m_relErr[pixel] <= pixelError) {
+                    if (!floorFell || m_meanOf[pixel] >= m_lastFloor) continue;
+                    if (p.sum_sq.x == 0.0f && p.sum_sq.y == 0.0f && p.sum_sq.z == 0.0f) continue;  // black
+                    // Under the fallen floor its error grew by at most the floors' ratio:
+                    // while that bound stays within the pixel error it answers "no" again,
+                    // and the bound is kept as its error (an upper bound from here on).
+                    const float bound = m_relErr[pixel] * (m_lastFloor / floor);
+                    if (bound <= pixelError) {
+                        m_relErr[pixel] = bound;
+                        continue;
+                    }
+                }
+                const uint32_t n = p.count;
+                if (!needsMore(n, relErr[j], edge[j], pixelError, &m_relErr[pixel])) continue;
+                // Sequence indices already used include samples dropped as NaN/Inf: never reuse.
+                const uint32_t used = n + p.nonfinite;
+                uint32_t target = std::max(m_settings.minSamples, std::max(1u, 2 * n));
+                target = std::min(target, m_settings.maxSamples);
+                if (target > n) part.out.push_back({pixel, used, target - n}), part.sampled.push_back(pixel);
             }
-            int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
-            if (!needsMore(film, floor, x, y, pixelError, &m_relErr[pixel])) continue;
-            uint32_t n = film[pixel].count;
-            // Sequence indices already used include samples dropped as NaN/Inf: never reuse.
-            uint32_t used = n + film[pixel].nonfinite;
-            uint32_t target = std::max(m_settings.minSamples, std::max(1u, 2 * n));
-            target = std::min(target, m_settings.maxSamples);
-            if (target > n) part.out.push_back({pixel, used, target - n}), part.sampled.push_back(pixel);
         }
     };
-    // A full test (every pixel: 9 ms at 512x512 on this machine's core) is cut into
-    // contiguous parts on the host's cores, joined in order: the same pass whatever the
-    // number of threads. (While it runs the device waits for the next round's retire.)
-    const size_t threads =
-        order.size() < m_settings.parallelPixels ? 1
-        : m_settings.planThreads > 0 ? m_settings.planThreads
-                                     : std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
-    std::vector<Part> parts(threads);
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads; ++t)
-        pool.emplace_back(plan, order.size() * t / threads, order.size() * (t + 1) / threads,
-                          std::ref(parts[t]));
-    plan(0, order.size() / threads, parts[0]);
-    for (std::thread& th : pool) th.join();
+    // A large visit is cut into contiguous parts on the host's cores (threadsFor), joined
+    // in order: the same pass whatever the number of threads.
+    std::vector<Part> parts(threadsFor(order.size()));
+    runInParts(order.size(), parts.size(), [&](size_t begin, size_t end, size_t t) {
+        plan(begin, end, parts[t]);
+    });
     m_lastPass.clear();
     for (Part& part : parts) {
         out.insert(out.end(), part.out.begin(), part.out.end());
@@ -170,10 +213,14 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
     return out;
 }
 
-std::array<uint32_t, 5> SamplePlanner::neighbourhood(uint32_t pixel) const {
-    const uint32_t w = uint32_t(m_width), x = pixel % w, y = pixel / w;
-    return {pixel, x > 0 ? pixel - 1 : pixel, x + 1 < w ? pixel + 1 : pixel,
-            y > 0 ? pixel - w : pixel, y + 1 < uint32_t(m_height) ? pixel + w : pixel};
+// A visit of `pixels` (9 ms for every pixel of a 512x512 frame on this machine's core)
+// runs on the host's cores when it is large. (While a full test runs the device waits for
+// the next round's retire.)
+size_t SamplePlanner::threadsFor(size_t pixels) const {
+    if (pixels < m_settings.parallelPixels) return 1;
+    return m_settings.planThreads > 0
+               ? m_settings.planThreads
+               : std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
 }
 
 float SamplePlanner::brightnessFloor(const FilmPixels& film) {
@@ -181,14 +228,20 @@ float SamplePlanner::brightnessFloor(const FilmPixels& film) {
         if (m_meanOf[pixel] >= 0.0f) m_meanSum += sign * double(m_meanOf[pixel]), m_meanCount += sign;
     };
     if (m_meanOf.empty()) {  // after the first pass: every pixel
-        m_meanOf.assign(film.size(), -1.0f);
-        m_meanSum = 0, m_meanCount = 0;
-        for (uint32_t pixel = 0; pixel < film.size(); ++pixel)
-            if (film[pixel].count) m_meanOf[pixel] = pixelMean(film[pixel]), account(pixel, 1.0f);
+        m_meanOf.resize(film.size());
+        runInParts(film.size(), threadsFor(film.size()), [&](size_t begin, size_t end, size_t) {
+            for (size_t pixel = begin; pixel < end; ++pixel)
+                m_meanOf[pixel] = film[pixel].count ? pixelMean(film[pixel]) : -1.0f;
+        });
+        m_meanSum = 0, m_meanCount = 0;  // summed in pixel order, on one thread
+        for (uint32_t pixel = 0; pixel < film.size(); ++pixel) account(pixel, 1.0f);
     } else {  // only the pixels sampled (or left busy) in the last pass have changed
+        m_meanMoved.clear();
         for (uint32_t pixel : m_lastPass) {
             account(pixel, -1.0f);
+            const float was = m_meanOf[pixel];
             m_meanOf[pixel] = film[pixel].count ? pixelMean(film[pixel]) : -1.0f;
+            if (std::memcmp(&was, &m_meanOf[pixel], sizeof was) != 0) m_meanMoved.push_back(pixel);
             account(pixel, 1.0f);
         }
     }
@@ -198,9 +251,7 @@ float SamplePlanner::brightnessFloor(const FilmPixels& film) {
 std::vector<uint8_t> SamplePlanner::pixelsToTest(bool all) const {
     if (all) return {};  // nextPass tests every pixel without looking
     std::vector<uint8_t> test(size_t(m_width) * size_t(m_height), 0);
-    for (uint32_t pixel : m_lastPass) {
-        for (uint32_t q : neighbourhood(pixel)) test[q] = 1;
-    }
+    forEachToTest([&](uint32_t q) { test[q] = 1; });
     return test;
 }
 

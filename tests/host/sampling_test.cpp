@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "film/film_error.h"
+#include "film/film_error_batch.h"
 #include "render/sampling.h"
 #include "render/stop.h"
 #include "render_harness.h"
@@ -50,7 +52,9 @@ std::string stripes(int res) {
 // budget's), where every pixel is re-tested.
 // With `overlap`, a third of each pass's pixels are still in flight when the next pass is
 // planned (the renderer plans while a pass's tail drains): both planners get them as busy,
-// must not sample them, and see their samples only after that plan.
+// must not sample them, and see their samples only after that plan; a quarter of those
+// stay in flight through three plans (a busy pixel's mean does not move: its neighbours
+// need no new test until it does).
 TEST(Sampling, IncrementalPlanIsExact) {
     for (bool overlap : {false, true})
     for (bool tightening : {false, true}) {
@@ -86,13 +90,14 @@ TEST(Sampling, IncrementalPlanIsExact) {
             ++p.count;
         };
         size_t passes = 0, samples = 0, deferred = 0;
-        std::vector<rd::PixelRequest> inFlight;  // overlap: requests not retired yet
+        // overlap: requests not retired yet, and how many more plans each stays through
+        std::vector<std::pair<rd::PixelRequest, int>> inFlight;
         auto retire = [&](const rd::PixelRequest& r) {
             for (uint32_t k = 0; k < r.count; ++k) sample(r.pixel, r.first + k), ++samples;
         };
         for (float err = s.pixelError;; err *= tightening ? 0.7f : 1.0f) {
             std::vector<uint8_t> busy(overlap ? film.size() : 0, 0);
-            for (const rd::PixelRequest& r : inFlight) busy[r.pixel] = 1;
+            for (const auto& [r, plans] : inFlight) busy[r.pixel] = 1;
             std::vector<rd::PixelRequest> a = inc.nextPass(film, err, busy),
                                           b = ref.nextPass(film, err, busy);
             ASSERT_EQ(a.size(), b.size()) << "pass " << passes;
@@ -112,12 +117,15 @@ TEST(Sampling, IncrementalPlanIsExact) {
                 }
             }
             const bool anyBusy = !inFlight.empty();
-            for (const rd::PixelRequest& r : inFlight) retire(r);
-            inFlight.clear();
+            std::vector<std::pair<rd::PixelRequest, int>> still;
+            for (auto& [r, plans] : inFlight)
+                if (plans > 1) still.push_back({r, plans - 1});
+                else retire(r);
+            inFlight.swap(still);
             if (a.empty() && !anyBusy) break;
             for (const rd::PixelRequest& r : a) {
                 if (overlap && (r.pixel * 2654435761u + uint32_t(passes)) % 3u == 0u)
-                    inFlight.push_back(r), ++deferred;
+                    inFlight.push_back({r, 1 + int(r.pixel % 4 == 0) * 2}), ++deferred;
                 else
                     retire(r);
             }
@@ -261,6 +269,47 @@ TEST(Film, ErrorEstimateFromWholeSamples) {
     EXPECT_NEAR(rd::estimateFilmError(f), 1.0, 1e-6);
     f[0].count = 1;
     EXPECT_LT(rd::estimateFilmError(f), 0.0) << "one sample has no variance";
+}
+
+// The planner measures pixels in batches (vector divisions and square roots on the
+// widest vectors the host has): the same bits as pixelRelativeError, pixel by pixel, also
+// on stiff pixels (a level of 1e6 with noise of 1e-3, where the sums of squares cancel),
+// black ones, one-sample ones and ones above and below the brightness floor.
+TEST(Film, BatchOfRelativeErrorsIsThePixelByPixelOne) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    rd::PixelSumsBatch b;
+    std::vector<PixelAccum> pixels(rd::kPixelBatch);
+    const float floor = 0.05f;
+    for (size_t j = 0; j < rd::kPixelBatch; ++j) {
+        PixelAccum& p = pixels[j];
+        p = PixelAccum{};
+        const uint32_t n = j % 7 == 0 ? 1 : 2 + uint32_t(j % 13);
+        const float level = j % 5 == 0 ? 1e6f : j % 5 == 1 ? 0.0f : j % 5 == 2 ? 0.01f : 1.0f;
+        const float noise = j % 5 == 0 ? 1e-3f : 0.3f * level;
+        for (uint32_t k = 0; k < n; ++k) {
+            const float v[3] = {level + noise * u(rng), level + noise * u(rng), level};
+            p.sum.x += v[0], p.sum.y += v[1], p.sum.z += v[2];
+            p.sum_sq.x += v[0] * v[0], p.sum_sq.y += v[1] * v[1], p.sum_sq.z += v[2] * v[2];
+        }
+        p.count = n;
+        b.n[j] = n, b.mean[j] = rd::pixelMean(p);
+        b.s[0][j] = p.sum.x, b.s[1][j] = p.sum.y, b.s[2][j] = p.sum.z;
+        b.q[0][j] = p.sum_sq.x, b.q[1][j] = p.sum_sq.y, b.q[2][j] = p.sum_sq.z;
+    }
+    float relErr[rd::kPixelBatch];
+    rd::relativeErrors(b, floor, relErr);
+    size_t stiff = 0, noisy = 0;
+    for (size_t j = 0; j < rd::kPixelBatch; ++j) {
+        const float want = rd::pixelRelativeError(pixels[j], floor);
+        EXPECT_EQ(std::memcmp(&relErr[j], &want, sizeof want), 0)
+            << "pixel " << j << ": " << relErr[j] << " against " << want;
+        EXPECT_TRUE(std::isfinite(relErr[j])) << "pixel " << j;
+        stiff += j % 5 == 0 && pixels[j].count > 1;
+        noisy += want > 0.01f;
+    }
+    EXPECT_GT(stiff, 5u);
+    EXPECT_GT(noisy, 10u);  // not all zero
 }
 
 // z and N AOVs of a plane facing the camera at distance 5.
