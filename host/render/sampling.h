@@ -6,7 +6,9 @@
 // until the final quality: PixelSamples, an error target or a time budget. The film's
 // error is estimated from whole-sample variance.
 #pragma once
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -78,12 +80,26 @@ private:
     // when it was last tested answers as it did, so "no"); empty when every pixel is to be
     // tested.
     std::vector<uint8_t> pixelsToTest(bool all) const;
-    // Calls f on every pixel of that set (some more than once).
+    // Calls f on every pixel of that set (some more than once). A neighbour of a pixel
+    // whose mean moved answers as before unless the two means now differ by more than the
+    // contrast (its samples, its error and its other neighbours are as when it answered
+    // "no"): only those are tested again (SPD tetra at 9 samples a pixel visited 52k
+    // pixels a pass, five times those it sampled).
     template <class F>
     void forEachToTest(F&& f) const {
         for (uint32_t pixel : m_lastPass) f(pixel);
-        for (uint32_t pixel : m_meanMoved)
-            for (uint32_t q : neighbourhood(pixel)) f(q);
+        for (uint32_t pixel : m_meanMoved) {
+            const std::array<uint32_t, 5> around = neighbourhood(pixel);
+            for (int k = 1; k < 5; ++k)
+                if (contrasts(m_meanOf[around[k]], m_meanOf[pixel])) f(around[k]);
+        }
+    }
+    // Whether a pixel of mean m differs from a neighbour of mean mq by more than the
+    // contrast setting (a neighbour without samples, mq < 0, never does; symmetric
+    // otherwise, bit for bit).
+    bool contrasts(float m, float mq) const {
+        return mq >= 0.0f &&
+               std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq));
     }
     // Threads for a visit of this many pixels.
     size_t threadsFor(size_t pixels) const;
