@@ -58,7 +58,7 @@ public:
     float lastFloor() const { return m_lastFloor; }
     // The mean the last pass used for a pixel (its own and as a neighbour): pixelMean of
     // its film entry then; negative for a pixel without samples.
-    float meanUsed(uint32_t pixel) const { return m_meanOf.empty() ? -1.0f : m_meanOf[pixel]; }
+    float meanUsed(uint32_t pixel) const { return m_meanOf[pixel]; }
     // After the first pass every pixel has the minimum; when that is also the maximum,
     // no later pass can add a sample (unless some were dropped as NaN/Inf), so the film
     // need not be read back to plan one.
@@ -113,6 +113,7 @@ private:
     std::vector<uint32_t> m_tileOrder;  // pixel indices in tile order
     std::vector<uint32_t> m_tileRank;   // each pixel's place in m_tileOrder
     int m_pass = 0;
+    bool m_tested = false;  // an adaptive pass has tested every pixel (m_relErr, m_meanOf)
     std::vector<uint32_t> m_lastPass;  // the pixels the last pass sampled or left busy
     // Those of them whose mean this pass's brightnessFloor found changed (a pixel left busy
     // pass after pass keeps its mean while its samples are in flight: its neighbours need
