@@ -77,11 +77,7 @@ void SamplePlanner::measure(const FilmPixels& film, const uint32_t* pixels, size
         // no contrast; without samples, < 0).
         const std::array<uint32_t, 5> around = neighbourhood(pixel);
         unsigned contrast = 0;  // (bitwise: no branch per neighbour)
-        for (int k = 1; k < 5; ++k) {
-            const float mq = m_meanOf[around[k]];
-            contrast |= unsigned(mq >= 0.0f) &
-                        unsigned(std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq)));
-        }
+        for (int k = 1; k < 5; ++k) contrast |= unsigned(contrasts(m, m_meanOf[around[k]]));
         edge[j] = uint8_t(contrast);
     }
     float all[kPixelBatch];
@@ -130,9 +126,9 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
     // A pixel's answer depends on its own samples, its neighbours' means and its relative
     // error against the pass's pixel error. A pixel that answered "no" when last tested (a
     // "yes" would have sampled it), whose samples have not changed since and whose
-    // neighbours' means have not moved, answers "no" again while its error then is within this pass's pixel error and has
-    // not grown: it grows only when the brightness floor falls below the last one while
-    // the pixel's mean is under that (and it is not black).
+    // neighbours' means have not moved, answers "no" again while its error then is within
+    // this pass's pixel error and has not grown: it grows only when the brightness floor
+    // falls below the last one while the pixel's mean is under that (and it is not black).
     const float floor = brightnessFloor(film);
     const bool all = !m_settings.incremental || !m_tested;
     const bool floorFell = floor < m_lastFloor;
