@@ -75,10 +75,10 @@ private:
     // A pixel with `n` samples, measured as above; sets *keptErr to the relative error when
     // it is tested (-inf when the pixel has its maximum: it never needs more).
     bool needsMore(uint32_t n, float relErr, bool edge, float pixelError, float* keptErr) const;
-    // Pixels a pass must test: the last pass's pixels (sampled or left busy), and the four
-    // neighbours of those whose mean moved (a pixel whose film and neighbours' means are as
-    // when it was last tested answers as it did, so "no"); empty when every pixel is to be
-    // tested.
+    // Pixels a pass must test: the last pass's pixels (sampled or left busy), and those
+    // neighbours of the ones whose mean moved that now differ from them by more than the
+    // contrast (a pixel whose film and neighbours' means are as when it was last tested
+    // answers as it did, so "no"); empty when every pixel is to be tested.
     std::vector<uint8_t> pixelsToTest(bool all) const;
     // Calls f on every pixel of that set (some more than once). A neighbour of a pixel
     // whose mean moved answers as before unless the two means now differ by more than the
