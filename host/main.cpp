@@ -211,6 +211,10 @@ int main(int argc, char** argv) {
     app.add_flag("--no-pipeline-rounds", noPipelineRounds,
                  "queue each round's eye rays after the last round's wait, not before it "
                  "(for comparison)");
+    bool noJumpSmallPasses = false;
+    app.add_flag("--no-jump-small-passes", noJumpSmallPasses,
+                 "double the samples of a small adaptive pass's pixels, as any pass's, rather "
+                 "than quadruple them (for comparison)");
     app.add_option("--treelet-budget", treeletBytes,
                    "trace through treelets of at most BYTES of BVH (default: Option \"limits\" "
                    "\"treeletbytes\", else the resident BVH; triangle scenes only)");
@@ -261,6 +265,7 @@ int main(int argc, char** argv) {
             settings.closestPackets = !noClosestPackets;
             settings.overlapPasses = !noOverlapPasses;
             settings.pipelineRounds = !noPipelineRounds;
+            settings.jumpSmallPasses = !noJumpSmallPasses;
             settings.sceneMemoryBytes = sceneMemory;
             settings.timeline = !timelinePath.empty();
             for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";

@@ -141,6 +141,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     ss.maxSamples = openEnded ? 1u << 16 : uint32_t(cam0.spp_x * cam0.spp_y);
     ss.minSamples = std::min(2u, ss.maxSamples);
     scene.camera.cropPixels(film.cropX0, film.cropX1, film.cropY0, film.cropY1);
+    // (from the frame, not the pool: the image must not depend on the pool's capacity)
+    ss.smallPass = m_settings.jumpSmallPasses
+                       ? uint32_t(std::max<size_t>(1, film.cropPixelCount() / 64))
+                       : 0;
     std::optional<SamplePlanner> planner;
     double firstPlanMs = 0;
     // (and its first refill staged: the ring is empty and the round cap the pool until then)

@@ -32,6 +32,9 @@ struct RenderSettings {
     // spawned rays (behind them) before the round's wait, so that the device does not
     // idle while the host wakes up; false: both after it (the rays as many as fit).
     bool pipelineRounds = true;
+    // A pass asking for fewer samples than a 64th of the frame's pixels gives its pixels
+    // two more doublings at once (SamplingSettings::smallPass); false: every pass doubles.
+    bool jumpSmallPasses = true;
     double timeBudget = 0;    // seconds; 0 = none (also from Option "render" "time")
     double errorTarget = 0;   // relative film error; 0 = none ("render" "error")
     int firstPassBlock = 0;   // 0 = the scene's option (default 2: 1/4 ray per pixel)

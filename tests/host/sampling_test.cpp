@@ -56,12 +56,14 @@ std::string stripes(int res) {
 // stay in flight through three plans (a busy pixel's mean does not move: its neighbours
 // need no new test until it does).
 TEST(Sampling, IncrementalPlanIsExact) {
+    for (uint32_t smallPass : {0u, 1000u})
     for (bool overlap : {false, true})
     for (bool tightening : {false, true}) {
         const int w = 97, h = 61;
         rd::SamplingSettings s;
         s.maxSamples = 64;
         s.pixelError = 0.02f;
+        s.smallPass = smallPass;
         rd::SamplingSettings full = s;
         full.incremental = false;
         full.parallelPixels = 1;  // every pass's visit split across three threads
@@ -132,9 +134,9 @@ TEST(Sampling, IncrementalPlanIsExact) {
             ++passes;
             ASSERT_LT(passes, 60u);
         }
-        std::printf("%s%s: %zu passes, %zu samples, %zu requests planned beside busy pixels\n",
-                    tightening ? "tightening" : "fixed", overlap ? ", overlapped" : "", passes,
-                    samples, deferred);
+        std::printf("%s%s%s: %zu passes, %zu samples, %zu requests planned beside busy pixels\n",
+                    tightening ? "tightening" : "fixed", overlap ? ", overlapped" : "",
+                    smallPass ? ", small passes quadrupled" : "", passes, samples, deferred);
         EXPECT_GE(passes, 5u);  // several adaptive passes, not just the first two
         if (overlap) {
             EXPECT_GT(deferred, 100u);
@@ -195,6 +197,37 @@ TEST(Sampling, OverlappedPassesPlanAroundTheTail) {
         // 0.3 px of every 0.713 covered: the mean coverage, 2-16 coin tosses a pixel
         EXPECT_NEAR(img.mean(3, 0, 0, 32, 32), covered / 32, 0.01);
     }
+}
+
+// A pass asking for fewer samples than a 64th of the frame's pixels (256 of 16384 here)
+// gives its pixels two doublings at once: a frame's last passes are small and each costs
+// the rounds of its rays however few they are. A 2x2 square off the pixel grid at 8x8
+// samples: its edge pixels and their neighbours climb to 64 samples in fewer passes and
+// rounds, every pixel's count still on the ladder, the square's coverage the same
+// estimate.
+TEST(Sampling, SmallPassesQuadrupleTheirPixels) {
+    const std::string rib = orthoCamera(128, 8) + "WorldBegin\nSurface \"constant\"\n" +
+                            rect(0.37, 2.37, 0.37, 2.37) + "WorldEnd\n";
+    rd::RenderSettings jump, doubling;
+    doubling.jumpSmallPasses = false;
+    Rendered a = renderRib(rib, jump), b = renderRib(rib, doubling);
+    std::printf("quadrupled: %d passes, %d rounds, %llu samples; doubled: %d passes, %d "
+                "rounds, %llu samples\n",
+                a.stats.passes, a.stats.iterations, (unsigned long long)a.stats.filmSamples,
+                b.stats.passes, b.stats.iterations, (unsigned long long)b.stats.filmSamples);
+    EXPECT_LT(a.stats.passes, b.stats.passes);
+    EXPECT_LT(a.stats.iterations, b.stats.iterations);
+    EXPECT_LE(a.stats.filmSamples, b.stats.filmSamples + b.stats.filmSamples / 20);
+    for (const Rendered* img : {&a, &b})
+        for (int y = 0; y < 128; ++y)
+            for (int x = 0; x < 128; ++x) {
+                const uint32_t n = img->count(x, y);
+                EXPECT_TRUE(n && n <= 64 && (n & (n - 1)) == 0) << x << "," << y << ": " << n;
+            }
+    // the square covers 4 of the 9 pixels [64, 67) x [61, 64) (rows run down): 64 samples
+    // in each edge pixel
+    for (const Rendered* img : {&a, &b})
+        EXPECT_NEAR(img->mean(3, 64, 61, 67, 64) * 9.0, 4.0, 0.25);
 }
 
 // The estimate falls as 1/sqrt(samples) on a noisy scene: 16 -> 256 samples per pixel
