@@ -21,10 +21,9 @@ struct PixelEstimate {
     float mean = 0;     // mean of the colour channels
     float stdError = 0; // standard error of the mean (0 with fewer than two samples)
 };
-// (The planner evaluates these for every pixel it tests, and its neighbours' means: one
-// and three divisions where there were two and eleven; a 512x512 frame's full test took
-// 10 ms, now 8.8; inline in the planner's loop, a standalone full test on one thread
-// took 6.6-7.0 ms where it took 7.5-7.9.)
+// (Inline: the planner takes pixelMean of every pixel a pass changed; its relative
+// errors come from the batch form of pixelStdError, film_error_batch.h, which must give
+// the same bits.)
 inline float pixelMean(const PixelAccum& p) {
     if (p.count == 0) return 0.0f;
     return float((double(p.sum.x) + p.sum.y + p.sum.z) / (3.0 * double(p.count)));

@@ -4,8 +4,7 @@
 // the same pass); each later pass adds samples where neighbouring pixels disagree
 // (discontinuities) or a pixel's estimated error is high, doubling those pixels' counts
 // (a small pass: quadrupling), until the final quality: PixelSamples, an error target or
-// a time budget. The film's
-// error is estimated from whole-sample variance.
+// a time budget. The film's error is estimated from whole-sample variance.
 #pragma once
 #include <algorithm>
 #include <array>
