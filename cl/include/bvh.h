@@ -15,12 +15,14 @@ typedef struct BvhNode {
 
 /* Four-wide node, the layout traversal uses: the four children's boxes as structure of
  * arrays, so one float4 operation tests all four (SIMD within a work-item, which is what
- * a per-ray traversal on a CPU device can use). child[k] is a node index for an interior
- * child; for a leaf child, child[k] is its first primitive and count[k] > 0; an unused
- * slot has count[k] = -1 (and an empty box). 128 bytes, two cache lines. */
+ * a per-ray traversal on a CPU device can use). planes: lo_x[4], lo_y[4], lo_z[4], hi_x[4],
+ * hi_y[4], hi_z[4], one array, as the box tests index it at per-ray offsets (an index
+ * past a smaller member array is out of bounds in C; Oclgrind reports it). child[k] is a
+ * node index for an interior child; for a leaf child, child[k] is its first primitive
+ * and count[k] > 0; an unused slot has count[k] = -1 (and an empty box). 128 bytes, two
+ * cache lines. */
 typedef struct Bvh4Node {
-    rt_float4 lo_x, lo_y, lo_z;
-    rt_float4 hi_x, hi_y, hi_z;
+    float planes[24];
     int32_t child[4];
     int32_t count[4]; /* 0 interior, > 0 leaf primitive count, -1 unused */
 } Bvh4Node;
@@ -28,8 +30,7 @@ typedef struct Bvh4Node {
 /* Eight-wide node: the same as Bvh4Node for eight children, one float8 operation per
  * plane (AVX on a CPU device). 256 bytes, four cache lines. */
 typedef struct Bvh8Node {
-    float lo_x[8], lo_y[8], lo_z[8];
-    float hi_x[8], hi_y[8], hi_z[8];
+    float planes[48];
     int32_t child[8];
     int32_t count[8]; /* 0 interior, > 0 leaf block count, -1 unused */
 } Bvh8Node;

@@ -18,10 +18,12 @@ struct Planes {
     float* lo[3];
     float* hi[3];
 };
-Planes planes(Bvh4Node& w) {
-    return {{&w.lo_x.x, &w.lo_y.x, &w.lo_z.x}, {&w.hi_x.x, &w.hi_y.x, &w.hi_z.x}};
+template <class Node>
+Planes planes(Node& w) {
+    constexpr int W = sizeof(w.child) / sizeof(w.child[0]);
+    float* p = w.planes;
+    return {{p, p + W, p + 2 * W}, {p + 3 * W, p + 4 * W, p + 5 * W}};
 }
-Planes planes(Bvh8Node& w) { return {{w.lo_x, w.lo_y, w.lo_z}, {w.hi_x, w.hi_y, w.hi_z}}; }
 
 template <class Node>
 void setSlot(Node& w, int k, const BvhNode& n) {
