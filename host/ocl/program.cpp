@@ -83,10 +83,15 @@ Program::Program(const ClContext& ctx, const std::string& source, const std::str
                  const std::string& cacheDir)
     : m_ctx(ctx) {
     auto t0 = std::chrono::steady_clock::now();
-    m_info.options = options;
     const DeviceInfo& d = ctx.info();
+    // Oclgrind's interpreter (21.10) does not know llvm.experimental.noalias.scope.decl,
+    // which its compiler emits where it inlines a function returning a struct (the RSL
+    // matrix functions): RSL_NOINLINE_STRUCT_RETURNS keeps those calls (tests/oclgrind).
+    m_info.options = d.platformName.find("Oclgrind") != std::string::npos
+                         ? options + " -DRSL_NOINLINE_STRUCT_RETURNS"
+                         : options;
     uint64_t h = fnv1a(source);
-    h = fnv1a("\n--options--\n" + options, h);
+    h = fnv1a("\n--options--\n" + m_info.options, h);
     h = fnv1a("\n--device--\n" + d.platformName + "|" + d.name + "|" + d.driverVersion, h);
     char key[17];
     std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(h));
@@ -98,7 +103,7 @@ Program::Program(const ClContext& ctx, const std::string& source, const std::str
         std::error_code ec;
         std::filesystem::create_directories(dump, ec);
         std::ofstream(std::string(dump) + "/" + m_info.cacheKey + ".cl")
-            << "/* options: " << options << " */\n" << source;
+            << "/* options: " << m_info.options << " */\n" << source;
     }
     if (!m_info.cacheFile.empty() && tryBinary(m_info.cacheFile)) {
         m_info.cacheHit = true;

@@ -10,7 +10,7 @@ std::vector<Rgba> applyImager(const ClContext& ctx, cl_program program, Profiler
     std::vector<rt_float4> data(pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i)
         data[i] = {pixels[i].r, pixels[i].g, pixels[i].b, pixels[i].a};
-    DeviceBuffer<rt_float4> buf(ctx, data);
+    DeviceBuffer<rt_float4> buf(ctx, data, CL_MEM_READ_WRITE);  // the imager writes it
     Kernel imager(ctx, program, "imager_apply", prof);
     imager.launch(data.size(), cl_uint(film.width), cl_uint(data.size()), buf, params);
     data = buf.download();
