@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # run_under_oclgrind.sh OCLGRIND LOG COMMAND...: runs COMMAND with Oclgrind's simulated
-# OpenCL device in place of PoCL: a second OpenCL implementation (a GPU-typed device, its
-# own compiler) that checks every work-item's memory accesses (out of bounds, writes to
+# OpenCL device in place of PoCL: a second OpenCL implementation (a simulated device with
+# its own compiler) that checks every work-item's memory accesses (out of bounds, writes to
 # read-only buffers) and the API calls. Fails when COMMAND fails or when Oclgrind reports
 # anything. Oclgrind's data-race and uninitialised-value checks are not run: the first
 # reports only the plain first read of the float atomics' compare-and-swap loop
