@@ -109,7 +109,8 @@ std::vector<rt_float4> traceShadows(const std::string& options, const Bvh8& b8,
     DeviceBuffer<rt_float4> ob(ctx, r.org), db(ctx, r.dir);
     DeviceBuffer<RayState> state(ctx, r.state);
     const size_t n = r.org.size();
-    DeviceBuffer<rt_float4> weight(ctx, std::vector<rt_float4>(n, rt_float4{0.5f, 0.25f, 2.0f, 0.0f}));
+    DeviceBuffer<rt_float4> weight(
+        ctx, std::vector<rt_float4>(n, rt_float4{0.5f, 0.25f, 2.0f, 0.0f}), CL_MEM_READ_WRITE);
     DeviceBuffer<Quadric> noQuadrics(ctx, 1);
     DeviceBuffer<uint32_t> noCsg(ctx, 1), noSample(ctx, 1), noNumerics(ctx, 1);
     DeviceBuffer<Triangle> noTris(ctx, 1);
@@ -218,7 +219,8 @@ TEST(Packets, ClosestHitsAreTheOneRayKernels) {
         DeviceBuffer<Triangle4> blocks(ctx, b8.blocks);
         DeviceBuffer<rt_float4> ob(ctx, org), db(ctx, dir);
         DeviceBuffer<RayState> state(ctx, st);
-        DeviceBuffer<RayHit> hits(ctx, std::vector<RayHit>(n, RayHit{-1.0f, -1.0f, -1.0f, 12345u}));
+        DeviceBuffer<RayHit> hits(
+            ctx, std::vector<RayHit>(n, RayHit{-1.0f, -1.0f, -1.0f, 12345u}), CL_MEM_READ_WRITE);
         DeviceBuffer<Quadric> noQuadrics(ctx, 1);
         DeviceBuffer<uint32_t> noCsg(ctx, 1), noSample(ctx, 1);
         DeviceBuffer<Triangle> noTris(ctx, 1);

@@ -113,7 +113,8 @@ Traced trace(size_t budget, size_t sceneMemory, bool int64Min, size_t rays) {
                   noT, noU);
         out.hits = hits.download();
         // the resident kernel zeroes an occluded ray's weight
-        DeviceBuffer<rt_float4> weight(ctx, std::vector<rt_float4>(n, {1, 1, 1, 1}));
+        DeviceBuffer<rt_float4> weight(ctx, std::vector<rt_float4>(n, {1, 1, 1, 1}),
+                                         CL_MEM_READ_WRITE);
         ks.launch(n, n, nodes, blocks, org, dir, state, weight, noQ, noU, tris, noM, tris,
                   noU, noT, cl_uint(1), noU);
         for (const rt_float4& w : weight.download()) out.occluded.push_back(w.x == 0);
@@ -124,7 +125,8 @@ Traced trace(size_t budget, size_t sceneMemory, bool int64Min, size_t rays) {
         tracer.closest(n, org, dir, state, hits, sc);
         out.hits = hits.download();
         // zeroes an occluded ray's weight, leaves every state as it was
-        DeviceBuffer<float> weight(ctx, std::vector<float>(4 * n, 1.0f));  // 4 floats a ray
+        DeviceBuffer<float> weight(ctx, std::vector<float>(4 * n, 1.0f),  // 4 floats a ray
+                                   CL_MEM_READ_WRITE);
         tracer.shadow(n, org, dir, state, weight, sc, 1);
         const std::vector<float> w = weight.download();
         for (size_t i = 0; i < n; ++i) out.occluded.push_back(w[4 * i] == 0);

@@ -121,7 +121,7 @@ static void expectEightWideHitsMatchBruteForce(uint32_t depth) {
     DeviceBuffer<rt_float4> ob(ctx, org), db(ctx, dir);
     DeviceBuffer<RayState> state(ctx, alive);
     const RayHit untouched{-1.0f, -1.0f, -1.0f, 12345u};
-    DeviceBuffer<RayHit> hits(ctx, std::vector<RayHit>(n, untouched));
+    DeviceBuffer<RayHit> hits(ctx, std::vector<RayHit>(n, untouched), CL_MEM_READ_WRITE);
     // the object, motion and sample buffers a triangle-only build does not read
     DeviceBuffer<Quadric> noQuadrics(ctx, 1);
     DeviceBuffer<uint32_t> noCsg(ctx, 1), noSample(ctx, 1), noNumerics(ctx, 1);
