@@ -3,15 +3,18 @@
 # standard surface shader (and bumpy displacement with fog), two lights, partial opacity, cold (no PoCL kernel cache), and
 # fails if the OpenCL compiler printed any warning: PoCL's compiler writes "N warning(s)
 # generated." to stderr, which a user would see with no context.
-# usage: no_build_warnings.sh RAYDRIVE
+# usage: no_build_warnings.sh RAYDRIVE [WRAPPER...]: WRAPPER, when given, runs each render
+# (tests/oclgrind runs them on Oclgrind: run_under_oclgrind.sh OCLGRIND LOG).
 set -u
 bin="$1"
+shift
+wrap=("$@")
 for s in matte plastic metal mirror paintedplastic glass shinymetal displaced; do
     surface="Surface \"$s\""
     [ "$s" = displaced ] && surface="Displacement \"bumpy\"\nAtmosphere \"fog\"\nSurface \"plastic\""
     sed -e "s/Surface \"constant\"/LightSource \"distantlight\" 1\nLightSource \"pointlight\" 2 \"from\" [0 2 0]\nOpacity [0.5 0.5 0.5]\n$surface/" \
         good.rib > "$s.rib"
-    if ! POCL_KERNEL_CACHE=0 "$bin" -q -o "$s.exr" "$s.rib" 2> "$s.err"; then
+    if ! POCL_KERNEL_CACHE=0 "${wrap[@]}" "$bin" -q -o "$s.exr" "$s.rib" 2> "$s.err"; then
         echo "FAIL: $s.rib did not render"; cat "$s.err"; exit 1
     fi
     if grep -Eiq 'warnings? generated|warning:' "$s.err"; then
