@@ -24,12 +24,16 @@ namespace {
 // (PoCL here) take movmskps (math.clh)
 const Program& probeProgram(int width, bool portable = false) {
     const ClContext& ctx = test::testContext();
-    static Program four(ctx, assembleClSource({"node_probe.cl"}), "-cl-std=CL1.2");
-    static Program eight(ctx, assembleClSource({"node_probe.cl"}), "-cl-std=CL1.2 -DRT_BVH8");
-    static Program fourPortable(ctx, assembleClSource({"node_probe.cl"}),
-                                "-cl-std=CL1.2 -DRT_PORTABLE_MASKS");
-    static Program eightPortable(ctx, assembleClSource({"node_probe.cl"}),
-                                 "-cl-std=CL1.2 -DRT_BVH8 -DRT_PORTABLE_MASKS");
+    // never destroyed, as the test context (render_harness.cpp: Oclgrind crashed at exit)
+    static Program& four =
+        *new Program(ctx, assembleClSource({"node_probe.cl"}), "-cl-std=CL1.2");
+    static Program& eight =
+        *new Program(ctx, assembleClSource({"node_probe.cl"}), "-cl-std=CL1.2 -DRT_BVH8");
+    static Program& fourPortable = *new Program(ctx, assembleClSource({"node_probe.cl"}),
+                                                "-cl-std=CL1.2 -DRT_PORTABLE_MASKS");
+    static Program& eightPortable =
+        *new Program(ctx, assembleClSource({"node_probe.cl"}),
+                     "-cl-std=CL1.2 -DRT_BVH8 -DRT_PORTABLE_MASKS");
     if (portable) return width == 8 ? eightPortable : fourPortable;
     return width == 8 ? eight : four;
 }

@@ -50,7 +50,9 @@ struct Ray {
 std::vector<uint32_t> probeBlock(const std::vector<Triangle4>& blocks, uint32_t block,
                                  const Scene& s, const std::vector<Ray>& rays, uint32_t wantUv) {
     const ClContext& ctx = test::testContext();
-    static Program program(ctx, assembleClSource({"quadric_probe.cl"}), "-cl-std=CL1.2");
+    // never destroyed, as the test context (render_harness.cpp: Oclgrind crashed at exit)
+    static Program& program =
+        *new Program(ctx, assembleClSource({"quadric_probe.cl"}), "-cl-std=CL1.2");
     Profiler prof(ctx);
     Kernel k(ctx, program.get(), "object_block_probe", prof);
     std::vector<rt_float4> org, dir;

@@ -38,7 +38,9 @@ struct ProbeResult {
 // Intersects every ray with scene object `object` on the default device.
 std::vector<ProbeResult> probe(const Scene& s, uint32_t object, const std::vector<Ray>& rays) {
     const ClContext& ctx = test::testContext();
-    static Program program(ctx, assembleClSource({"quadric_probe.cl"}), "-cl-std=CL1.2");
+    // never destroyed, as the test context (render_harness.cpp: Oclgrind crashed at exit)
+    static Program& program =
+        *new Program(ctx, assembleClSource({"quadric_probe.cl"}), "-cl-std=CL1.2");
     Profiler prof(ctx);
     Kernel k(ctx, program.get(), "quadric_probe", prof);
     std::vector<rt_float4> org, dir;

@@ -53,7 +53,9 @@ struct Ray {
 std::pair<std::vector<uint32_t>, std::vector<uint32_t>> countHits(const Mesh& m,
                                                                   const std::vector<Ray>& rays) {
     const ClContext& ctx = test::testContext();
-    static Program program(ctx, assembleClSource({"triangle_probe.cl"}), "-cl-std=CL1.2");
+    // never destroyed, as the test context (render_harness.cpp: Oclgrind crashed at exit)
+    static Program& program =
+        *new Program(ctx, assembleClSource({"triangle_probe.cl"}), "-cl-std=CL1.2");
     Profiler prof(ctx);
     Kernel k(ctx, program.get(), "triangle_probe", prof);
     std::vector<Triangle> tris;
