@@ -186,6 +186,11 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     app.add_option("--error", errorTarget, "stop at this relative error (e.g. 0.01)")
         ->check(CLI::PositiveNumber);
+    int seed = -1;
+    app.add_option("--seed", seed,
+                   "which random numbers: another seed renders an independent image of the "
+                   "same scene (default: Option \"render\" \"int seed\", else 0)")
+        ->check(CLI::NonNegativeNumber);
     app.add_option("--aov", aovs, "extra EXR channels: z, N, samples, error, filled")
         ->check(CLI::IsMember({"z", "N", "samples", "error", "filled"}));
     app.add_flag("--half", halfFloat, "write 16-bit half-float channels");
@@ -257,6 +262,7 @@ int main(int argc, char** argv) {
             rd::RenderSettings settings;
             settings.timeBudget = timeBudget;
             settings.errorTarget = errorTarget;
+            settings.seed = seed;
             settings.progress = !quiet;
             settings.textureCacheTiles = textureTiles;
             settings.treeletBytes = treeletBytes;

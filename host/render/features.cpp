@@ -30,6 +30,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.maxSpecularDepth = scene.maxSpecularDepth;
     f.maxTransparentDepth = scene.maxTransparentDepth;
     f.rouletteDepth = scene.rouletteDepth;
+    f.seed = uint32_t(std::max(0, scene.render.seed));
     float extent = 0.0f;
     for (const Triangle& t : scene.triangles)
         for (const rt_float4& v : {t.v0, t.v1, t.v2})
@@ -190,6 +191,7 @@ std::string buildOptions(const Features& f) {
     if (f.specialisedLights) o += " -DRD_SPECIALISED_LIGHTS";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
+    if (f.seed != 0) o += " -DRT_SEED=" + std::to_string(f.seed) + "u";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";
     if (f.primvars & RT_PRIMVAR_CS) o += " -DRT_HAS_VERTEX_CS";
     if (f.primvars & RT_PRIMVAR_OS) o += " -DRT_HAS_VERTEX_OS";

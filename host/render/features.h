@@ -56,6 +56,9 @@ struct Features {
     bool lightCoefficients = false;
     int maxTransparentDepth = 256;  // Attribute/Option "trace" "maxtransparentdepth"
     int rouletteDepth = 0;      // Russian roulette on traced rays from this depth (0: off)
+    // Which random numbers (rng.clh): 0 the default set; another seed gives independent
+    // samples of the same image (RT_SEED, so a new seed builds a new program once).
+    uint32_t seed = 0;
     // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a
     // surface scale with it (math.clh), so a scene scaled to 1e-6 does not leak light.
     float sceneScale = 1.0f;

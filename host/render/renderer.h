@@ -47,6 +47,7 @@ struct RenderSettings {
     size_t treeletBytes = 0;
     size_t sceneMemoryBytes = 0;
     bool timeline = false;  // keep every kernel run in RenderStats::timeline (--timeline)
+    int seed = -1;          // which random numbers; -1: the scene's Option "render" "seed"
 };
 
 // One point of the error-against-time series in --stats.

@@ -252,10 +252,11 @@ void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& pa
     r.firstPassBlock = params.getInt("firstpassblock", r.firstPassBlock);
     r.pixelError = params.getFloat("pixelerror", r.pixelError);
     r.exactQuadrics = params.getInt("exactquadrics", r.exactQuadrics ? 1 : 0) != 0;
+    r.seed = params.getInt("seed", r.seed);
     if (r.time < 0 || r.error < 0 || r.firstPassBlock < 1 || r.firstPassBlock > 64 ||
-        !(r.pixelError > 0)) {
+        !(r.pixelError > 0) || r.seed < 0) {
         m_diag.error(loc, "Option \"render\": time and error must be >= 0, firstpassblock "
-                          "1..64, pixelerror > 0");
+                          "1..64, pixelerror > 0, seed >= 0");
         r = RenderOptionsSpec();
     }
 }

@@ -70,6 +70,7 @@ struct RenderOptionsSpec {
     int textureMemoryKB = 0;   // Option "limits" "texturememory": the device tile cache (0: auto)
     int treeletBytes = 0;      // Option "limits" "treeletbytes": treelet budget (0: resident BVH)
     int sceneMemoryKB = 0;     // Option "limits" "scenememory": device BVH bytes (0: all)
+    int seed = 0;              // "int seed": which random numbers (0 is the default set)
 };
 
 // ColorSamples n, n <= 3: colours are n channels through shading, rays and sample totals
