@@ -116,7 +116,8 @@ public:
     void syncToHost(bool blocking = true) {
         if (!m_host) return;
         cl_int err = CL_SUCCESS;
-        void* p = clEnqueueMapBuffer(m_ctx->queue(), m_mem, blocking ? CL_TRUE : CL_FALSE,
+        const bool block = blocking || m_ctx->info().mapMustBlock();
+        void* p = clEnqueueMapBuffer(m_ctx->queue(), m_mem, block ? CL_TRUE : CL_FALSE,
                                      CL_MAP_READ, 0, bytes(), 0, nullptr, nullptr, &err);
         RD_CL_CHECK(err, m_ctx->name());
         RD_CL_CHECK(clEnqueueUnmapMemObject(m_ctx->queue(), m_mem, p, 0, nullptr, nullptr),

@@ -49,6 +49,8 @@ bool DeviceInfo::isPocl() const {
     return platformName.find("Portable Computing Language") != std::string::npos;
 }
 
+bool DeviceInfo::mapMustBlock() const { return platformName == "rusticl"; }
+
 std::string DeviceInfo::typeName() const {
     if (type & CL_DEVICE_TYPE_GPU) return "GPU";
     if (type & CL_DEVICE_TYPE_CPU) return "CPU";

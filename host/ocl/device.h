@@ -19,6 +19,9 @@ struct DeviceInfo {
     cl_ulong globalMemBytes = 0, maxAllocBytes = 0;
     size_t maxWorkGroupSize = 0;
     bool isPocl() const;
+    // Mesa's rusticl (22.3) rejects the unmap of a mapping not made yet (CL_INVALID_VALUE),
+    // so a buffer's sync to the host maps it blocking there (Buffer::syncToHost).
+    bool mapMustBlock() const;
     std::string typeName() const;
 };
 

@@ -54,8 +54,15 @@ Kernel::Kernel(const ClContext& ctx, cl_program program, const std::string& name
     clGetKernelWorkGroupInfo(m_kernel, ctx.device(), CL_KERNEL_WORK_GROUP_SIZE, sizeof maxWg,
                              &maxWg, nullptr);
     // 64 is a multiple of PoCL's vector width and of NVIDIA's warp; shrink only if the
-    // kernel cannot run that wide on this device.
+    // kernel cannot run that wide on this device. A kernel that declares its size
+    // (reqd_work_group_size: the compaction's RT_COMPACT_GROUP) runs at that size only,
+    // whatever the device says of its kernels in general (rusticl: 32 for every kernel).
     while (maxWg && m_localSize > maxWg) m_localSize /= 2;
+    size_t declared[3] = {0, 0, 0};
+    if (clGetKernelWorkGroupInfo(m_kernel, ctx.device(), CL_KERNEL_COMPILE_WORK_GROUP_SIZE,
+                                 sizeof declared, declared, nullptr) == CL_SUCCESS &&
+        declared[0] > 0)
+        m_localSize = declared[0];
     m_active.fillZero();
 }
 
