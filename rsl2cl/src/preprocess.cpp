@@ -1,6 +1,7 @@
 // preprocess.cpp: include handling, macro expansion and conditional compilation.
 #include "preprocess.h"
 
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <set>
@@ -374,18 +375,23 @@ private:
         Token end;
         end.loc = loc;
         toks.push_back(end);
-        CondEval e{toks, 0, m_diag, false};
+        CondEval e{toks, 0, m_diag, false, 0};
         long long v = e.ternary();
         if (!e.failed && toks[e.pos].kind != TokKind::End) e.fail(toks[e.pos]);
         return !e.failed && v != 0;
     }
 
     // Integer expression evaluator for #if (identifiers left after expansion are 0).
+    // Arithmetic wraps (two's complement, as unsigned), so no input is undefined
+    // behaviour or a trap (LLONG_MIN / -1); nesting is bounded, so no input overflows the
+    // stack.
     struct CondEval {
         const std::vector<Token>& t;
         size_t pos;
         Diagnostics& diag;
         bool failed;
+        int depth;
+        static constexpr int kMaxDepth = 200;
         void fail(const Token& at) {
             if (!failed)
                 diag.error(at.loc, at.kind == TokKind::End
@@ -398,13 +404,35 @@ private:
             ++pos;
             return true;
         }
+        static long long wrap(unsigned long long v) { return static_cast<long long>(v); }
+        static unsigned long long bits(long long v) { return static_cast<unsigned long long>(v); }
+        // One level deeper (a parenthesis, a unary operator); false past kMaxDepth.
+        bool enter() {
+            if (depth < kMaxDepth) return ++depth, true;
+            if (!failed) diag.error(t[pos].loc, "#if expression nested too deeply");
+            failed = true;
+            return false;
+        }
         long long ternary() {
+            if (!enter()) return 0;
+            long long v = conditional();
+            --depth;
+            return v;
+        }
+        long long conditional() {
             long long c = binary(0);
             if (!accept("?")) return c;
             long long a = ternary();
             if (!accept(":")) fail(t[pos]);
             long long b = ternary();
             return c ? a : b;
+        }
+        // A unary operator's operand, counted in the nesting as a parenthesis is.
+        long long operand() {
+            if (!enter()) return 0;
+            long long v = unary();
+            --depth;
+            return v;
         }
         long long binary(int prec) {
             static const std::vector<std::vector<std::string>> levels = {
@@ -424,6 +452,10 @@ private:
                     failed = true;
                     return 0;
                 }
+                if ((op == "/" || op == "%") && r == -1) {  // LLONG_MIN / -1 traps
+                    v = op == "/" ? wrap(0ull - bits(v)) : 0;
+                    continue;
+                }
                 if (op == "||") v = v || r;
                 else if (op == "&&") v = v && r;
                 else if (op == "|") v |= r;
@@ -435,18 +467,19 @@ private:
                 else if (op == ">") v = v > r;
                 else if (op == "<=") v = v <= r;
                 else if (op == ">=") v = v >= r;
-                else if (op == "+") v += r;
-                else if (op == "-") v -= r;
-                else if (op == "*") v *= r;
+                else if (op == "+") v = wrap(bits(v) + bits(r));
+                else if (op == "-") v = wrap(bits(v) - bits(r));
+                else if (op == "*") v = wrap(bits(v) * bits(r));
                 else if (op == "/") v /= r;
                 else v %= r;
             }
         }
         long long unary() {
-            if (accept("!")) return !unary();
-            if (accept("-")) return -unary();
-            if (accept("+")) return unary();
-            if (accept("~")) return ~unary();
+            if (t[pos].is("!") || t[pos].is("-") || t[pos].is("+") || t[pos].is("~")) {
+                const std::string op = t[pos++].text;
+                long long v = operand();
+                return op == "!" ? !v : op == "-" ? wrap(0ull - bits(v)) : op == "~" ? ~v : v;
+            }
             if (accept("(")) {
                 long long v = ternary();
                 if (!accept(")")) fail(t[pos]);
@@ -455,6 +488,12 @@ private:
             const Token& tok = t[pos];
             if (tok.kind == TokKind::Number) {
                 ++pos;
+                // the range of long long, exactly: 2^63 itself is out of it
+                if (!(std::fabs(tok.number) < 9223372036854775808.0)) {
+                    if (!failed) diag.error(tok.loc, "number out of range in #if");
+                    failed = true;
+                    return 0;
+                }
                 return static_cast<long long>(tok.number);
             }
             if (tok.kind == TokKind::Ident) {

@@ -59,6 +59,36 @@ TEST(Preprocess, ConditionalErrors) {
     EXPECT_EQ(d, "pp.sl:2:1: error: macro 'F' takes 1 argument(s), 2 given\n");
 }
 
+// Found by a libFuzzer run of the front end under ASan and UBSan (session 20): #if
+// arithmetic that overflowed (undefined behaviour), LLONG_MIN / -1 (a trap on x86), a
+// number beyond the integers, and nesting that overflowed the stack (a crash, rc 139).
+TEST(Preprocess, IfArithmeticIsDefinedForEveryInput) {
+    std::string d;
+    // -2^63 (an exact double), then divided and taken modulo by -1: wraps, no trap
+    const std::string min = "(-9223372036854774784 - 1024)";
+    EXPECT_EQ(pp("#if " + min + " / -1 == " + min + "\nwraps\n#endif", &d), "wraps");
+    EXPECT_EQ(d, "");
+    EXPECT_EQ(pp("#if " + min + " % -1 == 0\nzero\n#endif", &d), "zero");
+    EXPECT_EQ(pp("#if -" + min + " == " + min + "\nneg\n#endif", &d), "neg");
+    EXPECT_EQ(pp("#if " + min + " - 1 > 0 && 4611686018427387904 * 4 == 0\nwrap\n#endif", &d),
+              "wrap");
+    EXPECT_EQ(d, "");
+    pp("#if 1e93 > 0\nx\n#endif\n", &d);
+    EXPECT_EQ(d, "pp.sl:1:5: error: number out of range in #if\n");
+}
+
+TEST(Preprocess, DeepIfNestingIsAnErrorNotACrash) {
+    std::string d;
+    const std::string deep(100000, '(');
+    pp("#if " + deep + "1\n#endif\n", &d);
+    EXPECT_EQ(d, "pp.sl:1:205: error: #if expression nested too deeply\n");
+    pp("#if " + std::string(100000, '-') + "1\n#endif\n", &d);
+    EXPECT_EQ(d, "pp.sl:1:205: error: #if expression nested too deeply\n");
+    // 150 levels are fine
+    EXPECT_EQ(pp("#if " + std::string(150, '(') + "1" + std::string(150, ')') + "\nok\n#endif"),
+              "ok");
+}
+
 TEST(Preprocess, IncludeSearchPathAndGuards) {
     rsl::PreprocessOptions o;
     o.includeDirs = {RSL2CL_TEST_DATA "/inc"};
