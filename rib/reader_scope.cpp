@@ -8,11 +8,7 @@
 namespace rib {
 namespace detail {
 
-bool Reader::has(Req begin) const {
-    for (const OpenBlock& b : m_blocks)
-        if (b.begin == begin) return true;
-    return false;
-}
+bool Reader::has(Req begin) const { return m_open[size_t(begin)] > 0; }
 
 void Reader::beginBlock(Req begin, const char* name, const SourceLoc& loc) {
     OpenBlock b;
@@ -22,6 +18,7 @@ void Reader::beginBlock(Req begin, const char* name, const SourceLoc& loc) {
     b.ustep = m_ustep;
     b.vstep = m_vstep;
     m_blocks.push_back(std::move(b));
+    ++m_open[size_t(begin)];
 }
 
 bool Reader::endBlock(Req begin, const char* beginName, const char* endName,
@@ -42,6 +39,7 @@ bool Reader::endBlock(Req begin, const char* beginName, const char* endName,
         m_vstep = top.vstep;
     }
     m_blocks.pop_back();
+    --m_open[size_t(begin)];
     return true;
 }
 

@@ -44,6 +44,26 @@ TEST(RibScope, OptionsBeforeWorld) {
                      "t.rib:10: error: LightSource outside WorldBegin/WorldEnd"}));
 }
 
+// Deep nesting is read in linear time: which blocks are open is counted, not looked up
+// along the stack for every request (300k nested AttributeBegin took minutes; now well
+// under a second). CTest's timeout for this executable (tests/rib/CMakeLists.txt) is the
+// guard.
+TEST(RibScope, DeepNestingReadsInLinearTime) {
+    const int n = 300000;
+    std::string rib = "WorldBegin\n";
+    for (int i = 0; i < n; ++i) rib += "AttributeBegin\n";
+    rib += "Sphere 1 -1 1 360\n";
+    for (int i = 0; i < n; ++i) rib += "AttributeEnd\n";
+    rib += "WorldEnd\n";
+    ribtest::ReadResult r = readRib(rib);
+    EXPECT_TRUE(r.msgs.empty());
+    EXPECT_EQ(r.target.calls.size(), size_t(2 * n + 3));
+    // the counts follow the stack: an unmatched end is still reported after all of it
+    r = readRib(rib + "AttributeEnd\n");
+    EXPECT_EQ(r.msgs, (Lines{"t.rib:" + std::to_string(2 * n + 4) +
+                             ": error: AttributeEnd without AttributeBegin"}));
+}
+
 TEST(RibScope, BlockNesting) {
     ribtest::ReadResult r = readRib(
         "WorldBegin\nFrameBegin 1\nWorldBegin\nObjectBegin 1\nObjectBegin 2\nObjectEnd\n"
