@@ -1,6 +1,7 @@
 // compiler.cpp: front-end driver shared by the rsl2cl command, the host and tests.
 #include "compiler.h"
 
+#include "call_graph.h"
 #include "parser.h"
 
 namespace rsl {
@@ -13,7 +14,7 @@ static bool frontEnd(const std::vector<Token>& toks, Program& prog, Diagnostics&
         diag.error(toks.back().loc, "no shader or function definition");
         return false;
     }
-    return typecheckProgram(prog, diag);
+    return typecheckProgram(prog, diag) && checkCallGraph(prog, diag);
 }
 
 bool compileFile(const std::string& path, const PreprocessOptions& opts, Program& prog,

@@ -76,6 +76,16 @@ const ErrorCase kCases[] = {
      "test.sl:3:13: error: unknown identifier 'd'\n"
      "test.sl:4:8: error: unknown identifier 'e'\n"},
     {"empty_file", "/* nothing */\n", "test.sl:2:1: error: no shader or function definition\n"},
+    // OpenCL C has no recursion (PoCL's compiler overflowed its stack on one: the
+    // renderer crashed); functions are inlined, so a call cycle is an error
+    {"recursive_call", "float f(float x) { return f(x) + 1; }\nsurface s() {\n  Ci = f(1);\n}\n",
+     "test.sl:1:27: error: recursive call of 'f': shading language functions are inlined, "
+     "so they cannot call themselves\n"},
+    {"mutual_recursion_through_nested_function",
+     "float f(float x) {\n  float h(float y) { return f(y) * 2; }\n  return h(x);\n}\n"
+     "surface s() {\n  Ci = f(1);\n}\n",
+     "test.sl:2:29: error: recursive call of 'f': shading language functions are inlined, "
+     "so they cannot call themselves\n"},
 };
 
 void PrintTo(const ErrorCase& c, std::ostream* os) { *os << c.name; }
@@ -88,6 +98,28 @@ TEST_P(ErrorDiagnostics, MatchExpectedText) {
     rsltest::compile(c.source, r);
     EXPECT_FALSE(r.ok);
     EXPECT_EQ(r.diags, c.expected);
+}
+
+// A chain of calls deeper than 200 is an error, not a stack overflow in a later stage
+// (the affinity check and the code generator walk inlined calls recursively: 100k
+// functions each calling the last crashed rsl2cl); 150 deep compiles.
+static std::string callChain(int n) {
+    std::string src = "float f0(float x) { return x; }\n";
+    for (int i = 1; i < n; ++i)
+        src += "float f" + std::to_string(i) + "(float x) { return f" + std::to_string(i - 1) +
+               "(x) + 1; }\n";
+    return src + "surface s() {\n  Ci = f" + std::to_string(n - 1) + "(1);\n}\n";
+}
+
+TEST(ErrorDiagnostics, DeepCallChainIsAnErrorNotACrash) {
+    rsltest::Result r;
+    rsltest::compile(callChain(100000), r);
+    EXPECT_FALSE(r.ok);
+    EXPECT_EQ(r.diags, "test.sl:201:7: error: 'f200' calls functions nested more than 200 deep "
+                       "(shading language functions are inlined)\n");
+    rsltest::Result ok;
+    rsltest::compile(callChain(150), ok);
+    EXPECT_TRUE(ok.ok) << ok.diags;
 }
 
 INSTANTIATE_TEST_SUITE_P(Rsl2cl, ErrorDiagnostics, ::testing::ValuesIn(kCases),

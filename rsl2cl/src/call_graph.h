@@ -1,0 +1,15 @@
+// call_graph.h: the check that no shader reaches a function that calls itself, directly or
+// through others. Shading language functions are inlined (as PRMan inlines them), and
+// OpenCL C has no recursion: PoCL's compiler overflowed its own stack on a recursive
+// kernel (the renderer crashed). Run after the type checker has bound every call.
+#pragma once
+#include "ast.h"
+#include "diagnostics.h"
+
+namespace rsl {
+
+// Reports each call that closes a cycle ("recursive call of 'f'") and a chain of calls
+// nested more than 200 deep; false if there is either.
+bool checkCallGraph(const Program& prog, Diagnostics& diag);
+
+}  // namespace rsl
