@@ -270,7 +270,9 @@ Token Lexer::lexNumber(std::string text, int line) {
     } else if (res.ec != std::errc() || res.ptr != body.data() + body.size()) {
         return error(line, "malformed number \"" + text + "\"");
     }
-    if (std::fabs(v) > FLT_MAX)
+    // Out of range only if it does not round to a float: the nine digits the writer gives
+    // -FLT_MAX ("-3.40282347e+38") lie a little beyond it, and must read back.
+    if (std::isinf(static_cast<float>(v)))
         return error(line, "number out of range \"" + text + "\"");
     t.number = neg ? -v : v;
     t.isInt = isInteger && t.number >= INT_MIN && t.number <= INT_MAX;
