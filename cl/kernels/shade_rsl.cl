@@ -98,6 +98,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
     vertex_os, materials, quadrics, quadric_primvars, quadric_motion, tris_end, tri_params, \
     point_params, param_layout
     rd_surface_globals(&g, &m, h, RD_HIT_BUFFERS);
+    int loops_cut = 0; /* a shader loop left after RSL_MAX_LOOP_ITERATIONS (rsl_abi.h) */
+    g.loops_cut = &loops_cut;
     g.rng_pixel = sample_pixel[sample]; /* area lights pick their points by the sample */
     g.rng_sample = sample_index[sample];
     g.rng_depth = RT_TRACE_DEPTH(rs) + RT_TRANSPARENT_DEPTH(rs);
@@ -142,6 +144,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     if (!culled && take_derivs) {
         RslGlobals g1, g2;
         RD_NEIGHBOUR_GLOBALS(g, g1, g2, h, rs, dir, RD_HIT_BUFFERS);
+        g1.loops_cut = g2.loops_cut = &loops_cut;
 #ifdef RT_HAS_DISPLACEMENT
         if (disp) rd_displace_lanes((int)disp - 1, &g, &g1, &g2, params, tc);
 #endif
@@ -328,4 +331,5 @@ __kernel void shade_SURFACE(uint begin, uint count,
     spawn_mask[r] = spawned;
     /* counted now, so the retire stage may run before the compaction keeps them */
     if (spawned) atomic_add(&slot_rays[sample], popcount(spawned));
+    if (loops_cut) atomic_inc(&numerics[RT_NUM_LOOP_CUT]);
 }

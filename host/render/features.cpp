@@ -141,7 +141,8 @@ std::string buildOptions(const Features& f) {
     // No fast-math: watertight intersection and robust offsets rely on IEEE rounding.
     std::string o = "-cl-std=CL1.2 -DRT_SPAWN_SLOTS=" + std::to_string(f.spawnSlots()) +
                     " -DRSL_MAX_TRACE=" + std::to_string(std::max(1, f.traceSlots)) +
-                    " -DRT_MAX_SPECULAR_DEPTH=" + std::to_string(f.maxSpecularDepth);
+                    " -DRT_MAX_SPECULAR_DEPTH=" + std::to_string(f.maxSpecularDepth) +
+                    " -DRSL_MAX_LOOP_ITERATIONS=" + std::to_string(kShaderLoopPasses);
     if (f.smoothNormals) o += " -DRT_HAS_SMOOTH_NORMALS";
     if (f.transparency)
         o += " -DRT_HAS_TRANSPARENCY -DRT_MAX_TRANSPARENT_DEPTH=" +

@@ -10,6 +10,11 @@
 
 namespace rd {
 
+// The passes a shader's while or for loop may make at one shading point before it is cut
+// (RSL_MAX_LOOP_ITERATIONS, rsl_abi.h: a loop that never ends would hang the device;
+// the render reports the points, RenderStats::shaderLoopsCut).
+constexpr int kShaderLoopPasses = 65536;
+
 struct Features {
     bool smoothNormals = false; // per-vertex normals to interpolate
     bool transparency = false;  // some Os < 1: continuation rays

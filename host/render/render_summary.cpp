@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <string>
 
+#include "cl/include/numerics_slots.h"
+
 namespace rd {
 
 void summariseRays(RenderStats& st, const std::vector<uint32_t>& num, int maxTransparentDepth,
@@ -16,9 +18,18 @@ void summariseRays(RenderStats& st, const std::vector<uint32_t>& num, int maxTra
     const uint64_t closestRays = active("intersect_closest") + active("treelet_closest_root");
     st.continuationRays = closestRays > st.eyeRays ? closestRays - st.eyeRays : 0;
     st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root");
-    st.shadeNonfinite = num[0], st.shadeNegative = num[1], st.shadeHuge = num[2];
-    st.shadeDenormal = num[3], st.transparentDepthCut = num[4], st.specularDepthCut = num[5];
-    st.rouletteEnded = num[6], st.traceCallsIgnored = num[7];
+    st.shadeNonfinite = num[RT_NUM_NONFINITE], st.shadeNegative = num[RT_NUM_NEGATIVE];
+    st.shadeHuge = num[RT_NUM_HUGE], st.shadeDenormal = num[RT_NUM_DENORMAL];
+    st.transparentDepthCut = num[RT_NUM_TRANSPARENT_DEPTH];
+    st.specularDepthCut = num[RT_NUM_SPECULAR_DEPTH];
+    st.rouletteEnded = num[RT_NUM_ROULETTE], st.traceCallsIgnored = num[RT_NUM_TRACE_LIMIT];
+    st.shaderLoopsCut = num[RT_NUM_LOOP_CUT];
+    if (st.shaderLoopsCut > 0)
+        diag.warning(where, "a shader loop ran past " +
+                                std::to_string(kShaderLoopPasses) +
+                                " passes at " + std::to_string(st.shaderLoopsCut) +
+                                " shading point(s) and was cut there (a loop that never ends "
+                                "would hang the device)");
     if (st.shadeNonfinite + st.shadeNegative + st.shadeHuge > 0)
         diag.warning(where, "shaders produced " + std::to_string(st.shadeNonfinite) +
                                 " NaN/Inf, " + std::to_string(st.shadeNegative) +

@@ -22,6 +22,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "cl/include/numerics_slots.h"
 #include "cl/include/ray.h"
 #include "device_scene.h"
 #include "imager_stage.h"
@@ -38,8 +39,8 @@
 
 namespace rd {
 
-// numerics.clh: RT_NUM_PROCEDURAL_BASE, the first archive flag after the counters
-constexpr size_t kProceduralFlags = 8;
+// the first archive flag after the counters
+constexpr size_t kProceduralFlags = RT_NUM_PROCEDURAL_BASE;
 namespace {
 
 using Clock = std::chrono::steady_clock;

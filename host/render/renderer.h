@@ -79,6 +79,7 @@ struct RenderStats {
     uint64_t transparentDepthCut = 0, specularDepthCut = 0;
     uint64_t rouletteEnded = 0;  // trace() rays Russian roulette ended
     uint64_t traceCallsIgnored = 0;  // trace() calls past the most a shaded point records
+    uint64_t shaderLoopsCut = 0;     // shading points where a loop ran past kShaderLoopPasses
     uint64_t overflowRays = 0;  // spawned rays beyond the pool and its spill stack: dropped
     uint64_t spilledRays = 0;   // spawned rays that waited on the spill stack
     uint64_t reissuedSamples = 0;  // samples aborted (a ray dropped) and traced again

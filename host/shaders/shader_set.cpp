@@ -521,6 +521,7 @@ ShadingSetup ShaderSet::prepare() {
                 "    g.ncomps = 3.0f;\n"
                 "    g.light_cache_count = 0;\n"
                 "    g.light_cache = 0;\n"
+                "    g.loops_cut = 0;\n"
                 "    g.lights_off = 0u;\n"
                 "    g.rng_pixel = i;\n    g.rng_sample = 0u;\n    g.rng_depth = 0u;\n"
                 "    g.texctx = 0;\n"

@@ -74,6 +74,7 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                       {"specular_depth_cut", st.specularDepthCut},
                       {"roulette_ended", st.rouletteEnded},
                       {"trace_calls_ignored", st.traceCallsIgnored},
+                      {"shader_loops_cut", st.shaderLoopsCut},
                       {"pool_overflow_rays", st.overflowRays}}},
         {"sampling", {{"passes", st.passes},
                       {"overlapped_passes", st.overlappedPasses},
@@ -133,7 +134,8 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
         << ", huge " << s["numerics"]["shader_huge"] << ", denormal "
         << s["numerics"]["shader_denormal"] << ", cut at maxtransparentdepth "
         << s["numerics"]["transparent_depth_cut"] << ", at maxspeculardepth "
-        << s["numerics"]["specular_depth_cut"] << "\n";
+        << s["numerics"]["specular_depth_cut"] << ", shader loops cut "
+        << s["numerics"]["shader_loops_cut"] << "\n";
     const auto& ss = s["scene_stats"];
     out << "scene     " << ss["triangles"] << " triangles, " << ss["quadrics"] << " quadrics, "
         << ss["csg_solids"] << " CSG solids, " << ss["instances"] << " instances, "

@@ -189,6 +189,20 @@
 #define RSL_LIGHT_CACHE 8
 #endif
 
+/* LOOPS. Every while and for loop of a shader leaves after RSL_MAX_LOOP_ITERATIONS passes
+ * through its body, and sets *g->loops_cut when the renderer gives one: a kernel cannot
+ * be stopped once it runs, so a shader that never leaves its loop would hang the device
+ * and the render (its time budget and Ctrl-C included). Each loop counts its own passes
+ * (nested loops multiply). */
+#ifndef RSL_MAX_LOOP_ITERATIONS
+#define RSL_MAX_LOOP_ITERATIONS 65536
+#endif
+#define RSL_LOOP_GUARD(passes)                            \
+    if (++(passes) > RSL_MAX_LOOP_ITERATIONS) {           \
+        if (g->loops_cut) *g->loops_cut = 1;              \
+        break;                                            \
+    }
+
 struct RslTexContext; /* the renderer's texture state (TEXTURES) */
 
 /* The renderer's light cache (RslGlobals::light_cache): the first RSL_LIGHT_CACHE
@@ -213,6 +227,7 @@ typedef struct RslGlobals {
     /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global
      * s, t, which texture lookups use at a shading point's neighbours (DERIVATIVES) */
     float4 st_footprint;
+    int* loops_cut; /* LOOPS: set when a loop was cut (0: not reported); copies share it */
 #ifdef RSL_MAX_PARAM_PRIMVARS
     /* PER-POINT PARAMETERS (the contract at the top): the parameters given at this point */
     int pv_count;

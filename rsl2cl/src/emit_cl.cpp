@@ -377,6 +377,13 @@ void Emitter::decl(const VarDecl& d) {
     m_exprTemps.clear();
 }
 
+// A loop's pass counter for RSL_LOOP_GUARD (rsl_abi.h, LOOPS), declared before it.
+std::string Emitter::loopGuardCounter() {
+    const std::string name = "_passes" + std::to_string(m_tmp++);
+    line("int " + name + " = 0;");
+    return name;
+}
+
 void Emitter::loopBody(const Stmt& body) {
     int id = m_tmp++;
     m_loops.push_back(id);
@@ -476,21 +483,30 @@ void Emitter::stmt(const Stmt& s) {
         }
         line("}");
         break;
-    case StmtKind::While:
+    case StmtKind::While: {
+        line("{");
+        ++m_indent;
+        const std::string passes = loopGuardCounter();
         line("while ((" + expr(*s.expr) + ") != 0.0f) {");
         ++m_indent;
+        line("RSL_LOOP_GUARD(" + passes + ")");
         loopBody(*s.body);
         --m_indent;
         line("}");
         loopEnd();
+        --m_indent;
+        line("}");
         break;
+    }
     case StmtKind::For: {
         line("{");
         ++m_indent;
         if (s.init) stmt(*s.init);
+        const std::string passes = loopGuardCounter();
         line("for (; " + (s.expr ? "(" + expr(*s.expr) + ") != 0.0f" : std::string("1")) + "; " +
              (s.step ? expr(*s.step) : std::string()) + ") {");
         ++m_indent;
+        line("RSL_LOOP_GUARD(" + passes + ")");
         loopBody(*s.body);
         --m_indent;
         line("}");

@@ -97,6 +97,7 @@ private:
     void lightLoop(const Stmt& s);
     void loopBody(const Stmt& body);  // a loop's body; its labels for break/continue N
     void loopEnd();
+    std::string loopGuardCounter();  // declares a loop's pass counter (RSL_LOOP_GUARD)
     void writeOutputs();  // output parameters -> ev->outputs (shader body only)
     void line(const std::string& s) {
         for (const std::string& p : m_pre) m_body << std::string(2 * m_indent, ' ') << p << "\n";

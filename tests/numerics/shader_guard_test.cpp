@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cl/include/numerics_slots.h"
 #include "cl/include/compat.h"
 #include "numerics_util.h"
 #include "ocl/buffer.h"
@@ -106,6 +107,39 @@ TEST(Numerics, GoodShadersCountNoFaults) {
     EXPECT_NEAR(d.image.at(1, 4).r, 0.25, 1e-6);  // 0.5 * diffuse = 0.5 cos 60
 }
 
+// A shader loop that never ends (a float counter that sticks at 2^24, a while (1) whose break
+// is never reached, a for (;;) in a function, a while in a light's solar block)
+// is cut after RSL_MAX_LOOP_ITERATIONS passes, so the render ends, and its points are
+// counted and reported. Each loop leaves with its value at the cut: Ci is exact.
+TEST(Numerics, ShaderLoopThatNeverEndsIsCutAndReported) {
+    const std::string dir = rd::test::scratchDir("raydrive_numerics_loops");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/stuck.sl")
+        << "float spin() { float n = 0; for (;;) { n += 1; } return n; }\n"
+           "surface stuck() {\n"
+           "    float x = 0, y = 0;\n"
+           "    while (x >= 0) { x += 1; }\n"  // would stick at 2^24: cut at 65536
+           "    while (1) { y += 1; if (y < 0) break; }\n"
+           "    Ci = color(x == 65536 ? 0.25 : 1, y == 65536 ? 0.5 : 1, spin() / 65536);\n"
+           "    Oi = 1;\n}\n";
+    std::ofstream(dir + "/stucklight.sl")
+        << "light stucklight() {\n"
+           "    solar(vector(0, 0, 1), 0) { float k = 0; while (k < 1) { k = k * 1; } Cl = 0.1; }\n}\n";
+    const std::string rib = "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
+                            camera(8, 40, 1) + "WorldBegin\nLightSource \"stucklight\" 1\n"
+                            "Surface \"stuck\"\n" + squareAtZ(5.0, 50.0) + "WorldEnd\n";
+    Diagnosed d = renderWithDiagnostics(rib);
+    const rd::test::Rendered& img = d.image;
+    ASSERT_EQ(img.pixels.size(), 64u);
+    double err = 0;
+    for (const rd::Rgba& p : img.pixels)
+        err = std::fmax(err, std::fmax(std::fabs(p.r - 0.25),
+                                       std::fmax(std::fabs(p.g - 0.5), std::fabs(p.b - 1.0))));
+    EXPECT_TRUE(report("shader_loop_cut", 1e-6, err));
+    EXPECT_GE(img.stats.shaderLoopsCut, 64u) << "every shaded point";
+    EXPECT_EQ(countOf(d.messages, "shader loop ran past 65536 passes"), 1) << d.messages;
+}
+
 // rt_sanitize itself (cl/lib/numerics.clh) on edge values, through a probe kernel: its
 // fast path (every channel zero or a normal number up to RT_MAX_RADIANCE) passes them
 // unchanged; anything else takes the checks: the faulty part (colour or alpha) zeroed,
@@ -124,9 +158,6 @@ TEST(Numerics, SanitizeKeepsGoodValuesAndCountsEachFault) {
     rd::Profiler prof(ctx);
     rd::Kernel k(ctx, program.get(), "sanitize_probe", prof);
     const float inf = INFINITY, nan = NAN, fmin = FLT_MIN;
-    // numerics.clh's counter slots
-    enum { RT_NUM_NONFINITE = 0, RT_NUM_NEGATIVE, RT_NUM_HUGE, RT_NUM_DENORMAL };
-    constexpr int RT_NUM_COUNTERS = 8;
     struct Case {
         rt_float4 in, out;
         int counter;  // RT_NUM_* slot it adds one to, or -1

@@ -200,7 +200,7 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  RslGlobals g; float* gp = (float*)&g;\n"
            "  for (int k = 0; k < "
         << kGlobalFloats << "; ++k) gp[k] = gin[i * " << kGlobalFloats << " + k];\n"
-           "  g.texctx = 0;\n"
+           "  g.texctx = 0;\n  g.loops_cut = 0;\n"
         << "  RslEval ev; ev.deriv = 0; ev.mode_light = max(mode_light, -1); ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
            "#ifdef RSL_LIGHT_COEFS\n"
            "  ev.coefs = mode_light == -2;\n"
