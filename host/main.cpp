@@ -323,11 +323,15 @@ int main(int argc, char** argv) {
                 std::cerr << "raydrive: error: " << e.what() << "\n";
                 return 4;
             }
-            if (!quiet)
+            if (!quiet) {
                 std::cerr << "raydrive: wrote " << out << " (" << film.width << "x"
                           << film.height << ", " << st.elapsedSec << " s on " << st.device
-                          << ", stopped by " << st.stopReason << ", estimated error "
-                          << st.estimatedError << ")\n";
+                          << ", stopped by " << st.stopReason << ", estimated error ";
+                if (st.estimatedError >= 0)
+                    std::cerr << st.estimatedError << ")\n";
+                else  // film_error.cpp: no pixel sampled twice, or a black image
+                    std::cerr << "none: nothing to measure it on)\n";
+            }
             if (st.nonfiniteSamples > 0 && !quiet)
                 std::cerr << "raydrive: warning: " << st.nonfiniteSamples
                           << " sample(s) with NaN or Inf were left out of the image\n";

@@ -6,6 +6,7 @@
 #include "texture_maker.h"
 
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -20,6 +21,18 @@ namespace rd {
 namespace {
 
 namespace OIIO = OIIO_NAMESPACE;
+
+// The most pixels a picture made into a texture may have: as many as a frame (Format's
+// 2^28). The header is read first: a 436-byte PNG may claim 60000 x 60000 pixels, and its
+// read then asked for 43 GB.
+constexpr uint64_t kMaxPicturePixels = uint64_t(1) << 28;
+
+// OpenImageIO's errors, which may span lines (each library's own), as one line.
+std::string oneLine(std::string e) {
+    while (!e.empty() && (e.back() == '\n' || e.back() == ' ')) e.pop_back();
+    for (size_t i = 0; (i = e.find('\n', i)) != std::string::npos;) e.replace(i, 1, "; ");
+    return e;
+}
 
 OIIO::ImageSpec config(const MakeTextureOptions& o) {
     if (wrapModeOf(o.swrap) < 0 || wrapModeOf(o.twrap) < 0)
@@ -46,13 +59,20 @@ void make(OIIO::ImageBufAlgo::MakeTextureMode mode, const OIIO::ImageBuf& in,
     std::ostringstream log;
     if (!OIIO::ImageBufAlgo::make_texture(mode, in, out, c, &log))
         throw std::runtime_error("cannot make texture \"" + out + "\": " +
-                                 OIIO::geterror() + log.str());
+                                 oneLine(OIIO::geterror() + log.str()));
 }
 
 OIIO::ImageBuf readPicture(const std::string& picture) {
     OIIO::ImageBuf in(picture);
+    if (!in.init_spec(picture, 0, 0))
+        throw std::runtime_error("cannot read image \"" + picture + "\": " + oneLine(in.geterror()));
+    const OIIO::ImageSpec& s = in.spec();
+    if (s.width <= 0 || s.height <= 0 || uint64_t(s.width) * uint64_t(s.height) > kMaxPicturePixels)
+        throw std::runtime_error("image \"" + picture + "\" is " + std::to_string(s.width) + " x " +
+                                 std::to_string(s.height) +
+                                 " pixels: a texture may have at most 2^28 (16384 x 16384)");
     if (!in.read(0, 0, true, OIIO::TypeDesc::FLOAT))
-        throw std::runtime_error("cannot read image \"" + picture + "\": " + in.geterror());
+        throw std::runtime_error("cannot read image \"" + picture + "\": " + oneLine(in.geterror()));
     return in;
 }
 
@@ -66,7 +86,7 @@ public:
     bool describe(const std::string& file, ImageInfo& info, std::string* error) override {
         OIIO::ImageSpec spec;
         if (!m_ic->get_imagespec(OIIO::ustring(file), spec, 0, 0)) {
-            if (error) *error = m_ic->geterror();
+            if (error) *error = oneLine(m_ic->geterror());
             return false;
         }
         info.width = spec.width;
@@ -97,7 +117,7 @@ public:
         if (m_ic->get_pixels(OIIO::ustring(file), 0, level, x0, x1, y0, y1, 0, 1, 0, channels,
                              OIIO::TypeFloat, out, OIIO::stride_t(xstride), OIIO::stride_t(ystride)))
             return true;
-        if (error) *error = m_ic->geterror();
+        if (error) *error = oneLine(m_ic->geterror());
         return false;
     }
 

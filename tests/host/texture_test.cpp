@@ -13,6 +13,8 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include <zlib.h>
+
 #include "film/exr_output.h"
 #include "render_harness.h"
 #include "rib/reader.h"
@@ -198,6 +200,40 @@ TEST(Textures, MissingAndCorruptFilesAreReportedAndRenderTheDefault) {
                   std::string::npos) << err;
         EXPECT_EQ(img.at(4, 4).r, 0.0f);
         EXPECT_EQ(img.at(4, 4).a, 1.0f) << "the surface still renders";
+    }
+}
+
+// A picture whose header claims more pixels than a texture may have is refused before
+// it is read (a 436-byte PNG claiming 60000 x 60000 had its read ask for 43 GB, which a
+// machine with that much memory would have given), with one line that says why.
+TEST(Textures, PictureTooLargeIsRefusedBeforeItIsRead) {
+    auto chunk = [](const std::string& type, const std::string& data) {
+        auto be32 = [](uint32_t v) {
+            return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+        };
+        const std::string td = type + data;
+        return be32(uint32_t(data.size())) + td +
+               be32(uint32_t(crc32(0, reinterpret_cast<const Bytef*>(td.data()), uInt(td.size()))));
+    };
+    std::string ihdr = {0, 0, char(0xea), 0x60, 0, 0, char(0xea), 0x60, 8, 2, 0, 0, 0};
+    const std::string row(1 + 60000 * 3, '\0');
+    std::string z(compressBound(uLong(row.size())), '\0');
+    uLongf zn = uLongf(z.size());
+    compress(reinterpret_cast<Bytef*>(&z[0]), &zn, reinterpret_cast<const Bytef*>(row.data()),
+             uLong(row.size()));
+    z.resize(zn);
+    const std::string path = dir() + "/huge.png";
+    std::ofstream(path, std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8)
+                                          << chunk("IHDR", ihdr) << chunk("IDAT", z)
+                                          << chunk("IEND", "");
+    try {
+        rd::makeTexture(path, dir() + "/huge.tex", rd::MakeTextureOptions{});
+        FAIL() << "a 60000 x 60000 picture was made into a texture";
+    } catch (const std::exception& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("is 60000 x 60000 pixels: a texture may have at most 2^28"),
+                  std::string::npos) << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
     }
 }
 
