@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -354,6 +355,10 @@ int main(int argc, char** argv) {
         }
     } catch (const rd::ClError& e) {
         std::cerr << "raydrive: error: " << e.what() << "\n";
+        return 3;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "raydrive: error: out of memory on the host (a smaller Format, fewer "
+                     "PixelSamples or a smaller scene needs less)\n";
         return 3;
     } catch (const std::exception& e) {
         std::cerr << "raydrive: error: " << e.what() << "\n";
