@@ -3,6 +3,8 @@
 #pragma once
 #include <cstddef>
 
+#include "cl/include/film.h"
+
 namespace rd {
 
 constexpr size_t kPixelBatch = 64;
@@ -17,5 +19,15 @@ struct PixelSumsBatch {
 // relErr[j] = pixelRelativeError of pixel j against `floor`: the same bits (0 for a
 // pixel with fewer than two samples).
 void relativeErrors(const PixelSumsBatch& b, float floor, float* relErr);
+
+// estimateFilmError's sums over some pixels: of the squared standard errors (pixels with
+// two samples or more) and of the means (pixels with samples), each taken as
+// pixelStdError and pixelMean give them.
+struct FilmErrorSums {
+    double var = 0, mean = 0;
+    size_t withVar = 0, withMean = 0;
+};
+// Adds `count` (at most kPixelBatch) pixels' parts to `sums`, in pixel order.
+void addFilmErrorSums(const PixelAccum* pixels, size_t count, FilmErrorSums& sums);
 
 }  // namespace rd
