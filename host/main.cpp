@@ -187,6 +187,12 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     app.add_option("--error", errorTarget, "stop at this relative error (e.g. 0.01)")
         ->check(CLI::PositiveNumber);
+    std::string sampler;
+    app.add_option("--sampler", sampler,
+                   "independent (default) or sobol: Owen-scrambled Sobol samples, less noise "
+                   "at the same count; the error estimate then errs high (default: Option "
+                   "\"render\" \"string sampler\")")
+        ->check(CLI::IsMember({"independent", "sobol"}));
     int seed = -1;
     app.add_option("--seed", seed,
                    "which random numbers: another seed renders an independent image of the "
@@ -264,6 +270,7 @@ int main(int argc, char** argv) {
             settings.timeBudget = timeBudget;
             settings.errorTarget = errorTarget;
             settings.seed = seed;
+            if (!sampler.empty()) settings.sobol = sampler == "sobol";
             settings.progress = !quiet;
             settings.textureCacheTiles = textureTiles;
             settings.treeletBytes = treeletBytes;

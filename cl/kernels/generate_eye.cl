@@ -64,8 +64,9 @@ __kernel void generate_eye(__constant Camera* cam,
 #ifdef RT_HAS_DEPTH_OF_FIELD
         /* thin lens: start on the lens disc, aim at where the pinhole ray meets the plane
          * in focus (uniform disc sampling by the square-root map) */
-        float r = cam->lens_radius * sqrt(rt_random(pixel, s, 2));
-        float phi = 6.28318531f * rt_random(pixel, s, 3);
+        const float2 lens = rt_random2(pixel, s, 1u); /* dimensions 2 and 3 */
+        float r = cam->lens_radius * sqrt(lens.x);
+        float phi = 6.28318531f * lens.y;
         float f = cam->focal_distance / dz;
         float fx = dx * f, fy = dy * f, fz = dz * f;
         ox = r * cos(phi), oy = r * sin(phi);

@@ -31,6 +31,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.maxTransparentDepth = scene.maxTransparentDepth;
     f.rouletteDepth = scene.rouletteDepth;
     f.seed = uint32_t(std::max(0, scene.render.seed));
+    f.sobol = scene.render.sobol;
     float extent = 0.0f;
     for (const Triangle& t : scene.triangles)
         for (const rt_float4& v : {t.v0, t.v1, t.v2})
@@ -96,6 +97,7 @@ std::vector<std::string> Features::names() const {
     if (trace) n.push_back("trace");
     if (sampledTrace) n.push_back("sampled_trace");
     if (aovs) n.push_back("aovs");
+    if (sobol) n.push_back("sobol_sampler");
     if (treelets) n.push_back("treelets");
     if (bvhWidth == 8) n.push_back("bvh8");
     if (shadowPackets) n.push_back("shadow_packets");
@@ -193,6 +195,7 @@ std::string buildOptions(const Features& f) {
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";
     if (f.seed != 0) o += " -DRT_SEED=" + std::to_string(f.seed) + "u";
+    if (f.sobol) o += " -DRT_SAMPLER_SOBOL";
     if (f.primvars & RT_PRIMVAR_ST) o += " -DRT_HAS_VERTEX_ST";
     if (f.primvars & RT_PRIMVAR_CS) o += " -DRT_HAS_VERTEX_CS";
     if (f.primvars & RT_PRIMVAR_OS) o += " -DRT_HAS_VERTEX_OS";

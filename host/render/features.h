@@ -64,6 +64,9 @@ struct Features {
     // Which random numbers (rng.clh): 0 the default set; another seed gives independent
     // samples of the same image (RT_SEED, so a new seed builds a new program once).
     uint32_t seed = 0;
+    // Samples from Owen-scrambled Sobol sequences rather than independent numbers
+    // (RT_SAMPLER_SOBOL, rng.clh).
+    bool sobol = false;
     // Power of two at least the scene's largest coordinate, at most 1: ray offsets off a
     // surface scale with it (math.clh), so a scene scaled to 1e-6 does not leak light.
     float sceneScale = 1.0f;

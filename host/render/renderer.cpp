@@ -103,6 +103,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     f.textures = shading.textures && !textures.empty();
     f.aovs = m_settings.geometricAovs;
     if (m_settings.seed >= 0) f.seed = uint32_t(m_settings.seed);
+    if (m_settings.sobol >= 0) f.sobol = m_settings.sobol == 1;
     // Treelet-streamed traversal when a budget is set and the scene allows it.
     const size_t treeletBudget = m_settings.treeletBytes > 0 ? m_settings.treeletBytes
                                                              : size_t(scene.render.treeletBytes);

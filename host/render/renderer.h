@@ -48,6 +48,7 @@ struct RenderSettings {
     size_t sceneMemoryBytes = 0;
     bool timeline = false;  // keep every kernel run in RenderStats::timeline (--timeline)
     int seed = -1;          // which random numbers; -1: the scene's Option "render" "seed"
+    int sobol = -1;         // Sobol samples (1) or independent (0); -1: the scene's "sampler"
 };
 
 // One point of the error-against-time series in --stats.

@@ -253,6 +253,13 @@ void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& pa
     r.pixelError = params.getFloat("pixelerror", r.pixelError);
     r.exactQuadrics = params.getInt("exactquadrics", r.exactQuadrics ? 1 : 0) != 0;
     r.seed = params.getInt("seed", r.seed);
+    if (const std::string s = params.getString("sampler", ""); !s.empty()) {
+        if (s != "sobol" && s != "independent")
+            m_diag.error(loc, "Option \"render\" \"sampler\" \"" + s +
+                                  "\": known samplers are \"independent\" and \"sobol\"");
+        else
+            r.sobol = s == "sobol";
+    }
     if (r.time < 0 || r.error < 0 || r.firstPassBlock < 1 || r.firstPassBlock > 64 ||
         !(r.pixelError > 0) || r.seed < 0) {
         m_diag.error(loc, "Option \"render\": time and error must be >= 0, firstpassblock "

@@ -570,6 +570,7 @@ ShadingSetup ShaderSet::prepare() {
                                      "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
                                      "inline __attribute__((always_inline))\n#endif\n"
                                      "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"
+                                     "#include \"sample_random.clh\"\n"
                                      "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n"
                                      "#include \"area_light.clh\"\n" +
                                      lights.str() + shaders.str() + svc.str();

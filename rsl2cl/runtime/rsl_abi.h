@@ -67,6 +67,15 @@
  * pv_count > 0 it also computes its hoisted declarations (hoist.h) at the point
  * instead of reading the prepared slots, since they may depend on those parameters.
  *
+ * RANDOM. random() at call site k (numbered in the shader from 0; a colour or point takes
+ * k, k + 1 and k + 2) hashes the shading point P and k, unless the renderer defines the
+ * macro RSL_SAMPLE_RANDOM(g, site) (before this header), a float expression of the
+ * globals and the site: then it returns that (RayDrive: number k of the sample's own
+ * stream at its depth, from g->rng_pixel, rng_sample and rng_depth; two calls in a row a
+ * stratified pair under its Sobol sampler). A macro, not a function the renderer defines
+ * later: PoCL compiled a program with such a function into slower code throughout
+ * (generate_eye, which never calls it, 1.5x).
+ *
  * STRINGS. A string's id is FNV-1a (32 bit) of its bytes masked to 24 bits, with the
  * empty string 0 (exactly representable in a float slot). rsl::stringId() in
  * emit_cl.h computes the same value; texture/shadow map names reach the host that way.

@@ -260,7 +260,11 @@ std::string Emitter::builtin(const Expr& e) {
         return "rsl_" + n + "(g, ev, " + A(0) + ")";
     }
     if (n == "random") m_out.usesRandom = true;
-    if (n == "random") return "rsl_random" + vf + "(g, " + std::to_string(m_randomSite++) + ")";
+    if (n == "random") {  // (a colour or point takes three sites: site, site + 1, site + 2)
+        const int site = m_randomSite;
+        m_randomSite += vf == "_f" ? 1 : 3;
+        return "rsl_random" + vf + "(g, " + std::to_string(site) + ")";
+    }
     if (n == "noise" || n == "pnoise" || n == "cellnoise") {
         std::string dims = n == "pnoise" ? ac.substr(0, ac.size() / 2) : ac;
         int d = dims == "f" ? 1 : dims == "ff" ? 2 : (dims == "p" || dims == "v") ? 3 : 4;

@@ -44,6 +44,16 @@ TEST(RibBuilder, RenderOptionsAndTheirErrors) {
     Built bad = build(std::string("Option \"render\" \"float time\" [-1]\n") + kWorld);
     EXPECT_EQ(bad.errors, 1);
     EXPECT_NE(bad.messages.find("t.rib:1: error: Option \"render\""), std::string::npos);
+    EXPECT_FALSE(r.scenes[0].render.sobol);
+    Built sobol = build(std::string("Option \"render\" \"string sampler\" \"sobol\"\n") + kWorld);
+    ASSERT_EQ(sobol.scenes.size(), 1u);
+    EXPECT_TRUE(sobol.scenes[0].render.sobol);
+    Built unknown = build(std::string("Option \"render\" \"string sampler\" \"halton\"\n") + kWorld);
+    EXPECT_EQ(unknown.errors, 1);
+    EXPECT_NE(unknown.messages.find("t.rib:1: error: Option \"render\" \"sampler\" \"halton\": "
+                                    "known samplers are \"independent\" and \"sobol\""),
+              std::string::npos)
+        << unknown.messages;
 }
 
 TEST(RibBuilder, CameraOptions) {

@@ -122,6 +122,23 @@ TEST(Codegen, TraceBoundCountsCallsOnceEach) {
     EXPECT_EQ(sh.shader.traceBound, 2) << "a reflected and a refracted ray";
 }
 
+// random() call sites are numbered in the shader; a colour or point takes three (its
+// components' sites), so no float call shares a site, and so a number, with one of them
+// (rsl_abi.h RANDOM: under the Sobol sampler sites k and k + 1 are a stratified pair).
+TEST(Codegen, RandomSitesAreNeverShared) {
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource("surface s() {\n  color c = random();\n  float a = random(), "
+                                 "b = random();\n  Ci = c * a * b;\n}",
+                                 "s.sl", &err))
+        << err;
+    const std::string& src = sh.shader.source;
+    EXPECT_NE(src.find("rsl_random_v(g, 0)"), std::string::npos) << src;
+    EXPECT_NE(src.find("rsl_random_f(g, 3)"), std::string::npos) << src;
+    EXPECT_NE(src.find("rsl_random_f(g, 4)"), std::string::npos) << src;
+    EXPECT_EQ(src.find("rsl_random_f(g, 1)"), std::string::npos) << src;
+}
+
 // Colour defaults reach the host as RGB, whatever space they are written in, and say
 // whether they were written as RGB triples (rgbDefault: a renderer shading in other
 // colour channels converts them) or as one float for every channel.
