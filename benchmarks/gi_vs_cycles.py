@@ -48,8 +48,9 @@ def rel_rmse(img, ref):
 class RayDrive:
     name = "raydrive"
 
-    def __init__(self, binary, work, depth, mesh):
+    def __init__(self, binary, work, depth, mesh, options=()):
         self.binary, self.work, self.depth, self.mesh = binary, work, depth, mesh
+        self.options = list(options)  # e.g. --sampler sobol
 
     def render(self, samples, seed, out):
         rib = os.path.join(self.work, "cornell_%d.rib" % samples)
@@ -57,8 +58,8 @@ class RayDrive:
             f.write(cornell.rib(out, samples, self.depth, os.path.join(HERE, "scenes"), self.mesh))
         stats = out + ".json"
         t0 = time.perf_counter()
-        subprocess.run([self.binary, "-q", "--seed", str(seed), "--stats", stats, rib],
-                       check=True)
+        subprocess.run([self.binary, "-q", "--seed", str(seed), "--stats", stats] +
+                       self.options + [rib], check=True)
         wall = time.perf_counter() - t0
         with open(stats) as f:
             s = json.load(f)
@@ -106,11 +107,13 @@ def main():
     ap.add_argument("--threads", type=int, default=os.cpu_count() or 2)
     ap.add_argument("--mesh", help="an OFF mesh in place of the two blocks (e.g. the bunny)")
     ap.add_argument("--out", default=os.path.join(HERE, "..", "build", "gi-vs-cycles"))
+    ap.add_argument("--raydrive-options", default="",
+                    help="more raydrive options, e.g. '--sampler sobol' (its reference too)")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     work = tempfile.mkdtemp()
     mesh = os.path.abspath(a.mesh) if a.mesh else None
-    renderers = [RayDrive(a.raydrive, work, a.depth, mesh),
+    renderers = [RayDrive(a.raydrive, work, a.depth, mesh, a.raydrive_options.split()),
                  Cycles(a.blender, a.threads, a.depth, mesh)]
     tag = "" if mesh is None else "_" + os.path.splitext(os.path.basename(mesh))[0]
 
