@@ -45,6 +45,17 @@ std::string stripes(int res) {
     return s + "WorldEnd\n";
 }
 
+// Adds n samples to a pixel's sums: two channels level + noise * U(0, 1), the third level.
+void addSamples(PixelAccum& p, uint32_t n, float level, float noise, std::mt19937& rng) {
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (uint32_t k = 0; k < n; ++k) {
+        const float v[3] = {level + noise * u(rng), level + noise * u(rng), level};
+        p.sum.x += v[0], p.sum.y += v[1], p.sum.z += v[2];
+        p.sum_sq.x += v[0] * v[0], p.sum_sq.y += v[1] * v[1], p.sum_sq.z += v[2] * v[2];
+    }
+    p.count += n;
+}
+
 }  // namespace
 
 // Each pass re-tests only the pixels whose answer can have changed; the passes must be
@@ -436,13 +447,7 @@ TEST(Film, ErrorEstimateInBatchesIsThePixelByPixelOne) {
         PixelAccum& p = f[i];
         const uint32_t n = i % 11 == 0 ? 0 : i % 11 == 1 ? 1 : 2 + uint32_t(i % 9);
         const float level = i % 7 == 0 ? 1e6f : i % 7 == 1 ? 0.0f : 0.2f + u(rng);
-        const float noise = i % 7 == 0 ? 1e-3f : 0.3f * level;
-        for (uint32_t k = 0; k < n; ++k) {
-            const float v[3] = {level + noise * u(rng), level + noise * u(rng), level};
-            p.sum.x += v[0], p.sum.y += v[1], p.sum.z += v[2];
-            p.sum_sq.x += v[0] * v[0], p.sum_sq.y += v[1] * v[1], p.sum_sq.z += v[2] * v[2];
-        }
-        p.count = n;
+        addSamples(p, n, level, i % 7 == 0 ? 1e-3f : 0.3f * level, rng);
     }
     double var = 0, mean = 0, withVar = 0, withMean = 0;
     for (const PixelAccum& p : f) {
@@ -472,13 +477,7 @@ TEST(Film, BatchOfRelativeErrorsIsThePixelByPixelOne) {
         p = PixelAccum{};
         const uint32_t n = j % 7 == 0 ? 1 : 2 + uint32_t(j % 13);
         const float level = j % 5 == 0 ? 1e6f : j % 5 == 1 ? 0.0f : j % 5 == 2 ? 0.01f : 1.0f;
-        const float noise = j % 5 == 0 ? 1e-3f : 0.3f * level;
-        for (uint32_t k = 0; k < n; ++k) {
-            const float v[3] = {level + noise * u(rng), level + noise * u(rng), level};
-            p.sum.x += v[0], p.sum.y += v[1], p.sum.z += v[2];
-            p.sum_sq.x += v[0] * v[0], p.sum_sq.y += v[1] * v[1], p.sum_sq.z += v[2] * v[2];
-        }
-        p.count = n;
+        addSamples(p, n, level, j % 5 == 0 ? 1e-3f : 0.3f * level, rng);
         b.n[j] = n, b.mean[j] = rd::pixelMean(p);
         b.s[0][j] = p.sum.x, b.s[1][j] = p.sum.y, b.s[2][j] = p.sum.z;
         b.q[0][j] = p.sum_sq.x, b.q[1][j] = p.sum_sq.y, b.q[2][j] = p.sum_sq.z;
