@@ -343,9 +343,9 @@ TEST(Sampling, SobolSamplerHalvesTheErrorOfTheSameSamples) {
 // in a row a stratified pair (rsl_abi.h RANDOM): 16 samples of a pixel put exactly 4 of
 // their (random(), random()) points in each quarter of the unit square, so a surface lit
 // where both are under 1/2 shows exactly 1/4 in every pixel (independent samples: binomial
-// noise). An area light's points come from such pairs too: the same mean as independent
-// samples within noise.
-TEST(Sampling, SobolSamplerStratifiesShaderRandomAndAreaLights) {
+// noise). An area light's points, the lens (depth of field) and the shutter time (motion
+// blur) come from such pairs too: the same means as independent samples within noise.
+TEST(Sampling, SobolSamplerStratifiesShaderRandomAreaLightsLensAndTime) {
     const std::string dir = rd::test::scratchDir("raydrive_sobol");
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/quadrant.sl")
@@ -379,6 +379,17 @@ TEST(Sampling, SobolSamplerStratifiesShaderRandomAndAreaLights) {
     std::printf("area light mean: sobol %.4f, independent %.4f\n", mq, mi);
     EXPECT_GT(mi, 0.02);
     EXPECT_NEAR(mq / mi, 1.0, 0.05);
+    const std::string blurred =
+        "Format 32 24 1\nPixelSamples 4 4\nProjection \"perspective\" \"fov\" [40]\n" + opts +
+        "DepthOfField 2.8 0.5 6\nShutter 0 1\nTranslate 0 -1 6\nWorldBegin\n"
+        "LightSource \"distantlight\" 1 \"from\" [-1 4 -2] \"to\" [0 0 0]\nSurface \"matte\"\n"
+        "Polygon \"P\" [-9 0 -9  -9 0 9  9 0 9  9 0 -9]\n"
+        "MotionBegin [0 1]\nTranslate 0 1 0\nTranslate 0.5 1 0\nMotionEnd\nSphere 1 -1 1 360\nWorldEnd\n";
+    Rendered bq = renderRib(blurred, sobol), bi = renderRib(blurred);
+    const auto& features = bq.stats.features.names();
+    for (const char* f : {"depth_of_field", "motion_blur", "sobol_sampler"})
+        EXPECT_NE(std::find(features.begin(), features.end(), f), features.end()) << f;
+    EXPECT_NEAR(bq.mean(0, 0, 0, 32, 24) / bi.mean(0, 0, 0, 32, 24), 1.0, 0.03);
 }
 
 // A time budget ends the render promptly and leaves whole samples only.
