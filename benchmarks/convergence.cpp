@@ -1,9 +1,10 @@
 // convergence.cpp: error against run time (issue 6). For each scene it renders a
-// converged reference once (cached as <out>/<scene>.ref.exr, regenerated when missing),
-// then renders with increasing time budgets and reports, per budget, the true relative
-// RMSE against the reference next to the renderer's own estimate, their ratio, and the
-// fitted log-log slope of error against time (-0.5 for unbiased Monte Carlo). Writes
-// <out>/<scene>.csv and, when gnuplot is installed, <out>/<scene>.png.
+// converged reference once (seed 1, cached as <out>/<scene>.ref-seed1.exr, regenerated
+// when missing), then renders with increasing time budgets and reports, per budget, the
+// true relative RMSE against the reference next to the renderer's own estimate, their
+// ratio, and the fitted log-log slope of error against time (-0.5 for unbiased Monte
+// Carlo). Writes <out>/<scene>.csv and, when gnuplot is installed, <out>/<scene>.png
+// (-sobol in the names with --sampler sobol).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -68,11 +69,14 @@ int main(int argc, char** argv) {
     std::vector<double> budgets{0.25, 0.5, 1, 2, 4, 8};
     int refSide = 48;
     int repeats = 3;
+    std::string sampler = "independent";
     app.add_option("scenes", scenes, "RIB files")->required();
     app.add_option("--out", outDir, "output folder (reference cache, CSV, PNG)");
     app.add_option("--budgets", budgets, "time budgets in seconds")->delimiter(',');
     app.add_option("--ref-side", refSide, "reference: side x side samples per pixel");
     app.add_option("--repeats", repeats, "renders per budget (the median is reported)");
+    app.add_option("--sampler", sampler, "the budget renders' sampler (the reference's: independent)")
+        ->check(CLI::IsMember({"independent", "sobol"}));
     CLI11_PARSE(app, argc, argv);
     fs::create_directories(outDir);
     ClContext ctx(selectDevice(""));
@@ -81,7 +85,8 @@ int main(int argc, char** argv) {
     for (const std::string& path : scenes) {
         Scene scene = loadScene(path);
         std::string stem = fs::path(path).stem().string();
-        std::string refPath = outDir + "/" + stem + ".ref.exr";
+        // (seed 1: the reference shares no sample with the renders it judges, seed 0)
+        std::string refPath = outDir + "/" + stem + ".ref-seed1.exr";
         std::vector<Rgba> ref;
         double refError = 0;
         int w = 0, h = 0;
@@ -96,7 +101,9 @@ int main(int argc, char** argv) {
             rs.render.pixelError = 1e-9f;  // every pixel gets all the samples
             Film film;
             rib::Diagnostics rdiag(&std::cerr);
-            RenderStats st = Renderer(ctx, RenderSettings{}).render(rs, film, rdiag);
+            RenderSettings refSettings;
+            refSettings.seed = 1;
+            RenderStats st = Renderer(ctx, refSettings).render(rs, film, rdiag);
             ref = film.resolve();
             refError = st.estimatedError;
             writeExr(refPath, film.width, film.height, ref, {});
@@ -108,7 +115,8 @@ int main(int argc, char** argv) {
                     stem.c_str(), refError);
         std::printf("%8s %9s %12s %11s %11s %7s\n", "budget_s", "elapsed_s", "rays",
                     "true_err", "est_err", "est/true");
-        std::ofstream csv(outDir + "/" + stem + ".csv");
+        const std::string runName = stem + (sampler == "sobol" ? "-sobol" : "");
+        std::ofstream csv(outDir + "/" + runName + ".csv");
         csv << "budget_s,elapsed_s,rays,true_error,estimated_error\n";
         std::vector<double> times, trues, ratios;
         for (double budget : budgets) {
@@ -120,6 +128,7 @@ int main(int argc, char** argv) {
             for (int r = 0; r < repeats; ++r) {
                 RenderSettings s;
                 s.timeBudget = budget;
+                s.sobol = sampler == "sobol" ? 1 : 0;
                 Film film;
                 rib::Diagnostics rdiag(&std::cerr);
                 RenderStats st = Renderer(ctx, s).render(scene, film, rdiag);
@@ -148,12 +157,12 @@ int main(int argc, char** argv) {
         }
         csv.close();
         if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
-            std::string png = outDir + "/" + stem + ".png";
+            std::string png = outDir + "/" + runName + ".png";
             std::string cmd =
                 "gnuplot -e \"set terminal pngcairo size 800,600 noenhanced; set output '" + png +
                 "'; set logscale xy; set grid; set key top right; set datafile separator ',';"
-                " set xlabel 'elapsed (s)'; set ylabel 'relative RMSE'; set title '" + stem +
-                ": error against time'; plot '" + outDir + "/" + stem +
+                " set xlabel 'elapsed (s)'; set ylabel 'relative RMSE'; set title '" + runName +
+                ": error against time'; plot '" + outDir + "/" + runName +
                 ".csv' using 2:4 skip 1 with linespoints title 'true', '' using 2:5 skip 1 "
                 "with linespoints title 'estimated'\"";
             if (std::system(cmd.c_str()) == 0) std::printf("plot: %s\n", png.c_str());
