@@ -309,6 +309,8 @@ int main(int argc, char** argv) {
             opts.metadata["raydrive:scene"] = scenePath;
             opts.metadata["raydrive:stop"] = st.stopReason;
             opts.metadata["raydrive:estimated_error"] = std::to_string(st.estimatedError);
+            // (the estimate assumes independent samples: under Sobol it is an upper bound)
+            opts.metadata["raydrive:sampler"] = st.features.sobol ? "sobol" : "independent";
             opts.metadata["raydrive:samples"] = std::to_string(st.filmSamples);
             // Pixels never reached are filled from neighbours: say which, always.
             if (st.unsampledPixels > 0) wanted.push_back("filled");
@@ -336,7 +338,9 @@ int main(int argc, char** argv) {
                           << film.height << ", " << st.elapsedSec << " s on " << st.device
                           << ", stopped by " << st.stopReason << ", estimated error ";
                 if (st.estimatedError >= 0)
-                    std::cerr << st.estimatedError << ")\n";
+                    std::cerr << st.estimatedError
+                              << (st.features.sobol ? ", an upper bound under the Sobol sampler" : "")
+                              << ")\n";
                 else  // film_error.cpp: no pixel sampled twice, or a black image
                     std::cerr << "none: nothing to measure it on)\n";
             }
