@@ -72,7 +72,9 @@ int main(int argc, char** argv) {
     std::string sampler = "independent";
     app.add_option("scenes", scenes, "RIB files")->required();
     app.add_option("--out", outDir, "output folder (reference cache, CSV, PNG)");
-    app.add_option("--budgets", budgets, "time budgets in seconds")->delimiter(',');
+    app.add_option("--budgets", budgets, "time budgets in seconds, e.g. 0.5,1,2")
+        ->delimiter(',')
+        ->expected(1);  // (one comma-separated list: the scenes after it stay scenes)
     app.add_option("--ref-side", refSide, "reference: side x side samples per pixel");
     app.add_option("--repeats", repeats, "renders per budget (the median is reported)");
     app.add_option("--sampler", sampler, "the budget renders' sampler (the reference's: independent)")
