@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 #include "film_error_batch.h"
+#include "run_in_parts.h"
 
 namespace rd {
 
@@ -15,20 +15,13 @@ namespace rd {
 double estimateFilmError(const FilmPixels& film) {
     const size_t batches = (film.size() + kPixelBatch - 1) / kPixelBatch;
     std::vector<FilmErrorSums> part(batches);
-    auto run = [&](size_t begin, size_t end) {
+    // (threads only where they pay for their start: a large film)
+    runInParts(batches, film.size() < 65536 ? 1 : hostThreads(), [&](size_t begin, size_t end, size_t) {
         for (size_t i = begin; i < end; ++i) {
             const size_t first = i * kPixelBatch;
             addFilmErrorSums(&film[first], std::min(kPixelBatch, film.size() - first), part[i]);
         }
-    };
-    // (threads only where they pay for their start: a large film)
-    const size_t threads =
-        film.size() < 65536 ? 1 : std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads; ++t)
-        pool.emplace_back(run, batches * t / threads, batches * (t + 1) / threads);
-    run(0, batches / threads);
-    for (std::thread& th : pool) th.join();
+    });
     FilmErrorSums sum;
     for (const FilmErrorSums& s : part)
         sum.var += s.var, sum.mean += s.mean, sum.withVar += s.withVar, sum.withMean += s.withMean;

@@ -2,12 +2,12 @@
 #include "sampling.h"
 
 #include "film/film_error_batch.h"
+#include "film/run_in_parts.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <thread>
 
 namespace rd {
 
@@ -39,21 +39,6 @@ inline std::array<uint32_t, 5> SamplePlanner::neighbourhood(uint32_t pixel) cons
     return {pixel, x > 0 ? pixel - 1 : pixel, x + 1 < w ? pixel + 1 : pixel,
             y > 0 ? pixel - w : pixel, y + 1 < uint32_t(m_height) ? pixel + w : pixel};
 }
-
-namespace {
-
-// Runs f(begin, end, part) over [0, n) cut into `parts` contiguous parts, the first on the
-// calling thread: a visit's result is the same for any number of parts.
-template <class F>
-void runInParts(size_t n, size_t parts, F&& f) {
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < parts; ++t)
-        pool.emplace_back([&f, n, parts, t] { f(n * t / parts, n * (t + 1) / parts, t); });
-    f(0, n / parts, 0);
-    for (std::thread& th : pool) th.join();
-}
-
-}  // namespace
 
 void SamplePlanner::measure(const FilmPixels& film, const uint32_t* pixels, size_t count,
                             float floor, float* relErr, uint8_t* edge) const {
@@ -248,9 +233,7 @@ void SamplePlanner::jumpSmallPass(const FilmPixels& film, std::vector<PixelReque
 // waits for the next round's retire.)
 size_t SamplePlanner::threadsFor(size_t pixels) const {
     if (pixels < m_settings.parallelPixels) return 1;
-    return m_settings.planThreads > 0
-               ? m_settings.planThreads
-               : std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
+    return m_settings.planThreads > 0 ? m_settings.planThreads : hostThreads();
 }
 
 float SamplePlanner::brightnessFloor(const FilmPixels& film) {
