@@ -190,8 +190,8 @@ int main(int argc, char** argv) {
     std::string sampler;
     app.add_option("--sampler", sampler,
                    "independent (default) or sobol: Owen-scrambled Sobol samples, less noise "
-                   "at the same count; the error estimate then errs high (default: Option "
-                   "\"render\" \"string sampler\")")
+                   "at the same count, the error estimated from two independent scrambles "
+                   "(default: Option \"render\" \"string sampler\")")
         ->check(CLI::IsMember({"independent", "sobol"}));
     int seed = -1;
     app.add_option("--seed", seed,
@@ -309,7 +309,7 @@ int main(int argc, char** argv) {
             opts.metadata["raydrive:scene"] = scenePath;
             opts.metadata["raydrive:stop"] = st.stopReason;
             opts.metadata["raydrive:estimated_error"] = std::to_string(st.estimatedError);
-            // (the estimate assumes independent samples: under Sobol it is an upper bound)
+            // (how the error was estimated: from the samples' spread, or from two replicates)
             opts.metadata["raydrive:sampler"] = st.features.sobol ? "sobol" : "independent";
             opts.metadata["raydrive:samples"] = std::to_string(st.filmSamples);
             // Pixels never reached are filled from neighbours: say which, always.
@@ -338,9 +338,7 @@ int main(int argc, char** argv) {
                           << film.height << ", " << st.elapsedSec << " s on " << st.device
                           << ", stopped by " << st.stopReason << ", estimated error ";
                 if (st.estimatedError >= 0)
-                    std::cerr << st.estimatedError
-                              << (st.features.sobol ? ", an upper bound under the Sobol sampler" : "")
-                              << ")\n";
+                    std::cerr << st.estimatedError << ")\n";
                 else  // film_error.cpp: no pixel sampled twice, or a black image
                     std::cerr << "none: nothing to measure it on)\n";
             }

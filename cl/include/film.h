@@ -12,6 +12,11 @@ typedef struct SampleTotal {
 typedef struct PixelAccum {
     rt_float4 sum;    /* rgb + alpha */
     rt_float4 sum_sq; /* per channel squares, for the variance */
+    /* Under the Sobol sampler (RT_SAMPLER_SOBOL) a pixel's even and odd samples are two
+     * independently scrambled sequences: the odd ones' rgb sum (xyz) and number (w), so
+     * that the film's error is estimated from two independent means (film_error.h);
+     * zero under independent samples. */
+    rt_float4 sum_odd;
     uint32_t count;   /* whole samples retired */
     uint32_t nonfinite; /* samples dropped because a channel was NaN or Inf */
     uint32_t pad[2];
@@ -51,11 +56,14 @@ typedef struct PixelJob {
 /* Or'ed into an in-flight state: the pixel's only job in its pass, so no other job adds
  * to its film entry at the same time and retiring it needs no atomics. */
 #define RT_JOB_EXCLUSIVE 0x100u
+/* Or'ed in too: the job's first sample has an odd index in its pixel's sequence (the
+ * Sobol sampler's second scramble; film.h sum_odd). */
+#define RT_JOB_ODD_FIRST 0x200u
 #define RT_JOB_STATE_MASK 0xffu
 #ifndef __OPENCL_C_VERSION__
 RT_ASSERT_SIZE(SampleTotal, 16);
 RT_ASSERT_SIZE(PixelJob, 16);
-RT_ASSERT_SIZE(PixelAccum, 48);
+RT_ASSERT_SIZE(PixelAccum, 64);
 RT_ASSERT_SIZE(AovAccum, 32);
 RT_ASSERT_SIZE(SampleAov, 32);
 #endif

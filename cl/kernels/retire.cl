@@ -64,6 +64,10 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
     }
     jobs[job].state = RT_JOB_RETIRED;
     float4 sum = (float4)(0.0f), sum_sq = (float4)(0.0f);
+#ifdef RT_SAMPLER_SOBOL
+    float4 sum_odd = (float4)(0.0f);
+    const uint odd_first = (state & RT_JOB_ODD_FIRST) ? 1u : 0u;
+#endif
     uint n = 0, bad = 0;
     for (uint s = 0; s < count; ++s) {
         float4 v = total[rt_ring_add(first, s, slot_capacity)].value;
@@ -74,6 +78,10 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
             sum += v;
             sum_sq += v * v;
             ++n;
+#ifdef RT_SAMPLER_SOBOL
+            /* (sample s of the job is its pixel's sample first + s) */
+            if ((s ^ odd_first) & 1u) sum_odd += (float4)(v.xyz, 1.0f);
+#endif
         } else {
             ++bad;
         }
@@ -84,11 +92,17 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
     if (state & RT_JOB_EXCLUSIVE) {
         acc->sum += sum;
         acc->sum_sq += sum_sq;
+#ifdef RT_SAMPLER_SOBOL
+        acc->sum_odd += sum_odd;
+#endif
         acc->count += n;
         acc->nonfinite += bad;
     } else {
         rt_atomic_add_float4(&acc->sum, sum);
         rt_atomic_add_float4(&acc->sum_sq, sum_sq);
+#ifdef RT_SAMPLER_SOBOL
+        rt_atomic_add_float4(&acc->sum_odd, sum_odd);
+#endif
         atomic_add(&acc->count, n);
         atomic_add(&acc->nonfinite, bad);
     }

@@ -12,7 +12,7 @@ namespace rd {
 // (Sums by batch of pixels, the batches' sums added in order: the same value for any
 // number of threads. A 512x512 film took 2.3 ms pixel by pixel on one core, the end of
 // every frame; now a batch's divisions and square roots are vector operations.)
-double estimateFilmError(const FilmPixels& film) {
+FilmError estimateFilmErrors(const FilmPixels& film) {
     const size_t batches = (film.size() + kPixelBatch - 1) / kPixelBatch;
     std::vector<FilmErrorSums> part(batches);
     // (threads only where they pay for their start: a large film)
@@ -23,10 +23,16 @@ double estimateFilmError(const FilmPixels& film) {
         }
     });
     FilmErrorSums sum;
-    for (const FilmErrorSums& s : part)
-        sum.var += s.var, sum.mean += s.mean, sum.withVar += s.withVar, sum.withMean += s.withMean;
-    if (sum.withVar == 0 || sum.mean <= 0) return -1.0;
-    return std::sqrt(sum.var / double(sum.withVar)) / (sum.mean / double(sum.withMean));
+    for (const FilmErrorSums& s : part) {
+        sum.var += s.var, sum.mean += s.mean, sum.replicateVar += s.replicateVar;
+        sum.withVar += s.withVar, sum.withMean += s.withMean, sum.withReplicates += s.withReplicates;
+    }
+    FilmError e;
+    if (sum.mean <= 0) return e;
+    const double mean = sum.mean / double(sum.withMean);
+    if (sum.withVar > 0) e.spread = std::sqrt(sum.var / double(sum.withVar)) / mean;
+    if (sum.withReplicates > 0) e.replicates = std::sqrt(sum.replicateVar / double(sum.withReplicates)) / mean;
+    return e;
 }
 
 float relativeErrorFloor(const FilmPixels& film) {

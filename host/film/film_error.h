@@ -52,10 +52,45 @@ inline PixelEstimate estimatePixel(const PixelAccum& p) {
     return e;
 }
 
+// The squared error of the pixel's mean from its two replicates (the Sobol sampler's
+// even and odd samples, film.h sum_odd: independent estimates of the same mean, of nA and
+// nB samples): per channel (mA - mB)^2 nA nB / n^2, whose expectation is the variance of
+// the pixel's mean (for n samples of one kind, var(mA - mB) = v (1/nA + 1/nB) and the
+// mean's is v / n), averaged over the three colour channels. Unlike the samples' spread
+// it holds for stratified samples, each replicate being unbiased on its own. Negative
+// without samples of both replicates.
+inline double replicateVariance(const PixelAccum& p) {
+    const double nB = p.sum_odd.w, nA = double(p.count) - nB;
+    if (nA < 1.0 || nB < 1.0) return -1.0;
+    const double w = nA * nB / ((nA + nB) * (nA + nB));
+    const float* s = &p.sum.x;
+    const float* odd = &p.sum_odd.x;
+    double v = 0;
+    for (int c = 0; c < 3; ++c) {
+        const double d = (double(s[c]) - odd[c]) / nA - double(odd[c]) / nB;
+        v += d * d;
+    }
+    return v * w / 3.0;
+}
+
 // The film's relative error: sqrt(mean over pixels of the variance of the pixel mean)
 // divided by the mean pixel value; the same definition as the true relative RMSE against
 // a reference, so the two can be compared. Negative when no pixel has two samples.
-double estimateFilmError(const FilmPixels& film);
+// Two estimates of that variance:
+struct FilmError {
+    double spread = -1;      // from the samples' spread: independent samples
+    double replicates = -1;  // from the replicates (replicateVariance): the Sobol sampler
+    // The one that holds for the sampler, and how far the spread overstates it (the
+    // planner's per-pixel errors come from the spread: 1 for independent samples).
+    double of(bool sobol) const { return sobol ? replicates : spread; }
+    double spreadOverstates(bool sobol) const {
+        return sobol && spread > 0 && replicates > 0 ? std::max(1.0, spread / replicates) : 1.0;
+    }
+};
+FilmError estimateFilmErrors(const FilmPixels& film);
+inline double estimateFilmError(const FilmPixels& film, bool sobol = false) {
+    return estimateFilmErrors(film).of(sobol);
+}
 
 // Per-pixel relative error as used for refinement: the standard error over the larger of
 // the pixel's mean and a floor, a tenth of the image's mean brightness

@@ -4,6 +4,7 @@
 // loop into vector divisions and square roots, and without fused multiply-adds, so that
 // every clone computes the bits pixelStdError does (host/CMakeLists.txt).
 #include "film_error_batch.h"
+#include "film_error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -62,6 +63,10 @@ void addFilmErrorSums(const PixelAccum* pixels, size_t count, FilmErrorSums& sum
         if (pixels[j].count >= 2) {
             sums.var += double(stdError[j]) * stdError[j];
             ++sums.withVar;
+        }
+        if (const double v = replicateVariance(pixels[j]); v >= 0) {
+            sums.replicateVar += v;
+            ++sums.withReplicates;
         }
     }
 }

@@ -23,9 +23,12 @@ void relativeErrors(const PixelSumsBatch& b, float floor, float* relErr);
 // estimateFilmError's sums over some pixels: of the squared standard errors (pixels with
 // two samples or more) and of the means (pixels with samples), each taken as
 // pixelStdError and pixelMean give them.
+// Also the sums of the replicate estimate (film_error.h): the squared error of each
+// pixel's mean from the difference of its even and odd samples' means, over the pixels
+// with samples of both.
 struct FilmErrorSums {
-    double var = 0, mean = 0;
-    size_t withVar = 0, withMean = 0;
+    double var = 0, mean = 0, replicateVar = 0;
+    size_t withVar = 0, withMean = 0, withReplicates = 0;
 };
 // Adds `count` (at most kPixelBatch) pixels' parts to `sums`, in pixel order.
 void addFilmErrorSums(const PixelAccum* pixels, size_t count, FilmErrorSums& sums);

@@ -464,6 +464,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     };
 
     double lastSample = 0;  // the first point after half a second: a pass over the film
+    // How far the samples' spread, from which the planner takes each pixel's error,
+    // overstates the error under the Sobol sampler (FilmError::spreadOverstates): the
+    // planner's pixel error is loosened by as much.
+    double spreadOverstates = 1.0;
     auto sampleError = [&](bool force, bool filmSynced = false) {
         double now = secondsSince(t0);
         if (!force && now - lastSample < 0.5) return;
@@ -472,7 +476,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             prof.markHostWait();
             filmBuf.syncToHost();
         }
-        st.estimatedError = estimateFilmError(film.pixels);
+        const FilmError e = estimateFilmErrors(film.pixels);
+        st.estimatedError = e.of(f.sobol);
+        spreadOverstates = e.spreadOverstates(f.sobol);
         prof.collect();
         uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
                         (treelets ? treelets->peekRays() : 0);
@@ -494,7 +500,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         busy.assign(ring.inFlight() > 0 || !pending.empty() ? film.pixels.size() : 0, 0);
         ring.markPixelsInFlight(busy);
         for (const PlannedJob& j : pending) busy[j.pixel] = 1;
-        std::deque<PlannedJob> jobs = planJobs(planner->nextPass(film.pixels, pixelError, busy),
+        std::deque<PlannedJob> jobs = planJobs(planner->nextPass(film.pixels, float(pixelError * spreadOverstates), busy),
                                                maxJob, film.pixels.size());
         st.planMs += secondsSince(tPlan) * 1e3;
         refill.invalidate();  // a new queue
@@ -507,7 +513,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         const auto tFilm = Clock::now();
         prof.markHostWait();
         filmBuf.syncToHost();
-        sampleError(openEnded, /*filmSynced=*/true);
+        sampleError(openEnded || f.sobol, /*filmSynced=*/true);
         st.planMs += secondsSince(tFilm) * 1e3;
         return errorTarget > 0 && st.estimatedError >= 0 && st.estimatedError <= errorTarget;
     };
@@ -650,7 +656,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     }
     summariseRays(st, num, f.maxTransparentDepth, diag, rib::SourceLoc{scene.sourceFile, 0});
     // (no pixel has two samples to take a variance from: -1, without a pass over the film)
-    st.estimatedError = ss.maxSamples >= 2 ? estimateFilmError(film.pixels) : -1.0;
+    st.estimatedError = ss.maxSamples >= 2 ? estimateFilmError(film.pixels, f.sobol) : -1.0;
     const Film::Tally tally = film.tally();
     st.nonfiniteSamples = tally.nonfinite;
     st.unsampledPixels = tally.unsampled;

@@ -28,7 +28,8 @@ std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t 
 PixelJob SampleRing::recordAhead(size_t slotsAhead, const PlannedJob& job) const {
     return PixelJob{job.pixel, uint32_t((m_pushed + slotsAhead) % m_slots), job.count,
                     (job.lastTry ? RT_JOB_LAST_TRY : RT_JOB_IN_FLIGHT) |
-                        (job.exclusive ? RT_JOB_EXCLUSIVE : 0u)};
+                        (job.exclusive ? RT_JOB_EXCLUSIVE : 0u) |
+                        (job.firstSample & 1u ? RT_JOB_ODD_FIRST : 0u)};
 }
 
 PixelJob SampleRing::push(const PlannedJob& job) {
