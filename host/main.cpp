@@ -189,8 +189,8 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     std::string sampler;
     app.add_option("--sampler", sampler,
-                   "independent (default) or sobol: Owen-scrambled Sobol samples, less noise "
-                   "at the same count, the error estimated from two independent scrambles "
+                   "sobol (default): Owen-scrambled Sobol samples, the error estimated from "
+                   "two independent scrambles; or independent: less stratified, more noise "
                    "(default: Option \"render\" \"string sampler\")")
         ->check(CLI::IsMember({"independent", "sobol"}));
     int seed = -1;

@@ -87,8 +87,10 @@ Program::Program(const ClContext& ctx, const std::string& source, const std::str
     // Oclgrind's interpreter (21.10) does not know llvm.experimental.noalias.scope.decl,
     // which its compiler emits where it inlines a function returning a struct (the RSL
     // matrix functions): RSL_NOINLINE_STRUCT_RETURNS keeps those calls (tests/oclgrind).
+    // Nor llvm.bitreverse, which its compiler makes of the Sobol sampler's bit reversal:
+    // RT_NO_BITREVERSE reverses by a table (rng.clh).
     m_info.options = d.platformName.find("Oclgrind") != std::string::npos
-                         ? options + " -DRSL_NOINLINE_STRUCT_RETURNS"
+                         ? options + " -DRSL_NOINLINE_STRUCT_RETURNS -DRT_NO_BITREVERSE"
                          : options;
     uint64_t h = fnv1a(source);
     h = fnv1a("\n--options--\n" + m_info.options, h);

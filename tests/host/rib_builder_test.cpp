@@ -44,7 +44,10 @@ TEST(RibBuilder, RenderOptionsAndTheirErrors) {
     Built bad = build(std::string("Option \"render\" \"float time\" [-1]\n") + kWorld);
     EXPECT_EQ(bad.errors, 1);
     EXPECT_NE(bad.messages.find("t.rib:1: error: Option \"render\""), std::string::npos);
-    EXPECT_FALSE(r.scenes[0].render.sobol);
+    EXPECT_TRUE(r.scenes[0].render.sobol);  // the default
+    Built independent = build(std::string("Option \"render\" \"string sampler\" \"independent\"\n") + kWorld);
+    ASSERT_EQ(independent.scenes.size(), 1u);
+    EXPECT_FALSE(independent.scenes[0].render.sobol);
     Built sobol = build(std::string("Option \"render\" \"string sampler\" \"sobol\"\n") + kWorld);
     ASSERT_EQ(sobol.scenes.size(), 1u);
     EXPECT_TRUE(sobol.scenes[0].render.sobol);

@@ -243,11 +243,12 @@ TEST(Sampling, SmallPassesQuadrupleTheirPixels) {
         EXPECT_NEAR(img->mean(3, 64, 61, 67, 64) * 9.0, 4.0, 0.25);
 }
 
-// The estimate falls as 1/sqrt(samples) on a noisy scene: 16 -> 256 samples per pixel
-// must shrink it 4x (within 15%).
+// The estimate falls as 1/sqrt(samples) on a noisy scene with independent samples: 16 ->
+// 256 samples per pixel must shrink it 4x (within 15%).
 TEST(Sampling, ErrorEstimateShrinksAsInverseSqrtOfSamples) {
     const std::string opts =
-        "Option \"render\" \"int firstpassblock\" [1] \"float pixelerror\" [1e-9]\n";
+        "Option \"render\" \"int firstpassblock\" [1] \"float pixelerror\" [1e-9]\n"
+        "Option \"render\" \"string sampler\" \"independent\"\n";
     Rendered a = renderRib(orthoCamera(16, 4, opts) + stripes(16));
     Rendered b = renderRib(orthoCamera(16, 16, opts) + stripes(16));
     ASSERT_EQ(a.count(5, 5), 16u);
@@ -266,10 +267,12 @@ TEST(Sampling, ErrorEstimateShrinksAsInverseSqrtOfSamples) {
 // A seed picks another set of random numbers: seed 0 is the default set bit for bit, the
 // RIB's Option and the command line's setting give the same image, and another seed's
 // image shares no samples with the first (its pixels differ as two independent estimates
-// do: rms sqrt(2) x 0.12 for 16 coin tosses of p = 0.42) while its mean is the same.
+// do: rms sqrt(2) x 0.12 for 16 coin tosses of p = 0.42, with independent samples) while
+// its mean is the same.
 TEST(Sampling, SeedGivesIndependentImagesOfTheSameMean) {
     const std::string opts =
-        "Option \"render\" \"int firstpassblock\" [1] \"float pixelerror\" [1e-9]\n";
+        "Option \"render\" \"int firstpassblock\" [1] \"float pixelerror\" [1e-9]\n"
+        "Option \"render\" \"string sampler\" \"independent\"\n";
     const std::string seeded = opts + "Option \"render\" \"int seed\" [7]\n";
     Rendered a = renderRib(orthoCamera(16, 4, opts) + stripes(16));
     rd::RenderSettings zero, seven;
@@ -295,17 +298,23 @@ TEST(Sampling, SeedGivesIndependentImagesOfTheSameMean) {
 // each pixel's samples: on the stripes, whose exact pixel coverage is known, 16 samples a
 // pixel land within half the independent sampler's RMS error (about a quarter measured:
 // one-dimensional edges), with no bias in the image's mean, and the option and the
-// setting give the same image and build the sampler in (RT_SAMPLER_SOBOL).
+// setting give the same image and build the sampler in (RT_SAMPLER_SOBOL); it is the
+// default, and Option "render" "string sampler" "independent" turns it off.
 TEST(Sampling, SobolSamplerHalvesTheErrorOfTheSameSamples) {
     const int res = 16;
     const std::string opts =
         "Option \"render\" \"int firstpassblock\" [1] \"float pixelerror\" [1e-9]\n";
-    rd::RenderSettings sobol;
+    rd::RenderSettings sobol, independent;
     sobol.sobol = 1;
-    Rendered indep = renderRib(orthoCamera(res, 4, opts) + stripes(res));
+    independent.sobol = 0;
+    Rendered indep = renderRib(orthoCamera(res, 4, opts) + stripes(res), independent);
     Rendered qmc = renderRib(orthoCamera(res, 4, opts) + stripes(res), sobol);
     Rendered byOption = renderRib(
         orthoCamera(res, 4, opts + "Option \"render\" \"string sampler\" \"sobol\"\n") +
+        stripes(res));
+    Rendered byDefault = renderRib(orthoCamera(res, 4, opts) + stripes(res));
+    Rendered indepByOption = renderRib(
+        orthoCamera(res, 4, opts + "Option \"render\" \"string sampler\" \"independent\"\n") +
         stripes(res));
     // pixel px covers x in [px - res / 2, px - res / 2 + 1): the stripes' overlap with it
     std::vector<double> exact(res, 0.0);
@@ -361,12 +370,17 @@ TEST(Sampling, SobolSamplerHalvesTheErrorOfTheSameSamples) {
         EXPECT_EQ(p.sum_odd.w, 4.0f);
         EXPECT_LE(p.sum_odd.x, p.sum.x);
     }
-    for (size_t i = 0; i < qmc.pixels.size(); ++i) EXPECT_EQ(qmc.pixels[i].a, byOption.pixels[i].a) << i;
-    for (const Rendered* img : {&qmc, &byOption}) {
+    for (size_t i = 0; i < qmc.pixels.size(); ++i) {
+        EXPECT_EQ(qmc.pixels[i].a, byOption.pixels[i].a) << i;
+        EXPECT_EQ(qmc.pixels[i].a, byDefault.pixels[i].a) << i;
+        EXPECT_EQ(indep.pixels[i].a, indepByOption.pixels[i].a) << i;
+    }
+    for (const Rendered* img : {&qmc, &byOption, &byDefault}) {
         const std::string& o = img->stats.program.options;
         EXPECT_NE(o.find("-DRT_SAMPLER_SOBOL"), std::string::npos) << o;
     }
-    EXPECT_EQ(indep.stats.program.options.find("SOBOL"), std::string::npos);
+    for (const Rendered* img : {&indep, &indepByOption})
+        EXPECT_EQ(img->stats.program.options.find("SOBOL"), std::string::npos);
 }
 
 // Under the Sobol sampler a shader's random() calls come from the sample's own stream, two
@@ -384,10 +398,11 @@ TEST(Sampling, SobolSamplerStratifiesShaderRandomAreaLightsLensAndTime) {
     const std::string opts = "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
                              "Option \"render\" \"int firstpassblock\" [1] \"float pixelerror\" [1e-9]\n";
     const std::string quad = "WorldBegin\nSurface \"quadrant\"\n" + rect(-4, 4, -4, 4) + "WorldEnd\n";
-    rd::RenderSettings sobol;
+    rd::RenderSettings sobol, independent;
     sobol.sobol = 1;
+    independent.sobol = 0;
     Rendered q = renderRib(orthoCamera(8, 4, opts) + quad, sobol);
-    Rendered i = renderRib(orthoCamera(8, 4, opts) + quad);
+    Rendered i = renderRib(orthoCamera(8, 4, opts) + quad, independent);
     int exact = 0, off = 0;
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) {
@@ -404,7 +419,7 @@ TEST(Sampling, SobolSamplerStratifiesShaderRandomAreaLightsLensAndTime) {
         rect(-1, 1, -1, 1) +
         "AttributeEnd\nIlluminate 1 1\nSurface \"matte\"\n"
         "Polygon \"P\" [-9 0 -9  -9 0 9  9 0 9  9 0 -9]\nTranslate 0 1 0\nSphere 1 -1 1 360\nWorldEnd\n";
-    Rendered aq = renderRib(area, sobol), ai = renderRib(area);
+    Rendered aq = renderRib(area, sobol), ai = renderRib(area, independent);
     const double mq = aq.mean(0, 0, 0, 24, 24), mi = ai.mean(0, 0, 0, 24, 24);
     std::printf("area light mean: sobol %.4f, independent %.4f\n", mq, mi);
     EXPECT_GT(mi, 0.02);
@@ -415,7 +430,7 @@ TEST(Sampling, SobolSamplerStratifiesShaderRandomAreaLightsLensAndTime) {
         "LightSource \"distantlight\" 1 \"from\" [-1 4 -2] \"to\" [0 0 0]\nSurface \"matte\"\n"
         "Polygon \"P\" [-9 0 -9  -9 0 9  9 0 9  9 0 -9]\n"
         "MotionBegin [0 1]\nTranslate 0 1 0\nTranslate 0.5 1 0\nMotionEnd\nSphere 1 -1 1 360\nWorldEnd\n";
-    Rendered bq = renderRib(blurred, sobol), bi = renderRib(blurred);
+    Rendered bq = renderRib(blurred, sobol), bi = renderRib(blurred, independent);
     const auto& features = bq.stats.features.names();
     for (const char* f : {"depth_of_field", "motion_blur", "sobol_sampler"})
         EXPECT_NE(std::find(features.begin(), features.end(), f), features.end()) << f;
