@@ -81,7 +81,11 @@ std::vector<Channel> Film::aovChannels(const std::string& name) const {
         for (size_t i = 0; i < n; ++i) c.values[i] = float(pixels[i].count);
         return {c};
     }
-    if (name == "error") return {{"error", pixelRelativeErrors(pixels)}};
+    if (name == "error") {
+        Channel c{"error", pixelRelativeErrors(pixels)};
+        for (float& v : c.values) v = float(v * errorScale);
+        return {c};
+    }
     if (name == "filled") return {{"filled", filledMask()}};
     if (name != "z" && name != "N")
         throw std::runtime_error("unknown AOV \"" + name +

@@ -51,6 +51,10 @@ struct Film {
         return out;
     }
 
+    // The "error" AOV's factor on each pixel's spread-based error: under the Sobol
+    // sampler the film's replicate estimate over its spread estimate (the samples' spread
+    // overstates a stratified pixel's error; FilmError), 1 for independent samples.
+    double errorScale = 1.0;
     // RI Exposure: resolved colour = (gain * colour)^(1 / gamma), alpha untouched.
     float exposureGain = 1.0f, exposureGamma = 1.0f;
     // What the Imager shader made of means() (empty: no imager); resolve() uses it.

@@ -660,7 +660,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     }
     summariseRays(st, num, f.maxTransparentDepth, diag, rib::SourceLoc{scene.sourceFile, 0});
     // (no pixel has two samples to take a variance from: -1, without a pass over the film)
-    st.estimatedError = ss.maxSamples >= 2 ? estimateFilmError(film.pixels, f.sobol) : -1.0;
+    if (ss.maxSamples >= 2) {
+        const FilmError e = estimateFilmErrors(film.pixels);
+        st.estimatedError = e.of(f.sobol);
+        film.errorScale = 1.0 / e.spreadOverstates(f.sobol);
+    } else {
+        st.estimatedError = -1.0;
+    }
     const Film::Tally tally = film.tally();
     st.nonfiniteSamples = tally.nonfinite;
     st.unsampledPixels = tally.unsampled;

@@ -357,6 +357,14 @@ TEST(Sampling, SobolSamplerHalvesTheErrorOfTheSameSamples) {
     EXPECT_GT(fq.spread, 2.0 * trueQ);
     EXPECT_NEAR(qmc.stats.estimatedError, fq.replicates, 1e-9);
     EXPECT_NEAR(indep.stats.estimatedError, fi.spread, 1e-9);
+    // The "error" AOV likewise: each pixel's spread-based error, times the film's
+    // replicate-over-spread ratio under Sobol.
+    const std::vector<float> spreadErr = rd::pixelRelativeErrors(qmc.film.pixels);
+    const std::vector<rd::Channel> aov = qmc.film.aovChannels("error");
+    ASSERT_EQ(aov.size(), 1u);
+    for (size_t i = 0; i < spreadErr.size(); ++i)
+        EXPECT_NEAR(aov[0].values[i], spreadErr[i] * fq.replicates / fq.spread, 1e-6) << i;
+    EXPECT_EQ(indep.film.aovChannels("error")[0].values, rd::pixelRelativeErrors(indep.film.pixels));
     // Every pixel's odd samples are in its second replicate's sums, whichever job took
     // them: with the first pass's blocks (a pixel's sample 0 alone, then its sample 1 in
     // a job of its own), uneven counts (PixelSamples 3 3: samples 0-8) and a pool of 12
