@@ -81,7 +81,8 @@ int main(int argc, char** argv) {
             for (std::string item; std::getline(in, item, ',');) {
                 char* end = nullptr;
                 const double v = std::strtod(item.c_str(), &end);
-                if (item.empty() || *end != '\0' || !(v > 0)) return "not a positive number: '" + item + "'";
+                if (item.empty() || *end != '\0' || !(v > 0))
+                    return "not a positive number: '" + item + "'";
             }
             return std::string();
         });
@@ -93,7 +94,8 @@ int main(int argc, char** argv) {
     if (!budgetList.empty()) {
         budgets.clear();
         std::stringstream in(budgetList);
-        for (std::string item; std::getline(in, item, ',');) budgets.push_back(std::stod(item));
+        for (std::string item; std::getline(in, item, ',');)
+            budgets.push_back(std::stod(item));
     }
     fs::create_directories(outDir);
     ClContext ctx(selectDevice(""));

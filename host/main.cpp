@@ -188,10 +188,11 @@ int main(int argc, char** argv) {
     app.add_option("--error", errorTarget, "stop at this relative error (e.g. 0.01)")
         ->check(CLI::PositiveNumber);
     std::string sampler;
-    app.add_option("--sampler", sampler,
-                   "sobol (default): Owen-scrambled Sobol samples, the error estimated from "
-                   "two independent scrambles; or independent: less stratified, more noise "
-                   "(default: Option \"render\" \"string sampler\")")
+    app.add_option(
+           "--sampler", sampler,
+           "sobol (default): Owen-scrambled Sobol samples, the error estimated from "
+           "two independent scrambles; or independent: less stratified, more noise "
+           "(default: Option \"render\" \"string sampler\")")
         ->check(CLI::IsMember({"independent", "sobol"}));
     int seed = -1;
     app.add_option("--seed", seed,
@@ -309,7 +310,7 @@ int main(int argc, char** argv) {
             opts.metadata["raydrive:scene"] = scenePath;
             opts.metadata["raydrive:stop"] = st.stopReason;
             opts.metadata["raydrive:estimated_error"] = std::to_string(st.estimatedError);
-            // (how the error was estimated: from the samples' spread, or from two replicates)
+            // (how the error was estimated: samples' spread or two replicates)
             opts.metadata["raydrive:sampler"] = st.features.sobol ? "sobol" : "independent";
             opts.metadata["raydrive:samples"] = std::to_string(st.filmSamples);
             // Pixels never reached are filled from neighbours: say which, always.

@@ -25,13 +25,15 @@ FilmError estimateFilmErrors(const FilmPixels& film) {
     FilmErrorSums sum;
     for (const FilmErrorSums& s : part) {
         sum.var += s.var, sum.mean += s.mean, sum.replicateVar += s.replicateVar;
-        sum.withVar += s.withVar, sum.withMean += s.withMean, sum.withReplicates += s.withReplicates;
+        sum.withVar += s.withVar, sum.withMean += s.withMean,
+            sum.withReplicates += s.withReplicates;
     }
     FilmError e;
     if (sum.mean <= 0) return e;
     const double mean = sum.mean / double(sum.withMean);
     if (sum.withVar > 0) e.spread = std::sqrt(sum.var / double(sum.withVar)) / mean;
-    if (sum.withReplicates > 0) e.replicates = std::sqrt(sum.replicateVar / double(sum.withReplicates)) / mean;
+    if (sum.withReplicates > 0)
+        e.replicates = std::sqrt(sum.replicateVar / double(sum.withReplicates)) / mean;
     return e;
 }
 

@@ -84,7 +84,8 @@ struct FilmError {
     // planner's per-pixel errors come from the spread: 1 for independent samples).
     double of(bool sobol) const { return sobol ? replicates : spread; }
     double spreadOverstates(bool sobol) const {
-        return sobol && spread > 0 && replicates > 0 ? std::max(1.0, spread / replicates) : 1.0;
+        return sobol && spread > 0 && replicates > 0 ? std::max(1.0, spread / replicates)
+                                                     : 1.0;
     }
 };
 FilmError estimateFilmErrors(const FilmPixels& film);

@@ -4,10 +4,11 @@
 // loop into vector divisions and square roots, and without fused multiply-adds, so that
 // every clone computes the bits pixelStdError does (host/CMakeLists.txt).
 #include "film_error_batch.h"
-#include "film_error.h"
 
 #include <algorithm>
 #include <cmath>
+
+#include "film_error.h"
 
 namespace rd {
 

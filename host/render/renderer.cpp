@@ -468,9 +468,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // overstates the error under the Sobol sampler (FilmError::spreadOverstates): the
     // planner's pixel error is loosened by as much. Taken where the film's error is
     // estimated anyway (each pass under an error target or a time budget, else twice a
-    // second: an estimate each pass cost SPD tetra at 9 samples a pixel 20 ms of its 170),
-    // and rounded down to quarter octaves, as a tighter pixel error makes the planner
-    // test every pixel again.
+    // second: an estimate each pass cost SPD tetra at 9 samples a pixel 20 ms of its
+    // 170), and rounded down to quarter octaves, as a tighter pixel error makes the
+    // planner test every pixel again.
     double spreadOverstates = 1.0;
     auto sampleError = [&](bool force, bool filmSynced = false) {
         double now = secondsSince(t0);
@@ -482,7 +482,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         }
         const FilmError e = estimateFilmErrors(film.pixels);
         st.estimatedError = e.of(f.sobol);
-        spreadOverstates = std::exp2(std::floor(std::log2(e.spreadOverstates(f.sobol)) * 4.0) * 0.25);
+        spreadOverstates =
+            std::exp2(std::floor(std::log2(e.spreadOverstates(f.sobol)) * 4.0) * 0.25);
         prof.collect();
         uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
                         (treelets ? treelets->peekRays() : 0);
@@ -504,8 +505,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         busy.assign(ring.inFlight() > 0 || !pending.empty() ? film.pixels.size() : 0, 0);
         ring.markPixelsInFlight(busy);
         for (const PlannedJob& j : pending) busy[j.pixel] = 1;
-        std::deque<PlannedJob> jobs = planJobs(planner->nextPass(film.pixels, float(pixelError * spreadOverstates), busy),
-                                               maxJob, film.pixels.size());
+        std::deque<PlannedJob> jobs = planJobs(
+            planner->nextPass(film.pixels, float(pixelError * spreadOverstates), busy),
+            maxJob, film.pixels.size());
         st.planMs += secondsSince(tPlan) * 1e3;
         refill.invalidate();  // a new queue
         return jobs;

@@ -71,7 +71,7 @@ struct RenderOptionsSpec {
     int treeletBytes = 0;      // Option "limits" "treeletbytes": treelet budget (0: resident BVH)
     int sceneMemoryKB = 0;     // Option "limits" "scenememory": device BVH bytes (0: all)
     int seed = 0;              // "int seed": which random numbers (0 is the default set)
-    bool sobol = true;         // "string sampler": "sobol" (default) or "independent" (rng.clh)
+    bool sobol = true;         // "string sampler": "sobol" (default) or "independent"
 };
 
 // ColorSamples n, n <= 3: colours are n channels through shading, rays and sample totals

@@ -45,7 +45,8 @@ TEST(RibBuilder, RenderOptionsAndTheirErrors) {
     EXPECT_EQ(bad.errors, 1);
     EXPECT_NE(bad.messages.find("t.rib:1: error: Option \"render\""), std::string::npos);
     EXPECT_TRUE(r.scenes[0].render.sobol);  // the default
-    Built independent = build(std::string("Option \"render\" \"string sampler\" \"independent\"\n") + kWorld);
+    Built independent = build(
+        std::string("Option \"render\" \"string sampler\" \"independent\"\n") + kWorld);
     ASSERT_EQ(independent.scenes.size(), 1u);
     EXPECT_FALSE(independent.scenes[0].render.sobol);
     Built sobol = build(std::string("Option \"render\" \"string sampler\" \"sobol\"\n") + kWorld);

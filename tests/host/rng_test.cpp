@@ -28,7 +28,8 @@ struct Numbers {
 Numbers probe(const std::string& options, uint32_t pixel, uint32_t pair, uint32_t count) {
     const ClContext& ctx = test::testContext();
     // never destroyed, as the test context (render_harness.cpp: Oclgrind crashed at exit)
-    Program& program = *new Program(ctx, assembleClSource({"rng_probe.cl"}), "-cl-std=CL1.2 " + options);
+    Program& program =
+        *new Program(ctx, assembleClSource({"rng_probe.cl"}), "-cl-std=CL1.2 " + options);
     Profiler prof(ctx);
     Kernel k(ctx, program.get(), "rng_probe", prof);
     DeviceBuffer<Point2> points(ctx, count);
@@ -64,7 +65,8 @@ TEST(Sampler, EachReplicateOfAPixelsSamplesIsANet) {
             for (size_t count = 1; count <= 32; count *= 2) {
                 std::vector<Point2> rep;
                 for (size_t i = 0; i < count; ++i) rep.push_back(n.points[2 * i + r]);
-                EXPECT_TRUE(isNet(rep)) << "pair " << pair << ", replicate " << r << ", " << count << " points";
+                EXPECT_TRUE(isNet(rep)) << "pair " << pair << ", replicate " << r << ", "
+                                        << count << " points";
             }
         // the replicates are scrambled apart: their first points differ, and their union
         // is not the one sequence's net (it would be, had they shared a scramble)
@@ -86,6 +88,7 @@ TEST(Sampler, BitReversalByTableIsTheShifts) {
         for (int b = 0; b < 32; ++b) want |= ((x >> b) & 1u) << (31 - b);
         EXPECT_EQ(shifts.reversed[i], want) << i;
         EXPECT_EQ(table.reversed[i], want) << i;
-        EXPECT_EQ(std::memcmp(&shifts.points[i], &table.points[i], sizeof(Point2)), 0) << i;
+        EXPECT_EQ(std::memcmp(&shifts.points[i], &table.points[i], sizeof(Point2)), 0)
+            << i;
     }
 }

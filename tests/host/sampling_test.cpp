@@ -263,7 +263,6 @@ TEST(Sampling, ErrorEstimateShrinksAsInverseSqrtOfSamples) {
     EXPECT_NEAR(b.mean(3, 0, 0, 16, 16), covered / 16, 0.005);
 }
 
-
 // A seed picks another set of random numbers: seed 0 is the default set bit for bit, the
 // RIB's Option and the command line's setting give the same image, and another seed's
 // image shares no samples with the first (its pixels differ as two independent estimates
@@ -314,7 +313,8 @@ TEST(Sampling, SobolSamplerHalvesTheErrorOfTheSameSamples) {
         stripes(res));
     Rendered byDefault = renderRib(orthoCamera(res, 4, opts) + stripes(res));
     Rendered indepByOption = renderRib(
-        orthoCamera(res, 4, opts + "Option \"render\" \"string sampler\" \"independent\"\n") +
+        orthoCamera(res, 4,
+                    opts + "Option \"render\" \"string sampler\" \"independent\"\n") +
         stripes(res));
     // pixel px covers x in [px - res / 2, px - res / 2 + 1): the stripes' overlap with it
     std::vector<double> exact(res, 0.0);
@@ -340,16 +340,17 @@ TEST(Sampling, SobolSamplerHalvesTheErrorOfTheSameSamples) {
     double mean = 0;
     for (double c : exact) mean += c / res;
     EXPECT_NEAR(qmc.mean(3, 0, 0, res, res), mean, 0.01);
-    // The error estimates against the true relative error (white stripes: rgb = coverage).
-    // Under Sobol the one from the two replicates (even and odd samples) tracks it, and it
-    // is the one the render reports; the samples' spread overstates it (3x measured),
-    // while under independent samples the spread is right.
+    // The error estimates against the true relative error (white stripes: rgb =
+    // coverage). Under Sobol the one from the two replicates (even and odd samples)
+    // tracks it, and it is the one the render reports; the samples' spread overstates it
+    // (3x measured), while under independent samples the spread is right.
     const rd::FilmError fi = rd::estimateFilmErrors(indep.film.pixels);
     const rd::FilmError fq = rd::estimateFilmErrors(qmc.film.pixels);
     const double trueI = ei / mean, trueQ = eq / mean;
-    std::printf("relative error: independent %.4f, estimated %.4f; sobol %.4f, estimated %.4f "
-                "from replicates, %.4f from the spread\n", trueI, fi.spread, trueQ, fq.replicates,
-                fq.spread);
+    std::printf(
+        "relative error: independent %.4f, estimated %.4f; sobol %.4f, estimated %.4f "
+        "from replicates, %.4f from the spread\n",
+        trueI, fi.spread, trueQ, fq.replicates, fq.spread);
     EXPECT_GT(fi.spread, 0.7 * trueI);
     EXPECT_LT(fi.spread, 1.4 * trueI);
     EXPECT_GT(fq.replicates, 0.6 * trueQ);
@@ -363,8 +364,10 @@ TEST(Sampling, SobolSamplerHalvesTheErrorOfTheSameSamples) {
     const std::vector<rd::Channel> aov = qmc.film.aovChannels("error");
     ASSERT_EQ(aov.size(), 1u);
     for (size_t i = 0; i < spreadErr.size(); ++i)
-        EXPECT_NEAR(aov[0].values[i], spreadErr[i] * fq.replicates / fq.spread, 1e-6) << i;
-    EXPECT_EQ(indep.film.aovChannels("error")[0].values, rd::pixelRelativeErrors(indep.film.pixels));
+        EXPECT_NEAR(aov[0].values[i], spreadErr[i] * fq.replicates / fq.spread, 1e-6)
+            << i;
+    EXPECT_EQ(indep.film.aovChannels("error")[0].values,
+              rd::pixelRelativeErrors(indep.film.pixels));
     // Every pixel's odd samples are in its second replicate's sums, whichever job took
     // them: with the first pass's blocks (a pixel's sample 0 alone, then its sample 1 in
     // a job of its own), uneven counts (PixelSamples 3 3: samples 0-8) and a pool of 12
@@ -372,7 +375,10 @@ TEST(Sampling, SobolSamplerHalvesTheErrorOfTheSameSamples) {
     // pixel's n samples.
     rd::RenderSettings small = sobol;
     small.poolCapacity = 12;
-    Rendered blocks = renderRib(orthoCamera(res, 3, "Option \"render\" \"float pixelerror\" [1e-9]\n") + stripes(res), small);
+    Rendered blocks =
+        renderRib(orthoCamera(res, 3, "Option \"render\" \"float pixelerror\" [1e-9]\n") +
+                      stripes(res),
+                  small);
     for (const PixelAccum& p : blocks.film.pixels) {
         ASSERT_EQ(p.count, 9u);
         EXPECT_EQ(p.sum_odd.w, 4.0f);
