@@ -330,6 +330,12 @@ int benchMain(int argc, char** argv) {
             std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}), base + v));
     Program treeletProgram(ctx, assembleClSource({"intersect.cl", "treelet.cl"}),
                            "-cl-std=CL1.2 -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN " + treeletOptions);
+    // (--wide8: the treelets of the eight-wide tree too, "8" in the budget column)
+    std::unique_ptr<Program> treeletProgram8;
+    if (wide8 && !budgets.empty())
+        treeletProgram8 = std::make_unique<Program>(
+            ctx, assembleClSource({"intersect.cl", "treelet.cl"}),
+            "-cl-std=CL1.2 -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN -DRT_BVH8 " + treeletOptions);
     std::vector<std::string> treeletRows;  // printed after the resident table
     std::printf("%-14s %-8s %10s %10s %10s %8s %9s %9s\n", "scene", "rays", "count",
                 "RayDrive", "Embree", "ratio", "agree", "cpu ratio");
@@ -544,18 +550,29 @@ int benchMain(int argc, char** argv) {
             // resident kernels (hit, t, u, v; occlusion).
             std::vector<RayHit> residentHits = hits.download();
             std::vector<rt_float4> residentShadow = weight.download();
-            std::vector<std::pair<size_t, size_t>> modes;  // (budget, scene memory)
-            for (size_t b : budgets) modes.push_back({b, 0});
+            struct Mode {
+                size_t budget, memory;  // scene memory: 0, resident
+                bool eight;             // the eight-wide tree's cut
+            };
+            std::vector<Mode> modes;
+            for (size_t b : budgets) modes.push_back({b, 0, false});
             if (streamFraction > 0)
                 modes.push_back({size_t(64) << 10,
                                  std::max<size_t>(1, size_t(streamFraction * double(
                                      bvh4.nodes.size() * sizeof(Bvh4Node) +
-                                     bvh4.blocks.size() * sizeof(Triangle4))))});
+                                     bvh4.blocks.size() * sizeof(Triangle4)))), false});
+            if (treeletProgram8)
+                for (size_t b : budgets) modes.push_back({b, 0, true});
             DeviceBuffer<Triangle> tris(ctx, mesh.tris);
             const TraceScene sc{noQuadrics, noCsg, tris, noMotion, tris, noSample, noTime};
-            for (auto [budget, memory] : modes) {
+            for (auto [budget, memory, eight] : modes) {
                 TreeletStats ts;
-                TreeletTracer tracer(ctx, treeletProgram.get(), prof, bvh4, budget, memory, n, ts);
+                std::unique_ptr<TreeletTracer> tracerOf =
+                    eight ? std::make_unique<TreeletTracer>(ctx, treeletProgram8->get(), prof,
+                                                            bvh8, budget, memory, n, ts)
+                          : std::make_unique<TreeletTracer>(ctx, treeletProgram.get(), prof,
+                                                            bvh4, budget, memory, n, ts);
+                TreeletTracer& tracer = *tracerOf;
                 const std::vector<float> onesFlat(4 * n, 1.0f);  // RGB weights: 4 floats a ray
                 DeviceBuffer<float> treeletWeight(ctx, onesFlat, CL_MEM_READ_WRITE);
                 auto runTreelets = [&] {
@@ -585,9 +602,10 @@ int benchMain(int argc, char** argv) {
                 }
                 double mt = n / median(tt) * 1e-6;
                 char label[64], row[320];
-                if (budget >= (size_t(1) << 30)) std::snprintf(label, sizeof label, "whole");
-                else std::snprintf(label, sizeof label, "%zuK%s", budget >> 10,
-                                   memory ? " stream" : "");
+                if (budget >= (size_t(1) << 30))
+                    std::snprintf(label, sizeof label, "whole%s", eight ? " 8" : "");
+                else std::snprintf(label, sizeof label, "%zuK%s%s", budget >> 10,
+                                   memory ? " stream" : "", eight ? " 8" : "");
                 std::snprintf(row, sizeof row,
                               "%-14s %-8s %-11s %8zu %7llu %10llu %8llu %10.2f %8.3f %8.3f %8.4f%%",
                               mesh.name.c_str(), k.name, label, ts.treelets,

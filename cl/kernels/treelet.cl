@@ -35,7 +35,7 @@ inline int rt_treelet_pair_live(uint i, uint first, uint count, uint root_only,
 
 /* One (ray, treelet) pair, closest hit: the ray's key lowered to the best hit found. */
 inline void rt_treelet_closest(TreeletPair p, uint root_only, __global const TreeletRef* refs,
-                               __global const Bvh4Node* nodes, __global const Triangle4* blocks,
+                               __global const RT_BVH_NODE* nodes, __global const Triangle4* blocks,
                                __global const float4* origin, __global const float4* direction,
                                __global const RayState* state, __global ulong* keys,
                                __global TreeletPair* next, uint next_cap,
@@ -56,7 +56,7 @@ inline void rt_treelet_closest(TreeletPair p, uint root_only, __global const Tre
 /* One pair, any hit: an occluded ray's weight is zeroed (as intersect_shadow does; its
  * state stays as the group count read it), and its other queued pairs are skipped. */
 inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
-                              __global const Bvh4Node* nodes, __global const Triangle4* blocks,
+                              __global const RT_BVH_NODE* nodes, __global const Triangle4* blocks,
                               __global const float4* origin, __global const float4* direction,
                               __global const RayState* state, __global rt_weight* weight,
                               __global TreeletPair* next, uint next_cap, __global uint* counters,
@@ -112,7 +112,7 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
  * begin with the pairs, the cut and the rays. */
 #define RT_TL_PAIR_PARAMS                                                                  \
     uint first, uint count, __global const TreeletPair *pairs,                            \
-        __global const TreeletRef *refs, __global const Bvh4Node *nodes,                  \
+        __global const TreeletRef *refs, __global const RT_BVH_NODE *nodes,                \
         __global const Triangle4 *blocks, __global const float4 *origin,                  \
         __global const float4 *direction, __global const RayState *state
 /* A pair kernel: its own output buffer (out_param), then the next round's queue, the

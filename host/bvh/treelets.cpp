@@ -1,5 +1,5 @@
-// treelets.cpp: the greedy top-down cut of a Bvh4 into treelets, and their contiguous
-// layout.
+// treelets.cpp: the bottom-up cut of a four- or eight-wide BVH into treelets, and their
+// contiguous layout.
 #include "treelets.h"
 
 #include <algorithm>
@@ -7,22 +7,31 @@
 
 namespace rd {
 
-size_t treeletNodeBytes(const Bvh4& bvh, size_t node) {
-    size_t bytes = sizeof(Bvh4Node);
-    for (int k = 0; k < 4; ++k)
+namespace {
+// A node's children (4 or 8).
+template <class Node>
+constexpr int kWidth = int(sizeof(Node::count) / sizeof(Node::count[0]));
+}  // namespace
+
+template <class Node>
+size_t treeletNodeBytes(const BvhWide<Node>& bvh, size_t node) {
+    size_t bytes = sizeof(Node);
+    for (int k = 0; k < kWidth<Node>; ++k)
         if (bvh.nodes[node].count[k] > 0) bytes += size_t(bvh.nodes[node].count[k]) * sizeof(Triangle4);
     return bytes;
 }
 
-std::vector<TreeletRef> Treelets::residentRefs() const {
+template <class Node>
+std::vector<TreeletRef> TreeletsOf<Node>::residentRefs() const {
     std::vector<TreeletRef> refs(ranges.size());
     for (size_t i = 0; i < ranges.size(); ++i)
         refs[i] = {int32_t(ranges[i].nodeFirst), int32_t(ranges[i].blockFirst)};
     return refs;
 }
 
-Treelets cutTreelets(const Bvh4& bvh, size_t budgetBytes) {
-    Treelets out;
+template <class Node>
+TreeletsOf<Node> cutTreelets(const BvhWide<Node>& bvh, size_t budgetBytes) {
+    TreeletsOf<Node> out;
     const size_t nodeCount = bvh.nodes.size();
     out.treeletOfNode.assign(nodeCount, ~0u);
     if (budgetBytes == 0) budgetBytes = ~size_t(0);
@@ -37,10 +46,10 @@ Treelets cutTreelets(const Bvh4& bvh, size_t budgetBytes) {
     std::vector<char> isRoot(nodeCount, 0);
     isRoot[0] = 1;
     for (size_t i = nodeCount; i-- > 0;) {
-        const Bvh4Node& n = bvh.nodes[i];
+        const Node& n = bvh.nodes[i];
         open[i] = treeletNodeBytes(bvh, i);
         std::vector<uint32_t> kids;
-        for (int k = 0; k < 4; ++k)
+        for (int k = 0; k < kWidth<Node>; ++k)
             if (n.count[k] == 0) {
                 kids.push_back(uint32_t(n.child[k]));
                 open[i] += open[size_t(n.child[k])];
@@ -69,8 +78,8 @@ Treelets cutTreelets(const Bvh4& bvh, size_t budgetBytes) {
             stack.pop_back();
             members[id].push_back(node);
             out.treeletOfNode[node] = id;
-            const Bvh4Node& n = bvh.nodes[node];
-            for (int k = 3; k >= 0; --k) {
+            const Node& n = bvh.nodes[node];
+            for (int k = kWidth<Node> - 1; k >= 0; --k) {
                 if (n.count[k] != 0) continue;
                 const uint32_t c = uint32_t(n.child[k]);
                 if (isRoot[c]) roots.push_back(c);
@@ -85,11 +94,12 @@ Treelets cutTreelets(const Bvh4& bvh, size_t budgetBytes) {
         for (size_t j = 0; j < mine.size(); ++j) localIndex[mine[j]] = uint32_t(j);
     for (size_t t = 0; t < members.size(); ++t) {
         TreeletRange r;
+        r.nodeBytes = uint32_t(sizeof(Node));
         r.nodeFirst = uint32_t(out.nodes.size());
         r.blockFirst = uint32_t(out.blocks.size());
         for (uint32_t node : members[t]) {
-            Bvh4Node n = bvh.nodes[node];
-            for (int k = 0; k < 4; ++k) {
+            Node n = bvh.nodes[node];
+            for (int k = 0; k < kWidth<Node>; ++k) {
                 if (n.count[k] > 0) {
                     const int32_t local = int32_t(out.blocks.size() - r.blockFirst);
                     for (int32_t b = 0; b < n.count[k]; ++b)
@@ -115,5 +125,12 @@ Treelets cutTreelets(const Bvh4& bvh, size_t budgetBytes) {
     }
     return out;
 }
+
+template struct TreeletsOf<Bvh4Node>;
+template struct TreeletsOf<Bvh8Node>;
+template size_t treeletNodeBytes(const Bvh4&, size_t);
+template size_t treeletNodeBytes(const Bvh8&, size_t);
+template Treelets cutTreelets(const Bvh4&, size_t);
+template Treelets8 cutTreelets(const Bvh8&, size_t);
 
 }  // namespace rd

@@ -1,4 +1,4 @@
-// treelets.h: cuts the four-wide BVH (collapse4.h) into treelets under a byte budget, the
+// treelets.h: cuts the four- or eight-wide BVH (collapse4.h) into treelets under a byte budget, the
 // unit the treelet-streamed traversal queues rays into and uploads (DESIGN.md sections 1
 // and 3; cl/include/treelet.h for the device layout). A treelet's bytes are its nodes
 // plus the leaf blocks they reference. The cut works bottom up, cutting off the largest
@@ -15,34 +15,41 @@
 namespace rd {
 
 struct TreeletRange {
-    uint32_t nodeFirst = 0, nodeCount = 0;    // in Treelets::nodes
-    uint32_t blockFirst = 0, blockCount = 0;  // in Treelets::blocks
+    uint32_t nodeFirst = 0, nodeCount = 0;    // in the cut's nodes
+    uint32_t blockFirst = 0, blockCount = 0;  // in the cut's blocks
+    uint32_t nodeBytes = sizeof(Bvh4Node);    // of one node: the cut's width
     size_t bytes() const {
-        return size_t(nodeCount) * sizeof(Bvh4Node) + size_t(blockCount) * sizeof(Triangle4);
+        return size_t(nodeCount) * nodeBytes + size_t(blockCount) * sizeof(Triangle4);
     }
 };
 
-struct Treelets {
+// A cut of a four-wide (Bvh4Node) or eight-wide (Bvh8Node) tree.
+template <class Node>
+struct TreeletsOf {
     // Every treelet's nodes, then the next's; child indices local to the treelet (a
     // treelet's root is its first node), links to other treelets as RT_TREELET_LINK.
-    std::vector<Bvh4Node> nodes;
+    std::vector<Node> nodes;
     std::vector<Triangle4> blocks;
     std::vector<TreeletRange> ranges;
     std::vector<uint32_t> treeletOfNode;  // the input tree's node i went to this treelet
     uint32_t maxNodes = 0, maxBlocks = 0;  // of any one treelet (the cache slot's size)
     size_t count() const { return ranges.size(); }
     size_t bytes() const {
-        return nodes.size() * sizeof(Bvh4Node) + blocks.size() * sizeof(Triangle4);
+        return nodes.size() * sizeof(Node) + blocks.size() * sizeof(Triangle4);
     }
     // The resident layout: treelet i where the cut put it.
     std::vector<TreeletRef> residentRefs() const;
 };
+using Treelets = TreeletsOf<Bvh4Node>;
+using Treelets8 = TreeletsOf<Bvh8Node>;
 
 // Bytes of node i of `bvh` with the blocks its leaf children reference.
-size_t treeletNodeBytes(const Bvh4& bvh, size_t node);
+template <class Node>
+size_t treeletNodeBytes(const BvhWide<Node>& bvh, size_t node);
 
 // Cuts `bvh` into treelets of at most `budgetBytes` each; a node that alone is larger
 // than the budget is a treelet by itself. A budget of 0 means one treelet.
-Treelets cutTreelets(const Bvh4& bvh, size_t budgetBytes);
+template <class Node>
+TreeletsOf<Node> cutTreelets(const BvhWide<Node>& bvh, size_t budgetBytes);
 
 }  // namespace rd

@@ -3,10 +3,43 @@
 #include "treelet_trace.h"
 
 #include <algorithm>
+#include <cstring>
 #include <deque>
 #include <functional>
 
 namespace rd {
+
+namespace {
+
+// The cut as the tracer uploads it, whatever its node width: its nodes as bytes.
+struct NodeCut {
+    std::vector<unsigned char> nodes;
+    size_t nodeBytes = 0;  // of one node
+    std::vector<Triangle4> blocks;
+    std::vector<TreeletRange> ranges;
+    std::vector<TreeletRef> residentRefs;
+    uint32_t maxNodes = 0, maxBlocks = 0;
+    size_t allBytes = 0;
+    size_t count() const { return ranges.size(); }
+    size_t bytes() const { return allBytes; }
+};
+
+template <class Node>
+NodeCut nodeCut(const BvhWide<Node>& bvh, size_t budget) {
+    TreeletsOf<Node> t = cutTreelets(bvh, budget);
+    NodeCut c;
+    c.nodeBytes = sizeof(Node);
+    c.nodes.resize(t.nodes.size() * sizeof(Node));
+    if (!t.nodes.empty()) std::memcpy(c.nodes.data(), t.nodes.data(), c.nodes.size());
+    c.residentRefs = t.residentRefs();
+    c.allBytes = t.bytes();
+    c.maxNodes = t.maxNodes, c.maxBlocks = t.maxBlocks;
+    c.blocks = std::move(t.blocks);
+    c.ranges = std::move(t.ranges);
+    return c;
+}
+
+}  // namespace
 
 void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
                        TreeletStats& stats) {
@@ -28,9 +61,8 @@ void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
 }
 
 struct TreeletTracer::Impl {
-    Impl(const ClContext& c, cl_program p, Profiler& prof, const Bvh4& bvh, size_t budget,
-         TreeletStats& s)
-        : ctx(c), st(s), cut(cutTreelets(bvh, budget)),
+    Impl(const ClContext& c, cl_program p, Profiler& prof, NodeCut&& theCut, TreeletStats& s)
+        : ctx(c), st(s), cut(std::move(theCut)),
           closestRoot(c, p, "treelet_closest_root", prof),
           closestPairs(c, p, "treelet_closest", prof),
           shadowRoot(c, p, "treelet_shadow_root", prof),
@@ -40,9 +72,9 @@ struct TreeletTracer::Impl {
 
     const ClContext& ctx;
     TreeletStats& st;
-    Treelets cut;
+    NodeCut cut;
     Kernel closestRoot, closestPairs, shadowRoot, shadowPairs, scatter, resolve;
-    DeviceBuffer<Bvh4Node> nodes;   // every treelet, or the cache's slots
+    DeviceBuffer<unsigned char> nodes;  // every treelet, or the cache's slots
     DeviceBuffer<Triangle4> blocks;
     DeviceBuffer<TreeletRef> refs;  // where each treelet is in nodes and blocks
     DeviceBuffer<cl_ulong> keys;    // per ray: closest hit so far, (t bits << 32) | prim
@@ -62,8 +94,8 @@ struct TreeletTracer::Impl {
     // next blocking read, after which it is cleared.
     void upload(uint32_t t, size_t slot) {
         const TreeletRange& r = cut.ranges[t];
-        write(nodes.mem(), slot * cut.maxNodes * sizeof(Bvh4Node), &cut.nodes[r.nodeFirst],
-              r.nodeCount * sizeof(Bvh4Node));
+        write(nodes.mem(), slot * cut.maxNodes * cut.nodeBytes,
+              &cut.nodes[r.nodeFirst * cut.nodeBytes], r.nodeCount * cut.nodeBytes);
         write(blocks.mem(), slot * cut.maxBlocks * sizeof(Triangle4),
               cut.blocks.data() + r.blockFirst, r.blockCount * sizeof(Triangle4));
         pendingRefs.push_back({int32_t(slot * cut.maxNodes), int32_t(slot * cut.maxBlocks)});
@@ -179,23 +211,25 @@ struct TreeletTracer::Impl {
     }
 };
 
+template <class Node>
 TreeletTracer::TreeletTracer(const ClContext& ctx, cl_program program, Profiler& prof,
-                             const Bvh4& bvh, size_t budgetBytes, size_t sceneMemoryBytes,
-                             size_t rays, TreeletStats& stats)
-    : m(std::make_unique<Impl>(ctx, program, prof, bvh, budgetBytes, stats)) {
+                             const BvhWide<Node>& bvh, size_t budgetBytes,
+                             size_t sceneMemoryBytes, size_t rays, TreeletStats& stats)
+    : m(std::make_unique<Impl>(ctx, program, prof, nodeCut(bvh, budgetBytes), stats)) {
     Impl& s = *m;
-    const Treelets& cut = s.cut;
+    const NodeCut& cut = s.cut;
     stats.used = true;
     stats.treelets = cut.count();
     stats.treeletBytes = cut.bytes();
-    stats.slotBytes = size_t(cut.maxNodes) * sizeof(Bvh4Node) + size_t(cut.maxBlocks) * sizeof(Triangle4);
+    stats.slotBytes = size_t(cut.maxNodes) * cut.nodeBytes + size_t(cut.maxBlocks) * sizeof(Triangle4);
     // Streamed when the cut does not fit the scene memory and a cache of at least two
     // slots (the root and one more) is smaller than the cut.
     const size_t slots = sceneMemoryBytes > 0 ? std::max<size_t>(2, sceneMemoryBytes / stats.slotBytes) : 0;
     stats.streamed = sceneMemoryBytes > 0 && sceneMemoryBytes < cut.bytes() && slots < cut.count();
     if (stats.streamed) {
         stats.cacheSlots = slots;
-        s.nodes = DeviceBuffer<Bvh4Node>(ctx, slots * cut.maxNodes, CL_MEM_READ_ONLY);
+        s.nodes = DeviceBuffer<unsigned char>(ctx, slots * cut.maxNodes * cut.nodeBytes,
+                                              CL_MEM_READ_ONLY);
         s.blocks = DeviceBuffer<Triangle4>(ctx, slots * cut.maxBlocks, CL_MEM_READ_ONLY);
         s.refs = DeviceBuffer<TreeletRef>(ctx, cut.count(), CL_MEM_READ_ONLY);
         s.slotTreelet.assign(slots, -1);
@@ -204,15 +238,19 @@ TreeletTracer::TreeletTracer(const ClContext& ctx, cl_program program, Profiler&
         s.upload(0, 0);  // the root treelet stays resident
     } else {
         stats.cacheSlots = cut.count();
-        s.nodes = DeviceBuffer<Bvh4Node>(ctx, cut.nodes);
+        s.nodes = DeviceBuffer<unsigned char>(ctx, cut.nodes);
         s.blocks = DeviceBuffer<Triangle4>(ctx, cut.blocks);
-        s.refs = DeviceBuffer<TreeletRef>(ctx, cut.residentRefs());
+        s.refs = DeviceBuffer<TreeletRef>(ctx, cut.residentRefs);
     }
     s.keys = DeviceBuffer<cl_ulong>(ctx, std::max<size_t>(rays, 1));
     s.capacity = std::max<size_t>(2 * rays, 1024);
     s.queue = DeviceBuffer<TreeletPair>(ctx, s.capacity);
     s.sorted = DeviceBuffer<TreeletPair>(ctx, s.capacity);
 }
+template TreeletTracer::TreeletTracer(const ClContext&, cl_program, Profiler&, const Bvh4&,
+                                      size_t, size_t, size_t, TreeletStats&);
+template TreeletTracer::TreeletTracer(const ClContext&, cl_program, Profiler&, const Bvh8&,
+                                      size_t, size_t, size_t, TreeletStats&);
 
 // Uploads may still be queued: they read from the cut and pendingRefs.
 TreeletTracer::~TreeletTracer() { m->ctx.finish(); }

@@ -60,11 +60,13 @@ void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
 
 class TreeletTracer {
 public:
+    // `bvh`: the four- or eight-wide tree, as the program was built (RT_BVH8);
     // `sceneMemoryBytes`: device bytes the BVH may take (0 or at least the whole cut:
     // every treelet resident); `rays`: the most rays closest() is given at once.
-    TreeletTracer(const ClContext& ctx, cl_program program, Profiler& prof, const Bvh4& bvh,
-                  size_t budgetBytes, size_t sceneMemoryBytes, size_t rays,
-                  TreeletStats& stats);
+    template <class Node>
+    TreeletTracer(const ClContext& ctx, cl_program program, Profiler& prof,
+                  const BvhWide<Node>& bvh, size_t budgetBytes, size_t sceneMemoryBytes,
+                  size_t rays, TreeletStats& stats);
     ~TreeletTracer();
     // intersect_closest's work: hits[i] for the first n rays that are alive.
     void closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
