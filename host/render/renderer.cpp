@@ -174,7 +174,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // Scene -> BVH -> specialised program -> device arrays
     auto tb = Clock::now();
     SceneBvh sceneBvh = buildSceneBvh(scene, f.bvhWidth);
-    const Bvh4& bvh4 = sceneBvh.bvh4;  // the four-wide tree (treelets cut it)
+    const Bvh4& bvh4 = sceneBvh.bvh4;  // (empty when the tree is eight-wide)
     st.bvhBuildMs = secondsSince(tb) * 1e3;
     st.triangles = scene.triangles.size();
     for (const Quadric& q : scene.quadrics) {
@@ -215,12 +215,18 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
         rp.sorted.upload(order);
     }
-    if (f.treelets)
-        treelets = std::make_unique<TreeletTracer>(
-            m_ctx, program.get(), prof, bvh4, treeletBudget,
-            m_settings.sceneMemoryBytes > 0 ? m_settings.sceneMemoryBytes
-                                            : size_t(scene.render.sceneMemoryKB) << 10,
-            pool, st.treelets);
+    if (f.treelets) {  // cut from the tree the program walks
+        const size_t sceneMemory = m_settings.sceneMemoryBytes > 0
+                                       ? m_settings.sceneMemoryBytes
+                                       : size_t(scene.render.sceneMemoryKB) << 10;
+        treelets = sceneBvh.width == 8
+                       ? std::make_unique<TreeletTracer>(m_ctx, program.get(), prof,
+                                                         sceneBvh.bvh8, treeletBudget,
+                                                         sceneMemory, pool, st.treelets)
+                       : std::make_unique<TreeletTracer>(m_ctx, program.get(), prof, bvh4,
+                                                         treeletBudget, sceneMemory, pool,
+                                                         st.treelets);
+    }
     const TraceScene traceScene{ds.quadrics,      ds.csg,    ds.triangles, ds.quadricMotion,
                                 ds.trianglesEnd, rp.sample, rp.sampleTime};
     // Textures: the device tile cache (Option "limits" "texturememory" or the command

@@ -246,11 +246,15 @@ void expectSameImage(const Rendered& a, const Rendered& b) {
 
 // The scene rendered through treelets of `budget` bytes (streamed through a cache of
 // `memory` bytes when it is not 0): the treelet path is used, and streamed exactly then.
-Rendered renderThroughTreelets(const std::string& rib, size_t budget, size_t memory) {
-    SCOPED_TRACE(std::to_string(budget) + " bytes, memory " + std::to_string(memory));
+// width: the tree the treelets are cut from (0: the device's, eight-wide on PoCL)
+Rendered renderThroughTreelets(const std::string& rib, size_t budget, size_t memory,
+                               int width = 0) {
+    SCOPED_TRACE(std::to_string(budget) + " bytes, memory " + std::to_string(memory) +
+                 ", width " + std::to_string(width));
     RenderSettings s;
     s.treeletBytes = budget;
     s.sceneMemoryBytes = memory;
+    s.bvhWidth = width;
     Rendered t = renderRib(rib, s);
     EXPECT_TRUE(t.stats.treelets.used) << t.stats.treelets.why;
     EXPECT_EQ(t.stats.treelets.streamed, memory > 0);
@@ -261,7 +265,7 @@ Rendered renderThroughTreelets(const std::string& rib, size_t budget, size_t mem
 
 // Closest hits are an order-independent min on (t, primitive), so the image is the same,
 // bit for bit, whatever the budget, resident or streamed, and equal to the resident
-// traversal's.
+// traversal's, for treelets cut from the four-wide and the eight-wide tree.
 TEST(TreeletTrace, ImageIndependentOfTreeletBudget) {
     const std::string rib = mirrorScene();
     Rendered resident = renderRib(rib);
@@ -271,9 +275,10 @@ TEST(TreeletTrace, ImageIndependentOfTreeletBudget) {
     struct Case {
         size_t budget, memory;
     } cases[] = {{size_t(1) << 30, 0}, {64 << 10, 0}, {4 << 10, 0}, {1, 0}, {4 << 10, 40 << 10}};
+    for (int width : {4, 8})
     for (const Case& c : cases) {
-        SCOPED_TRACE(std::to_string(c.budget) + " bytes, memory " + std::to_string(c.memory));
-        Rendered t = renderThroughTreelets(rib, c.budget, c.memory);
+        Rendered t = renderThroughTreelets(rib, c.budget, c.memory, width);
+        EXPECT_EQ(t.stats.features.bvhWidth, width);
         EXPECT_EQ(t.stats.eyeRays, resident.stats.eyeRays);
         EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
         EXPECT_EQ(t.stats.continuationRays, resident.stats.continuationRays);
@@ -331,7 +336,8 @@ TEST(TreeletTrace, ClosedMeshFromInsideLeaksNothing) {
 
 // Object blocks work inside treelets: exact quadrics, a CSG difference, a moving sphere
 // and a moving triangle mesh, with shadows, give the resident image bit for bit at every
-// budget, streamed too.
+// budget, streamed too, at both node widths (a node a treelet: more than 8 treelets
+// four-wide, more than 4 eight-wide).
 TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
     // a wall of 12 x 8 small spheres behind, so the tree has something to cut
     std::ostringstream spheres;
@@ -364,11 +370,11 @@ TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
     struct Case {
         size_t budget, memory;
     } cases[] = {{size_t(1) << 30, 0}, {1, 0}, {1024, 2048}};
+    for (int width : {4, 8})
     for (const Case& c : cases) {
-        SCOPED_TRACE(std::to_string(c.budget) + " bytes, memory " + std::to_string(c.memory));
-        Rendered t = renderThroughTreelets(rib, c.budget, c.memory);
+        Rendered t = renderThroughTreelets(rib, c.budget, c.memory, width);
         if (c.budget < 4096) {
-            EXPECT_GT(t.stats.treelets.treelets, 8u);
+            EXPECT_GT(t.stats.treelets.treelets, width == 4 ? 8u : 4u);
         }
         EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
         expectSameImage(resident, t);
