@@ -1,4 +1,4 @@
-// treelet_test.cpp: the cut of a four-wide BVH into treelets (host/bvh/treelets.h): every
+// treelet_test.cpp: the cut of a four- or eight-wide BVH into treelets (host/bvh/treelets.h): every
 // node lands in exactly one treelet, each treelet keeps within the byte budget (unless a
 // single node is larger), a huge budget gives one treelet, and walking the treelets
 // through their local indices and links reaches exactly the primitives of the input tree.
@@ -27,7 +27,7 @@ std::vector<Triangle> soup(int n, unsigned seed) {
     return tris;
 }
 
-Bvh4 build(const std::vector<Triangle>& tris) {
+Bvh buildBinary(const std::vector<Triangle>& tris) {
     std::vector<Aabb> bounds;
     for (const Triangle& t : tris) {
         Aabb b;
@@ -37,11 +37,18 @@ Bvh4 build(const std::vector<Triangle>& tris) {
         }
         bounds.push_back(b);
     }
-    return collapseToBvh4(buildBvh(bounds), tris);
+    return buildBvh(bounds);
 }
+Bvh4 build(const std::vector<Triangle>& tris) { return collapseToBvh4(buildBinary(tris), tris); }
+Bvh8 build8(const std::vector<Triangle>& tris) { return collapseToBvh8(buildBinary(tris), tris); }
+
+template <class Node>
+constexpr int kWidth = int(sizeof(Node::count) / sizeof(Node::count[0]));
 
 // The primitives reachable from treelet t's root, following links into other treelets.
-void walk(const Treelets& tl, uint32_t t, std::multiset<uint32_t>& prims, size_t& visits) {
+template <class Node>
+void walk(const TreeletsOf<Node>& tl, uint32_t t, std::multiset<uint32_t>& prims,
+          size_t& visits) {
     const TreeletRange& r = tl.ranges[t];
     std::vector<uint32_t> stack{0};
     while (!stack.empty()) {
@@ -49,8 +56,8 @@ void walk(const Treelets& tl, uint32_t t, std::multiset<uint32_t>& prims, size_t
         stack.pop_back();
         ASSERT_LT(local, r.nodeCount);
         ++visits;
-        const Bvh4Node& n = tl.nodes[r.nodeFirst + local];
-        for (int k = 0; k < 4; ++k) {
+        const Node& n = tl.nodes[r.nodeFirst + local];
+        for (int k = 0; k < kWidth<Node>; ++k) {
             if (n.count[k] > 0) {
                 ASSERT_LE(uint32_t(n.child[k] + n.count[k]), r.blockCount);
                 for (int b = 0; b < n.count[k]; ++b)
@@ -66,7 +73,8 @@ void walk(const Treelets& tl, uint32_t t, std::multiset<uint32_t>& prims, size_t
     }
 }
 
-void checkCut(const Bvh4& bvh, const Treelets& tl, size_t budget) {
+template <class Node>
+void checkCut(const BvhWide<Node>& bvh, const TreeletsOf<Node>& tl, size_t budget) {
     // every node in exactly one treelet
     ASSERT_EQ(tl.treeletOfNode.size(), bvh.nodes.size());
     std::vector<size_t> perTreelet(tl.count(), 0);
@@ -89,7 +97,7 @@ void checkCut(const Bvh4& bvh, const Treelets& tl, size_t budget) {
     }
     EXPECT_EQ(nodes, bvh.nodes.size());
     EXPECT_EQ(blocks, bvh.blocks.size());
-    EXPECT_EQ(tl.bytes(), bvh.nodes.size() * sizeof(Bvh4Node) + bvh.blocks.size() * sizeof(Triangle4));
+    EXPECT_EQ(tl.bytes(), bvh.nodes.size() * sizeof(Node) + bvh.blocks.size() * sizeof(Triangle4));
     // the same primitives, each once, reached by walking the treelets from the root
     std::multiset<uint32_t> want, got;
     for (const Triangle4& b : bvh.blocks)
@@ -152,4 +160,22 @@ TEST(Treelets, EmptyAndSingleLeafTrees) {
         EXPECT_EQ(tl.count(), 1u);
         checkCut(bvh, tl, 1);
     }
+}
+
+// The eight-wide tree's cut (what the renderer takes on a CPU device): the same rules,
+// its ranges sized by the eight-wide node.
+TEST(Treelets, EightWideTreeCutsTheSameWay) {
+    const std::vector<Triangle> tris = soup(3000, 5);
+    Bvh8 bvh = build8(tris);
+    ASSERT_GT(bvh.nodes.size(), 50u);
+    size_t prev = 0;
+    for (size_t budget : {size_t(1) << 40, size_t(64) << 10, size_t(4) << 10, size_t(1)}) {
+        SCOPED_TRACE(budget);
+        Treelets8 tl = cutTreelets(bvh, budget);
+        checkCut(bvh, tl, budget);
+        for (const TreeletRange& r : tl.ranges) EXPECT_EQ(r.nodeBytes, sizeof(Bvh8Node));
+        EXPECT_GE(tl.count(), prev);
+        prev = tl.count();
+    }
+    EXPECT_EQ(cutTreelets(bvh, 1).count(), bvh.nodes.size());
 }
