@@ -122,6 +122,7 @@ int main(int argc, char** argv) {
             rib::Diagnostics rdiag(&std::cerr);
             RenderSettings refSettings;
             refSettings.seed = 1;
+            refSettings.sobol = 0;  // independent, whatever the renderer's default
             RenderStats st = Renderer(ctx, refSettings).render(rs, film, rdiag);
             ref = film.resolve();
             refError = st.estimatedError;
