@@ -36,7 +36,7 @@ Scene loadScene(const std::string& path) {
 }
 
 // sqrt(mean over pixels and colour channels of (img - ref)^2) / mean(ref): the same
-// definition as estimateFilmError, so the two can be compared directly.
+// definition as estimateFilmErrors, so the two can be compared directly.
 double relativeRmse(const std::vector<Rgba>& img, const std::vector<Rgba>& ref) {
     double se = 0, sum = 0;
     for (size_t i = 0; i < img.size(); ++i) {
@@ -75,17 +75,7 @@ int main(int argc, char** argv) {
     // (one comma-separated list, read as one string: with CLI11's delimiter the list's
     // items count as several values, and a vector option swallows the scenes after it)
     std::string budgetList;
-    app.add_option("--budgets", budgetList, "time budgets in seconds, e.g. 0.5,1,2")
-        ->check([](const std::string& list) {
-            std::stringstream in(list);
-            for (std::string item; std::getline(in, item, ',');) {
-                char* end = nullptr;
-                const double v = std::strtod(item.c_str(), &end);
-                if (item.empty() || *end != '\0' || !(v > 0))
-                    return "not a positive number: '" + item + "'";
-            }
-            return std::string();
-        });
+    app.add_option("--budgets", budgetList, "time budgets in seconds, e.g. 0.5,1,2");
     app.add_option("--ref-side", refSide, "reference: side x side samples per pixel");
     app.add_option("--repeats", repeats, "renders per budget (the median is reported)");
     app.add_option("--sampler", sampler, "the budget renders' sampler (the reference's: independent)")
@@ -94,8 +84,15 @@ int main(int argc, char** argv) {
     if (!budgetList.empty()) {
         budgets.clear();
         std::stringstream in(budgetList);
-        for (std::string item; std::getline(in, item, ',');)
-            budgets.push_back(std::stod(item));
+        for (std::string item; std::getline(in, item, ',');) {
+            char* end = nullptr;
+            const double v = std::strtod(item.c_str(), &end);
+            if (item.empty() || *end != '\0' || !(v > 0)) {
+                std::fprintf(stderr, "--budgets: not a positive number: '%s'\n", item.c_str());
+                return 2;
+            }
+            budgets.push_back(v);
+        }
     }
     fs::create_directories(outDir);
     ClContext ctx(selectDevice(""));

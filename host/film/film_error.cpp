@@ -47,7 +47,7 @@ float relativeErrorFloor(const FilmPixels& film) {
 
 float relativeErrorFloorOf(double meanSum, double pixels) {
     const float tenth = std::max(1e-4f, 0.1f * float(pixels > 0 ? meanSum / pixels : 0.0));
-    return std::exp2(std::floor(std::log2(tenth) * 8.0f) * 0.125f);
+    return roundDownOnOctaveGrid(tenth, 8.0f);
 }
 
 std::vector<float> pixelRelativeErrors(const FilmPixels& film) {

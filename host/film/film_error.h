@@ -89,8 +89,12 @@ struct FilmError {
     }
 };
 FilmError estimateFilmErrors(const FilmPixels& film);
-inline double estimateFilmError(const FilmPixels& film, bool sobol = false) {
-    return estimateFilmErrors(film).of(sobol);
+
+// x rounded down to a grid of `steps` points an octave (2^(k / steps)): a threshold that
+// moves only when x does by a step (the brightness floor; the planner's Sobol ratio).
+template <class T>
+T roundDownOnOctaveGrid(T x, T steps) {
+    return std::exp2(std::floor(std::log2(x) * steps) / steps);
 }
 
 // Per-pixel relative error as used for refinement: the standard error over the larger of

@@ -20,7 +20,7 @@ struct PixelSumsBatch {
 // pixel with fewer than two samples).
 void relativeErrors(const PixelSumsBatch& b, float floor, float* relErr);
 
-// estimateFilmError's sums over some pixels: of the squared standard errors (pixels with
+// estimateFilmErrors' sums over some pixels: of the squared standard errors (pixels with
 // two samples or more) and of the means (pixels with samples), each taken as
 // pixelStdError and pixelMean give them.
 // Also the sums of the replicate estimate (film_error.h): the squared error of each

@@ -488,8 +488,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         }
         const FilmError e = estimateFilmErrors(film.pixels);
         st.estimatedError = e.of(f.sobol);
-        spreadOverstates =
-            std::exp2(std::floor(std::log2(e.spreadOverstates(f.sobol)) * 4.0) * 0.25);
+        spreadOverstates = roundDownOnOctaveGrid(e.spreadOverstates(f.sobol), 4.0);
         prof.collect();
         uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
                         (treelets ? treelets->peekRays() : 0);

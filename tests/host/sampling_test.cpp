@@ -501,9 +501,9 @@ TEST(Film, ErrorEstimateFromWholeSamples) {
     f[0].sum = {2, 2, 2, 2};
     f[0].sum_sq = {4, 4, 4, 4};
     f[0].count = 2;
-    EXPECT_NEAR(rd::estimateFilmError(f), 1.0, 1e-6);
+    EXPECT_NEAR(rd::estimateFilmErrors(f).spread, 1.0, 1e-6);
     f[0].count = 1;
-    EXPECT_LT(rd::estimateFilmError(f), 0.0) << "one sample has no variance";
+    EXPECT_LT(rd::estimateFilmErrors(f).spread, 0.0) << "one sample has no variance";
 }
 
 // The film's estimate is summed by batches of pixels on the host's cores: within 1e-12 of
@@ -527,9 +527,9 @@ TEST(Film, ErrorEstimateInBatchesIsThePixelByPixelOne) {
         if (p.count >= 2) var += double(e.stdError) * e.stdError, ++withVar;
     }
     const double want = std::sqrt(var / withVar) / (mean / withMean);
-    EXPECT_NEAR(rd::estimateFilmError(f), want, 1e-12 * want);
+    EXPECT_NEAR(rd::estimateFilmErrors(f).spread, want, 1e-12 * want);
     f.resize(1000);  // one thread
-    EXPECT_GT(rd::estimateFilmError(f), 0.0);
+    EXPECT_GT(rd::estimateFilmErrors(f).spread, 0.0);
 }
 
 // The Sobol sampler's estimate from two replicates (film.h sum_odd): a pixel's squared
