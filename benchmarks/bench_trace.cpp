@@ -380,9 +380,12 @@ int benchMain(int argc, char** argv) {
         DeviceBuffer<Bvh8Node> nodes8(ctx, bvh8.nodes.size());
         DeviceBuffer<Triangle4> blocks8(ctx, bvh8.blocks.size());
         if (need8) nodes8.upload(bvh8.nodes), blocks8.upload(bvh8.blocks);
-        std::printf("%s: SAH cost %.2f, %zu four-wide nodes, %zu eight-wide nodes, %zu blocks\n",
-                    mesh.name.c_str(), bvhSahCost(bvh, bs.traversalCost, bs.intersectionCost),
-                    bvh4.nodes.size(), bvh8.nodes.size(), bvh4.blocks.size());
+        std::printf(
+            "%s: SAH cost %.2f, %zu four-wide nodes (%.0f%% of slots used), %zu "
+            "eight-wide nodes (%.0f%%), %zu blocks\n",
+            mesh.name.c_str(), bvhSahCost(bvh, bs.traversalCost, bs.intersectionCost),
+            bvh4.nodes.size(), 100 * usedSlots(bvh4), bvh8.nodes.size(),
+            100 * usedSlots(bvh8), bvh4.blocks.size());
         // the object, motion and sample buffers the kernels take; unused for a triangle
         // scene built without RT_HAS_QUADRICS and RT_HAS_MOTION
         DeviceBuffer<Quadric> noQuadrics(ctx, 1);

@@ -1,8 +1,10 @@
-// collapse4.cpp: binary to four-wide BVH, leaves packed into blocks of four triangles or
-// four objects.
+// collapse4.cpp: binary to four- or eight-wide BVH by the SAH-optimal collapse, leaves
+// packed into blocks of four triangles or four objects.
 #include "collapse4.h"
 
+#include <array>
 #include <cfloat>
+#include <cmath>
 
 namespace rd {
 namespace {
@@ -101,8 +103,106 @@ int packLeaf(const Bvh& bvh, const std::vector<Triangle>& tris, const BvhPrimiti
 
 namespace {
 
-// Each wide node takes a binary node's children and keeps opening its largest interior
-// child until it has W.
+// The collapse's costs, relative to one block's intersection. A wide node's box test
+// costs 1.5 blocks: bench_trace --wide8, alternated runs, 1.0 / 1.5 / 2.0 within the
+// noise of one another, all above the greedy collapse. A leaf made of a binary subtree
+// holds at most two blocks (three: no faster); a binary leaf stays whole, however many it
+// has.
+constexpr double kNodeCost = 1.5, kBlockCost = 1.0;
+constexpr int kMaxMergedLeafBlocks = 2;
+
+// SAH-optimal collapse (Ylitie, Karras and Laine 2017, section 4.1). For every binary
+// node n and every i <= W, cost[n][i] is the least SAH cost of the subtree of n laid out
+// as at most i children of one wide node, each child a leaf (the subtree's primitives
+// packed into blocks) or a wide node of its own. The usual greedy collapse (open the
+// largest child until there are W) left half of a 1M-triangle tree's eight-wide nodes
+// with two children, each a whole node's load and box test for two leaves.
+template <int W>
+struct SahCollapse {
+    std::vector<std::array<double, W + 1>> cost;
+    // how cost[n][i] splits i between n's children: the left child's share, or 0 for
+    // cost[n][i - 1] (n in fewer slots)
+    std::vector<std::array<int8_t, W + 1>> split;
+    std::vector<int8_t> nodeSplit;  // a wide node at n: its left child's share of W
+    std::vector<uint8_t> leaf;      // cost[n][1] is n as one leaf
+};
+
+template <int W>
+SahCollapse<W> sahCollapse(const Bvh& bvh, const BvhPrimitives* prims) {
+    const std::vector<BvhNode>& b = bvh.nodes;
+    SahCollapse<W> c;
+    c.cost.resize(b.size());
+    c.split.resize(b.size());
+    c.nodeSplit.assign(b.size(), 1);
+    c.leaf.assign(b.size(), 0);
+    std::vector<int> tris(b.size(), 0), objs(b.size(), 0);  // blocks are filled apart
+    auto blocksOf = [&](size_t n) { return (tris[n] + 3) / 4 + (objs[n] + 3) / 4; };
+    for (size_t n = b.size(); n-- > 0;) {  // children after their parents: bottom up
+        const double a = area(b[n]);
+        auto& cost = c.cost[n];
+        auto& split = c.split[n];
+        if (b[n].count > 0) {
+            for (int j = b[n].left_or_first; j < b[n].left_or_first + b[n].count; ++j) {
+                const uint32_t id = prims ? prims->ids[bvh.primIndices[size_t(j)]] : 0;
+                ++((id & RT_OBJECT_BIT) ? objs[n] : tris[n]);
+            }
+            cost.fill(a * kBlockCost * blocksOf(n));
+            split.fill(0);
+            c.leaf[n] = 1;
+            continue;
+        }
+        const size_t l = size_t(b[n].left_or_first), r = l + 1;
+        tris[n] = tris[l] + tris[r];
+        objs[n] = objs[l] + objs[r];
+        double opened[W + 1];  // n's two children sharing i slots
+        int8_t share[W + 1];
+        for (int i = 2; i <= W; ++i) {
+            opened[i] = INFINITY, share[i] = 1;
+            for (int k = 1; k < i; ++k)
+                if (const double d = c.cost[l][size_t(k)] + c.cost[r][size_t(i - k)];
+                    d < opened[i])
+                    opened[i] = d, share[i] = int8_t(k);
+        }
+        const double asLeaf =
+            blocksOf(n) <= kMaxMergedLeafBlocks ? a * kBlockCost * blocksOf(n) : INFINITY;
+        const double asNode = a * kNodeCost + opened[W];
+        c.nodeSplit[n] = share[W];
+        c.leaf[n] = asLeaf <= asNode;
+        cost[1] = std::min(asLeaf, asNode);
+        split[1] = 0;
+        for (size_t i = 2; i <= W; ++i) {
+            if (opened[i] < cost[i - 1])
+                cost[i] = opened[i], split[i] = share[i];
+            else
+                cost[i] = cost[i - 1], split[i] = 0;
+        }
+    }
+    return c;
+}
+
+// The binary nodes that fill the i slots cost[n][i] stands for, appended to `out`.
+template <int W>
+void slotsOf(const Bvh& bvh, const SahCollapse<W>& c, int n, int i,
+             std::vector<int>& out) {
+    while (i > 1 && c.split[size_t(n)][size_t(i)] == 0) --i;
+    if (i == 1) {
+        out.push_back(n);
+        return;
+    }
+    const int k = c.split[size_t(n)][size_t(i)], l = bvh.nodes[size_t(n)].left_or_first;
+    slotsOf(bvh, c, l, k, out);
+    slotsOf(bvh, c, l + 1, i - k, out);
+}
+
+// The primitives under binary node n: children cover adjacent ranges, left first.
+std::pair<int, int> primRange(const Bvh& bvh, int n) {
+    int lo = n, hi = n;
+    while (bvh.nodes[size_t(lo)].count == 0) lo = bvh.nodes[size_t(lo)].left_or_first;
+    while (bvh.nodes[size_t(hi)].count == 0) hi = bvh.nodes[size_t(hi)].left_or_first + 1;
+    const BvhNode &first = bvh.nodes[size_t(lo)], &last = bvh.nodes[size_t(hi)];
+    return {first.left_or_first, last.left_or_first + last.count - first.left_or_first};
+}
+
 template <class Node, int W>
 BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
                            const BvhPrimitives* prims) {
@@ -112,8 +212,6 @@ BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
     for (int k = 0; k < W; ++k) clearSlot(out[0], k);
     if (bvh.empty()) return result;
     const std::vector<BvhNode>& b = bvh.nodes;
-    // Work list: (wide node index, binary node whose children it holds).
-    std::vector<std::pair<size_t, int>> work;
     if (b[0].count > 0) {
         // A single leaf: the root holds it in slot 0.
         setSlot(out[0], 0, b[0]);
@@ -121,40 +219,32 @@ BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
                                    out[0].count[0]);
         return result;
     }
-    work.push_back({0, 0});
+    const SahCollapse<W> sah = sahCollapse<W>(bvh, prims);
+    // Work list: (wide node index, binary node whose subtree it lays out).
+    std::vector<std::pair<size_t, int>> work{{0, 0}};
+    std::vector<int> kids;
     while (!work.empty()) {
         auto [wi, bi] = work.back();
         work.pop_back();
-        std::vector<int> kids{b[bi].left_or_first, b[bi].left_or_first + 1};
-        while (kids.size() < size_t(W)) {
-            int best = -1;
-            double bestArea = -1;
-            for (size_t k = 0; k < kids.size(); ++k)
-                if (b[kids[k]].count == 0 && area(b[kids[k]]) > bestArea)
-                    best = int(k), bestArea = area(b[kids[k]]);
-            if (best < 0) break;
-            int open = kids[best];
-            kids.erase(kids.begin() + best);
-            kids.push_back(b[open].left_or_first);
-            kids.push_back(b[open].left_or_first + 1);
-        }
-        for (int k = 0; k < W; ++k) {
-            if (k >= int(kids.size())) {
-                clearSlot(out[wi], k);
+        kids.clear();
+        const int l = b[size_t(bi)].left_or_first, k = sah.nodeSplit[size_t(bi)];
+        slotsOf(bvh, sah, l, k, kids);
+        slotsOf(bvh, sah, l + 1, W - k, kids);
+        for (int slot = 0; slot < W; ++slot) {
+            if (slot >= int(kids.size())) {
+                clearSlot(out[wi], slot);
                 continue;
             }
-            const BvhNode& n = b[kids[k]];
-            setSlot(out[wi], k, n);
-            if (n.count > 0) {
-                int blocks = 0;
-                out[wi].child[k] =
-                    packLeaf(bvh, tris, prims, n.left_or_first, n.count, result.blocks, blocks);
-                out[wi].count[k] = blocks;
+            setSlot(out[wi], slot, b[size_t(kids[size_t(slot)])]);
+            if (sah.leaf[size_t(kids[size_t(slot)])]) {
+                const auto [first, count] = primRange(bvh, kids[size_t(slot)]);
+                out[wi].child[slot] = packLeaf(bvh, tris, prims, first, count,
+                                               result.blocks, out[wi].count[slot]);
             } else {
-                out[wi].child[k] = int(out.size());
-                out[wi].count[k] = 0;
+                out[wi].child[slot] = int(out.size());
+                out[wi].count[slot] = 0;
                 out.emplace_back();
-                work.push_back({out.size() - 1, kids[k]});
+                work.push_back({out.size() - 1, kids[size_t(slot)]});
             }
         }
     }

@@ -1,7 +1,8 @@
 // collapse4.h: turns the binary SAH BVH into the four-wide layout the kernels traverse
-// (cl/include/bvh.h, Bvh4Node): each wide node takes a binary node's children and keeps
-// opening its largest interior child until it has four (the usual BVH2 -> BVH4 collapse;
-// leaves and primitive order are those of the binary tree).
+// (cl/include/bvh.h, Bvh4Node), or the eight-wide one (Bvh8Node). Which binary nodes
+// become wide nodes, which are opened into their parent's slots and which small subtrees
+// become one leaf is chosen for the least SAH cost of the wide tree (Ylitie et al. 2017);
+// primitive order is the binary tree's, and a leaf's primitives are a binary subtree's.
 #pragma once
 #include <vector>
 
@@ -36,5 +37,16 @@ Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
 // The same collapse to eight children per node (Bvh8Node).
 Bvh8 collapseToBvh8(const Bvh& bvh, const std::vector<Triangle>& tris,
                     const BvhPrimitives* prims = nullptr);
+
+// The share of a wide tree's child slots in use (a node of two children in eight uses a
+// quarter of what its load and box test cost).
+template <class Node>
+double usedSlots(const BvhWide<Node>& tree) {
+    constexpr int W = sizeof(Node::count) / sizeof(Node::count[0]);
+    size_t used = 0;
+    for (const Node& n : tree.nodes)
+        for (int k = 0; k < W; ++k) used += n.count[k] >= 0;
+    return tree.nodes.empty() ? 0.0 : double(used) / double(W * tree.nodes.size());
+}
 
 }  // namespace rd
