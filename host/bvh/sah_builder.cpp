@@ -5,10 +5,14 @@
 #include "host/bvh/sah_builder.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <thread>
+
+#include "host/film/run_in_parts.h"
 
 namespace rd {
 namespace {
@@ -72,7 +76,7 @@ double sahMeasure(const Box4& b, bool useLength) {
 
 class Builder {
 public:
-    Builder(const BvhBuildSettings& s, Bvh& out) : out_(out) {
+    Builder(const BvhBuildSettings& s, std::vector<PrimRef>& refs) : refs_(refs) {
         binCount_ = std::clamp(s.binCount, 2, kMaxBins);
         maxLeaf_ = std::max(1, s.maxLeafSize);
         leafCap_ = std::max(kBvhMaxLeafCap, maxLeaf_);
@@ -81,31 +85,6 @@ public:
         block_ = uint32_t(std::max(1, s.blockSize));
     }
 
-    void build(const std::vector<Aabb>& primBounds) {
-        refs_.reserve(primBounds.size());
-        for (size_t i = 0; i < primBounds.size(); ++i) {
-            const Aabb& b = primBounds[i];
-            if (!b.isValid()) {
-                ++out_.droppedPrims;
-                continue;
-            }
-            PrimRef r;
-            r.box = Box4(b);
-            b.centroid(r.c);
-            r.id = uint32_t(i);
-            refs_.push_back(r);
-        }
-        out_.nodes.clear();
-        // A binary tree with leaves of >= 1 primitive has at most 2n - 1 nodes.
-        out_.nodes.reserve(refs_.empty() ? 1 : 2 * refs_.size() - 1);
-        out_.nodes.push_back(emptyLeaf());
-        out_.depth = 1;
-        if (!refs_.empty()) buildNodes();
-        out_.primIndices.resize(refs_.size());
-        for (size_t i = 0; i < refs_.size(); ++i) out_.primIndices[i] = refs_[i].id;
-    }
-
-private:
     static BvhNode emptyLeaf() {
         BvhNode n{};
         for (int a = 0; a < 3; ++a) {
@@ -117,32 +96,35 @@ private:
         return n;
     }
 
-    void buildNodes() {
-        RangeBounds root;
-        for (const PrimRef& r : refs_) {
-            root.box.grow(r.box);
-            root.cbox.grow(r.c);
-        }
-        std::vector<BuildTask> stack;
-        stack.push_back({0, 0, uint32_t(refs_.size()), 1, root});
+    // Builds the subtree of `root` (its node: nodes[root.node]) into `nodes`, depth
+    // first, raising `depth` to its deepest level. With `deferred`, a task of at most
+    // `defer` primitives is set aside there instead, its node left to be filled by its
+    // own build.
+    void buildSubtree(const BuildTask& root, std::vector<BvhNode>& nodes, int& depth,
+                      uint32_t defer = 0, std::vector<BuildTask>* deferred = nullptr) {
+        std::vector<BuildTask> stack{root};
         while (!stack.empty()) {
             BuildTask t = stack.back();
             stack.pop_back();
-            out_.depth = std::max(out_.depth, t.depth);
+            if (deferred && t.end - t.begin <= defer) {
+                deferred->push_back(t);
+                continue;
+            }
+            depth = std::max(depth, t.depth);
             uint32_t mid = 0;
             RangeBounds kids[2];
-            if (!chooseSplit(t, mid, kids)) {
-                BvhNode& n = out_.nodes[t.node];
+            if (!chooseSplit(t, nodes[t.node], mid, kids)) {
+                BvhNode& n = nodes[t.node];
                 n.left_or_first = int32_t(t.begin);
                 n.count = int32_t(t.end - t.begin);
                 continue;
             }
             // Both children are appended together, which keeps them adjacent.
-            uint32_t left = uint32_t(out_.nodes.size());
-            out_.nodes.push_back(BvhNode{});
-            out_.nodes.push_back(BvhNode{});
-            out_.nodes[t.node].left_or_first = int32_t(left);
-            out_.nodes[t.node].count = 0;
+            uint32_t left = uint32_t(nodes.size());
+            nodes.push_back(BvhNode{});
+            nodes.push_back(BvhNode{});
+            nodes[t.node].left_or_first = int32_t(left);
+            nodes[t.node].count = 0;
             // Left on top of the stack: depth-first order keeps subtrees close in memory.
             stack.push_back({left + 1, mid, t.end, t.depth + 1, kids[1]});
             stack.push_back({left, t.begin, mid, t.depth + 1, kids[0]});
@@ -151,10 +133,10 @@ private:
 
     // Writes the node's bounds, then decides between a leaf (returns false) and a split
     // of [begin, end) at `mid` (returns true, refs already partitioned, kids set).
-    bool chooseSplit(const BuildTask& t, uint32_t& mid, RangeBounds kids[2]) {
+    bool chooseSplit(const BuildTask& t, BvhNode& node, uint32_t& mid,
+                     RangeBounds kids[2]) {
         const Box4& box = t.bounds.box;
         const Aabb& cbox = t.bounds.cbox;
-        BvhNode& node = out_.nodes[t.node];
         for (int a = 0; a < 3; ++a) {
             node.bmin[a] = box.lo[a];
             node.bmax[a] = box.hi[a];
@@ -307,8 +289,7 @@ private:
         return i;
     }
 
-    Bvh& out_;
-    std::vector<PrimRef> refs_;
+    std::vector<PrimRef>& refs_;  // shared: each build partitions its own range
     int binCount_ = 16, maxLeaf_ = 4, leafCap_ = kBvhMaxLeafCap;
     float ct_ = 1.0f, ci_ = 1.0f;
     uint32_t block_ = 1;
@@ -326,9 +307,79 @@ Bvh buildBvh(const std::vector<Aabb>& primBounds, const BvhBuildSettings& settin
     if (primBounds.size() > size_t(std::numeric_limits<int32_t>::max()) / 2)
         throw std::length_error("buildBvh: too many primitives for 32-bit node indices");
     Bvh bvh;
-    // The builder holds ~45 KiB of bins; keep it off the caller's stack.
-    auto builder = std::make_unique<Builder>(settings, bvh);
-    builder->build(primBounds);
+    std::vector<PrimRef> refs;
+    refs.reserve(primBounds.size());
+    for (size_t i = 0; i < primBounds.size(); ++i) {
+        const Aabb& b = primBounds[i];
+        if (!b.isValid()) {
+            ++bvh.droppedPrims;
+            continue;
+        }
+        PrimRef r;
+        r.box = Box4(b);
+        b.centroid(r.c);
+        r.id = uint32_t(i);
+        refs.push_back(r);
+    }
+    // A binary tree with leaves of >= 1 primitive has at most 2n - 1 nodes.
+    bvh.nodes.reserve(refs.empty() ? 1 : 2 * refs.size() - 1);
+    bvh.nodes.push_back(Builder::emptyLeaf());
+    bvh.depth = 1;
+    if (!refs.empty()) {
+        RangeBounds bounds;
+        for (const PrimRef& r : refs) {
+            bounds.box.grow(r.box);
+            bounds.cbox.grow(r.c);
+        }
+        const BuildTask root{0, 0, uint32_t(refs.size()), 1, bounds};
+        // The builders hold ~45 KiB of bins each; keep them off the caller's stack.
+        auto builder = std::make_unique<Builder>(settings, refs);
+        if (refs.size() < std::max<size_t>(settings.parallelPrims, 16)) {
+            builder->buildSubtree(root, bvh.nodes, bvh.depth);
+        } else {
+            // The top levels here; the subtrees of at most a 16th of the primitives each
+            // on the host's cores, into nodes of their own, appended in the order they
+            // were set aside: the same tree whatever the number of threads.
+            std::vector<BuildTask> parts;
+            builder->buildSubtree(root, bvh.nodes, bvh.depth, uint32_t(refs.size() / 16),
+                                  &parts);
+            std::vector<std::vector<BvhNode>> partNodes(parts.size());
+            std::vector<int> partDepth(parts.size(), 0);
+            std::atomic<size_t> next{0};
+            auto work = [&] {
+                auto own = std::make_unique<Builder>(settings, refs);
+                for (size_t i; (i = next++) < parts.size();) {
+                    BuildTask t = parts[i];
+                    t.node = 0;
+                    partNodes[i].reserve(2 * (t.end - t.begin) - 1);
+                    partNodes[i].push_back(Builder::emptyLeaf());
+                    own->buildSubtree(t, partNodes[i], partDepth[i]);
+                }
+            };
+            std::vector<std::thread> pool;
+            const size_t threads =
+                settings.threads > 0 ? settings.threads : hostThreads();
+            for (size_t t = 1; t < std::min(threads, parts.size()); ++t)
+                pool.emplace_back(work);
+            work();
+            for (std::thread& th : pool) th.join();
+            for (size_t i = 0; i < parts.size(); ++i) {
+                // a part's node j > 0 lands at offset + j; its root in the node set aside
+                const int32_t offset = int32_t(bvh.nodes.size()) - 1;
+                for (size_t j = 0; j < partNodes[i].size(); ++j) {
+                    BvhNode n = partNodes[i][j];
+                    if (n.count == 0) n.left_or_first += offset;
+                    if (j == 0)
+                        bvh.nodes[parts[i].node] = n;
+                    else
+                        bvh.nodes.push_back(n);
+                }
+                bvh.depth = std::max(bvh.depth, partDepth[i]);
+            }
+        }
+    }
+    bvh.primIndices.resize(refs.size());
+    for (size_t i = 0; i < refs.size(); ++i) bvh.primIndices[i] = refs[i].id;
     return bvh;
 }
 

@@ -18,6 +18,11 @@ struct BvhBuildSettings {
     // Primitives are intersected this many at a time (the kernels' four-triangle blocks):
     // SAH counts a set of n as ceil(n / blockSize) intersections, so leaves fill blocks.
     int blockSize = 1;
+    // A tree of at least parallelPrims primitives is built on `threads` threads (0: the
+    // host's cores) below its top levels; the tree and its layout are the same for any
+    // number of threads.
+    size_t parallelPrims = 65536;
+    unsigned threads = 0;
 };
 
 // The largest leaf the builder emits when maxLeafSize is below it: a node of up to this
@@ -52,7 +57,7 @@ struct Bvh {
 };
 
 // Builds a BVH over primBounds (one box per primitive). Deterministic: the same input
-// and settings give the same tree. Single-threaded, O(n log n).
+// and settings give the same tree. O(n log n); a large tree's subtrees in parallel.
 Bvh buildBvh(const std::vector<Aabb>& primBounds, const BvhBuildSettings& settings = {});
 
 // The SAH cost of a built tree relative to its root's area, with the given costs: the

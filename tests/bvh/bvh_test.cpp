@@ -165,6 +165,37 @@ TEST(BvhBuild, IsDeterministic) {
         0, std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)));
 }
 
+// A large tree's subtrees are built in parallel into nodes of their own and appended in
+// a fixed order: the same nodes for any number of threads, and the same tree as one
+// thread builds depth first (the same splits and primitive order; only the nodes' places
+// differ).
+TEST(BvhBuild, ParallelBuildIsTheSameTreeOnAnyThreads) {
+    std::vector<Aabb> boxes = randomBoxes(150000, 12);
+    BvhBuildSettings s;
+    s.threads = 1;
+    const Bvh one = buildBvh(boxes, s);
+    EXPECT_TRUE(checkInvariants(one, boxes, kBvhMaxLeafCap));
+    for (unsigned threads : {2u, 3u}) {
+        s.threads = threads;
+        const Bvh many = buildBvh(boxes, s);
+        ASSERT_EQ(many.nodes.size(), one.nodes.size());
+        EXPECT_EQ(0, std::memcmp(many.nodes.data(), one.nodes.data(),
+                                 one.nodes.size() * sizeof(BvhNode)))
+            << threads << " threads";
+        EXPECT_EQ(many.primIndices, one.primIndices);
+        EXPECT_EQ(many.depth, one.depth);
+    }
+    s.parallelPrims = boxes.size() + 1;  // every node on one thread, depth first
+    const Bvh serial = buildBvh(boxes, s);
+    EXPECT_EQ(serial.nodes.size(), one.nodes.size());
+    EXPECT_EQ(serial.primIndices, one.primIndices);
+    EXPECT_EQ(serial.depth, one.depth);
+    EXPECT_NEAR(bvhSahCost(serial), bvhSahCost(one), 1e-9 * bvhSahCost(serial));
+    EXPECT_NE(0, std::memcmp(serial.nodes.data(), one.nodes.data(),
+                             one.nodes.size() * sizeof(BvhNode)))
+        << "the parallel layout is not the depth-first one: this test no longer tests it";
+}
+
 TEST(BvhBuild, SahCostBelowMedianSplitOnGrid) {
     // A regular grid of small cubes: SAH should find a cheaper tree than splitting the
     // index range in half along the widest axis.
