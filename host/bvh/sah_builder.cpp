@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -346,14 +347,21 @@ Bvh buildBvh(const std::vector<Aabb>& primBounds, const BvhBuildSettings& settin
             std::vector<std::vector<BvhNode>> partNodes(parts.size());
             std::vector<int> partDepth(parts.size(), 0);
             std::atomic<size_t> next{0};
+            // (a failure on a thread, such as running out of memory, reaches the caller)
+            std::vector<std::exception_ptr> failed(parts.size());
             auto work = [&] {
-                auto own = std::make_unique<Builder>(settings, refs);
+                std::unique_ptr<Builder> own;
                 for (size_t i; (i = next++) < parts.size();) {
-                    BuildTask t = parts[i];
-                    t.node = 0;
-                    partNodes[i].reserve(2 * (t.end - t.begin) - 1);
-                    partNodes[i].push_back(Builder::emptyLeaf());
-                    own->buildSubtree(t, partNodes[i], partDepth[i]);
+                    try {
+                        if (!own) own = std::make_unique<Builder>(settings, refs);
+                        BuildTask t = parts[i];
+                        t.node = 0;
+                        partNodes[i].reserve(2 * (t.end - t.begin) - 1);
+                        partNodes[i].push_back(Builder::emptyLeaf());
+                        own->buildSubtree(t, partNodes[i], partDepth[i]);
+                    } catch (...) {
+                        failed[i] = std::current_exception();
+                    }
                 }
             };
             std::vector<std::thread> pool;
@@ -363,6 +371,8 @@ Bvh buildBvh(const std::vector<Aabb>& primBounds, const BvhBuildSettings& settin
                 pool.emplace_back(work);
             work();
             for (std::thread& th : pool) th.join();
+            for (const std::exception_ptr& e : failed)
+                if (e) std::rethrow_exception(e);
             for (size_t i = 0; i < parts.size(); ++i) {
                 // a part's node j > 0 lands at offset + j; its root in the node set aside
                 const int32_t offset = int32_t(bvh.nodes.size()) - 1;
