@@ -112,6 +112,7 @@ int catribCommand(int argc, char** argv) {
                                            : rib::RibWriter::Encoding::Ascii);
         ok = rib::readFile(input, writer, diag);
     }
+    diag.printSuppressed();
     const std::string bytes = text.str();
     if (gzip) {
         if (output == "-") {
@@ -248,6 +249,7 @@ int main(int argc, char** argv) {
     rd::RibBuilder builder(diag, scenePath);
     builder.setTessellateQuadrics(tessellateQuadrics);
     rib::readFile(scenePath, builder, diag);
+    diag.printSuppressed();
     if (diag.errorCount() > 0) {
         std::cerr << "raydrive: " << diag.errorCount() << " error(s) in " << scenePath
                   << "; nothing rendered\n";

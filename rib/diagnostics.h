@@ -3,6 +3,7 @@
 // editors understand); callers recover and go on, and only main() decides the exit code.
 #pragma once
 #include <iosfwd>
+#include <map>
 #include <string>
 
 namespace rib {
@@ -34,6 +35,11 @@ public:
     ErrorMode mode() const { return m_mode; }
     int ignoredCount() const { return m_ignored; }
     bool aborted() const { return m_aborted; }
+    // A warning repeated with only its numbers changed (one per mesh of a large file) is
+    // printed kMaxRepeats times, the last saying so; the rest are counted, and this
+    // prints how many of each were not shown (main, at the end).
+    static constexpr int kMaxRepeats = 5;
+    void printSuppressed();
 
 private:
     void emit(const SourceLoc& loc, const char* kind, const std::string& msg);
@@ -45,6 +51,11 @@ private:
     bool m_aborted = false;
     ErrorMode m_mode = ErrorMode::Print;
     std::string m_last;
+    struct Repeats {
+        int seen = 0;
+        std::string first;  // the first such message, for the summary
+    };
+    std::map<std::string, Repeats> m_repeats;  // by the message without its digits
 };
 
 } // namespace rib

@@ -683,3 +683,25 @@ TEST(RibFiles, MissingFile) {
 }
 
 }  // namespace
+
+// A warning repeated with only its numbers changed (one per mesh of a large file) is
+// shown kMaxRepeats times, the last saying so, and the rest are counted and summarised
+// once; other warnings are shown as before, and every one is counted.
+TEST(Diagnostics, RepeatedWarningsAreSummarised) {
+    std::ostringstream out;
+    rib::Diagnostics diag(&out);
+    for (int i = 1; i <= 12; ++i)
+        diag.warning({"a.rib", i}, "degenerate geometry: " + std::to_string(i) + " triangle(s) left out");
+    diag.warning({"a.rib", 13}, "something else");
+    EXPECT_EQ(diag.warningCount(), 13);
+    diag.printSuppressed();
+    diag.printSuppressed();  // (said once)
+    const std::vector<std::string> lines = splitLines(out.str());
+    ASSERT_EQ(lines.size(), size_t(rib::Diagnostics::kMaxRepeats + 2));
+    EXPECT_EQ(lines[0], "a.rib:1: warning: degenerate geometry: 1 triangle(s) left out");
+    EXPECT_NE(lines[rib::Diagnostics::kMaxRepeats - 1].find("further warnings like this are not shown"),
+              std::string::npos);
+    EXPECT_EQ(lines[rib::Diagnostics::kMaxRepeats], "a.rib:13: warning: something else");
+    EXPECT_EQ(lines.back(), "note: 7 more warning(s) like \"a.rib:1: warning: degenerate geometry: 1 "
+                            "triangle(s) left out\" were not shown");
+}
