@@ -49,6 +49,9 @@ TEST(Numerics, DegenerateInputIsReportedOnceAndRendersClean) {
         // a mesh with the same face twice (coincident faces), one warning for the request
         {"PointsPolygons [4 4 3] [0 1 2 3  0 1 2 3  0 0 1] \"P\" "
          "[-3 -3 6  3 -3 6  3 3 6  -3 3 6]", true},
+        // the same triangle again with -0 for +0 (equal coordinates): coincident too
+        {"PointsPolygons [3 3] [0 1 2  3 4 5] \"P\" [0 0 7  1 0 7  0 1 7  -0 0 7  1 -0 7  -0 1 7]",
+         true},
         {"WorldEnd", false},
     };
     std::string rib;
@@ -67,8 +70,9 @@ TEST(Numerics, DegenerateInputIsReportedOnceAndRendersClean) {
     EXPECT_TRUE(allFinite(img));
     EXPECT_EQ(img.stats.nonfiniteSamples, 0u);
     EXPECT_EQ(img.stats.shadeNonfinite, 0u);
-    // two triangles of the lit square, two of the back square (its copy left out)
-    EXPECT_EQ(img.stats.triangles, 4u);
+    // two triangles of the lit square, two of the back square (its copy left out), one
+    // behind it (its -0 copy left out)
+    EXPECT_EQ(img.stats.triangles, 5u);
     double err = 0;
     for (const rd::Rgba& p : img.pixels)
         err = std::fmax(err, std::fmax(std::fabs(p.r - 0.5), std::fabs(p.a - 1.0)));
