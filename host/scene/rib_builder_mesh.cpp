@@ -5,12 +5,68 @@
 #include <cfloat>
 #include <array>
 #include <cstring>
-#include <unordered_set>
 
 #include "rib_builder.h"
 #include "rib_builder_util.h"
 
 namespace rd {
+
+namespace {
+
+// The corners of triangle k of `tris` over `p`, sorted (x, then y, then z), -0 as +0: one
+// key for a triangle however its corners are ordered.
+std::array<float, 9> sortedCorners(const std::vector<int>& tris, const std::vector<glm::vec3>& p,
+                                   size_t k) {
+    std::array<glm::vec3, 3> c{p[size_t(tris[3 * k])], p[size_t(tris[3 * k + 1])],
+                               p[size_t(tris[3 * k + 2])]};
+    std::sort(c.begin(), c.end(), [](const glm::vec3& u, const glm::vec3& v) {
+        return u.x != v.x ? u.x < v.x : u.y != v.y ? u.y < v.y : u.z < v.z;
+    });
+    std::array<float, 9> key{c[0].x, c[0].y, c[0].z, c[1].x, c[1].y, c[1].z, c[2].x, c[2].y, c[2].z};
+    for (float& f : key) f += 0.0f;  // (-0 + 0 is +0)
+    return key;
+}
+
+// What is wrong with a triangle of a request, if anything.
+enum class Defect : uint8_t { None, Nonfinite, NonfiniteEnd, ZeroArea, Coincident };
+
+// Later copies of a kept triangle (the same corners, in any order) within the request are
+// marked Coincident. By a sort of the corners' hashes and the triangles' indices rather
+// than a set of corners: a set's node and bucket per triangle missed the cache twice an
+// insert (half of reading a 300k-triangle mesh, perf).
+void markCoincident(const std::vector<int>& tris, const std::vector<glm::vec3>& p,
+                    std::vector<Defect>& defects) {
+    std::vector<std::pair<uint64_t, uint32_t>> byHash;  // (hash of the corners, triangle)
+    byHash.reserve(defects.size());
+    for (size_t k = 0; k < defects.size(); ++k) {
+        if (defects[k] != Defect::None) continue;
+        uint64_t h = 1469598103934665603ull;
+        for (float f : sortedCorners(tris, p, k)) {
+            uint32_t bits;
+            std::memcpy(&bits, &f, sizeof bits);
+            h = (h ^ bits) * 1099511628211ull;
+        }
+        byHash.push_back({h, uint32_t(k)});
+    }
+    std::sort(byHash.begin(), byHash.end());
+    for (size_t i = 0; i < byHash.size();) {
+        size_t j = i + 1;
+        while (j < byHash.size() && byHash[j].first == byHash[i].first) ++j;
+        // a run of one hash (in triangle order): each is a copy of an earlier equal one
+        for (size_t b = i + 1; b < j; ++b) {
+            const std::array<float, 9> key = sortedCorners(tris, p, byHash[b].second);
+            for (size_t e = i; e < b; ++e)
+                if (defects[byHash[e].second] == Defect::None &&
+                    sortedCorners(tris, p, byHash[e].second) == key) {
+                    defects[byHash[b].second] = Defect::Coincident;
+                    break;
+                }
+        }
+        i = j;
+    }
+}
+
+}  // namespace
 
 void RibBuilder::addMesh(L loc, const VertexData& mesh) {
     if (m_defining) {
@@ -97,51 +153,36 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     // Degenerate input is left out (or, for normals, replaced by the geometric normal)
     // and reported once per request, at its file:line.
     int nonfinite = 0, zeroArea = 0, duplicate = 0, badNormal = 0;
-    // Coincident triangles within this request, by their sorted corners (a hash set: the
-    // ordered set's node per triangle took 6% of reading a 300k-triangle RIB). -0 and +0
-    // are one coordinate, as they compare equal.
-    struct CornersHash {
-        size_t operator()(const std::array<float, 9>& k) const {
-            uint64_t h = 1469598103934665603ull;
-            for (float f : k) {
-                uint32_t bits;
-                std::memcpy(&bits, &f, sizeof bits);
-                h = (h ^ bits) * 1099511628211ull;
-            }
-            return size_t(h ^ (h >> 29));
-        }
-    };
-    std::unordered_set<std::array<float, 9>, CornersHash> seen;
-    seen.reserve(mesh.tris.size() / 3);
-    for (size_t t = 0; t + 2 < mesh.tris.size(); t += 3) {
-        int i0 = mesh.tris[t], i1 = mesh.tris[t + 1], i2 = mesh.tris[t + 2];
+    const size_t count = mesh.tris.size() / 3;
+    std::vector<Defect> defects(count, Defect::None);
+    for (size_t k = 0; k < count; ++k) {
+        const int i0 = mesh.tris[3 * k], i1 = mesh.tris[3 * k + 1], i2 = mesh.tris[3 * k + 2];
         const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
         glm::vec3 cr = glm::cross(b - a, c - a);
         if (wpEnd) {  // moving: finite at both keys, not degenerate at both
             const glm::vec3 &ea = (*wpEnd)[i0], &eb = (*wpEnd)[i1], &ec = (*wpEnd)[i2];
             glm::vec3 ce = glm::cross(eb - ea, ec - ea);
             if (!finite3(ea) || !finite3(eb) || !finite3(ec)) {
-                ++nonfinite;
+                defects[k] = Defect::NonfiniteEnd;
                 continue;
             }
             if (glm::dot(ce, ce) > 0.0f && !(glm::dot(cr, cr) > 0.0f)) cr = ce;
         }
-        if (!finite3(a) || !finite3(b) || !finite3(c) || !(glm::dot(cr, cr) > 0.0f)) {
-            ++m_degenerate;
-            ++(finite3(a) && finite3(b) && finite3(c) ? zeroArea : nonfinite);
-            continue;
+        if (!finite3(a) || !finite3(b) || !finite3(c)) defects[k] = Defect::Nonfinite;
+        else if (!(glm::dot(cr, cr) > 0.0f)) defects[k] = Defect::ZeroArea;
+    }
+    markCoincident(mesh.tris, wp, defects);
+    for (size_t k = 0; k < count; ++k) {
+        switch (defects[k]) {
+            case Defect::None: break;
+            case Defect::NonfiniteEnd: ++nonfinite; continue;
+            case Defect::Nonfinite: ++m_degenerate, ++nonfinite; continue;
+            case Defect::ZeroArea: ++m_degenerate, ++zeroArea; continue;
+            case Defect::Coincident: ++duplicate; continue;
         }
-        std::array<glm::vec3, 3> key{a, b, c};
-        std::sort(key.begin(), key.end(), [](const glm::vec3& p, const glm::vec3& q) {
-            return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
-        });
-        std::array<float, 9> corners{key[0].x, key[0].y, key[0].z, key[1].x, key[1].y,
-                                     key[1].z, key[2].x, key[2].y, key[2].z};
-        for (float& f : corners) f += 0.0f;  // (-0 + 0 is +0)
-        if (!seen.insert(corners).second) {
-            ++duplicate;
-            continue;
-        }
+        const size_t t = 3 * k;
+        const int i0 = mesh.tris[t], i1 = mesh.tris[t + 1], i2 = mesh.tris[t + 2];
+        const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
         if (leaf >= 0) {
             m_solidNodes[leaf].members.push_back(uint32_t(m_world.triangles.size()));
             m_solidNodes[leaf].memberWhat.push_back("mesh at " + loc.str());
