@@ -11,6 +11,9 @@
 #include <sstream>
 
 #include <CLI/CLI.hpp>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <zlib.h>
 
 #include "film/exr_output.h"
@@ -162,9 +165,23 @@ bool writeJson(const std::string& path, const nlohmann::json& doc, int indent = 
     return bool(f);
 }
 
+// Freed memory stays in the process for the next allocation: a render's stages each
+// allocate tens of megabytes (the parsed arrays, the world's vectors, the BVH build's
+// references and nodes, the film) as the last stage frees its own, and glibc handed each
+// block back to the kernel, which cleared fresh pages for the next (a third of reading
+// a 300k-triangle RIB was page faults, perf). Whole command, medians of 9: a 304k-triangle
+// height field 0.528 -> 0.454 s, SPD teapot 0.274 -> 0.248 s; peak memory 205 -> 227 MB.
+void keepFreedMemory() {
+#ifdef __GLIBC__
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // (glibc's largest)
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+    keepFreedMemory();
     if (argc > 1 && std::string(argv[1]) == "txmake") return txmakeCommand(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "catrib") return catribCommand(argc - 1, argv + 1);
     CLI::App app{"RayDrive: a RenderMan renderer on OpenCL, after ART's RenderDrive"};
