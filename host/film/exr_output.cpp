@@ -1,7 +1,9 @@
 // exr_output.cpp: OpenEXR writing and reading through the OpenEXR library.
 #include "exr_output.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <thread>
 #include <filesystem>
 #include <stdexcept>
 
@@ -12,6 +14,7 @@
 #include <ImfMatrixAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
 #include <Imath/half.h>
 #include <unistd.h>
 
@@ -72,6 +75,14 @@ void writeExr(const std::string& path, int width, int height, const std::vector<
                                  sizeof(float), sizeof(float) * size_t(width)));
         }
         {
+            // Its ZIP blocks compressed on the host's cores: a 512x512 RGBA image took 57 ms
+            // on one, a fifth of an SPD scene's whole command.
+            static const bool threads = [] {
+                if (Imf::globalThreadCount() == 0)
+                    Imf::setGlobalThreadCount(int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u)));
+                return true;
+            }();
+            (void)threads;
             Imf::OutputFile file(tmp.c_str(), header);
             file.setFrameBuffer(fb);
             file.writePixels(height);
