@@ -335,6 +335,7 @@ Bvh buildBvh(const std::vector<Aabb>& primBounds, const BvhBuildSettings& settin
         const BuildTask root{0, 0, uint32_t(refs.size()), 1, bounds};
         // The builders hold ~45 KiB of bins each; keep them off the caller's stack.
         auto builder = std::make_unique<Builder>(settings, refs);
+        // (at least 16 primitives: a part holds at least one)
         if (refs.size() < std::max<size_t>(settings.parallelPrims, 16)) {
             builder->buildSubtree(root, bvh.nodes, bvh.depth);
         } else {

@@ -1,9 +1,8 @@
 // exr_output.cpp: OpenEXR writing and reading through the OpenEXR library.
 #include "exr_output.h"
+#include "run_in_parts.h"
 
-#include <algorithm>
 #include <cstdio>
-#include <thread>
 #include <filesystem>
 #include <stdexcept>
 
@@ -77,12 +76,7 @@ void writeExr(const std::string& path, int width, int height, const std::vector<
         {
             // Its ZIP blocks compressed on the host's cores: a 512x512 RGBA image took 57 ms
             // on one, a fifth of an SPD scene's whole command.
-            static const bool threads = [] {
-                if (Imf::globalThreadCount() == 0)
-                    Imf::setGlobalThreadCount(int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u)));
-                return true;
-            }();
-            (void)threads;
+            if (Imf::globalThreadCount() == 0) Imf::setGlobalThreadCount(int(hostThreads()));
             Imf::OutputFile file(tmp.c_str(), header);
             file.setFrameBuffer(fb);
             file.writePixels(height);
