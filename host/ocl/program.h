@@ -2,7 +2,8 @@
 // #include itself (so the source that is hashed is the source that is built), passes the
 // scene's -D options, shows the build log on failure, and caches program binaries on disk
 // keyed by hash(source + options + device + driver): a second render of the same scene
-// skips the compiler (reported as a cache hit in --stats).
+// skips the compiler (reported as a cache hit in --stats). PoCL caches its builds itself:
+// there only a stamp is kept, that the program was built before.
 #pragma once
 #include <map>
 #include <string>
@@ -27,7 +28,8 @@ std::string assembleClSource(const std::vector<std::string>& files,
 std::string defaultProgramCacheDir();
 
 struct ProgramBuildInfo {
-    bool cacheHit = false;
+    bool cacheHit = false;  // built before: the binary cached, or the driver's cache has it
+    bool driverCache = false;  // PoCL's own cache holds the build; cacheFile is a stamp
     double buildMs = 0;     // wall time to get an executable program
     std::string cacheKey;   // 16 hex digits
     std::string cacheFile;  // empty when caching is off
@@ -49,6 +51,8 @@ private:
     bool tryBinary(const std::string& path);
     void buildFromSource(const std::string& source);
     void saveBinary(const std::string& path) const;
+    static bool hasStamp(const std::string& path);
+    static void saveStamp(const std::string& path);
     std::string buildLog() const;
 
     const ClContext& m_ctx;
