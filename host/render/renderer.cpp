@@ -171,7 +171,15 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         return FirstPass{std::move(jobs), std::move(stage)};
     });
 
-    // Scene -> BVH -> specialised program -> device arrays
+    // Scene -> BVH -> specialised program -> device arrays. The program builds on another
+    // thread while the BVH is built: neither needs the other (a cold build is a second or
+    // more of the compiler, a warm one 40-60 ms on PoCL).
+    std::future<std::unique_ptr<Program>> programBuild = std::async(std::launch::async, [&] {
+        std::vector<std::string> sources = kRenderSources;
+        sources.insert(sources.end(), shading.sourceOrder.begin(), shading.sourceOrder.end());
+        return std::make_unique<Program>(m_ctx, assembleClSource(sources, shading.generated),
+                                         buildOptions(f));
+    });
     auto tb = Clock::now();
     SceneBvh sceneBvh = buildSceneBvh(scene, f.bvhWidth);
     const Bvh4& bvh4 = sceneBvh.bvh4;  // (empty when the tree is eight-wide)
@@ -190,18 +198,16 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                     scene.quadrics.size() * sizeof(Quadric) + scene.csg.size() * 4;
     st.bvhNodes = sceneBvh.width == 8 ? sceneBvh.bvh8.nodes.size() : bvh4.nodes.size();
     st.droppedPrims = sceneBvh.droppedPrims;
-    std::vector<std::string> sources = kRenderSources;
-    sources.insert(sources.end(), shading.sourceOrder.begin(), shading.sourceOrder.end());
-    Program program(m_ctx, assembleClSource(sources, shading.generated), buildOptions(f));
-    st.program = program.info();
+    const std::unique_ptr<Program> program = programBuild.get();
+    st.program = program->info();
     Profiler prof(m_ctx);
     if (m_settings.timeline) prof.keepTimeline();
-    RenderKernels k(m_ctx, program.get(), prof, shading.shadeKernels);
+    RenderKernels k(m_ctx, program->get(), prof, shading.shadeKernels);
     if (f.shadowPackets) k.intersectShadow.setLanesPerItem(RT_PACKET_RAYS);
     if (f.closestPackets) k.intersectClosest.setLanesPerItem(RT_PACKET_RAYS);
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     if (!shading.prepares.empty()) {  // the shaders' uniform work, once per instance
-        Kernel prepare(m_ctx, program.get(), "rd_prepare_uniforms", prof);
+        Kernel prepare(m_ctx, program->get(), "rd_prepare_uniforms", prof);
         prepare.launch(shading.prepares.size(), cl_uint(shading.prepares.size()), ds.params);
         prepare.collectActive();
     }
@@ -220,10 +226,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                        ? m_settings.sceneMemoryBytes
                                        : size_t(scene.render.sceneMemoryKB) << 10;
         treelets = sceneBvh.width == 8
-                       ? std::make_unique<TreeletTracer>(m_ctx, program.get(), prof,
+                       ? std::make_unique<TreeletTracer>(m_ctx, program->get(), prof,
                                                          sceneBvh.bvh8, treeletBudget,
                                                          sceneMemory, pool, st.treelets)
-                       : std::make_unique<TreeletTracer>(m_ctx, program.get(), prof, bvh4,
+                       : std::make_unique<TreeletTracer>(m_ctx, program->get(), prof, bvh4,
                                                          treeletBudget, sceneMemory, pool,
                                                          st.treelets);
     }
@@ -646,7 +652,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     progress.finish();
     if (shading.imager) {  // the Imager shader on the finished image (also a stopped one)
         filmBuf.syncToHost();
-        film.imaged = applyImager(m_ctx, program.get(), prof, film, ds.params);
+        film.imaged = applyImager(m_ctx, program->get(), prof, film, ds.params);
     } else {  // the film's sync overlaps the profiler's reads; collectActive waits for it
         filmBuf.syncToHost(/*blocking=*/false);
     }
