@@ -172,6 +172,7 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
                         continue;
                     }
                 }
+                __builtin_prefetch(&film[pixel]);  // (measured once the batch is full)
                 batch[count++] = pixel;
             }
             measure(film, batch, count, floor, relErr, edge);
