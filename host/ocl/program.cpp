@@ -78,8 +78,9 @@ void writeCacheFile(const std::string& path, const char* bytes, size_t size) {
     if (ec) std::filesystem::remove(tmp, ec);
 }
 
-// A stamp holds this text: a file with anything else (cut short, overwritten) is not one.
-constexpr char kStamp[] = "raydrive: built by PoCL, in its cache\n";
+// A stamp holds this text and the number of builds: a file with anything else (cut
+// short, overwritten) is not one.
+constexpr char kStamp[] = "raydrive: built by PoCL, in its cache; builds ";
 
 double msSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
@@ -130,13 +131,13 @@ Program::Program(const ClContext& ctx, const std::string& source, const std::str
     // PoCL keeps its own cache of what it built (the program, and each kernel's
     // work-group function at each local size). Asking it for the program's binary makes
     // it compile every kernel once more for a dynamic local size first: SPD teapot's cold
-    // build took 7.1 s that way against 1.4 s, for a binary that saved 40 ms a run (whole
-    // commands 10.4 s cold, 0.27 s warm, against 4.1 s and 0.29 s). On PoCL, with its
-    // cache on, the file is a stamp instead: built before, PoCL's cache has it.
+    // build took 7.1 s that way against 1.4 s (whole commands 10.4 s against 4.1-4.4 s).
+    // So on PoCL, with its cache on, the first builds keep only a stamp that counts them;
+    // PoCL's cached build then loads in 40-66 ms against 14-23 ms for the binary, so a
+    // program built kBinaryAfterBuilds times (an animation's frames) gets the binary too.
     m_info.driverCache = d.isPocl() && !poclCacheDisabled();
-    if (!cacheDir.empty())
-        m_info.cacheFile = cacheDir + "/" + m_info.cacheKey +
-                           (m_info.driverCache ? ".pocl" : ".clbin");
+    const std::string base = cacheDir.empty() ? std::string() : cacheDir + "/" + m_info.cacheKey;
+    if (!base.empty()) m_info.cacheFile = base + ".clbin";
     // RAYDRIVE_DUMP_KERNELS=DIR writes the assembled source with its options as defines,
     // for reading or for building with another compiler.
     if (const char* dump = std::getenv("RAYDRIVE_DUMP_KERNELS")) {
@@ -145,15 +146,21 @@ Program::Program(const ClContext& ctx, const std::string& source, const std::str
         std::ofstream(std::string(dump) + "/" + m_info.cacheKey + ".cl")
             << "/* options: " << m_info.options << " */\n" << source;
     }
-    if (m_info.driverCache) {
-        m_info.cacheHit = !m_info.cacheFile.empty() && hasStamp(m_info.cacheFile);
-        buildFromSource(source);
-        if (!m_info.cacheFile.empty() && !m_info.cacheHit) saveStamp(m_info.cacheFile);
-    } else if (!m_info.cacheFile.empty() && tryBinary(m_info.cacheFile)) {
+    if (!base.empty() && tryBinary(m_info.cacheFile)) {
         m_info.cacheHit = true;
+    } else if (m_info.driverCache) {
+        const int builds = base.empty() ? 0 : stampedBuilds(base + ".pocl");
+        m_info.cacheHit = builds > 0;
+        buildFromSource(source);
+        if (!base.empty() && builds + 1 >= kBinaryAfterBuilds) {
+            saveBinary(m_info.cacheFile);
+        } else if (!base.empty()) {
+            m_info.cacheFile = base + ".pocl";
+            saveStamp(m_info.cacheFile, builds + 1);
+        }
     } else {
         buildFromSource(source);
-        if (!m_info.cacheFile.empty()) saveBinary(m_info.cacheFile);
+        if (!base.empty()) saveBinary(m_info.cacheFile);
     }
     m_info.buildMs = msSince(t0);
 }
@@ -227,14 +234,18 @@ void Program::saveBinary(const std::string& path) const {
     writeCacheFile(path, reinterpret_cast<const char*>(bin.data()), size);
 }
 
-bool Program::hasStamp(const std::string& path) {
+int Program::stampedBuilds(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    return text == kStamp;
+    const size_t n = sizeof kStamp - 1;
+    if (text.size() <= n || text.compare(0, n, kStamp) != 0 || text.back() != '\n') return 0;
+    const int builds = std::atoi(text.c_str() + n);
+    return builds > 0 ? builds : 0;
 }
 
-void Program::saveStamp(const std::string& path) {
-    writeCacheFile(path, kStamp, sizeof kStamp - 1);
+void Program::saveStamp(const std::string& path, int builds) {
+    const std::string text = kStamp + std::to_string(builds) + "\n";
+    writeCacheFile(path, text.data(), text.size());
 }
 
 }  // namespace rd

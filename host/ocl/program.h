@@ -3,7 +3,8 @@
 // scene's -D options, shows the build log on failure, and caches program binaries on disk
 // keyed by hash(source + options + device + driver): a second render of the same scene
 // skips the compiler (reported as a cache hit in --stats). PoCL caches its builds itself:
-// there only a stamp is kept, that the program was built before.
+// there a stamp counts the program's builds, and the binary is kept from the
+// kBinaryAfterBuilds-th on.
 #pragma once
 #include <map>
 #include <string>
@@ -29,12 +30,16 @@ std::string defaultProgramCacheDir();
 
 struct ProgramBuildInfo {
     bool cacheHit = false;  // built before: the binary cached, or the driver's cache has it
-    bool driverCache = false;  // PoCL's own cache holds the build; cacheFile is a stamp
+    bool driverCache = false;  // PoCL's own cache holds the build (cacheFile: a stamp,
+                               // until kBinaryAfterBuilds builds make it the binary)
     double buildMs = 0;     // wall time to get an executable program
     std::string cacheKey;   // 16 hex digits
     std::string cacheFile;  // empty when caching is off
     std::string options;
 };
+
+// On PoCL, the builds of one program after which its binary is cached too (program.cpp).
+constexpr int kBinaryAfterBuilds = 16;
 
 class Program {
 public:
@@ -51,8 +56,9 @@ private:
     bool tryBinary(const std::string& path);
     void buildFromSource(const std::string& source);
     void saveBinary(const std::string& path) const;
-    static bool hasStamp(const std::string& path);
-    static void saveStamp(const std::string& path);
+    // The builds a stamp counts (0: no stamp); a stamp of `builds`.
+    static int stampedBuilds(const std::string& path);
+    static void saveStamp(const std::string& path, int builds);
     std::string buildLog() const;
 
     const ClContext& m_ctx;
