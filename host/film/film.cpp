@@ -46,13 +46,21 @@ std::vector<Rgba> Film::resolve() const {
 
 std::vector<Rgba> Film::means() const {
     std::vector<Rgba> out(pixels.size(), Rgba{0, 0, 0, 0});
-    std::vector<int64_t> src = nearestSampled();
-    for (size_t i = 0; i < pixels.size(); ++i) {
-        if (src[i] < 0) continue;
-        const PixelAccum& p = pixels[size_t(src[i])];
+    auto mean = [&](size_t from) {
+        const PixelAccum& p = pixels[from];
         float inv = 1.0f / float(p.count);
-        out[i] = {p.sum.x * inv, p.sum.y * inv, p.sum.z * inv, p.sum.w * inv};
+        return Rgba{p.sum.x * inv, p.sum.y * inv, p.sum.z * inv, p.sum.w * inv};
+    };
+    // A finished render sampled every pixel: each is its own nearest (the search took 2-3
+    // ms of a 512x512 frame's output).
+    if (!cropped() && std::all_of(pixels.begin(), pixels.end(),
+                                  [](const PixelAccum& p) { return p.count > 0; })) {
+        for (size_t i = 0; i < pixels.size(); ++i) out[i] = mean(i);
+        return out;
     }
+    std::vector<int64_t> src = nearestSampled();
+    for (size_t i = 0; i < pixels.size(); ++i)
+        if (src[i] >= 0) out[i] = mean(size_t(src[i]));
     return out;
 }
 
