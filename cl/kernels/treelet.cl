@@ -39,14 +39,14 @@ inline void rt_treelet_closest(TreeletPair p, uint root_only, __global const Tre
                                __global const float4* origin, __global const float4* direction,
                                __global const RayState* state, __global ulong* keys,
                                __global TreeletPair* next, uint next_cap,
-                               __global uint* counters, uint treelets RT_TL_OBJECTS_PARAM) {
+                               __global uint* counters, uint treelets, uint resident_links
+                               RT_TL_OBJECTS_PARAM) {
     float4 o = origin[p.ray], d = direction[p.ray];
     ulong key = root_only ? RT_NO_KEY : keys[p.ray];
     const ulong before = key;
     /* entered behind the best hit: nothing in this treelet can be nearer */
     if (p.tnear > rt_key_t(key, d.w)) return;
-    TreeletRef r = refs[p.treelet];
-    rt_treelet_traverse(nodes + r.node_base, blocks + r.block_base, o, d, o.w, d.w,
+    rt_treelet_traverse(refs, p.treelet, nodes, blocks, resident_links, o, d, o.w, d.w,
                         state[p.ray].from_prim, 0, &key, p.ray, next, next_cap, counters,
                         treelets RT_TL_OBJECTS_ARG);
     if (root_only) keys[p.ray] = key; /* the ray's only pair this round */
@@ -60,14 +60,13 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
                               __global const float4* origin, __global const float4* direction,
                               __global const RayState* state, __global rt_weight* weight,
                               __global TreeletPair* next, uint next_cap, __global uint* counters,
-                              uint treelets RT_TL_OBJECTS_PARAM) {
+                              uint treelets, uint resident_links RT_TL_OBJECTS_PARAM) {
     /* (an occluder met through another of its pairs, or a ray that carries nothing) */
     const float4 w = rt_weight4(weight[p.ray]);
     if (w.x == 0.0f && w.y == 0.0f && w.z == 0.0f && w.w == 0.0f) return;
     float4 o = origin[p.ray], d = direction[p.ray];
     ulong key = RT_NO_KEY;
-    TreeletRef r = refs[p.treelet];
-    if (rt_treelet_traverse(nodes + r.node_base, blocks + r.block_base, o, d, o.w, d.w,
+    if (rt_treelet_traverse(refs, p.treelet, nodes, blocks, resident_links, o, d, o.w, d.w,
                             state[p.ray].from_prim, 1, &key, p.ray, next, next_cap, counters,
                             treelets RT_TL_OBJECTS_ARG))
         weight[p.ray] = (rt_weight)(0.0f);
@@ -116,11 +115,14 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
         __global const Triangle4 *blocks, __global const float4 *origin,                  \
         __global const float4 *direction, __global const RayState *state
 /* A pair kernel: its own output buffer (out_param), then the next round's queue, the
- * counters and the object scene; its body the pair's work (after RT_TREELET_PAIR_BEGIN). */
+ * counters, whether linked treelets in device memory are entered in place
+ * (rt_treelet_traverse) and the object scene; its body the pair's work (after
+ * RT_TREELET_PAIR_BEGIN). */
 #define RT_TREELET_PAIR_KERNEL(name, root_only, out_param, ...)                            \
     __kernel void name(RT_TL_PAIR_PARAMS, out_param, __global TreeletPair* next,          \
                        uint next_cap, __global uint* counters, uint treelets,             \
-                       RT_TL_SCENE_PARAMS, __global uint* active_counter) {                \
+                       uint resident_links, RT_TL_SCENE_PARAMS,                           \
+                       __global uint* active_counter) {                                   \
         RT_TREELET_PAIR_BEGIN(root_only);                                                 \
         __VA_ARGS__;                                                                      \
     }
@@ -128,12 +130,13 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
     RT_TREELET_PAIR_KERNEL(name, root_only, __global ulong* keys,                         \
                            rt_treelet_closest(p, root_only, refs, nodes, blocks, origin,  \
                                               direction, state, keys, next, next_cap,     \
-                                              counters, treelets RT_TL_OBJECTS_ARG))
+                                              counters, treelets,                         \
+                                              resident_links RT_TL_OBJECTS_ARG))
 #define RT_TREELET_SHADOW_KERNEL(name, root_only)                                          \
     RT_TREELET_PAIR_KERNEL(name, root_only, __global rt_weight* weight,                      \
                            rt_treelet_shadow(p, refs, nodes, blocks, origin, direction,   \
                                              state, weight, next, next_cap, counters,     \
-                                             treelets RT_TL_OBJECTS_ARG))
+                                             treelets, resident_links RT_TL_OBJECTS_ARG))
 RT_TREELET_CLOSEST_KERNEL(treelet_closest_root, 1u)
 RT_TREELET_CLOSEST_KERNEL(treelet_closest, 0u)
 RT_TREELET_SHADOW_KERNEL(treelet_shadow_root, 1u)

@@ -18,6 +18,7 @@ struct NodeCut {
     std::vector<Triangle4> blocks;
     std::vector<TreeletRange> ranges;
     std::vector<TreeletRef> residentRefs;
+    std::vector<std::vector<uint32_t>> links;  // each treelet's child treelets
     uint32_t maxNodes = 0, maxBlocks = 0;
     size_t allBytes = 0;
     size_t count() const { return ranges.size(); }
@@ -32,6 +33,13 @@ NodeCut nodeCut(const BvhWide<Node>& bvh, size_t budget) {
     c.nodes.resize(t.nodes.size() * sizeof(Node));
     if (!t.nodes.empty()) std::memcpy(c.nodes.data(), t.nodes.data(), c.nodes.size());
     c.residentRefs = t.residentRefs();
+    c.links.resize(t.ranges.size());
+    for (size_t i = 0; i < t.ranges.size(); ++i)
+        for (uint32_t k = 0; k < t.ranges[i].nodeCount; ++k) {
+            const Node& n = t.nodes[t.ranges[i].nodeFirst + k];
+            for (size_t lane = 0; lane < std::size(n.count); ++lane)
+                if (n.count[lane] == RT_TREELET_LINK) c.links[i].push_back(uint32_t(n.child[lane]));
+        }
     c.allBytes = t.bytes();
     c.maxNodes = t.maxNodes, c.maxBlocks = t.maxBlocks;
     c.blocks = std::move(t.blocks);
@@ -100,7 +108,13 @@ struct TreeletTracer::Impl {
               cut.blocks.data() + r.blockFirst, r.blockCount * sizeof(Triangle4));
         pendingRefs.push_back({int32_t(slot * cut.maxNodes), int32_t(slot * cut.maxBlocks)});
         write(refs.mem(), t * sizeof(TreeletRef), &pendingRefs.back(), sizeof(TreeletRef));
-        if (slotTreelet[slot] >= 0) treeletSlot[size_t(slotTreelet[slot])] = -1;
+        if (const int64_t evicted = slotTreelet[slot]; evicted >= 0) {
+            // no longer in device memory: a traversal that meets its link queues it
+            treeletSlot[size_t(evicted)] = -1;
+            pendingRefs.push_back({-1, -1});
+            write(refs.mem(), size_t(evicted) * sizeof(TreeletRef), &pendingRefs.back(),
+                  sizeof(TreeletRef));
+        }
         slotTreelet[slot] = t;
         treeletSlot[t] = int64_t(slot);
         ++st.uploads;
@@ -114,8 +128,11 @@ struct TreeletTracer::Impl {
     }
     std::deque<TreeletRef> pendingRefs;
 
+    // Slots [0, pinned) keep their treelets: the root's and those nearest it.
+    size_t pinned = 1;
+
     // Runs one round's grouped pairs: at once when resident, else treelet by treelet in
-    // chunks whose treelets all fit in the cache (the root's slot is never given up; a
+    // chunks whose treelets all fit in the cache (the pinned slots are never given up; a
     // slot used in the current chunk is not evicted). Returns the uploads.
     uint64_t runGrouped(const std::vector<cl_uint>& counts, const std::vector<cl_uint>& offset,
                         cl_uint total, const std::function<void(cl_uint, cl_uint)>& launch) {
@@ -135,7 +152,7 @@ struct TreeletTracer::Impl {
             }
             auto lru = [&] {
                 size_t best = 0;
-                for (size_t s = 1; s < slotStamp.size(); ++s)
+                for (size_t s = pinned; s < slotStamp.size(); ++s)
                     if (slotStamp[s] != chunk && (best == 0 || slotStamp[s] < slotStamp[best]))
                         best = s;
                 return best;  // 0: every slot serves this chunk
@@ -231,11 +248,24 @@ TreeletTracer::TreeletTracer(const ClContext& ctx, cl_program program, Profiler&
         s.nodes = DeviceBuffer<unsigned char>(ctx, slots * cut.maxNodes * cut.nodeBytes,
                                               CL_MEM_READ_ONLY);
         s.blocks = DeviceBuffer<Triangle4>(ctx, slots * cut.maxBlocks, CL_MEM_READ_ONLY);
-        s.refs = DeviceBuffer<TreeletRef>(ctx, cut.count(), CL_MEM_READ_ONLY);
+        // (none in device memory yet: rt_treelet_traverse queues their links)
+        s.refs = DeviceBuffer<TreeletRef>(ctx, std::vector<TreeletRef>(cut.count(), {-1, -1}));
         s.slotTreelet.assign(slots, -1);
         s.slotStamp.assign(slots, 0);
         s.treeletSlot.assign(cut.count(), -1);
         s.upload(0, 0);  // the root treelet stays resident
+        // The empty slots take the treelets nearest the root, breadth first, and the
+        // first half of the cache keeps them: every ray passes through them, and a ray
+        // that meets the link to a treelet in the cache goes on into it in the same round
+        // (rt_treelet_traverse).
+        std::deque<uint32_t> next(cut.links[0].begin(), cut.links[0].end());
+        for (size_t slot = 1; slot < slots && !next.empty(); ++slot) {
+            const uint32_t t = next.front();
+            next.pop_front();
+            s.upload(t, slot);
+            if (slot < slots / 2) s.pinned = slot + 1;
+            next.insert(next.end(), cut.links[t].begin(), cut.links[t].end());
+        }
     } else {
         stats.cacheSlots = cut.count();
         s.nodes = DeviceBuffer<unsigned char>(ctx, cut.nodes);
@@ -266,7 +296,8 @@ void TreeletTracer::closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
         ++s.st.launches;
         (root ? s.closestRoot : s.closestPairs)
             .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin, direction,
-                    state, s.keys, s.queue, cl_uint(s.capacity), s.counters, T, sc.quadrics,
+                    state, s.keys, s.queue, cl_uint(s.capacity), s.counters, T,
+                    cl_uint(s.st.streamed), sc.quadrics,
                     sc.csg, sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
                     sc.sampleTime, cl_uint(1));
     });
@@ -285,7 +316,8 @@ void TreeletTracer::shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
         ++s.st.launches;
         (root ? s.shadowRoot : s.shadowPairs)
             .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin, direction,
-                    state, weight, s.queue, cl_uint(s.capacity), s.counters, T, sc.quadrics, sc.csg,
+                    state, weight, s.queue, cl_uint(s.capacity), s.counters, T,
+                    cl_uint(s.st.streamed), sc.quadrics, sc.csg,
                     sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
                     sc.sampleTime, std::max<cl_uint>(lights, 1));
     });

@@ -205,6 +205,24 @@ TEST(TreeletTrace, StreamedThroughASmallCache) {
     EXPECT_EQ(one.stats.cacheSlots, 2u);
 }
 
+// Streamed, a ray meeting the link to a treelet that is in the cache goes on into it in
+// the same round (the AR250 kept a ray on the chip while its next treelet was there); it
+// queues only the links to treelets that are not, and the cache starts with (and keeps
+// half of it for) the treelets nearest the root. The same cut kept whole in device
+// memory queues every link (the level-by-level broadcast): more pairs and rounds, the
+// same hits. (Measured: 48k pairs in 7 rounds against 103k in 10.)
+TEST(TreeletTrace, StreamedRaysGoOnThroughCachedTreelets) {
+    const Traced resident = trace(0, 0, true, 0);
+    const Traced cut = trace(4096, 0, true, fixture().org.size());
+    ASSERT_FALSE(cut.stats.streamed);
+    // a cache of three quarters of the cut's bytes
+    Traced t = trace(4096, cut.stats.treeletBytes * 3 / 4, true, fixture().org.size());
+    expectSame(resident, t);
+    ASSERT_TRUE(t.stats.streamed);
+    EXPECT_LT(t.stats.pairs * 2, cut.stats.pairs) << "most links were entered in place";
+    EXPECT_LT(t.stats.rounds, cut.stats.rounds);
+}
+
 TEST(TreeletTrace, CompareAndSwapFallbackAndQueueGrowth) {
     const Traced resident = trace(0, 0, true, 0);
     // without the extended 64-bit atomics (atom_min): the compare-and-swap loop; a
