@@ -44,8 +44,10 @@ inline void rt_treelet_closest(TreeletPair p, uint root_only, __global const Tre
     float4 o = origin[p.ray], d = direction[p.ray];
     ulong key = root_only ? RT_NO_KEY : keys[p.ray];
     const ulong before = key;
-    /* entered behind the best hit: nothing in this treelet can be nearer */
-    if (p.tnear > rt_key_t(key, d.w)) return;
+    /* entered behind the best hit: nothing in this treelet can be nearer (rt_beyond: the
+     * entry distance may come out a little beyond a hit on the box's face; unpadded, SPD
+     * gears lost triangles 1 ulp nearer than the hit at 30 of its pixels) */
+    if (rt_beyond(p.tnear, rt_key_t(key, d.w))) return;
     rt_treelet_traverse(refs, p.treelet, nodes, blocks, resident_links, o, d, o.w, d.w,
                         state[p.ray].from_prim, 0, &key, p.ray, next, next_cap, counters,
                         treelets RT_TL_OBJECTS_ARG);

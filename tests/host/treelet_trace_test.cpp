@@ -9,6 +9,8 @@
 // instances keeps the resident traversal and says why.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <algorithm>
 #include <random>
 #include <sstream>
@@ -307,6 +309,59 @@ TEST(TreeletTrace, ImageIndependentOfTreeletBudget) {
     EXPECT_TRUE(opt.stats.treelets.used);
     EXPECT_GT(opt.stats.treelets.treelets, 1u);
     expectSameImage(resident, opt);
+}
+
+// Twelve toothed prisms ("gears", as in SPD gears) that overlap, their tops at two
+// heights: faces of different colours lie in one plane, and a ray meets two of them at
+// one t or an ulp apart. A treelet whose box is entered a rounding beyond the best hit
+// still holds a nearer triangle on its face: with the pair and link culls unpadded
+// (rt_beyond) the treelet path picked another face than the resident traversal (SPD
+// gears: at 30 of its 262k pixels); now every pixel agrees.
+TEST(TreeletTrace, CoplanarFacesPickTheResidentTriangle) {
+    uint32_t seed = 3u;
+    auto next = [&seed] {  // a fixed sequence in [0, 1)
+        seed = seed * 1664525u + 1013904223u;
+        return float(seed >> 8) / float(1u << 24);
+    };
+    std::ostringstream rib;
+    rib << "Format 160 160 1\nPixelSamples 1 1\nProjection \"perspective\" \"fov\" 45\n"
+           "ConcatTransform [-0.885832 0.342876 0.312631 0 0.464007 0.654582 0.596841 0 "
+           "0 0.673764 -0.738947 0 0 0 0 1]\nTranslate 1.1 2.1 -2.6\nWorldBegin\n"
+           "Surface \"constant\"\n";
+    const int teeth = 24;
+    for (int g = 0; g < 12; ++g) {
+        const float cx = -1.5f + 3.0f * next(), cy = -1.5f + 3.0f * next();
+        const float r = 0.3f + 0.3f * next(), top = 0.2f * float(1 + g % 2);
+        rib << "Color [" << next() << " " << next() << " " << next() << "]\n";
+        std::vector<std::pair<float, float>> outline;
+        for (int k = 0; k < 2 * teeth; ++k) {
+            const float a = 3.14159265f * float(k) / float(teeth);
+            const float rr = k % 2 ? 0.85f * r : r;
+            outline.push_back({cx + rr * std::cos(a), cy + rr * std::sin(a)});
+        }
+        for (float z : {0.0f, top}) {
+            rib << "Polygon \"P\" [";
+            for (auto [x, y] : outline) rib << x << " " << y << " " << z << " ";
+            rib << "]\n";
+        }
+        for (size_t k = 0; k < outline.size(); ++k) {
+            auto [x0, y0] = outline[k];
+            auto [x1, y1] = outline[(k + 1) % outline.size()];
+            rib << "Polygon \"P\" [" << x0 << " " << y0 << " 0 " << x1 << " " << y1 << " 0 " << x1
+                << " " << y1 << " " << top << " " << x0 << " " << y0 << " " << top << "]\n";
+        }
+    }
+    rib << "WorldEnd\n";
+    for (int width : {4, 8}) {
+        RenderSettings rs;
+        rs.bvhWidth = width;
+        Rendered resident = renderRib(rib.str(), rs);
+        for (size_t budget : {size_t(4) << 10, size_t(1) << 10}) {
+            Rendered t = renderThroughTreelets(rib.str(), budget, 0, width);
+            EXPECT_GT(t.stats.treelets.treelets, 1u);
+            expectSameImage(resident, t);
+        }
+    }
 }
 
 // A closed cube mesh (shared vertices, every face a 24 x 24 grid of two triangles per
