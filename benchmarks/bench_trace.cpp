@@ -27,6 +27,7 @@
 #include "ocl/kernel.h"
 #include "ocl/program.h"
 #include "render/device_scene.h"
+#include "render/sampling.h"
 #include "render/scene_bvh.h"
 #include "render/treelet_trace.h"
 
@@ -108,15 +109,19 @@ struct Rays {
     std::vector<rt_float4> org, dir;  // w: tmin, tmax
 };
 
-Rays primaryRays(int side) {
+// Primary rays through side x side pixels, in the order the renderer samples them
+// (rd::tileOrder: 16x16 tiles, Morton order within a tile) or in scanline order.
+Rays primaryRays(int side, const std::string& order) {
     Rays r;
-    for (int y = 0; y < side; ++y)
-        for (int x = 0; x < side; ++x) {
-            float sx = (x + 0.5f) / side * 2 - 1, sy = (y + 0.5f) / side * 2 - 1;
-            float len = std::sqrt(sx * sx * 0.36f + sy * sy * 0.36f + 1);
-            r.org.push_back({0, 0, -16, 0});
-            r.dir.push_back({sx * 0.6f / len, sy * 0.6f / len, 1 / len, 1e30f});
-        }
+    std::vector<uint32_t> pixels = rd::tileOrder(side, 0, side, 0, side);
+    if (order == "scanline") std::sort(pixels.begin(), pixels.end());
+    for (uint32_t pixel : pixels) {
+        const int x = int(pixel % uint32_t(side)), y = int(pixel / uint32_t(side));
+        float sx = (x + 0.5f) / side * 2 - 1, sy = (y + 0.5f) / side * 2 - 1;
+        float len = std::sqrt(sx * sx * 0.36f + sy * sy * 0.36f + 1);
+        r.org.push_back({0, 0, -16, 0});
+        r.dir.push_back({sx * 0.6f / len, sy * 0.6f / len, 1 / len, 1e30f});
+    }
     return r;
 }
 
@@ -273,6 +278,10 @@ int benchMain(int argc, char** argv) {
     std::string device;
     app.add_option("--runs", runs, "timed runs per measurement (median reported)");
     app.add_option("--side", side, "primary rays: side x side");
+    std::string rayOrder = "tiles";
+    app.add_option("--ray-order", rayOrder, "primary rays' order: tiles (the renderer's: "
+                   "16x16 tiles, Morton order within a tile; the default) or scanline")
+        ->check(CLI::IsMember({"scanline", "tiles"}));
     app.add_option("--device", device, "OpenCL device (index or name)");
     std::vector<std::string> variants, meshFiles;
     int sahBlock = 0, sahBins = 0, sahLeaf = 0;
@@ -320,9 +329,10 @@ int benchMain(int argc, char** argv) {
     if (noTreelets) budgets.clear(), streamFraction = 0;
 
     ClContext ctx(selectDevice(device));
-    std::printf("device: %s | Embree %d.%d.%d on %u threads | median of %d runs\n",
+    std::printf("device: %s | Embree %d.%d.%d on %u threads | median of %d runs | primary "
+                "rays in %s order\n",
                 ctx.name().c_str(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
-                std::thread::hardware_concurrency(), runs);
+                std::thread::hardware_concurrency(), runs, rayOrder.c_str());
     // The kernels as a scene whose shaders trace in sampled directions builds them
     // (RT_INCOHERENT_TRACE): the diffuse rays, bounces, walk their nodes' hit masks.
     const std::string base = "-cl-std=CL1.2 -DRT_INCOHERENT_TRACE ";
@@ -410,7 +420,7 @@ int benchMain(int argc, char** argv) {
         DeviceBuffer<rt_float4> noMotion(ctx, 1);
         DeviceBuffer<float> noTime(ctx, 1);
         DeviceBuffer<uint32_t> noNumerics(ctx, 1);  // archive flags: RT_HAS_PROCEDURALS only
-        Rays primary = primaryRays(side);
+        Rays primary = primaryRays(side, rayOrder);
         std::vector<RayHit> primHits;
         emb.trace(primary, false, primHits);
         Rays diffuse = secondaryRays(mesh, primary, primHits, false);

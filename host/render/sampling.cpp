@@ -11,23 +11,37 @@
 
 namespace rd {
 
+namespace {
+// The even bits of z, packed: a Morton code's x (and, shifted by one, its y).
+uint32_t mortonX(uint32_t z) {
+    uint32_t v = 0;
+    for (int b = 0; b < 8; ++b) v |= ((z >> (2 * b)) & 1u) << b;
+    return v;
+}
+}  // namespace
+
+std::vector<uint32_t> tileOrder(int width, int x0, int x1, int y0, int y1) {
+    const int tile = 16;
+    std::vector<uint32_t> order;
+    order.reserve(size_t(std::max(0, x1 - x0)) * size_t(std::max(0, y1 - y0)));
+    for (int ty = y0; ty < y1; ty += tile)
+        for (int tx = x0; tx < x1; tx += tile)
+            for (uint32_t z = 0; z < uint32_t(tile * tile); ++z) {
+                const int x = tx + int(mortonX(z)), y = ty + int(mortonX(z >> 1));
+                if (x < x1 && y < y1) order.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
+            }
+    return order;
+}
+
 SamplePlanner::SamplePlanner(int width, int height, int x0, int x1, int y0, int y1,
                              const SamplingSettings& settings)
     : m_width(width), m_height(height), m_settings(settings) {
     m_settings.firstPassBlock = std::max(1, m_settings.firstPassBlock);
     m_settings.maxSamples = std::max(1u, m_settings.maxSamples);
     m_settings.minSamples = std::clamp(m_settings.minSamples, 1u, m_settings.maxSamples);
-    const int tile = 16;
-    m_tileOrder.reserve(size_t(width) * size_t(height));
+    m_tileOrder = tileOrder(width, x0, x1, y0, y1);
     m_tileRank.assign(size_t(width) * size_t(height), kOutside);
-    for (int ty = y0; ty < y1; ty += tile)
-        for (int tx = x0; tx < x1; tx += tile)
-            for (int y = ty; y < std::min(ty + tile, y1); ++y)
-                for (int x = tx; x < std::min(tx + tile, x1); ++x) {
-                    const uint32_t pixel = uint32_t(y) * uint32_t(width) + uint32_t(x);
-                    m_tileRank[pixel] = uint32_t(m_tileOrder.size());
-                    m_tileOrder.push_back(pixel);
-                }
+    for (size_t r = 0; r < m_tileOrder.size(); ++r) m_tileRank[m_tileOrder[r]] = uint32_t(r);
     // (allocated and touched here, on the thread that plans the first pass while the
     // program builds: the first adaptive pass, with the device idle, took 1-1.5 ms more)
     m_relErr.assign(size_t(width) * size_t(height), INFINITY);

@@ -21,6 +21,32 @@ using rd::test::renderRib;
 
 namespace {
 
+// The renderer's pixel order: every pixel of the window once, tile by 16x16 tile, each
+// tile in Morton order (eight consecutive pixels a 4x2 block: a packet's eye rays), the
+// tiles cut at the window's edges.
+TEST(Sampling, TileOrderIsMortonWithinTiles) {
+    const int width = 40, x0 = 3, x1 = 37, y0 = 2, y1 = 21;  // tiles cut on every side
+    const std::vector<uint32_t> order = rd::tileOrder(width, x0, x1, y0, y1);
+    ASSERT_EQ(order.size(), size_t((x1 - x0) * (y1 - y0)));
+    std::vector<uint32_t> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_TRUE(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
+    for (uint32_t p : order) {
+        const int x = int(p % width), y = int(p / width);
+        EXPECT_TRUE(x >= x0 && x < x1 && y >= y0 && y < y1) << x << " " << y;
+    }
+    // the first tile is whole: its first eight pixels are the 4x2 block at its corner,
+    // then the next 4x2 below it (z order), and its 256 pixels come before any other's
+    for (int k = 0; k < 8; ++k)
+        EXPECT_EQ(order[size_t(k)], uint32_t((y0 + (k >> 1 & 1)) * width + x0 + (k & 1) + 2 * (k >> 2)));
+    for (int k = 8; k < 16; ++k)
+        EXPECT_EQ(order[size_t(k)] / width, uint32_t(y0 + 2 + (k >> 1 & 1)));
+    for (size_t k = 0; k < 256; ++k) {
+        EXPECT_LT(int(order[k] % width), x0 + 16);
+        EXPECT_LT(int(order[k] / width), y0 + 16);
+    }
+}
+
 // Orthographic camera with 1 unit = 1 pixel, origin at the image centre.
 std::string orthoCamera(int res, int spp, const std::string& renderOptions = "") {
     std::string half = std::to_string(res / 2);
