@@ -11,25 +11,26 @@
 
 namespace rd {
 
-namespace {
-// The even bits of z, packed: a Morton code's x (and, shifted by one, its y).
-uint32_t mortonX(uint32_t z) {
-    uint32_t v = 0;
-    for (int b = 0; b < 8; ++b) v |= ((z >> (2 * b)) & 1u) << b;
-    return v;
-}
-}  // namespace
-
 std::vector<uint32_t> tileOrder(int width, int x0, int x1, int y0, int y1) {
-    const int tile = 16;
+    constexpr int tile = 16;
+    // a tile's (x, y) in Morton order: x the even bits of the code, y the odd ones
+    std::array<uint8_t, tile * tile> mx{}, my{};
+    for (int z = 0; z < tile * tile; ++z)
+        for (int b = 0; b < 4; ++b) {
+            mx[size_t(z)] |= uint8_t(((z >> (2 * b)) & 1) << b);
+            my[size_t(z)] |= uint8_t(((z >> (2 * b + 1)) & 1) << b);
+        }
     std::vector<uint32_t> order;
     order.reserve(size_t(std::max(0, x1 - x0)) * size_t(std::max(0, y1 - y0)));
     for (int ty = y0; ty < y1; ty += tile)
-        for (int tx = x0; tx < x1; tx += tile)
-            for (uint32_t z = 0; z < uint32_t(tile * tile); ++z) {
-                const int x = tx + int(mortonX(z)), y = ty + int(mortonX(z >> 1));
-                if (x < x1 && y < y1) order.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
+        for (int tx = x0; tx < x1; tx += tile) {
+            const bool whole = tx + tile <= x1 && ty + tile <= y1;
+            for (size_t z = 0; z < size_t(tile * tile); ++z) {
+                const int x = tx + mx[z], y = ty + my[z];
+                if (whole || (x < x1 && y < y1))
+                    order.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
             }
+        }
     return order;
 }
 
