@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <cstdio>
 #include <filesystem>
@@ -130,6 +131,8 @@ struct EmbreeScene {
     RTCScene scene;
     // robust: RTC_SCENE_FLAG_ROBUST, Embree's watertight mode (its default is not)
     explicit EmbreeScene(const Mesh& m, bool robust = false) {
+        // (Embree's default configuration: its set_affinity=1, tried beside PoCL's pinned
+        // threads, halved its Mrays/s on the 2-core development machine)
         device = rtcNewDevice(nullptr);
         scene = rtcNewScene(device);
         if (robust) rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);

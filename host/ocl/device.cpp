@@ -6,6 +6,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+#ifdef __linux__
+#include <sched.h>
+#include <unistd.h>
+#endif
 
 #include "check.h"
 
@@ -58,7 +62,29 @@ std::string DeviceInfo::typeName() const {
     return "other";
 }
 
+void pinPoclThreadsByDefault() {
+#ifdef __linux__
+    static const bool once = [] {
+        if (std::getenv("POCL_AFFINITY")) return false;  // the user's choice
+        cpu_set_t allowed;
+        CPU_ZERO(&allowed);
+        const long online = sysconf(_SC_NPROCESSORS_ONLN);
+        if (sched_getaffinity(0, sizeof allowed, &allowed) != 0 || online <= 0 ||
+            CPU_COUNT(&allowed) != online)
+            return false;
+        return setenv("POCL_AFFINITY", "1", 0) == 0;
+    }();
+    (void)once;
+#endif
+}
+
+bool poclThreadsPinned() {
+    const char* v = std::getenv("POCL_AFFINITY");
+    return v && std::atoi(v) == 1;
+}
+
 std::vector<DeviceInfo> listDevices() {
+    pinPoclThreadsByDefault();  // (before the first OpenCL call: PoCL reads it then)
     cl_uint np = 0;
     if (clGetPlatformIDs(0, nullptr, &np) != CL_SUCCESS || np == 0) return {};
     std::vector<cl_platform_id> platforms(np);

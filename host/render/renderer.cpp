@@ -80,6 +80,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     RenderStats st;
     st.device = m_ctx.name();
     st.platform = m_ctx.info().platformName;
+    st.threadsPinned = m_ctx.info().isPocl() && poclThreadsPinned();
     // The scene's RSL shaders, compiled and bound: they decide lights, trace and more.
     ShadingSetup shading = ShaderSet(scene, diag).prepare();
     // The textures those shaders may ask for: the texture search path, then the RIB's

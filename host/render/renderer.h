@@ -103,6 +103,7 @@ struct RenderStats {
     Features features;
     ProgramBuildInfo program;
     std::string device, platform;
+    bool threadsPinned = false;  // PoCL's worker threads pinned (pinPoclThreadsByDefault)
     std::map<std::string, KernelStats> kernels;
     std::vector<TimelineEvent> timeline;  // every kernel run (RenderSettings::timeline)
     TextureStats textures;
