@@ -60,6 +60,11 @@ typedef struct PixelJob {
  * Sobol sampler's second scramble; film.h sum_odd). */
 #define RT_JOB_ODD_FIRST 0x200u
 #define RT_JOB_STATE_MASK 0xffu
+/* A job retire_samples retired or aborted carries that launch's tag in bits 16-31 (never
+ * 0: the host's own states carry none), so its occupancy count, which may read the state
+ * before or after the write, counts the job as active either way (no barrier). */
+#define RT_JOB_TAG_SHIFT 16u
+#define RT_JOB_TAG(launch) ((((launch) & 0x7fffu) | 0x8000u) << RT_JOB_TAG_SHIFT)
 #ifndef __OPENCL_C_VERSION__
 RT_ASSERT_SIZE(SampleTotal, 16);
 RT_ASSERT_SIZE(PixelJob, 16);

@@ -15,13 +15,22 @@
 #include "math.clh"
 #include "rsl_color_samples.clh"
 
+/* Whether a job was in flight when this launch began: in flight still, or retired or
+ * aborted by this launch (its tag). */
+inline int rt_job_was_in_flight(uint state, uint tag) {
+    const uint s = state & RT_JOB_STATE_MASK;
+    return s == RT_JOB_IN_FLIGHT || s == RT_JOB_LAST_TRY ||
+           (state & ~((1u << RT_JOB_TAG_SHIFT) - 1u)) == tag;
+}
+
 /* window: the jobs in flight, ring positions [window_start, + window_count) modulo
- * job_capacity. Launches alternate between two halves of progress by parity; each
- * launch clears the other half for the next. In its half, [0] (from ~0) becomes the rank
- * of the oldest job still in flight, so the host frees the retired prefix of the rings;
- * [1] counts jobs aborted by this launch, [2] samples left out as NaN/Inf. */
+ * job_capacity. Launches alternate between two halves of progress by the parity of
+ * `launch` (the host's count of retire launches); each launch clears the other half for
+ * the next. In its half, [0] (from ~0) becomes the rank of the oldest job still in
+ * flight, so the host frees the retired prefix of the rings; [1] counts jobs aborted by
+ * this launch, [2] samples left out as NaN/Inf. */
 __kernel void retire_samples(uint window_start, uint window_count, uint job_capacity,
-                             uint slot_capacity, uint parity,
+                             uint slot_capacity, uint launch,
                              __global PixelJob* jobs,
                              __global const uint* slot_rays,
                              __global const uint* slot_abort,
@@ -31,7 +40,10 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
                              __global AovAccum* aov_film,
                              __global uint* progress,
                              __global uint* active_counter) {
-    RT_DECLARE_ACTIVE_COUNTER;
+    const uint parity = launch & 1u, tag = RT_JOB_TAG(launch);
+    RT_COUNT_GROUP(active_counter, q,
+                   q < window_count &&
+                       rt_job_was_in_flight(jobs[rt_ring_add(window_start, q, job_capacity)].state, tag));
     uint k = get_global_id(0);
     if (k == 0) {
         __global uint* next = progress + 3u * (parity ^ 1u);
@@ -42,10 +54,9 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
     progress += 3u * parity;
     uint job = rt_ring_add(window_start, k, job_capacity);
     const uint state = k < window_count ? jobs[job].state : RT_JOB_RETIRED;
-    int active = (state & RT_JOB_STATE_MASK) == RT_JOB_IN_FLIGHT ||
-                 (state & RT_JOB_STATE_MASK) == RT_JOB_LAST_TRY;
-    RT_COUNT_ACTIVE(active_counter, active);
-    if (!active) return;
+    if ((state & RT_JOB_STATE_MASK) != RT_JOB_IN_FLIGHT &&
+        (state & RT_JOB_STATE_MASK) != RT_JOB_LAST_TRY)
+        return;
     const uint first = jobs[job].first_slot, count = jobs[job].count;
     uint in_flight = 0, dropped = 0;
     for (uint s = 0; s < count; ++s) {
@@ -58,11 +69,11 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
         return;
     }
     if (dropped && (state & RT_JOB_STATE_MASK) == RT_JOB_IN_FLIGHT) {
-        jobs[job].state = RT_JOB_ABORTED;
+        jobs[job].state = RT_JOB_ABORTED | tag;
         atomic_inc(&progress[1]);
         return;
     }
-    jobs[job].state = RT_JOB_RETIRED;
+    jobs[job].state = RT_JOB_RETIRED | tag;
     float4 sum = (float4)(0.0f), sum_sq = (float4)(0.0f);
 #ifdef RT_SAMPLER_SOBOL
     float4 sum_odd = (float4)(0.0f);

@@ -380,7 +380,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         const bool compact = spawns && traced > 0;
         const size_t groups = (traced + RT_COMPACT_GROUP - 1) / RT_COMPACT_GROUP;
         const cl_uint window = cl_uint(ring.inFlight());
-        const cl_uint parity = retireLaunches & 1u;
+        const cl_uint parity = retireLaunches & 1u, launch = retireLaunches;
         if (traced > 0 && (compact || nl > 0))
             k.closeRound.launch(traced, traced, nl, cl_uint(compact), rp.sample, rp.shWeight,
                                 rp.shState, rp.totals, rp.spawnMask, rp.groupLive);
@@ -388,7 +388,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             ++retireLaunches;
             k.retire.launch(window, cl_uint(ring.frontPosition()), window,
                             cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()),
-                            parity, rp.jobs, rp.slotRays, rp.slotAbort, rp.totals,
+                            launch, rp.jobs, rp.slotRays, rp.slotAbort, rp.totals,
                             filmBuf, rp.aov, aovBuf, rp.progress);
         }
         refill.prepare(pending, roundCap);  // while the device finishes the round
@@ -461,7 +461,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             std::vector<PixelJob> all = rp.jobs.download();
             for (size_t j = window; j-- > 0;) {
                 PixelJob& r = all[(ring.frontPosition() + j) % ring.jobCapacity()];
-                if (r.state != RT_JOB_ABORTED) continue;
+                if ((r.state & RT_JOB_STATE_MASK) != RT_JOB_ABORTED) continue;
                 r.state = RT_JOB_RETIRED;
                 PlannedJob again = ring.at(j);
                 again.lastTry = true;

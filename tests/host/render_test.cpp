@@ -179,6 +179,10 @@ TEST(Render, KernelStatsAreConsistent) {
     // the group counts (counters.clh): every index below the count, or every ray shaded
     for (const char* name : {"generate_eye", "classify_hits", "shade_matte", "close_round"})
         EXPECT_EQ(k.at(name).activeItems, img.stats.eyeRays) << name;
+    // retire's: the jobs in flight at each launch. Every sample here ends in the round it
+    // starts, so each job counts once: 64 one-sample jobs, then 64 + 192 to the minimum
+    // (its count reads job states that the launch itself rewrites: RT_JOB_TAG)
+    EXPECT_EQ(k.at("retire_samples").activeItems, 64u + 64u + 192u);
     // the loop's idle time: the host's part never more than the whole
     EXPECT_GE(img.stats.launchGapsMs, 0.0);
     EXPECT_GE(img.stats.hostSyncOverhead, 0.0);
