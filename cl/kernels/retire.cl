@@ -43,7 +43,8 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
     const uint parity = launch & 1u, tag = RT_JOB_TAG(launch);
     RT_COUNT_GROUP(active_counter, q,
                    q < window_count &&
-                       rt_job_was_in_flight(jobs[rt_ring_add(window_start, q, job_capacity)].state, tag));
+                       rt_job_was_in_flight(
+                           jobs[rt_ring_add(window_start, q, job_capacity)].state, tag));
     uint k = get_global_id(0);
     if (k == 0) {
         __global uint* next = progress + 3u * (parity ^ 1u);

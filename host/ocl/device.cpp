@@ -64,17 +64,13 @@ std::string DeviceInfo::typeName() const {
 
 void pinPoclThreadsByDefault() {
 #ifdef __linux__
-    static const bool once = [] {
-        if (std::getenv("POCL_AFFINITY")) return false;  // the user's choice
-        cpu_set_t allowed;
-        CPU_ZERO(&allowed);
-        const long online = sysconf(_SC_NPROCESSORS_ONLN);
-        if (sched_getaffinity(0, sizeof allowed, &allowed) != 0 || online <= 0 ||
-            CPU_COUNT(&allowed) != online)
-            return false;
-        return setenv("POCL_AFFINITY", "1", 0) == 0;
-    }();
-    (void)once;
+    if (std::getenv("POCL_AFFINITY")) return;  // the user's choice (or an earlier call's)
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    const long online = sysconf(_SC_NPROCESSORS_ONLN);
+    if (sched_getaffinity(0, sizeof allowed, &allowed) == 0 && online > 0 &&
+        CPU_COUNT(&allowed) == online)
+        setenv("POCL_AFFINITY", "1", 0);
 #endif
 }
 

@@ -25,16 +25,17 @@ struct DeviceInfo {
     std::string typeName() const;
 };
 
-// All devices of all platforms; an empty list when no ICD or platform is installed.
 // PoCL's CPU device pins its worker threads to the cores when POCL_AFFINITY is 1. Unless
 // the user set it, RayDrive sets it before its first OpenCL call when the process may run
 // on every online core (pinning goes by core index, so a taskset or cgroup limit keeps it
-// off): SPD frames at one sample a pixel took 0.80-0.93 of their unpinned time on the
-// 2-core development machine, bench_trace's rays 1.0-1.3x the Mrays/s (benchmarks/README,
-// session 25). listDevices calls it.
+// off): on the 2-core development machine the SPD scenes' intersect_closest took
+// 0.69-1.02 and their frames 0.80-1.02 of their unpinned time at one sample a pixel,
+// 0.96-1.00 at nine (benchmarks/README, session 25). listDevices calls it.
 void pinPoclThreadsByDefault();
 // Whether PoCL pins its threads in this process (POCL_AFFINITY is 1): --stats reports it.
 bool poclThreadsPinned();
+
+// All devices of all platforms; an empty list when no ICD or platform is installed.
 std::vector<DeviceInfo> listDevices();
 
 // Resolves a user's device choice. `spec` is an index, a case-insensitive substring of the

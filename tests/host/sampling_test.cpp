@@ -37,8 +37,10 @@ TEST(Sampling, TileOrderIsMortonWithinTiles) {
     }
     // the first tile is whole: its first eight pixels are the 4x2 block at its corner,
     // then the next 4x2 below it (z order), and its 256 pixels come before any other's
-    for (int k = 0; k < 8; ++k)
-        EXPECT_EQ(order[size_t(k)], uint32_t((y0 + (k >> 1 & 1)) * width + x0 + (k & 1) + 2 * (k >> 2)));
+    for (int k = 0; k < 8; ++k) {
+        const int x = x0 + (k & 1) + 2 * (k >> 2), y = y0 + (k >> 1 & 1);
+        EXPECT_EQ(order[size_t(k)], uint32_t(y * width + x)) << k;
+    }
     for (int k = 8; k < 16; ++k)
         EXPECT_EQ(order[size_t(k)] / width, uint32_t(y0 + 2 + (k >> 1 & 1)));
     for (size_t k = 0; k < 256; ++k) {
