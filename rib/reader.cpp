@@ -264,7 +264,9 @@ bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
                 return false;
             }
             args.floatArrays.emplace_back(got.begin(), got.end());
-            if (c == 'C') args.floatArrays.back() = targetColors(args.floatArrays.back());
+            if (c == 'C')
+                args.floatArrays.back() =
+                    targetColors(args.floatArrays.back(), m_target.keptColorSamples());
             ++si;
         } else if (c == 'B') {
             if (vi < vals.size() && !vals[vi].array && vals[vi].isString) {
@@ -435,17 +437,21 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
         return false;
     }
     if (p.type == ParamType::Color && !m_nRGB.empty()) {
-        p.floats = targetColors(p.floats);
-        p.colorComponents = m_nColor <= m_target.keptColorSamples() || m_target.wantsRgbColors()
-                                ? 3 : m_nColor;
+        const int kept = info.kind == Kind::Geom ? m_target.keptPrimitiveColorSamples()
+                                                 : m_target.keptColorSamples();
+        p.floats = targetColors(p.floats, kept);
+        p.colorComponents = m_nColor <= kept            ? std::max(3, m_nColor)
+                            : m_target.wantsRgbColors() ? 3
+                                                        : m_nColor;
     }
     return true;
 }
 
-std::vector<float> Reader::targetColors(const std::vector<float>& n) const {
+std::vector<float> Reader::targetColors(const std::vector<float>& n, int kept) const {
     if (m_nRGB.empty()) return n;
     const size_t k = m_nRGB.size() / 3;
-    if (int(k) <= m_target.keptColorSamples()) {  // padded to three: the last one repeated
+    if (int(k) <= kept && k >= 3) return n;
+    if (int(k) <= kept) {  // padded to three: the last one repeated
         std::vector<float> out;
         out.reserve(n.size() / k * 3);
         for (size_t base = 0; base + k <= n.size(); base += k)

@@ -8,18 +8,19 @@
 
 /* origin: xyz, w = tmin.  direction: xyz (unit), w = tmax.
  * weight: the colour channels, then the alpha (coverage) weight. Under ColorSamples 1
- * (RSL_COLOR_SAMPLES == 1) two floats, the channel and alpha; otherwise four, up to three
- * channels in xyz (lanes past the scene's repeat its last) and alpha in w. Shading works
- * on the four lanes: rt_weight4 widens a stored weight, rt_weight_of narrows one back. */
+ * (RSL_COLOR_SAMPLES == 1) two floats, the channel and alpha; with more than three
+ * channels (RSL_COLOR_LANES 8 or 16) the scene's colour vector, alpha in its last lane;
+ * otherwise four, up to three channels in xyz (lanes past the scene's repeat its last)
+ * and alpha in w. Shading works on colour vectors (ray_weight.clh). */
 #ifdef __OPENCL_C_VERSION__
 #if defined(RSL_COLOR_SAMPLES) && RSL_COLOR_SAMPLES == 1
 typedef float2 rt_weight;
-#define rt_weight4(w) ((float4)((w).x, (w).x, (w).x, (w).y))
-#define rt_weight_of(v) ((float2)((v).x, (v).w))
+#elif defined(RSL_COLOR_LANES) && RSL_COLOR_LANES == 8
+typedef float8 rt_weight;
+#elif defined(RSL_COLOR_LANES) && RSL_COLOR_LANES == 16
+typedef float16 rt_weight;
 #else
 typedef float4 rt_weight;
-#define rt_weight4(w) (w)
-#define rt_weight_of(v) (v)
 #endif
 #endif
 

@@ -6,7 +6,7 @@
 #include "atomics.clh"
 #include "counters.clh"
 #include "film.h"
-#include "ray.h"
+#include "ray_weight.clh"
 
 __kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
 void close_round(uint count, /* traced rays */
@@ -26,15 +26,15 @@ void close_round(uint count, /* traced rays */
     /* the lights in order and one atomic per ray, so a sample's total does not depend
      * on which light's ray a work-item happened to add first */
     if (i < count && light_count > 0) {
-        float4 sum = (float4)(0.0f);
+        rsl_color sum = (rsl_color)(0.0f);
         for (uint l = 0; l < light_count; ++l) {
             uint j = i * light_count + l;
             if (shadow_state[j].alive) {
-                sum += rt_weight4(shadow_weight[j]);
+                sum += rt_weight_color(shadow_weight[j]);
                 shadow_state[j].alive = 0u;
             }
         }
-        rt_atomic_add_float4(&total[ray_sample[i]].value, sum);
+        rt_atomic_add_float4(&total[ray_sample[i]].value, rt_total_of(sum));
     }
 #endif
     live[lid] = i < count && count_spawns ? popcount(spawn_mask[i]) : 0u;

@@ -7,13 +7,12 @@
  * whatever the pool's capacity. A job with a dropped ray (slot_abort: the pool in
  * extremis) leaves no trace in the film and is marked for the host to issue again,
  * unless this was its last try. A sample with a NaN or Inf channel never reaches the
- * film: it is counted instead. Under ColorSamples (RSL_COLOR_SAMPLES) a sample's channels
- * become RGB here. */
+ * film: it is counted instead. A sample's total is RGB whatever the scene's colour
+ * channels (ray_weight.clh, rt_total_of). */
 #include "atomics.clh"
 #include "counters.clh"
 #include "film.h"
 #include "math.clh"
-#include "rsl_color_samples.clh"
 
 /* Whether a job was in flight when this launch began: in flight still, or retired or
  * aborted by this launch (its tag). */
@@ -83,9 +82,6 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
     uint n = 0, bad = 0;
     for (uint s = 0; s < count; ++s) {
         float4 v = total[rt_ring_add(first, s, slot_capacity)].value;
-#ifdef RSL_COLOR_SAMPLES
-        v = (float4)(rsl_color_rgb(v).xyz, v.w);  /* the scene's colour channels as RGB */
-#endif
         if (rt_all_finite(v)) {
             sum += v;
             sum_sq += v * v;

@@ -17,6 +17,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global const float4* vertex_cs,
                             __global const float4* vertex_os,
                             __global const Material* materials,
+                            __global const float* material_channels, /* > 3 channels only */
                             __global const Quadric* quadrics, /* RT_HAS_QUADRICS only */
                             __global const float4* quadric_primvars,
                             __global const float4* quadric_motion, /* RT_HAS_MOTION only */
@@ -72,7 +73,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
     uint r = sorted[begin + j];
     if (ray_key[r] != shader_index) return;
     RayHit h = hits[r];
-    float4 org = origin[r], dir = direction[r], w = rt_weight4(weight[r]);
+    float4 org = origin[r], dir = direction[r];
+    rsl_color w = rt_weight_color(weight[r]); /* alpha in RSL_CW */
     RayState rs = state[r];
     uint sample = ray_sample[r];
 #ifdef RT_HAS_MOTION
@@ -95,7 +97,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     const uint inst = RT_NO_HIT;
 #endif
 #define RD_HIT_BUFFERS org, dir, time, inst, tris, attrs, normals, vertex_st, vertex_cs, \
-    vertex_os, materials, quadrics, quadric_primvars, quadric_motion, tris_end, tri_params, \
+    vertex_os, materials, material_channels, quadrics, quadric_primvars, quadric_motion, tris_end, tri_params, \
     point_params, param_layout
     rd_surface_globals(&g, &m, h, RD_HIT_BUFFERS);
     int loops_cut = 0; /* a shader loop left after RSL_MAX_LOOP_ITERATIONS (rsl_abi.h) */
@@ -178,53 +180,53 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
     if (dsites) dsites->lane = 3; /* every other mode replays the point's derivatives */
-    float4 E = culled ? (float4)(0.0f) : base.Ci, Oi = culled ? (float4)(0.0f) : base.Oi;
-    E.w = 0.0f;
+    rsl_color E = culled ? (rsl_color)(0.0f) : rsl_cw0(base.Ci);
+    rsl_color Oi = culled ? (rsl_color)(0.0f) : base.Oi;
     /* the atmosphere between the ray's origin and P: Ci' = a Ci + b (affine in Ci, as
      * fog and depthcue are), so it scales every contribution and adds b once */
-    float4 atmo_a = (float4)(1.0f);
+    rsl_color atmo_a = (rsl_color)(1.0f);
 #ifdef RT_HAS_ATMOSPHERE
     uint atmo = (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT;
     if (atmo && !culled) {
         RslGlobals g0 = base, g1 = base;
-        g0.Ci = (float4)(0.0f);
-        g1.Ci = (float4)(1.0f, 1.0f, 1.0f, 0.0f);
+        g0.Ci = rsl_f2c(0.0f);
+        g1.Ci = rsl_f2c(1.0f);
         rd_atmosphere((int)atmo - 1, &g0, params);
         rd_atmosphere((int)atmo - 1, &g1, params);
         atmo_a = g1.Ci - g0.Ci;
-        atmo_a.w = 1.0f;
-        E = atmo_a * E + g0.Ci;
-        E.w = 0.0f;
+        RSL_CW(atmo_a) = 1.0f;
+        E = rsl_cw0(atmo_a * E + g0.Ci);
         Oi = g0.Oi;
     }
 #endif
-    float4 add = culled ? (float4)(0.0f) : w * E;
-    add.w = w.w * RSL_CHANNEL_MEAN(Oi); /* coverage */
-    rt_atomic_add_float4(&total[sample].value, rt_sanitize(add, numerics));
+    rsl_color add = culled ? (rsl_color)(0.0f) : w * E;
+    RSL_CW(add) = RSL_CW(w) * RSL_CHANNEL_MEAN(Oi); /* coverage */
+    rt_atomic_add_float4(&total[sample].value, rt_sanitize(rt_total_of(add), numerics));
 
 #ifdef RT_HAS_SHADOW_RAYS
     float4 Pl = rt_offset_ray(g.P, Ngf);
     for (uint l = 0; l < (culled ? 0u : light_count); ++l) {
-        float4 toward, lcl;
+        float4 toward;
+        rsl_color lcl;
         rd_light_at((int)l, &g, g.P, &toward, &lcl);
-        int solar = lcl.w == 1.0f;
-        if (rd_light_is_ambient((int)l) || !rd_nonzero3(lcl)) continue;
+        int solar = RSL_CW(lcl) == 1.0f;
+        if (rd_light_is_ambient((int)l) || !rsl_cnonzero(lcl)) continue;
 #if RD_LIGHT_COEFS_SURFACE
-        float4 coef = ev.Ci_light[l];
+        rsl_color coef = ev.Ci_light[l];
 #else
         RslEval le;
         rd_eval_init(&le, dsites, tc, (int)l, -1);
         if (dsites) dsites->count = 0;
         RslGlobals lgl = g;
         rsl_surface_SURFACE(&lgl, p, &le);
-        float4 coef = lgl.Ci - base.Ci;
+        rsl_color coef = lgl.Ci - base.Ci;
 #endif
-        float4 sw = w * atmo_a * coef;
-        sw.w = 0.0f;
-        sw = rt_sanitize(sw, numerics);
-        if (!rd_nonzero3(sw)) continue;
+        rsl_color sw = w * atmo_a * coef;
+        RSL_CW(sw) = 0.0f;
+        sw = rt_sanitize_c(sw, numerics);
+        if (!rsl_cnonzero(sw)) continue;
         if (!rd_light_traces_shadows((int)l)) { /* its shadow map did the shadowing */
-            rt_atomic_add_float4(&total[sample].value, sw);
+            rt_atomic_add_float4(&total[sample].value, rt_total_of(sw));
             continue;
         }
         float dist = sqrt(rt_dot3(toward, toward));
@@ -268,16 +270,16 @@ __kernel void shade_SURFACE(uint begin, uint count,
         if (dsites) dsites->count = 0;
         RslGlobals tg = g;
         rsl_surface_SURFACE(&tg, p, &te);
-        float4 tw = w * atmo_a * (tg.Ci - base.Ci);
-        tw.w = 0.0f;
-        tw = rt_sanitize(tw, numerics);
+        rsl_color tw = w * atmo_a * (tg.Ci - base.Ci);
+        RSL_CW(tw) = 0.0f;
+        tw = rt_sanitize_c(tw, numerics);
 #ifdef RT_ROULETTE_DEPTH
         /* Russian roulette from the given depth on: a ray survives with probability p =
          * its largest weight (at least 0.05, at most 1) and carries weight / p, so the
          * estimate stays unbiased while dim paths end early; the random number is the
          * sample's own (pixel, sample, depth, call), never the pool slot's */
         if (RT_TRACE_DEPTH(rs) + 1u >= RT_ROULETTE_DEPTH) {
-            float surv = clamp(rt_max3(fabs(tw)), 0.05f, 1.0f);
+            float surv = clamp(rsl_cmax(fabs(tw)), 0.05f, 1.0f);
             uint dim = 1024u + 16u * RT_TRACE_DEPTH(rs) + (uint)i;
             if (rt_random(sample_pixel[sample], sample_index[sample], dim) >= surv) {
                 atomic_inc(&numerics[RT_NUM_ROULETTE]);
@@ -286,7 +288,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
             tw /= surv;
         }
 #endif
-        if (rt_max3(fabs(tw)) < 1e-6f) continue;
+        if (rsl_cmax(fabs(tw)) < 1e-6f) continue;
         float4 td = rt_normalize3(ev.trace_dir[i]);
         /* a zero direction (refract() under total internal reflection) traces nothing */
         if (!(rt_dot3(td, td) > 0.5f)) continue;
@@ -308,12 +310,12 @@ __kernel void shade_SURFACE(uint begin, uint count,
 
 #ifdef RT_HAS_TRANSPARENCY
     /* Oi < 1: the same ray continues behind the surface with the transmitted weight */
-    float4 wt = w * ((float4)(1.0f) - Oi);
-    wt.w = w.w * (1.0f - RSL_CHANNEL_MEAN(Oi));
-    wt = rt_sanitize(wt, numerics);
-    if (rt_max3(wt) > 1e-6f && RT_TRANSPARENT_DEPTH(rs) >= RT_MAX_TRANSPARENT_DEPTH)
+    rsl_color wt = w * (rsl_f2c(1.0f) - Oi);
+    RSL_CW(wt) = RSL_CW(w) * (1.0f - RSL_CHANNEL_MEAN(Oi));
+    wt = rt_sanitize_c(wt, numerics);
+    if (rsl_cmax(wt) > 1e-6f && RT_TRANSPARENT_DEPTH(rs) >= RT_MAX_TRANSPARENT_DEPTH)
         atomic_inc(&numerics[RT_NUM_TRANSPARENT_DEPTH]);
-    else if (rt_max3(wt) > 1e-6f) {
+    else if (rsl_cmax(wt) > 1e-6f) {
         float4 o = rt_offset_ray(g.P, -Ngf);
         o.w = 0.0f;
         float4 d = dir;

@@ -64,8 +64,7 @@ inline void rt_treelet_shadow(TreeletPair p, __global const TreeletRef* refs,
                               __global TreeletPair* next, uint next_cap, __global uint* counters,
                               uint treelets, uint resident_links RT_TL_OBJECTS_PARAM) {
     /* (an occluder met through another of its pairs, or a ray that carries nothing) */
-    const float4 w = rt_weight4(weight[p.ray]);
-    if (w.x == 0.0f && w.y == 0.0f && w.z == 0.0f && w.w == 0.0f) return;
+    if (!any(weight[p.ray] != (rt_weight)(0.0f))) return;
     float4 o = origin[p.ray], d = direction[p.ray];
     ulong key = RT_NO_KEY;
     if (rt_treelet_traverse(refs, p.treelet, nodes, blocks, resident_links, o, d, o.w, d.w,

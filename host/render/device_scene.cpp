@@ -63,13 +63,17 @@ DeviceScene::DeviceScene(const ClContext& ctx, const Scene& scene, const SceneBv
       quadricMotion(ctx, scene.quadricMotion),
       trianglesEnd(ctx, scene.trianglesEnd),
       materials(ctx, shading.materials),
+      materialChannels(ctx, scene.materialChannels),
       // rd_prepare_uniforms writes the shaders' uniform results into the parameter
       // blocks: a kernel's write to a CL_MEM_READ_ONLY buffer is undefined (Oclgrind
       // reports it; a GPU may drop it)
       params(ctx, shading.params,
              shading.prepares.empty() ? CL_MEM_READ_ONLY : CL_MEM_READ_WRITE),
-      triangleParams(ctx, f.pointParams > 0 ? triangleParamsFor(scene) : std::vector<uint32_t>{}),
-      pointParamValues(ctx, f.pointParams > 0 ? scene.pointParamValues : std::vector<rt_float4>{}),
-      pointParamLayout(ctx, f.pointParams > 0 ? shading.pointParamLayout : std::vector<int32_t>{}) {}
+      triangleParams(
+          ctx, f.pointParams > 0 ? triangleParamsFor(scene) : std::vector<uint32_t>{}),
+      pointParamValues(
+          ctx, f.pointParams > 0 ? scene.pointParamValues : std::vector<rt_float4>{}),
+      pointParamLayout(
+          ctx, f.pointParams > 0 ? shading.pointParamLayout : std::vector<int32_t>{}) {}
 
 }  // namespace rd

@@ -30,6 +30,7 @@ struct DeviceScene {
     DeviceBuffer<rt_float4> quadricMotion;    // motion blur: moving quadrics' last keys
     DeviceBuffer<Triangle> trianglesEnd;      // and moving triangles' 
     DeviceBuffer<Material> materials;  // bound to compiled shaders and parameter blocks
+    DeviceBuffer<float> materialChannels;  // Scene::materialChannels, or a placeholder
     DeviceBuffer<float> params;        // every surface instance's parameter block
     // Shader parameters given per point (scene.h, Scene::triangleParams), placeholders
     // when no primitive gives any

@@ -17,6 +17,9 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
         // a one-sided surface's back continues the ray, as a transparent surface does
         if (m.flags & RT_MATERIAL_ONE_SIDED) f.oneSided = f.transparency = true;
     }
+    const size_t n = size_t(scene.colors.n);  // (more than three: the channels' opacity)
+    for (size_t i = 0; n > 3 && i < scene.materialChannels.size(); ++i)
+        if (i % (2 * n) >= n && scene.materialChannels[i] < 1.0f) f.transparency = true;
     for (const rt_float4& o : scene.vertexOs)
         if (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f) f.transparency = true;
     f.primvars = scene.primvarsUsed;
@@ -158,7 +161,7 @@ std::string buildOptions(const Features& f) {
     if (f.aovs) o += " -DRT_HAS_AOVS";
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
     if (!f.colors.isRgb()) {
-        auto matrix = [](const std::array<float, 9>& m) {
+        auto matrix = [](const std::vector<float>& m) {
             std::string v;
             char buf[32];
             for (float x : m) {
@@ -167,6 +170,8 @@ std::string buildOptions(const Features& f) {
             }
             return v;
         };
+        if (f.colors.lanes() > 4)
+            o += " -DRSL_COLOR_LANES=" + std::to_string(f.colors.lanes());
         o += " -DRSL_COLOR_SAMPLES=" + std::to_string(f.colors.n) + " -DRSL_NRGB=" +
              matrix(f.colors.toRgb) + " -DRSL_RGBN=" + matrix(f.colors.fromRgb);
     }

@@ -60,7 +60,9 @@ struct RayPool {
     static size_t bytesPerRay(size_t spawn, uint32_t shadowLights, size_t weightFloats = 4) {
         const size_t weights = 1 + spawn + spillCapacity(1, spawn) + shadowLights;
         return 144 + 2 * 100 + spawn * 72 + spillCapacity(1, spawn) * 68 +
-               size_t(shadowLights) * 64 + kSlotsPerRay * 56 - weights * (4 - weightFloats) * 4;
+               size_t(shadowLights) * 64 + kSlotsPerRay * 56 +
+               weights * weightFloats * 4 -
+               weights * 16;  // (the figures above count four floats a weight)
     }
     // Rays of one round: `wanted`, or (0) enough to keep every compute unit busy (16k rays
     // each), within a memory budget of an eighth of the device's memory (64-512 MiB).
@@ -75,8 +77,14 @@ struct RayPool {
             std::min(wanted, memoryBudget / bytesPerRay(spawn, shadowLights, weightFloats)), 64,
             std::max<size_t>(64, wanted));
     }
-    // Floats of a ray's weight (cl/include/ray.h rt_weight): 2 under ColorSamples 1, else 4.
-    static size_t weightFloatsOf(int colorChannels) { return colorChannels == 1 ? 2 : 4; }
+    // Floats of a ray's weight (cl/include/ray.h rt_weight): 2 under ColorSamples 1, 4 up
+    // to three channels, else the scene's colour vector (8 or 16).
+    static size_t weightFloatsOf(int colorChannels) {
+        return colorChannels == 1   ? 2
+               : colorChannels <= 3 ? 4
+               : colorChannels <= 7 ? 8
+                                    : 16;
+    }
     const size_t weightFloats;
     // Only a scene whose shaders trace can spawn more rays than it traced: the rest
     // (continuations through Opacity < 1 at most one a ray) never need the stack. Ray

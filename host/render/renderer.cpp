@@ -284,17 +284,18 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         for (cl_uint s = 0; s < shaderCount; ++s) {
             if (counts[s] == 0) continue;
             k.shade[s]->launch(
-                counts[s], cl_uint(offsets[s]), cl_uint(counts[s]), sorted, rp.key, ds.triangles,
-                ds.attrs, ds.normals, ds.vertexSt, ds.vertexCs, ds.vertexOs, ds.materials,
-                ds.quadrics, ds.quadricPrimvars, ds.quadricMotion, ds.trianglesEnd,
-                rp.sampleTime, rp.samplePixel, rp.sampleIndex, rp.hitInstance, ds.params,
-                ds.triangleParams, ds.pointParamValues, ds.pointParamLayout, rp.origin,
-                rp.direction, rp.weight, rp.state, rp.sample, rp.hits, rp.totals,
-                rp.nextOrigin, rp.nextDirection, rp.nextWeight, rp.nextState,
-                rp.nextSample, rp.spawnMask, rp.slotRays, rp.shOrigin, rp.shDirection,
-                rp.shWeight, rp.shState, rp.aov, nl, numerics, textures.infoBuf,
-                textures.pageBuf, textures.tileBuf, textures.requestBuf,
-                textures.counterBuf, textures.usedBuf, retry, reshade.counts(), s);
+                counts[s], cl_uint(offsets[s]), cl_uint(counts[s]), sorted, rp.key,
+                ds.triangles, ds.attrs, ds.normals, ds.vertexSt, ds.vertexCs, ds.vertexOs,
+                ds.materials, ds.materialChannels, ds.quadrics, ds.quadricPrimvars,
+                ds.quadricMotion, ds.trianglesEnd, rp.sampleTime, rp.samplePixel,
+                rp.sampleIndex, rp.hitInstance, ds.params, ds.triangleParams,
+                ds.pointParamValues, ds.pointParamLayout, rp.origin, rp.direction,
+                rp.weight, rp.state, rp.sample, rp.hits, rp.totals, rp.nextOrigin,
+                rp.nextDirection, rp.nextWeight, rp.nextState, rp.nextSample,
+                rp.spawnMask, rp.slotRays, rp.shOrigin, rp.shDirection, rp.shWeight,
+                rp.shState, rp.aov, nl, numerics, textures.infoBuf, textures.pageBuf,
+                textures.tileBuf, textures.requestBuf, textures.counterBuf,
+                textures.usedBuf, retry, reshade.counts(), s);
         }
     };
     // The rays in the pool now, and on the spill stack. Refill tops the pool up to

@@ -298,19 +298,22 @@ void RibBuilder::procedural(L loc, const std::string& name, const std::vector<st
 }
 
 void RibBuilder::color(L loc, const std::vector<float>& c) {
-    if (c.size() != 3) {
-        m_diag.error(loc, "Color needs 3 values (ColorSamples 3)");
+    const size_t k = size_t(m_world.colors.slots());
+    if (c.size() != k) {
+        m_diag.error(loc, "Color needs " + std::to_string(k) + " values (ColorSamples)");
         return;
     }
-    std::memcpy(m_attrStack.back().color, c.data(), sizeof(float) * 3);
+    std::copy_n(c.begin(), k, m_attrStack.back().color);
 }
 void RibBuilder::opacity(L loc, const std::vector<float>& c) {
-    if (c.size() != 3) {
-        m_diag.error(loc, "Opacity needs 3 values (ColorSamples 3)");
+    const size_t k = size_t(m_world.colors.slots());
+    if (c.size() != k) {
+        m_diag.error(loc,
+                     "Opacity needs " + std::to_string(k) + " values (ColorSamples)");
         return;
     }
     float* o = m_attrStack.back().opacity;
-    for (int i = 0; i < 3; ++i) o[i] = std::fmin(1.0f, std::fmax(0.0f, c[i]));
+    for (size_t i = 0; i < k; ++i) o[i] = std::fmin(1.0f, std::fmax(0.0f, c[i]));
 }
 
 void RibBuilder::surface(L loc, const std::string& name, const rib::ParamList& params) {
@@ -439,9 +442,14 @@ uint32_t RibBuilder::currentMaterial() {
     const uint32_t surface = surfaceFor(a);
     Material m{};
     m.shader = surface;
-    m.cs = f4(a.color[0], a.color[1], a.color[2]);
-    m.os = f4(a.opacity[0], a.opacity[1], a.opacity[2],
-              (a.opacity[0] + a.opacity[1] + a.opacity[2]) / 3.0f);
+    // (more than three channels: the material's RGB here, its channels beside it)
+    const ColorSamples& colors = m_world.colors;
+    float cs[ColorSamples::kMaxChannels], os[ColorSamples::kMaxChannels];
+    std::copy_n(a.color, colors.slots(), cs);
+    std::copy_n(a.opacity, colors.slots(), os);
+    if (colors.n > 3) colors.toRgbValues(cs), colors.toRgbValues(os);
+    m.cs = f4(cs[0], cs[1], cs[2]);
+    m.os = f4(os[0], os[1], os[2], (os[0] + os[1] + os[2]) / 3.0f);
     m.lights_off = a.lightsOff;
     if (a.sides == 1) m.flags |= RT_MATERIAL_ONE_SIDED;
     if (a.atmosphereKey != 0) {
@@ -469,10 +477,22 @@ uint32_t RibBuilder::currentMaterial() {
         m_world.anyMatte = true;
     }
     std::string key(reinterpret_cast<const char*>(&m), sizeof m);
+    if (colors.n > 3) {
+        key.append(reinterpret_cast<const char*>(a.color),
+                   sizeof(float) * size_t(colors.n));
+        key.append(reinterpret_cast<const char*>(a.opacity),
+                   sizeof(float) * size_t(colors.n));
+    }
     for (const auto& [k, index] : m_materialKeys)
         if (k == key) return index;
     uint32_t index = static_cast<uint32_t>(m_world.materials.size());
     m_world.materials.push_back(m);
+    if (colors.n > 3) {
+        m_world.materialChannels.insert(m_world.materialChannels.end(), a.color,
+                                        a.color + colors.n);
+        m_world.materialChannels.insert(m_world.materialChannels.end(), a.opacity,
+                                        a.opacity + colors.n);
+    }
     m_materialKeys.emplace_back(key, index);
     return index;
 }

@@ -99,7 +99,10 @@ public:
     void colorSamples(L, Floats nRGB, Floats RGBn) override;
     // ColorSamples n <= 3: kept as n channels (scene.h ColorSamples); more: made RGB as read
     bool wantsRgbColors() const override { return true; }
-    int keptColorSamples() const override { return 3; }
+    // Colours keep up to 15 channels; those of primitive variables up to 3 (more are
+    // RGB: the renderer's per-vertex colours are float4s, converted as they are shaded)
+    int keptColorSamples() const override { return ColorSamples::kMaxChannels; }
+    int keptPrimitiveColorSamples() const override { return 3; }
     void primitiveVariables(const rib::ParamList* params) override { m_primVars = params; }
     void textureCoordinates(L, float s1, float t1, float s2, float t2, float s3, float t3,
                             float s4, float t4) override;
@@ -174,8 +177,11 @@ private:
         float t0 = 0, t1 = 0;
     };
     struct Attributes : Placement {
-        float color[3] = {1, 1, 1};
-        float opacity[3] = {1, 1, 1};
+        // in the scene's channels (ColorSamples::slots() of them)
+        float color[ColorSamples::kMaxChannels] = {1, 1, 1, 1, 1, 1, 1, 1,
+                                                   1, 1, 1, 1, 1, 1, 1};
+        float opacity[ColorSamples::kMaxChannels] = {1, 1, 1, 1, 1, 1, 1, 1,
+                                                     1, 1, 1, 1, 1, 1, 1};
         ShaderRef surface;    // the current Surface call
         uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;

@@ -123,13 +123,16 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     }
     // Cs, Os: constant or uniform (one colour) set the material; varying (one per
     // corner) go to the quadric primvar buffer.
+    // (primitive variables are RGB under more than three colour channels: converted)
     Attributes& attrs = m_attrStack.back();
-    const float savedColor[3] = {attrs.color[0], attrs.color[1], attrs.color[2]};
-    const float savedOpacity[3] = {attrs.opacity[0], attrs.opacity[1], attrs.opacity[2]};
+    const ColorSamples& colors = m_world.colors;
+    const Attributes saved = attrs;
     const rib::Param* cs = params.find("Cs");
     const rib::Param* os = params.find("Os");
     if (cs && cs->floats.size() == 3) std::copy_n(cs->floats.begin(), 3, attrs.color);
     if (os && os->floats.size() == 3) std::copy_n(os->floats.begin(), 3, attrs.opacity);
+    if (colors.n > 3 && cs && cs->floats.size() == 3) colors.fromRgbValues(attrs.color);
+    if (colors.n > 3 && os && os->floats.size() == 3) colors.fromRgbValues(attrs.opacity);
     // per-point shader parameters at the (u, v) corners, when this request gives them
     q.point_params = quadricPointParams(params, m_attrStack.back().ctm * placement);
     for (const rib::Param* p : pointParamsOf(&params))
@@ -141,16 +144,20 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
     if (varyingCs || varyingOs) {
         q.primvars = uint32_t(m_world.quadricPrimvars.size());
+        float rgb[2][ColorSamples::kMaxChannels];  // the uniform colours, as varying ones
+                                                   // are
+        std::copy_n(attrs.color, colors.slots(), rgb[0]);
+        std::copy_n(attrs.opacity, colors.slots(), rgb[1]);
+        if (colors.n > 3) colors.toRgbValues(rgb[0]), colors.toRgbValues(rgb[1]);
         for (int k = 0; k < 8; ++k) {
             const bool opacity = k >= 4;
             const rib::Param* p = opacity ? (varyingOs ? os : nullptr) : (varyingCs ? cs : nullptr);
-            const float* dflt = opacity ? attrs.opacity : attrs.color;
-            const float* v = p ? &p->floats[size_t(3 * (k % 4))] : dflt;
+            const float* v = p ? &p->floats[size_t(3 * (k % 4))] : rgb[opacity ? 1 : 0];
             m_world.quadricPrimvars.push_back({v[0], v[1], v[2], 0.0f});
         }
     }
-    std::copy_n(savedColor, 3, attrs.color);
-    std::copy_n(savedOpacity, 3, attrs.opacity);
+    std::copy_n(saved.color, ColorSamples::kMaxChannels, attrs.color);
+    std::copy_n(saved.opacity, ColorSamples::kMaxChannels, attrs.opacity);
     const int leaf = solidLeafForSurface(loc);
     uint32_t index = uint32_t(m_world.quadrics.size());
     if (leaf >= 0) {

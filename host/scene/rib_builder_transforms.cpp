@@ -163,20 +163,24 @@ void RibBuilder::perspective(L loc, float fov) {
                         "projective transform) is not supported; ignored");
 }
 
-// ColorSamples n <= 3: the reader hands colours over as their n values (keptColorSamples)
-// and the renderer shades, traces and sums samples in those channels, converting each
-// sample to RGB for the film. More channels: the reader converts every colour to RGB
-// through nRGB as it reads it, and the renderer stays RGB.
+// ColorSamples n <= 15: the reader hands colours over as their n values
+// (keptColorSamples; under three padded to three) and the renderer shades, traces and
+// sums samples in those channels, converting each sample to RGB for the film. Primitive
+// variables beyond three channels come as RGB (keptPrimitiveColorSamples). More than 15:
+// the reader converts every colour to RGB through nRGB as it reads it, and the renderer
+// stays RGB.
 void RibBuilder::colorSamples(L loc, Floats nRGB, Floats RGBn) {
     if (m_inWorld)
         m_diag.warning(loc, "ColorSamples is an option: inside the world block it applies to "
                             "the whole image, colours given before it included");
     for (Scene* s : {&m_options, &m_world})
         if (!s->colors.set(nRGB, RGBn)) s->colors = ColorSamples{};
-    if (nRGB.size() > 9)
-        m_diag.warning(loc, "ColorSamples " + std::to_string(nRGB.size() / 3) +
-                                ": more than 3 channels are converted to RGB as they are read "
-                                "(colours then multiply in RGB)");
+    if (nRGB.size() > 3 * size_t(ColorSamples::kMaxChannels))
+        m_diag.warning(
+            loc, "ColorSamples " + std::to_string(nRGB.size() / 3) + ": more than " +
+                     std::to_string(ColorSamples::kMaxChannels) +
+                     " channels are converted to RGB as they are read (colours "
+                     "then multiply in RGB)");
 }
 
 void RibBuilder::textureCoordinates(L, float s1, float t1, float s2, float t2, float s3,

@@ -16,24 +16,41 @@ bool ColorSamples::isRgb() const {
 
 bool ColorSamples::set(const std::vector<float>& nRGB, const std::vector<float>& RGBn) {
     const size_t k = nRGB.size() / 3;
-    if (k < 1 || k > 3 || nRGB.size() != 3 * k || RGBn.size() != 3 * k) return false;
+    if (k < 1 || k > size_t(kMaxChannels) || nRGB.size() != 3 * k || RGBn.size() != 3 * k)
+        return false;
     n = int(k);
-    toRgb.fill(0.0f);
+    if (k > 3) {
+        toRgb = nRGB;
+        fromRgb = RGBn;
+        return true;
+    }
+    toRgb.assign(9, 0.0f);
+    fromRgb.assign(9, 0.0f);
     for (size_t i = 0; i < 3 * k; ++i) toRgb[i] = nRGB[i];
     for (size_t j = 0; j < 3; ++j)
         for (size_t i = 0; i < 3; ++i) fromRgb[3 * j + i] = RGBn[j * k + std::min(i, k - 1)];
     return true;
 }
 
-// c * m in place (row-vector convention), as rsl_color_mul3 does on the device
-static void mul3(const std::array<float, 9>& m, float* c) {
-    const float a = c[0], b = c[1], d = c[2];
-    for (int j = 0; j < 3; ++j) c[j] = a * m[j] + b * m[3 + j] + d * m[6 + j];
+// c[0..rows) * m (rows x cols, row-vector convention) into c[0..cols), as the device's
+// rsl_color_rgb and rsl_rgb_color do
+static void mulRows(const std::vector<float>& m, size_t rows, float* c) {
+    const size_t cols = m.size() / rows;
+    std::vector<float> in(c, c + rows);
+    for (size_t j = 0; j < cols; ++j) {
+        float v = 0.0f;
+        for (size_t i = 0; i < rows; ++i) v += in[i] * m[i * cols + j];
+        c[j] = v;
+    }
 }
 
-void ColorSamples::fromRgbValues(float* rgb) const { mul3(fromRgb, rgb); }
+void ColorSamples::fromRgbValues(float* c) const {
+    mulRows(fromRgb, 3, c);
+}
 
-void ColorSamples::toRgbValues(float* c) const { mul3(toRgb, c); }
+void ColorSamples::toRgbValues(float* c) const {
+    mulRows(toRgb, size_t(slots()), c);
+}
 
 Camera Scene::deviceCamera() const {
     Camera d{};

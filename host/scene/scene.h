@@ -79,14 +79,20 @@ struct RenderOptionsSpec {
 // Both matrices are padded to 3x3, row-vector convention (out_j = sum_i in_i m[3i + j]):
 // toRgb's rows past n are zero; fromRgb's columns past n repeat its last column.
 struct ColorSamples {
+    static constexpr int kMaxChannels = 15;  // an rsl_color of 16 lanes, the last kept
     int n = 3;
-    std::array<float, 9> toRgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
-    std::array<float, 9> fromRgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    // n <= 3: both 3 x 3, padded (rsl_color_samples.clh); n > 3: n x 3 and 3 x n
+    std::vector<float> toRgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    std::vector<float> fromRgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
     bool isRgb() const;  // three channels, identity matrices: nothing to convert
-    // from nRGB (n x 3) and RGBn (3 x n) as RiColorSamples gives them; false if n > 3
+    // a colour's floats as the renderer keeps it (n padded to three: rsl_abi.h COLOURS)
+    int slots() const { return n > 3 ? n : 3; }
+    int lanes() const { return n <= 3 ? 4 : n <= 7 ? 8 : 16; }  // RSL_COLOR_LANES
+    // from nRGB (n x 3) and RGBn (3 x n) as RiColorSamples gives them; false if n > 15
     bool set(const std::vector<float>& nRGB, const std::vector<float>& RGBn);
-    void fromRgbValues(float* rgb) const;  // an RGB triple to the n channels, in place
-    void toRgbValues(float* c) const;      // n channels (padded to three) to RGB, in place
+    // in place: an RGB triple in c[0..3) to the channels c[0..slots()), and back
+    void fromRgbValues(float* c) const;
+    void toRgbValues(float* c) const;
 };
 
 struct Scene {
@@ -98,6 +104,11 @@ struct Scene {
     // Per-vertex primitive variables, 3 per triangle, filled only when some geometry gives
     // them (RT_PRIMVAR_* in TriangleAttr says which triangles do): (s, t, 0, 0), Cs, Os.
     std::vector<rt_float4> vertexSt, vertexCs, vertexOs;
+    // With more than three colour channels (ColorSamples n > 3): each material's Cs then
+    // Os in the n channels, 2 n floats a material (Material::cs and os hold their RGB);
+    // else empty. Varying colours (vertexCs, vertexOs, quadric and per-point values) stay
+    // RGB.
+    std::vector<float> materialChannels;
     // Shader parameters given per point (ShaderRef::pointParams, K of them): by triangle,
     // the first of its 3 x K values (corner-major) in pointParamValues, or
     // RT_NO_POINT_PARAMS; empty when no triangle has any. Quadrics: Quadric.point_params,

@@ -84,8 +84,9 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
                        isTripleType(p->type) || p->type == rib::ParamType::Matrix;
         std::vector<float> values = p->floats;
         if (p->type == rib::ParamType::Integer) values.assign(p->ints.begin(), p->ints.end());
-        // A single number for a colour or point fills all three components (RSL promotion).
-        if (numeric && values.size() == 1 && per == 3) values.assign(3, values[0]);
+        // A single number for a colour or point fills all its components (RSL promotion).
+        if (numeric && values.size() == 1 && per > 1 && base != rsl::BaseType::Matrix)
+            values.assign(size_t(per), values[0]);
         if (!numeric || values.size() != size_t(slot.size)) {
             diag.warning(call.loc, what + " is a " + slot.typeName + " of " +
                                        std::to_string(slot.size) + " float(s), got " +
@@ -94,8 +95,11 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
         }
         for (int i = 0; i < slot.size; ++i) block[size_t(slot.offset + i)] = values[size_t(i)];
         if (base == rsl::BaseType::Color && imager && !colors.isRgb())
-            for (int e = 0; e < elem; ++e)
-                colors.toRgbValues(&block[size_t(slot.offset + e * per)]);
+            for (int e = 0; e < elem; ++e) {  // RGB, then zeros (rsl_abi.h, COLOURS)
+                float* c = &block[size_t(slot.offset + e * per)];
+                colors.toRgbValues(c);
+                std::fill(c + 3, c + per, 0.0f);
+            }
         // RIB values are in the coordinate system current at the call: "shader" space.
         if (pointLike)
             for (int e = 0; e < elem; ++e)
@@ -123,7 +127,11 @@ std::vector<int32_t> pointParamOffsets(const rsl::EmittedShader& sh, const Shade
         int32_t offset = -1;  // not a parameter of this shader: RI ignores it
         for (const rsl::ParamSlot& slot : sh.params) {
             if (slot.name != name) continue;
-            if (slot.arraySize == 0 && slot.size == floats && slot.type.base != rsl::BaseType::String)
+            // (a colour comes as RGB when the scene has more than three channels: see
+            // rsl_pv_color in rsl_color_samples.clh)
+            const bool fits = slot.size == floats ||
+                              (slot.type.base == rsl::BaseType::Color && floats == 3);
+            if (slot.arraySize == 0 && fits && slot.type.base != rsl::BaseType::String)
                 offset = slot.offset;
             else
                 diag.warning(call.loc, "primitive variable \"" + name + "\" of " +
@@ -214,7 +222,7 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
         for (const auto& sh : prog.shaders)
             if (sh->name == name || prog.shaders.size() == 1) decl = sh.get();
     rsl::EmittedShader emitted;
-    if (decl) emitted = rsl::emitOpenCL(*decl, prog, rd);
+    if (decl) emitted = rsl::emitOpenCL(*decl, prog, rd, m_scene.colors.n);
     // The compiler's own messages carry the shader file's line and column.
     std::istringstream lines(messages.str());
     for (std::string l; std::getline(lines, l);)
@@ -356,13 +364,16 @@ ShadingSetup ShaderSet::prepare() {
     for (const std::string& fn : calledLightShaders)
         svc << "__attribute__((noinline)) static void rd_called_" << fn
             << "(RslGlobals* g, RSL_LIGHT_PARAMS params) { " << fn << "(g, params); }\n";
-    svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar light */\n"
-           "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* out) {\n"
+    svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar "
+           "light */\n"
+           "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* "
+           "out) {\n"
            "    RslGlobals lg = *g;\n    lg.Ps = Ps;\n    lg.L = (float4)(0.0f);\n"
-           "    lg.Cl = (float4)(0.0f);\n    lg.Ol = (float4)(0.0f);\n    switch (l) {\n";
+           "    lg.Cl = rsl_f2c(0.0f);\n    lg.Ol = rsl_f2c(0.0f);\n    switch (l) {\n";
     for (size_t i = 0; i < lightCalls.size(); ++i)
         svc << "    case " << i << ": " << lightCalls[i] << "; break;\n";
-    svc << "    default: break;\n    }\n    *out = lg;\n    return lg.Ol.w == 1.0f;\n}\n";
+    svc << "    default: break;\n    }\n    *out = lg;\n    return RSL_CW(lg.Ol) == "
+           "1.0f;\n}\n";
     svc << "static int rd_light_traces_shadows(int l) {\n    switch (l) {\n";
     for (size_t i = 0; i < lightMapShadowed.size(); ++i)
         if (lightMapShadowed[i]) svc << "    case " << i << ": return 0;\n";
@@ -376,36 +387,48 @@ ShadingSetup ShaderSet::prepare() {
     // The cache lookup is inlined where lights are read (each shading point reads every
     // light several times: builtins, illuminance loops, coefficients, shadow rays), so
     // repeated reads of one light fold; running a light is a call.
-    svc << "/* Runs light l at Ps: surface-side L, unshadowed Cl (w = 1: solar). */\n"
-           "static void rd_light_run(int l, const RslGlobals* g, float4 Ps, float4* L, float4* Cl) {\n"
+    svc << "/* Runs light l at Ps: surface-side L, unshadowed Cl (RSL_CW 1: solar). */\n"
+           "static void rd_light_run(int l, const RslGlobals* g, float4 Ps, float4* L, "
+           "rsl_color* Cl) {\n"
            "    RslGlobals lg;\n    int solar = rd_run_light(l, g, Ps, &lg);\n"
            "    *L = (float4)(-lg.L.x, -lg.L.y, -lg.L.z, 0.0f);\n"
-           "    *Cl = (float4)(lg.Cl.x, lg.Cl.y, lg.Cl.z, solar ? 1.0f : 0.0f);\n}\n"
+           "    *Cl = rsl_cw0(lg.Cl);\n    RSL_CW(*Cl) = solar ? 1.0f : 0.0f;\n}\n"
            "/* Light l at Ps: from the light cache when Ps is the shading point. */\n"
-           "static inline __attribute__((always_inline)) void rd_light_at(int l, const RslGlobals* g,\n"
-           "                                                              float4 Ps, float4* L, float4* Cl) {\n"
+           "static inline __attribute__((always_inline)) void rd_light_at(int l, const "
+           "RslGlobals* g,\n"
+           "                                                              float4 Ps, "
+           "float4* L, rsl_color* Cl) {\n"
            "    if (l < 32 && ((g->lights_off >> l) & 1u)) {  /* Illuminate off */\n"
-           "        *L = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n        *Cl = (float4)(0.0f);\n        return;\n    }\n"
-           "    if (l < g->light_cache_count && Ps.x == g->P.x && Ps.y == g->P.y && Ps.z == g->P.z) {\n"
-           "        *L = g->light_cache->L[l];\n        *Cl = g->light_cache->Cl[l];\n        return;\n    }\n"
+           "        *L = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n        *Cl = "
+           "(rsl_color)(0.0f);\n        return;\n    }\n"
+           "    if (l < g->light_cache_count && Ps.x == g->P.x && Ps.y == g->P.y && Ps.z "
+           "== g->P.z) {\n"
+           "        *L = g->light_cache->L[l];\n        *Cl = g->light_cache->Cl[l];\n   "
+           "     return;\n    }\n"
            "    rd_light_run(l, g, Ps, L, Cl);\n}\n"
            "static void rd_fill_light_cache(RslGlobals* g, RslLightCache* cache) {\n"
            "    g->light_cache_count = 0;\n"
            "    g->light_cache = cache;\n"
            "    int n = min(rsl_light_count(), RSL_LIGHT_CACHE);\n"
-           "    for (int l = 0; l < n; ++l) rd_light_at(l, g, g->P, &cache->L[l], &cache->Cl[l]);\n"
+           "    for (int l = 0; l < n; ++l) rd_light_at(l, g, g->P, &cache->L[l], "
+           "&cache->Cl[l]);\n"
            "    g->light_cache_count = n;\n}\n"
-           "inline __attribute__((always_inline)) int rsl_light(int l, const RslGlobals* g, float4 Ps,\n"
-           "                                                     float4* L, float4* Cl) {\n"
+           "inline __attribute__((always_inline)) int rsl_light(int l, const RslGlobals* "
+           "g, float4 Ps,\n"
+           "                                                     float4* L, rsl_color* "
+           "Cl) {\n"
            "    if (rd_light_is_ambient(l)) return 0;\n"
-           "    rd_light_at(l, g, Ps, L, Cl);\n    (*Cl).w = 0.0f;\n"
-           "    return (*Cl).x != 0.0f || (*Cl).y != 0.0f || (*Cl).z != 0.0f;\n}\n"
-           "float4 rsl_ambient(const RslGlobals* g) {\n    float4 sum = (float4)(0.0f);\n"
+           "    rd_light_at(l, g, Ps, L, Cl);\n    RSL_CW(*Cl) = 0.0f;\n"
+           "    return rsl_cnonzero(*Cl);\n}\n"
+           "rsl_color rsl_ambient(const RslGlobals* g) {\n    rsl_color sum = "
+           "rsl_f2c(0.0f);\n"
            "    for (int l = 0; l < rsl_light_count(); ++l) {\n"
-           "        if (!rd_light_is_ambient(l)) continue;\n        float4 L, Cl;\n"
+           "        if (!rd_light_is_ambient(l)) continue;\n        float4 L;\n        "
+           "rsl_color Cl;\n"
            "        rd_light_at(l, g, g->P, &L, &Cl);\n        sum += Cl;\n    }\n"
-           "    sum.w = 0.0f;\n    return sum;\n}\n"
-           "/* Camera space (to world); screen, raster and NDC are not provided: identity. */\n"
+           "    return rsl_cw0(sum);\n}\n"
+           "/* Camera space (to world); screen, raster and NDC are not provided: "
+           "identity. */\n"
            "RslMatrix rsl_space_matrix(int space) {\n    RslMatrix m;\n"
            "    m.r[0] = (float4)(1.0f, 0.0f, 0.0f, 0.0f);\n"
            "    m.r[1] = (float4)(0.0f, 1.0f, 0.0f, 0.0f);\n"
@@ -503,7 +526,8 @@ ShadingSetup ShaderSet::prepare() {
             shaders << sh->source << "\n";
             out.imager = true;
             imagerKernel =
-                "__kernel void imager_apply(uint width, uint count, __global float4* pixels,\n"
+                "__kernel void imager_apply(uint width, uint count, __global float4* "
+                "pixels,\n"
                 "                           __global const float* params,\n"
                 "                           __global uint* active_counter) {\n"
                 "    uint i = get_global_id(0);\n"
@@ -511,14 +535,18 @@ ShadingSetup ShaderSet::prepare() {
                 "    if (i >= count) return;\n"
                 "    float4 c = pixels[i];\n"
                 "    RslGlobals g;\n"
-                "    g.P = (float4)((float)(i % width) + 0.5f, (float)(i / width) + 0.5f, 0.0f, 0.0f);\n"
-                "    g.N = g.Ng = g.I = g.E = g.dPdu = g.dPdv = g.L = g.Cl = g.Ps = (float4)(0.0f);\n"
-                "    g.Cs = g.Os = (float4)(1.0f, 1.0f, 1.0f, 0.0f);\n"
-                "    g.Ci = (float4)(c.x, c.y, c.z, 0.0f);\n"
-                "    g.Oi = (float4)(c.w, c.w, c.w, 0.0f);\n"
-                "    g.Ol = (float4)(0.0f, 0.0f, 0.0f, c.w); /* alpha (rsl_abi.h, IMAGER) */\n"
+                "    g.P = (float4)((float)(i % width) + 0.5f, (float)(i / width) + "
+                "0.5f, 0.0f, 0.0f);\n"
+                "    g.N = g.Ng = g.I = g.E = g.dPdu = g.dPdv = g.L = g.Ps = "
+                "(float4)(0.0f);\n"
+                "    g.Cl = rsl_f2c(0.0f);\n"
+                "    g.Cs = g.Os = rsl_f2c(1.0f);\n"
+                "    g.Ci = rsl_c3(c); /* the film's RGB (rsl_abi.h, COLOURS) */\n"
+                "    g.Oi = rsl_f2c(c.w);\n"
+                "    g.Ol = rsl_f2c(0.0f);\n"
+                "    RSL_CW(g.Ol) = c.w; /* alpha (rsl_abi.h, IMAGER) */\n"
                 "    g.u = g.v = g.s = g.t = g.du = g.dv = g.time = 0.0f;\n"
-                "    g.ncomps = 3.0f;\n"
+                "    g.ncomps = (float)RSL_CHANNELS;\n"
                 "    g.light_cache_count = 0;\n"
                 "    g.light_cache = 0;\n"
                 "    g.loops_cut = 0;\n"
@@ -527,8 +555,11 @@ ShadingSetup ShaderSet::prepare() {
                 "    g.texctx = 0;\n"
                 "    RslEval ev;\n"
                 "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
-                "    " + sh->functionName + "(&g, params + " + std::to_string(offset) + ", &ev);\n"
-                "    pixels[i] = (float4)(g.Ci.x, g.Ci.y, g.Ci.z, g.Ol.w);\n"
+                "    " +
+                sh->functionName + "(&g, params + " + std::to_string(offset) +
+                ", &ev);\n"
+                "    float4 rgb = rsl_c2v(g.Ci);\n"
+                "    pixels[i] = (float4)(rgb.x, rgb.y, rgb.z, RSL_CW(g.Ol));\n"
                 "}\n";
         }
     }

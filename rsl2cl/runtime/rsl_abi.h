@@ -2,14 +2,18 @@
  * OpenCL C 1.2. Include this, then rsl_stdlib.clh, then the renderer's definitions of
  * the services below, then the generated shader functions.
  *
- * VALUES. float -> float; point/vector/normal/color -> float4 with w = 0 (colours in
- * xyz); matrix -> RslMatrix (4 float4 rows, RSL convention: a point is a row vector,
+ * VALUES. float -> float; point/vector/normal -> float4 with w = 0; color -> rsl_color
+ * (COLOURS); matrix -> RslMatrix (4 float4 rows, RSL convention: a point is a row vector,
  * p' = (p, 1) * M, translation in row 3); string -> int id (RSL_STRING_ID below).
  * Points are in "current" space, which is world space in RayDrive.
  *
- * COLOURS. Colours are RGB unless the renderer defines RSL_COLOR_SAMPLES (n = 1..3) with
+ * COLOURS. A colour is an rsl_color: a float4 (w = 0), or a float8 or float16 when the
+ * renderer defines RSL_COLOR_LANES 8 or 16 for more channels. Colours are RGB unless the
+ * renderer defines RSL_COLOR_SAMPLES (n = 1..15, at most RSL_COLOR_LANES - 1) with
  * RSL_NRGB and RSL_RGBN (rsl_color_samples.clh): then a colour's first n lanes are its n
- * channels (the other lanes repeat the last), and what is written as RGB comes in
+ * channels (in a float4 the lanes up to z repeat the last; in a float8 or float16 every
+ * lane past the n channels is 0), and the last lane (RSL_CW: w, s7, sf) is 0 in every
+ * colour value: the renderer keeps flags and alpha there. What is written as RGB comes in
  * through RGBn: colour literals (three numbers), colour-space casts and ctransform() to
  * "rgb", texture() and environment() texels. A float promoted to a colour fills every
  * channel; ctransform() to another space converts through nRGB and gives that space's
@@ -22,7 +26,8 @@
  *
  * PARAMETERS. Every shader parameter lives in a float block `params`; the offsets,
  * sizes and defaults come with the compiled shader (rsl::EmittedShader::params):
- * float 1 slot, point/vector/normal/color 3, matrix 16 (row-major), string 1 (its id
+ * float 1 slot, point/vector/normal 3, color max(3, n) (rsl2cl's colorChannels, n of
+ * COLOURS), matrix 16 (row-major), string 1 (its id
  * stored as a float: (float)RSL_STRING_ID), arrays n * size. Defaults of triples that
  * name a space ("shader", "hsv"...) must be converted to current/rgb by the host.
  * A parameter whose default is not a constant (e.g. `color c = Cs`) is computed by the
@@ -61,20 +66,21 @@
  * surface shaders parameter values per shading point (RI primitive variables of class
  * varying, vertex, facevarying or uniform named like a parameter): RslGlobals then
  * holds pv_count entries of (pv_slot, pv_value), the parameter's offset in the block
- * and its value there (a float in .x, a triple in xyz, already in current space). The
+ * and its value there (a float in .x, a triple in xyz, already in current space; a
+ * colour in its channels, or as RGB when colours have more than 3 channels). The
  * generated surface function replaces the block's value of each such non-array float
  * or triple parameter after reading the block; other slots are ignored. While
  * pv_count > 0 it also computes its hoisted declarations (hoist.h) at the point
  * instead of reading the prepared slots, since they may depend on those parameters.
  *
- * RANDOM. random() at call site k (numbered in the shader from 0; a colour or point takes
- * k, k + 1 and k + 2) hashes the shading point P and k, unless the renderer defines the
- * macro RSL_SAMPLE_RANDOM(g, site) (before this header), a float expression of the
- * globals and the site: then it returns that (RayDrive: number k of the sample's own
- * stream at its depth, from g->rng_pixel, rng_sample and rng_depth; two calls in a row a
- * stratified pair under its Sobol sampler). A macro, not a function the renderer defines
- * later: PoCL compiled a program with such a function into slower code throughout
- * (generate_eye, which never calls it, 1.9x).
+ * RANDOM. random() at call site k (numbered in the shader from 0; a point takes k, k + 1
+ * and k + 2, a colour k .. k + max(3, n) - 1) hashes the shading point P and k, unless
+ * the renderer defines the macro RSL_SAMPLE_RANDOM(g, site) (before this header), a float
+ * expression of the globals and the site: then it returns that (RayDrive: number k of the
+ * sample's own stream at its depth, from g->rng_pixel, rng_sample and rng_depth; two
+ * calls in a row a stratified pair under its Sobol sampler). A macro, not a function the
+ * renderer defines later: PoCL compiled a program with such a function into slower code
+ * throughout (generate_eye, which never calls it, 1.9x).
  *
  * STRINGS. A string's id is FNV-1a (32 bit) of its bytes masked to 24 bits, with the
  * empty string 0 (exactly representable in a float slot). rsl::stringId() in
@@ -115,8 +121,8 @@
  *   RSL_LIGHT_PARAMS is `__global const float*` unless the renderer defines it first
  *   (RayDrive bakes light parameters into __constant arrays); RSL_LIGHT_FUNCTION is
  *   empty unless the renderer defines it (RayDrive: always_inline with few lights, so
- *   each call folds its instance's constants). A solar statement also
- *   sets g->Ol.w = 1 so the renderer knows the light is infinitely far (its shadow ray
+ *   each call folds its instance's constants). A solar statement also sets
+ *   RSL_CW(g->Ol) = 1 so the renderer knows the light is infinitely far (its shadow ray
  *   has no end).
  *   g->Ps is the surface point. On return g->Cl is the unshadowed light colour (0 when
  *   the body of illuminate/solar did not run: outside the cone) and g->L is the
@@ -128,14 +134,14 @@
  *   __global const float* params, RslEval* ev); volume shaders read/write Ci, Oi;
  *   displacement shaders P and N. IMAGER: P is the pixel's raster position (x + 0.5,
  *   y + 0.5, 0), Ci its colour (premultiplied), Oi its alpha in every channel, and the
- *   global alpha enters and leaves in g->Ol.w.
+ *   global alpha enters and leaves in RSL_CW(g->Ol).
  *
  * SERVICES THE RENDERER PROVIDES (define after including rsl_stdlib.clh):
  *   int    rsl_light_count(void);
- *   int    rsl_light(int l, const RslGlobals* g, float4 Ps, float4* L, float4* Cl);
+ *   int    rsl_light(int l, const RslGlobals* g, float4 Ps, float4* L, rsl_color* Cl);
  *          0 when light l contributes nothing (or is ambient), else L = vector from
  *          Ps toward the light (surface-side), Cl = unshadowed colour.
- *   float4 rsl_ambient(const RslGlobals* g);  sum of the ambient lights' Cl
+ *   rsl_color rsl_ambient(const RslGlobals* g);  sum of the ambient lights' Cl
  *   RslMatrix rsl_space_matrix(int space);    maps points of `space` (RSL_SPACE_*) to
  *          current space (p_current = (p,1) * M); RSL_SPACE_CURRENT: identity; WORLD
  *          a translation when the renderer keeps the scene relative to the eye.
@@ -214,15 +220,21 @@
 
 struct RslTexContext; /* the renderer's texture state (TEXTURES) */
 
+#include "rsl_color_samples.clh" /* COLOURS: rsl_color, RSL_CW */
+
 /* The renderer's light cache (RslGlobals::light_cache): the first RSL_LIGHT_CACHE
- * lights' surface-side L and unshadowed Cl at P (w: 1 for a solar light). */
+ * lights' surface-side L and unshadowed Cl at P. */
 typedef struct RslLightCache {
     float4 L[RSL_LIGHT_CACHE];
-    float4 Cl[RSL_LIGHT_CACHE];
+    rsl_color Cl[RSL_LIGHT_CACHE]; /* (RSL_CW: 1 for a solar light) */
 } RslLightCache;
 
 typedef struct RslGlobals {
-    float4 P, N, Ng, I, E, dPdu, dPdv, Cs, Os, Ci, Oi, L, Cl, Ol, Ps;
+    float4 P, N, Ng, I, E, dPdu, dPdv;
+    rsl_color Cs, Os, Ci, Oi;
+    float4 L;
+    rsl_color Cl, Ol;
+    float4 Ps;
     float u, v, s, t, du, dv, ncomps, time;
     /* Renderer-owned, after every standard global: the light cache, computed once per
      * shading point and read by the renderer's rsl_light() in every evaluation mode (its
@@ -275,7 +287,7 @@ typedef struct RslEval {
     float outputs[RSL_MAX_OUTPUT_FLOATS];  /* output parameters at ParamSlot::outputOffset */
 #ifdef RSL_LIGHT_COEFS
     int coefs;                          /* LIGHT COEFFICIENTS: 1 to fill Ci_light */
-    float4 Ci_light[RSL_LIGHT_COEFS];   /* Ci's part of each light (times its Cl) */
+    rsl_color Ci_light[RSL_LIGHT_COEFS]; /* Ci's part of each light (times its Cl) */
 #endif
 } RslEval;
 

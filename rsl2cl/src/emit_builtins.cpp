@@ -45,12 +45,16 @@ std::string Emitter::message(const Expr& e) {
         error(e.loc, n + "() into an unsized array or a matrix array is not supported");
         return "0.0f";
     }
-    int slots = slotsOf(t.base) * count;
+    int slots = this->slots(t.base) * count;
     std::string buf = "_msg" + std::to_string(m_tmp++);
     m_pre.push_back("float " + buf + "[" + std::to_string(slots) + "];");
     std::string found = svc + exprAs(*e.args[0], BaseType::String) + ", " + buf + ", " +
                         std::to_string(slots) + ")";
-    std::string kc = el.isMatrix() ? "m" : el.isTriple() ? "v" : el.isString() ? "s" : "f";
+    std::string kc = el.isMatrix()   ? "m"
+                     : el.isColor()  ? "c"
+                     : el.isTriple() ? "v"
+                     : el.isString() ? "s"
+                                     : "f";
     if (t.isArray()) {
         kc[0] = char(kc[0] - 'a' + 'A');
         return "rsl_msg_" + kc + "(" + found + ", " + buf + ", " + lvalue(var) + ", " +
@@ -132,10 +136,10 @@ std::string Emitter::textureCall(const Expr& e, bool vret) {
                opt["blur"] + ")";
     }
     if (!vret) return "(" + call + ").x";
-    // a texture's or environment's texels are RGB (a shadow's fraction is the same in
-    // every channel)
-    const std::string texel = "rsl_w0(" + call + ")";
-    return n == "shadow" ? texel : rgbIn(texel);
+    // a texture's or environment's texels are RGB; a shadow's fraction is the same in
+    // every channel
+    if (n == "shadow") return "rsl_f2c((" + call + ").x)";
+    return rgbIn("rsl_w0(" + call + ")");
 }
 
 // textureinfo(name, "resolution" | "channels" | "type", var)
@@ -149,7 +153,8 @@ std::string Emitter::textureInfo(const Expr& e) {
         else if (what.text == "channels") code = 1, slots = 1;
         else if (what.text == "type") code = 2, slots = 1;
     }
-    int varSlots = slotsOf(var.type.base) * (var.type.isArray() ? var.type.arraySize : 1);
+    int varSlots =
+        this->slots(var.type.base) * (var.type.isArray() ? var.type.arraySize : 1);
     if (code < 0 || varSlots != slots) return "0.0f";
     std::string buf = "_tinfo" + std::to_string(m_tmp++);
     m_pre.push_back("float " + buf + "[" + std::to_string(slots) + "];");
@@ -171,7 +176,7 @@ std::string Emitter::builtin(const Expr& e) {
     const std::string& code = sig->code;
     TypeSpec ret = sig->ret;
     bool vret = ret.isTriple();
-    std::string vf = vret ? "_v" : "_f";
+    std::string vf = ret.isColor() ? "_c" : vret ? "_v" : "_f";
     auto argType = [&](size_t i) -> TypeSpec {
         if (i < sig->args.size()) return sig->args[i].anyType ? e.args[i]->type : sig->args[i].type;
         if (sig->repeatLast && !sig->args.empty()) return sig->args.back().type;
@@ -244,7 +249,7 @@ std::string Emitter::builtin(const Expr& e) {
             return fn + expr(*e.args[k + 1]) + ", " + std::to_string(e.args[k + 1]->type.arraySize) + ")";
         // the knots go into a temporary array declared before the statement
         std::string tmp = "_knots" + std::to_string(m_tmp++);
-        std::string lst = std::string(vret ? "float4 " : "float ") + tmp + "[] = {";
+        std::string lst = std::string(clType(ret)) + " " + tmp + "[] = {";
         for (size_t i = k + 1; i < na; ++i) lst += (i > k + 1 ? ", " : "") + A(i);
         m_pre.push_back(lst + "};");
         return fn + tmp + ", " + std::to_string(na - k - 1) + ")";
@@ -262,7 +267,7 @@ std::string Emitter::builtin(const Expr& e) {
     if (n == "random") m_out.usesRandom = true;
     if (n == "random") {  // (a colour or point takes three sites: site, site + 1, site + 2)
         const int site = m_randomSite;
-        m_randomSite += vf == "_f" ? 1 : 3;
+        m_randomSite += vf == "_f" ? 1 : vf == "_c" ? m_colorSlots : 3;
         return "rsl_random" + vf + "(g, " + std::to_string(site) + ")";
     }
     if (n == "noise" || n == "pnoise" || n == "cellnoise") {
@@ -278,8 +283,9 @@ std::string Emitter::builtin(const Expr& e) {
         return "(" + lvalue(*e.args[0]) + "." + n.substr(3, 1) + " = " + A(1) + ")";
     if (n == "length" || n == "normalize" || n == "distance" || n == "ptlined" ||
         n == "reflect" || n == "refract" || n == "depth" || n == "determinant" ||
-        n == "translate" || n == "scale" || n == "specularbrdf")
+        n == "translate" || n == "scale")
         return call("rsl_" + n);
+    if (n == "specularbrdf") return "rsl_f2c(" + call("rsl_" + n) + ")";
     if (n == "rotate") return call(ret.isMatrix() ? "rsl_mrotate" : "rsl_rotate");
     if (n == "faceforward")
         return "rsl_faceforward(" + A(0) + ", " + A(1) + ", " + (na > 2 ? A(2) : "g->Ng") + ")";
@@ -340,7 +346,7 @@ std::string Emitter::builtin(const Expr& e) {
     // ---- shading and lighting ----
     if (n == "ambient") {
         m_out.usesLighting = true;
-        return "rsl_w0(rsl_ambient(g))";
+        return "rsl_cw0(rsl_ambient(g))";
     }
     if (n == "diffuse" || n == "specular" || n == "phong") {
         m_out.usesLighting = true;
@@ -354,7 +360,7 @@ std::string Emitter::builtin(const Expr& e) {
         else m_traceSites.insert(&e);
         return "rsl_trace(ev, " + A(0) + ", " + A(1) + ")";
     }
-    if (n == "transmission") return "rsl_f2v(1.0f)";
+    if (n == "transmission") return "rsl_f2c(1.0f)";
     if (n == "texture" || n == "environment" || n == "shadow" || n == "bump")
         return textureCall(e, vret);
     if (n == "textureinfo") return textureInfo(e);

@@ -30,21 +30,23 @@ std::string slurpRuntime(const std::string& name) {
 }  // namespace
 
 std::string runtimeSource() {
-    std::string lib = slurpRuntime("rsl_stdlib.clh");
+    std::string lib = slurpRuntime("rsl_abi.h") + "\n" + slurpRuntime("rsl_stdlib.clh");
     for (const char* header : {"rsl_derivatives.clh", "rsl_color_samples.clh"}) {
         const std::string inc = std::string("#include \"") + header + "\"";
         if (size_t at = lib.find(inc); at != std::string::npos)
             lib.replace(at, inc.size(), slurpRuntime(header));
     }
-    return slurpRuntime("rsl_abi.h") + "\n" + lib + "\n";
+    return lib + "\n";
 }
 
-int slotsOf(BaseType b) {
+int slotsOf(BaseType b, int colorSlots) {
     switch (b) {
     case BaseType::Point:
     case BaseType::Vector:
     case BaseType::Normal:
-    case BaseType::Color: return 3;
+        return 3;
+    case BaseType::Color:
+        return colorSlots;
     case BaseType::Matrix: return 16;
     default: return 1;
     }
@@ -89,7 +91,7 @@ void Emitter::layoutParams() {
             error(p.loc, "array parameter '" + p.name + "' needs a size or a default");
         slot.arraySize = p.type.isArray() ? n : 0;
         slot.type.arraySize = slot.arraySize;
-        int elem = slotsOf(p.type.base);
+        int elem = slots(p.type.base);
         slot.size = elem * (p.type.isArray() ? std::max(n, 0) : 1);
         slot.offset = offset;
         offset += slot.size;
@@ -111,11 +113,16 @@ void Emitter::layoutParams() {
                     for (size_t i = 0; i < total && i < cv.values.size(); ++i)
                         slot.defaults[i] = float(cv.values[i]);
                     // a colour written in another space ("hsv"...): its RGB value
+                    // (each element's RGB in its first three slots)
                     if (p.type.base == BaseType::Color) {
-                        for (size_t i = 0; i + 3 <= total && i + 3 <= cv.values.size(); i += 3) {
+                        std::fill(slot.defaults.begin(), slot.defaults.end(), 0.0f);
+                        for (size_t i = 0, o = 0;
+                             i + 3 <= cv.values.size() && o + 3 <= total;
+                             i += 3, o += size_t(elem)) {
                             double c[3] = {cv.values[i], cv.values[i + 1], cv.values[i + 2]};
                             colorSpaceToRgb(cv.space, c);
-                            for (int k = 0; k < 3; ++k) slot.defaults[i + size_t(k)] = float(c[k]);
+                            for (int k = 0; k < 3; ++k)
+                                slot.defaults[o + size_t(k)] = float(c[k]);
                         }
                         slot.rgbDefault = true;
                     }
@@ -141,13 +148,16 @@ void Emitter::layoutParams() {
 }
 
 void Emitter::writeOutputs() {
-    if (m_sh.kind == ShaderKind::Imager) line("g->Ol.w = _g_alpha;");
+    if (m_sh.kind == ShaderKind::Imager) line("RSL_CW(g->Ol) = _g_alpha;");
     for (size_t i = 0; i < m_sh.params.size() && i < m_out.params.size(); ++i) {
         const ParamSlot& slot = m_out.params[i];
         if (slot.outputOffset < 0) continue;
         std::string name = "p_" + slot.name, o = std::to_string(slot.outputOffset);
-        int elem = slotsOf(slot.type.base);
+        int elem = slots(slot.type.base);
         auto one = [&](const std::string& v, const std::string& off) {
+            if (slot.type.isColor())
+                return "for (int _k = 0; _k < " + std::to_string(elem) +
+                       "; ++_k) ev->outputs[" + off + " + _k] = rsl_comp(" + v + ", _k);";
             if (elem == 3)
                 return "ev->outputs[" + off + "] = " + v + ".x; ev->outputs[" + off + " + 1] = " + v +
                        ".y; ev->outputs[" + off + " + 2] = " + v + ".z;";
@@ -218,8 +228,9 @@ static bool hasLightStatement(const Stmt& s) {
 }
 
 std::string Emitter::blockRead(BaseType base, const std::string& off) const {
-    switch (slotsOf(base)) {
-    case 3: return "rsl_param3(params, " + off + ")";
+    if (base == BaseType::Color) return "rsl_paramc(params, " + off + ")";
+    switch (slots(base)) {
+        case 3: return "rsl_param3(params, " + off + ")";
     case 16: return "rsl_param16(params, " + off + ")";
     default:
         return base == BaseType::String ? "(int)params[" + off + "]" : "params[" + off + "]";
@@ -233,8 +244,11 @@ void Emitter::emitParamReads(bool computedDefaults) {
         std::string name = "p_" + p.name, o = std::to_string(slot.offset);
         if (slot.arraySize > 0) {
             line(std::string(clType(p.type)) + " " + name + "[" + std::to_string(slot.arraySize) + "];");
-            line("for (int _i = 0; _i < " + std::to_string(slot.arraySize) + "; ++_i) " + name +
-                 "[_i] = " + blockRead(p.type.base, o + " + " + std::to_string(slotsOf(p.type.base)) + " * _i") + ";");
+            line("for (int _i = 0; _i < " + std::to_string(slot.arraySize) + "; ++_i) " +
+                 name + "[_i] = " +
+                 blockRead(p.type.base,
+                           o + " + " + std::to_string(slots(p.type.base)) + " * _i") +
+                 ";");
             continue;
         }
         line(std::string(clType(p.type)) + " " + name + " = " + blockRead(p.type.base, o) + ";");
@@ -258,16 +272,22 @@ void Emitter::emitPrepare() {
         std::string name = "v_" + d->name;
         std::string off = std::to_string(m_out.prepOffset + m_hoist.slot.at(d));
         line(std::string(clType(d->type)) + " " + name + " = " + exprAs(*d->init, d->type) + ";");
-        switch (slotsOf(d->type.base)) {
-        case 3:
-            line("params[" + off + "] = " + name + ".x; params[" + off + " + 1] = " + name +
-                 ".y; params[" + off + " + 2] = " + name + ".z;");
-            break;
-        case 16:
-            line("for (int _k = 0; _k < 16; ++_k) params[" + off + " + _k] = rsl_mget(" + name +
-                 ", _k / 4, _k % 4);");
-            break;
-        default: line("params[" + off + "] = " + name + ";");
+        if (d->type.isColor()) {
+            line("for (int _k = 0; _k < " + std::to_string(m_colorSlots) +
+                 "; ++_k) params[" + off + " + _k] = rsl_comp(" + name + ", _k);");
+            continue;
+        }
+        switch (slots(d->type.base)) {
+            case 3:
+                line("params[" + off + "] = " + name + ".x; params[" + off +
+                     " + 1] = " + name + ".y; params[" + off + " + 2] = " + name + ".z;");
+                break;
+            case 16:
+                line("for (int _k = 0; _k < 16; ++_k) params[" + off +
+                     " + _k] = rsl_mget(" + name + ", _k / 4, _k % 4);");
+                break;
+            default:
+                line("params[" + off + "] = " + name + ";");
         }
     }
     m_body << "}\n";
@@ -282,10 +302,16 @@ void Emitter::emitPointParams() {
     for (size_t i = 0; i < m_sh.params.size(); ++i) {
         const VarDecl& p = m_sh.params[i];
         const ParamSlot& slot = m_out.params[i];
-        int n = slotsOf(p.type.base);
-        if (slot.arraySize > 0 || (n != 1 && n != 3) || p.type.base == BaseType::String) continue;
-        cases += "case " + std::to_string(slot.offset) + ": p_" + p.name + " = g->pv_value[_k]" +
-                 (n == 1 ? ".x" : "") + "; break; ";
+        const BaseType b = p.type.base;
+        if (slot.arraySize > 0 || b == BaseType::String || b == BaseType::Matrix)
+            continue;
+        // (a colour comes as a float4: see rsl_pv_color)
+        const std::string v = "g->pv_value[_k]";
+        cases += "case " + std::to_string(slot.offset) + ": p_" + p.name + " = " +
+                 (b == BaseType::Float ? v + ".x"
+                  : p.type.isColor()   ? "rsl_pv_color(" + v + ")"
+                                       : v) +
+                 "; break; ";
     }
     if (cases.empty()) return;
     line("#ifdef RSL_MAX_PARAM_PRIMVARS");
@@ -305,14 +331,15 @@ void Emitter::emitShader() {
     if (light) {
         line("RslEval _ev; _ev.deriv = 0; _ev.tex = g->texctx; _ev.mode_light = -1; _ev.mode_trace = -1; _ev.trace_count = 0;");
         line("RslEval* ev = &_ev;");
-        line("g->Cl = rsl_f2v(0.0f);");
+        line("g->Cl = rsl_f2c(0.0f);");
     } else {
         line("ev->trace_count = 0;");
         if (m_coefs) coefZero("ev->Ci_light", BaseType::Color);
     }
     line("float _g_alpha = 0.0f, _g_dtime = 0.0f; float4 _g_dPdtime = rsl_f2v(0.0f);");
     line("(void)params; (void)_g_alpha; (void)_g_dtime; (void)_g_dPdtime;");
-    if (m_sh.kind == ShaderKind::Imager) line("_g_alpha = g->Ol.w; /* rsl_abi.h, IMAGER */");
+    if (m_sh.kind == ShaderKind::Imager)
+        line("_g_alpha = RSL_CW(g->Ol); /* rsl_abi.h, IMAGER */");
     // the spaces are read only when used: insert them here once the body is emitted
     std::string head = m_body.str();
     m_body.str("");
@@ -413,10 +440,10 @@ void Emitter::lightLoop(const Stmt& s) {
         line("for (int _l" + k + " = 0; _l" + k + " < _nl" + k + "; ++_l" + k + ") {");
         ++m_indent;
         // the unshadowed Cl (_Clr: what light coefficients read), then this mode's
-        line("float4 _L" + k + ", _Clr" + k + ";");
+        line("float4 _L" + k + "; rsl_color _Clr" + k + ";");
         line("if (!rsl_light_raw(_l" + k + ", g, _ilP" + k + ", _ilA" + k + ", _ilT" + k +
              ", &_L" + k + ", &_Clr" + k + ")) continue;");
-        line("float4 _Cl" + k + " = rsl_light_mode(ev, _l" + k + ", _Clr" + k + ");");
+        line("rsl_color _Cl" + k + " = rsl_light_mode(ev, _l" + k + ", _Clr" + k + ");");
         line("g->L = _L" + k + "; g->Cl = _Cl" + k + ";");
         m_lightVars.push_back("_l" + k);
         m_lightRaw.push_back("_Clr" + k);
@@ -440,7 +467,9 @@ void Emitter::lightLoop(const Stmt& s) {
     } else {
         line("g->L = " + (s.args.size() == 2 ? "rsl_w0(" + exprAs(*s.args[0], BaseType::Vector) + ")"
                                               : std::string("rsl_f2v(0.0f)")) + ";");
-        line("g->Ol.w = 1.0f; /* solar: the light is infinitely far (RSL_SOLAR_FLAG) */");
+        line(
+            "RSL_CW(g->Ol) = 1.0f; /* solar: the light is infinitely far "
+            "(RSL_SOLAR_FLAG) */");
     }
     line("{");
     ++m_indent;
@@ -568,7 +597,7 @@ void Emitter::run() {
     if (m_sh.kind != ShaderKind::Light) {  // lights' parameters are compiled-in constants
         std::vector<bool> computed;
         for (const ParamSlot& p : m_out.params) computed.push_back(!p.constantDefault);
-        m_hoist = planHoisting(m_sh, computed);
+        m_hoist = planHoisting(m_sh, computed, m_colorSlots);
     }
     m_out.prepOffset = m_out.spaceOffset + 32;  // RSL_SPACE_FLOATS
     m_out.prepFloats = m_hoist.floats;
@@ -584,12 +613,14 @@ void Emitter::run() {
     emitPrepare();
 }
 
-EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnostics& diag) {
+EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnostics& diag,
+                         int colorChannels) {
     EmittedShader out;
     int before = diag.errorCount();
     LightTaint taint;
     bool affine = shader.kind == ShaderKind::Light || checkAffine(shader, prog, diag, &taint);
     Emitter em(shader, prog, diag, out);
+    em.m_colorSlots = std::max(3, colorChannels);
     if (affine && coefsSupported(shader, taint)) em.m_coefs = &taint;
     em.run();
     out.lightCoefs = em.m_coefs != nullptr;

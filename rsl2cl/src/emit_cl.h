@@ -68,7 +68,10 @@ int stringId(const std::string& s);
 
 // Generates OpenCL C for `shader` (of prog, already type-checked without errors).
 // Errors (non-affine Ci, unsupported constructs) and warnings go to diag.
-EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnostics& diag);
+// colorChannels: the renderer's colour channels n (rsl_abi.h, COLOURS); a colour takes
+// max(3, n) parameter slots.
+EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnostics& diag,
+                         int colorChannels = 3);
 
 // What depends on the lights' Cl in an affine shader (affine.cpp).
 struct LightTaint {

@@ -318,7 +318,7 @@ std::string Emitter::lin(const Expr& e, const std::string& k) {
         if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") {
             if (k == m_lightVars.back()) return m_lightRaw.back();
             return "(" + k + " == " + m_lightVars.back() + " ? " + m_lightRaw.back() +
-                   " : rsl_f2v(0.0f))";
+                   " : rsl_f2c(0.0f))";
         }
         return coefName(e.symbol) + "[" + k + "]";
     case ExprKind::Unary: return "(-" + lin(*e.args[0], k) + ")";
@@ -351,11 +351,11 @@ std::string Emitter::lin(const Expr& e, const std::string& k) {
         return fn + "_light(g, " + k + v.substr(head.size());
     }
     case ExprKind::Cast: return coerce(lin(*e.args[0], k), e.args[0]->type, e.castType);
-    case ExprKind::Tuple: {
+    case ExprKind::Tuple: {  // (a colour written as three numbers is RGB, as in expr())
         std::string s = "rsl_v3(";
         for (size_t i = 0; i < e.args.size(); ++i)
             s += (i ? ", " : "") + linAs(*e.args[i], BaseType::Float, k);
-        return s + ")";
+        return e.type.isColor() ? rgbIn(s + ")") : s + ")";
     }
     default: break;
     }

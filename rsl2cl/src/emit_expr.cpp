@@ -12,7 +12,9 @@ const char* clType(const TypeSpec& t) {
     case BaseType::Point:
     case BaseType::Vector:
     case BaseType::Normal:
-    case BaseType::Color: return "float4";
+        return "float4";
+    case BaseType::Color:
+        return "rsl_color";
     case BaseType::Matrix: return "RslMatrix";
     case BaseType::String: return "int";
     case BaseType::Void: return "void";
@@ -25,7 +27,9 @@ std::string clZero(const TypeSpec& t) {
     case BaseType::Point:
     case BaseType::Vector:
     case BaseType::Normal:
-    case BaseType::Color: return "rsl_f2v(0.0f)";
+        return "rsl_f2v(0.0f)";
+    case BaseType::Color:
+        return "rsl_f2c(0.0f)";
     case BaseType::Matrix: return "rsl_mscalar(0.0f)";
     case BaseType::String: return "0";
     default: return "0.0f";
@@ -80,7 +84,10 @@ std::string Emitter::stringLiteral(const std::string& s) {
 
 std::string Emitter::coerce(const std::string& code, const TypeSpec& from, const TypeSpec& to) {
     if (from.isArray() || to.isArray()) return code;
+    if (from.isFloat() && to.isColor()) return "rsl_f2c(" + code + ")";
     if (from.isFloat() && to.isTriple()) return "rsl_f2v(" + code + ")";
+    if (from.isPointLike() && to.isColor()) return "rsl_c3(" + code + ")";  // a cast
+    if (from.isColor() && to.isPointLike()) return "rsl_c2v(" + code + ")";
     if (from.isFloat() && to.isMatrix()) return "rsl_mscalar(" + code + ")";
     return code;
 }
@@ -119,7 +126,7 @@ static bool isRel(const std::string& op) {
 std::string Emitter::binop(const std::string& op, const std::string& a, const TypeSpec& ta,
                            const std::string& b, const TypeSpec& tb, const SourceLoc& loc) {
     TypeSpec r = binaryResult(op, ta, tb);
-    if (op == "." ) return "rsl_dot(" + a + ", " + b + ")";
+    if (op == ".") return (ta.isColor() ? "rsl_cdot(" : "rsl_dot(") + a + ", " + b + ")";
     if (op == "^") return "rsl_cross(" + a + ", " + b + ")";
     if (op == "&&" || op == "||") return "((float)(" + a + " " + op + " " + b + "))";
     if (op == "==" || op == "!=") {
@@ -127,9 +134,12 @@ std::string Emitter::binop(const std::string& op, const std::string& a, const Ty
         if (ta.isMatrix() || tb.isMatrix())
             return "((float)" + neg + "rsl_meq(" + coerce(a, ta, BaseType::Matrix) + ", " +
                    coerce(b, tb, BaseType::Matrix) + "))";
-        if (ta.isTriple() || tb.isTriple())
-            return "((float)" + neg + "rsl_veq(" + coerce(a, ta, BaseType::Color) + ", " +
+        if (ta.isColor() || tb.isColor())
+            return "((float)" + neg + "rsl_ceq(" + coerce(a, ta, BaseType::Color) + ", " +
                    coerce(b, tb, BaseType::Color) + "))";
+        if (ta.isTriple() || tb.isTriple())
+            return "((float)" + neg + "rsl_veq(" + coerce(a, ta, BaseType::Vector) +
+                   ", " + coerce(b, tb, BaseType::Vector) + "))";
         return "((float)(" + a + " " + op + " " + b + "))";
     }
     if (isRel(op)) return "((float)(" + a + " " + op + " " + b + "))";
@@ -153,8 +163,9 @@ std::string Emitter::binop(const std::string& op, const std::string& a, const Ty
             return "(" + coerce(a, ta, r) + " " + op + " " + coerce(b, tb, r) + ")";
         if (op == "*") return "(" + a + " * " + b + ")";
         if (op == "/") {
-            if (tb.isFloat()) return "rsl_div_vf(" + a + ", " + b + ")";
-            return "rsl_div_vv(" + coerce(a, ta, r) + ", " + b + ")";
+            const std::string k = r.isColor() ? "c" : "v";
+            if (tb.isFloat()) return "rsl_div_" + k + "f(" + a + ", " + b + ")";
+            return "rsl_div_" + k + k + "(" + coerce(a, ta, r) + ", " + b + ")";
         }
     }
     if (r.isFloat()) return "(" + a + " " + op + " " + b + ")";
@@ -227,7 +238,8 @@ std::string Emitter::expr(const Expr& e) {
             if (c == 0) return a;
             // the triple's own components are in that space: not an RGB colour yet
             const Expr& in = *e.args[0];
-            if (in.kind == ExprKind::Tuple && !in.type.isArray()) a = tupleOf(in);
+            if (in.kind == ExprKind::Tuple && !in.type.isArray())
+                a = "rsl_c3(" + tupleOf(in) + ")";
             return ctransformFn() + std::to_string(c) + ", RSL_COLOR_RGB, " + a + ")";
         }
         int sp = spaceIdOf(e.text);

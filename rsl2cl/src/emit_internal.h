@@ -13,12 +13,13 @@
 
 namespace rsl {
 
-const char* clType(const TypeSpec& t);         // element C type: float, float4, RslMatrix, int
+const char* clType(
+    const TypeSpec& t);  // element C type: float, float4, rsl_color, RslMatrix, int
 std::string clZero(const TypeSpec& t);          // zero of the element type
 std::string clNumber(double v);                 // 1.0f
 int spaceIdOf(const std::string& name);         // RSL_SPACE_* value or -1
 int colorIdOf(const std::string& name);         // RSL_COLOR_* value or -1
-int slotsOf(BaseType b);                        // float slots of one value in a block
+int slotsOf(BaseType b, int colorSlots);        // float slots of one value in a block
 // Light coefficients (emit_coefs.cpp): whether e depends on some light's Cl, and whether
 // the shader's light-dependent values are all of the kinds the code generator carries.
 bool lightDependent(const Expr& e, const LightTaint& t);
@@ -39,8 +40,9 @@ public:
     // film's RGB, colours stay RGB (rsl_abi.h, COLOURS).
     bool rgbShader() const { return m_sh.kind == ShaderKind::Imager; }
     std::string rgbIn(const std::string& rgb) const {
-        return rgbShader() ? rgb : "rsl_rgb_color(" + rgb + ")";
+        return (rgbShader() ? "rsl_c3(" : "rsl_rgb_color(") + rgb + ")";
     }
+    int slots(BaseType b) const { return slotsOf(b, m_colorSlots); }
     const char* ctransformFn() const { return rgbShader() ? "rsl_ctransform_rgb(" : "rsl_ctransform("; }
     std::string coerce(const std::string& code, const TypeSpec& from, const TypeSpec& to);
     std::string binop(const std::string& op, const std::string& a, const TypeSpec& ta,
@@ -114,6 +116,7 @@ public:
     int m_indent = 1;
     int m_tmp = 0;
     int m_randomSite = 0;
+    int m_colorSlots = 3;  // a colour's parameter slots: max(3, colour channels)
     const FunctionDecl* m_func = nullptr;                    // function being emitted
     std::map<const FunctionDecl*, std::string> m_fnNames;    // reachable user functions
     std::vector<const FunctionDecl*> m_fnOrder;

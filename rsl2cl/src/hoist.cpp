@@ -12,13 +12,15 @@ namespace {
 constexpr unsigned kImpure = BF_VARYING | BF_DERIV | BF_TRACE | BF_TEXTURE | BF_ENVIRONMENT |
                              BF_SHADOW | BF_LIGHTING | BF_MESSAGE;
 
-int slotsFor(const TypeSpec& t) {
+int slotsFor(const TypeSpec& t, int colorSlots) {
     switch (t.base) {
     case BaseType::Float: return 1;
     case BaseType::Point:
     case BaseType::Vector:
     case BaseType::Normal:
-    case BaseType::Color: return 3;
+        return 3;
+    case BaseType::Color:
+        return colorSlots;
     case BaseType::Matrix: return 16;
     default: return 0;  // strings and the rest stay where they are
     }
@@ -26,7 +28,8 @@ int slotsFor(const TypeSpec& t) {
 
 class Planner {
 public:
-    Planner(const ShaderDecl& sh, const std::vector<bool>& computed) : m_sh(sh) {
+    Planner(const ShaderDecl& sh, const std::vector<bool>& computed, int colorSlots)
+        : m_sh(sh), m_colorSlots(colorSlots) {
         written(*sh.body);
         // a parameter the body assigns is not the instance's value once it has
         for (size_t i = 0; i < sh.params.size(); ++i)
@@ -40,7 +43,7 @@ public:
         for (const StmtPtr& s : m_sh.body->stmts) {
             if (s->kind != StmtKind::Decl) continue;
             for (const VarDecl& d : s->decls) {
-                int n = slotsFor(d.type);
+                int n = slotsFor(d.type, m_colorSlots);
                 if (!d.init || d.isExtern || d.type.isArray() || n == 0 || !d.symbol ||
                     d.symbol->varying || m_written.count(d.symbol) || !pure(*d.init) ||
                     !worthIt(*d.init))
@@ -118,13 +121,15 @@ private:
     }
 
     const ShaderDecl& m_sh;
+    const int m_colorSlots;
     std::set<const Symbol*> m_uniformParams, m_hoisted, m_written;
 };
 
 }  // namespace
 
-HoistPlan planHoisting(const ShaderDecl& shader, const std::vector<bool>& computedDefault) {
-    return Planner(shader, computedDefault).run();
+HoistPlan planHoisting(const ShaderDecl& shader, const std::vector<bool>& computedDefault,
+                       int colorSlots) {
+    return Planner(shader, computedDefault, colorSlots).run();
 }
 
 }  // namespace rsl

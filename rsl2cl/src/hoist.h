@@ -20,6 +20,8 @@ struct HoistPlan {
 
 // `computedDefault[i]` is true for parameter i whose default is not a constant (it is
 // computed per shading point, so nothing that reads it can be hoisted).
-HoistPlan planHoisting(const ShaderDecl& shader, const std::vector<bool>& computedDefault);
+// colorSlots: the slots a colour takes (max(3, colour channels)).
+HoistPlan planHoisting(const ShaderDecl& shader, const std::vector<bool>& computedDefault,
+                       int colorSlots = 3);
 
 }  // namespace rsl

@@ -1,14 +1,16 @@
-// color_samples_test.cpp: ColorSamples n <= 3 shades, traces and sums samples in the n
+// color_samples_test.cpp: ColorSamples n <= 15 shades, traces and sums samples in the n
 // colour channels and converts each sample to RGB for the film (nRGB); RGB written in a
 // shader (literals, colour-space casts, textures) comes in through RGBn. Analytic pixels
-// for one and two channels, and a permutation of the channels that must give the RGB
-// image exactly (products commute with it, the conversions are exact).
+// for one, two and four channels; a permutation of the channels, and 6 and 12 channels
+// repeating RGB's, that must give the RGB image (products commute with them, the
+// conversions are exact or nearly).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include "render_harness.h"
@@ -76,6 +78,34 @@ double expectSameImage(const Rendered& want, const Rendered& got, bool grey) {
     return sum;
 }
 
+// A lit scene for the channel tests: a distant and an ambient light, a transparent sphere
+// whose shader writes RGB literals, colour-space casts and ctransform and has an RGB
+// parameter default, a reflecting metal sphere (traced rays), a plastic wall. Every
+// colour the RIB gives is written by c(r, g, b) in the scene's channels.
+using ColorWriter = std::function<std::string(const char*, const char*, const char*)>;
+Rendered litScene(const std::string& colorSamples, const ColorWriter& c) {
+    return renderRib(
+        shaderPath() + colorSamples +
+        "Format 24 24 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" 40\n"
+        "WorldBegin\nLightSource \"distantlight\" 1 \"lightcolor\" " +
+        c("1", "0.8", "0.6") +
+        " \"from\" [1 1 -1] \"to\" [0 0 0]\n"
+        "LightSource \"ambientlight\" 2 \"intensity\" 0.2 \"lightcolor\" " +
+        c("0.3", "0.6", "1") +
+        "\n"
+        "AttributeBegin\nColor " +
+        c("0.9", "0.5", "0.2") + "\nOpacity " + c("1", "0.5", "0.25") +
+        "\nSurface \"cstinted\"\nTranslate -0.5 0 4\nSphere 1 -1 1 360\nAttributeEnd\n"
+        "AttributeBegin\nColor " +
+        c("0.2", "0.4", "0.9") +
+        "\nSurface \"shinymetal\" \"Kr\" 0.5\n"
+        "Translate 0.8 0 5\nSphere 1 -1 1 360\nAttributeEnd\n"
+        "AttributeBegin\nColor " +
+        c("0.3", "0.9", "0.4") +
+        "\nSurface \"plastic\"\n"
+        "Polygon \"P\" [-6 -6 8  6 -6 8  6 6 8  -6 6 8]\nAttributeEnd\nWorldEnd\n");
+}
+
 }  // namespace
 
 // A colour of one value is that channel; the film shows it through nRGB.
@@ -123,21 +153,12 @@ TEST(ColorSamples, TwoChannels) {
 // (continuation rays) and a mirror's traced rays.
 TEST(ColorSamples, PermutedChannelsGiveTheRgbImage) {
     auto scene = [](bool swapped) {
-        auto c = [&](const char* r, const char* g, const char* b) {
-            return std::string("[") + (swapped ? b : r) + " " + g + " " + (swapped ? r : b) + "]";
-        };
-        return renderRib(
-            shaderPath() + (swapped ? "ColorSamples [0 0 1 0 1 0 1 0 0] [0 0 1 0 1 0 1 0 0]\n" : "") +
-            "Format 24 24 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" 40\n"
-            "WorldBegin\nLightSource \"distantlight\" 1 \"lightcolor\" " + c("1", "0.8", "0.6") +
-            " \"from\" [1 1 -1] \"to\" [0 0 0]\n"
-            "LightSource \"ambientlight\" 2 \"intensity\" 0.2 \"lightcolor\" " + c("0.3", "0.6", "1") + "\n"
-            "AttributeBegin\nColor " + c("0.9", "0.5", "0.2") + "\nOpacity " + c("1", "0.5", "0.25") +
-            "\nSurface \"cstinted\"\nTranslate -0.5 0 4\nSphere 1 -1 1 360\nAttributeEnd\n"
-            "AttributeBegin\nColor " + c("0.2", "0.4", "0.9") + "\nSurface \"shinymetal\" \"Kr\" 0.5\n"
-            "Translate 0.8 0 5\nSphere 1 -1 1 360\nAttributeEnd\n"
-            "AttributeBegin\nColor " + c("0.3", "0.9", "0.4") + "\nSurface \"plastic\"\n"
-            "Polygon \"P\" [-6 -6 8  6 -6 8  6 6 8  -6 6 8]\nAttributeEnd\nWorldEnd\n");
+        return litScene(
+            swapped ? "ColorSamples [0 0 1 0 1 0 1 0 0] [0 0 1 0 1 0 1 0 0]\n" : "",
+            [&](const char* r, const char* g, const char* b) {
+                return std::string("[") + (swapped ? b : r) + " " + g + " " +
+                       (swapped ? r : b) + "]";
+            });
     };
     Rendered rgb = scene(false), swapped = scene(true);
     // Continuation rays through the transparent sphere reach opaque surfaces: their
@@ -186,22 +207,119 @@ TEST(ColorSamples, OneChannelRaysCarryTwoFloats) {
     EXPECT_GT(expectSameImage(rgb, grey, true), 1.0);
 }
 
-// An imager works on the film's RGB: under swapped channels its RGB literals, colour-space
-// casts and the RIB's colours (given in the scene's channels) give the RGB image.
+// An imager works on the film's RGB: under swapped channels, and under six channels that
+// repeat RGB's, its RGB literals, colour-space casts and the RIB's colours (given in the
+// scene's channels) give the RGB image.
 TEST(ColorSamples, ImagersWorkOnTheFilmsRgb) {
+    const char* six =
+        "ColorSamples [0.5 0 0 0 0.5 0 0 0 0.5 0.5 0 0 0 0.5 0 0 0 0.5] "
+        "[1 0 0 1 0 0  0 1 0 0 1 0  0 0 1 0 0 1]\n";
     for (const char* imager : {"Imager \"background\" \"bgcolor\" ", "Imager \"cstint\" "}) {
-        auto scene = [&](bool swapped) {
+        // mode 0: RGB, 1: red and blue swapped, 2: six channels
+        auto scene = [&](int mode) {
             const bool bg = std::string(imager).find("background") != std::string::npos;
-            return renderRib(shaderPath() +
-                             (swapped ? "ColorSamples [0 0 1 0 1 0 1 0 0] [0 0 1 0 1 0 1 0 0]\n" : "") +
-                             imager + (bg ? (swapped ? "[0.6 0.4 0.2]" : "[0.2 0.4 0.6]") : "") + "\n" +
-                             "Format 16 16 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"
-                             "WorldBegin\nColor " + (swapped ? "[0.3 0.8 0.9]" : "[0.9 0.8 0.3]") +
-                             "\nSurface \"constant\"\nTranslate 0 0 5\nSphere 0.6 -0.6 0.6 360\nWorldEnd\n");
+            const char* bgcolor[] = {"[0.2 0.4 0.6]", "[0.6 0.4 0.2]",
+                                     "[0.2 0.4 0.6 0.2 0.4 0.6]"};
+            const char* color[] = {"[0.9 0.8 0.3]", "[0.3 0.8 0.9]",
+                                   "[0.9 0.8 0.3 0.9 0.8 0.3]"};
+            const char* samples[] = {
+                "", "ColorSamples [0 0 1 0 1 0 1 0 0] [0 0 1 0 1 0 1 0 0]\n", six};
+            return renderRib(
+                shaderPath() + samples[mode] + imager + (bg ? bgcolor[mode] : "") +
+                "\nFormat 16 16 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"
+                "WorldBegin\nColor " +
+                color[mode] +
+                "\nSurface \"constant\"\nTranslate 0 0 5\nSphere 0.6 -0.6 0.6 "
+                "360\nWorldEnd\n");
         };
         SCOPED_TRACE(imager);
-        Rendered rgb = scene(false), swapped = scene(true);
+        Rendered rgb = scene(0), swapped = scene(1), wide = scene(2);
         EXPECT_GT(expectSameImage(rgb, swapped, false), 1.0);
+        EXPECT_GT(expectSameImage(rgb, wide, false), 1.0);
         EXPECT_NE(rgb.at(0, 0).r, rgb.at(0, 0).b);  // the background is coloured
     }
+}
+
+// More than three channels (rsl_abi.h COLOURS: float8 and float16 colours, ray weights of
+// 8 and 16 floats): 6 and 12 channels that are RGB's repeated (channel i shows RGB's
+// i % 3, with 1/2 or 1/4 of it) give the RGB image - lights, RGB literals and defaults,
+// colour-space casts, transparency, traced rays.
+TEST(ColorSamples, SixAndTwelveChannelsGiveTheRgbImage) {
+    const Rendered rgb = litScene("", [](const char* r, const char* g, const char* b) {
+        return std::string("[") + r + " " + g + " " + b + "]";
+    });
+    for (int n : {6, 12}) {
+        SCOPED_TRACE(std::to_string(n) + " channels");
+        std::string toRgb, fromRgb;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < 3; ++j)
+                toRgb += (i % 3 == j ? (n == 6 ? " 0.5" : " 0.25") : " 0");
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < n; ++i) fromRgb += (i % 3 == j ? " 1" : " 0");
+        const Rendered wide =
+            litScene("ColorSamples [" + toRgb + "] [" + fromRgb + "]\n",
+                     [&](const char* r, const char* g, const char* b) {
+                         std::string v = "[";
+                         for (int i = 0; i < n / 3; ++i)
+                             v += std::string(" ") + r + " " + g + " " + b;
+                         return v + "]";
+                     });
+        EXPECT_EQ(wide.stats.features.colors.n, n);
+        EXPECT_EQ(wide.stats.shadeNegative, 0u);
+        // each weight (eye, spawned, spilled, shadow) is 8 or 16 floats instead of 4
+        EXPECT_GT(wide.stats.poolBytesPerRay, rgb.stats.poolBytesPerRay);
+        EXPECT_GT(expectSameImage(rgb, wide, false), 1.0);
+    }
+}
+
+// Four channels where the fourth shows yellow: a surface reflecting channels 1 and 3 lit
+// by a light of channels 0 and 3 shows the fourth's yellow alone, (0.5, 0.5, 0); taken in
+// RGB (green + yellow times red + yellow) it would be (0.75, 0.75, 0). Coverage is the
+// opacity's mean over the four channels.
+TEST(ColorSamples, FourChannelsMultiplyAsChannels) {
+    const std::string four =
+        "ColorSamples [1 0 0  0 1 0  0 0 1  0.5 0.5 0] [1 0 0 0  0 1 0 0  0 0 1 0]\n";
+    const std::string lit =
+        "LightSource \"ambientlight\" 1 \"lightcolor\" [1 0 0 1]\n"
+        "Color [0 1 0 1]\nSurface \"matte\" \"Ka\" 1 \"Kd\" 0\n";
+    Rendered opaque = flat(four, lit);
+    EXPECT_NEAR(opaque.at(4, 4).r, 0.5f, 1e-6f);
+    EXPECT_NEAR(opaque.at(4, 4).g, 0.5f, 1e-6f);
+    EXPECT_NEAR(opaque.at(4, 4).b, 0.0f, 1e-6f);
+    EXPECT_NEAR(opaque.at(4, 4).a, 1.0f, 1e-6f);
+    const std::vector<std::string> names = opaque.stats.features.names();
+    EXPECT_NE(std::find(names.begin(), names.end(), "color_samples_4"), names.end());
+    // Opacity [1 1 0.5 0.5]: Ci = Os Cs Ka ambient = (0, 0, 0, 0.5), alpha 0.75
+    Rendered half = flat(four, "Opacity [1 1 0.5 0.5]\n" + lit);
+    EXPECT_NEAR(half.at(4, 4).r, 0.25f, 1e-6f);
+    EXPECT_NEAR(half.at(4, 4).g, 0.25f, 1e-6f);
+    EXPECT_NEAR(half.at(4, 4).a, 0.75f, 1e-6f);
+    // a shader's RGB literal comes in through RGBn: red times green is black here
+    expectGrey(flat(four, "Surface \"csproduct\"\n"), 0.0f, 1e-6f, "csproduct");
+}
+
+// Primitive variables beyond three channels are RGB
+// (RibBuilder::keptPrimitiveColorSamples): a vertex Cs of four channels is read through
+// nRGB and shaded through RGBn. With the matrices above, [0.2 0.4 0.6 0.2] is RGB (0.3,
+// 0.5, 0.6) either way; a constant Cs on a quadric sets its material the same way.
+TEST(ColorSamples, PrimitiveColoursOfFourChannelsComeAsRgb) {
+    const std::string four =
+        "ColorSamples [1 0 0  0 1 0  0 0 1  0.5 0.5 0] [1 0 0 0  0 1 0 0  0 0 1 0]\n";
+    const std::string cs =
+        " \"Cs\" [0.2 0.4 0.6 0.2  0.2 0.4 0.6 0.2  0.2 0.4 0.6 0.2  "
+        "0.2 0.4 0.6 0.2]\n";
+    Rendered img =
+        renderRib(shaderPath() + four + kFlat + "WorldBegin\nSurface \"constant\"\n" +
+                  "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5]" + cs + "WorldEnd\n");
+    EXPECT_NEAR(img.at(4, 4).r, 0.3f, 1e-6f);
+    EXPECT_NEAR(img.at(4, 4).g, 0.5f, 1e-6f);
+    EXPECT_NEAR(img.at(4, 4).b, 0.6f, 1e-6f);
+    Rendered sphere =
+        renderRib(shaderPath() + four + kFlat +
+                  "WorldBegin\nSurface \"constant\"\nTranslate 0 0 5\n"
+                  "Sphere 3 -3 3 360 \"constant color Cs\" [0.2 0.4 0.6 0.2]\n"
+                  "WorldEnd\n");
+    EXPECT_NEAR(sphere.at(4, 4).r, 0.3f, 1e-6f);
+    EXPECT_NEAR(sphere.at(4, 4).g, 0.5f, 1e-6f);
+    EXPECT_NEAR(sphere.at(4, 4).b, 0.6f, 1e-6f);
 }

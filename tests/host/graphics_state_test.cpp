@@ -227,20 +227,27 @@ TEST(GraphicsState, ColorSamplesConvertThroughNRGB) {
                                  "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5] \"Cs\" "
                                  "[0 0 0 1  0 0 0 1  0 0 0 1  0 0 0 1]\nWorldEnd\n");
     EXPECT_NEAR(varying.at(4, 4).g, 0.5f, 1e-6f);
-    // a shader's colour parameter: matte's light, "lightcolor" [0 0 1 1] -> (0.5 0.5 1.5)
+    // a shader's colour parameter: matte's light, "lightcolor" [0 0 1 1], times Cs
+    // [1 0 0 1] in the four channels: [0 0 0 1], (0.5, 0.5, 0.5); multiplied as RGB,
+    // (1.5, 0.5, 0.5) times (0.5, 0.5, 1.5), it would be (0.75, 0.25, 0.75)
     Rendered lit = renderRib(cs + "LightSource \"ambientlight\" 1 \"lightcolor\" [0 0 1 1]\n"
                              "Color [1 0 0 1]\nSurface \"matte\" \"Ka\" 1 \"Kd\" 0\n"
                              "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5]\nWorldEnd\n");
-    // Cs = (1.5, 0.5, 0.5), ambient (0.5, 0.5, 1.5)
-    EXPECT_NEAR(lit.at(4, 4).r, 0.75f, 1e-5f);
-    EXPECT_NEAR(lit.at(4, 4).b, 0.75f, 1e-5f);
-    // (and the conversion is said once, where ColorSamples is)
+    EXPECT_NEAR(lit.at(4, 4).r, 0.5f, 1e-6f);
+    EXPECT_NEAR(lit.at(4, 4).g, 0.5f, 1e-6f);
+    EXPECT_NEAR(lit.at(4, 4).b, 0.5f, 1e-6f);
+    // More than 15 channels are converted to RGB as they are read, which is said once,
+    // where ColorSamples is
+    std::string nRGB, RGBn;
+    for (int i = 0; i < 16 * 3; ++i) nRGB += i % 3 == 0 ? " 0.0625" : " 0", RGBn += " 1";
     std::ostringstream err;
     rib::Diagnostics diag(&err);
     rd::RibBuilder b(diag, "c.rib");
-    rib::readString(cs + "WorldEnd\n", "c.rib", b, diag);
-    EXPECT_NE(err.str().find("c.rib:1: warning: ColorSamples 4: more than 3 channels"),
-              std::string::npos) << err.str();
+    rib::readString("ColorSamples [" + nRGB + "] [" + RGBn + "]\nWorldBegin\nWorldEnd\n",
+                    "c.rib", b, diag);
+    EXPECT_NE(err.str().find("c.rib:1: warning: ColorSamples 16: more than 15 channels"),
+              std::string::npos)
+        << err.str();
 }
 
 // Exposure gain gamma: the resolved colour is (gain * colour)^(1 / gamma).

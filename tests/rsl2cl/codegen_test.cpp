@@ -54,6 +54,58 @@ TEST_P(CodegenShader, BuildsOnDevice) {
         }
 }
 
+// Colours of 6 and 12 channels (rsl_abi.h COLOURS: float8 and float16 lanes), each of
+// RGB's repeated, so that every RGB value maps to itself: every standard shader gives
+// what it gives in RGB, in base, light and trace modes (up to the rounding of 1/4).
+TEST_P(CodegenShader, GivesTheSameInSixAndTwelveChannels) {
+    REQUIRE_DEVICE();
+    ts::Scene sc;
+    sc.lights.push_back({{0, 0, 1}, {0.9f, 0.6f, 0.3f}});
+    sc.ambient[0] = 0.2f, sc.ambient[1] = 0.1f, sc.ambient[2] = 0.05f;
+    std::vector<ts::Point> pts = ts::grid(4);
+    for (size_t i = 0; i < pts.size(); ++i) {
+        const float c[3] = {0.2f + 0.05f * float(i % 4), 0.7f, 0.4f + 0.03f * float(i)};
+        std::copy(c, c + 3, pts[i].Cs);
+        pts[i].Os[0] = 1.0f, pts[i].Os[1] = 0.5f, pts[i].Os[2] = 0.75f;
+        pts[i].N[2] = pts[i].Ng[2] = 1.0f;
+    }
+    auto runAll = [&](int channels) {
+        ts::Shade sh;
+        sh.colorChannels = channels;
+        std::string err, log;
+        EXPECT_TRUE(sh.compileFile(shaderPath(GetParam()), &err)) << err;
+        EXPECT_TRUE(sh.buildOnDevice(sc, &log)) << log.substr(0, 4000);
+        std::vector<std::vector<ts::Out>> modes;
+        for (auto [light, trace] :
+             {std::pair{-1, -1}, {0, -1}, {-1, 0}, {ts::kCoefficients, -1}})
+            modes.push_back(sh.run(pts, sc, light, trace));
+        return modes;
+    };
+    const auto rgb = runAll(3);
+    for (int channels : {6, 12}) {
+        SCOPED_TRACE(std::to_string(channels) + " channels");
+        const auto wide = runAll(channels);
+        ASSERT_EQ(wide.size(), rgb.size());
+        for (size_t m = 0; m < rgb.size(); ++m) {
+            ASSERT_EQ(wide[m].size(), rgb[m].size()) << "mode " << m;
+            for (size_t i = 0; i < rgb[m].size(); ++i)
+                for (int c = 0; c < 3; ++c) {
+                    const ts::Out &a = rgb[m][i], &b = wide[m][i];
+                    EXPECT_NEAR(b.Ci[c], a.Ci[c], 1e-5f)
+                        << "mode " << m << " point " << i;
+                    EXPECT_NEAR(b.Oi[c], a.Oi[c], 1e-6f)
+                        << "mode " << m << " point " << i;
+                    EXPECT_NEAR(b.Cl[c], a.Cl[c], 1e-5f)
+                        << "mode " << m << " point " << i;
+                    if (m == 3 &&
+                        a.CiLight[0][c] != -12345.0f) {  // (a surface with coefficients)
+                        EXPECT_NEAR(b.CiLight[0][c], a.CiLight[0][c], 1e-5f);
+                    }
+                }
+        }
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(
     All, CodegenShader,
     ::testing::Values("ambientlight", "arealight", "bumpy", "constant", "depthcue", "distantlight",
@@ -133,7 +185,7 @@ TEST(Codegen, RandomSitesAreNeverShared) {
                                  "s.sl", &err))
         << err;
     const std::string& src = sh.shader.source;
-    EXPECT_NE(src.find("rsl_random_v(g, 0)"), std::string::npos) << src;
+    EXPECT_NE(src.find("rsl_random_c(g, 0)"), std::string::npos) << src;
     EXPECT_NE(src.find("rsl_random_f(g, 3)"), std::string::npos) << src;
     EXPECT_NE(src.find("rsl_random_f(g, 4)"), std::string::npos) << src;
     EXPECT_EQ(src.find("rsl_random_f(g, 1)"), std::string::npos) << src;

@@ -113,8 +113,10 @@ TEST(Hoist, PerPointParametersReplaceTheBlockValueAndTheHoistedWork) {
     EXPECT_NE(sh.source.find("#ifdef RSL_MAX_PARAM_PRIMVARS"), std::string::npos) << sh.source;
     EXPECT_NE(sh.source.find("case " + offset("Kd") + ": p_Kd = g->pv_value[_k].x;"),
               std::string::npos) << sh.source;
-    EXPECT_NE(sh.source.find("case " + offset("tint") + ": p_tint = g->pv_value[_k];"),
-              std::string::npos) << sh.source;
+    EXPECT_NE(sh.source.find("case " + offset("tint") +
+                             ": p_tint = rsl_pv_color(g->pv_value[_k]);"),
+              std::string::npos)
+        << sh.source;
     EXPECT_EQ(sh.source.find("p_map = g->pv_value"), std::string::npos);
     EXPECT_EQ(sh.source.find("p_w = g->pv_value"), std::string::npos);
     EXPECT_NE(sh.source.find("float v_k = g->pv_count > 0 ?"), std::string::npos) << sh.source;

@@ -49,7 +49,9 @@ std::string slurp(const std::string& path) {
     return ss.str();
 }
 
-const int kGlobalFloats = 68;           // RslGlobals: 15 float4 + 8 floats
+// The globals as the kernel takes and returns them (ts_main copies them into RslGlobals,
+// colours through the channels: rsl_rgb_color, rsl_color_rgb): 15 float4 + 8 floats
+const int kGlobalFloats = 68;
 // 3 ints (+pad) + 2 x 8 float4 + outputs + up to 8 lights' coefficients (float4)
 const int kEvalFloats = 4 + 2 * 8 * 4 + 32 + 8 * 4;
 // field order of RslGlobals
@@ -122,7 +124,7 @@ bool Shade::compileSource(const std::string& rsl, const std::string& name, std::
     auto prog = std::make_unique<rsl::Program>();
     bool ok = rsl::compileSource(rsl, name, {}, *prog, diag);
     if (ok && !prog->shaders.empty()) {
-        shader = rsl::emitOpenCL(*prog->shaders[0], *prog, diag);
+        shader = rsl::emitOpenCL(*prog->shaders[0], *prog, diag, colorChannels);
         ok = shader.ok;
     } else {
         ok = false;
@@ -131,8 +133,10 @@ bool Shade::compileSource(const std::string& rsl, const std::string& name, std::
     if (err) *err = diagnostics;
     if (ok) {
         params.assign(shader.paramFloats, 0.0f);
-        for (const rsl::ParamSlot& p : shader.params)
+        for (const rsl::ParamSlot& p : shader.params) {
             for (int i = 0; i < p.size; ++i) params[p.offset + i] = p.defaults[i];
+            if (p.rgbDefault) setParam(p.name, p.defaults);  // into the channels
+        }
     }
     m_builtFor.clear();
     return ok;
@@ -144,9 +148,17 @@ bool Shade::compileFile(const std::string& path, std::string* err) {
 }
 
 void Shade::setParam(const std::string& name, const std::vector<float>& values) {
-    for (const rsl::ParamSlot& p : shader.params)
-        if (p.name == name)
-            for (size_t i = 0; i < values.size() && int(i) < p.size; ++i) params[p.offset + i] = values[i];
+    for (const rsl::ParamSlot& p : shader.params) {
+        if (p.name != name) continue;
+        for (size_t i = 0; i < values.size() && int(i) < p.size; ++i)
+            params[p.offset + i] = values[i];
+        if (p.type.base != rsl::BaseType::Color || colorChannels <= 3) continue;
+        // RGB values (each element's first three) repeated over the channels
+        const int per = p.size / std::max(1, p.arraySize);
+        for (int e = 0; e < p.size / per; ++e)
+            for (int i = 3; i < per; ++i)
+                params[p.offset + e * per + i] = params[p.offset + e * per + i % 3];
+    }
 }
 
 bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
@@ -159,6 +171,21 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
     std::ostringstream src;
     // LIGHT COEFFICIENTS (rsl_abi.h): run(modeLight = kCoefficients) fills Out::CiLight
     if (!sc.lights.empty()) src << "#define RSL_LIGHT_COEFS " << sc.lights.size() << "\n";
+    if (colorChannels > 3) {  // each RGB value twice over (Shade::colorChannels)
+        const int n = colorChannels;
+        std::string to, from;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < 3; ++j)
+                to += std::string(to.empty() ? "" : ",") +
+                      (i % 3 == j ? fl(3.0f / float(n)) : "0.0f");
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < n; ++i)
+                from +=
+                    std::string(from.empty() ? "" : ",") + (i % 3 == j ? "1.0f" : "0.0f");
+        src << "#define RSL_COLOR_LANES " << (n <= 7 ? 8 : 16)
+            << "\n#define RSL_COLOR_SAMPLES " << n << "\n#define RSL_NRGB " << to
+            << "\n#define RSL_RGBN " << from << "\n";
+    }
     src << rsl::runtimeSource();
     // the fake renderer services
     src << "__constant float ts_lights[] = {0";
@@ -166,13 +193,17 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
         for (int k = 0; k < 3; ++k) src << ", " << fl(l.L[k]) << ", " << fl(l.Cl[k]);
     src << "};\n#define TS_NLIGHTS " << sc.lights.size() << "\n";
     src << "int rsl_light_count(void) { return TS_NLIGHTS; }\n"
-           "int rsl_light(int l, const RslGlobals* g, float4 Ps, float4* L, float4* Cl) {\n"
+           "int rsl_light(int l, const RslGlobals* g, float4 Ps, float4* L, rsl_color* "
+           "Cl) {\n"
            "  (void)g; (void)Ps; if (l < 0 || l >= TS_NLIGHTS) return 0;\n"
            "  __constant float* x = ts_lights + 1 + 6 * l;\n"
-           "  *L = (float4)(x[0], x[2], x[4], 0.0f); *Cl = (float4)(x[1], x[3], x[5], 0.0f);\n"
+           "  *L = (float4)(x[0], x[2], x[4], 0.0f); *Cl = rsl_rgb_color((float4)(x[1], "
+           "x[3], x[5], 0.0f));\n"
            "  return 1;\n}\n";
-    src << "float4 rsl_ambient(const RslGlobals* g) { (void)g; return (float4)(" << fl(sc.ambient[0])
-        << ", " << fl(sc.ambient[1]) << ", " << fl(sc.ambient[2]) << ", 0.0f); }\n";
+    src << "rsl_color rsl_ambient(const RslGlobals* g) { (void)g; return "
+           "rsl_rgb_color((float4)("
+        << fl(sc.ambient[0]) << ", " << fl(sc.ambient[1]) << ", " << fl(sc.ambient[2])
+        << ", 0.0f)); }\n";
     // shader and object space come from the block; the service only knows camera
     src << "RslMatrix rsl_space_matrix(int space) {\n  RslMatrix m = rsl_mscalar(1.0f);\n"
            "  if (space == RSL_SPACE_CAMERA) m.r[3] = (float4)("
@@ -194,31 +225,66 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
     if (!shader.prepFunction.empty())  // the instance's uniform work (hoist.h), run first
         src << "__kernel void ts_prep(__global float* params) { " << shader.prepFunction
             << "(params); }\n";
-    src << "__kernel void ts_main(__global const float* gin, __global const float* params,\n"
-           "                      int mode_light, int mode_trace, __global float* out) {\n"
+    src << "__kernel void ts_main(__global const float* gin, __global const float* "
+           "params,\n"
+           "                      int mode_light, int mode_trace, __global float* out) "
+           "{\n"
            "  int i = get_global_id(0);\n"
-           "  RslGlobals g; float* gp = (float*)&g;\n"
-           "  for (int k = 0; k < "
-        << kGlobalFloats << "; ++k) gp[k] = gin[i * " << kGlobalFloats << " + k];\n"
+           "  __global const float4* gi = (__global const float4*)(gin + i * "
+        << kGlobalFloats
+        << ");\n"
+           "  __global const float* gs = gin + i * "
+        << kGlobalFloats
+        << " + 60;\n"
+           "  RslGlobals g;\n"
+           "  g.P = gi[0]; g.N = gi[1]; g.Ng = gi[2]; g.I = gi[3]; g.E = gi[4]; g.dPdu = "
+           "gi[5]; g.dPdv = gi[6];\n"
+           "  g.Cs = rsl_rgb_color(gi[7]); g.Os = rsl_rgb_color(gi[8]); g.Ci = "
+           "rsl_rgb_color(gi[9]);\n"
+           "  g.Oi = rsl_rgb_color(gi[10]); g.L = gi[11]; g.Cl = rsl_rgb_color(gi[12]);\n"
+           "  g.Ol = rsl_rgb_color(gi[13]); g.Ps = gi[14];\n"
+           "  g.u = gs[0]; g.v = gs[1]; g.s = gs[2]; g.t = gs[3]; g.du = gs[4]; g.dv = "
+           "gs[5];\n"
+           "  g.ncomps = (float)RSL_CHANNELS; g.time = gs[7];\n"
+           "  g.light_cache_count = 0; g.light_cache = 0; g.lights_off = 0u;\n"
+           "  g.rng_pixel = g.rng_sample = g.rng_depth = 0u; g.st_footprint = "
+           "(float4)(0.0f);\n"
            "  g.texctx = 0;\n  g.loops_cut = 0;\n"
-        << "  RslEval ev; ev.deriv = 0; ev.mode_light = max(mode_light, -1); ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
+        << "  RslEval ev; ev.deriv = 0; ev.mode_light = max(mode_light, -1); "
+           "ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
            "#ifdef RSL_LIGHT_COEFS\n"
            "  ev.coefs = mode_light == -2;\n"
-           "  for (int k = 0; k < RSL_LIGHT_COEFS; ++k) ev.Ci_light[k] = (float4)(-12345.0f);\n"
+           "  for (int k = 0; k < RSL_LIGHT_COEFS; ++k) ev.Ci_light[k] = "
+           "(rsl_color)(-12345.0f);\n"
            "#endif\n"
-           "  for (int k = 0; k < RSL_MAX_TRACE; ++k) { ev.trace_org[k] = (float4)(0); ev.trace_dir[k] = (float4)(0); }\n"
-           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) ev.outputs[k] = -12345.0f;\n"
+           "  for (int k = 0; k < RSL_MAX_TRACE; ++k) { ev.trace_org[k] = (float4)(0); "
+           "ev.trace_dir[k] = (float4)(0); }\n"
+           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) ev.outputs[k] = "
+           "-12345.0f;\n"
         << (light ? "  (void)ev; " + shader.functionName + "(&g, params);\n"
                   : "  " + shader.functionName + "(&g, params, &ev);\n")
         << "  __global float* o = out + i * " << (kGlobalFloats + kEvalFloats) << ";\n"
-        << "  for (int k = 0; k < " << kGlobalFloats << "; ++k) o[k] = gp[k];\n"
-        << "  o += " << kGlobalFloats << "; o[0] = (float)ev.trace_count;\n"
+        << "  __global float4* go = (__global float4*)o;\n"
+           "  go[0] = g.P; go[1] = g.N; go[2] = g.Ng; go[3] = g.I; go[4] = g.E; go[5] = "
+           "g.dPdu; go[6] = g.dPdv;\n"
+           "  go[7] = rsl_color_rgb(g.Cs); go[8] = rsl_color_rgb(g.Os); go[9] = "
+           "rsl_color_rgb(g.Ci);\n"
+           "  go[10] = rsl_color_rgb(g.Oi); go[11] = g.L; go[12] = rsl_color_rgb(g.Cl);\n"
+           "  go[13] = rsl_color_rgb(g.Ol); go[14] = g.Ps;\n"
+           "  o[60] = g.u; o[61] = g.v; o[62] = g.s; o[63] = g.t; o[64] = g.du; o[65] = "
+           "g.dv;\n"
+           "  o[66] = g.ncomps; o[67] = g.time;\n"
+        << "  o += " << kGlobalFloats
+        << "; o[0] = (float)ev.trace_count;\n"
            "  for (int k = 0; k < RSL_MAX_TRACE; ++k) {\n"
-           "    vstore4(ev.trace_org[k], 0, o + 4 + 4 * k); vstore4(ev.trace_dir[k], 0, o + 36 + 4 * k);\n"
+           "    vstore4(ev.trace_org[k], 0, o + 4 + 4 * k); vstore4(ev.trace_dir[k], 0, "
+           "o + 36 + 4 * k);\n"
            "  }\n"
-           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) o[68 + k] = ev.outputs[k];\n"
+           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) o[68 + k] = "
+           "ev.outputs[k];\n"
            "#ifdef RSL_LIGHT_COEFS\n"
-           "  for (int k = 0; k < min(RSL_LIGHT_COEFS, 8); ++k) vstore4(ev.Ci_light[k], 0, o + 100 + 4 * k);\n"
+           "  for (int k = 0; k < min(RSL_LIGHT_COEFS, 8); ++k) "
+           "vstore4(rsl_color_rgb(ev.Ci_light[k]), 0, o + 100 + 4 * k);\n"
            "#endif\n}\n";
     std::string text = src.str();
     const char* p = text.c_str();
@@ -258,7 +324,10 @@ std::vector<Out> Shade::run(const std::vector<Point>& pts, const Scene& sc, int 
         float one[3] = {1, 0, 0}, two[3] = {0, 1, 0};
         set(fdPdu, one); set(fdPdv, two);
         float* sc2 = g + 60;  // u v s t du dv ncomps time
-        sc2[0] = p.u; sc2[1] = p.v; sc2[2] = p.s; sc2[3] = p.t; sc2[6] = 3;
+        sc2[0] = p.u;
+        sc2[1] = p.v;
+        sc2[2] = p.s;
+        sc2[3] = p.t;
     }
     cl_int err;
     size_t outFloats = n * (kGlobalFloats + kEvalFloats);

@@ -68,6 +68,10 @@ public:
     std::vector<Out> run(const std::vector<Point>& pts, const Scene& scene, int modeLight = -1,
                          int modeTrace = -1);
 
+    // More than 3: colours have this many channels (RSL_COLOR_LANES 8 or 16), each of
+    // RGB's repeated (channel i is RGB's i % 3): every RGB value goes in and comes out
+    // the same. Set before compiling.
+    int colorChannels = 3;
     rsl::EmittedShader shader;
     std::vector<float> params;
     std::string diagnostics;
