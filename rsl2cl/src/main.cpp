@@ -1,5 +1,6 @@
 // main.cpp: the rsl2cl command:
-//   rsl2cl [-I DIR] [-D NAME[=VALUE]] [--info | --ast] [-o OUT] shader.sl
+//   rsl2cl [-I DIR] [-D NAME[=VALUE]] [--color-samples N] [--info | --ast] [-o OUT]
+//   shader.sl
 // Without --info/--ast it writes the generated OpenCL C (see runtime/rsl_abi.h).
 // exit 0 on success, 1 on compile errors, 2 on usage errors.
 #include <cstdlib>
@@ -12,7 +13,12 @@
 namespace {
 
 void usage(std::ostream& os) {
-    os << "usage: rsl2cl [-I DIR] [-D NAME[=VALUE]] [--info | --ast] [-o OUT] shader.sl\n"
+    os << "usage: rsl2cl [-I DIR] [-D NAME[=VALUE]] [--color-samples N] [--info | --ast] "
+          "[-o OUT]\n"
+          "              shader.sl\n"
+          "  --color-samples N  colours of N channels (1-15; rsl_abi.h COLOURS): "
+          "parameters\n"
+          "           take max(3, N) slots\n"
           "  --info   print shader metadata (kind, parameters, globals, services)\n"
           "  --ast    print the typed syntax tree\n"
           "  -o OUT   write the output to OUT instead of standard output\n"
@@ -25,6 +31,7 @@ int main(int argc, char** argv) {
     rsl::PreprocessOptions pp;
     std::string input, output;
     bool info = false, ast = false;
+    int colorSamples = 3;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         auto value = [&](const std::string& flag) -> std::string {
@@ -36,7 +43,18 @@ int main(int argc, char** argv) {
             return argv[++i];
         };
         if (a == "--info") info = true;
-        else if (a == "--ast") ast = true;
+        else if (a == "--color-samples") {
+            const std::string v = value("--color-samples");
+            char* end = nullptr;
+            const long n = std::strtol(v.c_str(), &end, 10);
+            if (end == v.c_str() || *end != '\0' || n < 1 || n > 15) {
+                std::cerr << "rsl2cl: --color-samples needs a number from 1 to 15, got '"
+                          << v << "'\n";
+                return 2;
+            }
+            colorSamples = int(n);
+        } else if (a == "--ast")
+            ast = true;
         else if (a == "-h" || a == "--help") {
             usage(std::cout);
             return 0;
@@ -76,7 +94,7 @@ int main(int argc, char** argv) {
         for (const auto& sh : prog.shaders) text += rsl::formatInfo(rsl::collectInfo(*sh));
     if (!info && !ast) {
         for (const auto& sh : prog.shaders) {
-            rsl::EmittedShader em = rsl::emitOpenCL(*sh, prog, diag);
+            rsl::EmittedShader em = rsl::emitOpenCL(*sh, prog, diag, colorSamples);
             text += em.source;
         }
         if (diag.hasErrors()) {

@@ -240,6 +240,10 @@ TEST(ColorSamples, ImagersWorkOnTheFilmsRgb) {
     }
 }
 
+// Four channels, the fourth showing yellow; RGB comes in as the first three.
+const std::string kFour =
+    "ColorSamples [1 0 0  0 1 0  0 0 1  0.5 0.5 0] [1 0 0 0  0 1 0 0  0 0 1 0]\n";
+
 // More than three channels (rsl_abi.h COLOURS: float8 and float16 colours, ray weights of
 // 8 and 16 floats): 6 and 12 channels that are RGB's repeated (channel i shows RGB's
 // i % 3, with 1/2 or 1/4 of it) give the RGB image - lights, RGB literals and defaults,
@@ -277,12 +281,10 @@ TEST(ColorSamples, SixAndTwelveChannelsGiveTheRgbImage) {
 // RGB (green + yellow times red + yellow) it would be (0.75, 0.75, 0). Coverage is the
 // opacity's mean over the four channels.
 TEST(ColorSamples, FourChannelsMultiplyAsChannels) {
-    const std::string four =
-        "ColorSamples [1 0 0  0 1 0  0 0 1  0.5 0.5 0] [1 0 0 0  0 1 0 0  0 0 1 0]\n";
     const std::string lit =
         "LightSource \"ambientlight\" 1 \"lightcolor\" [1 0 0 1]\n"
         "Color [0 1 0 1]\nSurface \"matte\" \"Ka\" 1 \"Kd\" 0\n";
-    Rendered opaque = flat(four, lit);
+    Rendered opaque = flat(kFour, lit);
     EXPECT_NEAR(opaque.at(4, 4).r, 0.5f, 1e-6f);
     EXPECT_NEAR(opaque.at(4, 4).g, 0.5f, 1e-6f);
     EXPECT_NEAR(opaque.at(4, 4).b, 0.0f, 1e-6f);
@@ -290,12 +292,12 @@ TEST(ColorSamples, FourChannelsMultiplyAsChannels) {
     const std::vector<std::string> names = opaque.stats.features.names();
     EXPECT_NE(std::find(names.begin(), names.end(), "color_samples_4"), names.end());
     // Opacity [1 1 0.5 0.5]: Ci = Os Cs Ka ambient = (0, 0, 0, 0.5), alpha 0.75
-    Rendered half = flat(four, "Opacity [1 1 0.5 0.5]\n" + lit);
+    Rendered half = flat(kFour, "Opacity [1 1 0.5 0.5]\n" + lit);
     EXPECT_NEAR(half.at(4, 4).r, 0.25f, 1e-6f);
     EXPECT_NEAR(half.at(4, 4).g, 0.25f, 1e-6f);
     EXPECT_NEAR(half.at(4, 4).a, 0.75f, 1e-6f);
     // a shader's RGB literal comes in through RGBn: red times green is black here
-    expectGrey(flat(four, "Surface \"csproduct\"\n"), 0.0f, 1e-6f, "csproduct");
+    expectGrey(flat(kFour, "Surface \"csproduct\"\n"), 0.0f, 1e-6f, "csproduct");
 }
 
 // Primitive variables beyond three channels are RGB
@@ -303,19 +305,17 @@ TEST(ColorSamples, FourChannelsMultiplyAsChannels) {
 // nRGB and shaded through RGBn. With the matrices above, [0.2 0.4 0.6 0.2] is RGB (0.3,
 // 0.5, 0.6) either way; a constant Cs on a quadric sets its material the same way.
 TEST(ColorSamples, PrimitiveColoursOfFourChannelsComeAsRgb) {
-    const std::string four =
-        "ColorSamples [1 0 0  0 1 0  0 0 1  0.5 0.5 0] [1 0 0 0  0 1 0 0  0 0 1 0]\n";
     const std::string cs =
         " \"Cs\" [0.2 0.4 0.6 0.2  0.2 0.4 0.6 0.2  0.2 0.4 0.6 0.2  "
         "0.2 0.4 0.6 0.2]\n";
     Rendered img =
-        renderRib(shaderPath() + four + kFlat + "WorldBegin\nSurface \"constant\"\n" +
+        renderRib(shaderPath() + kFour + kFlat + "WorldBegin\nSurface \"constant\"\n" +
                   "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5]" + cs + "WorldEnd\n");
     EXPECT_NEAR(img.at(4, 4).r, 0.3f, 1e-6f);
     EXPECT_NEAR(img.at(4, 4).g, 0.5f, 1e-6f);
     EXPECT_NEAR(img.at(4, 4).b, 0.6f, 1e-6f);
     Rendered sphere =
-        renderRib(shaderPath() + four + kFlat +
+        renderRib(shaderPath() + kFour + kFlat +
                   "WorldBegin\nSurface \"constant\"\nTranslate 0 0 5\n"
                   "Sphere 3 -3 3 360 \"constant color Cs\" [0.2 0.4 0.6 0.2]\n"
                   "WorldEnd\n");

@@ -21,7 +21,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!ok) return 0;
     for (const auto& sh : prog.shaders) {  // light coefficients, hoisting, the emitters
         rsl::Diagnostics d;
-        rsl::emitOpenCL(*sh, prog, d);
+        rsl::emitOpenCL(*sh, prog, d,
+                        1 + int(size % 15));  // any number of colour channels
     }
     return 0;
 }

@@ -25,7 +25,7 @@ void run(const std::string& src) {
     if (!r.ok) return;
     for (const auto& sh : r.prog.shaders) {  // the code generator too (light coefficients...)
         rsl::Diagnostics d;
-        rsl::emitOpenCL(*sh, r.prog, d);
+        rsl::emitOpenCL(*sh, r.prog, d, 1 + int(src.size() % 15));  // and colour channels
     }
 }
 
