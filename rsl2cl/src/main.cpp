@@ -1,6 +1,5 @@
 // main.cpp: the rsl2cl command:
-//   rsl2cl [-I DIR] [-D NAME[=VALUE]] [--color-samples N] [--info | --ast] [-o OUT]
-//   shader.sl
+//   rsl2cl [-I DIR] [-D NAME[=VALUE]] [--color-samples N] [--info | --ast] [-o OUT] X.sl
 // Without --info/--ast it writes the generated OpenCL C (see runtime/rsl_abi.h).
 // exit 0 on success, 1 on compile errors, 2 on usage errors.
 #include <cstdlib>
@@ -13,12 +12,9 @@
 namespace {
 
 void usage(std::ostream& os) {
-    os << "usage: rsl2cl [-I DIR] [-D NAME[=VALUE]] [--color-samples N] [--info | --ast] "
-          "[-o OUT]\n"
-          "              shader.sl\n"
-          "  --color-samples N  colours of N channels (1-15; rsl_abi.h COLOURS): "
-          "parameters\n"
-          "           take max(3, N) slots\n"
+    os << "usage: rsl2cl [-I DIR] [-D NAME[=VALUE]] [--color-samples N] [--info | --ast]\n"
+          "              [-o OUT] shader.sl\n"
+          "  --color-samples N  colours of N channels (1-15, rsl_abi.h COLOURS; default 3)\n"
           "  --info   print shader metadata (kind, parameters, globals, services)\n"
           "  --ast    print the typed syntax tree\n"
           "  -o OUT   write the output to OUT instead of standard output\n"
