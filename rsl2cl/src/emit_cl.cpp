@@ -43,10 +43,8 @@ int slotsOf(BaseType b, int colorSlots) {
     switch (b) {
     case BaseType::Point:
     case BaseType::Vector:
-    case BaseType::Normal:
-        return 3;
-    case BaseType::Color:
-        return colorSlots;
+    case BaseType::Normal: return 3;
+    case BaseType::Color: return colorSlots;
     case BaseType::Matrix: return 16;
     default: return 1;
     }
@@ -230,7 +228,7 @@ static bool hasLightStatement(const Stmt& s) {
 std::string Emitter::blockRead(BaseType base, const std::string& off) const {
     if (base == BaseType::Color) return "rsl_paramc(params, " + off + ")";
     switch (slots(base)) {
-        case 3: return "rsl_param3(params, " + off + ")";
+    case 3: return "rsl_param3(params, " + off + ")";
     case 16: return "rsl_param16(params, " + off + ")";
     default:
         return base == BaseType::String ? "(int)params[" + off + "]" : "params[" + off + "]";
@@ -278,16 +276,15 @@ void Emitter::emitPrepare() {
             continue;
         }
         switch (slots(d->type.base)) {
-            case 3:
-                line("params[" + off + "] = " + name + ".x; params[" + off +
-                     " + 1] = " + name + ".y; params[" + off + " + 2] = " + name + ".z;");
-                break;
-            case 16:
-                line("for (int _k = 0; _k < 16; ++_k) params[" + off +
-                     " + _k] = rsl_mget(" + name + ", _k / 4, _k % 4);");
-                break;
-            default:
-                line("params[" + off + "] = " + name + ";");
+        case 3:
+            line("params[" + off + "] = " + name + ".x; params[" + off + " + 1] = " + name +
+                 ".y; params[" + off + " + 2] = " + name + ".z;");
+            break;
+        case 16:
+            line("for (int _k = 0; _k < 16; ++_k) params[" + off + " + _k] = rsl_mget(" + name +
+                 ", _k / 4, _k % 4);");
+            break;
+        default: line("params[" + off + "] = " + name + ";");
         }
     }
     m_body << "}\n";

@@ -11,10 +11,8 @@ const char* clType(const TypeSpec& t) {
     case BaseType::Float: return "float";
     case BaseType::Point:
     case BaseType::Vector:
-    case BaseType::Normal:
-        return "float4";
-    case BaseType::Color:
-        return "rsl_color";
+    case BaseType::Normal: return "float4";
+    case BaseType::Color: return "rsl_color";
     case BaseType::Matrix: return "RslMatrix";
     case BaseType::String: return "int";
     case BaseType::Void: return "void";
@@ -26,10 +24,8 @@ std::string clZero(const TypeSpec& t) {
     switch (t.base) {
     case BaseType::Point:
     case BaseType::Vector:
-    case BaseType::Normal:
-        return "rsl_f2v(0.0f)";
-    case BaseType::Color:
-        return "rsl_f2c(0.0f)";
+    case BaseType::Normal: return "rsl_f2v(0.0f)";
+    case BaseType::Color: return "rsl_f2c(0.0f)";
     case BaseType::Matrix: return "rsl_mscalar(0.0f)";
     case BaseType::String: return "0";
     default: return "0.0f";

@@ -13,8 +13,8 @@
 
 namespace rsl {
 
-const char* clType(
-    const TypeSpec& t);  // element C type: float, float4, rsl_color, RslMatrix, int
+// element C type: float, float4, rsl_color, RslMatrix, int
+const char* clType(const TypeSpec& t);
 std::string clZero(const TypeSpec& t);          // zero of the element type
 std::string clNumber(double v);                 // 1.0f
 int spaceIdOf(const std::string& name);         // RSL_SPACE_* value or -1

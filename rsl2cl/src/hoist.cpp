@@ -17,10 +17,8 @@ int slotsFor(const TypeSpec& t, int colorSlots) {
     case BaseType::Float: return 1;
     case BaseType::Point:
     case BaseType::Vector:
-    case BaseType::Normal:
-        return 3;
-    case BaseType::Color:
-        return colorSlots;
+    case BaseType::Normal: return 3;
+    case BaseType::Color: return colorSlots;
     case BaseType::Matrix: return 16;
     default: return 0;  // strings and the rest stay where they are
     }
