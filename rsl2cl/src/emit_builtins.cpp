@@ -265,7 +265,8 @@ std::string Emitter::builtin(const Expr& e) {
         return "rsl_" + n + "(g, ev, " + A(0) + ")";
     }
     if (n == "random") m_out.usesRandom = true;
-    if (n == "random") {  // (a point takes three sites, a colour max(3, n): rsl_abi.h RANDOM)
+    // (a point takes three sites, a colour max(3, n): rsl_abi.h RANDOM)
+    if (n == "random") {
         const int site = m_randomSite;
         m_randomSite += vf == "_f" ? 1 : vf == "_c" ? m_colorSlots : 3;
         return "rsl_random" + vf + "(g, " + std::to_string(site) + ")";
