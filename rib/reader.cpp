@@ -437,8 +437,9 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
         return false;
     }
     if (p.type == ParamType::Color && !m_nRGB.empty()) {
-        const int kept = info.kind == Kind::Geom ? m_target.keptPrimitiveColorSamples()
-                                                 : m_target.keptColorSamples();
+        const int kept = info.kind == Kind::Geom
+                             ? m_target.keptPrimitiveColorSamples(p.name)
+                             : m_target.keptColorSamples();
         p.floats = targetColors(p.floats, kept);
         p.colorComponents = m_nColor <= kept            ? std::max(3, m_nColor)
                             : m_target.wantsRgbColors() ? 3

@@ -20,8 +20,15 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     const size_t n = size_t(scene.colors.n);  // (more than three: the channels' opacity)
     for (size_t i = 0; n > 3 && i < scene.materialChannels.size(); ++i)
         if (i % (2 * n) >= n && scene.materialChannels[i] < 1.0f) f.transparency = true;
-    for (const rt_float4& o : scene.vertexOs)
-        if (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f) f.transparency = true;
+    // (a vertex's Os: a float4, or with more than three channels n floats in lanes / 4)
+    const size_t chunks = size_t(scene.colors.lanes() / 4);
+    for (size_t i = 0; i < scene.vertexOs.size(); ++i) {
+        const rt_float4& o = scene.vertexOs[i];
+        const float lanes[4] = {o.x, o.y, o.z, o.w};
+        const size_t first = 4 * (i % chunks), channels = size_t(scene.colors.slots());
+        for (size_t j = 0; j < 4 && first + j < channels; ++j)
+            if (lanes[j] < 1.0f) f.transparency = true;
+    }
     f.primvars = scene.primvarsUsed;
     f.lightCount = shading.lightCount;
     f.specialisedLights = f.lightCount > 0;  // the first kInlinedLightInstances (shader_set.h)

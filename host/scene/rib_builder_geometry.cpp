@@ -123,16 +123,14 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     }
     // Cs, Os: constant or uniform (one colour) set the material; varying (one per
     // corner) go to the quadric primvar buffer.
-    // (primitive variables are RGB under more than three colour channels: converted)
+    // (in the scene's colour channels, k floats a colour)
     Attributes& attrs = m_attrStack.back();
-    const ColorSamples& colors = m_world.colors;
+    const size_t k = size_t(m_world.colors.slots());
     const Attributes saved = attrs;
     const rib::Param* cs = params.find("Cs");
     const rib::Param* os = params.find("Os");
-    if (cs && cs->floats.size() == 3) std::copy_n(cs->floats.begin(), 3, attrs.color);
-    if (os && os->floats.size() == 3) std::copy_n(os->floats.begin(), 3, attrs.opacity);
-    if (colors.n > 3 && cs && cs->floats.size() == 3) colors.fromRgbValues(attrs.color);
-    if (colors.n > 3 && os && os->floats.size() == 3) colors.fromRgbValues(attrs.opacity);
+    if (cs && cs->floats.size() == k) std::copy_n(cs->floats.begin(), k, attrs.color);
+    if (os && os->floats.size() == k) std::copy_n(os->floats.begin(), k, attrs.opacity);
     // per-point shader parameters at the (u, v) corners, when this request gives them
     q.point_params = quadricPointParams(params, m_attrStack.back().ctm * placement);
     for (const rib::Param* p : pointParamsOf(&params))
@@ -140,20 +138,24 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     q.material = currentMaterial();
     m_carriedPointParams.clear();
     if (m_attrStack.back().insideOut) q.flags ^= RT_QF_FLIP;  // the normal transform keeps mirrors
-    const bool varyingCs = cs && cs->floats.size() == 12, varyingOs = os && os->floats.size() == 12;
+    const bool varyingCs = cs && cs->floats.size() == 4 * k;
+    const bool varyingOs = os && os->floats.size() == 4 * k;
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
-    if (varyingCs || varyingOs) {
+    if (varyingCs ||
+        varyingOs) {  // Cs then Os at the four corners, each colour in chunks
         q.primvars = uint32_t(m_world.quadricPrimvars.size());
-        float rgb[2][ColorSamples::kMaxChannels];  // the uniform colours, as varying ones
-                                                   // are
-        std::copy_n(attrs.color, colors.slots(), rgb[0]);
-        std::copy_n(attrs.opacity, colors.slots(), rgb[1]);
-        if (colors.n > 3) colors.toRgbValues(rgb[0]), colors.toRgbValues(rgb[1]);
-        for (int k = 0; k < 8; ++k) {
-            const bool opacity = k >= 4;
+        const size_t chunks = size_t(m_world.colors.lanes() / 4);
+        for (size_t c = 0; c < 8; ++c) {
+            const bool opacity = c >= 4;
             const rib::Param* p = opacity ? (varyingOs ? os : nullptr) : (varyingCs ? cs : nullptr);
-            const float* v = p ? &p->floats[size_t(3 * (k % 4))] : rgb[opacity ? 1 : 0];
-            m_world.quadricPrimvars.push_back({v[0], v[1], v[2], 0.0f});
+            const float* v = p         ? &p->floats[k * (c % 4)]
+                             : opacity ? attrs.opacity
+                                       : attrs.color;
+            float lanes[16] = {};
+            std::copy_n(v, k, lanes);
+            for (size_t j = 0; j < chunks; ++j)
+                m_world.quadricPrimvars.push_back(
+                    {lanes[4 * j], lanes[4 * j + 1], lanes[4 * j + 2], lanes[4 * j + 3]});
         }
     }
     std::copy_n(saved.color, ColorSamples::kMaxChannels, attrs.color);

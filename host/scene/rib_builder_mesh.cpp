@@ -136,20 +136,36 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     // primitives and mirrored transforms (prototypes: their object space, unmirrored)
     const bool flipNormals = prototype ? m_attrStack.back().insideOut : flipWorldNormals();
     const bool smooth = mesh.n.size() == np;
+    const bool cs = mesh.cs.size() == np || mesh.csN.size() == np;
+    const bool os = mesh.os.size() == np || mesh.osN.size() == np;
     uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
-                        (mesh.cs.size() == np ? RT_PRIMVAR_CS : 0u) |
-                        (mesh.os.size() == np ? RT_PRIMVAR_OS : 0u);
+                        (cs ? RT_PRIMVAR_CS : 0u) | (os ? RT_PRIMVAR_OS : 0u);
     if (smooth) m_world.anySmoothNormals = true;
+    // A corner's colour takes `chunks` float4s: more than three channels fill 8 or 16
+    // floats (RSL_COLOR_LANES), zero past the channels
+    const size_t chunks = size_t(m_world.colors.lanes() / 4);
+    auto pushColor = [&](std::vector<rt_float4>& buf, bool given,
+                         const std::vector<glm::vec3>& rgb,
+                         const std::vector<VertexData::Channels>& channels, int k) {
+        if (chunks == 1) {
+            buf.push_back(given ? f4(rgb[size_t(k)]) : f4(0, 0, 0));
+            return;
+        }
+        float c[16] = {};
+        if (given) std::copy(channels[size_t(k)].begin(), channels[size_t(k)].end(), c);
+        for (size_t q = 0; q < chunks; ++q)
+            buf.push_back(f4(c[4 * q], c[4 * q + 1], c[4 * q + 2], c[4 * q + 3]));
+    };
     // A primitive variable first seen now: earlier triangles get placeholder entries.
-    auto start = [&](uint32_t bit, std::vector<rt_float4>& buf) {
+    auto start = [&](uint32_t bit, std::vector<rt_float4>& buf, size_t per) {
         if ((primvars & bit) && !(m_world.primvarsUsed & bit)) {
-            buf.assign(3 * m_world.triangles.size(), f4(0, 0, 0));
+            buf.assign(3 * m_world.triangles.size() * per, f4(0, 0, 0));
             m_world.primvarsUsed |= bit;
         }
     };
-    start(RT_PRIMVAR_ST, m_world.vertexSt);
-    start(RT_PRIMVAR_CS, m_world.vertexCs);
-    start(RT_PRIMVAR_OS, m_world.vertexOs);
+    start(RT_PRIMVAR_ST, m_world.vertexSt, 1);
+    start(RT_PRIMVAR_CS, m_world.vertexCs, chunks);
+    start(RT_PRIMVAR_OS, m_world.vertexOs, chunks);
     // Degenerate input is left out (or, for normals, replaced by the geometric normal)
     // and reported once per request, at its file:line.
     int nonfinite = 0, zeroArea = 0, duplicate = 0, badNormal = 0;
@@ -220,9 +236,9 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
                                                ? f4(mesh.st[k].x, mesh.st[k].y, 0)
                                                : f4(0, 0, 0));
             if (m_world.primvarsUsed & RT_PRIMVAR_CS)
-                m_world.vertexCs.push_back((primvars & RT_PRIMVAR_CS) ? f4(mesh.cs[k]) : f4(0, 0, 0));
+                pushColor(m_world.vertexCs, cs, mesh.cs, mesh.csN, k);
             if (m_world.primvarsUsed & RT_PRIMVAR_OS)
-                m_world.vertexOs.push_back((primvars & RT_PRIMVAR_OS) ? f4(mesh.os[k]) : f4(0, 0, 0));
+                pushColor(m_world.vertexOs, os, mesh.os, mesh.osN, k);
         }
         if (!normalsOk) ++badNormal;
     }
@@ -303,8 +319,20 @@ void RibBuilder::readVertexPrimvars(const rib::ParamList& params, size_t np, Ver
             out[i] = {q->floats[3 * i], q->floats[3 * i + 1], q->floats[3 * i + 2]};
     };
     triples("N", mesh.n);
-    triples("Cs", mesh.cs);
-    triples("Os", mesh.os);
+    const size_t k = size_t(m_world.colors.n);
+    auto channels = [&](const char* name, std::vector<VertexData::Channels>& out) {
+        const rib::Param* q = params.find(name);
+        if (!q || q->floats.size() != k * np) return;
+        out.assign(np, VertexData::Channels{});
+        for (size_t i = 0; i < np; ++i) std::copy_n(&q->floats[k * i], k, out[i].begin());
+    };
+    if (k > 3) {  // (the reader keeps Cs and Os in the scene's channels)
+        channels("Cs", mesh.csN);
+        channels("Os", mesh.osN);
+    } else {
+        triples("Cs", mesh.cs);
+        triples("Os", mesh.os);
+    }
     const rib::Param* st = params.find("st");
     const rib::Param* s = params.find("s");
     const rib::Param* t = params.find("t");

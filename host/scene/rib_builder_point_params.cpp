@@ -109,6 +109,8 @@ std::vector<Corner> splitCornersIfNeeded(const std::vector<const rib::Param*>& l
             if (mesh.n.size() == mesh.p.size()) split.n.push_back(mesh.n[v]);
             if (mesh.cs.size() == mesh.p.size()) split.cs.push_back(mesh.cs[v]);
             if (mesh.os.size() == mesh.p.size()) split.os.push_back(mesh.os[v]);
+            if (mesh.csN.size() == mesh.p.size()) split.csN.push_back(mesh.csN[v]);
+            if (mesh.osN.size() == mesh.p.size()) split.osN.push_back(mesh.osN[v]);
             split.tris.push_back(int(src.size()));
             src.push_back({v, t});
         }
@@ -162,6 +164,7 @@ void RibBuilder::readPointParams(const rib::ParamList& params, const std::vector
                 v[i] = verts[i] >= 0 && size_t(verts[i]) < np ? copy[size_t(verts[i])] : copy[0];
         };
         spread(mesh.p), spread(mesh.n), spread(mesh.st), spread(mesh.cs), spread(mesh.os);
+        spread(mesh.csN), spread(mesh.osN);
         mesh.tris.clear();
         std::vector<int> corner(nfv);
         for (size_t i = 0; i < nfv; ++i) corner[i] = int(i);

@@ -101,13 +101,13 @@ struct Scene {
     std::vector<Triangle> triangles;
     std::vector<TriangleAttr> attrs;
     std::vector<rt_float4> normals; // 3 per triangle with has_normals, else unused entries
-    // Per-vertex primitive variables, 3 per triangle, filled only when some geometry gives
-    // them (RT_PRIMVAR_* in TriangleAttr says which triangles do): (s, t, 0, 0), Cs, Os.
+    // Per-vertex primitive variables, 3 per triangle, filled only when some geometry
+    // gives them (RT_PRIMVAR_* in TriangleAttr says which triangles do): (s, t, 0, 0),
+    // Cs, Os (a colour with more than three channels takes colors.lanes() / 4 float4s).
     std::vector<rt_float4> vertexSt, vertexCs, vertexOs;
     // With more than three colour channels (ColorSamples n > 3): each material's Cs then
     // Os in the n channels, 2 n floats a material (Material::cs and os hold their RGB);
-    // else empty. Varying colours (vertexCs, vertexOs, quadric and per-point values) stay
-    // RGB.
+    // else empty. Per-point shader parameters of colour type stay RGB (rsl_pv_color).
     std::vector<float> materialChannels;
     // Shader parameters given per point (ShaderRef::pointParams, K of them): by triangle,
     // the first of its 3 x K values (corner-major) in pointParamValues, or
@@ -121,7 +121,8 @@ struct Scene {
     std::vector<Quadric> quadrics;
     std::vector<Aabb> quadricBounds;
     std::vector<uint32_t> csg;
-    std::vector<rt_float4> quadricPrimvars;  // 8 per quadric that has them (Quadric.primvars)
+    // 8 colours per quadric that has them (Quadric.primvars), in float4s as vertexCs
+    std::vector<rt_float4> quadricPrimvars;
     // Motion blur: moving quadrics' last keys (4 per one, Quadric.motion) and moving
     // triangles' last keys (by triangle index; empty without moving triangles).
     std::vector<rt_float4> quadricMotion;

@@ -3,10 +3,10 @@
 // fraction of a pixel (viewpoint-aware, as RenderDrive did); issue 8 replaces them with
 // exact quadric intersection.
 #pragma once
+#include <array>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace rd {
 
@@ -21,6 +21,10 @@ struct VertexData {
     std::vector<glm::vec3> p, n;
     std::vector<glm::vec2> st;
     std::vector<glm::vec3> cs, os;
+    // Cs and Os when colours have more than three channels (ColorSamples n > 3, in the
+    // first n; cs and os are then empty)
+    using Channels = std::array<float, 15>;
+    std::vector<Channels> csN, osN;
     std::vector<int> tris;
     // Primitive variables naming shader parameters, one value per vertex (float: x),
     // in object space; in the order RibBuilder::surfaceFor lists them (point_params.cpp)

@@ -300,26 +300,34 @@ TEST(ColorSamples, FourChannelsMultiplyAsChannels) {
     expectGrey(flat(kFour, "Surface \"csproduct\"\n"), 0.0f, 1e-6f, "csproduct");
 }
 
-// Primitive variables beyond three channels are RGB
-// (RibBuilder::keptPrimitiveColorSamples): a vertex Cs of four channels is read through
-// nRGB and shaded through RGBn. With the matrices above, [0.2 0.4 0.6 0.2] is RGB (0.3,
-// 0.5, 0.6) either way; a constant Cs on a quadric sets its material the same way.
-TEST(ColorSamples, PrimitiveColoursOfFourChannelsComeAsRgb) {
-    const std::string cs =
-        " \"Cs\" [0.2 0.4 0.6 0.2  0.2 0.4 0.6 0.2  0.2 0.4 0.6 0.2  "
-        "0.2 0.4 0.6 0.2]\n";
-    Rendered img =
-        renderRib(shaderPath() + kFour + kFlat + "WorldBegin\nSurface \"constant\"\n" +
-                  "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5]" + cs + "WorldEnd\n");
-    EXPECT_NEAR(img.at(4, 4).r, 0.3f, 1e-6f);
-    EXPECT_NEAR(img.at(4, 4).g, 0.5f, 1e-6f);
-    EXPECT_NEAR(img.at(4, 4).b, 0.6f, 1e-6f);
-    Rendered sphere =
-        renderRib(shaderPath() + kFour + kFlat +
-                  "WorldBegin\nSurface \"constant\"\nTranslate 0 0 5\n"
-                  "Sphere 3 -3 3 360 \"constant color Cs\" [0.2 0.4 0.6 0.2]\n"
-                  "WorldEnd\n");
-    EXPECT_NEAR(sphere.at(4, 4).r, 0.3f, 1e-6f);
-    EXPECT_NEAR(sphere.at(4, 4).g, 0.5f, 1e-6f);
-    EXPECT_NEAR(sphere.at(4, 4).b, 0.6f, 1e-6f);
+// Cs given per vertex, per corner of a quadric, or as a quadric's constant keeps the four
+// channels (float8 per-vertex colours): lit as in FourChannelsMultiplyAsChannels it shows
+// (0.5, 0.5, 0), where RGB would give (0.75, 0.75, 0).
+TEST(ColorSamples, PrimitiveColoursKeepTheirChannels) {
+    const std::string lit =
+        "LightSource \"ambientlight\" 1 \"lightcolor\" [1 0 0 1]\n"
+        "Surface \"matte\" \"Ka\" 1 \"Kd\" 0\n";
+    const std::string cs4 = "0 1 0 1  0 1 0 1  0 1 0 1  0 1 0 1";
+    auto render = [&](const std::string& geometry) {
+        return renderRib(shaderPath() + kFour + kFlat + "WorldBegin\n" + lit + geometry +
+                         "WorldEnd\n");
+    };
+    for (const std::string& geometry :
+         {"Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5] \"Cs\" [" + cs4 + "]\n",
+          std::string(
+              "Translate 0 0 5\nSphere 3 -3 3 360 \"constant color Cs\" [0 1 0 1]\n"),
+          "Translate 0 0 5\nSphere 3 -3 3 360 \"varying color Cs\" [" + cs4 + "]\n"}) {
+        SCOPED_TRACE(geometry);
+        const Rendered img = render(geometry);
+        EXPECT_NEAR(img.at(4, 4).r, 0.5f, 1e-6f);
+        EXPECT_NEAR(img.at(4, 4).g, 0.5f, 1e-6f);
+        EXPECT_NEAR(img.at(4, 4).b, 0.0f, 1e-6f);
+    }
+    // a vertex Os of four channels: coverage is its mean
+    const Rendered half =
+        render("Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5] \"Cs\" [" + cs4 +
+               "] \"Os\" [1 1 0.5 0.5  1 1 0.5 0.5  1 1 0.5 0.5  "
+               "1 1 0.5 0.5]\n");
+    EXPECT_NEAR(half.at(4, 4).a, 0.75f, 1e-6f);
+    EXPECT_NEAR(half.at(4, 4).r, 0.25f, 1e-6f);
 }
