@@ -310,6 +310,8 @@ void RibBuilder::addInstance(L loc, const std::string& handle, const ObjectDef& 
     addObjectRecord(loc, "ObjectInstance", q, p.lo, p.hi, glm::mat4(1.0f));
 }
 
+static_assert(std::tuple_size<VertexData::Channels>::value == ColorSamples::kMaxChannels);
+
 void RibBuilder::readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh) {
     auto triples = [&](const char* name, std::vector<glm::vec3>& out) {
         const rib::Param* q = params.find(name);

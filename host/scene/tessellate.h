@@ -4,9 +4,10 @@
 // exact quadric intersection.
 #pragma once
 #include <array>
-#include <glm/glm.hpp>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 namespace rd {
 
