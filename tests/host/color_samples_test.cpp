@@ -331,3 +331,22 @@ TEST(ColorSamples, PrimitiveColoursKeepTheirChannels) {
     EXPECT_NEAR(half.at(4, 4).a, 0.75f, 1e-6f);
     EXPECT_NEAR(half.at(4, 4).r, 0.25f, 1e-6f);
 }
+
+// Metamers (examples/metamers.rib): six channels, two to each of red, green and blue. A
+// surface reflecting channels 0, 2, 4 and one reflecting 1, 3, 5 are the same grey in RGB
+// and under a light even in every channel, but under a light of channels 0, 2, 4 alone
+// the second is black. Taken in RGB, as before, the two would match under both lights.
+TEST(ColorSamples, MetamersMatchUnderAnEvenLightOnly) {
+    const std::string six = "ColorSamples [0.5 0 0  0.5 0 0  0 0.5 0  0 0.5 0  0 0 0.5  0 0 0.5] "
+                            "[1 1 0 0 0 0  0 0 1 1 0 0  0 0 0 0 1 1]\n";
+    auto patch = [&](const char* light, const char* surface) {
+        return flat(six, std::string("LightSource \"ambientlight\" 1 \"lightcolor\" ") + light +
+                             "\nColor " + surface + "\nSurface \"matte\" \"Ka\" 1 \"Kd\" 0\n");
+    };
+    const char* even = "[1 1 1 1 1 1]";
+    const char* spiky = "[1 0 1 0 1 0]";
+    expectGrey(patch(even, "[1 0 1 0 1 0]"), 0.5f, 1e-6f, "A, even light");
+    expectGrey(patch(even, "[0 1 0 1 0 1]"), 0.5f, 1e-6f, "B, even light");
+    expectGrey(patch(spiky, "[1 0 1 0 1 0]"), 0.5f, 1e-6f, "A, spiky light");
+    expectGrey(patch(spiky, "[0 1 0 1 0 1]"), 0.0f, 1e-6f, "B, spiky light");
+}
