@@ -364,16 +364,13 @@ ShadingSetup ShaderSet::prepare() {
     for (const std::string& fn : calledLightShaders)
         svc << "__attribute__((noinline)) static void rd_called_" << fn
             << "(RslGlobals* g, RSL_LIGHT_PARAMS params) { " << fn << "(g, params); }\n";
-    svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar "
-           "light */\n"
-           "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* "
-           "out) {\n"
+    svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar light */\n"
+           "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* out) {\n"
            "    RslGlobals lg = *g;\n    lg.Ps = Ps;\n    lg.L = (float4)(0.0f);\n"
            "    lg.Cl = rsl_f2c(0.0f);\n    lg.Ol = rsl_f2c(0.0f);\n    switch (l) {\n";
     for (size_t i = 0; i < lightCalls.size(); ++i)
         svc << "    case " << i << ": " << lightCalls[i] << "; break;\n";
-    svc << "    default: break;\n    }\n    *out = lg;\n    return RSL_CW(lg.Ol) == "
-           "1.0f;\n}\n";
+    svc << "    default: break;\n    }\n    *out = lg;\n    return RSL_CW(lg.Ol) == 1.0f;\n}\n";
     svc << "static int rd_light_traces_shadows(int l) {\n    switch (l) {\n";
     for (size_t i = 0; i < lightMapShadowed.size(); ++i)
         if (lightMapShadowed[i]) svc << "    case " << i << ": return 0;\n";
@@ -388,47 +385,35 @@ ShadingSetup ShaderSet::prepare() {
     // light several times: builtins, illuminance loops, coefficients, shadow rays), so
     // repeated reads of one light fold; running a light is a call.
     svc << "/* Runs light l at Ps: surface-side L, unshadowed Cl (RSL_CW 1: solar). */\n"
-           "static void rd_light_run(int l, const RslGlobals* g, float4 Ps, float4* L, "
-           "rsl_color* Cl) {\n"
+           "static void rd_light_run(int l, const RslGlobals* g, float4 Ps, float4* L, rsl_color* Cl) {\n"
            "    RslGlobals lg;\n    int solar = rd_run_light(l, g, Ps, &lg);\n"
            "    *L = (float4)(-lg.L.x, -lg.L.y, -lg.L.z, 0.0f);\n"
            "    *Cl = rsl_cw0(lg.Cl);\n    RSL_CW(*Cl) = solar ? 1.0f : 0.0f;\n}\n"
            "/* Light l at Ps: from the light cache when Ps is the shading point. */\n"
-           "static inline __attribute__((always_inline)) void rd_light_at(int l, const "
-           "RslGlobals* g,\n"
-           "                                                              float4 Ps, "
-           "float4* L, rsl_color* Cl) {\n"
+           "static inline __attribute__((always_inline)) void rd_light_at(int l, const RslGlobals* g,\n"
+           "                                                              float4 Ps, float4* L, rsl_color* Cl) {\n"
            "    if (l < 32 && ((g->lights_off >> l) & 1u)) {  /* Illuminate off */\n"
-           "        *L = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n        *Cl = "
-           "(rsl_color)(0.0f);\n        return;\n    }\n"
-           "    if (l < g->light_cache_count && Ps.x == g->P.x && Ps.y == g->P.y && Ps.z "
-           "== g->P.z) {\n"
-           "        *L = g->light_cache->L[l];\n        *Cl = g->light_cache->Cl[l];\n   "
-           "     return;\n    }\n"
+           "        *L = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n        *Cl = (rsl_color)(0.0f);\n        return;\n    }\n"
+           "    if (l < g->light_cache_count && Ps.x == g->P.x && Ps.y == g->P.y && Ps.z == g->P.z) {\n"
+           "        *L = g->light_cache->L[l];\n        *Cl = g->light_cache->Cl[l];\n        return;\n    }\n"
            "    rd_light_run(l, g, Ps, L, Cl);\n}\n"
            "static void rd_fill_light_cache(RslGlobals* g, RslLightCache* cache) {\n"
            "    g->light_cache_count = 0;\n"
            "    g->light_cache = cache;\n"
            "    int n = min(rsl_light_count(), RSL_LIGHT_CACHE);\n"
-           "    for (int l = 0; l < n; ++l) rd_light_at(l, g, g->P, &cache->L[l], "
-           "&cache->Cl[l]);\n"
+           "    for (int l = 0; l < n; ++l) rd_light_at(l, g, g->P, &cache->L[l], &cache->Cl[l]);\n"
            "    g->light_cache_count = n;\n}\n"
-           "inline __attribute__((always_inline)) int rsl_light(int l, const RslGlobals* "
-           "g, float4 Ps,\n"
-           "                                                     float4* L, rsl_color* "
-           "Cl) {\n"
+           "inline __attribute__((always_inline)) int rsl_light(int l, const RslGlobals* g, float4 Ps,\n"
+           "                                                     float4* L, rsl_color* Cl) {\n"
            "    if (rd_light_is_ambient(l)) return 0;\n"
            "    rd_light_at(l, g, Ps, L, Cl);\n    RSL_CW(*Cl) = 0.0f;\n"
            "    return rsl_cnonzero(*Cl);\n}\n"
-           "rsl_color rsl_ambient(const RslGlobals* g) {\n    rsl_color sum = "
-           "rsl_f2c(0.0f);\n"
+           "rsl_color rsl_ambient(const RslGlobals* g) {\n    rsl_color sum = rsl_f2c(0.0f);\n"
            "    for (int l = 0; l < rsl_light_count(); ++l) {\n"
-           "        if (!rd_light_is_ambient(l)) continue;\n        float4 L;\n        "
-           "rsl_color Cl;\n"
+           "        if (!rd_light_is_ambient(l)) continue;\n        float4 L;\n        rsl_color Cl;\n"
            "        rd_light_at(l, g, g->P, &L, &Cl);\n        sum += Cl;\n    }\n"
            "    return rsl_cw0(sum);\n}\n"
-           "/* Camera space (to world); screen, raster and NDC are not provided: "
-           "identity. */\n"
+           "/* Camera space (to world); screen, raster and NDC are not provided: identity. */\n"
            "RslMatrix rsl_space_matrix(int space) {\n    RslMatrix m;\n"
            "    m.r[0] = (float4)(1.0f, 0.0f, 0.0f, 0.0f);\n"
            "    m.r[1] = (float4)(0.0f, 1.0f, 0.0f, 0.0f);\n"
@@ -526,8 +511,7 @@ ShadingSetup ShaderSet::prepare() {
             shaders << sh->source << "\n";
             out.imager = true;
             imagerKernel =
-                "__kernel void imager_apply(uint width, uint count, __global float4* "
-                "pixels,\n"
+                "__kernel void imager_apply(uint width, uint count, __global float4* pixels,\n"
                 "                           __global const float* params,\n"
                 "                           __global uint* active_counter) {\n"
                 "    uint i = get_global_id(0);\n"
@@ -535,10 +519,8 @@ ShadingSetup ShaderSet::prepare() {
                 "    if (i >= count) return;\n"
                 "    float4 c = pixels[i];\n"
                 "    RslGlobals g;\n"
-                "    g.P = (float4)((float)(i % width) + 0.5f, (float)(i / width) + "
-                "0.5f, 0.0f, 0.0f);\n"
-                "    g.N = g.Ng = g.I = g.E = g.dPdu = g.dPdv = g.L = g.Ps = "
-                "(float4)(0.0f);\n"
+                "    g.P = (float4)((float)(i % width) + 0.5f, (float)(i / width) + 0.5f, 0.0f, 0.0f);\n"
+                "    g.N = g.Ng = g.I = g.E = g.dPdu = g.dPdv = g.L = g.Ps = (float4)(0.0f);\n"
                 "    g.Cl = rsl_f2c(0.0f);\n"
                 "    g.Cs = g.Os = rsl_f2c(1.0f);\n"
                 "    g.Ci = rsl_c3(c); /* the film's RGB (rsl_abi.h, COLOURS) */\n"
@@ -555,9 +537,7 @@ ShadingSetup ShaderSet::prepare() {
                 "    g.texctx = 0;\n"
                 "    RslEval ev;\n"
                 "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
-                "    " +
-                sh->functionName + "(&g, params + " + std::to_string(offset) +
-                ", &ev);\n"
+                "    " + sh->functionName + "(&g, params + " + std::to_string(offset) + ", &ev);\n"
                 "    float4 rgb = rsl_c2v(g.Ci);\n"
                 "    pixels[i] = (float4)(rgb.x, rgb.y, rgb.z, RSL_CW(g.Ol));\n"
                 "}\n";
