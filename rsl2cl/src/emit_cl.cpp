@@ -464,9 +464,7 @@ void Emitter::lightLoop(const Stmt& s) {
     } else {
         line("g->L = " + (s.args.size() == 2 ? "rsl_w0(" + exprAs(*s.args[0], BaseType::Vector) + ")"
                                               : std::string("rsl_f2v(0.0f)")) + ";");
-        line(
-            "RSL_CW(g->Ol) = 1.0f; /* solar: the light is infinitely far "
-            "(RSL_SOLAR_FLAG) */");
+        line("RSL_CW(g->Ol) = 1.0f; /* solar: the light is infinitely far */");
     }
     line("{");
     ++m_indent;
