@@ -266,7 +266,7 @@ bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
             args.floatArrays.emplace_back(got.begin(), got.end());
             if (c == 'C')
                 args.floatArrays.back() =
-                    targetColors(args.floatArrays.back(), m_target.keptColorSamples());
+                    targetColors(args.floatArrays.back());
             ++si;
         } else if (c == 'B') {
             if (vi < vals.size() && !vals[vi].array && vals[vi].isString) {
@@ -437,10 +437,8 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
         return false;
     }
     if (p.type == ParamType::Color && !m_nRGB.empty()) {
-        const int kept = info.kind == Kind::Geom
-                             ? m_target.keptPrimitiveColorSamples(p.name)
-                             : m_target.keptColorSamples();
-        p.floats = targetColors(p.floats, kept);
+        const int kept = m_target.keptColorSamples();
+        p.floats = targetColors(p.floats);
         p.colorComponents = m_nColor <= kept            ? std::max(3, m_nColor)
                             : m_target.wantsRgbColors() ? 3
                                                         : m_nColor;
@@ -448,8 +446,9 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
     return true;
 }
 
-std::vector<float> Reader::targetColors(const std::vector<float>& n, int kept) const {
+std::vector<float> Reader::targetColors(const std::vector<float>& n) const {
     if (m_nRGB.empty()) return n;
+    const int kept = m_target.keptColorSamples();
     const size_t k = m_nRGB.size() / 3;
     if (int(k) <= kept && k >= 3) return n;
     if (int(k) <= kept) {  // padded to three: the last one repeated

@@ -181,9 +181,8 @@ private:
     // n colour values -> RGB through m_nRGB, for targets that want RGB (wantsRgbColors)
     std::vector<float> toRgb(const std::vector<float>& n) const;
     // A colour's values as the target takes them (Target::keptColorSamples,
-    // wantsRgbColors) (kept: Target::keptColorSamples, or keptPrimitiveColorSamples for
-    // geometry)
-    std::vector<float> targetColors(const std::vector<float>& n, int kept) const;
+    // wantsRgbColors)
+    std::vector<float> targetColors(const std::vector<float>& n) const;
     int m_ustep = 3, m_vstep = 3;   // Basis steps (bezier by default)
     int m_archiveDepth = 0;
     std::string m_dir;              // the directory of the file being read ("" or ".../")

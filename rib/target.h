@@ -100,11 +100,6 @@ public:
     // none) takes colours under ColorSamples n <= k as the n values, padded to three by
     // repeating the last (ColorSamples 1: v v v), and converts them at its output.
     virtual int keptColorSamples() const { return 0; }
-    // The same for a colour primitive variable of a geometry request (Cs, Os, or one
-    // named like a shader parameter), which a target may keep in fewer channels.
-    virtual int keptPrimitiveColorSamples(const std::string& /*name*/) const {
-        return keptColorSamples();
-    }
     // Around each geometry request: its parameter list (the primitive variables) before
     // the call, nullptr after it, so a target can read them wherever it needs them.
     virtual void primitiveVariables(const ParamList* /*params*/) {}

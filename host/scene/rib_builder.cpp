@@ -430,7 +430,9 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
             else ref.params.params.push_back(p);
         }
         ref.pointParams = perPoint;
-        m_world.maxPointParams = std::max(m_world.maxPointParams, int(perPoint.size()));
+        int values = 0;
+        for (const auto& [name, floats] : perPoint) values += pointParamEntries(floats);
+        m_world.maxPointParams = std::max(m_world.maxPointParams, values);
         m_world.surfaceRefs.push_back(ref);
         m_surfaceKeys.push_back(a.surfaceKey);
     }

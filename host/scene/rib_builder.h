@@ -99,13 +99,9 @@ public:
     void colorSamples(L, Floats nRGB, Floats RGBn) override;
     // ColorSamples n <= 3: kept as n channels (scene.h ColorSamples); more: made RGB as read
     bool wantsRgbColors() const override { return true; }
-    // Colours keep up to 15 channels, Cs and Os given per vertex too; the primitive
-    // variables named like shader parameters up to 3 (more are RGB: per-point parameter
-    // values are float4s, brought into the channels as they are shaded)
+    // Colours keep up to 15 channels, primitive variables too (per-point parameters
+    // in pieces of three: VertexData::PointParam)
     int keptColorSamples() const override { return ColorSamples::kMaxChannels; }
-    int keptPrimitiveColorSamples(const std::string& name) const override {
-        return name == "Cs" || name == "Os" ? ColorSamples::kMaxChannels : 3;
-    }
     void primitiveVariables(const rib::ParamList* params) override { m_primVars = params; }
     void textureCoordinates(L, float s1, float t1, float s2, float t2, float s3, float t3,
                             float s4, float t4) override;

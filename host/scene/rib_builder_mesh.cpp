@@ -127,7 +127,7 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     if (!prototype)
         for (const VertexData::PointParam& p : mesh.params) {
             pointParams.push_back(pointParamToWorld(ctm, p));
-            m_carriedPointParams.push_back({p.name, p.kind == VertexData::Kind::Float ? 1 : 3});
+            if (p.piece == 0) m_carriedPointParams.push_back({p.name, p.floats});
         }
     if (!pointParams.empty()) startTrianglePointParams();
     uint32_t material = currentMaterial();

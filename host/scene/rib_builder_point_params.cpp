@@ -31,7 +31,7 @@ bool kindOf(const rib::Param& p, Kind* kind) {
     if (p.arraySize != 1) return false;
     switch (p.type) {
     case rib::ParamType::Float: *kind = Kind::Float; return true;
-    case rib::ParamType::Color: *kind = Kind::Color; return p.components() == 3;
+    case rib::ParamType::Color: *kind = Kind::Color; return p.components() >= 3;
     case rib::ParamType::Point: *kind = Kind::Point; return true;
     case rib::ParamType::Vector: *kind = Kind::Vector; return true;
     case rib::ParamType::Normal: *kind = Kind::Normal; return true;
@@ -39,25 +39,53 @@ bool kindOf(const rib::Param& p, Kind* kind) {
     }
 }
 
-// One per-vertex PointParam for each listed variable, its value at vertex i being
-// at(param, i): the loop every kind of geometry shares.
+// A variable's values three floats at a time: a colour of n > 3 channels is carried in
+// ceil(n / 3) pieces (VertexData::PointParam), anything else in one.
+struct Piece {
+    const rib::Param* param;
+    int index;  // its floats 3 index .. 3 index + 2 of each value
+    rib::StorageClass storage;
+};
+
+std::vector<Piece> piecesOf(const std::vector<const rib::Param*>& list) {
+    std::vector<Piece> out;
+    for (const rib::Param* p : list)
+        for (int k = 0; k < pointParamEntries(p->components()); ++k)
+            out.push_back({p, k, p->storage});
+    return out;
+}
+
+// A piece's per-vertex values to fill (n of them).
+VertexData::PointParam pointParamFor(const Piece& p, size_t n) {
+    VertexData::PointParam out;
+    out.name = p.param->name;
+    kindOf(*p.param, &out.kind);
+    out.floats = p.param->components();
+    out.piece = p.index;
+    out.v.assign(n, glm::vec3(0.0f));
+    return out;
+}
+
+// One per-vertex PointParam for each piece of the listed variables, its value at vertex
+// i being at(piece, i): the loop every kind of geometry shares.
 template <class At>
 void appendPointParams(const std::vector<const rib::Param*>& list, VertexData& mesh, At at) {
-    for (const rib::Param* p : list) {
-        VertexData::PointParam out;
-        out.name = p->name;
-        kindOf(*p, &out.kind);
-        out.v.resize(mesh.p.size());
-        for (size_t i = 0; i < out.v.size(); ++i) out.v[i] = at(*p, i);
+    for (const Piece& p : piecesOf(list)) {
+        VertexData::PointParam out = pointParamFor(p, mesh.p.size());
+        for (size_t i = 0; i < out.v.size(); ++i) out.v[i] = at(p, i);
         mesh.params.push_back(std::move(out));
     }
 }
 
-glm::vec3 valueAt(const rib::Param& p, size_t i) {
-    const size_t n = size_t(p.components());
-    if (n == 1) return glm::vec3(i < p.floats.size() ? p.floats[i] : 0.0f, 0.0f, 0.0f);
-    if (n * i + 2 >= p.floats.size()) return glm::vec3(0.0f);
-    return {p.floats[n * i], p.floats[n * i + 1], p.floats[n * i + 2]};
+// Value i of a piece (0 where the values run out).
+glm::vec3 valueAt(const Piece& p, size_t i) {
+    const std::vector<float>& f = p.param->floats;
+    const size_t n = size_t(p.param->components());
+    if (n == 1) return glm::vec3(i < f.size() ? f[i] : 0.0f, 0.0f, 0.0f);
+    if (n * i + n > f.size()) return glm::vec3(0.0f);
+    glm::vec3 v(0.0f);
+    for (size_t c = 0, j = 3 * size_t(p.index); c < 3 && j < n; ++c, ++j) v[int(c)] = f[n * i + j];
+    return v;
 }
 
 // The sub-patch (or NURBS knot span, when `order` > 0) that parameter x is in, of n,
@@ -180,7 +208,7 @@ void RibBuilder::readPointParams(const rib::ParamList& params, const std::vector
     std::vector<int> faceOf;  // face index of each face-vertex
     for (size_t f = 0; f < nverts.size(); ++f)
         faceOf.insert(faceOf.end(), size_t(std::max(nverts[f], 0)), int(f));
-    appendPointParams(list, mesh, [&](const rib::Param& p, size_t i) {
+    appendPointParams(list, mesh, [&](const Piece& p, size_t i) {
         size_t src = i;  // the value's index for vertex i
         if (perCorner) {
             if (p.storage == rib::StorageClass::FaceVarying) src = i;
@@ -207,7 +235,7 @@ void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,
             first[f + 1] += size_t(std::max(nverts[l], 0));
     }
     const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
-    appendPointParams(list, mesh, [&](const rib::Param& p, size_t i) {
+    appendPointParams(list, mesh, [&](const Piece& p, size_t i) {
         const size_t point = src[i].vertex;
         const size_t face = src[i].triangle < faceIndex.size() ? size_t(faceIndex[src[i].triangle]) : 0;
         size_t at = point;  // varying, vertex: the point's value
@@ -242,7 +270,7 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
         if (!ok) return;  // vertex values of a bicubic mesh: not carried (surfaceFor warns)
     }
     const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
-    appendPointParams(list, mesh, [&](const rib::Param& p, size_t i) {
+    appendPointParams(list, mesh, [&](const Piece& p, size_t i) {
         const glm::vec2 at = uv[src[i].vertex];
         if (p.storage == rib::StorageClass::Uniform) {
             const size_t t = src[i].triangle;
@@ -272,14 +300,11 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
 
 void RibBuilder::pointsPointParams(const rib::ParamList& params,
                                    const std::vector<int>& faceIndex, VertexData& mesh) {
-    for (const rib::Param* p : pointParamsOf(&params)) {
-        VertexData::PointParam out;
-        out.name = p->name;
-        kindOf(*p, &out.kind);
-        out.v.assign(mesh.p.size(), glm::vec3(0.0f));
+    for (const Piece& p : piecesOf(pointParamsOf(&params))) {
+        VertexData::PointParam out = pointParamFor(p, mesh.p.size());
         for (size_t t = 0; 3 * t + 2 < mesh.tris.size() && t < faceIndex.size(); ++t)
             for (int c = 0; c < 3; ++c)  // each disc has its own vertices
-                out.v[size_t(mesh.tris[3 * t + c])] = valueAt(*p, size_t(faceIndex[t]));
+                out.v[size_t(mesh.tris[3 * t + c])] = valueAt(p, size_t(faceIndex[t]));
         mesh.params.push_back(std::move(out));
     }
 }
@@ -288,11 +313,11 @@ bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in) {
     const std::vector<const rib::Param*> list = pointParamsOf(&params);
     for (const rib::Param* p : list)  // facevarying values need an FVar channel: not yet
         if (p->storage == rib::StorageClass::FaceVarying) return false;
-    for (const rib::Param* p : list) {
-        if (p->storage == rib::StorageClass::Uniform) continue;  // per face: no refining
+    for (const Piece& p : piecesOf(list)) {
+        if (p.storage == rib::StorageClass::Uniform) continue;  // per face: no refining
         std::vector<glm::vec3> v(in.P.size());
-        for (size_t i = 0; i < v.size(); ++i) v[i] = valueAt(*p, i);
-        (p->storage == rib::StorageClass::Vertex ? in.vertexValues : in.varyingValues)
+        for (size_t i = 0; i < v.size(); ++i) v[i] = valueAt(p, i);
+        (p.storage == rib::StorageClass::Vertex ? in.vertexValues : in.varyingValues)
             .push_back(std::move(v));
     }
     return !list.empty();
@@ -302,23 +327,21 @@ void RibBuilder::subdivPointParams(const rib::ParamList& params,
                                    const std::vector<std::vector<glm::vec3>>& refined,
                                    const std::vector<int>& faceIndex, VertexData& mesh) {
     const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    const std::vector<Piece> pieces = piecesOf(list);
     size_t vertexCount = 0, next[2] = {0, 0};
-    for (const rib::Param* p : list) vertexCount += p->storage == rib::StorageClass::Vertex;
+    for (const Piece& p : pieces) vertexCount += p.storage == rib::StorageClass::Vertex;
     const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
-    for (const rib::Param* p : list) {
-        VertexData::PointParam out;
-        out.name = p->name;
-        kindOf(*p, &out.kind);
-        out.v.resize(mesh.p.size());
+    for (const Piece& p : pieces) {
+        VertexData::PointParam out = pointParamFor(p, mesh.p.size());
         // refined values: the vertex ones first, then the varying ones (SubdivInput)
         const std::vector<glm::vec3>* r = nullptr;
-        if (p->storage == rib::StorageClass::Vertex) r = &refined.at(next[0]++);
-        else if (p->storage != rib::StorageClass::Uniform)
+        if (p.storage == rib::StorageClass::Vertex) r = &refined.at(next[0]++);
+        else if (p.storage != rib::StorageClass::Uniform)
             r = &refined.at(vertexCount + next[1]++);
         for (size_t i = 0; i < out.v.size(); ++i) {
             const size_t t = src[i].triangle;
             out.v[i] = r ? (src[i].vertex < r->size() ? (*r)[src[i].vertex] : glm::vec3(0.0f))
-                         : valueAt(*p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
+                         : valueAt(p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
         }
         mesh.params.push_back(std::move(out));
     }
@@ -340,7 +363,7 @@ void RibBuilder::curvesPointParams(const rib::ParamList& params, const CurvesInp
     std::vector<size_t> curveOf(mesh.p.size(), 0);  // a ribbon's vertices are its own
     for (size_t t = 0; 3 * t + 2 < mesh.tris.size() && t < faceIndex.size(); ++t)
         for (int k = 0; k < 3; ++k) curveOf[size_t(mesh.tris[3 * t + k])] = size_t(faceIndex[t]);
-    appendPointParams(list, mesh, [&](const rib::Param& p, size_t i) {
+    appendPointParams(list, mesh, [&](const Piece& p, size_t i) {
         const size_t c = std::min(curveOf[i], in.nvertices.size() - 1);
         const int n = in.nvertices[c];
         const int segs = std::max(1, curveSegments(in.cubic, n, in.periodic, step));
@@ -364,16 +387,13 @@ void RibBuilder::curvesPointParams(const rib::ParamList& params, const CurvesInp
 }
 
 void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh) {
-    for (const rib::Param* p : pointParamsOf(&params)) {
-        VertexData::PointParam out;
-        out.name = p->name;
-        kindOf(*p, &out.kind);
+    for (const Piece& p : piecesOf(pointParamsOf(&params))) {
+        VertexData::PointParam out = pointParamFor(p, mesh.p.size());
         // a quadric's varying values are at its (u, v) corners 00, 10, 01, 11 (one value,
         // uniform: everywhere); mesh.st holds each vertex's (u, v)
-        const bool corners = valueCount(*p) >= 4 * size_t(p->components());
+        const bool corners = valueCount(*p.param) >= 4 * size_t(p.param->components());
         glm::vec3 c[4];
-        for (int k = 0; k < 4; ++k) c[k] = valueAt(*p, corners ? size_t(k) : 0);
-        out.v.resize(mesh.p.size());
+        for (int k = 0; k < 4; ++k) c[k] = valueAt(p, corners ? size_t(k) : 0);
         for (size_t i = 0; i < out.v.size(); ++i) {
             const glm::vec2 uv = i < mesh.st.size() ? mesh.st[i] : glm::vec2(0.0f);
             out.v[i] = (1 - uv.x) * (1 - uv.y) * c[0] + uv.x * (1 - uv.y) * c[1] +

@@ -165,9 +165,8 @@ void RibBuilder::perspective(L loc, float fov) {
 
 // ColorSamples n <= 15: the reader hands colours over as their n values
 // (keptColorSamples; under three padded to three) and the renderer shades, traces and
-// sums samples in those channels, converting each sample to RGB for the film. Per-point
-// shader parameters beyond three channels come as RGB (keptPrimitiveColorSamples; Cs and
-// Os keep their channels). More than 15:
+// sums samples in those channels, converting each sample to RGB for the film; primitive
+// variables too (Cs, Os, and per-point shader parameters). More than 15:
 // the reader converts every colour to RGB through nRGB as it reads it, and the renderer
 // stays RGB.
 void RibBuilder::colorSamples(L loc, Floats nRGB, Floats RGBn) {

@@ -56,9 +56,14 @@ struct ShaderRef {
     rib::SourceLoc loc;
     // Parameters its primitives give per point (RI varying, vertex, facevarying, or
     // uniform on several faces), in the order of their values (Scene::pointParamValues):
-    // name, and floats per value (1 float, 3 color/point/vector/normal)
+    // name, and floats per value (1 float, 3 point/vector/normal, a colour's channels),
+    // each taking pointParamEntries(floats) values a point
     std::vector<std::pair<std::string, int>> pointParams = {};
 };
+
+// The float4 values a per-point parameter of `floats` floats takes: three floats each
+// (a colour of n > 3 channels in pieces, rsl_abi.h PER-POINT PARAMETERS).
+inline int pointParamEntries(int floats) { return (floats + 2) / 3; }
 
 // Option "render" ...: budgets and adaptive sampling (the command line overrides).
 struct RenderOptionsSpec {
@@ -107,9 +112,9 @@ struct Scene {
     std::vector<rt_float4> vertexSt, vertexCs, vertexOs;
     // With more than three colour channels (ColorSamples n > 3): each material's Cs then
     // Os in the n channels, 2 n floats a material (Material::cs and os hold their RGB);
-    // else empty. Per-point shader parameters of colour type stay RGB (rsl_pv_color).
+    // else empty.
     std::vector<float> materialChannels;
-    // Shader parameters given per point (ShaderRef::pointParams, K of them): by triangle,
+    // Shader parameters given per point (ShaderRef::pointParams, K values): by triangle,
     // the first of its 3 x K values (corner-major) in pointParamValues, or
     // RT_NO_POINT_PARAMS; empty when no triangle has any. Quadrics: Quadric.point_params,
     // 4 x K (the (u, v) corners 00, 10, 01, 11). Points, vectors, normals in world space.

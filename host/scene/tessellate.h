@@ -30,9 +30,13 @@ struct VertexData {
     // Primitive variables naming shader parameters, one value per vertex (float: x),
     // in object space; in the order RibBuilder::surfaceFor lists them (point_params.cpp)
     enum class Kind { Float, Color, Point, Vector, Normal };
+    // A colour of n > 3 channels comes as ceil(n / 3) of them in a row, `piece` 0, 1, ...
+    // holding its channels 3 piece .. 3 piece + 2 (rsl_abi.h, PER-POINT PARAMETERS).
     struct PointParam {
         std::string name;
         Kind kind = Kind::Float;
+        int floats = 1;  // the variable's floats a value (a colour's: its channels)
+        int piece = 0;
         std::vector<glm::vec3> v;
     };
     std::vector<PointParam> params;

@@ -127,10 +127,7 @@ std::vector<int32_t> pointParamOffsets(const rsl::EmittedShader& sh, const Shade
         int32_t offset = -1;  // not a parameter of this shader: RI ignores it
         for (const rsl::ParamSlot& slot : sh.params) {
             if (slot.name != name) continue;
-            // (a colour comes as RGB when the scene has more than three channels: see
-            // rsl_pv_color in rsl_color_samples.clh)
-            const bool fits = slot.size == floats ||
-                              (slot.type.base == rsl::BaseType::Color && floats == 3);
+            const bool fits = slot.size == floats;
             if (slot.arraySize == 0 && fits && slot.type.base != rsl::BaseType::String)
                 offset = slot.offset;
             else
@@ -140,6 +137,8 @@ std::vector<int32_t> pointParamOffsets(const rsl::EmittedShader& sh, const Shade
                                            ") of shader \"" + call.name + "\"; ignored");
         }
         out.push_back(offset);
+        // a colour's further pieces (rsl_abi.h, PER-POINT PARAMETERS)
+        out.insert(out.end(), size_t(pointParamEntries(floats) - 1), -1);
     }
     return out;
 }

@@ -68,7 +68,8 @@
  * varying, vertex, facevarying or uniform named like a parameter): RslGlobals then
  * holds pv_count entries of (pv_slot, pv_value), the parameter's offset in the block
  * and its value there (a float in .x, a triple in xyz, already in current space; a
- * colour in its channels, or as RGB when colours have more than 3 channels). The
+ * colour in its channels, three an entry in xyz: under n > 3 channels ceil(n / 3)
+ * entries in a row, the first with the slot and the rest with slot -1). The
  * generated surface function replaces the block's value of each such non-array float
  * or triple parameter after reading the block; other slots are ignored. While
  * pv_count > 0 it also computes its hoisted declarations (hoist.h) at the point

@@ -302,11 +302,11 @@ void Emitter::emitPointParams() {
         const BaseType b = p.type.base;
         if (slot.arraySize > 0 || b == BaseType::String || b == BaseType::Matrix)
             continue;
-        // (a colour comes as a float4: see rsl_pv_color)
+        // (a colour of more than three channels takes several entries: rsl_pv_color)
         const std::string v = "g->pv_value[_k]";
         cases += "case " + std::to_string(slot.offset) + ": p_" + p.name + " = " +
                  (b == BaseType::Float ? v + ".x"
-                  : p.type.isColor()   ? "rsl_pv_color(" + v + ")"
+                  : p.type.isColor()   ? std::string("rsl_pv_color(g->pv_value, _k)")
                                        : v) +
                  "; break; ";
     }

@@ -35,6 +35,8 @@ std::string shaderPath() {
                "    Ci = Os * (Cs * tint * diffuse(Nf) + 0.1 * color \"hsv\" (0.6, 0.5, 1)\n"
                "               + ctransform(\"hsv\", \"rgb\", ctransform(\"hsv\", Cs)) * 0.05);\n"
                "    Oi = Os;\n}\n";
+        std::ofstream(d + "/csparam.sl")
+            << "surface csparam(color tint = 0) {\n    Ci = tint * ambient();\n    Oi = 1;\n}\n";
         std::ofstream(d + "/cstint.sl")
             << "imager cstint() {\n    Ci = Ci * color(1, 0.5, 0.25) + (1 - alpha) * color \"hsv\" (0.6, 1, 1);\n"
                "    alpha = 1;\n}\n";
@@ -330,6 +332,57 @@ TEST(ColorSamples, PrimitiveColoursKeepTheirChannels) {
                "1 1 0.5 0.5]\n");
     EXPECT_NEAR(half.at(4, 4).a, 0.75f, 1e-6f);
     EXPECT_NEAR(half.at(4, 4).r, 0.25f, 1e-6f);
+}
+
+// A shader's colour parameter given per point keeps the n channels (ceil(n / 3) values a
+// point, rsl_abi.h PER-POINT PARAMETERS), at 4, 7, 12 and 15 channels (two pieces, the
+// last lane of float8, four pieces, five): channel i of "tint" is (i + 1) / 16 on the
+// left face and half that on the right, given per face ("uniform" over a two-face
+// PointsPolygons) and per corner of an exact sphere, and once for a whole polygon
+// ("constant"); nRGB takes channel i to (1, i / n, (i / n)^2), so a channel lost or
+// moved changes the sums the film shows. (As before, per-point values taken as RGB
+// keep three dimensions of the n, and the constant one was ignored with a warning.)
+TEST(ColorSamples, PerPointParametersKeepTheirChannels) {
+    for (int n : {4, 7, 12, 15}) {
+        SCOPED_TRACE(std::to_string(n) + " channels");
+        std::string nrgb, rgbn, one, left, right;
+        double want[3] = {0, 0, 0};
+        for (int i = 0; i < n; ++i) {
+            const std::string fs = std::to_string(double(i) / n);  // the RIB's digits
+            const double f = std::stod(fs), t = (i + 1) / 16.0;
+            nrgb += " 1 " + fs + " " + std::to_string(f * f);
+            one += " 1";
+            left += " " + std::to_string(t);
+            right += " " + std::to_string(t / 2);
+            want[0] += t, want[1] += t * f, want[2] += t * std::stod(std::to_string(f * f));
+        }
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < n; ++i) rgbn += i == j ? " 1" : " 0";
+        const std::string head = shaderPath() + "ColorSamples [" + nrgb + "] [" + rgbn + "]\n" +
+                                 kFlat + "WorldBegin\nLightSource \"ambientlight\" 1 " +
+                                 "\"lightcolor\" [" + one + "]\nSurface \"csparam\"\n";
+        const Rendered faces = renderRib(
+            head + "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] "
+                   "\"P\" [-2 -2 5  0 -2 5  2 -2 5  -2 2 5  0 2 5  2 2 5] "
+                   "\"uniform color tint\" [" + left + right + "]\nWorldEnd\n");
+        const Rendered sphere =
+            renderRib(head + "Translate 0 0 5\nSphere 3 -3 3 360 \"varying color tint\" [" +
+                      left + left + left + left + "]\nWorldEnd\n");
+        // one value for the whole primitive: the instance's parameter value
+        const Rendered constant =
+            renderRib(head + "Polygon \"P\" [-2 -2 5  2 -2 5  2 2 5  -2 2 5] "
+                             "\"constant color tint\" [" + right + "]\nWorldEnd\n");
+        const Rendered* img[4] = {&faces, &faces, &sphere, &constant};
+        const int x[4] = {1, 6, 4, 4};
+        const double scale[4] = {1, 0.5, 1, 0.5};
+        const char* what[4] = {"left face", "right face", "sphere", "constant"};
+        for (int k = 0; k < 4; ++k) {
+            const rd::Rgba& got = img[k]->at(x[k], 4);
+            EXPECT_NEAR(got.r, scale[k] * want[0], 1e-5 * want[0]) << what[k];
+            EXPECT_NEAR(got.g, scale[k] * want[1], 1e-5 * want[1]) << what[k];
+            EXPECT_NEAR(got.b, scale[k] * want[2], 1e-5 * want[2]) << what[k];
+        }
+    }
 }
 
 // Metamers (examples/metamers.rib): six channels, two to each of red, green and blue. A

@@ -114,7 +114,7 @@ TEST(Hoist, PerPointParametersReplaceTheBlockValueAndTheHoistedWork) {
     EXPECT_NE(sh.source.find("case " + offset("Kd") + ": p_Kd = g->pv_value[_k].x;"),
               std::string::npos) << sh.source;
     EXPECT_NE(sh.source.find("case " + offset("tint") +
-                             ": p_tint = rsl_pv_color(g->pv_value[_k]);"),
+                             ": p_tint = rsl_pv_color(g->pv_value, _k);"),
               std::string::npos)
         << sh.source;
     EXPECT_EQ(sh.source.find("p_map = g->pv_value"), std::string::npos);
