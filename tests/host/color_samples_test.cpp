@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -382,6 +383,99 @@ TEST(ColorSamples, PerPointParametersKeepTheirChannels) {
             EXPECT_NEAR(got.g, scale[k] * want[1], 1e-5 * want[1]) << what[k];
             EXPECT_NEAR(got.b, scale[k] * want[2], 1e-5 * want[2]) << what[k];
         }
+    }
+}
+
+// Every kind of geometry carries a per-point colour parameter's pieces (a colour of six
+// channels in two values a point, of fifteen in five): polygons (varying, facevarying, a
+// general polygon), patches (bilinear varying, bicubic vertex, a mesh's uniform values),
+// a NuPatch, subdivision meshes (vertex values refined to the limit, uniform per face),
+// curves, points and a sphere's corners. In 6 and 15 channels, three to each piece p of
+// m: a value is RGB times p + 1 in piece p, and nRGB takes piece p's channels to RGB
+// times 1 / (m (p + 1)), so the image is the RGB one (within 1e-6) only if every piece
+// arrives in its place.
+TEST(ColorSamples, PerPointParametersOnEveryGeometryGiveTheRgbImage) {
+    auto num = [](double x) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%.9g", x);
+        return std::string(b);
+    };
+    auto scene = [&](const std::string& colorSamples, int pieces) {
+        int k = 0;  // the next value's colour: a fixed spread over [0, 1]
+        auto tints = [&](int count) {
+            std::string v = "[";
+            for (int i = 0; i < count; ++i, ++k)
+                for (int p = 0; p < pieces; ++p)
+                    for (double c : {(k * 7 % 11) / 10.0, (k * 5 % 13) / 12.0, (k * 3 % 7) / 6.0})
+                        v += " " + num(c * (p + 1));
+            return v + "]";
+        };
+        std::string one = "[";
+        for (int r = 0; r < 3 * pieces; ++r) one += " 1";
+        one += "]";
+        auto at = [](int cell, const std::string& geometry) {  // a 4 x 3 grid of cells
+            return "AttributeBegin\nTranslate " + std::to_string(-0.75 + 0.5 * (cell % 4)) + " " +
+                   std::to_string(-0.5 + 0.5 * (cell / 4)) + " 2\nScale 0.2 0.2 0.2\n" +
+                   geometry + "\nAttributeEnd\n";
+        };
+        const std::string quad = "\"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] ";
+        std::string bicubic;
+        for (int b = 0; b < 4; ++b)
+            for (int a = 0; a < 4; ++a)
+                bicubic += std::to_string(-1 + 2 * a / 3.0) + " " + std::to_string(-1 + 2 * b / 3.0) + " 0 ";
+        const std::string cage =
+            "SubdivisionMesh \"catmull-clark\" [4 4 4 4] [0 1 4 3  1 2 5 4  3 4 7 6  4 5 8 7] "
+            "[\"interpolateboundary\"] [0 0] [] [] "
+            "\"P\" [-1 -1 0  0 -1 0  1 -1 0  -1 0 0  0 0 0  1 0 0  -1 1 0  0 1 0  1 1 0] ";
+        std::string world =
+            at(0, "Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0] \"varying color tint\" " +
+                      tints(4)) +
+            at(1, "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] "
+                  "\"P\" [-1 -1 0  0 -1 0  1 -1 0  -1 1 0  0 1 0  1 1 0] "
+                  "\"facevarying color tint\" " + tints(8)) +
+            at(2, "GeneralPolygon [4 4] \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0  "
+                  "-0.5 -0.5 0  -0.5 0.5 0  0.5 0.5 0  0.5 -0.5 0] \"varying color tint\" " +
+                      tints(8)) +
+            at(3, "Patch \"bilinear\" " + quad + "\"varying color tint\" " + tints(4)) +
+            at(4, "Patch \"bicubic\" \"P\" [" + bicubic + "] \"vertex color tint\" " + tints(16)) +
+            at(5, "PatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" "
+                  "\"P\" [-1 -1 0  0 -1 0  1 -1 0  -1 1 0  0 1 0  1 1 0] "
+                  "\"uniform color tint\" " + tints(2)) +
+            at(6, "NuPatch 3 2 [0 0 1 3 3] 0 3 2 2 [0 0 1 1] 0 1 "
+                  "\"P\" [-1 -1 0  0 -1 0  1 -1 0  -1 1 0  0 1 0  1 1 0] "
+                  "\"varying color tint\" " + tints(6)) +
+            at(7, cage + "\"vertex color tint\" " + tints(9)) +
+            at(8, cage + "\"uniform color tint\" " + tints(4)) +
+            at(9, "Curves \"linear\" [3] \"nonperiodic\" \"P\" [-1 0 0  0 0 0  1 0 0] "
+                  "\"constantwidth\" [1] \"varying color tint\" " + tints(3)) +
+            at(10, "Points \"P\" [-0.5 0 0  0.5 0 0] \"constantwidth\" [0.8] "
+                   "\"varying color tint\" " + tints(2)) +
+            at(11, "Sphere 1 -1 1 360 \"varying color tint\" " + tints(4));
+        return renderRib(shaderPath() + colorSamples +
+                         "Format 32 24 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
+                         "WorldBegin\nLightSource \"ambientlight\" 1 \"lightcolor\" " + one +
+                         "\nSurface \"csparam\"\n" + world + "WorldEnd\n");
+    };
+    const Rendered rgb = scene("", 1);
+    EXPECT_EQ(rgb.stats.features.pointParams, 1);
+    for (int cell = 0; cell < 12; ++cell) {  // each object shows its colours (0.32-1.29)
+        const int x = int((-0.75 + 0.5 * (cell % 4) + 4.0 / 3) * 12), y = 18 - 6 * (cell / 4);
+        double sum = 0;
+        for (int c = 0; c < 3; ++c) sum += rgb.mean(c, x - 2, y - 2, x + 3, y + 3);
+        EXPECT_GT(sum, 0.2) << "cell " << cell;
+    }
+    for (int n : {6, 15}) {
+        SCOPED_TRACE(std::to_string(n) + " channels");
+        std::string toRgb, fromRgb;
+        const int m = n / 3;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < 3; ++j)
+                toRgb += " " + (i % 3 == j ? num(1.0 / (m * (i / 3 + 1))) : std::string("0"));
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < n; ++i) fromRgb += (i % 3 == j ? " 1" : " 0");
+        const Rendered wide = scene("ColorSamples [" + toRgb + "] [" + fromRgb + "]\n", m);
+        EXPECT_EQ(wide.stats.features.pointParams, n / 3);  // values a point (RGB: 1)
+        EXPECT_GT(expectSameImage(rgb, wide, false), 100.0);
     }
 }
 
