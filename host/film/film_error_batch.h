@@ -2,6 +2,7 @@
 // vectors the host has (the sample planner tests every pixel of the frame in some passes).
 #pragma once
 #include <cstddef>
+#include <cstdint>
 
 #include "cl/include/film.h"
 
@@ -10,9 +11,12 @@ namespace rd {
 constexpr size_t kPixelBatch = 64;
 
 // A batch's pixels' film sums laid out by channel (n: the sample count, s: the sums, q:
-// the sums of squares, mean: pixelMean).
+// the sums of squares, mean: pixelMean), as the film holds them: the vector loops widen
+// them to double (exactly), where gathering them as doubles took a scalar conversion
+// each.
 struct PixelSumsBatch {
-    alignas(64) double n[kPixelBatch], s[3][kPixelBatch], q[3][kPixelBatch];
+    alignas(64) uint32_t n[kPixelBatch];
+    alignas(64) float s[3][kPixelBatch], q[3][kPixelBatch];
     alignas(64) float mean[kPixelBatch];
 };
 

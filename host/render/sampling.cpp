@@ -60,8 +60,8 @@ void SamplePlanner::measure(const FilmPixels& film, const uint32_t* pixels, size
     PixelSumsBatch b;
     for (size_t j = 0; j < kPixelBatch; ++j) {
         if (j >= count) {  // (a short batch: padded, its answers unused)
-            b.n[j] = 2.0, b.mean[j] = 1.0f;
-            for (int c = 0; c < 3; ++c) b.s[c][j] = 0.0, b.q[c][j] = 0.0;
+            b.n[j] = 2, b.mean[j] = 1.0f;
+            for (int c = 0; c < 3; ++c) b.s[c][j] = 0.0f, b.q[c][j] = 0.0f;
             continue;
         }
         const uint32_t pixel = pixels[j];
