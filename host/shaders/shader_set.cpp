@@ -263,8 +263,12 @@ bool ShaderSet::bindCases(const std::vector<ShaderRef>& refs, const std::string&
 ShadingSetup ShaderSet::prepare() {
     ShadingSetup out;
     std::ostringstream lights, shaders;
-    // --- light instances: parameters baked into constants, one switch case each
+    // --- light instances: one switch case each, their parameters in the params buffer
+    // (with their uniform work prepared, as a surface's), followed by the light's place
+    // (P, N): a light edited between renders changes data, not the program, which would
+    // cost a build and every kernel's first compile again (2.6 s for SPD teapot)
     std::vector<std::string> lightCalls;
+    std::vector<size_t> lightBlock;  // each light's block's offset in out.params
     std::vector<bool> lightAmbient, lightMapShadowed;
     std::vector<const rsl::EmittedShader*> lightShaders;
     std::map<std::string, bool> lightEmitted;
@@ -276,19 +280,20 @@ ShadingSetup ShaderSet::prepare() {
         int index = int(lightCalls.size());
         std::vector<float> block = bindParameters(*sh, l, m_diag, m_scene.colors);
         noteTextures(out, *sh, l);
-        lights << "__constant float rd_light_params_" << index << "[] = {";
-        for (size_t i = 0; i < block.size(); ++i) lights << (i ? ", " : "") << fmt(block[i]);
-        if (block.empty()) lights << "0.0f";
-        lights << "};\n";
         // In the light shader P and N are the light's own: its shader-space origin and +z
         // axis, or for an area light a point of its geometry (below)
         glm::vec3 o(l.shaderToWorld * glm::vec4(0, 0, 0, 1));
         glm::vec3 n = glm::transpose(glm::inverse(glm::mat3(l.shaderToWorld))) * glm::vec3(0, 0, 1);
         if (glm::dot(n, n) > 0.0f) n = glm::normalize(n);
-        auto f4 = [](const glm::vec3& v) {
-            return "(float4)(" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + ", 0.0f)";
-        };
-        std::string place = "lg.P = " + f4(o) + "; lg.N = lg.Ng = " + f4(n) + "; ";
+        addPrepare(out, *sh);
+        const size_t at = out.params.size(), placeAt = at + block.size();
+        lightBlock.push_back(at);
+        out.params.insert(out.params.end(), block.begin(), block.end());
+        out.params.insert(out.params.end(), {o.x, o.y, o.z, 0.0f, n.x, n.y, n.z, 0.0f});
+        const std::string params = "lg.light_params + " + std::to_string(at);
+        std::string place = "lg.P = vload4(0, lg.light_params + " + std::to_string(placeAt) +
+                            "); lg.N = lg.Ng = vload4(1, lg.light_params + " +
+                            std::to_string(placeAt) + "); ";
         // an area light: a point on its geometry instead, weighted by area
         auto area = m_scene.areaLightTriangles.find(uint32_t(sceneLight));
         if (area != m_scene.areaLightTriangles.end() && !area->second.empty()) {
@@ -321,7 +326,7 @@ ShadingSetup ShaderSet::prepare() {
         const bool inlined = uint32_t(index) < kInlinedLightInstances;
         if (!inlined) calledLightShaders.insert(sh->functionName);
         lightCalls.push_back(place + (inlined ? "" : "rd_called_") + sh->functionName +
-                             "(&lg, rd_light_params_" + std::to_string(index) + ")");
+                             "(&lg, " + params + ")");
         lightAmbient.push_back(sh->ambientLight);
         // a light whose "shadowname" names a shadow map is shadowed by that map (its
         // shader's shadow() call) instead of by a traced shadow ray
@@ -337,14 +342,14 @@ ShadingSetup ShaderSet::prepare() {
     // --- services the generated code calls (rsl_abi.h)
     std::ostringstream svc;
     // lightsource("name", var): the light instance's parameter, matched by name id and size.
-    svc << "int rsl_lightsource_param(int light, int nameId, float* out, int n) {\n"
-           "    switch (light) {\n";
+    svc << "int rsl_lightsource_param(const RslGlobals* g, int light, int nameId, float* out, "
+           "int n) {\n    switch (light) {\n";
     for (size_t i = 0; i < lightShaders.size(); ++i) {
         svc << "    case " << i << ":\n";
         for (const rsl::ParamSlot& slot : lightShaders[i]->params)
             svc << "        if (nameId == " << rsl::stringId(slot.name) << " && n == " << slot.size
-                << ") { for (int k = 0; k < n; ++k) out[k] = rd_light_params_" << i << "["
-                << slot.offset << " + k]; return 1; }\n";
+                << ") { for (int k = 0; k < n; ++k) out[k] = g->light_params["
+                << lightBlock[i] + size_t(slot.offset) << " + k]; return 1; }\n";
         svc << "        return 0;\n";
     }
     svc << "    default: return 0;\n    }\n}\n";
@@ -534,6 +539,7 @@ ShadingSetup ShaderSet::prepare() {
                 "    g.lights_off = 0u;\n"
                 "    g.rng_pixel = i;\n    g.rng_sample = 0u;\n    g.rng_depth = 0u;\n"
                 "    g.texctx = 0;\n"
+                "    g.light_params = params;\n"
                 "    RslEval ev;\n"
                 "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
                 "    " + sh->functionName + "(&g, params + " + std::to_string(offset) + ", &ev);\n"
@@ -569,15 +575,15 @@ ShadingSetup ShaderSet::prepare() {
             out.pointParamLayout.insert(out.pointParamLayout.end(), lay.begin(), lay.end());
         }
     }
-    // Light parameters are baked constants; each of the first kInlinedLightInstances
-    // instances' calls is inlined (RD_SPECIALISED_LIGHTS), so the compiler folds its
-    // uniform work (SPD gears, five spotlights: shade_spd 154 -> 127 ms, images bit for
-    // bit the same).
+    // Each of the first kInlinedLightInstances light instances' calls is inlined
+    // (RD_SPECIALISED_LIGHTS). Their parameters were compiled-in constants until the
+    // light's uniform work (a cone's cosine, its axis) was prepared like a surface's:
+    // shade_spd is the same either way (SPD gears, balls: 1.02x; compiled-in values with
+    // the cone's cos() left per point: 1.35x), and an edited light keeps the program.
     // Surface shaders are inlined into their shade kernel's few call sites (base, light
     // and trace modes): the work a mode does not change is hoisted out of the light loop
     // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).
-    out.generated["rd_shading.cl"] = lightDefines + "#define RSL_LIGHT_PARAMS __constant float*\n"
-                                     "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
+    out.generated["rd_shading.cl"] = lightDefines + "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
                                      "inline __attribute__((always_inline))\n#endif\n"
                                      "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"
                                      "#include \"sample_random.clh\"\n"

@@ -3,8 +3,9 @@
 // folder, RayDrive's standard shaders), compiles it once, binds every Surface and
 // LightSource call's parameters into float blocks (RIB values over the shader's defaults,
 // points moved from "shader" space to world space), and assembles the OpenCL source of
-// the shade stage: the RSL runtime, the light instances baked in as constants, the
-// services the generated code calls, the shaders, and one shade kernel per surface shader.
+// the shade stage: the RSL runtime, the light instances (their blocks lead the parameter
+// buffer), the services the generated code calls, the shaders, and one shade kernel per
+// surface shader.
 #pragma once
 #include <map>
 #include <memory>
@@ -22,8 +23,8 @@ struct EmittedShader;
 
 namespace rd {
 
-// Light instances whose shader is inlined where the renderer calls it, its baked
-// parameters folded (RD_SPECIALISED_LIGHTS): the first this many; later ones call their
+// Light instances whose shader is inlined where the renderer calls it
+// (RD_SPECIALISED_LIGHTS): the first this many; later ones call their
 // shader through one out-of-line copy per light shader, so code grows with the shaders,
 // not with the instances, past them (SPD gears with 20 spotlights, 20 inlined against
 // none: shade time 0.67x, the cold build unchanged).
@@ -41,7 +42,9 @@ struct ShadingSetup {
     std::vector<std::string> shadeKernels;  // per compiled surface shader
     std::vector<std::string> surfaceNames;  // the shaders themselves, same order
     std::vector<Material> materials;        // Material::shader/params filled in
-    std::vector<float> params;              // every surface instance's block
+    // every light instance's block and place (rsl_abi.h RslGlobals::light_params), then
+    // every surface instance's block
+    std::vector<float> params;
     // Parameters given per point (ShaderRef::pointParams), when some surface has them:
     // per material, 1 + maxPointParams ints: how many its primitives give, then the
     // offset in its block of each (-1: its shader has no float or triple of that name)

@@ -54,7 +54,7 @@
  * write none (they get no RslEval).
  *
  * MESSAGE PASSING. `lightsource("name", var)` inside an illuminance loop calls
- * rsl_lightsource_param(l, stringId("name"), buf, n) with the loop's current light l
+ * rsl_lightsource_param(g, l, stringId("name"), buf, n) with the loop's current light l
  * and n = the float slots of var (its parameter-block size); `attribute("name", var)`
  * and `option("name", var)` call rsl_attribute / rsl_option the same way. A service
  * returns nonzero and fills buf[0..n) when it has a value of exactly that size, else
@@ -120,10 +120,10 @@
  *   branches, are compiled without (lightCoefs false): evaluate them per light.
  * LIGHT SHADERS: RSL_LIGHT_FUNCTION void rsl_light_<name>(RslGlobals* g,
  *                                                     RSL_LIGHT_PARAMS params);
- *   RSL_LIGHT_PARAMS is `__global const float*` unless the renderer defines it first
- *   (RayDrive bakes light parameters into __constant arrays); RSL_LIGHT_FUNCTION is
- *   empty unless the renderer defines it (RayDrive: always_inline with few lights, so
- *   each call folds its instance's constants). A solar statement also sets
+ *   RSL_LIGHT_PARAMS is `__global const float*` unless the renderer defines it first;
+ *   a light's block is laid out and prepared (its uniform work, hoist.h) as a
+ *   surface's. RSL_LIGHT_FUNCTION is empty unless the renderer defines it (RayDrive:
+ *   always_inline with few lights). A solar statement also sets
  *   RSL_CW(g->Ol) = 1 so the renderer knows the light is infinitely far (its shadow ray
  *   has no end).
  *   g->Ps is the surface point. On return g->Cl is the unshadowed light colour (0 when
@@ -149,7 +149,8 @@
  *          a translation when the renderer keeps the scene relative to the eye.
  *          Only called for WORLD, CAMERA, SCREEN, RASTER and NDC: SHADER and OBJECT come from
  *          the matrices after the parameter block (SPACES above).
- *   int    rsl_lightsource_param(int light, int nameId, float* out, int n);
+ *   int    rsl_lightsource_param(const RslGlobals* g, int light, int nameId, float* out,
+ *                                 int n);
  *          light `light`'s parameter named nameId (rsl::stringId of the name): nonzero
  *          and out[0..n) written when that light's shader has such a parameter of n
  *          float slots (its value in the light's parameter block), else 0.
@@ -247,6 +248,7 @@ typedef struct RslGlobals {
     unsigned int lights_off; /* lights 0..31 Illuminate turned off for this surface */
     unsigned int rng_pixel, rng_sample, rng_depth; /* the sample, for area light points */
     struct RslTexContext* texctx; /* the textures light shaders look up (0: none) */
+    __global const float* light_params; /* where the renderer keeps the lights' blocks */
     /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global
      * s, t, which texture lookups use at a shading point's neighbours (DERIVATIVES) */
     float4 st_footprint;

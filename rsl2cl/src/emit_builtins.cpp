@@ -33,7 +33,7 @@ std::string Emitter::message(const Expr& e) {
     const std::string& n = e.text;
     std::string svc;
     if (n == "lightsource" && !m_func && !m_lightVars.empty())
-        svc = "rsl_lightsource_param(" + m_lightVars.back() + ", ";
+        svc = "rsl_lightsource_param(g, " + m_lightVars.back() + ", ";
     else if (n == "attribute") svc = "rsl_attribute(";
     else if (n == "option") svc = "rsl_option(";
     if (svc.empty() || e.args.size() != 2) return "0.0f";

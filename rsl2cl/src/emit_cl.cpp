@@ -258,7 +258,7 @@ void Emitter::emitParamReads(bool computedDefaults) {
 // The instance's uniform work: the hoisted declarations computed from the parameters
 // and stored after the space matrices, where the shader body reads them.
 void Emitter::emitPrepare() {
-    if (m_hoist.decls.empty()) return;
+    if (m_hoist.floats == 0) return;
     m_body << "void " << m_out.prepFunction << "(__global float* params) {\n";
     m_indent = 1;
     std::string so = std::to_string(m_out.spaceOffset);
@@ -287,7 +287,25 @@ void Emitter::emitPrepare() {
         default: line("params[" + off + "] = " + name + ";");
         }
     }
+    for (const Stmt* s : m_hoist.cones)
+        line("params[" + std::to_string(m_out.prepOffset + m_hoist.coneSlot.at(s)) +
+             "] = rsl_cone_cos(" + exprAs(*coneAngle(*s), BaseType::Float) + ");");
     m_body << "}\n";
+}
+
+// The cosine a cone statement's test compares with (rsl_cone_cos): prepared once per
+// instance, folded here for a literal angle, else computed where the statement runs
+// (where PoCL computed cos(angle) for every light at every point).
+std::string Emitter::coneCos(const Stmt& s) {
+    const Expr& angle = *coneAngle(s);
+    if (auto h = m_hoist.coneSlot.find(&s); h != m_hoist.coneSlot.end() && !m_func)
+        return "params[" + std::to_string(m_out.prepOffset + h->second) + "]";
+    if (angle.kind == ExprKind::Number) {
+        const float a = float(angle.number);
+        const float c = a >= float(M_PI) ? -2.0f : std::cos(a) - 1e-6f;
+        return clNumber(c);
+    }
+    return "rsl_cone_cos(" + exprAs(angle, BaseType::Float) + ")";
 }
 
 // A surface instance whose primitives give some parameters per vertex: the renderer puts
@@ -431,14 +449,13 @@ void Emitter::lightLoop(const Stmt& s) {
         bool cone = s.args.size() - first == 3;
         line("float4 _ilA" + k + " = " +
              (cone ? exprAs(*s.args[first + 1], BaseType::Vector) : "rsl_f2v(0.0f)") + ";");
-        line("float _ilT" + k + " = " + (cone ? exprAs(*s.args[first + 2], BaseType::Float) : "RSL_PI") +
-             ";");
+        line("float _ilC" + k + " = " + (cone ? coneCos(s) : std::string("-2.0f")) + ";");
         line("int _nl" + k + " = rsl_light_count();");
         line("for (int _l" + k + " = 0; _l" + k + " < _nl" + k + "; ++_l" + k + ") {");
         ++m_indent;
         // the unshadowed Cl (_Clr: what light coefficients read), then this mode's
         line("float4 _L" + k + "; rsl_color _Clr" + k + ";");
-        line("if (!rsl_light_raw(_l" + k + ", g, _ilP" + k + ", _ilA" + k + ", _ilT" + k +
+        line("if (!rsl_light_raw(_l" + k + ", g, _ilP" + k + ", _ilA" + k + ", _ilC" + k +
              ", &_L" + k + ", &_Clr" + k + ")) continue;");
         line("rsl_color _Cl" + k + " = rsl_light_mode(ev, _l" + k + ", _Clr" + k + ");");
         line("g->L = _L" + k + "; g->Cl = _Cl" + k + ";");
@@ -459,7 +476,7 @@ void Emitter::lightLoop(const Stmt& s) {
         line("g->L = rsl_w0(g->Ps - " + exprAs(*s.args[0], BaseType::Point) + ");");
         if (s.args.size() == 3) {
             line("if (rsl_in_cone(g->L, " + exprAs(*s.args[1], BaseType::Vector) + ", " +
-                 exprAs(*s.args[2], BaseType::Float) + "))");
+                 coneCos(s) + "))");
         }
     } else {
         line("g->L = " + (s.args.size() == 2 ? "rsl_w0(" + exprAs(*s.args[0], BaseType::Vector) + ")"
@@ -589,7 +606,7 @@ void Emitter::run() {
     m_out.functionName = std::string("rsl_") + kind + "_" + m_sh.name;
     m_out.ambientLight = m_sh.kind == ShaderKind::Light && !hasLightStatement(*m_sh.body);
     layoutParams();
-    if (m_sh.kind != ShaderKind::Light) {  // lights' parameters are compiled-in constants
+    {
         std::vector<bool> computed;
         for (const ParamSlot& p : m_out.params) computed.push_back(!p.constantDefault);
         m_hoist = planHoisting(m_sh, computed, m_colorSlots);

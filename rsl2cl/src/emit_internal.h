@@ -92,6 +92,7 @@ private:
     void emitShader();
     void emitParamReads(bool computedDefaults);  // p_<name> locals from `params`
     void emitPrepare();  // the uniform work of one instance (hoist.h)
+    std::string coneCos(const Stmt& s);  // a cone statement's cosine (rsl_cone_cos)
     void emitPointParams();  // per-point parameter values (rsl_abi.h, PER-POINT PARAMETERS)
     std::string blockRead(BaseType base, const std::string& offset) const;
     void stmt(const Stmt& s);

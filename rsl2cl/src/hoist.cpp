@@ -52,8 +52,22 @@ public:
                 m_hoisted.insert(d.symbol);
             }
         }
+        cones(*m_sh.body, plan);
         return plan;
     }
+
+    // (a literal angle's cosine rsl2cl folds; a cone inside a loop or a condition is
+    // still the instance's: the angle is)
+    void cones(const Stmt& s, HoistPlan& plan) {
+        if (const Expr* a = coneAngle(s); a && pure(*a) && a->kind != ExprKind::Number) {
+            plan.coneSlot[&s] = plan.floats++;
+            plan.cones.push_back(&s);
+        }
+        for (const StmtPtr& c : s.stmts) cones(*c, plan);
+        if (s.body) cones(*s.body, plan);
+        if (s.elseBody) cones(*s.elseBody, plan);
+    }
+
 
 private:
     // Variables assigned anywhere, or passed where a call may write them.
@@ -124,6 +138,13 @@ private:
 };
 
 }  // namespace
+
+const Expr* coneAngle(const Stmt& s) {
+    if (s.kind == StmtKind::Illuminate) return s.args.size() == 3 ? s.args[2].get() : nullptr;
+    if (s.kind != StmtKind::Illuminance) return nullptr;
+    const size_t first = (!s.args.empty() && s.args[0]->type.isString()) ? 1 : 0;
+    return s.args.size() - first == 3 ? s.args[first + 2].get() : nullptr;
+}
 
 HoistPlan planHoisting(const ShaderDecl& shader, const std::vector<bool>& computedDefault,
                        int colorSlots) {

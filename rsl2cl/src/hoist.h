@@ -15,8 +15,16 @@ namespace rsl {
 struct HoistPlan {
     std::vector<const VarDecl*> decls;       // in program order
     std::map<const VarDecl*, int> slot;      // float offset within the prepared slots
+    // illuminate and illuminance statements of the body whose cone angle is uniform work
+    // (it depends on parameters, not a constant): the slot of its cosine (rsl_cone_cos)
+    std::vector<const Stmt*> cones;
+    std::map<const Stmt*, int> coneSlot;
     int floats = 0;
 };
+
+// The angle of a cone statement (illuminate P, axis, angle; illuminance [category,] P,
+// axis, angle), or null without one.
+const Expr* coneAngle(const Stmt& s);
 
 // `computedDefault[i]` is true for parameter i whose default is not a constant (it is
 // computed per shading point, so nothing that reads it can be hoisted).

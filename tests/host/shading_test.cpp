@@ -137,10 +137,45 @@ TEST(Shading, SpotlightConeAndFalloff) {
     EXPECT_EQ(img.at(1, 1).r, 0.0f);
 }
 
+// A light edited between renders (its intensity, cone angle and place) is data, not
+// code: the program is the same (its cache key), so the edit costs no build and no
+// kernel compile (SPD teapot: 0.23 s against 2.85 s when values were compiled in). The
+// new values take effect: on the axis half the light at half the intensity, a corner
+// lit by the wider cone (the cone's cosine prepared once per instance), and a surface
+// reading lightsource("intensity") sees each render's value.
+TEST(Shading, EditedLightsKeepTheProgram) {
+    std::string dir = shaderDir("raydrive_shaders");
+    std::ofstream(dir + "/ls_intensity.sl")
+        << "surface ls_intensity() {\n    float k = 0;\n"
+           "    illuminance(P) { lightsource(\"intensity\", k); }\n    Ci = k; Oi = 1;\n}\n";
+    auto scene = [&](const char* from, const char* intensity, const char* cone,
+                     const char* surface) {
+        return renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
+                         std::string(kCamera) + "WorldBegin\nLightSource \"spotlight\" 1 "
+                         "\"from\" [" + from + "] \"to\" [0 0 1] \"intensity\" " + intensity +
+                         " \"coneangle\" [" + cone + "]\nSurface \"" + surface + "\"\n"
+                         "Polygon \"P\" [-50 -50 5  50 -50 5  50 50 5  -50 50 5]\nWorldEnd\n");
+    };
+    const Rendered narrow = scene("0 0 0", "25", "0.1745", "matte");
+    const Rendered wide = scene("0 0 0.001", "12.5", "1.2", "matte");
+    EXPECT_EQ(narrow.stats.program.cacheKey, wide.stats.program.cacheKey);
+    EXPECT_NEAR(narrow.mean(0, 15, 15, 17, 17), 1.0, 0.02);
+    EXPECT_NEAR(wide.mean(0, 15, 15, 17, 17), 0.5, 0.01);
+    EXPECT_EQ(narrow.at(1, 1).r, 0.0f);
+    EXPECT_GT(wide.at(1, 1).r, 0.01f);
+    EXPECT_EQ(wide.stats.kernels.count("rd_prepare_uniforms"), 1u);
+    const Rendered read25 = scene("0 0 0", "25", "0.1745", "ls_intensity");
+    const Rendered read12 = scene("0 0 0", "12.5", "0.1745", "ls_intensity");
+    EXPECT_EQ(read25.stats.program.cacheKey, read12.stats.program.cacheKey);
+    EXPECT_EQ(read25.at(16, 16).r, 25.0f);
+    EXPECT_EQ(read12.at(16, 16).r, 12.5f);
+}
+
 // One spotlight of intensity 25 and forty of 25/40 at the same place light the plane
-// alike. The first kInlinedLightInstances (32) instances' light shader is inlined with
-// their constants (feature specialised_lights: the cone's cosines and axis fold at
-// compile time); the other eight call it: both forms must give the same image. So must
+// alike. The first kInlinedLightInstances (32) instances' light shader is inlined
+// (feature specialised_lights; their parameters come from the buffer, the cone's cosine
+// and axis prepared once per instance); the other eight call it: both forms must give
+// the same image. So must
 // seventy of 25/70: more than kLightCoefLimit, so the surface runs once per light (no
 // light coefficients) and lights past the cache are run where they are read.
 TEST(Shading, SpecialisedAndCalledLightsAgree) {

@@ -71,13 +71,16 @@ TEST(Hoist, NothingThatDependsOnTheShadingPointOrTheRenderer) {
     EXPECT_FALSE(hoisted(sh, "inner")) << "only top-level declarations";
 }
 
-TEST(Hoist, LightShadersKeepTheirConstants) {
+// A light's parameters are data in a block as a surface's are (RayDrive: a light edited
+// between renders keeps the program), so its uniform work is prepared the same way.
+TEST(Hoist, LightShadersPrepareTheirUniformWork) {
     rsl::EmittedShader sh = emit(
         "light l(float intensity = 1;) {\n"
         "    uniform float k = pow(intensity, 2);\n"
         "    illuminate(point(0, 0, 0)) { Cl = k; }\n}\n");
-    EXPECT_TRUE(sh.prepFunction.empty());
-    EXPECT_EQ(sh.prepFloats, 0);
+    EXPECT_EQ(sh.prepFunction, "rsl_prep_light_l");
+    EXPECT_EQ(sh.prepFloats, 1);
+    EXPECT_TRUE(hoisted(sh, "k"));
 }
 
 // A parameter the body assigns is no longer the instance's value: nothing computed from

@@ -94,7 +94,8 @@ std::string messageService(const std::string& sig, const std::vector<Message>& m
         for (size_t i = 0; i < m.values.size(); ++i) s << " out[" << i << "] = " << fl(m.values[i]) << ";";
         s << " return 1; }\n";
     }
-    s << "  (void)nameId; (void)out; (void)n;" << (byLight ? " (void)light;" : "") << "\n  return 0;\n}\n";
+    s << "  (void)nameId; (void)out; (void)n;" << (byLight ? " (void)g; (void)light;" : "")
+      << "\n  return 0;\n}\n";
     return s.str();
 }
 
@@ -209,7 +210,8 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  if (space == RSL_SPACE_CAMERA) m.r[3] = (float4)("
         << fl(sc.cameraOffset[0]) << ", " << fl(sc.cameraOffset[1]) << ", " << fl(sc.cameraOffset[2])
         << ", 1.0f);\n  return m;\n}\n";
-    src << messageService("int rsl_lightsource_param(int light, int nameId, float* out, int n)",
+    src << messageService("int rsl_lightsource_param(const RslGlobals* g, int light, int nameId, "
+                          "float* out, int n)",
                           sc.lightParams, true)
         << messageService("int rsl_attribute(int nameId, float* out, int n)", sc.attributes, false)
         << messageService("int rsl_option(int nameId, float* out, int n)", sc.options, false);
@@ -243,7 +245,7 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  g.light_cache_count = 0; g.light_cache = 0; g.lights_off = 0u;\n"
            "  g.rng_pixel = g.rng_sample = g.rng_depth = 0u;\n"
            "  g.st_footprint = (float4)(0.0f);\n"
-           "  g.texctx = 0;\n  g.loops_cut = 0;\n"
+           "  g.texctx = 0;\n  g.loops_cut = 0;\n  g.light_params = params;\n"
            "  RslEval ev; ev.deriv = 0; ev.mode_light = max(mode_light, -1);\n"
            "  ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
            "#ifdef RSL_LIGHT_COEFS\n"
