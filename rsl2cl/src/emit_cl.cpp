@@ -606,11 +606,9 @@ void Emitter::run() {
     m_out.functionName = std::string("rsl_") + kind + "_" + m_sh.name;
     m_out.ambientLight = m_sh.kind == ShaderKind::Light && !hasLightStatement(*m_sh.body);
     layoutParams();
-    {
-        std::vector<bool> computed;
-        for (const ParamSlot& p : m_out.params) computed.push_back(!p.constantDefault);
-        m_hoist = planHoisting(m_sh, computed, m_colorSlots);
-    }
+    std::vector<bool> computed;  // (lights' too: their blocks are data, as surfaces')
+    for (const ParamSlot& p : m_out.params) computed.push_back(!p.constantDefault);
+    m_hoist = planHoisting(m_sh, computed, m_colorSlots);
     m_out.prepOffset = m_out.spaceOffset + 32;  // RSL_SPACE_FLOATS
     m_out.prepFloats = m_hoist.floats;
     if (m_hoist.floats > 0) m_out.prepFunction = std::string("rsl_prep_") + kind + "_" + m_sh.name;

@@ -56,6 +56,7 @@ public:
         return plan;
     }
 
+private:
     // (a literal angle's cosine rsl2cl folds; a cone inside a loop or a condition is
     // still the instance's: the angle is)
     void cones(const Stmt& s, HoistPlan& plan) {
@@ -68,8 +69,6 @@ public:
         if (s.elseBody) cones(*s.elseBody, plan);
     }
 
-
-private:
     // Variables assigned anywhere, or passed where a call may write them.
     void written(const Stmt& s) {
         if (s.expr) written(*s.expr);

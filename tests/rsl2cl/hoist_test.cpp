@@ -83,6 +83,32 @@ TEST(Hoist, LightShadersPrepareTheirUniformWork) {
     EXPECT_TRUE(hoisted(sh, "k"));
 }
 
+// A cone's cosine (illuminate, illuminance) is prepared once per instance when its angle
+// is the instance's (a parameter, here inside a condition), folded by rsl2cl for a
+// literal, and computed once per loop for an angle that varies: never per light.
+TEST(Hoist, ConeCosinesArePreparedOnceOrFolded) {
+    rsl::EmittedShader spot = emit(
+        "light l(float coneangle = 0.5; point from = 0; vector axis = vector(0, 0, 1);) {\n"
+        "    if (coneangle > 0) illuminate(from, axis, coneangle) { Cl = 1; }\n}\n");
+    EXPECT_EQ(spot.prepFloats, 1);
+    EXPECT_NE(spot.source.find("= rsl_cone_cos(p_coneangle);"), std::string::npos) << spot.source;
+    EXPECT_EQ(spot.source.find("cos(p_coneangle)"), spot.source.find("rsl_cone_cos(p_coneangle)") + 9)
+        << "only in the prepare function";
+    rsl::EmittedShader literal = emit(
+        "light l(point from = 0;) {\n"
+        "    illuminate(from, vector(0, 0, 1), 0.5) { Cl = 1; }\n}\n");
+    EXPECT_EQ(literal.prepFloats, 0);
+    EXPECT_EQ(literal.source.find("cos("), std::string::npos) << literal.source;
+    EXPECT_NE(literal.source.find("0.877581"), std::string::npos) << "cos(0.5) - 1e-6, folded";
+    rsl::EmittedShader varying = emit(
+        "surface s() {\n    float a = s * 1.5;\n"
+        "    illuminance(P, N, a) { Ci += Cl; }\n    Oi = 1;\n}\n");
+    EXPECT_EQ(varying.prepFloats, 0);
+    const size_t c = varying.source.find("rsl_cone_cos(");
+    ASSERT_NE(c, std::string::npos) << varying.source;
+    EXPECT_LT(c, varying.source.find("for (int _l")) << "before the light loop";
+}
+
 // A parameter the body assigns is no longer the instance's value: nothing computed from
 // it is hoisted.
 TEST(Hoist, AssignedParametersAreNotTheInstancesValue) {
