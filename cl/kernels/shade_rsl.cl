@@ -106,7 +106,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     g.rng_sample = sample_index[sample];
     g.rng_depth = RT_TRACE_DEPTH(rs) + RT_TRANSPARENT_DEPTH(rs);
     g.texctx = 0; /* set below when the scene has textures */
-    g.light_params = params; /* the lights' blocks lead the buffer */
+    g.scene_params = params; /* the lights' blocks lead the buffer */
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */
 #ifdef RT_HAS_DERIVATIVES
     const float width_at_hit = rs.width + RT_PIXEL_SPREAD * h.t; /* the rays it spawns start this wide */
@@ -133,7 +133,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #ifdef RT_HAS_TEXTURES
     struct RslTexContext texc;
     rd_tex_context_init(&texc, tex_info, tex_pages, tex_tiles, tex_requests, tex_counters,
-                        tex_used, shader_index);
+                        tex_used, shader_index, RD_SCENE_WORLD_ORIGIN(params));
     struct RslTexContext* tc = &texc;
     g.texctx = tc; /* light shaders' shadow maps and textures */
 #else

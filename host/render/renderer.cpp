@@ -98,8 +98,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                         diag, rib::SourceLoc{scene.sourceFile, 0});
     if (shading.textures)
         for (const std::string& name : shading.textureNames) textures.addCandidate(name);
-    shading.generated["rd_textures.cl"] = textures.deviceSource(
-        scene.worldOrigin.x, scene.worldOrigin.y, scene.worldOrigin.z);
+    shading.generated["rd_textures.cl"] = textures.deviceSource();
     Features f = analyse(scene, shading);
     f.textures = shading.textures && !textures.empty();
     f.aovs = m_settings.geometricAovs;

@@ -21,15 +21,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string fmt(float v) {
-    if (std::isnan(v)) return "NAN";
-    if (std::isinf(v)) return v > 0 ? "INFINITY" : "-INFINITY";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9gf", v);
-    std::string s = buf;
-    if (s.find_first_of(".en") == std::string::npos) s.insert(s.size() - 1, ".0");
-    return s;
-}
+// The scene block at the front of the params buffer (ShaderSet::prepare), float offsets:
+// camera to current (16, the RSL row-vector matrix), the "world" row (-worldOrigin, 1),
+// Format (x, y resolution, pixel aspect) then Clipping (near, far), worldOrigin (the
+// shadow lookups'); a multiple of four floats, as light blocks after it load float4s.
+constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20, kSceneOrigin = 25;
+constexpr size_t kSceneFloats = 28;
 
 // Moves a triple of a point/vector/normal parameter from a space to world space.
 void toWorld(rsl::BaseType base, const glm::mat4& m, float* v) {
@@ -262,7 +259,26 @@ bool ShaderSet::bindCases(const std::vector<ShaderRef>& refs, const std::string&
 
 ShadingSetup ShaderSet::prepare() {
     ShadingSetup out;
-    std::ostringstream lights, shaders;
+    std::ostringstream shaders;
+    // --- the scene block, at the front of the params buffer (RslGlobals::scene_params):
+    // what the services read that moves with the camera (kScene* offsets)
+    out.params.assign(kSceneFloats, 0.0f);
+    {
+        // RSL row-vector matrices are glm's column-major arrays as they are.
+        const glm::mat4 camToWorld = glm::inverse(m_scene.camera.worldToCamera);
+        std::copy_n(&camToWorld[0][0], 16, out.params.begin() + kSceneCamera);
+        // "world": the renderer's current space is the world moved so the eye is at the
+        // origin (precision far from it); world points are current + worldOrigin.
+        const glm::dvec3& wo = m_scene.worldOrigin;
+        float* w = &out.params[kSceneWorld];
+        w[0] = float(-wo.x), w[1] = float(-wo.y), w[2] = float(-wo.z), w[3] = 1.0f;
+        float* f = &out.params[kSceneFormat];
+        f[0] = float(m_scene.camera.width), f[1] = float(m_scene.camera.height);
+        f[2] = m_scene.camera.pixelAspect;
+        f[3] = m_scene.camera.clipNear, f[4] = std::min(m_scene.camera.clipFar, 1e30f);
+        float* o = &out.params[kSceneOrigin];
+        o[0] = float(wo.x), o[1] = float(wo.y), o[2] = float(wo.z);
+    }
     // --- light instances: one switch case each, their parameters in the params buffer
     // (with their uniform work prepared, as a surface's), followed by the light's place
     // (P, N): a light edited between renders changes data, not the program, which would
@@ -290,9 +306,9 @@ ShadingSetup ShaderSet::prepare() {
         lightBlock.push_back(at);
         out.params.insert(out.params.end(), block.begin(), block.end());
         out.params.insert(out.params.end(), {o.x, o.y, o.z, 0.0f, n.x, n.y, n.z, 0.0f});
-        const std::string params = "lg.light_params + " + std::to_string(at);
-        std::string place = "lg.P = vload4(0, lg.light_params + " + std::to_string(placeAt) +
-                            "); lg.N = lg.Ng = vload4(1, lg.light_params + " +
+        const std::string params = "lg.scene_params + " + std::to_string(at);
+        std::string place = "lg.P = vload4(0, lg.scene_params + " + std::to_string(placeAt) +
+                            "); lg.N = lg.Ng = vload4(1, lg.scene_params + " +
                             std::to_string(placeAt) + "); ";
         // an area light: a point on its geometry instead, weighted by area
         auto area = m_scene.areaLightTriangles.find(uint32_t(sceneLight));
@@ -309,19 +325,20 @@ ShadingSetup ShaderSet::prepare() {
                 total += 0.5 * double(glm::length(glm::cross(v[1] - v[0], v[2] - v[0])));
                 cdf[t] = total;
             }
-            lights << "__constant float4 rd_area_" << index << "[] = {";
+            // (data too, at a float4 boundary: a camera move shifts them, eye-relative)
+            out.params.resize((out.params.size() + 3) / 4 * 4, 0.0f);
+            const size_t trisAt = out.params.size();
             for (size_t t = 0; t < count; ++t) {
                 const auto& v = tris[t];
                 float w = total > 0 ? float(cdf[t] / total) : float(t + 1) / float(count);
                 for (int k = 0; k < 3; ++k)
-                    lights << (t || k ? ", " : "") << "(float4)(" << fmt(v[k].x) << ", "
-                           << fmt(v[k].y) << ", " << fmt(v[k].z) << ", "
-                           << (k == 0 ? fmt(t + 1 == count ? 1.0f : w) : std::string("0.0f")) << ")";
+                    out.params.insert(out.params.end(),
+                                      {v[k].x, v[k].y, v[k].z,
+                                       k == 0 ? (t + 1 == count ? 1.0f : w) : 0.0f});
             }
-            lights << "};\n";
-            place = "{ float4 ap_, an_; rd_area_point(rd_area_" + std::to_string(index) + ", " +
-                    std::to_string(count) + ", g, " + std::to_string(index) +
-                    ", &ap_, &an_); lg.P = ap_; lg.N = lg.Ng = an_; } ";
+            place = "{ float4 ap_, an_; rd_area_point((__global const float4*)(lg.scene_params + " +
+                    std::to_string(trisAt) + "), " + std::to_string(count) + ", g, " +
+                    std::to_string(index) + ", &ap_, &an_); lg.P = ap_; lg.N = lg.Ng = an_; } ";
         }
         const bool inlined = uint32_t(index) < kInlinedLightInstances;
         if (!inlined) calledLightShaders.insert(sh->functionName);
@@ -348,22 +365,20 @@ ShadingSetup ShaderSet::prepare() {
         svc << "    case " << i << ":\n";
         for (const rsl::ParamSlot& slot : lightShaders[i]->params)
             svc << "        if (nameId == " << rsl::stringId(slot.name) << " && n == " << slot.size
-                << ") { for (int k = 0; k < n; ++k) out[k] = g->light_params["
+                << ") { for (int k = 0; k < n; ++k) out[k] = g->scene_params["
                 << lightBlock[i] + size_t(slot.offset) << " + k]; return 1; }\n";
         svc << "        return 0;\n";
     }
     svc << "    default: return 0;\n    }\n}\n";
     // attribute() knows nothing yet; option("Format", f[3]) is the image size.
     svc << "int rsl_attribute(int nameId, float* out, int n) { return 0; }\n"
-           "int rsl_option(int nameId, float* out, int n) {\n"
-           "    if (nameId == " << rsl::stringId("Format") << " && n == 3) {\n"
-           "        out[0] = " << fmt(float(m_scene.camera.width)) << "; out[1] = "
-        << fmt(float(m_scene.camera.height)) << "; out[2] = "
-        << fmt(m_scene.camera.pixelAspect) << ";\n        return 1;\n    }\n"
-           "    if (nameId == " << rsl::stringId("Clipping") << " && n == 2) {\n"
-           "        out[0] = " << fmt(m_scene.camera.clipNear) << "; out[1] = "
-        << fmt(std::min(m_scene.camera.clipFar, 1e30f)) << ";\n        return 1;\n    }\n"
-           "    return 0;\n}\n";
+           "int rsl_option(const RslSpaces* sp, int nameId, float* out, int n) {\n"
+           "    int at = nameId == " << rsl::stringId("Format") << " && n == 3 ? " << kSceneFormat
+        << " : nameId == " << rsl::stringId("Clipping") << " && n == 2 ? " << kSceneFormat + 3
+        << " : -1;\n"
+           "    if (at < 0) return 0;\n"
+           "    for (int k = 0; k < n; ++k) out[k] = sp->scene[at + k];\n"
+           "    return 1;\n}\n";
     svc << "int rsl_light_count(void) { return " << out.lightCount << "; }\n";
     for (const std::string& fn : calledLightShaders)
         svc << "__attribute__((noinline)) static void rd_called_" << fn
@@ -417,27 +432,18 @@ ShadingSetup ShaderSet::prepare() {
            "        if (!rd_light_is_ambient(l)) continue;\n        float4 L;\n        rsl_color Cl;\n"
            "        rd_light_at(l, g, g->P, &L, &Cl);\n        sum += Cl;\n    }\n"
            "    return rsl_cw0(sum);\n}\n"
-           "/* Camera space (to world); screen, raster and NDC are not provided: identity. */\n"
-           "RslMatrix rsl_space_matrix(int space) {\n    RslMatrix m;\n"
+           "/* Camera space (to world) and world space from the scene block; screen, raster\n"
+           " * and NDC are not provided: identity. */\n"
+           "RslMatrix rsl_space_matrix(const RslSpaces* sp, int space) {\n    RslMatrix m;\n"
            "    m.r[0] = (float4)(1.0f, 0.0f, 0.0f, 0.0f);\n"
            "    m.r[1] = (float4)(0.0f, 1.0f, 0.0f, 0.0f);\n"
            "    m.r[2] = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n"
            "    m.r[3] = (float4)(0.0f, 0.0f, 0.0f, 1.0f);\n"
-           "    if (space == RSL_SPACE_CAMERA) {\n";
-    {
-        // RSL row-vector matrices are glm's column-major arrays as they are.
-        glm::mat4 camToWorld = glm::inverse(m_scene.camera.worldToCamera);
-        const float* c = &camToWorld[0][0];
-        for (int r = 0; r < 4; ++r)
-            svc << "        m.r[" << r << "] = (float4)(" << fmt(c[4 * r]) << ", "
-                << fmt(c[4 * r + 1]) << ", " << fmt(c[4 * r + 2]) << ", " << fmt(c[4 * r + 3])
-                << ");\n";
-    }
-    // "world": the renderer's current space is the world moved so the eye is at the
-    // origin (precision far from it); world points are current + worldOrigin.
-    const glm::dvec3& wo = m_scene.worldOrigin;
-    svc << "    }\n    if (space == RSL_SPACE_WORLD) m.r[3] = (float4)(" << fmt(float(-wo.x)) << ", "
-        << fmt(float(-wo.y)) << ", " << fmt(float(-wo.z)) << ", 1.0f);\n    return m;\n}\n";
+           "    if (space == RSL_SPACE_CAMERA)\n"
+           "        for (int r = 0; r < 4; ++r) m.r[r] = vload4(r, sp->scene + " << kSceneCamera
+        << ");\n"
+           "    if (space == RSL_SPACE_WORLD) m.r[3] = vload4(0, sp->scene + " << kSceneWorld
+        << ");\n    return m;\n}\n";
     // --- surfaces: one compiled shader per name, one parameter block per call
     std::map<std::string, uint32_t> surfaceIndex;
     std::vector<uint32_t> refBlock(m_scene.surfaceRefs.size());
@@ -539,7 +545,7 @@ ShadingSetup ShaderSet::prepare() {
                 "    g.lights_off = 0u;\n"
                 "    g.rng_pixel = i;\n    g.rng_sample = 0u;\n    g.rng_depth = 0u;\n"
                 "    g.texctx = 0;\n"
-                "    g.light_params = params;\n"
+                "    g.scene_params = params;\n"
                 "    RslEval ev;\n"
                 "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
                 "    " + sh->functionName + "(&g, params + " + std::to_string(offset) + ", &ev);\n"
@@ -557,7 +563,7 @@ ShadingSetup ShaderSet::prepare() {
                 "    RT_COUNT_RANGE(active_counter, count);\n    switch (i) {\n";
         for (size_t i = 0; i < out.prepares.size(); ++i)
             prep << "    case " << i << ": " << out.prepares[i].first << "(params + "
-                 << out.prepares[i].second << "); break;\n";
+                 << out.prepares[i].second << ", params); break;\n";
         prep << "    default: break;\n    }\n}\n";
     }
     out.materials = m_scene.materials;
@@ -583,13 +589,16 @@ ShadingSetup ShaderSet::prepare() {
     // Surface shaders are inlined into their shade kernel's few call sites (base, light
     // and trace modes): the work a mode does not change is hoisted out of the light loop
     // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).
-    out.generated["rd_shading.cl"] = lightDefines + "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
+    const std::string sceneDefines =
+        "#define RD_SCENE_WORLD_ORIGIN(p) (float4)((p)[" + std::to_string(kSceneOrigin) + "], (p)[" +
+        std::to_string(kSceneOrigin + 1) + "], (p)[" + std::to_string(kSceneOrigin + 2) + "], 0.0f)\n";
+    out.generated["rd_shading.cl"] = lightDefines + sceneDefines + "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
                                      "inline __attribute__((always_inline))\n#endif\n"
                                      "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"
                                      "#include \"sample_random.clh\"\n"
                                      "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n"
                                      "#include \"area_light.clh\"\n" +
-                                     lights.str() + shaders.str() + svc.str();
+                                     shaders.str() + svc.str();
     out.generated["rd_shade_kernels.cl"] =
         "#include \"counters.clh\"\n#include \"shade_common.clh\"\n" + kernels.str() + imagerKernel + prep.str();
     out.sourceOrder = {"rd_shading.cl", "rd_textures.cl", "rd_shade_kernels.cl"};

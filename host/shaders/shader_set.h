@@ -42,7 +42,7 @@ struct ShadingSetup {
     std::vector<std::string> shadeKernels;  // per compiled surface shader
     std::vector<std::string> surfaceNames;  // the shaders themselves, same order
     std::vector<Material> materials;        // Material::shader/params filled in
-    // every light instance's block and place (rsl_abi.h RslGlobals::light_params), then
+    // every light instance's block and place (rsl_abi.h RslGlobals::scene_params), then
     // every surface instance's block
     std::vector<float> params;
     // Parameters given per point (ShaderRef::pointParams), when some surface has them:

@@ -155,13 +155,8 @@ bool TextureSet::loadTile(const Texture& t, uint32_t level, uint32_t tx, uint32_
                                  &m_readError);
 }
 
-std::string TextureSet::deviceSource(double ox, double oy, double oz) const {
+std::string TextureSet::deviceSource() const {
     std::ostringstream s;
-    char buf[160];
-    std::snprintf(buf, sizeof buf,
-                  "#define RD_WORLD_ORIGIN_X %.9ef\n#define RD_WORLD_ORIGIN_Y %.9ef\n"
-                  "#define RD_WORLD_ORIGIN_Z %.9ef\n", ox, oy, oz);
-    s << buf;
     s << "static int rd_tex_index(int id) {\n    switch (id) {\n";
     for (const auto& [id, index] : ids()) s << "    case " << id << ": return " << index << ";\n";
     s << "    default: return -1;\n    }\n}\n";

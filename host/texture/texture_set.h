@@ -48,9 +48,9 @@ public:
     std::vector<std::pair<int, int>> ids() const;
     const std::string& name(size_t index) const { return m_tex[index].name; }
     const TexInfo& info(size_t index) const { return m_tex[index].info; }
-    // The program's part that knows the textures: rd_tex_index(), textureinfo(), the
-    // world origin (shadow maps are in the RIB's world), then texture_lookup.clh.
-    std::string deviceSource(double originX, double originY, double originZ) const;
+    // The program's part that knows the textures: rd_tex_index(), textureinfo(), then
+    // texture_lookup.clh.
+    std::string deviceSource() const;
 
     // The device side; capacityTiles 0 picks min(every tile, 256 MiB of tiles).
     void createDevice(const ClContext& ctx, size_t capacityTiles);

@@ -43,7 +43,10 @@
  * nothing better). Generated code reads them (rsl_param16) for every use of "shader"
  * and "object" space: transform(), vtransform(), ntransform(), point "shader" (...)
  * casts, matrix casts. "camera", "screen", "raster" and "NDC" still go through the
- * service rsl_space_matrix(); "current" and "world" are the identity.
+ * service rsl_space_matrix(), which gets the RslSpaces (its `scene`: the globals'
+ * scene_params); "current" and "world" are the identity.
+ * PREPARE functions (hoist.h) are void rsl_prep_<kind>_<name>(__global float* params,
+ * __global const float* scene), scene being what scene_params is in the shaders.
  *
  * OUTPUT PARAMETERS. Surface, displacement, volume and imager functions write the final
  * value of every output parameter into ev->outputs at ParamSlot::outputOffset (-1 for
@@ -144,8 +147,8 @@
  *          0 when light l contributes nothing (or is ambient), else L = vector from
  *          Ps toward the light (surface-side), Cl = unshadowed colour.
  *   rsl_color rsl_ambient(const RslGlobals* g);  sum of the ambient lights' Cl
- *   RslMatrix rsl_space_matrix(int space);    maps points of `space` (RSL_SPACE_*) to
- *          current space (p_current = (p,1) * M); RSL_SPACE_CURRENT: identity; WORLD
+ *   RslMatrix rsl_space_matrix(const RslSpaces* sp, int space);
+ *          maps points of `space` (RSL_SPACE_*) to current space (p_current = (p,1) * M); RSL_SPACE_CURRENT: identity; WORLD
  *          a translation when the renderer keeps the scene relative to the eye.
  *          Only called for WORLD, CAMERA, SCREEN, RASTER and NDC: SHADER and OBJECT come from
  *          the matrices after the parameter block (SPACES above).
@@ -156,8 +159,8 @@
  *          float slots (its value in the light's parameter block), else 0.
  *   int    rsl_attribute(int nameId, float* out, int n);  attribute("name", var) of
  *          the object being shaded, e.g. "identifier:name" (a string: its id as float)
- *   int    rsl_option(int nameId, float* out, int n);     option("name", var), e.g.
- *          "Format" (float[3]: x resolution, y resolution, pixel aspect)
+ *   int    rsl_option(const RslSpaces* sp, int nameId, float* out, int n);
+ *          option("name", var), e.g. "Format" (float[3]: x resolution, y resolution, pixel aspect)
  *          Both: nonzero and out[0..n) written when known with exactly n slots, else 0.
  *   float4 rsl_texture_service(RslEval* ev, int kind, int id, int channel, float4 p,
  *                              float4 dpdu, float4 dpdv, float width, float blur,
@@ -248,7 +251,9 @@ typedef struct RslGlobals {
     unsigned int lights_off; /* lights 0..31 Illuminate turned off for this surface */
     unsigned int rng_pixel, rng_sample, rng_depth; /* the sample, for area light points */
     struct RslTexContext* texctx; /* the textures light shaders look up (0: none) */
-    __global const float* light_params; /* where the renderer keeps the lights' blocks */
+    /* the renderer's data for its services (the camera, the lights' blocks): what
+     * changes with the camera or a light is data, so the program stays the same */
+    __global const float* scene_params;
     /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global
      * s, t, which texture lookups use at a shading point's neighbours (DERIVATIVES) */
     float4 st_footprint;

@@ -35,7 +35,10 @@ std::string Emitter::message(const Expr& e) {
     if (n == "lightsource" && !m_func && !m_lightVars.empty())
         svc = "rsl_lightsource_param(g, " + m_lightVars.back() + ", ";
     else if (n == "attribute") svc = "rsl_attribute(";
-    else if (n == "option") svc = "rsl_option(";
+    else if (n == "option") {  // (the service reads the scene through the spaces)
+        svc = "rsl_option(sp, ";
+        m_usesSpaces = true;
+    }
     if (svc.empty() || e.args.size() != 2) return "0.0f";
     const Expr& var = *e.args[1];
     const TypeSpec& t = var.type;
@@ -283,9 +286,13 @@ std::string Emitter::builtin(const Expr& e) {
     if (n == "setxcomp" || n == "setycomp" || n == "setzcomp")
         return "(" + lvalue(*e.args[0]) + "." + n.substr(3, 1) + " = " + A(1) + ")";
     if (n == "length" || n == "normalize" || n == "distance" || n == "ptlined" ||
-        n == "reflect" || n == "refract" || n == "depth" || n == "determinant" ||
+        n == "reflect" || n == "refract" || n == "determinant" ||
         n == "translate" || n == "scale")
         return call("rsl_" + n);
+    if (n == "depth") {  // (camera space and clipping come through the spaces)
+        m_usesSpaces = true;
+        return "rsl_depth(sp, " + A(0) + ")";
+    }
     if (n == "specularbrdf") return "rsl_f2c(" + call("rsl_" + n) + ")";
     if (n == "rotate") return call(ret.isMatrix() ? "rsl_mrotate" : "rsl_rotate");
     if (n == "faceforward")

@@ -259,11 +259,12 @@ void Emitter::emitParamReads(bool computedDefaults) {
 // and stored after the space matrices, where the shader body reads them.
 void Emitter::emitPrepare() {
     if (m_hoist.floats == 0) return;
-    m_body << "void " << m_out.prepFunction << "(__global float* params) {\n";
+    m_body << "void " << m_out.prepFunction
+           << "(__global float* params, __global const float* scene) {\n";
     m_indent = 1;
     std::string so = std::to_string(m_out.spaceOffset);
     line("RslSpaces _sp; _sp.shader = rsl_param16(params, " + so +
-         "); _sp.object = rsl_param16(params, " + so + " + 16);");
+         "); _sp.object = rsl_param16(params, " + so + " + 16); _sp.scene = scene;");
     line("const RslSpaces* sp = &_sp; (void)sp;");
     emitParamReads(false);
     for (const VarDecl* d : m_hoist.decls) {
@@ -369,7 +370,8 @@ void Emitter::emitShader() {
     m_body << head;
     if (m_usesSpaces)
         line("RslSpaces _sp; _sp.shader = rsl_param16(params, " + so +
-             "); _sp.object = rsl_param16(params, " + so + " + 16);");
+             "); _sp.object = rsl_param16(params, " + so +
+             " + 16); _sp.scene = g->scene_params;");
     line(m_usesSpaces ? "const RslSpaces* sp = &_sp;" : "const RslSpaces* sp = 0; (void)sp;");
     m_body << body;
 }

@@ -171,6 +171,37 @@ TEST(Shading, EditedLightsKeepTheProgram) {
     EXPECT_EQ(read12.at(16, 16).r, 12.5f);
 }
 
+// A camera moved, and an image size changed, between renders is data too (the scene
+// block at the front of the parameter buffer): the same program, while what a shader
+// reads of them follows. An orthographic camera over a plane at z = 5 (Clipping 1 10):
+// world x of the point (transform "world") + 1, depth(P) + 1/2 = (5 - 1) / 9 + 1/2 (the
+// film keeps no negative value), option("Format")'s x resolution; the camera moved by
+// 0.25 in x sees world x 0.25 lower at each pixel (its sample at the same place in it).
+TEST(Shading, MovedCameraKeepsTheProgram) {
+    std::string dir = shaderDir("raydrive_shaders");
+    std::ofstream(dir + "/cam_reads.sl")
+        << "surface cam_reads() {\n    point Pw = transform(\"world\", P);\n"
+           "    float f[3] = {0, 0, 0};\n    option(\"Format\", f);\n"
+           "    Ci = color(xcomp(Pw) + 1, depth(P) + 0.5, f[0] / 100);\n    Oi = 1;\n}\n";
+    auto scene = [&](const char* move, int size) {
+        const std::string res = std::to_string(size);
+        return renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
+                         "Format " + res + " " + res + " 1\nPixelSamples 1 1\n"
+                         "Projection \"orthographic\"\nClipping 1 10\nTranslate " + move +
+                         " 0 0\nWorldBegin\nSurface \"cam_reads\"\n"
+                         "Polygon \"P\" [-9 -9 5  9 -9 5  9 9 5  -9 9 5]\nWorldEnd\n");
+    };
+    const Rendered at0 = scene("0", 16), moved = scene("0.25", 16), larger = scene("0", 32);
+    EXPECT_EQ(at0.stats.program.cacheKey, moved.stats.program.cacheKey);
+    EXPECT_EQ(at0.stats.program.cacheKey, larger.stats.program.cacheKey);
+    for (int x : {2, 8, 13}) {
+        EXPECT_NEAR(moved.at(x, 8).r, at0.at(x, 8).r - 0.25f, 1e-5) << x;
+        EXPECT_NEAR(at0.at(x, 8).g, 0.5f + 4.0f / 9.0f, 1e-5) << x;
+    }
+    EXPECT_NEAR(at0.at(8, 8).b, 0.16f, 1e-6);
+    EXPECT_NEAR(larger.at(16, 16).b, 0.32f, 1e-6);
+}
+
 // One spotlight of intensity 25 and forty of 25/40 at the same place light the plane
 // alike. The first kInlinedLightInstances (32) instances' light shader is inlined
 // (feature specialised_lights; their parameters come from the buffer, the cone's cosine

@@ -51,7 +51,9 @@ TEST(Hoist, UniformWorkOnParametersIsDoneOncePerInstance) {
     EXPECT_NE(sh.source.find("float v_k = params[" + std::to_string(sh.prepOffset) + "]"),
               std::string::npos)
         << sh.source;
-    EXPECT_NE(sh.source.find("void rsl_prep_surface_s(__global float* params)"), std::string::npos);
+    EXPECT_NE(sh.source.find("void rsl_prep_surface_s(__global float* params, "
+                             "__global const float* scene)"),
+              std::string::npos);
 }
 
 TEST(Hoist, NothingThatDependsOnTheShadingPointOrTheRenderer) {

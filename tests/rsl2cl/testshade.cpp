@@ -206,7 +206,8 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
         << fl(sc.ambient[0]) << ", " << fl(sc.ambient[1]) << ", " << fl(sc.ambient[2])
         << ", 0.0f)); }\n";
     // shader and object space come from the block; the service only knows camera
-    src << "RslMatrix rsl_space_matrix(int space) {\n  RslMatrix m = rsl_mscalar(1.0f);\n"
+    src << "RslMatrix rsl_space_matrix(const RslSpaces* sp, int space) {\n"
+           "  (void)sp; RslMatrix m = rsl_mscalar(1.0f);\n"
            "  if (space == RSL_SPACE_CAMERA) m.r[3] = (float4)("
         << fl(sc.cameraOffset[0]) << ", " << fl(sc.cameraOffset[1]) << ", " << fl(sc.cameraOffset[2])
         << ", 1.0f);\n  return m;\n}\n";
@@ -214,7 +215,8 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
                           "float* out, int n)",
                           sc.lightParams, true)
         << messageService("int rsl_attribute(int nameId, float* out, int n)", sc.attributes, false)
-        << messageService("int rsl_option(int nameId, float* out, int n)", sc.options, false);
+        << messageService("int rsl_option(const RslSpaces* sp, int nameId, float* out, int n)",
+                          sc.options, false);
     // no textures here: every lookup gives its fill value
     src << "float4 rsl_texture_service(RslEval* ev, int kind, int id, int channel, float4 p, float4 dpdu,\n"
     "                           float4 dpdv, float width, float blur, float fill, float4 extra) {\n"
@@ -226,7 +228,7 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
     bool light = shader.kind == "light";
     if (!shader.prepFunction.empty())  // the instance's uniform work (hoist.h), run first
         src << "__kernel void ts_prep(__global float* params) { " << shader.prepFunction
-            << "(params); }\n";
+            << "(params, params); }\n";
     const std::string gf = std::to_string(kGlobalFloats);
     src << "__kernel void ts_main(__global const float* gin, __global const float* params,\n"
            "                      int mode_light, int mode_trace, __global float* out) {\n"
@@ -245,7 +247,7 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  g.light_cache_count = 0; g.light_cache = 0; g.lights_off = 0u;\n"
            "  g.rng_pixel = g.rng_sample = g.rng_depth = 0u;\n"
            "  g.st_footprint = (float4)(0.0f);\n"
-           "  g.texctx = 0;\n  g.loops_cut = 0;\n  g.light_params = params;\n"
+           "  g.texctx = 0;\n  g.loops_cut = 0;\n  g.scene_params = params;\n"
            "  RslEval ev; ev.deriv = 0; ev.mode_light = max(mode_light, -1);\n"
            "  ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
            "#ifdef RSL_LIGHT_COEFS\n"
