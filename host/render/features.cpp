@@ -31,7 +31,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     }
     f.primvars = scene.primvarsUsed;
     f.lightCount = shading.lightCount;
-    f.specialisedLights = f.lightCount > 0;  // the first kInlinedLightInstances (shader_set.h)
+    f.specialisedLights = f.lightCount > 0;  // (shader_set.cpp: rd_run_light)
     f.shadowRays = shading.shadowRays;
     f.lightCoefficients = shading.lightCoefs;
     f.trace = shading.usesTrace;

@@ -52,9 +52,8 @@ struct Features {
     size_t shadowItems(size_t rays, size_t lights) const;
     size_t closestItems(size_t rays) const;
     uint32_t lightCount = 0;
-    // Light instances' shaders inlined where they are called, their baked parameters
-    // folded in (uniform work such as a spotlight's axis and cone cosines is done by the
-    // compiler): the first kInlinedLightInstances (shader_set.h); later ones are called.
+    // Light shaders inlined at their one call site each (every instance of a shader
+    // goes through it, told apart by where its data is: shader_set.cpp).
     bool specialisedLights = false;
     // Some surface takes every light's coefficient from its base evaluation
     // (ShadingSetup::lightCoefs).

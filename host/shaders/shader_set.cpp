@@ -283,17 +283,19 @@ ShadingSetup ShaderSet::prepare() {
     // (with their uniform work prepared, as a surface's), followed by the light's place
     // (P, N): a light edited between renders changes data, not the program, which would
     // cost a build and every kernel's first compile again (2.6 s for SPD teapot)
-    std::vector<std::string> lightCalls;
+    // per instance: its shader's index among the light shaders, its block, its place (P,
+    // N), its area triangles (0 of them: a point light's place)
+    std::vector<int> lightShaderOf;
+    std::vector<size_t> lightPlace, lightAreaAt, lightAreaCount;
+    std::vector<std::string> lightShaderFns;  // each light shader's function, once
     std::vector<size_t> lightBlock;  // each light's block's offset in out.params
     std::vector<bool> lightAmbient, lightMapShadowed;
     std::vector<const rsl::EmittedShader*> lightShaders;
     std::map<std::string, bool> lightEmitted;
-    std::set<std::string> calledLightShaders;  // past kInlinedLightInstances
     for (size_t sceneLight = 0; sceneLight < m_scene.lights.size(); ++sceneLight) {
         const ShaderRef& l = m_scene.lights[sceneLight];
         const rsl::EmittedShader* sh = find(l.name, "light", l.loc);
         if (!sh) continue;
-        int index = int(lightCalls.size());
         std::vector<float> block = bindParameters(*sh, l, m_diag, m_scene.colors);
         noteTextures(out, *sh, l);
         // In the light shader P and N are the light's own: its shader-space origin and +z
@@ -306,10 +308,13 @@ ShadingSetup ShaderSet::prepare() {
         lightBlock.push_back(at);
         out.params.insert(out.params.end(), block.begin(), block.end());
         out.params.insert(out.params.end(), {o.x, o.y, o.z, 0.0f, n.x, n.y, n.z, 0.0f});
-        const std::string params = "lg.scene_params + " + std::to_string(at);
-        std::string place = "lg.P = vload4(0, lg.scene_params + " + std::to_string(placeAt) +
-                            "); lg.N = lg.Ng = vload4(1, lg.scene_params + " +
-                            std::to_string(placeAt) + "); ";
+        lightPlace.push_back(placeAt);
+        lightAreaAt.push_back(0);
+        lightAreaCount.push_back(0);
+        const auto fn =
+            std::find(lightShaderFns.begin(), lightShaderFns.end(), sh->functionName);
+        lightShaderOf.push_back(int(fn - lightShaderFns.begin()));
+        if (fn == lightShaderFns.end()) lightShaderFns.push_back(sh->functionName);
         // an area light: a point on its geometry instead, weighted by area
         auto area = m_scene.areaLightTriangles.find(uint32_t(sceneLight));
         if (area != m_scene.areaLightTriangles.end() && !area->second.empty()) {
@@ -336,14 +341,8 @@ ShadingSetup ShaderSet::prepare() {
                                       {v[k].x, v[k].y, v[k].z,
                                        k == 0 ? (t + 1 == count ? 1.0f : w) : 0.0f});
             }
-            place = "{ float4 ap_, an_; rd_area_point((__global const float4*)(lg.scene_params + " +
-                    std::to_string(trisAt) + "), " + std::to_string(count) + ", g, " +
-                    std::to_string(index) + ", &ap_, &an_); lg.P = ap_; lg.N = lg.Ng = an_; } ";
+            lightAreaAt.back() = trisAt, lightAreaCount.back() = count;
         }
-        const bool inlined = uint32_t(index) < kInlinedLightInstances;
-        if (!inlined) calledLightShaders.insert(sh->functionName);
-        lightCalls.push_back(place + (inlined ? "" : "rd_called_") + sh->functionName +
-                             "(&lg, " + params + ")");
         lightAmbient.push_back(sh->ambientLight);
         // a light whose "shadowname" names a shadow map is shadowed by that map (its
         // shader's shadow() call) instead of by a traced shadow ray
@@ -355,7 +354,7 @@ ShadingSetup ShaderSet::prepare() {
         lightEmitted[sh->name] = true;
         out.shadowRays |= !sh->ambientLight;
     }
-    out.lightCount = uint32_t(lightCalls.size());
+    out.lightCount = uint32_t(lightShaderOf.size());
     // --- services the generated code calls (rsl_abi.h)
     std::ostringstream svc;
     // lightsource("name", var): the light instance's parameter, matched by name id and size.
@@ -380,15 +379,41 @@ ShadingSetup ShaderSet::prepare() {
            "    for (int k = 0; k < n; ++k) out[k] = sp->scene[at + k];\n"
            "    return 1;\n}\n";
     svc << "int rsl_light_count(void) { return " << out.lightCount << "; }\n";
-    for (const std::string& fn : calledLightShaders)
-        svc << "__attribute__((noinline)) static void rd_called_" << fn
-            << "(RslGlobals* g, RSL_LIGHT_PARAMS params) { " << fn << "(g, params); }\n";
+    // Each light shader is called from one place, its instances told apart by where
+    // their data is (tables of offsets: the layout, not the values)
+    auto table = [&](const char* name, auto values) {
+        svc << "__constant int " << name << "[] = {";
+        for (size_t i = 0; i < values.size(); ++i) svc << (i ? ", " : "") << values[i];
+        if (values.empty()) svc << "0";
+        svc << "};\n";
+    };
+    const bool areas = std::any_of(lightAreaCount.begin(), lightAreaCount.end(),
+                                   [](size_t n) { return n > 0; });
+    table("rd_light_shader", lightShaderOf);
+    table("rd_light_block", lightBlock);
+    table("rd_light_place", lightPlace);
+    if (areas) {
+        table("rd_light_area_at", lightAreaAt);
+        table("rd_light_area_count", lightAreaCount);
+    }
     svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar light */\n"
            "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* out) {\n"
            "    RslGlobals lg = *g;\n    lg.Ps = Ps;\n    lg.L = (float4)(0.0f);\n"
-           "    lg.Cl = rsl_f2c(0.0f);\n    lg.Ol = rsl_f2c(0.0f);\n    switch (l) {\n";
-    for (size_t i = 0; i < lightCalls.size(); ++i)
-        svc << "    case " << i << ": " << lightCalls[i] << "; break;\n";
+           "    lg.Cl = rsl_f2c(0.0f);\n    lg.Ol = rsl_f2c(0.0f);\n"
+           "    if (l < 0 || l >= " << out.lightCount << ") { *out = lg; return 0; }\n"
+           "    __global const float* d = lg.scene_params;\n"
+           "    lg.P = vload4(0, d + rd_light_place[l]);\n"
+           "    lg.N = lg.Ng = vload4(1, d + rd_light_place[l]);\n";
+    if (areas)  // an area light: a point on its geometry instead, weighted by area
+        svc << "    if (rd_light_area_count[l] > 0) {\n"
+               "        float4 ap_, an_;\n"
+               "        rd_area_point((__global const float4*)(d + rd_light_area_at[l]),\n"
+               "                      rd_light_area_count[l], g, l, &ap_, &an_);\n"
+               "        lg.P = ap_;\n        lg.N = lg.Ng = an_;\n    }\n";
+    svc << "    switch (rd_light_shader[l]) {\n";
+    for (size_t i = 0; i < lightShaderFns.size(); ++i)
+        svc << "    case " << i << ": " << lightShaderFns[i]
+            << "(&lg, d + rd_light_block[l]); break;\n";
     svc << "    default: break;\n    }\n    *out = lg;\n    return RSL_CW(lg.Ol) == 1.0f;\n}\n";
     svc << "static int rd_light_traces_shadows(int l) {\n    switch (l) {\n";
     for (size_t i = 0; i < lightMapShadowed.size(); ++i)
@@ -581,11 +606,12 @@ ShadingSetup ShaderSet::prepare() {
             out.pointParamLayout.insert(out.pointParamLayout.end(), lay.begin(), lay.end());
         }
     }
-    // Each of the first kInlinedLightInstances light instances' calls is inlined
-    // (RD_SPECIALISED_LIGHTS). Their parameters were compiled-in constants until the
-    // light's uniform work (a cone's cosine, its axis) was prepared like a surface's:
-    // shade_spd is the same either way (SPD gears, balls: 1.02x; compiled-in values with
-    // the cone's cos() left per point: 1.35x), and an edited light keeps the program.
+    // Each light shader is inlined at its one call site (RD_SPECIALISED_LIGHTS). Light
+    // parameters were compiled-in constants, each of the first 32 instances inlined with
+    // its own, until the light's uniform work (a cone's cosine, its axis) was prepared
+    // like a surface's: shade_spd is the same (SPD gears, balls: 1.02x; with the cone's
+    // cos() left per point: 1.35x), an edited light keeps the program, and 40 spotlights
+    // shade in 0.79x the time with one inlined copy instead of 32.
     // Surface shaders are inlined into their shade kernel's few call sites (base, light
     // and trace modes): the work a mode does not change is hoisted out of the light loop
     // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).

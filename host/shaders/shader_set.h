@@ -23,13 +23,6 @@ struct EmittedShader;
 
 namespace rd {
 
-// Light instances whose shader is inlined where the renderer calls it
-// (RD_SPECIALISED_LIGHTS): the first this many; later ones call their
-// shader through one out-of-line copy per light shader, so code grows with the shaders,
-// not with the instances, past them (SPD gears with 20 spotlights, 20 inlined against
-// none: shade time 0.67x, the cold build unchanged).
-constexpr uint32_t kInlinedLightInstances = 32;
-
 // Scenes with at most this many lights take each light's coefficient from a surface's
 // base evaluation (rsl_abi.h, LIGHT COEFFICIENTS): its private arrays grow with the
 // lights, one float4 a light for Ci and for each light-dependent variable.
