@@ -141,8 +141,7 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     const bool varyingCs = cs && cs->floats.size() == 4 * k;
     const bool varyingOs = os && os->floats.size() == 4 * k;
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
-    if (varyingCs ||
-        varyingOs) {  // Cs then Os at the four corners, each colour in chunks
+    if (varyingCs || varyingOs) {  // Cs then Os at the four corners, each in chunks
         q.primvars = uint32_t(m_world.quadricPrimvars.size());
         const size_t chunks = size_t(m_world.colors.lanes() / 4);
         for (size_t c = 0; c < 8; ++c) {

@@ -84,7 +84,8 @@ glm::vec3 valueAt(const Piece& p, size_t i) {
     if (n == 1) return glm::vec3(i < f.size() ? f[i] : 0.0f, 0.0f, 0.0f);
     if (n * i + n > f.size()) return glm::vec3(0.0f);
     glm::vec3 v(0.0f);
-    for (size_t c = 0, j = 3 * size_t(p.index); c < 3 && j < n; ++c, ++j) v[int(c)] = f[n * i + j];
+    for (size_t c = 0, j = 3 * size_t(p.index); c < 3 && j < n; ++c, ++j)
+        v[int(c)] = f[n * i + j];
     return v;
 }
 

@@ -23,10 +23,9 @@ namespace {
 
 // The scene block at the front of the params buffer (ShaderSet::prepare), float offsets:
 // camera to current (16, the RSL row-vector matrix), the "world" row (-worldOrigin, 1),
-// Format (x, y resolution, pixel aspect) then Clipping (near, far), worldOrigin (the
-// shadow lookups'); a multiple of four floats, as light blocks after it load float4s.
-constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20, kSceneOrigin = 25;
-constexpr size_t kSceneFloats = 28;
+// Format (x, y resolution, pixel aspect) then Clipping (near, far); a multiple of four
+// floats, as light blocks after it load float4s.
+constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20, kSceneFloats = 28;
 
 // Moves a triple of a point/vector/normal parameter from a space to world space.
 void toWorld(rsl::BaseType base, const glm::mat4& m, float* v) {
@@ -276,22 +275,17 @@ ShadingSetup ShaderSet::prepare() {
         f[0] = float(m_scene.camera.width), f[1] = float(m_scene.camera.height);
         f[2] = m_scene.camera.pixelAspect;
         f[3] = m_scene.camera.clipNear, f[4] = std::min(m_scene.camera.clipFar, 1e30f);
-        float* o = &out.params[kSceneOrigin];
-        o[0] = float(wo.x), o[1] = float(wo.y), o[2] = float(wo.z);
     }
-    // --- light instances: one switch case each, their parameters in the params buffer
-    // (with their uniform work prepared, as a surface's), followed by the light's place
-    // (P, N): a light edited between renders changes data, not the program, which would
-    // cost a build and every kernel's first compile again (2.6 s for SPD teapot)
-    // per instance: its shader's index among the light shaders, its block, its place (P,
-    // N), its area triangles (0 of them: a point light's place)
+    // --- light instances: their parameters in the params buffer (with their uniform work
+    // prepared, as a surface's), followed by the light's place (P, N) and an area light's
+    // triangles: a light edited between renders changes data, not the program, which
+    // would cost a build and every kernel's first compile again (2.85 s for SPD teapot).
+    // Per instance: its shader's index in lightShaders, the offsets of its block, its
+    // place and its area triangles (0 of them: a point light's place).
     std::vector<int> lightShaderOf;
-    std::vector<size_t> lightPlace, lightAreaAt, lightAreaCount;
-    std::vector<std::string> lightShaderFns;  // each light shader's function, once
-    std::vector<size_t> lightBlock;  // each light's block's offset in out.params
+    std::vector<size_t> lightBlock, lightPlace, lightAreaAt, lightAreaCount;
+    std::vector<const rsl::EmittedShader*> lightShaders;  // each light shader, once
     std::vector<bool> lightAmbient, lightMapShadowed;
-    std::vector<const rsl::EmittedShader*> lightShaders;
-    std::map<std::string, bool> lightEmitted;
     for (size_t sceneLight = 0; sceneLight < m_scene.lights.size(); ++sceneLight) {
         const ShaderRef& l = m_scene.lights[sceneLight];
         const rsl::EmittedShader* sh = find(l.name, "light", l.loc);
@@ -311,10 +305,13 @@ ShadingSetup ShaderSet::prepare() {
         lightPlace.push_back(placeAt);
         lightAreaAt.push_back(0);
         lightAreaCount.push_back(0);
-        const auto fn =
-            std::find(lightShaderFns.begin(), lightShaderFns.end(), sh->functionName);
-        lightShaderOf.push_back(int(fn - lightShaderFns.begin()));
-        if (fn == lightShaderFns.end()) lightShaderFns.push_back(sh->functionName);
+        const auto known = std::find_if(lightShaders.begin(), lightShaders.end(),
+                                        [&](const auto* s) { return s->name == sh->name; });
+        lightShaderOf.push_back(int(known - lightShaders.begin()));
+        if (known == lightShaders.end()) {
+            lightShaders.push_back(sh);
+            shaders << sh->source << "\n";
+        }
         // an area light: a point on its geometry instead, weighted by area
         auto area = m_scene.areaLightTriangles.find(uint32_t(sceneLight));
         if (area != m_scene.areaLightTriangles.end() && !area->second.empty()) {
@@ -349,26 +346,11 @@ ShadingSetup ShaderSet::prepare() {
         const rib::Param* sn = l.params.find("shadowname");
         const std::string map = sn && !sn->strings.empty() ? sn->strings[0] : "";
         lightMapShadowed.push_back(!map.empty() && map != "raytrace");
-        lightShaders.push_back(sh);
-        if (!lightEmitted[sh->name]) shaders << sh->source << "\n";
-        lightEmitted[sh->name] = true;
         out.shadowRays |= !sh->ambientLight;
     }
     out.lightCount = uint32_t(lightShaderOf.size());
     // --- services the generated code calls (rsl_abi.h)
     std::ostringstream svc;
-    // lightsource("name", var): the light instance's parameter, matched by name id and size.
-    svc << "int rsl_lightsource_param(const RslGlobals* g, int light, int nameId, float* out, "
-           "int n) {\n    switch (light) {\n";
-    for (size_t i = 0; i < lightShaders.size(); ++i) {
-        svc << "    case " << i << ":\n";
-        for (const rsl::ParamSlot& slot : lightShaders[i]->params)
-            svc << "        if (nameId == " << rsl::stringId(slot.name) << " && n == " << slot.size
-                << ") { for (int k = 0; k < n; ++k) out[k] = g->scene_params["
-                << lightBlock[i] + size_t(slot.offset) << " + k]; return 1; }\n";
-        svc << "        return 0;\n";
-    }
-    svc << "    default: return 0;\n    }\n}\n";
     // attribute() knows nothing yet; option("Format", f[3]) is the image size.
     svc << "int rsl_attribute(int nameId, float* out, int n) { return 0; }\n"
            "int rsl_option(const RslSpaces* sp, int nameId, float* out, int n) {\n"
@@ -379,8 +361,9 @@ ShadingSetup ShaderSet::prepare() {
            "    for (int k = 0; k < n; ++k) out[k] = sp->scene[at + k];\n"
            "    return 1;\n}\n";
     svc << "int rsl_light_count(void) { return " << out.lightCount << "; }\n";
-    // Each light shader is called from one place, its instances told apart by where
-    // their data is (tables of offsets: the layout, not the values)
+    // Each light shader is called from one place (and its parameters read by name in
+    // one), its instances told apart by where their data is (tables of offsets: the
+    // layout, not the values)
     auto table = [&](const char* name, auto values) {
         svc << "__constant int " << name << "[] = {";
         for (size_t i = 0; i < values.size(); ++i) svc << (i ? ", " : "") << values[i];
@@ -396,6 +379,21 @@ ShadingSetup ShaderSet::prepare() {
         table("rd_light_area_at", lightAreaAt);
         table("rd_light_area_count", lightAreaCount);
     }
+    // lightsource("name", var): the light instance's parameter, matched by name id and size.
+    svc << "int rsl_lightsource_param(const RslGlobals* g, int light, int nameId, float* out, "
+           "int n) {\n"
+           "    if (light < 0 || light >= " << out.lightCount << ") return 0;\n"
+           "    __global const float* b = g->scene_params + rd_light_block[light];\n"
+           "    switch (rd_light_shader[light]) {\n";
+    for (size_t i = 0; i < lightShaders.size(); ++i) {
+        svc << "    case " << i << ":\n";
+        for (const rsl::ParamSlot& slot : lightShaders[i]->params)
+            svc << "        if (nameId == " << rsl::stringId(slot.name) << " && n == " << slot.size
+                << ") { for (int k = 0; k < n; ++k) out[k] = b[" << slot.offset
+                << " + k]; return 1; }\n";
+        svc << "        return 0;\n";
+    }
+    svc << "    default: return 0;\n    }\n}\n";
     svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar light */\n"
            "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* out) {\n"
            "    RslGlobals lg = *g;\n    lg.Ps = Ps;\n    lg.L = (float4)(0.0f);\n"
@@ -411,8 +409,8 @@ ShadingSetup ShaderSet::prepare() {
                "                      rd_light_area_count[l], g, l, &ap_, &an_);\n"
                "        lg.P = ap_;\n        lg.N = lg.Ng = an_;\n    }\n";
     svc << "    switch (rd_light_shader[l]) {\n";
-    for (size_t i = 0; i < lightShaderFns.size(); ++i)
-        svc << "    case " << i << ": " << lightShaderFns[i]
+    for (size_t i = 0; i < lightShaders.size(); ++i)
+        svc << "    case " << i << ": " << lightShaders[i]->functionName
             << "(&lg, d + rd_light_block[l]); break;\n";
     svc << "    default: break;\n    }\n    *out = lg;\n    return RSL_CW(lg.Ol) == 1.0f;\n}\n";
     svc << "static int rd_light_traces_shadows(int l) {\n    switch (l) {\n";
@@ -615,9 +613,10 @@ ShadingSetup ShaderSet::prepare() {
     // Surface shaders are inlined into their shade kernel's few call sites (base, light
     // and trace modes): the work a mode does not change is hoisted out of the light loop
     // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).
-    const std::string sceneDefines =
-        "#define RD_SCENE_WORLD_ORIGIN(p) (float4)((p)[" + std::to_string(kSceneOrigin) + "], (p)[" +
-        std::to_string(kSceneOrigin + 1) + "], (p)[" + std::to_string(kSceneOrigin + 2) + "], 0.0f)\n";
+    // the shadow lookups' world origin: the world row's translation, negated
+    const std::string w = "(p)[" + std::to_string(kSceneWorld);
+    const std::string sceneDefines = "#define RD_SCENE_WORLD_ORIGIN(p) (float4)(-" + w +
+                                     "], -" + w + " + 1], -" + w + " + 2], 0.0f)\n";
     out.generated["rd_shading.cl"] = lightDefines + sceneDefines + "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
                                      "inline __attribute__((always_inline))\n#endif\n"
                                      "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"

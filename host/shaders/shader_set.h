@@ -35,8 +35,8 @@ struct ShadingSetup {
     std::vector<std::string> shadeKernels;  // per compiled surface shader
     std::vector<std::string> surfaceNames;  // the shaders themselves, same order
     std::vector<Material> materials;        // Material::shader/params filled in
-    // every light instance's block and place (rsl_abi.h RslGlobals::scene_params), then
-    // every surface instance's block
+    // the scene block, every light instance's block and place (rsl_abi.h
+    // RslGlobals::scene_params), then every surface instance's block
     std::vector<float> params;
     // Parameters given per point (ShaderRef::pointParams), when some surface has them:
     // per material, 1 + maxPointParams ints: how many its primitives give, then the
