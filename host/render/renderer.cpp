@@ -298,8 +298,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         }
     };
     // The rays in the pool now, and on the spill stack. Refill tops the pool up to
-    // roundCap: the whole pool while the device traces it in a quarter second, less near
-    // the end of a time budget (the samples in flight at a stop are lost).
+    // roundCap: the whole pool, but under a time budget no more than the device traces in
+    // a quarter second, and less near the budget's end (the samples in flight at a stop
+    // are lost). Without one, rounds never follow the clock: the passes are planned at the
+    // same rounds, and the image is the same, however fast the device runs (a first round
+    // that waits on the kernels' JIT had capped the rest at a few thousand rays).
     cl_uint n = 0;
     size_t roundCap = pool;
     double raysPerSec = 0;
@@ -476,18 +479,24 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         ring.popFront(retired);
     };
 
-    double lastSample = 0;  // the first point after half a second: a pass over the film
+    double lastSample = 0;  // the series' first point after its interval: a pass over the film
     // How far the samples' spread, from which the planner takes each pixel's error,
     // overstates the error under the Sobol sampler (FilmError::spreadOverstates): the
-    // planner's pixel error is loosened by as much. Taken where the film's error is
-    // estimated anyway (each pass under an error target or a time budget, else twice a
-    // second: an estimate each pass cost SPD tetra at 9 samples a pixel 20 ms of its
-    // 170), and rounded down to quarter octaves, as a tighter pixel error makes the
-    // planner test every pixel again.
+    // planner's pixel error is loosened by as much. Taken as the planner reads the film, at
+    // points the render's progress sets and never the clock, or an image would depend on
+    // its timing (Sampling.AdaptiveImageDoesNotDependOnTheErrorSeries): each pass under an
+    // error target or a time budget (which estimate the error there anyway), else when
+    // the retired samples have doubled since it was last taken (an estimate each pass
+    // cost SPD tetra at 9 samples a pixel 20 ms of its 170). Rounded down to quarter
+    // octaves, as a tighter pixel error makes the planner test every pixel again.
     double spreadOverstates = 1.0;
-    auto sampleError = [&](bool force, bool filmSynced = false) {
+    uint64_t overstatesTakenAt = 0;  // retired samples then; 0: not yet
+    auto sampleError = [&](bool force, bool filmSynced = false, bool planning = false) {
         double now = secondsSince(t0);
-        if (!force && now - lastSample < 0.5) return;
+        const bool overstatesDue =
+            planning && f.sobol &&
+            (openEnded || overstatesTakenAt == 0 || st.retiredSamples >= 2 * overstatesTakenAt);
+        if (!force && !overstatesDue && now - lastSample < m_settings.errorSeriesSec) return;
         lastSample = now;
         if (!filmSynced) {
             prof.markHostWait();
@@ -495,7 +504,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         }
         const FilmError e = estimateFilmErrors(film.pixels);
         st.estimatedError = e.of(f.sobol);
-        spreadOverstates = roundDownOnOctaveGrid(e.spreadOverstates(f.sobol), 4.0);
+        if (overstatesDue && e.replicates > 0) {
+            spreadOverstates = roundDownOnOctaveGrid(e.spreadOverstates(f.sobol), 4.0);
+            overstatesTakenAt = std::max<uint64_t>(1, st.retiredSamples);
+        }
         prof.collect();
         uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
                         (treelets ? treelets->peekRays() : 0);
@@ -531,7 +543,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         const auto tFilm = Clock::now();
         prof.markHostWait();
         filmBuf.syncToHost();
-        sampleError(openEnded, /*filmSynced=*/true);
+        sampleError(openEnded, /*filmSynced=*/true, /*planning=*/true);
         st.planMs += secondsSince(tFilm) * 1e3;
         return errorTarget > 0 && st.estimatedError >= 0 && st.estimatedError <= errorTarget;
     };
@@ -589,8 +601,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             if (const double dt = secondsSince(tRound) - planSec;
                 dt > 0 && (traced >= pool / 8 || (traced > 0 && raysPerSec == 0))) {
                 raysPerSec = double(traced) / dt;
-                roundCap = std::clamp<size_t>(size_t(raysPerSec * 0.25),
-                                              std::min<size_t>(1024, pool), pool);
+                if (timeBudget > 0)
+                    roundCap = std::clamp<size_t>(size_t(raysPerSec * 0.25),
+                                                  std::min<size_t>(1024, pool), pool);
             }
             ++st.iterations;
             if (f.procedurals) {  // a ray reached an archive's bound: load it first

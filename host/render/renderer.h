@@ -47,6 +47,10 @@ struct RenderSettings {
     size_t treeletBytes = 0;
     size_t sceneMemoryBytes = 0;
     bool timeline = false;  // keep every kernel run in RenderStats::timeline (--timeline)
+    // Seconds between the points of --stats' error-against-time series (each a pass over
+    // the film) when no error target or time budget estimates the error every pass. It
+    // never changes the image.
+    double errorSeriesSec = 0.5;
     int seed = -1;          // which random numbers; -1: the scene's Option "render" "seed"
     int sobol = -1;         // Sobol samples (1) or independent (0); -1: the scene's "sampler"
 };

@@ -240,6 +240,43 @@ TEST(Sampling, OverlappedPassesPlanAroundTheTail) {
     }
 }
 
+// An adaptive render's image does not depend on when --stats' error series samples the
+// film: under the Sobol sampler the planner loosens its pixel error by how far the
+// samples' spread overstates the error, a ratio it must take at points the render's own
+// progress sets (not the clock), or a render's image would hang on its timing. The
+// series sampled every round and never give the same image bit for bit.
+TEST(Sampling, AdaptiveImageDoesNotDependOnTheErrorSeries) {
+    // A random brightness: no contrast between pixels, and each pixel's samples
+    // stratified, so that the spread overstates their error (the ratio matters).
+    const std::string dir = rd::test::scratchDir("raydrive_series");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/grain.sl") << "surface grain() {\n    Ci = random();\n    Oi = 1;\n}\n";
+    const std::string rib =
+        orthoCamera(32, 8,
+                    "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
+                    "Option \"render\" \"float pixelerror\" [0.1]\n") +
+        "WorldBegin\nSurface \"grain\"\n" + rect(-16, 16, -16, 16) + "WorldEnd\n";
+    rd::RenderSettings everyRound, never;
+    everyRound.poolCapacity = never.poolCapacity = 512;
+    everyRound.sobol = never.sobol = 1;
+    everyRound.errorSeriesSec = 0;
+    never.errorSeriesSec = 1e9;
+    Rendered a = renderRib(rib, everyRound), b = renderRib(rib, never);
+    std::printf("series every round: %d passes, %llu samples, %zu points; never: %d passes, "
+                "%llu samples\n",
+                a.stats.passes, (unsigned long long)a.stats.filmSamples,
+                a.stats.errorVsTime.size(), b.stats.passes,
+                (unsigned long long)b.stats.filmSamples);
+    EXPECT_GE(a.stats.passes, 4);  // adaptive: passes after the first two
+    EXPECT_GT(a.stats.errorVsTime.size(), size_t(a.stats.passes));
+    EXPECT_EQ(a.stats.filmSamples, b.stats.filmSamples);
+    size_t differ = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            differ += a.count(x, y) != b.count(x, y) || a.at(x, y).r != b.at(x, y).r;
+    EXPECT_EQ(differ, 0u);
+}
+
 // A pass asking for fewer samples than a 64th of the frame's pixels (256 of 16384 here)
 // gives its pixels two doublings at once: a frame's last passes are small and each costs
 // the rounds of its rays however few they are. A 2x2 square off the pixel grid at 8x8
