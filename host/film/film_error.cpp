@@ -12,13 +12,15 @@ namespace rd {
 // (Sums by batch of pixels, the batches' sums added in order: the same value for any
 // number of threads. A 512x512 film took 2.3 ms pixel by pixel on one core, the end of
 // every frame; now a batch's divisions and square roots are vector operations.)
-FilmError estimateFilmErrors(const FilmPixels& film) {
-    const size_t batches = (film.size() + kPixelBatch - 1) / kPixelBatch;
+FilmError estimateFilmErrors(const FilmPixels& film, size_t batchStride) {
+    const size_t batches =
+        (film.size() + kPixelBatch * batchStride - 1) / (kPixelBatch * batchStride);
     std::vector<FilmErrorSums> part(batches);
     // (threads only where they pay for their start: a large film)
-    runInParts(batches, film.size() < 65536 ? 1 : hostThreads(), [&](size_t begin, size_t end, size_t) {
+    const size_t pixels = film.size() / batchStride;
+    runInParts(batches, pixels < 65536 ? 1 : hostThreads(), [&](size_t begin, size_t end, size_t) {
         for (size_t i = begin; i < end; ++i) {
-            const size_t first = i * kPixelBatch;
+            const size_t first = i * kPixelBatch * batchStride;
             addFilmErrorSums(&film[first], std::min(kPixelBatch, film.size() - first), part[i]);
         }
     });

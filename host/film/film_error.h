@@ -88,7 +88,9 @@ struct FilmError {
                                                      : 1.0;
     }
 };
-FilmError estimateFilmErrors(const FilmPixels& film);
+// Over every pixel; or over one batch of kPixelBatch pixels in every `batchStride` (a
+// film-wide ratio such as spreadOverstates, from a spread-out share of the work).
+FilmError estimateFilmErrors(const FilmPixels& film, size_t batchStride = 1);
 
 // x rounded down to a grid of `steps` points an octave (2^(k / steps)): a threshold that
 // moves only when x does by a step (the brightness floor; the planner's Sobol ratio).

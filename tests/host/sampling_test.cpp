@@ -580,7 +580,8 @@ TEST(Film, ErrorEstimateFromWholeSamples) {
 
 // The film's estimate is summed by batches of pixels on the host's cores: within 1e-12 of
 // the definition summed pixel by pixel, over a film of 90300 pixels (a short last batch)
-// with empty, one-sample, black and stiff pixels (a level of 1e6, noise of 1e-3).
+// with empty, one-sample, black and stiff pixels (a level of 1e6, noise of 1e-3); also
+// over one batch in eight (the renderer's Sobol ratio).
 TEST(Film, ErrorEstimateInBatchesIsThePixelByPixelOne) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -591,15 +592,23 @@ TEST(Film, ErrorEstimateInBatchesIsThePixelByPixelOne) {
         const float level = i % 7 == 0 ? 1e6f : i % 7 == 1 ? 0.0f : 0.2f + u(rng);
         addSamples(p, n, level, i % 7 == 0 ? 1e-3f : 0.3f * level, rng);
     }
-    double var = 0, mean = 0, withVar = 0, withMean = 0;
-    for (const PixelAccum& p : f) {
-        if (p.count == 0) continue;
-        const rd::PixelEstimate e = rd::estimatePixel(p);
-        mean += e.mean, ++withMean;
-        if (p.count >= 2) var += double(e.stdError) * e.stdError, ++withVar;
+    // over every pixel, or over the first batch of 64 pixels in every `stride` batches
+    auto definition = [&](size_t stride) {
+        double var = 0, mean = 0, withVar = 0, withMean = 0;
+        for (size_t i = 0; i < f.size(); ++i) {
+            const PixelAccum& p = f[i];
+            if (p.count == 0 || (i / 64) % stride != 0) continue;
+            const rd::PixelEstimate e = rd::estimatePixel(p);
+            mean += e.mean, ++withMean;
+            if (p.count >= 2) var += double(e.stdError) * e.stdError, ++withVar;
+        }
+        return std::sqrt(var / withVar) / (mean / withMean);
+    };
+    for (size_t stride : {1, 8}) {
+        const double want = definition(stride);
+        EXPECT_NEAR(rd::estimateFilmErrors(f, stride).spread, want, 1e-12 * want) << stride;
     }
-    const double want = std::sqrt(var / withVar) / (mean / withMean);
-    EXPECT_NEAR(rd::estimateFilmErrors(f).spread, want, 1e-12 * want);
+    EXPECT_NE(definition(1), definition(8));
     f.resize(1000);  // one thread
     EXPECT_GT(rd::estimateFilmErrors(f).spread, 0.0);
 }
