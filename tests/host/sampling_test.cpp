@@ -261,20 +261,24 @@ TEST(Sampling, AdaptiveImageDoesNotDependOnTheErrorSeries) {
     everyRound.sobol = never.sobol = 1;
     everyRound.errorSeriesSec = 0;
     never.errorSeriesSec = 1e9;
-    Rendered a = renderRib(rib, everyRound), b = renderRib(rib, never);
-    std::printf("series every round: %d passes, %llu samples, %zu points; never: %d passes, "
-                "%llu samples\n",
-                a.stats.passes, (unsigned long long)a.stats.filmSamples,
-                a.stats.errorVsTime.size(), b.stats.passes,
-                (unsigned long long)b.stats.filmSamples);
-    EXPECT_GE(a.stats.passes, 4);  // adaptive: passes after the first two
-    EXPECT_GT(a.stats.errorVsTime.size(), size_t(a.stats.passes));
-    EXPECT_EQ(a.stats.filmSamples, b.stats.filmSamples);
-    size_t differ = 0;
-    for (int y = 0; y < 32; ++y)
-        for (int x = 0; x < 32; ++x)
-            differ += a.count(x, y) != b.count(x, y) || a.at(x, y).r != b.at(x, y).r;
-    EXPECT_EQ(differ, 0u);
+    // the pixel error, then an error target (its estimate each pass)
+    for (double target : {0.0, 0.004}) {
+        everyRound.errorTarget = never.errorTarget = target;
+        Rendered a = renderRib(rib, everyRound), b = renderRib(rib, never);
+        std::printf("error target %g: series every round: %d passes, %llu samples, %zu "
+                    "points; never: %d passes, %llu samples\n",
+                    target, a.stats.passes, (unsigned long long)a.stats.filmSamples,
+                    a.stats.errorVsTime.size(), b.stats.passes,
+                    (unsigned long long)b.stats.filmSamples);
+        EXPECT_GE(a.stats.passes, 4);  // adaptive: passes after the first two
+        EXPECT_GT(a.stats.errorVsTime.size(), size_t(a.stats.passes));
+        EXPECT_EQ(a.stats.filmSamples, b.stats.filmSamples);
+        size_t differ = 0;
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x)
+                differ += a.count(x, y) != b.count(x, y) || a.at(x, y).r != b.at(x, y).r;
+        EXPECT_EQ(differ, 0u);
+    }
 }
 
 // A pass asking for fewer samples than a 64th of the frame's pixels (256 of 16384 here)
