@@ -25,11 +25,13 @@ inline int rt_job_was_in_flight(uint state, uint tag) {
 /* window: the jobs in flight, ring positions [window_start, + window_count) modulo
  * job_capacity. Launches alternate between two halves of progress by the parity of
  * `launch` (the host's count of retire launches); each launch clears the other half for
- * the next. In its half, [0] (from ~0) becomes the rank of the oldest job still in
+ * the next. A launch may take the window's jobs from `base` on (a window too large for one
+ * launch takes several, the first from 0). In its half, [0] (from ~0) becomes the rank of
+ * the oldest job still in
  * flight, so the host frees the retired prefix of the rings; [1] counts jobs aborted by
  * this launch, [2] samples left out as NaN/Inf. */
 __kernel void retire_samples(uint window_start, uint window_count, uint job_capacity,
-                             uint slot_capacity, uint launch,
+                             uint slot_capacity, uint launch, uint base,
                              __global PixelJob* jobs,
                              __global const uint* slot_rays,
                              __global const uint* slot_abort,
@@ -41,10 +43,11 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
                              __global uint* active_counter) {
     const uint parity = launch & 1u, tag = RT_JOB_TAG(launch);
     RT_COUNT_GROUP(active_counter, q,
-                   q < window_count &&
+                   base + q < window_count &&
                        rt_job_was_in_flight(
-                           jobs[rt_ring_add(window_start, q, job_capacity)].state, tag));
-    uint k = get_global_id(0);
+                           jobs[rt_ring_add(window_start, base + q, job_capacity)].state,
+                           tag));
+    uint k = base + get_global_id(0);
     if (k == 0) {
         __global uint* next = progress + 3u * (parity ^ 1u);
         next[0] = 0xffffffffu;

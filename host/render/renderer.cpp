@@ -67,6 +67,11 @@ bool queueWithin(const std::deque<PlannedJob>& pending, size_t room) {
 // it refills the pool in the round after (stream_stats.sh at 9 samples a pixel, pool fill
 // and host sync alike from 0.7 to 1.0; more passes beyond).
 constexpr double kOverlapFill = 1.0;
+// PoCL compiles a kernel's work-group function apart for launches of fewer than 65536
+// work-items and of more. The jobs in flight pass that mark in five of the seven SPD
+// scenes: retire_samples' second compile cost 124-146 ms of their first renders. On PoCL it takes no more work-items a launch than this, and a
+// larger window takes several launches.
+constexpr size_t kPoclSmallGridItems = 65536 - 64;
 
 const char* signalName(int sig) { return sig == 2 ? "SIGINT" : sig == 15 ? "SIGTERM" : "signal"; }
 
@@ -389,10 +394,15 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                 rp.shState, rp.totals, rp.spawnMask, rp.groupLive);
         if (window > 0) {
             ++retireLaunches;
-            k.retire.launch(window, cl_uint(ring.frontPosition()), window,
-                            cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()),
-                            launch, rp.jobs, rp.slotRays, rp.slotAbort, rp.totals,
-                            filmBuf, rp.aov, aovBuf, rp.progress);
+            const size_t most = m_settings.retireLaunchItems > 0 ? m_settings.retireLaunchItems
+                                : m_ctx.info().isPocl()          ? kPoclSmallGridItems
+                                                                 : window;
+            for (size_t base = 0; base < window; base += most)
+                k.retire.launch(std::min<size_t>(most, window - base),
+                                cl_uint(ring.frontPosition()), window,
+                                cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()),
+                                launch, cl_uint(base), rp.jobs, rp.slotRays, rp.slotAbort,
+                                rp.totals, filmBuf, rp.aov, aovBuf, rp.progress);
         }
         refill.prepare(pending, roundCap);  // while the device finishes the round
         // Pipelined, the wait is for the retire's read (none without jobs in flight).

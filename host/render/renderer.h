@@ -25,6 +25,9 @@ struct RenderSettings {
     bool shadowPackets = true;   // shadow rays in packets where the scene allows (features.h)
     bool closestPackets = true;  // coherent closest-hit rays in packets, likewise
     size_t poolCapacity = 0;  // rays per round; 0: 16k per compute unit within a memory budget
+    // The most jobs one retire_samples launch takes (a larger window takes several); 0:
+    // the device's (on PoCL 65472, below the launch size it compiles apart; else all).
+    size_t retireLaunchItems = 0;
     // Plan the next adaptive pass while the last one's tail drains (its pixels in flight
     // wait a pass), so that eye rays keep the pool full; false: each pass drains first.
     bool overlapPasses = true;

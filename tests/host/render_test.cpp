@@ -189,6 +189,38 @@ TEST(Render, KernelStatsAreConsistent) {
     EXPECT_LE(img.stats.hostSyncOverhead, img.stats.hostOverhead);
 }
 
+// A window of jobs in flight larger than one retire launch takes (on PoCL 65472: it
+// compiles a kernel apart for larger launches) is retired by several launches, each from
+// its base: the same image bit for bit and the same count of jobs in flight as one launch
+// each, with launches of 64 jobs. Mirrors facing each other keep samples in flight over
+// rounds (their rays bounce to the specular depth), so the launches' progress meets too.
+TEST(Render, RetireWindowInSeveralLaunchesIsTheSame) {
+    const std::string rib = camera(24, 45, 3) +
+                            "Attribute \"trace\" \"int maxspeculardepth\" [4]\n"
+                            "WorldBegin\nLightSource \"distantlight\" 1\n"
+                            "AttributeBegin\nSurface \"mirror\" \"Kr\" 0.8\n" +
+                            std::string(kPlaneAt5) +
+                            "Polygon \"P\" [-50 -50 -5  50 -50 -5  50 50 -5  -50 50 -5]\n"
+                            "AttributeEnd\nTranslate 0 0 3\nSurface \"matte\"\n"
+                            "Sphere 1 -1 1 360\nWorldEnd\n";
+    rd::RenderSettings small;
+    small.retireLaunchItems = 64;
+    Rendered one = renderRib(rib), several = renderRib(rib, small);
+    const auto& a = one.stats.kernels.at("retire_samples");
+    const auto& b = several.stats.kernels.at("retire_samples");
+    std::printf("retire: %llu launches, %llu jobs in flight; in launches of 64: %llu, %llu\n",
+                (unsigned long long)a.launches, (unsigned long long)a.activeItems,
+                (unsigned long long)b.launches, (unsigned long long)b.activeItems);
+    EXPECT_GT(b.launches, 2 * a.launches);
+    EXPECT_EQ(a.activeItems, b.activeItems);
+    EXPECT_GT(one.stats.continuationRays, 0u);
+    EXPECT_EQ(one.stats.iterations, several.stats.iterations);
+    size_t differ = 0;
+    for (size_t i = 0; i < one.pixels.size(); ++i)
+        differ += one.pixels[i].r != several.pixels[i].r || one.pixels[i].g != several.pixels[i].g;
+    EXPECT_EQ(differ, 0u);
+}
+
 // Two shaders: the sort runs, each shade kernel takes its own run, and the misses and the
 // surfaces of the other shader are left out of a shader's work-items. Left half constant
 // 0.25, right half constant 0.75 (exact: constant is Cs), top rows empty sky.
