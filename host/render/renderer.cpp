@@ -67,9 +67,10 @@ bool queueWithin(const std::deque<PlannedJob>& pending, size_t room) {
 // it refills the pool in the round after (stream_stats.sh at 9 samples a pixel, pool fill
 // and host sync alike from 0.7 to 1.0; more passes beyond).
 constexpr double kOverlapFill = 1.0;
-// PoCL compiles a kernel's work-group function apart for launches of fewer than 65536
-// work-items and of more. The jobs in flight pass that mark in five of the seven SPD
-// scenes: retire_samples' second compile cost 124-146 ms of their first renders. On PoCL it takes no more work-items a launch than this, and a
+// PoCL compiles a kernel first launched with fewer than 65536 work-items for such launches
+// alone, and again at its first larger launch. retire_samples' first window is small and
+// later ones pass that mark in five of the seven SPD scenes: its second compile cost
+// 124-146 ms of their first renders. On PoCL it takes no more work-items a launch than this, and a
 // larger window takes several launches.
 constexpr size_t kPoclSmallGridItems = 65536 - 64;
 

@@ -26,7 +26,8 @@ struct RenderSettings {
     bool closestPackets = true;  // coherent closest-hit rays in packets, likewise
     size_t poolCapacity = 0;  // rays per round; 0: 16k per compute unit within a memory budget
     // The most jobs one retire_samples launch takes (a larger window takes several); 0:
-    // the device's (on PoCL 65472, below the launch size it compiles apart; else all).
+    // the device's (on PoCL 65472: it compiles a kernel again for its first launch of
+    // 65536 work-items or more after smaller ones; else all).
     size_t retireLaunchItems = 0;
     // Plan the next adaptive pass while the last one's tail drains (its pixels in flight
     // wait a pass), so that eye rays keep the pool full; false: each pass drains first.

@@ -190,7 +190,7 @@ TEST(Render, KernelStatsAreConsistent) {
 }
 
 // A window of jobs in flight larger than one retire launch takes (on PoCL 65472: it
-// compiles a kernel apart for larger launches) is retired by several launches, each from
+// compiles a kernel again for larger launches) is retired by several launches, each from
 // its base: the same image bit for bit and the same count of jobs in flight as one launch
 // each, with launches of 64 jobs. Mirrors facing each other keep samples in flight over
 // rounds (their rays bounce to the specular depth), so the launches' progress meets too.
