@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cl/include/numerics_slots.h"
+#include "film/film_error.h"
 
 namespace rd {
 
@@ -50,6 +51,20 @@ void summariseRays(RenderStats& st, const std::vector<uint32_t>& num, int maxTra
                                 " ray(s) stopped after " + std::to_string(maxTransparentDepth) +
                                 " transparent surfaces; raise Attribute \"trace\" "
                                 "\"maxtransparentdepth\"");
+}
+
+void summariseFilm(RenderStats& st, Film& film, bool sobol, bool twoSamplesAPixel) {
+    if (twoSamplesAPixel) {
+        const FilmError e = estimateFilmErrors(film.pixels);
+        st.estimatedError = e.of(sobol);
+        film.errorScale = 1.0 / e.spreadOverstates(sobol);
+    } else {
+        st.estimatedError = -1.0;
+    }
+    const Film::Tally tally = film.tally();
+    st.nonfiniteSamples = tally.nonfinite;
+    st.unsampledPixels = tally.unsampled;
+    st.filmSamples = tally.samples;
 }
 
 void summariseOccupancy(RenderStats& st, bool treelets, double launchGapsMs) {

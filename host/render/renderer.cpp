@@ -7,9 +7,9 @@
 // retire the samples with no ray left (retire_samples) and compact what the shaders
 // spawned into the next round, read back at the round's one wait. When a pass's queue is
 // about to run dry, the next pass is planned during a round, beside the tail still in
-// flight, so the pool stays full from pass to pass. Between rounds it polls the stop
-// conditions; samples still in flight at a stop never reach the film, so it holds only
-// whole samples.
+// flight, so the pool stays full from pass to pass (pass_planning.h: the plan and the
+// film's error estimates). Between rounds it polls the stop conditions; samples still in
+// flight at a stop never reach the film, so it holds only whole samples.
 #include "renderer.h"
 
 #include <algorithm>
@@ -28,7 +28,7 @@
 #include "imager_stage.h"
 #include "texture_reshade.h"
 #include "scene_bvh.h"
-#include "film/film_error.h"
+#include "pass_planning.h"
 #include "progress.h"
 #include "ray_pool.h"
 #include "refill.h"
@@ -490,85 +490,24 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         ring.popFront(retired);
     };
 
-    double lastSample = 0;  // the series' first point after its interval: a pass over the film
-    // How far the samples' spread, from which the planner takes each pixel's error,
-    // overstates the error under the Sobol sampler (FilmError::spreadOverstates): the
-    // planner's pixel error is loosened by as much. Taken as the planner reads the film, at
-    // points the render's progress sets and never the clock, or an image would depend on
-    // its timing (Sampling.AdaptiveImageDoesNotDependOnTheErrorSeries): each pass under an
-    // error target or a time budget (which estimate the error there anyway), else when
-    // the retired samples have doubled since it was last taken or since the first plan
-    // (an estimate each pass cost SPD tetra at 9 samples a pixel 20 ms of its 170; it
-    // has no such doubling). Rounded down to quarter octaves, as a tighter pixel error
-    // makes the planner test every pixel again.
-    double spreadOverstates = 1.0;
-    uint64_t overstatesTakenAt = 0;  // retired samples then; 0: no plan yet
-    auto sampleError = [&](bool force, bool filmSynced = false, bool planning = false) {
-        const double now = secondsSince(t0);
-        const bool seriesDue = force || now - lastSample >= m_settings.errorSeriesSec;
-        // (the first plan sets the baseline: its pixels have the first pass's two samples,
-        // of which the spread and the replicates give the same number)
-        if (planning && overstatesTakenAt == 0)
-            overstatesTakenAt = std::max<uint64_t>(1, st.retiredSamples);
-        const bool overstatesDue =
-            planning && f.sobol && (openEnded || st.retiredSamples >= 2 * overstatesTakenAt);
-        if (!seriesDue && !overstatesDue) return;
-        if (!filmSynced) {
-            prof.markHostWait();
-            filmBuf.syncToHost();
-        }
-        const FilmError e = seriesDue ? estimateFilmErrors(film.pixels) : FilmError{};
-        if (overstatesDue) {
-            // Open-ended, from the estimate taken each pass; else from one of every seven
-            // of the film's batches whether or not the series is due (0.2 ms, not 1.2, on
-            // SPD tetra's 262k pixels; seven, so that they fall on other columns of each row).
-            const FilmError r = openEnded ? e : estimateFilmErrors(film.pixels, 7);
-            if (r.replicates > 0) {
-                spreadOverstates = roundDownOnOctaveGrid(r.spreadOverstates(f.sobol), 4.0);
-                overstatesTakenAt = std::max<uint64_t>(1, st.retiredSamples);
-            }
-        }
-        if (!seriesDue) return;
-        lastSample = now;
-        st.estimatedError = e.of(f.sobol);
-        prof.collect();
-        uint64_t rays = k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
-                        (treelets ? treelets->peekRays() : 0);
-        st.errorVsTime.push_back({now, rays, st.estimatedError});
-    };
+    PassTargets targets;
+    targets.pixelError = ss.pixelError;
+    targets.errorTarget = errorTarget;
+    targets.timeBudget = timeBudget;
+    targets.sobol = f.sobol;
+    targets.errorSeriesSec = m_settings.errorSeriesSec;
+    targets.maxJob = maxJob;
+    PassPlanning planning(targets, film, filmBuf, planner, ring, prof, st, t0, [&] {
+        return uint64_t(k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
+                        (treelets ? treelets->peekRays() : 0));
+    });
     // Passes overlap (RenderSettings::overlapPasses) when a pass can follow the first.
     const bool overlapPasses =
         m_settings.overlapPasses && (ss.maxSamples > ss.minSamples || errorTarget > 0);
-    std::vector<uint8_t> busy;  // pixels with samples in flight when a pass is planned
-    // The next pass, planned from the film (synced) and cut into pixel jobs. Pixels with
-    // samples still in flight or queued in `pending` are set aside: their film entries
-    // are partial (they wait a pass).
     auto planPass = [&](const std::deque<PlannedJob>& pending) {
-        float pixelError = ss.pixelError;
-        if (errorTarget > 0) pixelError = float(errorTarget);
-        else if (timeBudget > 0 && st.estimatedError > 0)
-            pixelError = float(0.5 * st.estimatedError);  // refine the worse half
-        const auto tPlan = Clock::now();
-        busy.assign(ring.inFlight() > 0 || !pending.empty() ? film.pixels.size() : 0, 0);
-        ring.markPixelsInFlight(busy);
-        for (const PlannedJob& j : pending) busy[j.pixel] = 1;
-        std::deque<PlannedJob> jobs = planJobs(
-            planner->nextPass(film.pixels, float(pixelError * spreadOverstates), busy),
-            maxJob, film.pixels.size());
-        st.planMs += secondsSince(tPlan) * 1e3;
+        std::deque<PlannedJob> jobs = planning.planPass(pending);
         refill.invalidate();  // a new queue
         return jobs;
-    };
-    // The film as the retired samples left it, and its error estimate (a scan of every
-    // pixel, 4 ms at 512x512) when an error target or a time budget steers the planning
-    // (otherwise at the --stats series' interval). Returns whether the error target is met.
-    auto readFilm = [&] {
-        const auto tFilm = Clock::now();
-        prof.markHostWait();
-        filmBuf.syncToHost();
-        sampleError(openEnded, /*filmSynced=*/true, /*planning=*/true);
-        st.planMs += secondsSince(tFilm) * 1e3;
-        return errorTarget > 0 && st.estimatedError >= 0 && st.estimatedError <= errorTarget;
     };
     // The pass's jobs stream through the pool: refill, trace, compact, retire, until every
     // job has retired (the caller has staged its first refill or invalidated the last
@@ -640,7 +579,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                     return false;
                 }
             }
-            sampleError(false);
+            planning.sampleError(false);
             double fraction =
                 timeBudget > 0 ? secondsSince(t0) / timeBudget
                 : errorTarget > 0 && st.estimatedError > 0
@@ -651,7 +590,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             const size_t fill = size_t(kOverlapFill * double(roundCap));
             if (overlap && (ring.inFlight() > 0 || !pending.empty()) && spillTop == 0 &&
                 n <= fill && queueWithin(pending, fill - n)) {
-                planDue = !readFilm();  // the error target met: drain, then stop
+                planDue = !planning.readFilm();  // the error target met: drain, then stop
                 overlap = planDue;
             }
         }
@@ -681,7 +620,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
             st.stopReason = "quality";  // every pixel has all its samples: nothing to plan
             break;
         }
-        if (readFilm()) {
+        if (planning.readFilm()) {
             st.stopReason = "error target";
             break;
         }
@@ -709,18 +648,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         st.textures = textures.stats();
     }
     summariseRays(st, num, f.maxTransparentDepth, diag, rib::SourceLoc{scene.sourceFile, 0});
-    // (no pixel has two samples to take a variance from: -1, without a pass over the film)
-    if (ss.maxSamples >= 2) {
-        const FilmError e = estimateFilmErrors(film.pixels);
-        st.estimatedError = e.of(f.sobol);
-        film.errorScale = 1.0 / e.spreadOverstates(f.sobol);
-    } else {
-        st.estimatedError = -1.0;
-    }
-    const Film::Tally tally = film.tally();
-    st.nonfiniteSamples = tally.nonfinite;
-    st.unsampledPixels = tally.unsampled;
-    st.filmSamples = tally.samples;
+    summariseFilm(st, film, f.sobol, ss.maxSamples >= 2);
     st.passes = planner->passes();
     st.elapsedSec = secondsSince(t0);
     summariseOccupancy(st, treelets != nullptr, prof.launchGapsMs());
