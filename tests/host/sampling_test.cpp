@@ -85,6 +85,31 @@ void addSamples(PixelAccum& p, uint32_t n, float level, float noise, std::mt1993
     p.count += n;
 }
 
+// A res x res plane of a shader `name` that returns random() (written to a scratch folder
+// of `test`): no contrast between pixels, and each pixel's samples stratified under the
+// Sobol sampler, so that the samples' spread overstates their error. spp x spp samples,
+// pixel error 0.1: adaptive.
+std::string grainPlane(const std::string& test, const std::string& name, int res, int spp) {
+    const std::string dir = rd::test::scratchDir(test);
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/" + name + ".sl")
+        << "surface " << name << "() {\n    Ci = random();\n    Oi = 1;\n}\n";
+    const double h = res / 2.0;
+    return orthoCamera(res, spp,
+                       "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
+                       "Option \"render\" \"float pixelerror\" [0.1]\n") +
+           "WorldBegin\nSurface \"" + name + "\"\n" + rect(-h, h, -h, h) + "WorldEnd\n";
+}
+
+// Pixels whose sample count or red channel differ between two renders of one frame.
+size_t pixelsDiffering(const Rendered& a, const Rendered& b) {
+    size_t differ = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            differ += a.count(x, y) != b.count(x, y) || a.at(x, y).r != b.at(x, y).r;
+    return differ;
+}
+
 }  // namespace
 
 // Each pass re-tests only the pixels whose answer can have changed; the passes must be
@@ -247,16 +272,7 @@ TEST(Sampling, OverlappedPassesPlanAroundTheTail) {
 // progress sets (not the clock), or a render's image would hang on its timing. The
 // series sampled every round and never give the same image bit for bit.
 TEST(Sampling, AdaptiveImageDoesNotDependOnTheErrorSeries) {
-    // A random brightness: no contrast between pixels, and each pixel's samples
-    // stratified, so that the spread overstates their error (the ratio matters).
-    const std::string dir = rd::test::scratchDir("raydrive_series");
-    std::filesystem::create_directories(dir);
-    std::ofstream(dir + "/grain.sl") << "surface grain() {\n    Ci = random();\n    Oi = 1;\n}\n";
-    const std::string rib =
-        orthoCamera(32, 8,
-                    "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
-                    "Option \"render\" \"float pixelerror\" [0.1]\n") +
-        "WorldBegin\nSurface \"grain\"\n" + rect(-16, 16, -16, 16) + "WorldEnd\n";
+    const std::string rib = grainPlane("raydrive_series", "grain", 32, 8);
     rd::RenderSettings everyRound, never;
     everyRound.poolCapacity = never.poolCapacity = 512;
     everyRound.sobol = never.sobol = 1;
@@ -274,11 +290,7 @@ TEST(Sampling, AdaptiveImageDoesNotDependOnTheErrorSeries) {
         EXPECT_GE(a.stats.passes, 4);  // adaptive: passes after the first two
         EXPECT_GT(a.stats.errorVsTime.size(), size_t(a.stats.passes));
         EXPECT_EQ(a.stats.filmSamples, b.stats.filmSamples);
-        size_t differ = 0;
-        for (int y = 0; y < 32; ++y)
-            for (int x = 0; x < 32; ++x)
-                differ += a.count(x, y) != b.count(x, y) || a.at(x, y).r != b.at(x, y).r;
-        EXPECT_EQ(differ, 0u);
+        EXPECT_EQ(pixelsDiffering(a, b), 0u);
     }
 }
 
@@ -289,17 +301,10 @@ TEST(Sampling, AdaptiveImageDoesNotDependOnTheErrorSeries) {
 // samples a pixel came out another image). The shader's name is new each run: its
 // program is built and its kernels compiled by this test.
 TEST(Sampling, FirstRenderIsTheImageOfTheNext) {
-    const std::string dir = rd::test::scratchDir("raydrive_cold");
-    std::filesystem::create_directories(dir);
-    const std::string name =
-        "grain" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
-    std::ofstream(dir + "/" + name + ".sl")
-        << "surface " << name << "() {\n    Ci = random();\n    Oi = 1;\n}\n";
-    const std::string rib =
-        orthoCamera(64, 8,
-                    "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
-                    "Option \"render\" \"float pixelerror\" [0.1]\n") +
-        "WorldBegin\nSurface \"" + name + "\"\n" + rect(-32, 32, -32, 32) + "WorldEnd\n";
+    const std::string rib = grainPlane(
+        "raydrive_cold",
+        "grain" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()),
+        64, 8);
     rd::RenderSettings settings;
     settings.poolCapacity = 16384;
     Rendered cold = renderRib(rib, settings), warm = renderRib(rib, settings);
@@ -311,11 +316,7 @@ TEST(Sampling, FirstRenderIsTheImageOfTheNext) {
     EXPECT_FALSE(cold.stats.program.cacheHit);
     EXPECT_EQ(cold.stats.iterations, warm.stats.iterations);
     EXPECT_EQ(cold.stats.filmSamples, warm.stats.filmSamples);
-    size_t differ = 0;
-    for (int y = 0; y < 64; ++y)
-        for (int x = 0; x < 64; ++x)
-            differ += cold.count(x, y) != warm.count(x, y) || cold.at(x, y).r != warm.at(x, y).r;
-    EXPECT_EQ(differ, 0u);
+    EXPECT_EQ(pixelsDiffering(cold, warm), 0u);
 }
 
 // A pass asking for fewer samples than a 64th of the frame's pixels (256 of 16384 here)
