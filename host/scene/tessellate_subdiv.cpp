@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #ifdef RD_HAVE_OPENSUBDIV
 #include <opensubdiv/far/primvarRefiner.h>
@@ -71,6 +72,13 @@ bool validateSubdiv(const SubdivInput& in, std::string* err) {
     }
     if (ni != in.intargs.size() || nf != in.floatargs.size())
         return fail(err, "SubdivisionMesh: nargs do not account for all tag arguments");
+    using StClass = SubdivInput::StClass;
+    const size_t stWanted = in.stClass == StClass::FaceVarying ? in.vertices.size()
+                            : in.stClass == StClass::None      ? 0
+                                                               : in.P.size();
+    if (in.st.size() != stWanted)
+        return fail(err, "SubdivisionMesh: " + std::to_string(in.st.size()) +
+                             " st values where " + std::to_string(stWanted) + " are needed");
     return true;
 }
 
@@ -137,6 +145,31 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     desc.cornerWeights = cornerW.data();
     desc.numHoles = int(holes.size());
     desc.holeIndices = holes.data();
+    // Facevarying st: one channel whose values are the corners' st, one value for the
+    // corners of a control vertex that agree, so that a seam is where faces disagree.
+    const bool faceVaryingSt = in.stClass == SubdivInput::StClass::FaceVarying;
+    std::vector<int> fvarIndex;
+    std::vector<glm::vec2> fvarValues;
+    Far::TopologyDescriptor::FVarChannel channel;
+    if (faceVaryingSt) {
+        std::vector<std::vector<int>> ofVertex(in.P.size());  // each vertex's values
+        fvarIndex.resize(in.vertices.size());
+        for (size_t c = 0; c < in.vertices.size(); ++c) {
+            std::vector<int>& mine = ofVertex[size_t(in.vertices[c])];
+            auto same = std::find_if(mine.begin(), mine.end(),
+                                     [&](int v) { return fvarValues[size_t(v)] == in.st[c]; });
+            if (same == mine.end()) {
+                mine.push_back(int(fvarValues.size()));
+                fvarValues.push_back(in.st[c]);
+                same = mine.end() - 1;
+            }
+            fvarIndex[c] = *same;
+        }
+        channel.numValues = int(fvarValues.size());
+        channel.valueIndices = fvarIndex.data();
+        desc.numFVarChannels = 1;
+        desc.fvarChannels = &channel;
+    }
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     Far::TopologyRefiner* refiner =
         Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, opts));
@@ -160,27 +193,48 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     int nv = last.GetNumVertices();
     std::vector<Vtx> lim(nv), t1(nv), t2(nv);
     primvar.Limit(src, lim, t1, t2);
-    // other values: vertex ones to the limit like P, varying ones linearly
+    // Other values given per control vertex, refined to one per vertex of the last
+    // level: vertex ones to the limit like P, varying ones linearly.
+    auto refined = [&](const std::vector<glm::vec3>& given, bool vertex) {
+        std::vector<Vtx> v(refiner->GetNumVerticesTotal());
+        for (size_t i = 0; i < given.size() && i < in.P.size(); ++i) v[i].p = given[i];
+        Vtx* s = v.data();
+        for (int l = 1; l <= level; ++l) {
+            Vtx* d = s + refiner->GetLevel(l - 1).GetNumVertices();
+            if (vertex) primvar.Interpolate(l, s, d);
+            else primvar.InterpolateVarying(l, s, d);
+            s = d;
+        }
+        std::vector<Vtx> atLimit(nv);
+        if (vertex) primvar.Limit(s, atLimit);
+        else std::copy(s, s + nv, atLimit.begin());
+        std::vector<glm::vec3> out(static_cast<size_t>(nv));
+        for (int i = 0; i < nv; ++i) out[size_t(i)] = atLimit[size_t(i)].p;
+        return out;
+    };
+    std::vector<std::vector<glm::vec3>> perVertex;
     if (values) {
-        auto refine = [&](const std::vector<glm::vec3>& given, bool vertex) {
-            std::vector<Vtx> v(refiner->GetNumVerticesTotal());
-            for (size_t i = 0; i < given.size() && i < in.P.size(); ++i) v[i].p = given[i];
-            Vtx* s = v.data();
-            for (int l = 1; l <= level; ++l) {
-                Vtx* d = s + refiner->GetLevel(l - 1).GetNumVertices();
-                if (vertex) primvar.Interpolate(l, s, d);
-                else primvar.InterpolateVarying(l, s, d);
-                s = d;
-            }
-            std::vector<Vtx> atLimit(nv);
-            if (vertex) primvar.Limit(s, atLimit);
-            else std::copy(s, s + nv, atLimit.begin());
-            std::vector<glm::vec3> refined(static_cast<size_t>(nv));
-            for (int i = 0; i < nv; ++i) refined[size_t(i)] = atLimit[size_t(i)].p;
-            values->push_back(std::move(refined));
-        };
-        for (const std::vector<glm::vec3>& v : in.vertexValues) refine(v, true);
-        for (const std::vector<glm::vec3>& v : in.varyingValues) refine(v, false);
+        for (const std::vector<glm::vec3>& v : in.vertexValues) perVertex.push_back(refined(v, true));
+        for (const std::vector<glm::vec3>& v : in.varyingValues) perVertex.push_back(refined(v, false));
+    }
+    std::vector<glm::vec3> st;  // per vertex of the last level (vertex or varying st)
+    if (in.stClass == SubdivInput::StClass::Vertex || in.stClass == SubdivInput::StClass::Varying) {
+        std::vector<glm::vec3> given(in.st.size());
+        for (size_t i = 0; i < in.st.size(); ++i) given[i] = glm::vec3(in.st[i], 0.0f);
+        st = refined(given, in.stClass == SubdivInput::StClass::Vertex);
+    }
+    std::vector<Vtx> fvarLimit;  // facevarying st, per value of the last level
+    if (faceVaryingSt) {
+        std::vector<Vtx> fv(size_t(refiner->GetNumFVarValuesTotal(0)));
+        for (size_t i = 0; i < fvarValues.size(); ++i) fv[i].p = glm::vec3(fvarValues[i], 0.0f);
+        Vtx* s = fv.data();
+        for (int l = 1; l <= level; ++l) {
+            Vtx* d = s + refiner->GetLevel(l - 1).GetNumFVarValues(0);
+            primvar.InterpolateFaceVarying(l, s, d, 0);
+            s = d;
+        }
+        fvarLimit.resize(size_t(last.GetNumFVarValues(0)));
+        primvar.LimitFaceVarying(s, fvarLimit, 0);
     }
 
     // Parent base face of each refined face: uniform Catmull-Clark refinement emits a
@@ -199,23 +253,54 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         return fail(err, "SubdivisionMesh: unexpected refined face count");
     }
 
-    int base = int(out.mesh.p.size());
-    bool wantN = out.mesh.n.size() == out.mesh.p.size();
-    for (int i = 0; i < nv; ++i) {
-        out.mesh.p.push_back(lim[i].p);
-        glm::vec3 c = glm::cross(t1[i].p, t2[i].p);
-        if (wantN) out.mesh.n.push_back(glm::length(c) > 0.0f ? glm::normalize(c) : glm::vec3(0, 0, 1));
-        out.st.emplace_back(0.0f);
+    // The output's vertices: the last level's, or with facevarying st one for each of
+    // its values (a vertex on a seam has one a side); vertexOf: each one's vertex.
+    const int base = int(out.mesh.p.size());
+    const bool wantN = out.mesh.n.size() == out.mesh.p.size();
+    std::vector<int> vertexOf;
+    auto emit = [&](int v, glm::vec2 uv) {
+        out.mesh.p.push_back(lim[size_t(v)].p);
+        const glm::vec3 c = glm::cross(t1[size_t(v)].p, t2[size_t(v)].p);
+        if (wantN)
+            out.mesh.n.push_back(glm::length(c) > 0.0f ? glm::normalize(c) : glm::vec3(0, 0, 1));
+        out.st.push_back(uv);
+        vertexOf.push_back(v);
+    };
+    std::vector<int> outOfValue;  // facevarying: the output vertex of each value
+    if (faceVaryingSt) {
+        outOfValue.assign(fvarLimit.size(), -1);
+    } else {
+        for (int i = 0; i < nv; ++i)
+            emit(i, st.empty() ? glm::vec2(0.0f) : glm::vec2(st[size_t(i)]));
     }
+    std::vector<int> corner;
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         if (last.IsFaceHole(f)) continue;
         auto fv = last.GetFaceVertices(f);
-        for (int k = 1; k + 1 < fv.size(); ++k) {
+        corner.assign(fv.begin(), fv.end());
+        if (faceVaryingSt) {
+            auto values = last.GetFaceFVarValues(f, 0);
+            for (int k = 0; k < fv.size(); ++k) {
+                int& o = outOfValue[size_t(values[k])];
+                if (o < 0) {
+                    o = int(vertexOf.size());
+                    emit(fv[k], glm::vec2(fvarLimit[size_t(values[k])].p));
+                }
+                corner[size_t(k)] = o;
+            }
+        }
+        for (size_t k = 1; k + 1 < corner.size(); ++k) {
             out.mesh.tris.insert(out.mesh.tris.end(),
-                                 {base + fv[0], base + fv[k], base + fv[k + 1]});
+                                 {base + corner[0], base + corner[k], base + corner[k + 1]});
             out.faceIndex.push_back(parent[f]);
         }
     }
+    if (values)
+        for (const std::vector<glm::vec3>& v : perVertex) {
+            std::vector<glm::vec3> atOutput(vertexOf.size());
+            for (size_t i = 0; i < vertexOf.size(); ++i) atOutput[i] = v[size_t(vertexOf[i])];
+            values->push_back(std::move(atOutput));
+        }
     delete refiner;
     return true;
 }

@@ -4,8 +4,12 @@
 // surface (Far::PrimvarRefiner::Limit) with limit tangents, and the refined quads are
 // split into triangles. faceIndex = the base (control) face each triangle descends
 // from; normals = normalize(limit dP/du x dP/dv), wound like the face's vertex order.
-// Subdivision surfaces have no global (u,v): st is left at (0,0) (facevarying "st" is
-// not interpolated yet). Without "interpolateboundary" the boundary follows OpenSubdiv's
+// Subdivision surfaces have no global (u,v): st is (0,0) unless given, per control
+// vertex ("vertex": to the limit like P; "varying": linearly) or per face-vertex
+// ("facevarying", the usual texture coordinates of an asset: linearly within each face,
+// through an OpenSubdiv face-varying channel, so that a vertex on a seam, where faces
+// give it different values, becomes one output vertex a side). Without
+// "interpolateboundary" the boundary follows OpenSubdiv's
 // VTX_BOUNDARY_NONE rule; "interpolateboundary" [1] (or no int arg) = edges and
 // corners, [2] = edges only. Other per-vertex values (shader parameters given per
 // point) are refined with the cage on request. Built without OpenSubdiv
@@ -30,6 +34,9 @@ struct SubdivInput {
     // ones one per control vertex, projected to the limit like P; "varying" ones one
     // per control vertex too, refined linearly (RI varying on a subdivision mesh).
     std::vector<std::vector<glm::vec3>> vertexValues, varyingValues;
+    // Texture coordinates: none, one per control vertex, or one per face-vertex.
+    enum class StClass { None, Vertex, Varying, FaceVarying } stClass = StClass::None;
+    std::vector<glm::vec2> st;
 };
 
 constexpr int kMaxSubdivLevel = 8;
@@ -40,7 +47,8 @@ bool validateSubdiv(const SubdivInput& in, std::string* err);
 // `level` is clamped to [0, kMaxSubdivLevel] and lowered further when the refined mesh
 // would exceed kMaxMeshVertices.
 // `values`, when given, receives in.vertexValues then in.varyingValues refined, one
-// value per vertex of `out` (its vertices from the first this call adds).
+// value per vertex of `out` (its vertices from the first this call adds; a vertex split
+// at a facevarying seam has its vertex's values on each side).
 bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
                                std::string* err = nullptr,
                                std::vector<std::vector<glm::vec3>>* values = nullptr);

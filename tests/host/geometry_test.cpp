@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "render_harness.h"
 
@@ -78,6 +80,50 @@ TEST(Geometry, SubdivisionCubeShrinksInsideItsCage) {
         "1 1 1]\n");
     EXPECT_GT(area, 2.0);
     EXPECT_LT(area, 4.0);
+}
+
+// A SubdivisionMesh's texture coordinates as given, per face-vertex: a flat 2x2 grid over
+// the frame whose left faces map s to [0, 0.4] and right faces to [0.6, 1] (a seam down
+// the middle, as an asset's UV layout cuts it), t = (y + 1) / 2, shown by a shader as
+// colour (s, t, 0). Each half keeps its own range up to the seam, the halves' means are
+// 0.2 and 0.8 (the layout is symmetric about each half's middle), and t climbs up the
+// frame. (Before, a SubdivisionMesh's st was (0, 0) everywhere.)
+TEST(Geometry, SubdivisionTextureCoordinatesAsGiven) {
+    const std::string dir = rd::test::scratchDir("raydrive_subdiv_st");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/showst.sl") << "surface showst() { Ci = color(s, t, 0); Oi = 1; }\n";
+    std::string st;
+    const int corners[4][4] = {{0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
+    for (const auto& face : corners)
+        for (int v : face) {
+            const double x = v % 3 - 1.0, y = v / 3 - 1.0;
+            const bool left = face[0] % 3 == 0;
+            st += std::to_string(left ? 0.4 * (x + 1) : 0.6 + 0.4 * x) + " " +
+                  std::to_string((y + 1) / 2) + "  ";
+        }
+    Rendered img = renderRib(
+        "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
+        "Format 32 32 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
+        "ScreenWindow -1 1 -1 1\nTranslate 0 0 5\nWorldBegin\nSurface \"showst\"\n"
+        "SubdivisionMesh \"catmull-clark\" [4 4 4 4] [0 1 4 3  1 2 5 4  3 4 7 6  4 5 8 7] "
+        "[\"interpolateboundary\"] [0 0] [] [] \"P\" [-1 -1 0  0 -1 0  1 -1 0  -1 0 0  0 0 0  "
+        "1 0 0  -1 1 0  0 1 0  1 1 0] \"facevarying float[2] st\" [" + st + "]\nWorldEnd\n");
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const float s = img.at(x, y).r;
+            if (x < 15) {
+                EXPECT_LE(s, 0.4f + 1e-4f) << x << "," << y;
+            }
+            if (x > 16) {
+                EXPECT_GE(s, 0.6f - 1e-4f) << x << "," << y;
+            }
+            if (y > 0) {
+                EXPECT_LT(img.at(x, y).g, img.at(x, y - 1).g) << x << "," << y;
+            }
+        }
+    EXPECT_NEAR(img.mean(0, 0, 0, 16, 32), 0.2, 0.01);
+    EXPECT_NEAR(img.mean(0, 16, 0, 32, 32), 0.8, 0.01);
+    EXPECT_NEAR(img.mean(1, 0, 0, 32, 32), 0.5, 0.01);
 }
 
 TEST(Geometry, CurvesAndPoints) {
