@@ -87,7 +87,7 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
     static const std::set<std::string> quadrics = {"Cylinder", "Cone", "Disk", "Paraboloid",
                                                    "Hyperboloid", "Torus"};
     if (m_primVars && quadrics.count(what) && mesh.st.size() == mesh.p.size())
-        cornerPointParams(*m_primVars, mesh);
+        cornerPointParams(*m_primVars, mesh, /*withColours=*/true);
     // TextureCoordinates: s, t bilinear over the parametric (u, v) the dicer gave as st
     const Attributes& a = m_attrStack.back();
     for (glm::vec2& st : mesh.st) {
@@ -97,6 +97,8 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
         for (int k = 0; k < 4; ++k) st += w[k] * glm::vec2(a.texS[k], a.texT[k]);
     }
     if (perPoint) perPoint(mesh);
+    // Cs and Os given per point came through the same interpolation as the parameters
+    takePointColours(mesh, m_world.colors.slots());
     addMesh(loc, mesh);
 }
 
@@ -449,6 +451,11 @@ void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strin
     in.P = points3(Pp->floats);
     if (const std::string bad = subdivSt(params, in); !bad.empty())
         m_diag.warning(loc, "SubdivisionMesh: " + bad);
+    for (const char* name : {"Cs", "Os"})
+        if (const rib::Param* c = params.find(name);
+            c && c->storage == rib::StorageClass::FaceVarying)
+            m_diag.warning(loc, std::string("SubdivisionMesh: facevarying \"") + name +
+                                    "\" is not carried yet (vertex, varying and uniform are)");
     // One refinement level per halving of the faces' size on screen, down to ~4 pixels.
     float faces = float(std::max<size_t>(1, nverts.size()));
     float facePx = 2.0f * screenRadius(in.P) / std::sqrt(faces);

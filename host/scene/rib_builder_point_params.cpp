@@ -162,7 +162,7 @@ bool givesOneValue(const rib::Param& p) {
     return p.storage == rib::StorageClass::Constant || valueCount(p) == per;
 }
 
-std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params) {
+std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params, bool withColours) {
     std::vector<const rib::Param*> out;
     if (!params) return out;
     Kind kind;
@@ -170,7 +170,35 @@ std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params) {
         if (!isStandardPrimvar(p.name) && !givesOneValue(p) && kindOf(p, &kind) &&
             out.size() < size_t(kMaxPointParams))
             out.push_back(&p);
+    if (withColours)
+        for (const char* name : {"Cs", "Os"})
+            if (const rib::Param* p = params->find(name);
+                p && !givesOneValue(*p) && kindOf(*p, &kind) && kind == Kind::Color)
+                out.push_back(p);
     return out;
+}
+
+void takePointColours(VertexData& mesh, int channels) {
+    for (const char* name : {"Os", "Cs"}) {  // (Cs before Os: the last first)
+        std::vector<const VertexData::PointParam*> pieces;
+        size_t first = mesh.params.size();
+        while (first > 0 && mesh.params[first - 1].name == name) --first;
+        for (size_t i = first; i < mesh.params.size(); ++i) pieces.push_back(&mesh.params[i]);
+        if (pieces.empty()) continue;
+        const bool opacity = name[0] == 'O';
+        const size_t n = mesh.p.size();
+        if (channels <= 3) {
+            (opacity ? mesh.os : mesh.cs) = pieces[0]->v;
+        } else {
+            std::vector<VertexData::Channels>& out = opacity ? mesh.osN : mesh.csN;
+            out.assign(n, VertexData::Channels{});
+            for (const VertexData::PointParam* piece : pieces)
+                for (size_t i = 0; i < n && i < piece->v.size(); ++i)
+                    for (int c = 0; c < 3 && 3 * piece->piece + c < channels; ++c)
+                        out[i][size_t(3 * piece->piece + c)] = piece->v[i][c];
+        }
+        mesh.params.erase(mesh.params.begin() + std::ptrdiff_t(first), mesh.params.end());
+    }
 }
 
 void RibBuilder::readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
@@ -226,7 +254,7 @@ void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,
                                            const std::vector<int>& nverts,
                                            const std::vector<int>& verts,
                                            const std::vector<int>& faceIndex, VertexData& mesh) {
-    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    const std::vector<const rib::Param*> list = pointParamsOf(&params, true);
     if (list.empty()) return;
     // where each polygon's face-vertices start in `verts` (its loops one after another)
     std::vector<size_t> first(nloops.size() + 1, 0);
@@ -254,22 +282,30 @@ void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,
 void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
                                   const std::vector<glm::vec2>& uv,
                                   const std::vector<int>& faceIndex, VertexData& mesh) {
-    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    std::vector<const rib::Param*> list = pointParamsOf(&params, true);
     if (list.empty() || uv.size() != mesh.p.size()) return;
     // varying values sit on the sub-patches' corners: one more than the sub-patches
     // across a direction unless it wraps (RI); a bilinear mesh's vertex values too
     const int gu = grid.nupatches + (grid.uperiodic ? 0 : 1);
     const int gv = grid.nvpatches + (grid.vperiodic ? 0 : 1);
-    for (const rib::Param* p : list) {
+    // Vertex values of a NuPatch or of a bicubic mesh are not carried (surfaceFor warns
+    // of the parameters; the colours are left out alone, as on polygons).
+    auto carried = [&](const rib::Param* p) {
         const size_t n = valueCount(*p) / size_t(p->components());
         const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
-        if (grid.uorder > 0 && p->storage == rib::StorageClass::Vertex) return;
-        const bool ok = p->storage == rib::StorageClass::Uniform
-                            ? n == size_t(grid.nupatches * grid.nvpatches)
-                        : bicubicVertex ? (grid.single && n == 16)
-                                        : n == size_t(gu * gv);
-        if (!ok) return;  // vertex values of a bicubic mesh: not carried (surfaceFor warns)
-    }
+        if (grid.uorder > 0 && p->storage == rib::StorageClass::Vertex) return false;
+        return p->storage == rib::StorageClass::Uniform
+                   ? n == size_t(grid.nupatches * grid.nvpatches)
+               : bicubicVertex ? (grid.single && n == 16)
+                               : n == size_t(gu * gv);
+    };
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [&](const rib::Param* p) {
+                                  return isStandardPrimvar(p->name) && !carried(p);
+                              }),
+               list.end());
+    for (const rib::Param* p : list)
+        if (!carried(p)) return;
     const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
     appendPointParams(list, mesh, [&](const Piece& p, size_t i) {
         const glm::vec2 at = uv[src[i].vertex];
@@ -301,7 +337,7 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
 
 void RibBuilder::pointsPointParams(const rib::ParamList& params,
                                    const std::vector<int>& faceIndex, VertexData& mesh) {
-    for (const Piece& p : piecesOf(pointParamsOf(&params))) {
+    for (const Piece& p : piecesOf(pointParamsOf(&params, true))) {
         VertexData::PointParam out = pointParamFor(p, mesh.p.size());
         for (size_t t = 0; 3 * t + 2 < mesh.tris.size() && t < faceIndex.size(); ++t)
             for (int c = 0; c < 3; ++c)  // each disc has its own vertices
@@ -310,8 +346,23 @@ void RibBuilder::pointsPointParams(const rib::ParamList& params,
     }
 }
 
+namespace {
+// A SubdivisionMesh's per-point values: its parameters and colours, less facevarying
+// colours (left out: the builder warns), which would keep its parameters from it.
+std::vector<const rib::Param*> subdivParamsOf(const rib::ParamList& params) {
+    std::vector<const rib::Param*> list = pointParamsOf(&params, true);
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [](const rib::Param* p) {
+                                  return isStandardPrimvar(p->name) &&
+                                         p->storage == rib::StorageClass::FaceVarying;
+                              }),
+               list.end());
+    return list;
+}
+}  // namespace
+
 bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in) {
-    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    const std::vector<const rib::Param*> list = subdivParamsOf(params);
     for (const rib::Param* p : list)  // facevarying values need an FVar channel: not yet
         if (p->storage == rib::StorageClass::FaceVarying) return false;
     for (const Piece& p : piecesOf(list)) {
@@ -327,7 +378,7 @@ bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in) {
 void RibBuilder::subdivPointParams(const rib::ParamList& params,
                                    const std::vector<std::vector<glm::vec3>>& refined,
                                    const std::vector<int>& faceIndex, VertexData& mesh) {
-    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    const std::vector<const rib::Param*> list = subdivParamsOf(params);
     const std::vector<Piece> pieces = piecesOf(list);
     size_t vertexCount = 0, next[2] = {0, 0};
     for (const Piece& p : pieces) vertexCount += p.storage == rib::StorageClass::Vertex;
@@ -351,7 +402,7 @@ void RibBuilder::subdivPointParams(const rib::ParamList& params,
 void RibBuilder::curvesPointParams(const rib::ParamList& params, const CurvesInput& in,
                                    const std::vector<glm::vec2>& uv,
                                    const std::vector<int>& faceIndex, VertexData& mesh) {
-    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    const std::vector<const rib::Param*> list = pointParamsOf(&params, true);
     if (list.empty() || uv.size() != mesh.p.size()) return;
     const int step = in.cubic ? in.vbasis.step : 1;
     // each curve's first control point and first varying value
@@ -387,8 +438,9 @@ void RibBuilder::curvesPointParams(const rib::ParamList& params, const CurvesInp
     });
 }
 
-void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh) {
-    for (const Piece& p : piecesOf(pointParamsOf(&params))) {
+void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh,
+                                   bool withColours) {
+    for (const Piece& p : piecesOf(pointParamsOf(&params, withColours))) {
         VertexData::PointParam out = pointParamFor(p, mesh.p.size());
         // a quadric's varying values are at its (u, v) corners 00, 10, 01, 11 (one value,
         // uniform: everywhere); mesh.st holds each vertex's (u, v)

@@ -1,7 +1,8 @@
 // geometry_test.cpp: one small RIB per geometry family, rendered through the whole
 // pipeline on PoCL with a constant white surface and an orthographic camera looking down
 // +z over [-2, 2] x [-2, 2]: the mean alpha is the covered fraction, compared with the
-// shape's analytic projected area / 16. Tolerances cover 4x4-sample antialiasing at
+// shape's analytic projected area / 16. Also texture coordinates and colours given per
+// point on every family. Tolerances cover 4x4-sample antialiasing at
 // 64x64 and the tessellation's chord error.
 #include <gtest/gtest.h>
 
@@ -124,6 +125,72 @@ TEST(Geometry, SubdivisionTextureCoordinatesAsGiven) {
     EXPECT_NEAR(img.mean(0, 0, 0, 16, 32), 0.2, 0.01);
     EXPECT_NEAR(img.mean(0, 16, 0, 32, 32), 0.8, 0.01);
     EXPECT_NEAR(img.mean(1, 0, 0, 32, 32), 0.5, 0.01);
+}
+
+// Cs given per point reaches the surface's colour on every kind of geometry (before, only
+// polygons and exact quadrics carried it: the others came out white). The colour at a
+// control point at x is ((x + 1) / 2, 0.25, (1 - x) / 2): any interpolation's weights sum
+// to one, so every covered pixel has green 0.25 and red + blue 1, and red climbs from left
+// to right (points: one colour a disc); also with six colour channels.
+TEST(Geometry, PerPointColourOnEveryGeometry) {
+    // In six channels too, each RGB channel twice (ColorSamples: RGB -> (r g b r g b),
+    // back by halves): the same image.
+    bool six = false;
+    auto cs = [&](std::initializer_list<double> xs) {
+        std::string out = "\"varying color Cs\" [";
+        for (double x : xs) {
+            const std::string rgb =
+                std::to_string((x + 1) / 2) + " 0.25 " + std::to_string((1 - x) / 2) + "  ";
+            out += six ? rgb + rgb : rgb;
+        }
+        return out + "]\n";
+    };
+    const std::string sixChannels =
+        "ColorSamples [0.5 0 0  0 0.5 0  0 0 0.5  0.5 0 0  0 0.5 0  0 0 0.5] "
+        "[1 0 0 1 0 0  0 1 0 0 1 0  0 0 1 0 0 1]\n";
+    const std::string quad = "\"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0] ";
+    const std::string grid = "\"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] ";
+    for (bool sixth : {false, true}) {
+        six = sixth;
+        const std::vector<std::pair<std::string, std::string>> geometry = {
+            {"Polygon", "Polygon " + quad + cs({-1, 1, 1, -1})},
+            {"GeneralPolygon", "GeneralPolygon [4] " + quad + cs({-1, 1, 1, -1})},
+            {"PointsPolygons", "PointsPolygons [4] [0 1 2 3] " + quad + cs({-1, 1, 1, -1})},
+            {"Patch", "Patch \"bilinear\" " + grid + cs({-1, 1, -1, 1})},
+            {"PatchMesh", "PatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" "
+                          "\"P\" "
+                          "[-1 -1 0  0 -1 0  1 -1 0  -1 1 0  0 1 0  1 1 0] " +
+                              cs({-1, 0, 1, -1, 0, 1})},
+            {"NuPatch",
+             "NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + grid + cs({-1, 1, -1, 1})},
+            {"SubdivisionMesh", "SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] "
+                                "[\"interpolateboundary\"] [0 0] [] [] " +
+                                    quad + cs({-1, 1, 1, -1})},
+            {"Curves", "Curves \"linear\" [2] \"nonperiodic\" \"P\" [-1 0 0  1 0 0] "
+                       "\"constantwidth\" [0.5] " + cs({-1, 1})},
+            {"Points", "Points \"P\" [-0.5 0 0  0.5 0 0] \"constantwidth\" [0.8] " +
+                           cs({-0.5, 0.5})}};
+        for (const auto& [what, g] : geometry) {
+            Rendered img = renderRib((six ? sixChannels : std::string()) +
+                                     "Format 32 32 1\nPixelSamples 1 1\n"
+                                     "Projection \"orthographic\"\n"
+                                     "ScreenWindow -1 1 -1 1\nTranslate 0 0 5\nWorldBegin\n"
+                                     "Surface \"constant\"\n" + g + "WorldEnd\n");
+            int covered = 0;
+            double left = 0, right = 0;
+            for (int y = 0; y < 32; ++y)
+                for (int x = 0; x < 32; ++x) {
+                    const rd::Rgba& c = img.at(x, y);
+                    if (c.a < 1.0f) continue;
+                    ++covered;
+                    EXPECT_NEAR(c.g, 0.25f, 1e-5f) << what << " " << x << "," << y;
+                    EXPECT_NEAR(c.r + c.b, 1.0f, 1e-5f) << what << " " << x << "," << y;
+                    (x < 16 ? left : right) += c.r;
+                }
+            EXPECT_GT(covered, 100) << what << (six ? " in six channels" : "");
+            EXPECT_LT(left, right) << what;
+        }
+    }
 }
 
 TEST(Geometry, CurvesAndPoints) {
