@@ -18,12 +18,15 @@ FilmError estimateFilmErrors(const FilmPixels& film, size_t batchStride) {
     std::vector<FilmErrorSums> part(batches);
     // (threads only where they pay for their start: a large film)
     const size_t pixels = film.size() / batchStride;
-    runInParts(batches, pixels < 65536 ? 1 : hostThreads(), [&](size_t begin, size_t end, size_t) {
-        for (size_t i = begin; i < end; ++i) {
-            const size_t first = i * kPixelBatch * batchStride;
-            addFilmErrorSums(&film[first], std::min(kPixelBatch, film.size() - first), part[i]);
-        }
-    });
+    runInParts(batches, pixels < 65536 ? 1 : hostThreads(),
+               [&](size_t begin, size_t end, size_t) {
+                   for (size_t i = begin; i < end; ++i) {
+                       const size_t first = i * kPixelBatch * batchStride;
+                       addFilmErrorSums(&film[first],
+                                        std::min(kPixelBatch, film.size() - first),
+                                        part[i]);
+                   }
+               });
     FilmErrorSums sum;
     for (const FilmErrorSums& s : part) {
         sum.var += s.var, sum.mean += s.mean, sum.replicateVar += s.replicateVar;

@@ -17,8 +17,15 @@ PassPlanning::PassPlanning(const PassTargets& targets, Film& film,
                            std::optional<SamplePlanner>& planner, const SampleRing& ring,
                            Profiler& prof, RenderStats& st, Clock::time_point t0,
                            std::function<uint64_t()> raysSoFar)
-    : m_targets(targets), m_film(film), m_filmBuf(filmBuf), m_planner(planner), m_ring(ring),
-      m_prof(prof), m_st(st), m_t0(t0), m_raysSoFar(std::move(raysSoFar)) {}
+    : m_targets(targets),
+      m_film(film),
+      m_filmBuf(filmBuf),
+      m_planner(planner),
+      m_ring(ring),
+      m_prof(prof),
+      m_st(st),
+      m_t0(t0),
+      m_raysSoFar(std::move(raysSoFar)) {}
 
 void PassPlanning::sample(bool force, bool filmSynced, bool planning) {
     const double now = secondsSince(m_t0);
@@ -28,8 +35,9 @@ void PassPlanning::sample(bool force, bool filmSynced, bool planning) {
     if (planning && m_overstatesTakenAt == 0)
         m_overstatesTakenAt = std::max<uint64_t>(1, m_st.retiredSamples);
     const bool openEnded = m_targets.openEnded();
-    const bool overstatesDue = planning && m_targets.sobol &&
-                               (openEnded || m_st.retiredSamples >= 2 * m_overstatesTakenAt);
+    const bool overstatesDue =
+        planning && m_targets.sobol &&
+        (openEnded || m_st.retiredSamples >= 2 * m_overstatesTakenAt);
     if (!seriesDue && !overstatesDue) return;
     if (!filmSynced) {
         m_prof.markHostWait();
@@ -39,10 +47,12 @@ void PassPlanning::sample(bool force, bool filmSynced, bool planning) {
     if (overstatesDue) {
         // Open-ended, from the estimate taken each pass; else from one of every seven
         // of the film's batches whether or not the series is due (0.2 ms, not 1.2, on
-        // SPD tetra's 262k pixels; seven, so that they fall on other columns of each row).
+        // SPD tetra's 262k pixels; seven, so that they fall on other columns of each
+        // row).
         const FilmError r = openEnded ? e : estimateFilmErrors(m_film.pixels, 7);
         if (r.replicates > 0) {
-            m_spreadOverstates = roundDownOnOctaveGrid(r.spreadOverstates(m_targets.sobol), 4.0);
+            m_spreadOverstates =
+                roundDownOnOctaveGrid(r.spreadOverstates(m_targets.sobol), 4.0);
             m_overstatesTakenAt = std::max<uint64_t>(1, m_st.retiredSamples);
         }
     }
@@ -65,7 +75,8 @@ bool PassPlanning::readFilm() {
 
 std::deque<PlannedJob> PassPlanning::planPass(const std::deque<PlannedJob>& pending) {
     float pixelError = m_targets.pixelError;
-    if (m_targets.errorTarget > 0) pixelError = float(m_targets.errorTarget);
+    if (m_targets.errorTarget > 0)
+        pixelError = float(m_targets.errorTarget);
     else if (m_targets.timeBudget > 0 && m_st.estimatedError > 0)
         pixelError = float(0.5 * m_st.estimatedError);  // refine the worse half
     const auto tPlan = Clock::now();
@@ -73,9 +84,10 @@ std::deque<PlannedJob> PassPlanning::planPass(const std::deque<PlannedJob>& pend
     m_busy.assign(m_ring.inFlight() > 0 || !pending.empty() ? pixels : 0, 0);
     m_ring.markPixelsInFlight(m_busy);
     for (const PlannedJob& j : pending) m_busy[j.pixel] = 1;
-    std::deque<PlannedJob> jobs = planJobs(
-        m_planner->nextPass(m_film.pixels, float(pixelError * m_spreadOverstates), m_busy),
-        m_targets.maxJob, pixels);
+    std::deque<PlannedJob> jobs =
+        planJobs(m_planner->nextPass(m_film.pixels,
+                                     float(pixelError * m_spreadOverstates), m_busy),
+                 m_targets.maxJob, pixels);
     m_st.planMs += secondsSince(tPlan) * 1e3;
     return jobs;
 }

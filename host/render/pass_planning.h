@@ -24,10 +24,10 @@ namespace rd {
 
 // What steers the planning.
 struct PassTargets {
-    float pixelError = 0.01f;  // the scene's per-pixel error
-    double errorTarget = 0;    // the film's relative error to stop at; 0: none
-    double timeBudget = 0;     // seconds; 0: none
-    bool sobol = false;        // the Sobol sampler (its error from two replicates)
+    float pixelError = 0.01f;     // the scene's per-pixel error
+    double errorTarget = 0;       // the film's relative error to stop at; 0: none
+    double timeBudget = 0;        // seconds; 0: none
+    bool sobol = false;           // the Sobol sampler (its error from two replicates)
     double errorSeriesSec = 0.5;  // RenderSettings::errorSeriesSec
     uint32_t maxJob = 1;          // the most samples a pixel job takes
     bool openEnded() const { return errorTarget > 0 || timeBudget > 0; }
@@ -38,14 +38,16 @@ public:
     using Clock = std::chrono::steady_clock;
     // `planner` is set up elsewhere (the first pass is planned while the scene is built)
     // before any pass is planned here; `raysSoFar` gives the series' ray counts.
-    PassPlanning(const PassTargets& targets, Film& film, DeviceBuffer<PixelAccum>& filmBuf,
-                 std::optional<SamplePlanner>& planner, const SampleRing& ring,
-                 Profiler& prof, RenderStats& st, Clock::time_point t0,
-                 std::function<uint64_t()> raysSoFar);
+    PassPlanning(const PassTargets& targets, Film& film,
+                 DeviceBuffer<PixelAccum>& filmBuf, std::optional<SamplePlanner>& planner,
+                 const SampleRing& ring, Profiler& prof, RenderStats& st,
+                 Clock::time_point t0, std::function<uint64_t()> raysSoFar);
 
     // A point of the error series when its interval has passed, or now with `force`;
     // `filmSynced`: the film is read already.
-    void sampleError(bool force, bool filmSynced = false) { sample(force, filmSynced, false); }
+    void sampleError(bool force, bool filmSynced = false) {
+        sample(force, filmSynced, false);
+    }
     // The film as the retired samples left it, and its error estimate when an error
     // target or a time budget steers the planning. Returns whether the target is met.
     bool readFilm();
@@ -69,14 +71,14 @@ private:
     double m_lastSample = 0;  // the series' last point (s)
     // How far the samples' spread, from which the planner takes each pixel's error,
     // overstates the error under the Sobol sampler (FilmError::spreadOverstates): the
-    // planner's pixel error is loosened by as much. Taken as the planner reads the film, at
-    // points the render's progress sets and never the clock, or an image would depend on
-    // its timing (Sampling.AdaptiveImageDoesNotDependOnTheErrorSeries): each pass under an
-    // error target or a time budget (which estimate the error there anyway), else when
-    // the retired samples have doubled since it was last taken or since the first plan
-    // (an estimate each pass cost SPD tetra at 9 samples a pixel 20 ms of its 170; it
-    // has no such doubling). Rounded down to quarter octaves, as a tighter pixel error
-    // makes the planner test every pixel again.
+    // planner's pixel error is loosened by as much. Taken as the planner reads the film,
+    // at points the render's progress sets and never the clock, or an image would depend
+    // on its timing (Sampling.AdaptiveImageDoesNotDependOnTheErrorSeries): each pass
+    // under an error target or a time budget (which estimate the error there anyway),
+    // else when the retired samples have doubled since it was last taken or since the
+    // first plan (an estimate each pass cost SPD tetra at 9 samples a pixel 20 ms of its
+    // 170; it has no such doubling). Rounded down to quarter octaves, as a tighter pixel
+    // error makes the planner test every pixel again.
     double m_spreadOverstates = 1.0;
     uint64_t m_overstatesTakenAt = 0;  // retired samples then; 0: no plan yet
     std::vector<uint8_t> m_busy;  // pixels with samples in flight when a pass is planned

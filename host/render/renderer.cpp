@@ -26,16 +26,16 @@
 #include "cl/include/ray.h"
 #include "device_scene.h"
 #include "imager_stage.h"
-#include "texture_reshade.h"
-#include "scene_bvh.h"
 #include "pass_planning.h"
 #include "progress.h"
 #include "ray_pool.h"
 #include "refill.h"
 #include "render_summary.h"
 #include "sample_ring.h"
+#include "scene_bvh.h"
 #include "shaders/shader_set.h"
 #include "stop.h"
+#include "texture_reshade.h"
 
 namespace rd {
 
@@ -67,11 +67,11 @@ bool queueWithin(const std::deque<PlannedJob>& pending, size_t room) {
 // it refills the pool in the round after (stream_stats.sh at 9 samples a pixel, pool fill
 // and host sync alike from 0.7 to 1.0; more passes beyond).
 constexpr double kOverlapFill = 1.0;
-// PoCL compiles a kernel first launched with fewer than 65536 work-items for such launches
-// alone, and again at its first larger launch. retire_samples' first window is small and
-// later ones pass that mark in five of the seven SPD scenes: its second compile cost
-// 124-146 ms of their first renders. On PoCL it takes no more work-items a launch than this, and a
-// larger window takes several launches.
+// PoCL compiles a kernel first launched with fewer than 65536 work-items for such
+// launches alone, and again at its first larger launch. retire_samples' first window is
+// small and later ones pass that mark in five of the seven SPD scenes: its second compile
+// cost 124-146 ms of their first renders. On PoCL it takes no more work-items a launch
+// than this, and a larger window takes several launches.
 constexpr size_t kPoclSmallGridItems = 65536 - 64;
 
 const char* signalName(int sig) { return sig == 2 ? "SIGINT" : sig == 15 ? "SIGTERM" : "signal"; }
@@ -306,9 +306,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // The rays in the pool now, and on the spill stack. Refill tops the pool up to
     // roundCap: the whole pool, but under a time budget no more than the device traces in
     // a quarter second, and less near the budget's end (the samples in flight at a stop
-    // are lost). Without one, rounds never follow the clock: the passes are planned at the
-    // same rounds, and the image is the same, however fast the device runs (a first round
-    // that waits on the kernels' JIT had capped the rest at a few thousand rays).
+    // are lost). Without one, rounds never follow the clock: the passes are planned at
+    // the same rounds, and the image is the same, however fast the device runs (a first
+    // round that waits on the kernels' JIT had capped the rest at a few thousand rays).
     cl_uint n = 0;
     size_t roundCap = pool;
     double raysPerSec = 0;
@@ -395,9 +395,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                 rp.shState, rp.totals, rp.spawnMask, rp.groupLive);
         if (window > 0) {
             ++retireLaunches;
-            const size_t most = m_settings.retireLaunchItems > 0 ? m_settings.retireLaunchItems
-                                : m_ctx.info().isPocl()          ? kPoclSmallGridItems
-                                                                 : window;
+            const size_t most = m_settings.retireLaunchItems > 0
+                                    ? m_settings.retireLaunchItems
+                                : m_ctx.info().isPocl() ? kPoclSmallGridItems
+                                                        : window;
             for (size_t base = 0; base < window; base += most)
                 k.retire.launch(std::min<size_t>(most, window - base),
                                 cl_uint(ring.frontPosition()), window,

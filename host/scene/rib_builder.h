@@ -31,13 +31,14 @@ bool isStandardPrimvar(const std::string& name);  // P, N, Cs, st ...: not param
 bool givesOneValue(const rib::Param& p);          // constant, or one value of any class
 // The request's variables that give a parameter a value per point (float, color,
 // point, vector, normal; not the standard ones), in order, the first kMaxPointParams.
-// `withColours`: then Cs and Os given per point too, at the end (the geometry paths
-// that interpolate point parameters carry them to the mesh's colours: takePointColours).
+// `withStandard`: then Cs, Os and the texture coordinates (st, or s and t) given per
+// point too, at the end: the geometry paths that interpolate point parameters carry
+// them to the mesh's colours and st (takeStandardPointValues).
 std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params,
-                                             bool withColours = false);
-// Moves the trailing "Cs" and "Os" values that pointParamsOf(.., true) added to a mesh's
-// point parameters into its per-vertex colours (`channels` floats a colour).
-void takePointColours(VertexData& mesh, int channels);
+                                             bool withStandard = false);
+// Moves the trailing Cs, Os and st values that pointParamsOf(.., true) added to a mesh's
+// point parameters into its per-vertex colours (`channels` floats a colour) and st.
+void takeStandardPointValues(VertexData& mesh, int channels);
 // A SubdivisionMesh's per-point values to refine with it (SubdivInput); false when it
 // has none, or some that cannot be carried (facevarying).
 bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in);
@@ -226,7 +227,7 @@ private:
     void readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
                          const std::vector<int>& verts, VertexData& mesh);
     void cornerPointParams(const rib::ParamList& params, VertexData& mesh,
-                           bool withColours = false);
+                           bool withStandard = false);
     // SubdivisionMesh: vertex values go to the limit, varying ones are refined
     // linearly (`refined`: tessellateSubdivisionMesh's values for subdivPointParamsIn's
     // input), uniform ones per base face (faceIndex); facevarying ones are not carried.

@@ -31,10 +31,13 @@ std::string subdivSt(const rib::ParamList& params, SubdivInput& in) {
     const rib::Param* s = params.find("s");
     const rib::Param* t = params.find("t");
     const rib::Param* given = st ? st : s && t ? s : nullptr;
-    if (!given || given->storage == SC::Constant || given->storage == SC::Uniform) return {};
+    if (!given || given->storage == SC::Constant || given->storage == SC::Uniform)
+        return {};
     const size_t n = st ? st->floats.size() / 2 : s->floats.size();
-    const size_t wanted = given->storage == SC::FaceVarying ? in.vertices.size() : in.P.size();
-    if (n != wanted || (st && st->floats.size() != 2 * n) || (!st && t->floats.size() != n))
+    const size_t wanted =
+        given->storage == SC::FaceVarying ? in.vertices.size() : in.P.size();
+    if (n != wanted || (st && st->floats.size() != 2 * n) ||
+        (!st && t->floats.size() != n))
         return std::string(st ? "\"st\"" : "\"s\" and \"t\"") + " have " +
                std::to_string(n) + " values where " + std::to_string(wanted) +
                " are needed: left out";
@@ -87,7 +90,7 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
     static const std::set<std::string> quadrics = {"Cylinder", "Cone", "Disk", "Paraboloid",
                                                    "Hyperboloid", "Torus"};
     if (m_primVars && quadrics.count(what) && mesh.st.size() == mesh.p.size())
-        cornerPointParams(*m_primVars, mesh, /*withColours=*/true);
+        cornerPointParams(*m_primVars, mesh, /*withStandard=*/true);
     // TextureCoordinates: s, t bilinear over the parametric (u, v) the dicer gave as st
     const Attributes& a = m_attrStack.back();
     for (glm::vec2& st : mesh.st) {
@@ -97,8 +100,9 @@ void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh&
         for (int k = 0; k < 4; ++k) st += w[k] * glm::vec2(a.texS[k], a.texT[k]);
     }
     if (perPoint) perPoint(mesh);
-    // Cs and Os given per point came through the same interpolation as the parameters
-    takePointColours(mesh, m_world.colors.slots());
+    // Cs, Os and st given per point came through the same interpolation as the
+    // parameters (given st replaces the (u, v) mapped by TextureCoordinates)
+    takeStandardPointValues(mesh, m_world.colors.slots());
     addMesh(loc, mesh);
 }
 
@@ -454,8 +458,9 @@ void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strin
     for (const char* name : {"Cs", "Os"})
         if (const rib::Param* c = params.find(name);
             c && c->storage == rib::StorageClass::FaceVarying)
-            m_diag.warning(loc, std::string("SubdivisionMesh: facevarying \"") + name +
-                                    "\" is not carried yet (vertex, varying and uniform are)");
+            m_diag.warning(loc,
+                           std::string("SubdivisionMesh: facevarying \"") + name +
+                               "\" is not carried yet (vertex, varying and uniform are)");
     // One refinement level per halving of the faces' size on screen, down to ~4 pixels.
     float faces = float(std::max<size_t>(1, nverts.size()));
     float facePx = 2.0f * screenRadius(in.P) / std::sqrt(faces);
@@ -466,7 +471,8 @@ void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strin
     const bool carried = subdivPointParamsIn(params, in);
     bool ok = tessellateSubdivisionMesh(in, level, m, &err, carried ? &refined : nullptr);
     addSurface(loc, "SubdivisionMesh", ok, m, err, [&](VertexData& mesh) {
-        if (in.stClass != SubdivInput::StClass::None) mesh.st = m.st;  // as given, not (u, v)
+        if (in.stClass != SubdivInput::StClass::None)
+            mesh.st = m.st;  // as given, not (u, v)
         if (carried) subdivPointParams(params, refined, m.faceIndex, mesh);
     });
 }

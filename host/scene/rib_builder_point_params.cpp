@@ -80,7 +80,8 @@ void appendPointParams(const std::vector<const rib::Param*>& list, VertexData& m
 // Value i of a piece (0 where the values run out).
 glm::vec3 valueAt(const Piece& p, size_t i) {
     const std::vector<float>& f = p.param->floats;
-    const size_t n = size_t(p.param->components());
+    const size_t n =
+        size_t(p.param->components() * p.param->arraySize);  // ("float[2] st")
     if (n == 1) return glm::vec3(i < f.size() ? f[i] : 0.0f, 0.0f, 0.0f);
     if (n * i + n > f.size()) return glm::vec3(0.0f);
     glm::vec3 v(0.0f);
@@ -162,7 +163,8 @@ bool givesOneValue(const rib::Param& p) {
     return p.storage == rib::StorageClass::Constant || valueCount(p) == per;
 }
 
-std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params, bool withColours) {
+std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params,
+                                             bool withStandard) {
     std::vector<const rib::Param*> out;
     if (!params) return out;
     Kind kind;
@@ -170,34 +172,62 @@ std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params, bool 
         if (!isStandardPrimvar(p.name) && !givesOneValue(p) && kindOf(p, &kind) &&
             out.size() < size_t(kMaxPointParams))
             out.push_back(&p);
-    if (withColours)
-        for (const char* name : {"Cs", "Os"})
-            if (const rib::Param* p = params->find(name);
-                p && !givesOneValue(*p) && kindOf(*p, &kind) && kind == Kind::Color)
-                out.push_back(p);
+    if (!withStandard) return out;
+    auto perPoint = [&](const char* name, rib::ParamType type, int arraySize) {
+        const rib::Param* p = params->find(name);
+        return p && p->type == type && p->arraySize == arraySize && !givesOneValue(*p)
+                   ? p
+                   : nullptr;
+    };
+    for (const char* name : {"Cs", "Os"})
+        if (const rib::Param* p = perPoint(name, rib::ParamType::Color, 1);
+            p && p->components() >= 3)
+            out.push_back(p);
+    const rib::Param* s = perPoint("s", rib::ParamType::Float, 1);
+    const rib::Param* t = perPoint("t", rib::ParamType::Float, 1);
+    if (const rib::Param* st = perPoint("st", rib::ParamType::Float, 2)) {
+        out.push_back(st);
+    } else if (s && t) {
+        out.push_back(s);
+        out.push_back(t);
+    }
     return out;
 }
 
-void takePointColours(VertexData& mesh, int channels) {
-    for (const char* name : {"Os", "Cs"}) {  // (Cs before Os: the last first)
-        std::vector<const VertexData::PointParam*> pieces;
-        size_t first = mesh.params.size();
+void takeStandardPointValues(VertexData& mesh, int channels) {
+    const size_t n = mesh.p.size();
+    std::vector<glm::vec3> s, t;  // "s" and "t" given apart
+    while (!mesh.params.empty()) {
+        const std::string name = mesh.params.back().name;
+        size_t first = mesh.params.size() - 1;  // a colour's pieces: the run of its name
         while (first > 0 && mesh.params[first - 1].name == name) --first;
-        for (size_t i = first; i < mesh.params.size(); ++i) pieces.push_back(&mesh.params[i]);
-        if (pieces.empty()) continue;
-        const bool opacity = name[0] == 'O';
-        const size_t n = mesh.p.size();
-        if (channels <= 3) {
-            (opacity ? mesh.os : mesh.cs) = pieces[0]->v;
+        const auto piece = mesh.params.begin() + std::ptrdiff_t(first);
+        if (name == "st") {
+            mesh.st.resize(n);
+            for (size_t i = 0; i < n && i < piece->v.size(); ++i)
+                mesh.st[i] = glm::vec2(piece->v[i]);
+        } else if (name == "s" || name == "t") {
+            (name == "s" ? s : t) = piece->v;
+        } else if (name == "Cs" || name == "Os") {
+            const bool opacity = name == "Os";
+            if (channels <= 3) {
+                (opacity ? mesh.os : mesh.cs) = piece->v;
+            } else {
+                std::vector<VertexData::Channels>& out = opacity ? mesh.osN : mesh.csN;
+                out.assign(n, VertexData::Channels{});
+                for (auto q = piece; q != mesh.params.end(); ++q)
+                    for (size_t i = 0; i < n && i < q->v.size(); ++i)
+                        for (int c = 0; c < 3 && 3 * q->piece + c < channels; ++c)
+                            out[i][size_t(3 * q->piece + c)] = q->v[i][c];
+            }
         } else {
-            std::vector<VertexData::Channels>& out = opacity ? mesh.osN : mesh.csN;
-            out.assign(n, VertexData::Channels{});
-            for (const VertexData::PointParam* piece : pieces)
-                for (size_t i = 0; i < n && i < piece->v.size(); ++i)
-                    for (int c = 0; c < 3 && 3 * piece->piece + c < channels; ++c)
-                        out[i][size_t(3 * piece->piece + c)] = piece->v[i][c];
+            break;  // a shader parameter: the standard ones follow them all
         }
-        mesh.params.erase(mesh.params.begin() + std::ptrdiff_t(first), mesh.params.end());
+        mesh.params.erase(piece, mesh.params.end());
+    }
+    if (s.size() == n && t.size() == n) {
+        mesh.st.resize(n);
+        for (size_t i = 0; i < n; ++i) mesh.st[i] = glm::vec2(s[i].x, t[i].x);
     }
 }
 
@@ -291,7 +321,7 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
     // Vertex values of a NuPatch or of a bicubic mesh are not carried (surfaceFor warns
     // of the parameters; the colours are left out alone, as on polygons).
     auto carried = [&](const rib::Param* p) {
-        const size_t n = valueCount(*p) / size_t(p->components());
+        const size_t n = valueCount(*p) / size_t(p->components() * p->arraySize);
         const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
         if (grid.uorder > 0 && p->storage == rib::StorageClass::Vertex) return false;
         return p->storage == rib::StorageClass::Uniform
@@ -348,13 +378,17 @@ void RibBuilder::pointsPointParams(const rib::ParamList& params,
 
 namespace {
 // A SubdivisionMesh's per-point values: its parameters and colours, less facevarying
-// colours (left out: the builder warns), which would keep its parameters from it.
+// colours (left out: the builder warns), which would keep its parameters from it, and
+// its texture coordinates (SubdivInput::st refines them, facevarying ones too).
 std::vector<const rib::Param*> subdivParamsOf(const rib::ParamList& params) {
     std::vector<const rib::Param*> list = pointParamsOf(&params, true);
     list.erase(std::remove_if(list.begin(), list.end(),
                               [](const rib::Param* p) {
-                                  return isStandardPrimvar(p->name) &&
-                                         p->storage == rib::StorageClass::FaceVarying;
+                                  const bool coords =
+                                      p->name == "st" || p->name == "s" || p->name == "t";
+                                  return coords ||
+                                         (isStandardPrimvar(p->name) &&
+                                          p->storage == rib::StorageClass::FaceVarying);
                               }),
                list.end());
     return list;
@@ -439,12 +473,13 @@ void RibBuilder::curvesPointParams(const rib::ParamList& params, const CurvesInp
 }
 
 void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mesh,
-                                   bool withColours) {
-    for (const Piece& p : piecesOf(pointParamsOf(&params, withColours))) {
+                                   bool withStandard) {
+    for (const Piece& p : piecesOf(pointParamsOf(&params, withStandard))) {
         VertexData::PointParam out = pointParamFor(p, mesh.p.size());
         // a quadric's varying values are at its (u, v) corners 00, 10, 01, 11 (one value,
         // uniform: everywhere); mesh.st holds each vertex's (u, v)
-        const bool corners = valueCount(*p.param) >= 4 * size_t(p.param->components());
+        const bool corners = valueCount(*p.param) >=
+                             4 * size_t(p.param->components() * p.param->arraySize);
         glm::vec3 c[4];
         for (int k = 0; k < 4; ++k) c[k] = valueAt(p, corners ? size_t(k) : 0);
         for (size_t i = 0; i < out.v.size(); ++i) {

@@ -78,7 +78,8 @@ bool validateSubdiv(const SubdivInput& in, std::string* err) {
                                                                : in.P.size();
     if (in.st.size() != stWanted)
         return fail(err, "SubdivisionMesh: " + std::to_string(in.st.size()) +
-                             " st values where " + std::to_string(stWanted) + " are needed");
+                             " st values where " + std::to_string(stWanted) +
+                             " are needed");
     return true;
 }
 
@@ -156,8 +157,9 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         fvarIndex.resize(in.vertices.size());
         for (size_t c = 0; c < in.vertices.size(); ++c) {
             std::vector<int>& mine = ofVertex[size_t(in.vertices[c])];
-            auto same = std::find_if(mine.begin(), mine.end(),
-                                     [&](int v) { return fvarValues[size_t(v)] == in.st[c]; });
+            auto same = std::find_if(mine.begin(), mine.end(), [&](int v) {
+                return fvarValues[size_t(v)] == in.st[c];
+            });
             if (same == mine.end()) {
                 mine.push_back(int(fvarValues.size()));
                 fvarValues.push_back(in.st[c]);
@@ -201,24 +203,31 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         Vtx* s = v.data();
         for (int l = 1; l <= level; ++l) {
             Vtx* d = s + refiner->GetLevel(l - 1).GetNumVertices();
-            if (vertex) primvar.Interpolate(l, s, d);
-            else primvar.InterpolateVarying(l, s, d);
+            if (vertex)
+                primvar.Interpolate(l, s, d);
+            else
+                primvar.InterpolateVarying(l, s, d);
             s = d;
         }
         std::vector<Vtx> atLimit(nv);
-        if (vertex) primvar.Limit(s, atLimit);
-        else std::copy(s, s + nv, atLimit.begin());
+        if (vertex)
+            primvar.Limit(s, atLimit);
+        else
+            std::copy(s, s + nv, atLimit.begin());
         std::vector<glm::vec3> out(static_cast<size_t>(nv));
         for (int i = 0; i < nv; ++i) out[size_t(i)] = atLimit[size_t(i)].p;
         return out;
     };
     std::vector<std::vector<glm::vec3>> perVertex;
     if (values) {
-        for (const std::vector<glm::vec3>& v : in.vertexValues) perVertex.push_back(refined(v, true));
-        for (const std::vector<glm::vec3>& v : in.varyingValues) perVertex.push_back(refined(v, false));
+        for (const std::vector<glm::vec3>& v : in.vertexValues)
+            perVertex.push_back(refined(v, true));
+        for (const std::vector<glm::vec3>& v : in.varyingValues)
+            perVertex.push_back(refined(v, false));
     }
     std::vector<glm::vec3> st;  // per vertex of the last level (vertex or varying st)
-    if (in.stClass == SubdivInput::StClass::Vertex || in.stClass == SubdivInput::StClass::Varying) {
+    if (in.stClass == SubdivInput::StClass::Vertex ||
+        in.stClass == SubdivInput::StClass::Varying) {
         std::vector<glm::vec3> given(in.st.size());
         for (size_t i = 0; i < in.st.size(); ++i) given[i] = glm::vec3(in.st[i], 0.0f);
         st = refined(given, in.stClass == SubdivInput::StClass::Vertex);
@@ -226,7 +235,8 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     std::vector<Vtx> fvarLimit;  // facevarying st, per value of the last level
     if (faceVaryingSt) {
         std::vector<Vtx> fv(size_t(refiner->GetNumFVarValuesTotal(0)));
-        for (size_t i = 0; i < fvarValues.size(); ++i) fv[i].p = glm::vec3(fvarValues[i], 0.0f);
+        for (size_t i = 0; i < fvarValues.size(); ++i)
+            fv[i].p = glm::vec3(fvarValues[i], 0.0f);
         Vtx* s = fv.data();
         for (int l = 1; l <= level; ++l) {
             Vtx* d = s + refiner->GetLevel(l - 1).GetNumFVarValues(0);
@@ -262,7 +272,8 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         out.mesh.p.push_back(lim[size_t(v)].p);
         const glm::vec3 c = glm::cross(t1[size_t(v)].p, t2[size_t(v)].p);
         if (wantN)
-            out.mesh.n.push_back(glm::length(c) > 0.0f ? glm::normalize(c) : glm::vec3(0, 0, 1));
+            out.mesh.n.push_back(glm::length(c) > 0.0f ? glm::normalize(c)
+                                                       : glm::vec3(0, 0, 1));
         out.st.push_back(uv);
         vertexOf.push_back(v);
     };
@@ -290,15 +301,16 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
             }
         }
         for (size_t k = 1; k + 1 < corner.size(); ++k) {
-            out.mesh.tris.insert(out.mesh.tris.end(),
-                                 {base + corner[0], base + corner[k], base + corner[k + 1]});
+            out.mesh.tris.insert(out.mesh.tris.end(), {base + corner[0], base + corner[k],
+                                                       base + corner[k + 1]});
             out.faceIndex.push_back(parent[f]);
         }
     }
     if (values)
         for (const std::vector<glm::vec3>& v : perVertex) {
             std::vector<glm::vec3> atOutput(vertexOf.size());
-            for (size_t i = 0; i < vertexOf.size(); ++i) atOutput[i] = v[size_t(vertexOf[i])];
+            for (size_t i = 0; i < vertexOf.size(); ++i)
+                atOutput[i] = v[size_t(vertexOf[i])];
             values->push_back(std::move(atOutput));
         }
     delete refiner;

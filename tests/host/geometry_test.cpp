@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "render_harness.h"
 
@@ -127,70 +128,124 @@ TEST(Geometry, SubdivisionTextureCoordinatesAsGiven) {
     EXPECT_NEAR(img.mean(1, 0, 0, 32, 32), 0.5, 0.01);
 }
 
+// The nine kinds of geometry that take values per point, each over [-1, 1] x [-1, 1] in
+// a 32x32 frame (one sample a pixel) under `surface`, with variables (a declaration, and
+// the value at a control point at x); `check` is called on each pixel a geometry covers
+// whole, and the sums of red over the frame's left and right halves are returned with
+// the count of such pixels.
+using PointVariable = std::pair<std::string, std::function<std::string(double)>>;
+struct HalfSums {
+    std::string what;
+    int covered = 0;
+    double left = 0, right = 0;
+};
+std::vector<HalfSums> perPointOnEveryGeometry(
+    const std::string& options, const std::string& surface,
+    const std::vector<PointVariable>& variables,
+    const std::function<void(const std::string&, int, int, const rd::Rgba&)>& check) {
+    auto values = [&](std::initializer_list<double> xs) {
+        std::string out;
+        for (const auto& [decl, valueAt] : variables) {
+            out += "\"" + decl + "\" [";
+            for (double x : xs) out += valueAt(x) + "  ";
+            out += "] ";
+        }
+        return out + "\n";
+    };
+    const std::string quad = "\"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0] ";
+    const std::string grid = "\"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] ";
+    const std::vector<std::pair<std::string, std::string>> geometry = {
+        {"Polygon", "Polygon " + quad + values({-1, 1, 1, -1})},
+        {"GeneralPolygon", "GeneralPolygon [4] " + quad + values({-1, 1, 1, -1})},
+        {"PointsPolygons", "PointsPolygons [4] [0 1 2 3] " + quad + values({-1, 1, 1, -1})},
+        {"Patch", "Patch \"bilinear\" " + grid + values({-1, 1, -1, 1})},
+        {"PatchMesh", "PatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" \"P\" "
+                      "[-1 -1 0  0 -1 0  1 -1 0  -1 1 0  0 1 0  1 1 0] " +
+                          values({-1, 0, 1, -1, 0, 1})},
+        {"NuPatch",
+         "NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + grid + values({-1, 1, -1, 1})},
+        {"SubdivisionMesh", "SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] "
+                            "[\"interpolateboundary\"] [0 0] [] [] " +
+                                quad + values({-1, 1, 1, -1})},
+        {"Curves", "Curves \"linear\" [2] \"nonperiodic\" \"P\" [-1 0 0  1 0 0] "
+                   "\"constantwidth\" [0.5] " + values({-1, 1})},
+        {"Points",
+         "Points \"P\" [-0.5 0 0  0.5 0 0] \"constantwidth\" [0.8] " + values({-0.5, 0.5})}};
+    std::vector<HalfSums> out;
+    for (const auto& [what, g] : geometry) {
+        Rendered img = renderRib(options + "Format 32 32 1\nPixelSamples 1 1\n"
+                                           "Projection \"orthographic\"\n"
+                                           "ScreenWindow -1 1 -1 1\nTranslate 0 0 5\n"
+                                           "WorldBegin\nSurface \"" +
+                                 surface + "\"\n" + g + "WorldEnd\n");
+        HalfSums sums{what};
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) {
+                const rd::Rgba& c = img.at(x, y);
+                if (c.a < 1.0f) continue;
+                ++sums.covered;
+                check(what, x, y, c);
+                (x < 16 ? sums.left : sums.right) += c.r;
+            }
+        out.push_back(sums);
+    }
+    return out;
+}
+
 // Cs given per point reaches the surface's colour on every kind of geometry (before, only
 // polygons and exact quadrics carried it: the others came out white). The colour at a
 // control point at x is ((x + 1) / 2, 0.25, (1 - x) / 2): any interpolation's weights sum
 // to one, so every covered pixel has green 0.25 and red + blue 1, and red climbs from left
-// to right (points: one colour a disc); also with six colour channels.
+// to right (points: one colour a disc); also in six colour channels, each RGB channel
+// twice (ColorSamples: RGB -> (r g b r g b), back by halves).
 TEST(Geometry, PerPointColourOnEveryGeometry) {
-    // In six channels too, each RGB channel twice (ColorSamples: RGB -> (r g b r g b),
-    // back by halves): the same image.
-    bool six = false;
-    auto cs = [&](std::initializer_list<double> xs) {
-        std::string out = "\"varying color Cs\" [";
-        for (double x : xs) {
-            const std::string rgb =
-                std::to_string((x + 1) / 2) + " 0.25 " + std::to_string((1 - x) / 2) + "  ";
-            out += six ? rgb + rgb : rgb;
-        }
-        return out + "]\n";
-    };
     const std::string sixChannels =
         "ColorSamples [0.5 0 0  0 0.5 0  0 0 0.5  0.5 0 0  0 0.5 0  0 0 0.5] "
         "[1 0 0 1 0 0  0 1 0 0 1 0  0 0 1 0 0 1]\n";
-    const std::string quad = "\"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0] ";
-    const std::string grid = "\"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] ";
-    for (bool sixth : {false, true}) {
-        six = sixth;
-        const std::vector<std::pair<std::string, std::string>> geometry = {
-            {"Polygon", "Polygon " + quad + cs({-1, 1, 1, -1})},
-            {"GeneralPolygon", "GeneralPolygon [4] " + quad + cs({-1, 1, 1, -1})},
-            {"PointsPolygons", "PointsPolygons [4] [0 1 2 3] " + quad + cs({-1, 1, 1, -1})},
-            {"Patch", "Patch \"bilinear\" " + grid + cs({-1, 1, -1, 1})},
-            {"PatchMesh", "PatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" "
-                          "\"P\" "
-                          "[-1 -1 0  0 -1 0  1 -1 0  -1 1 0  0 1 0  1 1 0] " +
-                              cs({-1, 0, 1, -1, 0, 1})},
-            {"NuPatch",
-             "NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + grid + cs({-1, 1, -1, 1})},
-            {"SubdivisionMesh", "SubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] "
-                                "[\"interpolateboundary\"] [0 0] [] [] " +
-                                    quad + cs({-1, 1, 1, -1})},
-            {"Curves", "Curves \"linear\" [2] \"nonperiodic\" \"P\" [-1 0 0  1 0 0] "
-                       "\"constantwidth\" [0.5] " + cs({-1, 1})},
-            {"Points", "Points \"P\" [-0.5 0 0  0.5 0 0] \"constantwidth\" [0.8] " +
-                           cs({-0.5, 0.5})}};
-        for (const auto& [what, g] : geometry) {
-            Rendered img = renderRib((six ? sixChannels : std::string()) +
-                                     "Format 32 32 1\nPixelSamples 1 1\n"
-                                     "Projection \"orthographic\"\n"
-                                     "ScreenWindow -1 1 -1 1\nTranslate 0 0 5\nWorldBegin\n"
-                                     "Surface \"constant\"\n" + g + "WorldEnd\n");
-            int covered = 0;
-            double left = 0, right = 0;
-            for (int y = 0; y < 32; ++y)
-                for (int x = 0; x < 32; ++x) {
-                    const rd::Rgba& c = img.at(x, y);
-                    if (c.a < 1.0f) continue;
-                    ++covered;
-                    EXPECT_NEAR(c.g, 0.25f, 1e-5f) << what << " " << x << "," << y;
-                    EXPECT_NEAR(c.r + c.b, 1.0f, 1e-5f) << what << " " << x << "," << y;
-                    (x < 16 ? left : right) += c.r;
-                }
-            EXPECT_GT(covered, 100) << what << (six ? " in six channels" : "");
-            EXPECT_LT(left, right) << what;
+    for (bool six : {false, true}) {
+        auto colour = [&](double x) {
+            const std::string rgb =
+                std::to_string((x + 1) / 2) + " 0.25 " + std::to_string((1 - x) / 2) + " ";
+            return six ? rgb + rgb : rgb;
+        };
+        auto check = [&](const std::string& what, int x, int y, const rd::Rgba& c) {
+            EXPECT_NEAR(c.g, 0.25f, 1e-5f) << what << " " << x << "," << y << " " << six;
+            EXPECT_NEAR(c.r + c.b, 1.0f, 1e-5f) << what << " " << x << "," << y << " " << six;
+        };
+        for (const HalfSums& h : perPointOnEveryGeometry(six ? sixChannels : std::string(),
+                                                         "constant",
+                                                         {{"varying color Cs", colour}}, check)) {
+            EXPECT_GT(h.covered, 100) << h.what;
+            EXPECT_LT(h.left, h.right) << h.what;
         }
     }
+}
+
+// Texture coordinates given per point, likewise: st = (0.2 + 0.3 (x + 1), 0.25) at a
+// control point at x, shown by a shader as colour (s, t, 0), so t is 0.25 at every
+// covered pixel and s within [0.2, 0.8], climbing left to right (before: patches, NuPatch,
+// subdivision meshes, curves and points showed their own (u, v) or nothing). Also as
+// "s" and "t" apart.
+TEST(Geometry, PerPointTextureCoordinatesOnEveryGeometry) {
+    const std::string dir = rd::test::scratchDir("raydrive_point_st");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/showst.sl") << "surface showst() { Ci = color(s, t, 0); Oi = 1; }\n";
+    const std::string path = "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n";
+    auto check = [&](const std::string& what, int x, int y, const rd::Rgba& c) {
+        EXPECT_NEAR(c.g, 0.25f, 1e-5f) << what << " " << x << "," << y;
+        EXPECT_GE(c.r, 0.2f - 1e-5f) << what << " " << x << "," << y;
+        EXPECT_LE(c.r, 0.8f + 1e-5f) << what << " " << x << "," << y;
+    };
+    auto sOf = [](double x) { return std::to_string(0.2 + 0.3 * (x + 1)); };
+    auto quarter = [](double) { return std::string("0.25"); };
+    for (const std::vector<PointVariable>& given :
+         {std::vector<PointVariable>{
+              {"varying float[2] st", [&](double x) { return sOf(x) + " 0.25"; }}},
+          std::vector<PointVariable>{{"varying float s", sOf}, {"varying float t", quarter}}})
+        for (const HalfSums& h : perPointOnEveryGeometry(path, "showst", given, check)) {
+            EXPECT_GT(h.covered, 100) << h.what << " " << given[0].first;
+            EXPECT_LT(h.left, h.right) << h.what << " " << given[0].first;
+        }
 }
 
 TEST(Geometry, CurvesAndPoints) {
