@@ -8,7 +8,9 @@
 // from their 4 (u, v) corners; exact quadrics keep the 4 corner values. The values are
 // moved to world ("current") space and stored for the device, which interpolates them
 // at each hit (shade_common.clh) and hands them to the shader in place of its
-// parameters (rsl_abi.h, PER-POINT PARAMETERS).
+// parameters (rsl_abi.h, PER-POINT PARAMETERS). Cs, Os and st given per point ride the
+// same paths on every geometry but polygon meshes (whose reader takes them) and end in
+// the mesh's own colours and st (takeStandardPointValues).
 #include <algorithm>
 #include <set>
 
