@@ -405,9 +405,8 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
                                    rib::paramTypeName(p.type) +
                                    ") does not reach shader parameters: per-point values are "
                                    "carried for float, color, point, vector and normal "
-                                   "variables (8 a primitive), except vertex ones of a bicubic PatchMesh or "
-                                   "a NuPatch, facevarying ones of a SubdivisionMesh, and "
-                                   "inside ObjectBegin");
+                                   "variables (8 a primitive), except vertex ones of a "
+                                   "bicubic PatchMesh or a NuPatch, and inside ObjectBegin");
             continue;
         }
         overrides.params.push_back(p);

@@ -455,12 +455,6 @@ void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strin
     in.P = points3(Pp->floats);
     if (const std::string bad = subdivSt(params, in); !bad.empty())
         m_diag.warning(loc, "SubdivisionMesh: " + bad);
-    for (const char* name : {"Cs", "Os"})
-        if (const rib::Param* c = params.find(name);
-            c && c->storage == rib::StorageClass::FaceVarying)
-            m_diag.warning(loc,
-                           std::string("SubdivisionMesh: facevarying \"") + name +
-                               "\" is not carried yet (vertex, varying and uniform are)");
     // One refinement level per halving of the faces' size on screen, down to ~4 pixels.
     float faces = float(std::max<size_t>(1, nverts.size()));
     float facePx = 2.0f * screenRadius(in.P) / std::sqrt(faces);

@@ -379,18 +379,14 @@ void RibBuilder::pointsPointParams(const rib::ParamList& params,
 }
 
 namespace {
-// A SubdivisionMesh's per-point values: its parameters and colours, less facevarying
-// colours (left out: the builder warns), which would keep its parameters from it, and
-// its texture coordinates (SubdivInput::st refines them, facevarying ones too).
+// A SubdivisionMesh's per-point values: its parameters and colours, less its texture
+// coordinates (SubdivInput::st refines them).
 std::vector<const rib::Param*> subdivParamsOf(const rib::ParamList& params) {
     std::vector<const rib::Param*> list = pointParamsOf(&params, true);
     list.erase(std::remove_if(list.begin(), list.end(),
                               [](const rib::Param* p) {
-                                  const bool coords =
-                                      p->name == "st" || p->name == "s" || p->name == "t";
-                                  return coords ||
-                                         (isStandardPrimvar(p->name) &&
-                                          p->storage == rib::StorageClass::FaceVarying);
+                                  return p->name == "st" || p->name == "s" ||
+                                         p->name == "t";
                               }),
                list.end());
     return list;
@@ -399,13 +395,14 @@ std::vector<const rib::Param*> subdivParamsOf(const rib::ParamList& params) {
 
 bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in) {
     const std::vector<const rib::Param*> list = subdivParamsOf(params);
-    for (const rib::Param* p : list)  // facevarying values need an FVar channel: not yet
-        if (p->storage == rib::StorageClass::FaceVarying) return false;
     for (const Piece& p : piecesOf(list)) {
         if (p.storage == rib::StorageClass::Uniform) continue;  // per face: no refining
-        std::vector<glm::vec3> v(in.P.size());
+        const bool faceVarying = p.storage == rib::StorageClass::FaceVarying;
+        std::vector<glm::vec3> v(faceVarying ? in.vertices.size() : in.P.size());
         for (size_t i = 0; i < v.size(); ++i) v[i] = valueAt(p, i);
-        (p.storage == rib::StorageClass::Vertex ? in.vertexValues : in.varyingValues)
+        (faceVarying                              ? in.faceVaryingValues
+         : p.storage == rib::StorageClass::Vertex ? in.vertexValues
+                                                  : in.varyingValues)
             .push_back(std::move(v));
     }
     return !list.empty();
@@ -416,16 +413,29 @@ void RibBuilder::subdivPointParams(const rib::ParamList& params,
                                    const std::vector<int>& faceIndex, VertexData& mesh) {
     const std::vector<const rib::Param*> list = subdivParamsOf(params);
     const std::vector<Piece> pieces = piecesOf(list);
-    size_t vertexCount = 0, next[2] = {0, 0};
-    for (const Piece& p : pieces) vertexCount += p.storage == rib::StorageClass::Vertex;
-    const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
+    size_t count[3] = {0, 0, 0}, next[3] = {0, 0, 0};  // vertex, varying, facevarying
+    auto kindOf = [](rib::StorageClass c) {
+        return c == rib::StorageClass::Vertex    ? 0
+               : c == rib::StorageClass::Varying ? 1
+                                                 : 2;
+    };
+    for (const Piece& p : pieces)
+        if (p.storage != rib::StorageClass::Uniform) ++count[kindOf(p.storage)];
+    // (facevarying values come refined a vertex of the mesh each, split at their seams:
+    // only values per face split its corners)
+    std::vector<const rib::Param*> perFace;
+    for (const rib::Param* p : list)
+        if (p->storage == rib::StorageClass::Uniform) perFace.push_back(p);
+    const std::vector<Corner> src = splitCornersIfNeeded(perFace, mesh);
     for (const Piece& p : pieces) {
         VertexData::PointParam out = pointParamFor(p, mesh.p.size());
-        // refined values: the vertex ones first, then the varying ones (SubdivInput)
+        // refined values: the vertex ones first, then the varying and the facevarying
+        // ones (SubdivInput)
         const std::vector<glm::vec3>* r = nullptr;
-        if (p.storage == rib::StorageClass::Vertex) r = &refined.at(next[0]++);
-        else if (p.storage != rib::StorageClass::Uniform)
-            r = &refined.at(vertexCount + next[1]++);
+        if (p.storage != rib::StorageClass::Uniform) {
+            const int k = kindOf(p.storage);
+            r = &refined.at((k > 0 ? count[0] : 0) + (k > 1 ? count[1] : 0) + next[k]++);
+        }
         for (size_t i = 0; i < out.v.size(); ++i) {
             const size_t t = src[i].triangle;
             out.v[i] = r ? (src[i].vertex < r->size() ? (*r)[src[i].vertex] : glm::vec3(0.0f))

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
 #ifdef RD_HAVE_OPENSUBDIV
@@ -76,6 +77,11 @@ bool validateSubdiv(const SubdivInput& in, std::string* err) {
     const size_t stWanted = in.stClass == StClass::FaceVarying ? in.vertices.size()
                             : in.stClass == StClass::None      ? 0
                                                                : in.P.size();
+    for (const std::vector<glm::vec3>& v : in.faceVaryingValues)
+        if (v.size() != in.vertices.size())
+            return fail(err, "SubdivisionMesh: " + std::to_string(v.size()) +
+                                 " facevarying values where " +
+                                 std::to_string(in.vertices.size()) + " are needed");
     if (in.st.size() != stWanted)
         return fail(err, "SubdivisionMesh: " + std::to_string(in.st.size()) +
                              " st values where " + std::to_string(stWanted) +
@@ -146,32 +152,44 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     desc.cornerWeights = cornerW.data();
     desc.numHoles = int(holes.size());
     desc.holeIndices = holes.data();
-    // Facevarying st: one channel whose values are the corners' st, one value for the
-    // corners of a control vertex that agree, so that a seam is where faces disagree.
+    // Facevarying values (st, then in.faceVaryingValues): a channel each, whose values
+    // are the corners', one value for the corners of a control vertex that agree, so that
+    // a seam is where faces disagree.
+    std::vector<std::vector<glm::vec3>> fvarGiven;
     const bool faceVaryingSt = in.stClass == SubdivInput::StClass::FaceVarying;
-    std::vector<int> fvarIndex;
-    std::vector<glm::vec2> fvarValues;
-    Far::TopologyDescriptor::FVarChannel channel;
     if (faceVaryingSt) {
+        std::vector<glm::vec3> st(in.st.size());
+        for (size_t c = 0; c < st.size(); ++c) st[c] = glm::vec3(in.st[c], 0.0f);
+        fvarGiven.push_back(std::move(st));
+    }
+    fvarGiven.insert(fvarGiven.end(), in.faceVaryingValues.begin(),
+                     in.faceVaryingValues.end());
+    const int channels = int(fvarGiven.size());
+    std::vector<std::vector<int>> fvarIndex(static_cast<size_t>(channels));
+    std::vector<std::vector<glm::vec3>> fvarValues(static_cast<size_t>(channels));
+    std::vector<Far::TopologyDescriptor::FVarChannel> channel(
+        static_cast<size_t>(channels));
+    for (size_t ch = 0; ch < size_t(channels); ++ch) {
         std::vector<std::vector<int>> ofVertex(in.P.size());  // each vertex's values
-        fvarIndex.resize(in.vertices.size());
+        std::vector<glm::vec3>& values = fvarValues[ch];
+        fvarIndex[ch].resize(in.vertices.size());
         for (size_t c = 0; c < in.vertices.size(); ++c) {
             std::vector<int>& mine = ofVertex[size_t(in.vertices[c])];
             auto same = std::find_if(mine.begin(), mine.end(), [&](int v) {
-                return fvarValues[size_t(v)] == in.st[c];
+                return values[size_t(v)] == fvarGiven[ch][c];
             });
             if (same == mine.end()) {
-                mine.push_back(int(fvarValues.size()));
-                fvarValues.push_back(in.st[c]);
+                mine.push_back(int(values.size()));
+                values.push_back(fvarGiven[ch][c]);
                 same = mine.end() - 1;
             }
-            fvarIndex[c] = *same;
+            fvarIndex[ch][c] = *same;
         }
-        channel.numValues = int(fvarValues.size());
-        channel.valueIndices = fvarIndex.data();
-        desc.numFVarChannels = 1;
-        desc.fvarChannels = &channel;
+        channel[ch].numValues = int(values.size());
+        channel[ch].valueIndices = fvarIndex[ch].data();
     }
+    desc.numFVarChannels = channels;
+    desc.fvarChannels = channels > 0 ? channel.data() : nullptr;
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     Far::TopologyRefiner* refiner =
         Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, opts));
@@ -232,19 +250,20 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         for (size_t i = 0; i < in.st.size(); ++i) given[i] = glm::vec3(in.st[i], 0.0f);
         st = refined(given, in.stClass == SubdivInput::StClass::Vertex);
     }
-    std::vector<Vtx> fvarLimit;  // facevarying st, per value of the last level
-    if (faceVaryingSt) {
-        std::vector<Vtx> fv(size_t(refiner->GetNumFVarValuesTotal(0)));
-        for (size_t i = 0; i < fvarValues.size(); ++i)
-            fv[i].p = glm::vec3(fvarValues[i], 0.0f);
+    // facevarying values, per channel and value of the last level
+    std::vector<std::vector<Vtx>> fvarLimit(static_cast<size_t>(channels));
+    for (int ch = 0; ch < channels; ++ch) {
+        std::vector<Vtx> fv(size_t(refiner->GetNumFVarValuesTotal(ch)));
+        for (size_t i = 0; i < fvarValues[size_t(ch)].size(); ++i)
+            fv[i].p = fvarValues[size_t(ch)][i];
         Vtx* s = fv.data();
         for (int l = 1; l <= level; ++l) {
-            Vtx* d = s + refiner->GetLevel(l - 1).GetNumFVarValues(0);
-            primvar.InterpolateFaceVarying(l, s, d, 0);
+            Vtx* d = s + refiner->GetLevel(l - 1).GetNumFVarValues(ch);
+            primvar.InterpolateFaceVarying(l, s, d, ch);
             s = d;
         }
-        fvarLimit.resize(size_t(last.GetNumFVarValues(0)));
-        primvar.LimitFaceVarying(s, fvarLimit, 0);
+        fvarLimit[size_t(ch)].resize(size_t(last.GetNumFVarValues(ch)));
+        primvar.LimitFaceVarying(s, fvarLimit[size_t(ch)], ch);
     }
 
     // Parent base face of each refined face: uniform Catmull-Clark refinement emits a
@@ -263,11 +282,13 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         return fail(err, "SubdivisionMesh: unexpected refined face count");
     }
 
-    // The output's vertices: the last level's, or with facevarying st one for each of
-    // its values (a vertex on a seam has one a side); vertexOf: each one's vertex.
+    // The output's vertices: the last level's, or with facevarying values one for each
+    // of its vertices' combinations of values (a vertex on a seam has one a side);
+    // vertexOf: each one's vertex, fvarOf: its value in each channel.
     const int base = int(out.mesh.p.size());
     const bool wantN = out.mesh.n.size() == out.mesh.p.size();
     std::vector<int> vertexOf;
+    std::vector<std::vector<int>> fvarOf(static_cast<size_t>(channels));
     auto emit = [&](int v, glm::vec2 uv) {
         out.mesh.p.push_back(lim[size_t(v)].p);
         const glm::vec3 c = glm::cross(t1[size_t(v)].p, t2[size_t(v)].p);
@@ -277,28 +298,30 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         out.st.push_back(uv);
         vertexOf.push_back(v);
     };
-    std::vector<int> outOfValue;  // facevarying: the output vertex of each value
-    if (faceVaryingSt) {
-        outOfValue.assign(fvarLimit.size(), -1);
-    } else {
+    if (channels == 0)
         for (int i = 0; i < nv; ++i)
             emit(i, st.empty() ? glm::vec2(0.0f) : glm::vec2(st[size_t(i)]));
-    }
-    std::vector<int> corner;
+    std::map<std::vector<int>, int> outOf;  // (vertex, its value in each channel)
+    std::vector<int> corner, key(size_t(channels) + 1);
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         if (last.IsFaceHole(f)) continue;
         auto fv = last.GetFaceVertices(f);
         corner.assign(fv.begin(), fv.end());
-        if (faceVaryingSt) {
-            auto values = last.GetFaceFVarValues(f, 0);
-            for (int k = 0; k < fv.size(); ++k) {
-                int& o = outOfValue[size_t(values[k])];
-                if (o < 0) {
-                    o = int(vertexOf.size());
-                    emit(fv[k], glm::vec2(fvarLimit[size_t(values[k])].p));
-                }
-                corner[size_t(k)] = o;
+        for (int k = 0; channels > 0 && k < fv.size(); ++k) {
+            key[0] = fv[k];
+            for (int ch = 0; ch < channels; ++ch)
+                key[size_t(ch) + 1] = last.GetFaceFVarValues(f, ch)[k];
+            auto [at, added] = outOf.try_emplace(key, int(vertexOf.size()));
+            if (added) {
+                const glm::vec2 uv = faceVaryingSt
+                                         ? glm::vec2(fvarLimit[0][size_t(key[1])].p)
+                                     : st.empty() ? glm::vec2(0.0f)
+                                                  : glm::vec2(st[size_t(fv[k])]);
+                emit(fv[k], uv);
+                for (int ch = 0; ch < channels; ++ch)
+                    fvarOf[size_t(ch)].push_back(key[size_t(ch) + 1]);
             }
+            corner[size_t(k)] = at->second;
         }
         for (size_t k = 1; k + 1 < corner.size(); ++k) {
             out.mesh.tris.insert(out.mesh.tris.end(), {base + corner[0], base + corner[k],
@@ -306,13 +329,20 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
             out.faceIndex.push_back(parent[f]);
         }
     }
-    if (values)
+    if (values) {
         for (const std::vector<glm::vec3>& v : perVertex) {
             std::vector<glm::vec3> atOutput(vertexOf.size());
             for (size_t i = 0; i < vertexOf.size(); ++i)
                 atOutput[i] = v[size_t(vertexOf[i])];
             values->push_back(std::move(atOutput));
         }
+        for (int ch = faceVaryingSt ? 1 : 0; ch < channels; ++ch) {
+            std::vector<glm::vec3> atOutput(vertexOf.size());
+            for (size_t i = 0; i < vertexOf.size(); ++i)
+                atOutput[i] = fvarLimit[size_t(ch)][size_t(fvarOf[size_t(ch)][i])].p;
+            values->push_back(std::move(atOutput));
+        }
+    }
     delete refiner;
     return true;
 }

@@ -34,6 +34,9 @@ struct SubdivInput {
     // ones one per control vertex, projected to the limit like P; "varying" ones one
     // per control vertex too, refined linearly (RI varying on a subdivision mesh).
     std::vector<std::vector<glm::vec3>> vertexValues, varyingValues;
+    // "facevarying" ones, one per face-vertex: linearly within each face, split at seams
+    // as facevarying st is.
+    std::vector<std::vector<glm::vec3>> faceVaryingValues;
     // Texture coordinates: none, one per control vertex, or one per face-vertex.
     enum class StClass { None, Vertex, Varying, FaceVarying } stClass = StClass::None;
     std::vector<glm::vec2> st;
@@ -46,9 +49,10 @@ bool validateSubdiv(const SubdivInput& in, std::string* err);
 
 // `level` is clamped to [0, kMaxSubdivLevel] and lowered further when the refined mesh
 // would exceed kMaxMeshVertices.
-// `values`, when given, receives in.vertexValues then in.varyingValues refined, one
-// value per vertex of `out` (its vertices from the first this call adds; a vertex split
-// at a facevarying seam has its vertex's values on each side).
+// `values`, when given, receives in.vertexValues, in.varyingValues, then
+// in.faceVaryingValues refined, one value per vertex of `out` (its vertices from the
+// first this call adds; a vertex split at a facevarying seam has its vertex's vertex and
+// varying values on each side).
 bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
                                std::string* err = nullptr,
                                std::vector<std::vector<glm::vec3>>* values = nullptr);

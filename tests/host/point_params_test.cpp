@@ -217,6 +217,32 @@ TEST(PointParams, SubdivisionMesh) {
     Rendered lb = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + cage +
                             "\"varying float Kd\" " + bump + "\nWorldEnd\n");
     EXPECT_NEAR(lb.mean(0, 7, 7, 9, 9), (1 - 1.0 / 16) * (1 - 1.0 / 16), 0.01);
+    // facevarying values (an OpenSubdiv face-varying channel, split at the seam x = 0)
+    // and per face, on a two-face cage, as on polygons; the facevarying ones beside a
+    // vertex and a varying parameter (their refined values in the order SubdivInput
+    // lists them) and a facevarying colour
+    expectPerFaceValues("SubdivisionMesh \"catmull-clark\" [4 4] [0 1 4 3  1 2 5 4] "
+                        "[\"interpolateboundary\"] [0 0] [] [] "
+                        "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] ");
+    Rendered mixed = renderRib(
+        shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + cage +
+        "\"vertex color tint\" [1 1 1  1 1 1  1 1 1  1 1 1  1 1 1  1 1 1  1 1 1  1 1 1  1 1 1] "
+        "\"facevarying float Kd\" [0 0.2 0.2 0  0.6 1 1 0.6  0 0.2 0.2 0  0.6 1 1 0.6] "
+        "\"varying color Os\" [1 1 1  1 1 1  1 1 1  1 1 1  1 1 1  1 1 1  1 1 1  1 1 1  1 1 1] "
+        "\"facevarying color Cs\" [1 0 0  1 0 0  1 0 0  1 0 0  0 0 1  0 0 1  0 0 1  0 0 1  "
+        "1 0 0  1 0 0  1 0 0  1 0 0  0 0 1  0 0 1  0 0 1  0 0 1]\nWorldEnd\n");
+    EXPECT_LT(columnError(mixed, 0, [](double x) { return 0.2 * (x + 1); }, 0, kSize / 2), 3e-3);
+    EXPECT_LT(columnError(mixed, 0, [](double x) { return 0.6 + 0.4 * x; }, kSize / 2, kSize),
+              3e-3);
+    // the facevarying colour itself, through the constant shader: red left, blue right
+    Rendered colour = renderRib(
+        kCam + "WorldBegin\nSurface \"constant\"\n" + cage +
+        "\"facevarying color Cs\" [1 0 0  1 0 0  1 0 0  1 0 0  0 0 1  0 0 1  0 0 1  0 0 1  "
+        "1 0 0  1 0 0  1 0 0  1 0 0  0 0 1  0 0 1  0 0 1  0 0 1]\nWorldEnd\n");
+    EXPECT_LT(columnError(colour, 0, [](double) { return 1.0; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(colour, 2, [](double) { return 0.0; }, 0, kSize / 2), 1e-5);
+    EXPECT_LT(columnError(colour, 0, [](double) { return 0.0; }, kSize / 2, kSize), 1e-5);
+    EXPECT_LT(columnError(colour, 2, [](double) { return 1.0; }, kSize / 2, kSize), 1e-5);
     Rendered uni = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n" + cage +
                              "\"uniform float Kd\" [1 2 3 4]\nWorldEnd\n");
     EXPECT_NEAR(uni.at(4, 12).r, 1.0, 1e-5);

@@ -150,11 +150,24 @@ TEST(Subdiv, FacevaryingStSplitsVerticesAtSeams) {
     ASSERT_TRUE(tessellateSubdivisionMesh(in, 2, smooth, &err)) << err;
     stOf(true);
     in.vertexValues = {in.P};  // a per-point value: the control vertex's position
+    // and a facevarying one, continuous: x + 10 y at each corner
+    in.faceVaryingValues.assign(1, {});
+    for (int v : in.vertices) {
+        const glm::vec3 p = in.P[size_t(v)];
+        in.faceVaryingValues[0].emplace_back(p.x + 10.0f * p.y, 0.0f, 0.0f);
+    }
     SurfaceMesh seam;
     std::vector<std::vector<glm::vec3>> values;
     ASSERT_TRUE(tessellateSubdivisionMesh(in, 2, seam, &err, &values)) << err;
-    ASSERT_EQ(values.size(), 1u);
+    ASSERT_EQ(values.size(), 2u);
     ASSERT_EQ(values[0].size(), seam.mesh.p.size());
+    ASSERT_EQ(values[1].size(), seam.mesh.p.size());
+    for (size_t v = 0; v < seam.mesh.p.size(); ++v) {  // on the cage's lines: exact
+        const glm::vec3 p = seam.mesh.p[v];
+        if (std::fabs(p.x - std::round(p.x)) < 1e-5f && std::fabs(p.y - std::round(p.y)) < 1e-5f) {
+            EXPECT_NEAR(values[1][v].x, p.x + 10.0f * p.y, 1e-4f) << p.x << "," << p.y;
+        }
+    }
     ASSERT_EQ(smooth.st.size(), smooth.mesh.p.size());
     ASSERT_EQ(seam.st.size(), seam.mesh.p.size());
     // 9 x 9 vertices at level 2, the 9 on x = 1 twice with the seam
@@ -192,6 +205,7 @@ TEST(Subdiv, FacevaryingStSplitsVerticesAtSeams) {
     EXPECT_GT(onSeam[1], 0);
     // vertex st: s = x / 2 + 0.25 everywhere
     in.stClass = SubdivInput::StClass::Vertex;
+    in.faceVaryingValues.clear();
     in.st.clear();
     for (const glm::vec3& p : in.P) in.st.emplace_back(p.x / 2.0f + 0.25f, p.y);
     SurfaceMesh byVertex;
