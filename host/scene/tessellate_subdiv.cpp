@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <string>
 
 #ifdef RD_HAVE_OPENSUBDIV
@@ -301,27 +300,35 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     if (channels == 0)
         for (int i = 0; i < nv; ++i)
             emit(i, st.empty() ? glm::vec2(0.0f) : glm::vec2(st[size_t(i)]));
-    std::map<std::vector<int>, int> outOf;  // (vertex, its value in each channel)
-    std::vector<int> corner, key(size_t(channels) + 1);
+    // The output vertices made for each value of the first channel (a value belongs to
+    // one vertex): usually one, more where another channel has a seam the first has not.
+    std::vector<std::vector<int>> outOf(channels > 0 ? fvarLimit[0].size() : 0);
+    std::vector<int> corner, key(static_cast<size_t>(channels));
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         if (last.IsFaceHole(f)) continue;
         auto fv = last.GetFaceVertices(f);
         corner.assign(fv.begin(), fv.end());
         for (int k = 0; channels > 0 && k < fv.size(); ++k) {
-            key[0] = fv[k];
             for (int ch = 0; ch < channels; ++ch)
-                key[size_t(ch) + 1] = last.GetFaceFVarValues(f, ch)[k];
-            auto [at, added] = outOf.try_emplace(key, int(vertexOf.size()));
-            if (added) {
+                key[size_t(ch)] = last.GetFaceFVarValues(f, ch)[k];
+            std::vector<int>& made = outOf[size_t(key[0])];
+            auto same = std::find_if(made.begin(), made.end(), [&](int o) {
+                for (int ch = 1; ch < channels; ++ch)
+                    if (fvarOf[size_t(ch)][size_t(o)] != key[size_t(ch)]) return false;
+                return true;
+            });
+            if (same == made.end()) {
                 const glm::vec2 uv = faceVaryingSt
-                                         ? glm::vec2(fvarLimit[0][size_t(key[1])].p)
+                                         ? glm::vec2(fvarLimit[0][size_t(key[0])].p)
                                      : st.empty() ? glm::vec2(0.0f)
                                                   : glm::vec2(st[size_t(fv[k])]);
+                made.push_back(int(vertexOf.size()));
                 emit(fv[k], uv);
                 for (int ch = 0; ch < channels; ++ch)
-                    fvarOf[size_t(ch)].push_back(key[size_t(ch) + 1]);
+                    fvarOf[size_t(ch)].push_back(key[size_t(ch)]);
+                same = made.end() - 1;
             }
-            corner[size_t(k)] = at->second;
+            corner[size_t(k)] = *same;
         }
         for (size_t k = 1; k + 1 < corner.size(); ++k) {
             out.mesh.tris.insert(out.mesh.tris.end(), {base + corner[0], base + corner[k],
