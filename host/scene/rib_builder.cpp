@@ -406,7 +406,7 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
                                    ") does not reach shader parameters: per-point values are "
                                    "carried for float, color, point, vector and normal "
                                    "variables (8 a primitive), except vertex ones of a "
-                                   "bicubic PatchMesh or a NuPatch, and inside ObjectBegin");
+                                   "bicubic PatchMesh, and inside ObjectBegin");
             continue;
         }
         overrides.params.push_back(p);

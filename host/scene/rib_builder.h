@@ -260,6 +260,8 @@ private:
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
         int uorder = 0, vorder = 0;  // a NuPatch's: sub-patches are its knot spans
         std::vector<float> uknot, vknot;
+        int nu = 0, nv = 0;          // a NuPatch's control points (its vertex values)
+        std::vector<float> weights;  // a rational NuPatch's: w of each control point
     };
     void patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
                           const std::vector<glm::vec2>& uv, const std::vector<int>& faceIndex,

@@ -439,6 +439,10 @@ void RibBuilder::nuPatch(L loc, int nu, int uorder, Floats uknot, float umin, fl
     PatchGrid grid;  // varying values on the knot spans' corners
     grid.nupatches = std::max(1, nu - uorder + 1), grid.nvpatches = std::max(1, nv - vorder + 1);
     grid.uorder = uorder, grid.vorder = vorder, grid.uknot = uknot, grid.vknot = vknot;
+    grid.nu = nu, grid.nv = nv;
+    if (in.rational)
+        for (size_t i = 3; i < in.positions.size(); i += 4)
+            grid.weights.push_back(in.positions[i]);
     addSurface(loc, "NuPatch", ok, m, err, [&](VertexData& mesh) {
         patchPointParams(params, grid, m.st, m.faceIndex, mesh);
     });

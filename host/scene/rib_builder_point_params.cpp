@@ -12,10 +12,12 @@
 // same paths on every geometry but polygon meshes (whose reader takes them) and end in
 // the mesh's own colours and st (takeStandardPointValues).
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include "rib_builder.h"
 #include "rib_builder_util.h"
+#include "tessellate_nurbs.h"
 
 namespace rd {
 namespace {
@@ -320,12 +322,14 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
     // across a direction unless it wraps (RI); a bilinear mesh's vertex values too
     const int gu = grid.nupatches + (grid.uperiodic ? 0 : 1);
     const int gv = grid.nvpatches + (grid.vperiodic ? 0 : 1);
-    // Vertex values of a NuPatch or of a bicubic mesh are not carried (surfaceFor warns
-    // of the parameters; the colours are left out alone, as on polygons).
+    // Vertex values of a bicubic mesh are not carried (surfaceFor warns of the
+    // parameters; the colours are left out alone, as on polygons).
+    const bool nurbs = grid.uorder > 0;
     auto carried = [&](const rib::Param* p) {
         const size_t n = valueCount(*p) / size_t(p->components() * p->arraySize);
         const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
-        if (grid.uorder > 0 && p->storage == rib::StorageClass::Vertex) return false;
+        if (nurbs && p->storage == rib::StorageClass::Vertex)
+            return n == size_t(grid.nu) * size_t(grid.nv);
         return p->storage == rib::StorageClass::Uniform
                    ? n == size_t(grid.nupatches * grid.nvpatches)
                : bicubicVertex ? (grid.single && n == 16)
@@ -338,9 +342,29 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
                list.end());
     for (const rib::Param* p : list)
         if (!carried(p)) return;
+    // A NuPatch's vertex values: a surface of their own over its knots and weights
+    // (evalNuPatch at the vertex's (u, v)), one a piece, made at its first vertex
+    std::map<std::pair<const rib::Param*, int>, NuPatchInput> nurbsOf;
+    auto nurbsValue = [&](const Piece& p, glm::vec2 at) {
+        NuPatchInput& in = nurbsOf[{p.param, p.index}];
+        if (in.positions.empty()) {
+            in.nu = grid.nu, in.uorder = grid.uorder, in.uknot = grid.uknot;
+            in.nv = grid.nv, in.vorder = grid.vorder, in.vknot = grid.vknot;
+            in.rational = !grid.weights.empty();
+            for (size_t k = 0; k < size_t(grid.nu) * size_t(grid.nv); ++k) {
+                const glm::vec3 v = valueAt(p, k);
+                const float w =
+                    in.rational && k < grid.weights.size() ? grid.weights[k] : 1.0f;
+                in.positions.insert(in.positions.end(), {v.x * w, v.y * w, v.z * w});
+                if (in.rational) in.positions.push_back(w);
+            }
+        }
+        return evalNuPatch(in, at.x, at.y).p;
+    };
     const std::vector<Corner> src = splitCornersIfNeeded(list, mesh);
     appendPointParams(list, mesh, [&](const Piece& p, size_t i) {
         const glm::vec2 at = uv[src[i].vertex];
+        if (nurbs && p.storage == rib::StorageClass::Vertex) return nurbsValue(p, at);
         if (p.storage == rib::StorageClass::Uniform) {
             const size_t t = src[i].triangle;
             return valueAt(p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);

@@ -291,6 +291,34 @@ TEST(PointParams, NuPatchKnotSpans) {
     EXPECT_LT(columnError(img, 0, [](double x) { return (x + 1) / 2; }), 3e-3);
 }
 
+// NuPatch vertex values: one per control point, through the surface's own basis. A
+// quadratic Bezier patch (order 3, knots 0 0 0 1 1 1) over evenly spaced control points
+// has x = 2u - 1: a ramp 0, 0.5, 1 across its columns of control points is (x + 1) / 2
+// (to 3e-3); a bump (1 at the middle control point) is B(u) B(v), B(t) = 2t(1 - t), so
+// 1/4 at the middle (the 2x2 middle pixels' mean to 0.02); with weight 2 there (Pw,
+// rational), 0.5 / 1.25 = 0.4 (the weights divide the values as they do the points).
+TEST(PointParams, NuPatchVertexValuesFollowItsBasis) {
+    auto patch = [](bool rational) {
+        std::string p = rational ? "\"Pw\" [" : "\"P\" [";
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) {
+                const double w = rational && i == 1 && j == 1 ? 2.0 : 1.0;
+                p += std::to_string((i - 1) * w) + " " + std::to_string((j - 1) * w) + " " +
+                     std::to_string(w) + (rational ? " " + std::to_string(w) : "") + "  ";
+            }
+        return "NuPatch 3 3 [0 0 0 1 1 1] 0 1 3 3 [0 0 0 1 1 1] 0 1 " + p + "] ";
+    };
+    const std::string world = shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n";
+    Rendered ramp = renderRib(world + patch(false) +
+                              "\"vertex float Kd\" [0 0.5 1  0 0.5 1  0 0.5 1]\nWorldEnd\n");
+    EXPECT_LT(columnError(ramp, 0, [](double x) { return (x + 1) / 2; }), 3e-3);
+    const std::string bump = "\"vertex float Kd\" [0 0 0  0 1 0  0 0 0]\nWorldEnd\n";
+    Rendered plain = renderRib(world + patch(false) + bump);
+    EXPECT_NEAR(plain.mean(0, 7, 7, 9, 9), 0.25, 0.02);
+    Rendered weighted = renderRib(world + patch(true) + bump);
+    EXPECT_NEAR(weighted.mean(0, 7, 7, 9, 9), 0.4, 0.02);
+}
+
 // A uniform declaration reading a per-point parameter is computed at the point, not
 // once per instance: Ci = Kd^2 + 0.125 along the ramp (Kd = x; a pixel's mean of x^2 is
 // its centre's plus (1/16)^2 / 3), to 3e-3. The same shader on a polygon
