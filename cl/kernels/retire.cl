@@ -27,9 +27,8 @@ inline int rt_job_was_in_flight(uint state, uint tag) {
  * `launch` (the host's count of retire launches); each launch clears the other half for
  * the next. A launch may take the window's jobs from `base` on (a window too large for one
  * launch takes several, the first from 0). In its half, [0] (from ~0) becomes the rank of
- * the oldest job still in
- * flight, so the host frees the retired prefix of the rings; [1] counts jobs aborted by
- * this launch, [2] samples left out as NaN/Inf. */
+ * the oldest job still in flight, so the host frees the retired prefix of the rings; [1]
+ * counts jobs aborted by this launch, [2] samples left out as NaN/Inf. */
 __kernel void retire_samples(uint window_start, uint window_count, uint job_capacity,
                              uint slot_capacity, uint launch, uint base,
                              __global PixelJob* jobs,

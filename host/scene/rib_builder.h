@@ -39,8 +39,8 @@ std::vector<const rib::Param*> pointParamsOf(const rib::ParamList* params,
 // Moves the trailing Cs, Os and st values that pointParamsOf(.., true) added to a mesh's
 // point parameters into its per-vertex colours (`channels` floats a colour) and st.
 void takeStandardPointValues(VertexData& mesh, int channels);
-// A SubdivisionMesh's per-point values to refine with it (SubdivInput); false when it
-// has none, or some that cannot be carried (facevarying).
+// A SubdivisionMesh's per-point values to refine with it (SubdivInput), its colours and
+// texture coordinates among them; false when it has none.
 bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in);
 
 class RibBuilder : public rib::Target {
@@ -229,8 +229,9 @@ private:
     void cornerPointParams(const rib::ParamList& params, VertexData& mesh,
                            bool withStandard = false);
     // SubdivisionMesh: vertex values go to the limit, varying ones are refined
-    // linearly (`refined`: tessellateSubdivisionMesh's values for subdivPointParamsIn's
-    // input), uniform ones per base face (faceIndex); facevarying ones are not carried.
+    // linearly, facevarying ones linearly within each face (`refined`:
+    // tessellateSubdivisionMesh's values for subdivPointParamsIn's input), uniform ones
+    // per base face (faceIndex).
     void subdivPointParams(const rib::ParamList& params,
                            const std::vector<std::vector<glm::vec3>>& refined,
                            const std::vector<int>& faceIndex, VertexData& mesh);

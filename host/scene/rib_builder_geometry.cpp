@@ -22,35 +22,6 @@ std::vector<glm::vec3> points3(const std::vector<float>& f) {
     return p;
 }
 
-// A SubdivisionMesh's texture coordinates: "st" (two floats a value), else "s" and "t",
-// one a face-vertex (facevarying) or a control vertex (vertex, varying). Returns what
-// is wrong with them (then they are left out), or an empty string.
-std::string subdivSt(const rib::ParamList& params, SubdivInput& in) {
-    using SC = rib::StorageClass;
-    const rib::Param* st = params.find("st");
-    const rib::Param* s = params.find("s");
-    const rib::Param* t = params.find("t");
-    const rib::Param* given = st ? st : s && t ? s : nullptr;
-    if (!given || given->storage == SC::Constant || given->storage == SC::Uniform)
-        return {};
-    const size_t n = st ? st->floats.size() / 2 : s->floats.size();
-    const size_t wanted =
-        given->storage == SC::FaceVarying ? in.vertices.size() : in.P.size();
-    if (n != wanted || (st && st->floats.size() != 2 * n) ||
-        (!st && t->floats.size() != n))
-        return std::string(st ? "\"st\"" : "\"s\" and \"t\"") + " have " +
-               std::to_string(n) + " values where " + std::to_string(wanted) +
-               " are needed: left out";
-    in.st.resize(n);
-    for (size_t i = 0; i < n; ++i)
-        in.st[i] = st ? glm::vec2(st->floats[2 * i], st->floats[2 * i + 1])
-                      : glm::vec2(s->floats[i], t->floats[i]);
-    in.stClass = given->storage == SC::FaceVarying ? SubdivInput::StClass::FaceVarying
-                 : given->storage == SC::Vertex    ? SubdivInput::StClass::Vertex
-                                                   : SubdivInput::StClass::Varying;
-    return {};
-}
-
 // Segments for a quadric of screen radius rpx around a full turn: 0.1 pixel chord error.
 int turnSegments(float rpx) { return circleSegments(rpx, 0.1f); }
 
@@ -457,8 +428,6 @@ void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strin
     in.scheme = scheme, in.nvertices = nverts, in.vertices = verts, in.tags = tags;
     in.nargs = nargs, in.intargs = intargs, in.floatargs = floatargs;
     in.P = points3(Pp->floats);
-    if (const std::string bad = subdivSt(params, in); !bad.empty())
-        m_diag.warning(loc, "SubdivisionMesh: " + bad);
     // One refinement level per halving of the faces' size on screen, down to ~4 pixels.
     float faces = float(std::max<size_t>(1, nverts.size()));
     float facePx = 2.0f * screenRadius(in.P) / std::sqrt(faces);
@@ -469,8 +438,6 @@ void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strin
     const bool carried = subdivPointParamsIn(params, in);
     bool ok = tessellateSubdivisionMesh(in, level, m, &err, carried ? &refined : nullptr);
     addSurface(loc, "SubdivisionMesh", ok, m, err, [&](VertexData& mesh) {
-        if (in.stClass != SubdivInput::StClass::None)
-            mesh.st = m.st;  // as given, not (u, v)
         if (carried) subdivPointParams(params, refined, m.faceIndex, mesh);
     });
 }

@@ -402,23 +402,8 @@ void RibBuilder::pointsPointParams(const rib::ParamList& params,
     }
 }
 
-namespace {
-// A SubdivisionMesh's per-point values: its parameters and colours, less its texture
-// coordinates (SubdivInput::st refines them).
-std::vector<const rib::Param*> subdivParamsOf(const rib::ParamList& params) {
-    std::vector<const rib::Param*> list = pointParamsOf(&params, true);
-    list.erase(std::remove_if(list.begin(), list.end(),
-                              [](const rib::Param* p) {
-                                  return p->name == "st" || p->name == "s" ||
-                                         p->name == "t";
-                              }),
-               list.end());
-    return list;
-}
-}  // namespace
-
 bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in) {
-    const std::vector<const rib::Param*> list = subdivParamsOf(params);
+    const std::vector<const rib::Param*> list = pointParamsOf(&params, true);
     for (const Piece& p : piecesOf(list)) {
         if (p.storage == rib::StorageClass::Uniform) continue;  // per face: no refining
         const bool faceVarying = p.storage == rib::StorageClass::FaceVarying;
@@ -435,7 +420,7 @@ bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in) {
 void RibBuilder::subdivPointParams(const rib::ParamList& params,
                                    const std::vector<std::vector<glm::vec3>>& refined,
                                    const std::vector<int>& faceIndex, VertexData& mesh) {
-    const std::vector<const rib::Param*> list = subdivParamsOf(params);
+    const std::vector<const rib::Param*> list = pointParamsOf(&params, true);
     const std::vector<Piece> pieces = piecesOf(list);
     size_t count[3] = {0, 0, 0}, next[3] = {0, 0, 0};  // vertex, varying, facevarying
     auto kindOf = [](rib::StorageClass c) {

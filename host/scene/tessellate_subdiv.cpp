@@ -72,19 +72,11 @@ bool validateSubdiv(const SubdivInput& in, std::string* err) {
     }
     if (ni != in.intargs.size() || nf != in.floatargs.size())
         return fail(err, "SubdivisionMesh: nargs do not account for all tag arguments");
-    using StClass = SubdivInput::StClass;
-    const size_t stWanted = in.stClass == StClass::FaceVarying ? in.vertices.size()
-                            : in.stClass == StClass::None      ? 0
-                                                               : in.P.size();
     for (const std::vector<glm::vec3>& v : in.faceVaryingValues)
         if (v.size() != in.vertices.size())
             return fail(err, "SubdivisionMesh: " + std::to_string(v.size()) +
                                  " facevarying values where " +
                                  std::to_string(in.vertices.size()) + " are needed");
-    if (in.st.size() != stWanted)
-        return fail(err, "SubdivisionMesh: " + std::to_string(in.st.size()) +
-                             " st values where " + std::to_string(stWanted) +
-                             " are needed");
     return true;
 }
 
@@ -151,18 +143,9 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     desc.cornerWeights = cornerW.data();
     desc.numHoles = int(holes.size());
     desc.holeIndices = holes.data();
-    // Facevarying values (st, then in.faceVaryingValues): a channel each, whose values
-    // are the corners', one value for the corners of a control vertex that agree, so that
-    // a seam is where faces disagree.
-    std::vector<std::vector<glm::vec3>> fvarGiven;
-    const bool faceVaryingSt = in.stClass == SubdivInput::StClass::FaceVarying;
-    if (faceVaryingSt) {
-        std::vector<glm::vec3> st(in.st.size());
-        for (size_t c = 0; c < st.size(); ++c) st[c] = glm::vec3(in.st[c], 0.0f);
-        fvarGiven.push_back(std::move(st));
-    }
-    fvarGiven.insert(fvarGiven.end(), in.faceVaryingValues.begin(),
-                     in.faceVaryingValues.end());
+    // Facevarying values: a channel each, whose values are the corners', one value for
+    // the corners of a control vertex that agree, so that a seam is where faces disagree.
+    const std::vector<std::vector<glm::vec3>>& fvarGiven = in.faceVaryingValues;
     const int channels = int(fvarGiven.size());
     std::vector<std::vector<int>> fvarIndex(static_cast<size_t>(channels));
     std::vector<std::vector<glm::vec3>> fvarValues(static_cast<size_t>(channels));
@@ -242,13 +225,6 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         for (const std::vector<glm::vec3>& v : in.varyingValues)
             perVertex.push_back(refined(v, false));
     }
-    std::vector<glm::vec3> st;  // per vertex of the last level (vertex or varying st)
-    if (in.stClass == SubdivInput::StClass::Vertex ||
-        in.stClass == SubdivInput::StClass::Varying) {
-        std::vector<glm::vec3> given(in.st.size());
-        for (size_t i = 0; i < in.st.size(); ++i) given[i] = glm::vec3(in.st[i], 0.0f);
-        st = refined(given, in.stClass == SubdivInput::StClass::Vertex);
-    }
     // facevarying values, per channel and value of the last level
     std::vector<std::vector<Vtx>> fvarLimit(static_cast<size_t>(channels));
     for (int ch = 0; ch < channels; ++ch) {
@@ -288,18 +264,17 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     const bool wantN = out.mesh.n.size() == out.mesh.p.size();
     std::vector<int> vertexOf;
     std::vector<std::vector<int>> fvarOf(static_cast<size_t>(channels));
-    auto emit = [&](int v, glm::vec2 uv) {
+    auto emit = [&](int v) {
         out.mesh.p.push_back(lim[size_t(v)].p);
         const glm::vec3 c = glm::cross(t1[size_t(v)].p, t2[size_t(v)].p);
         if (wantN)
             out.mesh.n.push_back(glm::length(c) > 0.0f ? glm::normalize(c)
                                                        : glm::vec3(0, 0, 1));
-        out.st.push_back(uv);
+        out.st.emplace_back(0.0f);  // (st given per point comes as values)
         vertexOf.push_back(v);
     };
     if (channels == 0)
-        for (int i = 0; i < nv; ++i)
-            emit(i, st.empty() ? glm::vec2(0.0f) : glm::vec2(st[size_t(i)]));
+        for (int i = 0; i < nv; ++i) emit(i);
     // The output vertices made for each value of the first channel (a value belongs to
     // one vertex): usually one, more where another channel has a seam the first has not.
     std::vector<std::vector<int>> outOf(channels > 0 ? fvarLimit[0].size() : 0);
@@ -318,12 +293,8 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
                 return true;
             });
             if (same == made.end()) {
-                const glm::vec2 uv = faceVaryingSt
-                                         ? glm::vec2(fvarLimit[0][size_t(key[0])].p)
-                                     : st.empty() ? glm::vec2(0.0f)
-                                                  : glm::vec2(st[size_t(fv[k])]);
                 made.push_back(int(vertexOf.size()));
-                emit(fv[k], uv);
+                emit(fv[k]);
                 for (int ch = 0; ch < channels; ++ch)
                     fvarOf[size_t(ch)].push_back(key[size_t(ch)]);
                 same = made.end() - 1;
@@ -343,7 +314,7 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
                 atOutput[i] = v[size_t(vertexOf[i])];
             values->push_back(std::move(atOutput));
         }
-        for (int ch = faceVaryingSt ? 1 : 0; ch < channels; ++ch) {
+        for (int ch = 0; ch < channels; ++ch) {
             std::vector<glm::vec3> atOutput(vertexOf.size());
             for (size_t i = 0; i < vertexOf.size(); ++i)
                 atOutput[i] = fvarLimit[size_t(ch)][size_t(fvarOf[size_t(ch)][i])].p;

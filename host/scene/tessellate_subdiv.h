@@ -4,16 +4,12 @@
 // surface (Far::PrimvarRefiner::Limit) with limit tangents, and the refined quads are
 // split into triangles. faceIndex = the base (control) face each triangle descends
 // from; normals = normalize(limit dP/du x dP/dv), wound like the face's vertex order.
-// Subdivision surfaces have no global (u,v): st is (0,0) unless given, per control
-// vertex ("vertex": to the limit like P; "varying": linearly) or per face-vertex
-// ("facevarying", the usual texture coordinates of an asset: linearly within each face,
-// through an OpenSubdiv face-varying channel, so that a vertex on a seam, where faces
-// give it different values, becomes one output vertex a side). Without
-// "interpolateboundary" the boundary follows OpenSubdiv's
-// VTX_BOUNDARY_NONE rule; "interpolateboundary" [1] (or no int arg) = edges and
-// corners, [2] = edges only. Other per-vertex values (shader parameters given per
-// point) are refined with the cage on request. Built without OpenSubdiv
-// (RD_HAVE_OPENSUBDIV undefined) the function returns false with an error.
+// Subdivision surfaces have no global (u,v): st is (0,0). Without "interpolateboundary"
+// the boundary follows OpenSubdiv's VTX_BOUNDARY_NONE rule; "interpolateboundary" [1]
+// (or no int arg) = edges and corners, [2] = edges only. Values given per point (shader
+// parameters, colours, texture coordinates) are refined with the cage on request. Built
+// without OpenSubdiv (RD_HAVE_OPENSUBDIV undefined) the function returns false with an
+// error.
 #pragma once
 #include <string>
 #include <vector>
@@ -34,12 +30,10 @@ struct SubdivInput {
     // ones one per control vertex, projected to the limit like P; "varying" ones one
     // per control vertex too, refined linearly (RI varying on a subdivision mesh).
     std::vector<std::vector<glm::vec3>> vertexValues, varyingValues;
-    // "facevarying" ones, one per face-vertex: linearly within each face, split at seams
-    // as facevarying st is.
+    // "facevarying" ones, one per face-vertex (an asset's texture coordinates):
+    // linearly within each face, through an OpenSubdiv face-varying channel each, the
+    // output's vertices split where faces give a vertex different values (a seam).
     std::vector<std::vector<glm::vec3>> faceVaryingValues;
-    // Texture coordinates: none, one per control vertex, or one per face-vertex.
-    enum class StClass { None, Vertex, Varying, FaceVarying } stClass = StClass::None;
-    std::vector<glm::vec2> st;
 };
 
 constexpr int kMaxSubdivLevel = 8;

@@ -1,6 +1,6 @@
 // subdiv_test.cpp: Catmull-Clark SubdivisionMesh through OpenSubdiv: cube limit surface
-// (inside the cage, symmetric, outward normals), holes, sharp creases, texture
-// coordinates (facevarying seams, vertex st), bad input.
+// (inside the cage, symmetric, outward normals), holes, sharp creases, facevarying
+// values and their seams, bad input.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -121,73 +121,72 @@ TEST(Subdiv, CornerAndInterpolateBoundaryPinCorners) {
     EXPECT_TRUE(found) << "a sharp corner is interpolated";
 }
 
-// A flat 2x2 grid of unit quads (ridge(2), flattened), texture coordinates per
-// face-vertex: continuous (s = x / 2), or with a seam down the middle edge x = 1 (the
-// left faces' s in [0, 0.4], the right faces' in [0.6, 1]), as an asset's UV layout cuts
-// a mesh. Continuous, no vertex is split and s = x / 2 on the faces' edges (linear in
-// each face's parameters, which meet the cage's lines there). With the seam, the nine
-// vertices on x = 1 come out twice, one a side: each triangle's s lies in its own face's
-// range, and the seam's points carry 0.4 on the left and 0.6 on the right. A per-point
-// value follows its vertex onto both sides. Vertex st: the limit of an affine map is the
-// map.
-TEST(Subdiv, FacevaryingStSplitsVerticesAtSeams) {
+// A flat 2x2 grid of unit quads (ridge(2), flattened), a value per face-vertex such as
+// an asset's texture coordinates: continuous (s = x / 2), or with a seam down the middle
+// edge x = 1 (the left faces' s in [0, 0.4], the right faces' in [0.6, 1]), as a UV
+// layout cuts a mesh. Continuous, no vertex is split and s = x / 2 on the faces' edges
+// (linear in each face's parameters, which meet the cage's lines there). With the seam,
+// the nine vertices on x = 1 come out twice, one a side: each triangle's s lies in its
+// own face's range, and the seam's points carry 0.4 on the left and 0.6 on the right. A
+// vertex value follows its vertex onto both sides, and a second facevarying channel
+// (continuous, x + 10 y) is exact on the cage's lines.
+TEST(Subdiv, FacevaryingValuesSplitVerticesAtSeams) {
     SubdivInput in = ridge(2);
     for (glm::vec3& p : in.P) p.z = 0.0f;
-    in.stClass = SubdivInput::StClass::FaceVarying;
-    auto stOf = [&](bool seam) {
-        in.st.clear();
+    auto sOf = [&](bool seam) {
+        std::vector<glm::vec3> out;
         for (size_t c = 0; c < in.vertices.size(); ++c) {
             const glm::vec3 p = in.P[size_t(in.vertices[c])];
             const bool left = in.vertices[c - c % 4] % 3 == 0;  // the face's first corner
             float s = p.x / 2.0f;
             if (seam) s = left ? 0.4f * p.x : 0.6f + 0.4f * (p.x - 1.0f);
-            in.st.emplace_back(s, p.y / 2.0f);
+            out.emplace_back(s, p.y / 2.0f, 0.0f);
         }
+        return out;
     };
-    stOf(false);
-    SurfaceMesh smooth;
     std::string err;
-    ASSERT_TRUE(tessellateSubdivisionMesh(in, 2, smooth, &err)) << err;
-    stOf(true);
-    in.vertexValues = {in.P};  // a per-point value: the control vertex's position
-    // and a facevarying one, continuous: x + 10 y at each corner
-    in.faceVaryingValues.assign(1, {});
+    in.faceVaryingValues = {sOf(false)};
+    SurfaceMesh smooth;
+    std::vector<std::vector<glm::vec3>> smoothValues;
+    ASSERT_TRUE(tessellateSubdivisionMesh(in, 2, smooth, &err, &smoothValues)) << err;
+    in.vertexValues = {in.P};  // a vertex value: the control vertex's position
+    std::vector<glm::vec3> xy;
     for (int v : in.vertices) {
         const glm::vec3 p = in.P[size_t(v)];
-        in.faceVaryingValues[0].emplace_back(p.x + 10.0f * p.y, 0.0f, 0.0f);
+        xy.emplace_back(p.x + 10.0f * p.y, 0.0f, 0.0f);
     }
+    in.faceVaryingValues = {sOf(true), xy};
     SurfaceMesh seam;
-    std::vector<std::vector<glm::vec3>> values;
+    std::vector<std::vector<glm::vec3>> values;  // P, then s, then x + 10 y
     ASSERT_TRUE(tessellateSubdivisionMesh(in, 2, seam, &err, &values)) << err;
-    ASSERT_EQ(values.size(), 2u);
-    ASSERT_EQ(values[0].size(), seam.mesh.p.size());
-    ASSERT_EQ(values[1].size(), seam.mesh.p.size());
-    for (size_t v = 0; v < seam.mesh.p.size(); ++v) {  // on the cage's lines: exact
-        const glm::vec3 p = seam.mesh.p[v];
-        if (std::fabs(p.x - std::round(p.x)) < 1e-5f && std::fabs(p.y - std::round(p.y)) < 1e-5f) {
-            EXPECT_NEAR(values[1][v].x, p.x + 10.0f * p.y, 1e-4f) << p.x << "," << p.y;
-        }
-    }
-    ASSERT_EQ(smooth.st.size(), smooth.mesh.p.size());
-    ASSERT_EQ(seam.st.size(), seam.mesh.p.size());
+    ASSERT_EQ(smoothValues.size(), 1u);
+    ASSERT_EQ(smoothValues[0].size(), smooth.mesh.p.size());
+    ASSERT_EQ(values.size(), 3u);
+    for (const std::vector<glm::vec3>& v : values) ASSERT_EQ(v.size(), seam.mesh.p.size());
     // 9 x 9 vertices at level 2, the 9 on x = 1 twice with the seam
     EXPECT_EQ(smooth.mesh.p.size(), 81u);
     EXPECT_EQ(seam.mesh.p.size(), 90u);
     for (size_t i = 0; i < smooth.mesh.p.size(); ++i) {
         const glm::vec3 p = smooth.mesh.p[i];
-        const bool exact = std::fabs(p.x - std::round(p.x)) < 1e-5f;  // on a face's edge
-        if (exact) {
-            EXPECT_NEAR(smooth.st[i].x, p.x / 2.0f, 1e-5f) << p.x << "," << p.y;
+        const float s = smoothValues[0][i].x;
+        if (std::fabs(p.x - std::round(p.x)) < 1e-5f) {  // on a face's edge
+            EXPECT_NEAR(s, p.x / 2.0f, 1e-5f) << p.x << "," << p.y;
         }
-        EXPECT_GE(smooth.st[i].x, -1e-6f);
-        EXPECT_LE(smooth.st[i].x, 1.0f + 1e-6f);
+        EXPECT_GE(s, -1e-6f);
+        EXPECT_LE(s, 1.0f + 1e-6f);
+    }
+    for (size_t v = 0; v < seam.mesh.p.size(); ++v) {  // on the cage's lines: exact
+        const glm::vec3 p = seam.mesh.p[v];
+        if (std::fabs(p.x - std::round(p.x)) < 1e-5f && std::fabs(p.y - std::round(p.y)) < 1e-5f) {
+            EXPECT_NEAR(values[2][v].x, p.x + 10.0f * p.y, 1e-4f) << p.x << "," << p.y;
+        }
     }
     int onSeam[2] = {0, 0};
     for (size_t k = 0; k < seam.faceIndex.size(); ++k) {
         const bool left = seam.faceIndex[k] % 2 == 0;
         for (int c = 0; c < 3; ++c) {
             const size_t v = size_t(seam.mesh.tris[3 * k + size_t(c)]);
-            const float sv = seam.st[v].x;
+            const float sv = values[1][v].x;
             if (left) {
                 EXPECT_LE(sv, 0.4f + 1e-5f);
             } else {
@@ -197,21 +196,12 @@ TEST(Subdiv, FacevaryingStSplitsVerticesAtSeams) {
                 EXPECT_NEAR(sv, left ? 0.4f : 0.6f, 1e-5f);
                 ++onSeam[left ? 0 : 1];
             }
-            // the per-point value is the limit of the positions, as P is
+            // the vertex value is the limit of the positions, as P is
             EXPECT_NEAR(glm::length(values[0][v] - seam.mesh.p[v]), 0.0f, 1e-4f);
         }
     }
     EXPECT_GT(onSeam[0], 0);
     EXPECT_GT(onSeam[1], 0);
-    // vertex st: s = x / 2 + 0.25 everywhere
-    in.stClass = SubdivInput::StClass::Vertex;
-    in.faceVaryingValues.clear();
-    in.st.clear();
-    for (const glm::vec3& p : in.P) in.st.emplace_back(p.x / 2.0f + 0.25f, p.y);
-    SurfaceMesh byVertex;
-    ASSERT_TRUE(tessellateSubdivisionMesh(in, 2, byVertex, &err)) << err;
-    for (size_t i = 0; i < byVertex.mesh.p.size(); ++i)
-        EXPECT_NEAR(byVertex.st[i].x, byVertex.mesh.p[i].x / 2.0f + 0.25f, 1e-5f);
 }
 
 #endif  // RD_HAVE_OPENSUBDIV
@@ -239,10 +229,9 @@ TEST(Subdiv, RejectsBadInput) {
     in.nargs = {1, 0};
     in.intargs = {6};
     EXPECT_FALSE(tessellateSubdivisionMesh(in, 2, m, &err));
-    in = cube();  // facevarying st: one a face-vertex (24), not one a vertex (8)
-    in.stClass = SubdivInput::StClass::FaceVarying;
-    in.st.assign(8, glm::vec2(0.0f));
+    in = cube();  // facevarying values: one a face-vertex (24), not one a vertex (8)
+    in.faceVaryingValues.assign(1, std::vector<glm::vec3>(8));
     EXPECT_FALSE(tessellateSubdivisionMesh(in, 2, m, &err));
-    EXPECT_NE(err.find("st values"), std::string::npos) << err;
+    EXPECT_NE(err.find("facevarying values"), std::string::npos) << err;
     EXPECT_TRUE(m.mesh.p.empty());
 }
