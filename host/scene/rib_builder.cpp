@@ -405,8 +405,7 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
                                    rib::paramTypeName(p.type) +
                                    ") does not reach shader parameters: per-point values are "
                                    "carried for float, color, point, vector and normal "
-                                   "variables (8 a primitive), except vertex ones of a "
-                                   "bicubic PatchMesh, and inside ObjectBegin");
+                                   "variables (8 a primitive)");
             continue;
         }
         overrides.params.push_back(p);
@@ -498,7 +497,10 @@ uint32_t RibBuilder::currentMaterial() {
     return index;
 }
 
+// Like every begin-end pair but TransformBegin and MotionBegin, an object block saves
+// and restores the attributes, the transform with them (RI 3.2, section 4).
 void RibBuilder::objectBegin(L loc, const std::string& handle) {
+    m_attrStack.push_back(m_attrStack.back());
     if (m_defining) {
         m_diag.error(loc, "ObjectBegin inside ObjectBegin");
         return;
@@ -508,7 +510,10 @@ void RibBuilder::objectBegin(L loc, const std::string& handle) {
     m_definingCtm = m_attrStack.back().ctm;
 }
 
-void RibBuilder::objectEnd(L) { m_defining = nullptr; }
+void RibBuilder::objectEnd(L) {
+    m_defining = nullptr;
+    if (m_attrStack.size() > 1) m_attrStack.pop_back();
+}
 
 void RibBuilder::objectInstance(L loc, const std::string& handle) {
     auto it = m_objects.find(handle);
@@ -519,15 +524,18 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
     }
     // Each instance is placed by the current transform with the current shading
     // attributes. Meshes are shared (a prototype under its own BVH, reached through
-    // the instance's record), except inside a solid, where they are copied; quadrics are
-    // one record each anyway.
-    if (m_solidStack.empty()) {
-        addInstance(loc, handle, it->second);
+    // the instance's record), except inside a solid or with per-point values that each
+    // instance moves, where they are copied; quadrics are one record each anyway.
+    const ObjectDef& def = it->second;
+    if (m_solidStack.empty() && sharedPointParams(def)) {
+        addInstance(loc, handle, def);
     } else {
-        for (const VertexData& piece : it->second.meshes) addMesh(loc, piece);
+        for (const VertexData& piece : def.meshes) addMesh(loc, piece);
     }
-    for (const QuadricShape& q : it->second.quadrics)
-        addQuadric(loc, quadricKindName(q.q.kind), q, {}, quadricPlacement(q.q));
+    for (size_t i = 0; i < def.quadrics.size(); ++i) {
+        const QuadricShape& q = def.quadrics[i];
+        addQuadric(loc, quadricKindName(q.q.kind), q, def.quadricParams[i], quadricPlacement(q.q));
+    }
 }
 
 void RibBuilder::polygon(L loc, const rib::ParamList& params) {

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -256,20 +257,22 @@ private:
     // NuPatch the same over its knot spans (orders and knots given; vertex values, which
     // follow the NURBS basis, are not carried).
     struct PatchGrid {
-        bool bicubic = false, single = false, uperiodic = false, vperiodic = false;
+        bool bicubic = false, uperiodic = false, vperiodic = false;
         int nupatches = 1, nvpatches = 1;
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
         int uorder = 0, vorder = 0;  // a NuPatch's: sub-patches are its knot spans
         std::vector<float> uknot, vknot;
-        int nu = 0, nv = 0;          // a NuPatch's control points (its vertex values)
+        int nu = 0, nv = 0;  // control points (vertex values): a bicubic mesh's, a NuPatch's
         std::vector<float> weights;  // a rational NuPatch's: w of each control point
     };
     void patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
                           const std::vector<glm::vec2>& uv, const std::vector<int>& faceIndex,
                           VertexData& mesh);
     uint32_t quadricPointParams(const rib::ParamList& params, const glm::mat4& ctm);
-    std::vector<glm::vec3> pointParamToWorld(const glm::mat4& ctm,
-                                             const VertexData::PointParam& p) const;
+    // A per-point variable's values moved by ctm as its kind moves (points eye-relative
+    // in world space, unless `eyeRelative` is false).
+    std::vector<glm::vec3> pointParamToWorld(const glm::mat4& ctm, const VertexData::PointParam& p,
+                                             bool eyeRelative = true) const;
     // Scene::triangleParams gets placeholders up to the triangles so far.
     void startTrianglePointParams();
     // While a primitive that carries per-point parameters picks its material: their
@@ -364,8 +367,9 @@ private:
     // Object definitions (ObjectBegin/End): tessellated pieces and exact quadrics in the
     // object's space (a quadric's matrices map it into the object's space).
     struct ObjectDef {
-        std::vector<VertexData> meshes;
+        std::vector<VertexData> meshes;  // in the object's space, per-point values too
         std::vector<QuadricShape> quadrics;
+        std::vector<rib::ParamList> quadricParams;  // each quadric's primitive variables
     };
     std::map<std::string, ObjectDef> m_objects;
     std::map<std::string, uint32_t> m_prototypes;  // per world: handle -> Scene::prototypes
@@ -374,6 +378,12 @@ private:
     // ObjectInstance without copies: the object's meshes become a prototype (once per
     // world, in object space), each instance a record placing it.
     void addInstance(L, const std::string& handle, const ObjectDef& def);
+    // The per-point shader parameters (names, floats a value) that all of an object's
+    // meshes give, or none; nullopt when its instances cannot share one prototype: its
+    // meshes give different ones, or points, vectors or normals, which each instance
+    // places in its own space (those instances are copies, as inside a solid).
+    static std::optional<std::vector<std::pair<std::string, int>>> sharedPointParams(
+        const ObjectDef& def);
 
     ObjectDef* m_defining = nullptr;
     // SolidBegin/End blocks being built: a tree of nodes; primitive leaves list the

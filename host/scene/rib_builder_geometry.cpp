@@ -114,10 +114,8 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
             m_diag.warning(loc, std::string(what) + ": singular transform, left out");
             return;
         }
-        if (!pointParamsOf(&params).empty())
-            m_diag.warning(loc, "primitive variables given per point to shader parameters are "
-                                "not carried inside ObjectBegin");
         m_defining->quadrics.push_back(shape);
+        m_defining->quadricParams.push_back(params);  // each instance reads them
         return;
     }
     if (!placeQuadric(q, eyeRelative(m_attrStack.back().ctm, placement))) {
@@ -349,7 +347,8 @@ void RibBuilder::patch(L loc, S type, P params) {
     const Attributes& a = m_attrStack.back();
     bool ok = tessellatePatch(type, kind, pos, a.ubasis, a.vbasis, seg, seg, m, &err);
     PatchGrid grid;
-    grid.bicubic = type == "bicubic", grid.single = true;
+    grid.bicubic = type == "bicubic";
+    grid.nu = grid.nv = grid.bicubic ? 4 : 2;
     grid.ubasis = a.ubasis, grid.vbasis = a.vbasis;
     addSurface(loc, "Patch", ok, m, err, [&](VertexData& mesh) {
         patchPointParams(params, grid, m.st, m.faceIndex, mesh);
@@ -377,6 +376,7 @@ void RibBuilder::patchMesh(L loc, S type, int nu, S uwrap, int nv, S vwrap, P pa
     grid.nupatches = std::max(1, patchCount(in.bicubic, nu, in.uperiodic, in.ubasis.step));
     grid.nvpatches = std::max(1, patchCount(in.bicubic, nv, in.vperiodic, in.vbasis.step));
     grid.ubasis = in.ubasis, grid.vbasis = in.vbasis;
+    grid.nu = nu, grid.nv = nv;
     addSurface(loc, "PatchMesh", ok, m, err, [&](VertexData& mesh) {
         patchPointParams(params, grid, m.st, m.faceIndex, mesh);
     });

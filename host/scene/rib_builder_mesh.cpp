@@ -74,10 +74,7 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
         glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
         glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(toObject)));
         VertexData piece = mesh;
-        if (!piece.params.empty() && m_warnedAt.insert({loc.file, loc.line}).second)
-            m_diag.warning(loc, "primitive variables given per point to shader parameters are "
-                                "not carried inside ObjectBegin");
-        piece.params.clear();  // its instances' surfaces have none
+        for (VertexData::PointParam& p : piece.params) p.v = pointParamToWorld(toObject, p, false);
         for (glm::vec3& v : piece.p) v = xformPoint(toObject, v);
         for (glm::vec3& v : piece.n) v = nm * v;
         m_defining->meshes.push_back(std::move(piece));
@@ -122,13 +119,12 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     const glm::mat4& ctm = m_attrStack.back().ctm;
     glm::mat3 nm = prototype ? glm::mat3(1.0f) : glm::transpose(glm::inverse(glm::mat3(ctm)));
     // Per-point shader parameters: their surface variant gets them in the same order
-    // (prototypes are shaded with their instance's surface, which has none)
+    // (a prototype's, in its object space, are laid out for its instances' surfaces)
     std::vector<std::vector<glm::vec3>> pointParams;
-    if (!prototype)
-        for (const VertexData::PointParam& p : mesh.params) {
-            pointParams.push_back(pointParamToWorld(ctm, p));
-            if (p.piece == 0) m_carriedPointParams.push_back({p.name, p.floats});
-        }
+    for (const VertexData::PointParam& p : mesh.params) {
+        pointParams.push_back(prototype ? p.v : pointParamToWorld(ctm, p));
+        if (p.piece == 0 && !prototype) m_carriedPointParams.push_back({p.name, p.floats});
+    }
     if (!pointParams.empty()) startTrianglePointParams();
     uint32_t material = currentMaterial();
     m_carriedPointParams.clear();
@@ -279,6 +275,22 @@ void RibBuilder::addMovingTriangle(const Triangle& first, const Triangle& last) 
     m_world.quadricBounds.push_back(box);
 }
 
+std::optional<std::vector<std::pair<std::string, int>>> RibBuilder::sharedPointParams(
+    const ObjectDef& def) {
+    std::optional<std::vector<std::pair<std::string, int>>> list;
+    for (const VertexData& piece : def.meshes) {
+        if (piece.params.empty()) continue;
+        std::vector<std::pair<std::string, int>> own;
+        for (const VertexData::PointParam& p : piece.params) {
+            if (p.kind != VertexData::Kind::Float && p.kind != VertexData::Kind::Color) return std::nullopt;
+            if (p.piece == 0) own.push_back({p.name, p.floats});
+        }
+        if (list && *list != own) return std::nullopt;
+        list = std::move(own);
+    }
+    return list ? list : std::vector<std::pair<std::string, int>>{};
+}
+
 void RibBuilder::addInstance(L loc, const std::string& handle, const ObjectDef& def) {
     if (def.meshes.empty()) return;
     auto [it, fresh] = m_prototypes.try_emplace(handle, uint32_t(m_world.prototypes.size()));
@@ -302,7 +314,10 @@ void RibBuilder::addInstance(L loc, const std::string& handle, const ObjectDef& 
     q.first_member = it->second;  // the renderer replaces it with the prototype's BVH root
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
     q.point_params = RT_NO_POINT_PARAMS;
+    // the prototype's per-point values are laid out as this surface takes them
+    m_carriedPointParams = *sharedPointParams(def);
     q.material = currentMaterial();
+    m_carriedPointParams.clear();
     if (!placeQuadric(q, eyeRelative(m_attrStack.back().ctm, glm::mat4(1.0f)))) {
         m_diag.warning(loc, "ObjectInstance: singular or non-finite transform, left out");
         return;

@@ -322,18 +322,15 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
     // across a direction unless it wraps (RI); a bilinear mesh's vertex values too
     const int gu = grid.nupatches + (grid.uperiodic ? 0 : 1);
     const int gv = grid.nvpatches + (grid.vperiodic ? 0 : 1);
-    // Vertex values of a bicubic mesh are not carried (surfaceFor warns of the
-    // parameters; the colours are left out alone, as on polygons).
+    // vertex values sit on the control points: nu x nv of a bicubic mesh or a NuPatch
     const bool nurbs = grid.uorder > 0;
     auto carried = [&](const rib::Param* p) {
         const size_t n = valueCount(*p) / size_t(p->components() * p->arraySize);
-        const bool bicubicVertex = grid.bicubic && p->storage == rib::StorageClass::Vertex;
-        if (nurbs && p->storage == rib::StorageClass::Vertex)
+        if ((nurbs || grid.bicubic) && p->storage == rib::StorageClass::Vertex)
             return n == size_t(grid.nu) * size_t(grid.nv);
         return p->storage == rib::StorageClass::Uniform
                    ? n == size_t(grid.nupatches * grid.nvpatches)
-               : bicubicVertex ? (grid.single && n == 16)
-                               : n == size_t(gu * gv);
+                   : n == size_t(gu * gv);
     };
     list.erase(std::remove_if(list.begin(), list.end(),
                               [&](const rib::Param* p) {
@@ -370,13 +367,21 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
             return valueAt(p, t < faceIndex.size() ? size_t(faceIndex[t]) : 0);
         }
         if (grid.bicubic && p.storage == rib::StorageClass::Vertex) {
-            // the patch's own basis over its 16 values
-            float wu[4], wv[4];
-            basisWeights(grid.ubasis, at.x, wu);
-            basisWeights(grid.vbasis, at.y, wv);
+            // the sub-patch's own basis over its 4 x 4 control points' values, picked as
+            // the tessellator picks its points (every step-th, wrapping when periodic)
+            int pu, pv;
+            float fu, fv, wu[4], wv[4];
+            spanAt(at.x, grid.nupatches, {}, 0, &pu, &fu);
+            spanAt(at.y, grid.nvpatches, {}, 0, &pv, &fv);
+            basisWeights(grid.ubasis, fu, wu);
+            basisWeights(grid.vbasis, fv, wv);
             glm::vec3 v(0.0f);
             for (int b = 0; b < 4; ++b)
-                for (int a = 0; a < 4; ++a) v += wu[a] * wv[b] * valueAt(p, size_t(4 * b + a));
+                for (int a = 0; a < 4; ++a) {
+                    const int iu = (pu * grid.ubasis.step + a) % grid.nu;
+                    const int iv = (pv * grid.vbasis.step + b) % grid.nv;
+                    v += wu[a] * wv[b] * valueAt(p, size_t(iv) * size_t(grid.nu) + size_t(iu));
+                }
             return v;
         }
         // bilinear between the corners of the sub-patch the vertex is in
@@ -515,9 +520,15 @@ void RibBuilder::cornerPointParams(const rib::ParamList& params, VertexData& mes
 // Object-space values to the device's world space (eye-relative, like P): points by
 // the full transform, vectors by its linear part, normals by its inverse transpose.
 std::vector<glm::vec3> RibBuilder::pointParamToWorld(const glm::mat4& ctm,
-                                                     const VertexData::PointParam& p) const {
+                                                     const VertexData::PointParam& p,
+                                                     bool eyeRelative) const {
     switch (p.kind) {
-    case Kind::Point: return worldPoints(ctm, p.v);
+    case Kind::Point: {
+        if (eyeRelative) return worldPoints(ctm, p.v);
+        std::vector<glm::vec3> out(p.v.size());
+        for (size_t i = 0; i < out.size(); ++i) out[i] = xformPoint(ctm, p.v[i]);
+        return out;
+    }
     case Kind::Vector:
     case Kind::Normal: {
         const glm::mat3 m = p.kind == Kind::Vector ? glm::mat3(ctm)

@@ -42,7 +42,9 @@ float distanceToCircle(const Quadric& q, const BoundaryCircle& c, glm::vec3 p) {
 
 }  // namespace
 
+// A solid block saves and restores the attributes, as an attribute block does (RI 3.2).
 void RibBuilder::solidBegin(L loc, S op) {
+    m_attrStack.push_back(m_attrStack.back());
     if (m_defining) {
         m_diag.error(loc, "SolidBegin inside ObjectBegin is not supported");
         return;
@@ -55,6 +57,7 @@ void RibBuilder::solidBegin(L loc, S op) {
 }
 
 void RibBuilder::solidEnd(L) {
+    if (m_attrStack.size() > 1) m_attrStack.pop_back();
     if (m_solidStack.empty()) return;
     int node = m_solidStack.back();
     m_solidStack.pop_back();

@@ -119,3 +119,24 @@ TEST(Instances, AThousandInstancesStoreTheObjectOnce) {
     double area = img.mean(3, 0, 0, 96, 96) * 36.0;  // 1000 squares of 0.01
     EXPECT_NEAR(area / 10.0, 1.0, 0.03);
 }
+
+// ObjectBegin and SolidBegin blocks save and restore the attributes (RI 3.2: every
+// begin-end pair but TransformBegin and MotionBegin): a Translate inside an object
+// places the object's sphere for its instances, and one inside a solid its sphere, but
+// neither moves the square given after the block. Before, both leaked: the square sat
+// at (1.5, 1.5) and the origin was empty.
+TEST(Instances, ObjectAndSolidBlocksKeepTheirTransformToThemselves) {
+    const std::string world =
+        std::string("WorldBegin\nSurface \"constant\"\nObjectBegin \"o\"\nTranslate 1.5 0 0\n"
+                    "Sphere 0.5 -0.5 0.5 360\nObjectEnd\nObjectInstance \"o\"\n"
+                    "SolidBegin \"primitive\"\nTranslate 0 1.5 0\nSphere 0.5 -0.5 0.5 360\n"
+                    "SolidEnd\n") +
+        kSquare + "WorldEnd\n";
+    Rendered img = renderRib(kCamera + world);
+    auto alpha = [&](double x, double y) { return img.at(int((x + 3) * 16), int((3 - y) * 16)).a; };
+    EXPECT_FLOAT_EQ(alpha(0, 0), 1.0f) << "the square, at the origin";
+    EXPECT_FLOAT_EQ(alpha(1.5, 0), 1.0f) << "the object's sphere";
+    EXPECT_FLOAT_EQ(alpha(0, 1.5), 1.0f) << "the solid's sphere";
+    EXPECT_FLOAT_EQ(alpha(-1.5, 0), 0.0f);
+    EXPECT_FLOAT_EQ(alpha(2.5, 0), 0.0f);
+}

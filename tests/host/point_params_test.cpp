@@ -179,6 +179,50 @@ TEST(PointParams, Patches) {
     EXPECT_LT(columnError(mesh, 0, [](double) { return 5.0; }, kSize / 2, kSize), 1e-5);
 }
 
+// A bicubic PatchMesh's vertex values are one a control point, through each sub-patch's
+// basis over the same 4 x 4 points as its positions. A b-spline mesh of 6 x 4 evenly
+// spaced points covers [-1, 1]^2 (3 sub-patches across), and values linear in the
+// points' x and y, (x + 1) / 4 + (y + 1) / 4, are that function of the surface point:
+// every pixel to 5e-3. A Bezier mesh of 7 columns (ustep 3: 2 sub-patches sharing
+// column 3) with columns' values [0 0 0 0 1 1 1] is 0 left of the middle and
+// 1 - (1 - u)^3 right of it (u = x there), by column means to 4e-3: a sub-patch that
+// took its values from columns 1-4 (no step) fails it.
+TEST(PointParams, BicubicPatchMeshVertexValues) {
+    const std::string world = shaders() + kCam + "WorldBegin\nSurface \"pp_value\"\n";
+    std::string p, kd;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 6; ++i) {
+            const double x = -5.0 / 3 + i * 2.0 / 3, y = -3.0 + 2 * j;
+            p += std::to_string(x) + " " + std::to_string(y) + " 1  ";
+            kd += std::to_string((x + 1) / 4 + (y + 1) / 4) + " ";
+        }
+    Rendered bspline = renderRib(world + "Basis \"b-spline\" 1 \"b-spline\" 1\n"
+                                 "PatchMesh \"bicubic\" 6 \"nonperiodic\" 4 \"nonperiodic\" "
+                                 "\"P\" [" + p + "] \"vertex float Kd\" [" + kd + "]\nWorldEnd\n");
+    double worst = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const double want = (centre(x) + 1) / 4 + (-centre(y) + 1) / 4;
+            worst = std::max(worst, std::fabs(bspline.mean(0, x, y, x + 1, y + 1) - want));
+        }
+    EXPECT_LT(worst, 5e-3);
+    p.clear(), kd.clear();
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 7; ++i) {
+            p += std::to_string(-1 + i / 3.0) + " " + std::to_string(-1 + 2 * j / 3.0) + " 1  ";
+            kd += i < 4 ? "0 " : "1 ";
+        }
+    Rendered bezier = renderRib(world + "PatchMesh \"bicubic\" 7 \"nonperiodic\" 4 \"nonperiodic\" "
+                                "\"P\" [" + p + "] \"vertex float Kd\" [" + kd + "]\nWorldEnd\n");
+    auto rightHalf = [](double x) {  // the column's mean of 1 - (1 - u)^3, u = x
+        if (x < 0) return 0.0;
+        auto F = [](double u) { return u + std::pow(1 - u, 4) / 4; };
+        const double h = 1.0 / kSize;
+        return (F(x + h) - F(x - h)) / (2 * h);
+    };
+    EXPECT_LT(columnError(bezier, 0, rightHalf), 4e-3);
+}
+
 // Points: each disc has its point's value ("varying float Kd" [0.3 0.9]) all over;
 // pixels the discs cover whole, exact.
 TEST(PointParams, PointsHaveTheirPointsValue) {
@@ -317,6 +361,41 @@ TEST(PointParams, NuPatchVertexValuesFollowItsBasis) {
     EXPECT_NEAR(plain.mean(0, 7, 7, 9, 9), 0.25, 0.02);
     Rendered weighted = renderRib(world + patch(true) + bump);
     EXPECT_NEAR(weighted.mean(0, 7, 7, 9, 9), 0.4, 0.02);
+}
+
+// Per-point values inside ObjectBegin reach each instance's surface. A square's
+// "varying float Kd" ramp [0 1 1 0], shared by two instances (one prototype): Kd = x + 1
+// on the left one, under its Surface, and 2 x (tint 2) on the right one, under another;
+// each to 3e-3 by column. A "varying point Pref" equal to P inside an object is P
+// wherever an instance puts it (those instances are copies): 0 everywhere, to 1e-4. A
+// sphere's [0 0 1 1] in an object is v on its instance, as in VaryingOnASphere.
+TEST(PointParams, InsideObjectBegin) {
+    const std::string world = shaders() + kCam + "WorldBegin\n";
+    Rendered ramp = renderRib(world + "ObjectBegin \"sq\"\nPolygon \"P\" [-0.5 -1 1  0.5 -1 1  "
+                              "0.5 1 1  -0.5 1 1] \"varying float Kd\" [0 1 1 0]\nObjectEnd\n"
+                              "AttributeBegin\nSurface \"pp_value\"\nTranslate -0.5 0 0\n"
+                              "ObjectInstance \"sq\"\nAttributeEnd\n"
+                              "AttributeBegin\nSurface \"pp_value\" \"color tint\" [2 2 2]\n"
+                              "Translate 0.5 0 0\nObjectInstance \"sq\"\nAttributeEnd\nWorldEnd\n");
+    EXPECT_LT(columnError(ramp, 0, [](double x) { return x + 1; }, 0, kSize / 2), 3e-3);
+    EXPECT_LT(columnError(ramp, 0, [](double x) { return 2 * x; }, kSize / 2, kSize), 3e-3);
+    EXPECT_TRUE(hasOption(ramp));
+    Rendered point = renderRib(world + "ObjectBegin \"sq\"\nScale 0.5 1 1\n"
+                               "Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0] "
+                               "\"varying point Pref\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\n"
+                               "ObjectEnd\nSurface \"pp_point\"\nTranslate 0 0 2\n"
+                               "AttributeBegin\nTranslate -0.5 0 0\nRotate 10 0 1 0\n"
+                               "ObjectInstance \"sq\"\nAttributeEnd\n"
+                               "AttributeBegin\nTranslate 0.5 0 0\nObjectInstance \"sq\"\n"
+                               "AttributeEnd\nWorldEnd\n");
+    EXPECT_LT(columnError(point, 0, [](double) { return 0.0; }), 1e-4);
+    Rendered ball = renderRib(world + "Surface \"pp_value\"\nObjectBegin \"ball\"\n"
+                              "Rotate -90 1 0 0\nSphere 1 -1 1 360 \"varying float Kd\" [0 0 1 1]\n"
+                              "ObjectEnd\nTranslate 0 0 5\nObjectInstance \"ball\"\nWorldEnd\n");
+    for (int y = 2; y < kSize - 2; ++y)
+        EXPECT_NEAR(ball.mean(0, kSize / 2 - 1, y, kSize / 2 + 1, y + 1),
+                    std::asin(-centre(y)) / M_PI + 0.5, 0.01)
+            << "row " << y;
 }
 
 // A uniform declaration reading a per-point parameter is computed at the point, not
