@@ -534,7 +534,8 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
     }
     for (size_t i = 0; i < def.quadrics.size(); ++i) {
         const QuadricShape& q = def.quadrics[i];
-        addQuadric(loc, quadricKindName(q.q.kind), q, def.quadricParams[i], quadricPlacement(q.q));
+        addQuadric(loc, quadricKindName(q.q.kind), q, def.quadricParams[i],
+                   quadricPlacement(q.q));
     }
 }
 

@@ -262,7 +262,7 @@ private:
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
         int uorder = 0, vorder = 0;  // a NuPatch's: sub-patches are its knot spans
         std::vector<float> uknot, vknot;
-        int nu = 0, nv = 0;  // control points (vertex values): a bicubic mesh's, a NuPatch's
+        int nu = 0, nv = 0;  // control points (vertex values): bicubic mesh, NuPatch
         std::vector<float> weights;  // a rational NuPatch's: w of each control point
     };
     void patchPointParams(const rib::ParamList& params, const PatchGrid& grid,
@@ -271,7 +271,8 @@ private:
     uint32_t quadricPointParams(const rib::ParamList& params, const glm::mat4& ctm);
     // A per-point variable's values moved by ctm as its kind moves (points eye-relative
     // in world space, unless `eyeRelative` is false).
-    std::vector<glm::vec3> pointParamToWorld(const glm::mat4& ctm, const VertexData::PointParam& p,
+    std::vector<glm::vec3> pointParamToWorld(const glm::mat4& ctm,
+                                             const VertexData::PointParam& p,
                                              bool eyeRelative = true) const;
     // Scene::triangleParams gets placeholders up to the triangles so far.
     void startTrianglePointParams();

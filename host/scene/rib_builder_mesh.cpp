@@ -74,7 +74,8 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
         glm::mat4 toObject = glm::inverse(m_definingCtm) * m_attrStack.back().ctm;
         glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(toObject)));
         VertexData piece = mesh;
-        for (VertexData::PointParam& p : piece.params) p.v = pointParamToWorld(toObject, p, false);
+        for (VertexData::PointParam& p : piece.params)
+            p.v = pointParamToWorld(toObject, p, false);
         for (glm::vec3& v : piece.p) v = xformPoint(toObject, v);
         for (glm::vec3& v : piece.n) v = nm * v;
         m_defining->meshes.push_back(std::move(piece));
@@ -123,7 +124,8 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     std::vector<std::vector<glm::vec3>> pointParams;
     for (const VertexData::PointParam& p : mesh.params) {
         pointParams.push_back(prototype ? p.v : pointParamToWorld(ctm, p));
-        if (p.piece == 0 && !prototype) m_carriedPointParams.push_back({p.name, p.floats});
+        if (p.piece == 0 && !prototype)
+            m_carriedPointParams.push_back({p.name, p.floats});
     }
     if (!pointParams.empty()) startTrianglePointParams();
     uint32_t material = currentMaterial();
@@ -282,7 +284,8 @@ std::optional<std::vector<std::pair<std::string, int>>> RibBuilder::sharedPointP
         if (piece.params.empty()) continue;
         std::vector<std::pair<std::string, int>> own;
         for (const VertexData::PointParam& p : piece.params) {
-            if (p.kind != VertexData::Kind::Float && p.kind != VertexData::Kind::Color) return std::nullopt;
+            if (p.kind != VertexData::Kind::Float && p.kind != VertexData::Kind::Color)
+                return std::nullopt;
             if (p.piece == 0) own.push_back({p.name, p.floats});
         }
         if (list && *list != own) return std::nullopt;

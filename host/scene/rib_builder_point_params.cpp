@@ -380,7 +380,8 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
                 for (int a = 0; a < 4; ++a) {
                     const int iu = (pu * grid.ubasis.step + a) % grid.nu;
                     const int iv = (pv * grid.vbasis.step + b) % grid.nv;
-                    v += wu[a] * wv[b] * valueAt(p, size_t(iv) * size_t(grid.nu) + size_t(iu));
+                    v += wu[a] * wv[b] *
+                         valueAt(p, size_t(iv) * size_t(grid.nu) + size_t(iu));
                 }
             return v;
         }

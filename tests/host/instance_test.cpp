@@ -133,7 +133,9 @@ TEST(Instances, ObjectAndSolidBlocksKeepTheirTransformToThemselves) {
                     "SolidEnd\n") +
         kSquare + "WorldEnd\n";
     Rendered img = renderRib(kCamera + world);
-    auto alpha = [&](double x, double y) { return img.at(int((x + 3) * 16), int((3 - y) * 16)).a; };
+    auto alpha = [&](double x, double y) {
+        return img.at(int((x + 3) * 16), int((3 - y) * 16)).a;
+    };
     EXPECT_FLOAT_EQ(alpha(0, 0), 1.0f) << "the square, at the origin";
     EXPECT_FLOAT_EQ(alpha(1.5, 0), 1.0f) << "the object's sphere";
     EXPECT_FLOAT_EQ(alpha(0, 1.5), 1.0f) << "the solid's sphere";
