@@ -136,7 +136,8 @@ struct RayPool {
 };
 
 struct RenderKernels {
-    RenderKernels(const ClContext& ctx, cl_program p, Profiler& prof,
+    // `p`: the trace program, `shading`: the one with the shade kernels (render_programs.h)
+    RenderKernels(const ClContext& ctx, cl_program p, cl_program shading, Profiler& prof,
                   const std::vector<std::string>& shadeKernels)
         : generateEye(ctx, p, "generate_eye", prof),
           intersectClosest(ctx, p, "intersect_closest", prof),
@@ -147,7 +148,7 @@ struct RenderKernels {
           compactScatter(ctx, p, "compact_scatter", prof), fitRefill(ctx, p, "fit_refill", prof),
           retire(ctx, p, "retire_samples", prof) {
         for (const std::string& name : shadeKernels)
-            shade.push_back(std::make_unique<Kernel>(ctx, p, name, prof));
+            shade.push_back(std::make_unique<Kernel>(ctx, shading, name, prof));
     }
     Kernel generateEye, intersectClosest, classify, scatter, intersectShadow, closeRound,
         compactScatter, fitRefill, retire;

@@ -30,6 +30,7 @@
 #include "progress.h"
 #include "ray_pool.h"
 #include "refill.h"
+#include "render_programs.h"
 #include "render_summary.h"
 #include "sample_ring.h"
 #include "scene_bvh.h"
@@ -47,10 +48,6 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-const std::vector<std::string> kRenderSources = {
-    "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "close_round.cl", "compact.cl",
-    "retire.cl", "treelet.cl"};
 
 // Whether the queued jobs hold at most `room` samples. Asked every round: a queue of more
 // jobs than that is not walked (a job holds one sample or more).
@@ -177,15 +174,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         return FirstPass{std::move(jobs), std::move(stage)};
     });
 
-    // Scene -> BVH -> specialised program -> device arrays. The program builds on another
-    // thread while the BVH is built: neither needs the other (a cold build is a second or
-    // more of the compiler, a warm one 40-60 ms on PoCL).
-    std::future<std::unique_ptr<Program>> programBuild = std::async(std::launch::async, [&] {
-        std::vector<std::string> sources = kRenderSources;
-        sources.insert(sources.end(), shading.sourceOrder.begin(), shading.sourceOrder.end());
-        return std::make_unique<Program>(m_ctx, assembleClSource(sources, shading.generated),
-                                         buildOptions(f));
-    });
+    // Scene -> BVH -> specialised programs (trace, shading) -> device arrays. The programs
+    // build on another thread while the BVH is built: neither needs the other (a cold
+    // build is a second or more of the compiler, a warm one 40-60 ms on PoCL).
+    std::future<RenderPrograms> programBuild = std::async(
+        std::launch::async, [&] { return RenderPrograms(m_ctx, shading, buildOptions(f)); });
     auto tb = Clock::now();
     SceneBvh sceneBvh = buildSceneBvh(scene, f.bvhWidth);
     const Bvh4& bvh4 = sceneBvh.bvh4;  // (empty when the tree is eight-wide)
@@ -204,16 +197,19 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                     scene.quadrics.size() * sizeof(Quadric) + scene.csg.size() * 4;
     st.bvhNodes = sceneBvh.width == 8 ? sceneBvh.bvh8.nodes.size() : bvh4.nodes.size();
     st.droppedPrims = sceneBvh.droppedPrims;
-    const std::unique_ptr<Program> program = programBuild.get();
-    st.program = program->info();
+    const RenderPrograms programs = programBuild.get();
+    st.program = programs.info();
+    st.traceProgram = programs.trace->info();
+    st.shadeProgram = programs.shade->info();
     Profiler prof(m_ctx);
     if (m_settings.timeline) prof.keepTimeline();
-    RenderKernels k(m_ctx, program->get(), prof, shading.shadeKernels);
+    RenderKernels k(m_ctx, programs.trace->get(), programs.shade->get(), prof,
+                    shading.shadeKernels);
     if (f.shadowPackets) k.intersectShadow.setLanesPerItem(RT_PACKET_RAYS);
     if (f.closestPackets) k.intersectClosest.setLanesPerItem(RT_PACKET_RAYS);
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     if (!shading.prepares.empty()) {  // the shaders' uniform work, once per instance
-        Kernel prepare(m_ctx, program->get(), "rd_prepare_uniforms", prof);
+        Kernel prepare(m_ctx, programs.shade->get(), "rd_prepare_uniforms", prof);
         prepare.launch(shading.prepares.size(), cl_uint(shading.prepares.size()), ds.params);
         prepare.collectActive();
     }
@@ -232,10 +228,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                        ? m_settings.sceneMemoryBytes
                                        : size_t(scene.render.sceneMemoryKB) << 10;
         treelets = sceneBvh.width == 8
-                       ? std::make_unique<TreeletTracer>(m_ctx, program->get(), prof,
+                       ? std::make_unique<TreeletTracer>(m_ctx, programs.trace->get(), prof,
                                                          sceneBvh.bvh8, treeletBudget,
                                                          sceneMemory, pool, st.treelets)
-                       : std::make_unique<TreeletTracer>(m_ctx, program->get(), prof, bvh4,
+                       : std::make_unique<TreeletTracer>(m_ctx, programs.trace->get(), prof, bvh4,
                                                          treeletBudget, sceneMemory, pool,
                                                          st.treelets);
     }
@@ -629,7 +625,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     progress.finish();
     if (shading.imager) {  // the Imager shader on the finished image (also a stopped one)
         filmBuf.syncToHost();
-        film.imaged = applyImager(m_ctx, program->get(), prof, film, ds.params);
+        film.imaged = applyImager(m_ctx, programs.shade->get(), prof, film, ds.params);
     } else {  // the film's sync overlaps the profiler's reads; collectActive waits for it
         filmBuf.syncToHost(/*blocking=*/false);
     }

@@ -109,7 +109,8 @@ struct RenderStats {
     std::string stopReason;  // "quality", "error target", "time budget", "SIGINT", ...
     std::vector<ErrorSample> errorVsTime;
     Features features;
-    ProgramBuildInfo program;
+    ProgramBuildInfo program;  // the two programs as one (render_programs.h)
+    ProgramBuildInfo traceProgram, shadeProgram;
     std::string device, platform;
     bool threadsPinned = false;  // PoCL's worker threads pinned (pinPoclThreadsByDefault)
     std::map<std::string, KernelStats> kernels;

@@ -6,6 +6,17 @@
 
 namespace rd {
 
+namespace {
+// One of a render's two programs (render_programs.h): its own options (the trace
+// program's, only those its source reads), whether it was cached, its build time.
+nlohmann::json programPart(const ProgramBuildInfo& p) {
+    return {{"build_options", p.options},
+            {"cache_hit", p.cacheHit},
+            {"cache_key", p.cacheKey},
+            {"build_ms", p.buildMs}};
+}
+}  // namespace
+
 nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                            const std::string& output) {
     using nlohmann::json;
@@ -67,7 +78,9 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                      {"cache_hit", st.program.cacheHit},
                      {"cache_key", st.program.cacheKey},
                      {"cache_file", st.program.cacheFile},
-                     {"build_ms", st.program.buildMs}}},
+                     {"build_ms", st.program.buildMs},
+                     {"trace", programPart(st.traceProgram)},
+                     {"shading", programPart(st.shadeProgram)}}},
         {"nonfinite_samples", st.nonfiniteSamples},
         {"numerics", {{"shader_nonfinite", st.shadeNonfinite},
                       {"shader_negative", st.shadeNegative},
@@ -178,8 +191,12 @@ void printStatsTable(std::ostream& out, const nlohmann::json& s) {
     }
     out << "features ";
     for (const auto& f : s["features"]) out << " " << f.get<std::string>();
-    out << "\nprogram   " << (s["program"]["cache_hit"].get<bool>() ? "cache hit" : "built")
-        << " in " << s["program"]["build_ms"].get<double>() << " ms, options: "
+    auto built = [&](const nlohmann::json& p) {
+        return (p["cache_hit"].get<bool>() ? "cache hit" : "built") + std::string(" in ") +
+               std::to_string(int(p["build_ms"].get<double>() + 0.5)) + " ms";
+    };
+    out << "\nprogram   trace " << built(s["program"]["trace"]) << ", shading "
+        << built(s["program"]["shading"]) << ", options: "
         << s["program"]["build_options"].get<std::string>() << "\n";
     out << std::left << std::setw(20) << "kernel" << std::right << std::setw(9) << "launches"
         << std::setw(12) << "device ms" << std::setw(14) << "launched" << std::setw(14)

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "ocl/program.h"
+#include "render/render_programs.h"
 #include "render_harness.h"
 
 using namespace rd;
@@ -108,4 +109,38 @@ TEST(ProgramCache, IncludesAreResolvedOnce) {
     ASSERT_NE(first, std::string::npos);
     EXPECT_EQ(src.find("typedef struct BvhNode", first + 1), std::string::npos);
     EXPECT_THROW(assembleClSource({"no_such_file.cl"}), std::runtime_error);
+}
+
+// The trace program is built with the -D options its source names only (as whole
+// words), and keeps every other option: scenes that differ in what only shading reads
+// share it.
+TEST(ProgramCache, OptionsUsedByKeepWhatTheSourceReads) {
+    const std::string source = "#ifdef RT_A\nint x = RT_AB;\n#endif\n";
+    EXPECT_EQ(optionsUsedBy(source, "-cl-std=CL1.2 -DRT_A -DRT_B=3 -DRT_AB=1 -DRT_ABC -DRT"),
+              "-cl-std=CL1.2 -DRT_A -DRT_AB=1");
+    EXPECT_EQ(optionsUsedBy(source, ""), "");
+}
+
+// A render builds two programs: the trace stages' and the shading's. An edit of the
+// shader's code (another shader, the same scene) builds a new shading program and finds
+// the trace program in the cache (same key, a hit); the image is the new shader's.
+TEST(ProgramCache, AShaderEditRebuildsTheShadingAlone) {
+    const std::string dir = freshDir("shader-edit");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/edit_a.sl") << "surface edit_a() { Oi = 1; Ci = 0.25; }\n";
+    std::ofstream(dir + "/edit_b.sl") << "surface edit_b() { Oi = 1; Ci = 0.75; }\n";
+    auto scene = [&](const char* shader) {
+        return "Option \"searchpath\" \"shader\" [\"" + dir +
+               ":&\"]\nFormat 8 8 1\nProjection \"orthographic\"\nWorldBegin\nSurface \"" +
+               shader + "\"\nPolygon \"P\" [-2 -2 1  2 -2 1  2 2 1  -2 2 1]\nWorldEnd\n";
+    };
+    test::Rendered a = test::renderRib(scene("edit_a")), b = test::renderRib(scene("edit_b"));
+    EXPECT_EQ(a.stats.traceProgram.cacheKey, b.stats.traceProgram.cacheKey);
+    EXPECT_TRUE(b.stats.traceProgram.cacheHit);
+    EXPECT_NE(a.stats.shadeProgram.cacheKey, b.stats.shadeProgram.cacheKey);
+    EXPECT_FLOAT_EQ(a.at(4, 4).r, 0.25f);
+    EXPECT_FLOAT_EQ(b.at(4, 4).r, 0.75f);
+    EXPECT_EQ(b.stats.program.options, b.stats.shadeProgram.options);
+    EXPECT_LT(b.stats.traceProgram.options.size(), b.stats.program.options.size());
+    std::filesystem::remove_all(dir);
 }

@@ -1,0 +1,63 @@
+// render_programs.cpp: the trace and shading programs of a render (render_programs.h).
+#include "render_programs.h"
+
+#include <cctype>
+#include <sstream>
+#include <unordered_set>
+
+#include "shaders/shader_set.h"
+
+namespace rd {
+
+const std::vector<std::string> kTraceSources = {
+    "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "close_round.cl", "compact.cl",
+    "retire.cl",       "treelet.cl"};
+
+namespace {
+bool isWordChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+}  // namespace
+
+std::string optionsUsedBy(const std::string& source, const std::string& options) {
+    std::unordered_set<std::string> words;
+    for (size_t i = 0; i < source.size();) {
+        if (!isWordChar(source[i])) {
+            ++i;
+            continue;
+        }
+        size_t j = i;
+        while (j < source.size() && isWordChar(source[j])) ++j;
+        words.emplace(source, i, j - i);
+        i = j;
+    }
+    std::istringstream in(options);
+    std::string opt, out;
+    while (in >> opt) {
+        if (opt.rfind("-D", 0) == 0) {
+            const std::string name = opt.substr(2, opt.find('=') - 2);
+            if (!words.count(name)) continue;
+        }
+        out += (out.empty() ? "" : " ") + opt;
+    }
+    return out;
+}
+
+RenderPrograms::RenderPrograms(const ClContext& ctx, const ShadingSetup& shading,
+                               const std::string& options) {
+    const std::string traceSource = assembleClSource(kTraceSources);
+    trace = std::make_unique<Program>(ctx, traceSource, optionsUsedBy(traceSource, options));
+    shade = std::make_unique<Program>(ctx, assembleClSource(shading.sourceOrder, shading.generated),
+                                      options);
+}
+
+ProgramBuildInfo RenderPrograms::info() const {
+    ProgramBuildInfo i = shade->info();
+    const ProgramBuildInfo& t = trace->info();
+    i.cacheHit = i.cacheHit && t.cacheHit;
+    i.driverCache = i.driverCache && t.driverCache;
+    i.buildMs += t.buildMs;
+    i.cacheKey = t.cacheKey + "+" + i.cacheKey;
+    i.cacheFile = t.cacheFile + (t.cacheFile.empty() ? "" : " ") + i.cacheFile;
+    return i;
+}
+
+}  // namespace rd
