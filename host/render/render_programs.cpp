@@ -42,15 +42,17 @@ std::string optionsUsedBy(const std::string& source, const std::string& options)
 }
 
 RenderPrograms::RenderPrograms(const ClContext& ctx, const ShadingSetup& shading,
-                               const std::string& options) {
+                               const std::string& options)
+    : options(options) {
     const std::string traceSource = assembleClSource(kTraceSources);
     trace = std::make_unique<Program>(ctx, traceSource, optionsUsedBy(traceSource, options));
-    shade = std::make_unique<Program>(ctx, assembleClSource(shading.sourceOrder, shading.generated),
-                                      options);
+    const std::string shadeSource = assembleClSource(shading.sourceOrder, shading.generated);
+    shade = std::make_unique<Program>(ctx, shadeSource, optionsUsedBy(shadeSource, options));
 }
 
 ProgramBuildInfo RenderPrograms::info() const {
     ProgramBuildInfo i = shade->info();
+    i.options = options;
     const ProgramBuildInfo& t = trace->info();
     i.cacheHit = i.cacheHit && t.cacheHit;
     i.driverCache = i.driverCache && t.driverCache;
