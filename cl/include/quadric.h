@@ -70,7 +70,10 @@ typedef struct Quadric {
     uint32_t first_member, member_count, first_op, op_count;
     /* RT_QF_MOVING: its placement at the last motion key is at quadric_motion[motion ..]
      * (4 float4: centre with w = first key's time, to_world rows, row 0's w = last key's
-     * time); placements between are interpolated linearly */
+     * time, row 1's w = the number of keys between), the keys between (MotionBegin with
+     * three times or more) after it, 4 float4 each (centre with w = its time, rows);
+     * placements between keys are interpolated linearly (cl/lib/motion.clh). A moving
+     * triangle's keys: motion.clh. */
     uint32_t motion;
     /* shader parameters given per point: the first of 4 x K values in the point
      * parameter buffer (scene.h, Scene::pointParamValues), or RT_NO_POINT_PARAMS */

@@ -33,9 +33,14 @@ void RibBuilder::frameEnd(L) {
     if (m_attrStack.size() > 1) m_attrStack.pop_back();
 }
 
-void RibBuilder::worldBegin(L) {
+void RibBuilder::worldBegin(L loc) {
     // The transform current at WorldBegin is the camera's; world space starts as identity.
     const Attributes& camera = m_attrStack.back();
+    if (camera.moving && !camera.between.empty())
+        m_diag.warning(loc,
+                       "the camera moves from its first motion key to its last: the " +
+                           std::to_string(camera.between.size()) +
+                           " key(s) between are not used (objects use every key)");
     m_options.camera.worldToCamera = camera.ctm;
     m_options.camera.moving = camera.moving;  // MotionBegin around the camera transform
     m_options.camera.worldToCameraEnd = camera.moving ? camera.ctmEnd : camera.ctm;
@@ -64,6 +69,7 @@ void RibBuilder::worldBegin(L) {
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
     m_attrStack.back().moving = false;
+    m_attrStack.back().between.clear();
 }
 
 void RibBuilder::worldEnd(L loc) {

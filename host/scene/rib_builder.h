@@ -175,14 +175,18 @@ private:
     void makeTextureFile(L loc, const char* request, const std::string& output, F&& make);
 
     // The current transform, with its motion: between the shutter times t0 and t1 the
-    // object-to-world map moves linearly from ctm to ctmEnd (MotionBegin around
-    // transforms, the first and last keys).
+    // object-to-world map moves from ctm to ctmEnd through the keys between (MotionBegin
+    // around transforms), linearly from key to key.
     struct Placement {
         glm::mat4 ctm{1.0f};  // object to world (camera before WorldBegin)
         glm::mat4 ctmEnd{1.0f};
         bool moving = false;
         float t0 = 0, t1 = 0;
+        std::vector<std::pair<float, glm::mat4>> between;  // (time, map), ascending
     };
+    // The map of a moving placement at `time` (the keys' components interpolated, as the
+    // device does for a quadric), or its ctm when it does not move.
+    static glm::mat4 ctmAt(const Placement& p, float time);
     struct Attributes : Placement {
         // in the scene's channels (ColorSamples::slots() of them)
         float color[ColorSamples::kMaxChannels] = {1, 1, 1, 1, 1, 1, 1, 1,
@@ -337,24 +341,33 @@ private:
         std::vector<float> times;
         int count = 0;
         Placement before;
-        glm::mat4 firstKey{1.0f};
+        std::vector<glm::mat4> keys;  // the transform at each key
         std::vector<VertexData> meshKeys;
     } m_motion;
     // Applies a transform request: concatenated (or replacing the ctm) on both ends of a
     // moving placement, or as the next key inside MotionBegin.
     void applyTransform(const glm::mat4& m, bool replace);
-    // Adds a mesh moving linearly from `a` to `b` (object space, same topology) between
-    // times t0 and t1, placed by the current transform (and its motion).
-    void addMovingMesh(L, const VertexData& a, const VertexData& b, float t0, float t1);
+    // Adds a mesh whose points move through `keys` (object space, same topology) at
+    // `times`, placed by the current transform (and its motion): one key, the
+    // transform's keys; more, a deformation (the transform taken at their times).
+    void addMovingMesh(L, const std::vector<VertexData>& keys,
+                       const std::vector<float>& times);
     // Object-space points placed by `ctm` in the eye-relative world (in double).
     std::vector<glm::vec3> worldPoints(const glm::mat4& ctm, const std::vector<glm::vec3>& p) const;
-    // Appends a mesh's triangles at world points wp (and, moving, wpEnd at the last key
-    // time t1, wp at t0), reporting degenerate ones once per request.
+    // A moving mesh's world points at its keys after the first (the last one last) and
+    // the times of all its keys, the first one's first.
+    struct MeshMotion {
+        std::vector<std::vector<glm::vec3>> keys;
+        std::vector<float> times;
+    };
+    // Appends a mesh's triangles at world points wp (its first key, when `motion` makes
+    // them move), reporting degenerate ones once per request.
     void appendTriangles(L, const VertexData& mesh, const std::vector<glm::vec3>& wp,
-                         const std::vector<glm::vec3>* wpEnd, float t0, float t1,
-                         uint32_t extraFlags = 0);
-    // Makes the triangle just appended (at its first key) move to `last`.
-    void addMovingTriangle(const Triangle& first, const Triangle& last);
+                         const MeshMotion* motion, uint32_t extraFlags = 0);
+    // Makes the triangle just appended (at its first key) move through `keys` (those
+    // after the first, the last one last) at `times` (all keys').
+    void addMovingTriangle(const Triangle& first, const std::vector<Triangle>& keys,
+                           const std::vector<float>& times);
     std::vector<Scene> m_scenes;
     std::vector<std::pair<std::string, uint32_t>> m_materialKeys;
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call

@@ -188,12 +188,28 @@ void RibBuilder::addObjectRecord(L loc, const char* what, Quadric q, glm::vec3 l
         } else {
             q.flags |= RT_QF_MOVING;
             q.motion = uint32_t(m_world.quadricMotion.size());
-            rt_float4 c = last.center, r0 = last.to_world[0];
+            // the keys between after the last, counted in its row 1's w (quadric.h)
+            std::vector<Quadric> between;
+            for (const auto& [t, key] : at.between) {
+                Quadric k = q;
+                if (placeQuadric(k, eyeRelative(key, placement))) {
+                    k.center.w = t;
+                    between.push_back(k);
+                }
+            }
+            rt_float4 c = last.center, r0 = last.to_world[0], r1 = last.to_world[1];
             c.w = at.t0;
             r0.w = at.t1;
-            for (const rt_float4& v : {c, r0, last.to_world[1], last.to_world[2]})
+            r1.w = float(between.size());
+            for (const rt_float4& v : {c, r0, r1, last.to_world[2]})
                 m_world.quadricMotion.push_back(v);
             bounds.grow(quadricWorldBounds(last, lo, hi));
+            for (const Quadric& k : between) {
+                for (const rt_float4& v :
+                     {k.center, k.to_world[0], k.to_world[1], k.to_world[2]})
+                    m_world.quadricMotion.push_back(v);
+                bounds.grow(quadricWorldBounds(k, lo, hi));
+            }
         }
     }
     m_world.quadrics.push_back(q);

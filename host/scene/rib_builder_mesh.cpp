@@ -86,8 +86,8 @@ void RibBuilder::addMesh(L loc, const VertexData& mesh) {
         return;
     }
     const Attributes& a = m_attrStack.back();
-    if (a.moving) return addMovingMesh(loc, mesh, mesh, a.t0, a.t1);
-    appendTriangles(loc, mesh, worldPoints(a.ctm, mesh.p), nullptr, 0, 0);
+    if (a.moving) return addMovingMesh(loc, {mesh}, {});
+    appendTriangles(loc, mesh, worldPoints(a.ctm, mesh.p), nullptr);
 }
 
 std::vector<glm::vec3> RibBuilder::worldPoints(const glm::mat4& ctm,
@@ -99,20 +99,37 @@ std::vector<glm::vec3> RibBuilder::worldPoints(const glm::mat4& ctm,
     return wp;
 }
 
-void RibBuilder::addMovingMesh(L loc, const VertexData& a, const VertexData& b, float t0,
-                               float t1) {
-    if (a.p.size() != b.p.size() || a.tris != b.tris) {
-        m_diag.error(loc, "MotionBegin: the mesh keys differ in topology");
-        return;
-    }
+void RibBuilder::addMovingMesh(L loc, const std::vector<VertexData>& keys,
+                               const std::vector<float>& times) {
+    for (const VertexData& k : keys)
+        if (k.p.size() != keys.front().p.size() || k.tris != keys.front().tris) {
+            m_diag.error(loc, "MotionBegin: the mesh keys differ in topology");
+            return;
+        }
     const Attributes& at = m_attrStack.back();
-    std::vector<glm::vec3> wb = worldPoints(at.moving ? at.ctmEnd : at.ctm, b.p);
-    appendTriangles(loc, a, worldPoints(at.ctm, a.p), &wb, t0, t1);
+    MeshMotion motion;
+    std::vector<glm::vec3> first;
+    if (keys.size() == 1) {  // still points under the transform's keys
+        motion.times.push_back(at.t0);
+        first = worldPoints(at.ctm, keys[0].p);
+        for (const auto& [t, key] : at.between) {
+            motion.keys.push_back(worldPoints(key, keys[0].p));
+            motion.times.push_back(t);
+        }
+        motion.keys.push_back(worldPoints(at.ctmEnd, keys[0].p));
+        motion.times.push_back(at.t1);
+    } else {  // a deformation: each key placed by the transform at its time
+        first = worldPoints(ctmAt(at, times[0]), keys[0].p);
+        motion.times = times;
+        for (size_t k = 1; k < keys.size(); ++k)
+            motion.keys.push_back(worldPoints(ctmAt(at, times[k]), keys[k].p));
+    }
+    appendTriangles(loc, keys[0], first, &motion);
 }
 
-void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vector<glm::vec3>& wp,
-                                 const std::vector<glm::vec3>* wpEnd, float t0, float t1,
-                                 uint32_t extraFlags) {
+void RibBuilder::appendTriangles(L loc, const VertexData& mesh,
+                                 const std::vector<glm::vec3>& wp,
+                                 const MeshMotion* motion, uint32_t extraFlags) {
     const size_t np = mesh.p.size();
     // a prototype stays in its object space (normals too) and belongs to no solid
     const bool prototype = extraFlags & RT_QF_PROTOTYPE;
@@ -173,14 +190,19 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
         const int i0 = mesh.tris[3 * k], i1 = mesh.tris[3 * k + 1], i2 = mesh.tris[3 * k + 2];
         const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
         glm::vec3 cr = glm::cross(b - a, c - a);
-        if (wpEnd) {  // moving: finite at both keys, not degenerate at both
-            const glm::vec3 &ea = (*wpEnd)[i0], &eb = (*wpEnd)[i1], &ec = (*wpEnd)[i2];
-            glm::vec3 ce = glm::cross(eb - ea, ec - ea);
-            if (!finite3(ea) || !finite3(eb) || !finite3(ec)) {
+        if (motion) {  // moving: finite at every key, not degenerate at all of them
+            bool finite = true;
+            for (const std::vector<glm::vec3>& key : motion->keys) {
+                const glm::vec3 &ea = key[size_t(i0)], &eb = key[size_t(i1)],
+                                &ec = key[size_t(i2)];
+                glm::vec3 ce = glm::cross(eb - ea, ec - ea);
+                finite = finite && finite3(ea) && finite3(eb) && finite3(ec);
+                if (glm::dot(ce, ce) > 0.0f && !(glm::dot(cr, cr) > 0.0f)) cr = ce;
+            }
+            if (!finite) {
                 defects[k] = Defect::NonfiniteEnd;
                 continue;
             }
-            if (glm::dot(ce, ce) > 0.0f && !(glm::dot(cr, cr) > 0.0f)) cr = ce;
         }
         if (!finite3(a) || !finite3(b) || !finite3(c)) defects[k] = Defect::Nonfinite;
         else if (!(glm::dot(cr, cr) > 0.0f)) defects[k] = Defect::ZeroArea;
@@ -217,8 +239,13 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
         m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars,
                                  (leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u) | extraFlags |
                                      (flipNormals ? uint32_t(RT_QF_FLIP) : 0u)});
-        if (wpEnd) addMovingTriangle(m_world.triangles.back(),
-                                     {f4((*wpEnd)[i0], t0), f4((*wpEnd)[i1], t1), f4((*wpEnd)[i2])});
+        if (motion) {
+            std::vector<Triangle> keys;
+            for (const std::vector<glm::vec3>& key : motion->keys)
+                keys.push_back(
+                    {f4(key[size_t(i0)]), f4(key[size_t(i1)]), f4(key[size_t(i2)])});
+            addMovingTriangle(m_world.triangles.back(), keys, motion->times);
+        }
         // A zero or non-finite vertex normal: all three stored as zero, the device uses Ng.
         bool normalsOk = true;
         for (int k : {i0, i1, i2}) {
@@ -254,11 +281,28 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh, const std::vecto
     m_diag.warning(loc, "degenerate geometry: " + what);
 }
 
-
-void RibBuilder::addMovingTriangle(const Triangle& first, const Triangle& last) {
-    // key times ride in the last key's v0.w and v1.w (cl/include/quadric.h)
+void RibBuilder::addMovingTriangle(const Triangle& first,
+                                   const std::vector<Triangle>& keys,
+                                   const std::vector<float>& times) {
+    // The last key by triangle index, the key times in its v0.w and v1.w; the keys
+    // between in the motion buffer, v2.w 1 + where they start (cl/lib/motion.clh). (A
+    // float holds the index exactly up to 2^24 float4s: past that they are left out, and
+    // the triangle moves from its first key to its last.)
     const uint32_t index = uint32_t(m_world.triangles.size() - 1);
     if (m_world.trianglesEnd.size() < index) m_world.trianglesEnd.resize(index);
+    Triangle last = keys.back();
+    last.v0.w = times.front(), last.v1.w = times.back(), last.v2.w = 0.0f;
+    const size_t at = m_world.quadricMotion.size();
+    if (keys.size() > 1 && at + 3 * keys.size() < (size_t(1) << 24)) {
+        last.v2.w = float(at + 1);
+        for (size_t k = 0; k + 1 < keys.size(); ++k) {
+            Triangle key = keys[k];
+            key.v0.w = times[k + 1];
+            key.v1.w = k == 0 ? float(keys.size() - 1) : 0.0f;
+            for (const rt_float4& v : {key.v0, key.v1, key.v2})
+                m_world.quadricMotion.push_back(v);
+        }
+    }
     m_world.trianglesEnd.push_back(last);
     m_world.attrs.back().flags |= RT_QF_MOVING;
     Quadric q{};
@@ -268,11 +312,14 @@ void RibBuilder::addMovingTriangle(const Triangle& first, const Triangle& last) 
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
     q.point_params = RT_NO_POINT_PARAMS;
     Aabb box;
-    for (const Triangle* t : {&first, &last})
-        for (const rt_float4* v : {&t->v0, &t->v1, &t->v2}) {
+    auto grow = [&](const Triangle& t) {
+        for (const rt_float4* v : {&t.v0, &t.v1, &t.v2}) {
             const float p[3] = {v->x, v->y, v->z};
             box.grow(p);
         }
+    };
+    grow(first);
+    for (const Triangle& key : keys) grow(key);
     m_world.quadrics.push_back(q);
     m_world.quadricBounds.push_back(box);
 }
@@ -303,7 +350,7 @@ void RibBuilder::addInstance(L loc, const std::string& handle, const ObjectDef& 
         p.lo = glm::vec3(FLT_MAX);
         p.hi = glm::vec3(-FLT_MAX);
         for (const VertexData& piece : def.meshes) {
-            appendTriangles(loc, piece, piece.p, nullptr, 0, 0, RT_QF_PROTOTYPE);
+            appendTriangles(loc, piece, piece.p, nullptr, RT_QF_PROTOTYPE);
             for (const glm::vec3& v : piece.p)
                 if (finite3(v)) p.lo = glm::min(p.lo, v), p.hi = glm::max(p.hi, v);
         }

@@ -1,8 +1,7 @@
 // rib_builder_transforms.cpp: the transform requests, TransformBegin/End, Shutter and
-// MotionBegin/End. A MotionBegin around transforms makes the current placement move:
-// linearly from its first key to its last between their times (motion blur of whatever
-// is declared under it, quadrics exactly); around a mesh's keys it makes the mesh
-// deform. Keys between the first and the last are not used yet.
+// MotionBegin/End. A MotionBegin around transforms makes the current placement move
+// through its keys at their times, linearly from key to key (motion blur of whatever is
+// declared under it, quadrics exactly); around a mesh's keys it makes the mesh deform.
 #include <algorithm>
 #include <cmath>
 
@@ -17,12 +16,30 @@ void RibBuilder::applyTransform(const glm::mat4& m, bool replace) {
     Attributes& a = m_attrStack.back();
     if (m_motion.active) {
         glm::mat4 key = replace ? m : m_motion.before.ctm * m;
-        if (m_motion.count++ == 0) m_motion.firstKey = key;
-        a.ctm = key;  // the last key so far; MotionEnd makes the pair
+        m_motion.keys.push_back(key);
+        a.ctm = key;  // the last key so far; MotionEnd makes the motion
         return;
     }
     a.ctm = replace ? m : a.ctm * m;
-    if (a.moving) a.ctmEnd = replace ? m : a.ctmEnd * m;
+    if (a.moving) {
+        a.ctmEnd = replace ? m : a.ctmEnd * m;
+        for (auto& key : a.between) key.second = replace ? m : key.second * m;
+    }
+}
+
+glm::mat4 RibBuilder::ctmAt(const Placement& p, float time) {
+    if (!p.moving) return p.ctm;
+    float ta = p.t0, tb = p.t1;
+    const glm::mat4 *ka = &p.ctm, *kb = &p.ctmEnd;
+    for (const auto& [t, key] : p.between) {  // (as cl/lib/motion.clh picks them)
+        if (!(time >= t)) {
+            kb = &key, tb = t;
+            break;
+        }
+        ka = &key, ta = t;
+    }
+    const float s = tb > ta ? std::clamp((time - ta) / (tb - ta), 0.0f, 1.0f) : 0.0f;
+    return (1.0f - s) * *ka + s * *kb;
 }
 
 void RibBuilder::shutter(L loc, float open, float close) {
@@ -45,22 +62,29 @@ void RibBuilder::motionEnd(L loc) {
     if (!m_motion.active) return;
     MotionBlock block = std::move(m_motion);
     m_motion = MotionBlock();
-    const float t0 = block.times.empty() ? 0.0f : block.times.front();
-    const float t1 = block.times.empty() ? 0.0f : block.times.back();
     Attributes& a = m_attrStack.back();
-    if (block.count >= 2) {
+    // (the reader reports a count of keys other than the times'; the shorter is used)
+    const size_t keys = std::min(block.keys.size(), block.times.size());
+    if (keys >= 2) {
         if (block.before.moving)
             m_diag.warning(loc, "MotionBegin inside a moving transform: the outer motion is "
                                 "replaced");
-        a.ctmEnd = a.ctm;
-        a.ctm = block.firstKey;
-        a.moving = t1 > t0;
-        a.t0 = t0;
-        a.t1 = t1;
+        a.ctm = block.keys.front();
+        a.ctmEnd = block.keys[keys - 1];
+        a.t0 = block.times.front();
+        a.t1 = block.times[keys - 1];
+        a.moving = a.t1 > a.t0;
+        a.between.clear();
+        for (size_t k = 1; k + 1 < keys; ++k)
+            a.between.push_back({block.times[k], block.keys[k]});
     }
-    if (block.meshKeys.size() == 1) addMesh(loc, block.meshKeys.front());
-    if (block.meshKeys.size() >= 2)
-        addMovingMesh(loc, block.meshKeys.front(), block.meshKeys.back(), t0, t1);
+    const size_t meshKeys = std::min(block.meshKeys.size(), block.times.size());
+    if (meshKeys == 1) addMesh(loc, block.meshKeys.front());
+    if (meshKeys >= 2) {
+        block.meshKeys.resize(meshKeys);
+        block.times.resize(meshKeys);
+        addMovingMesh(loc, block.meshKeys, block.times);
+    }
 }
 
 void RibBuilder::transformBegin(L) { m_xformStack.push_back(m_attrStack.back()); }
