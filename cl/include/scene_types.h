@@ -59,6 +59,10 @@ typedef struct Material {
 
 /* Camera: rays start in camera space (RenderMan: left-handed, looking down +z) and are
  * moved to world space by the 3x4 matrix camera_to_world (rows, column-vector convention). */
+/* The camera's motion keys between its first and last (more are left out, with a
+ * warning) */
+#define RT_CAMERA_MAX_BETWEEN 8
+
 typedef struct Camera {
     rt_float4 camera_to_world[3];
     float screen[4];        /* ScreenWindow left, right, bottom, top */
@@ -71,11 +75,14 @@ typedef struct Camera {
     float focal_distance;   /* camera-space z of the plane in focus */
     float shutter[2];       /* Shutter open, close: each sample's time is uniform in it */
     /* A moving camera (MotionBegin around the camera transform): camera_to_world is the
-     * placement at motion_times[0], this one at motion_times[1]; interpolated linearly */
+     * placement at motion_times[0], this one at motion_times[1], and `between` keys
+     * between them at between_times; interpolated linearly from key to key */
     rt_float4 camera_to_world_end[3];
     float motion_times[2];
     uint32_t moving;
-    uint32_t pad;
+    uint32_t between;
+    rt_float4 camera_to_world_between[RT_CAMERA_MAX_BETWEEN][3];
+    float between_times[RT_CAMERA_MAX_BETWEEN];
 } Camera;
 
 #ifndef __OPENCL_C_VERSION__
@@ -83,6 +90,6 @@ RT_ASSERT_SIZE(Triangle, 48);
 RT_ASSERT_SIZE(Triangle4, 160);
 RT_ASSERT_SIZE(TriangleAttr, 16);
 RT_ASSERT_SIZE(Material, 48);
-RT_ASSERT_SIZE(Camera, 176);
+RT_ASSERT_SIZE(Camera, 176 + RT_CAMERA_MAX_BETWEEN * (48 + 4));
 #endif
 #endif

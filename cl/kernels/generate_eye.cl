@@ -92,8 +92,24 @@ __kernel void generate_eye(__constant Camera* cam,
     const float time = mix(cam->shutter[0], cam->shutter[1], rt_random(pixel, s, 4));
     if (cam->moving) { /* the camera's placement at the sample's time */
         float t0 = cam->motion_times[0], t1 = cam->motion_times[1];
-        float a = t1 > t0 ? clamp((time - t0) / (t1 - t0), 0.0f, 1.0f) : 0.0f;
         __constant float* e = (__constant float*)cam->camera_to_world_end;
+        /* the keys around it (as motion.clh picks them; the same trip count in every
+         * work-item, no break) */
+        int found = 0;
+        for (uint k = 0; k < cam->between; ++k) {
+            __constant float* b = (__constant float*)cam->camera_to_world_between[k];
+            const float tk = cam->between_times[k];
+            if (!found && time >= tk) {
+                t0 = tk;
+                m00 = b[0], m01 = b[1], m02 = b[2], m03 = b[3], m10 = b[4], m11 = b[5];
+                m12 = b[6], m13 = b[7], m20 = b[8], m21 = b[9], m22 = b[10], m23 = b[11];
+            } else if (!found) {
+                t1 = tk;
+                e = b;
+                found = 1;
+            }
+        }
+        float a = t1 > t0 ? clamp((time - t0) / (t1 - t0), 0.0f, 1.0f) : 0.0f;
         m00 = mix(m00, e[0], a), m01 = mix(m01, e[1], a), m02 = mix(m02, e[2], a);
         m03 = mix(m03, e[3], a), m10 = mix(m10, e[4], a), m11 = mix(m11, e[5], a);
         m12 = mix(m12, e[6], a), m13 = mix(m13, e[7], a), m20 = mix(m20, e[8], a);

@@ -36,14 +36,17 @@ void RibBuilder::frameEnd(L) {
 void RibBuilder::worldBegin(L loc) {
     // The transform current at WorldBegin is the camera's; world space starts as identity.
     const Attributes& camera = m_attrStack.back();
-    if (camera.moving && !camera.between.empty())
-        m_diag.warning(loc,
-                       "the camera moves from its first motion key to its last: the " +
-                           std::to_string(camera.between.size()) +
-                           " key(s) between are not used (objects use every key)");
+    if (camera.moving && camera.between.size() > RT_CAMERA_MAX_BETWEEN)
+        m_diag.warning(loc, "the camera moves through its first " +
+                                std::to_string(RT_CAMERA_MAX_BETWEEN + 2) +
+                                " motion keys of " +
+                                std::to_string(camera.between.size() + 2) +
+                                " (then straight to its last)");
     m_options.camera.worldToCamera = camera.ctm;
     m_options.camera.moving = camera.moving;  // MotionBegin around the camera transform
     m_options.camera.worldToCameraEnd = camera.moving ? camera.ctmEnd : camera.ctm;
+    m_options.camera.worldToCameraBetween =
+        camera.moving ? camera.between : decltype(camera.between){};
     m_options.camera.motionTimes[0] = camera.t0;
     m_options.camera.motionTimes[1] = camera.t1;
     m_world = m_options;
@@ -83,6 +86,9 @@ void RibBuilder::worldEnd(L loc) {
                                              glm::translate(glm::dmat4(1.0), m_origin));
     m_world.camera.worldToCameraEnd = glm::mat4(glm::dmat4(m_world.camera.worldToCameraEnd) *
                                                 glm::translate(glm::dmat4(1.0), m_origin));
+    for (auto& key : m_world.camera.worldToCameraBetween)
+        key.second =
+            glm::mat4(glm::dmat4(key.second) * glm::translate(glm::dmat4(1.0), m_origin));
     m_world.worldOrigin = m_origin;
     if (!m_world.trianglesEnd.empty()) m_world.trianglesEnd.resize(m_world.triangles.size());
     m_inWorld = false;

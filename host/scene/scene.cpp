@@ -90,6 +90,14 @@ Camera Scene::deviceCamera() const {
     d.moving = c.moving ? 1u : 0u;
     d.motion_times[0] = c.motionTimes[0];
     d.motion_times[1] = c.motionTimes[1];
+    for (const auto& [t, key] : c.worldToCameraBetween) {
+        if (!c.moving || d.between == RT_CAMERA_MAX_BETWEEN) break;
+        const glm::mat4 m = glm::inverse(key);
+        for (int r = 0; r < 3; ++r)
+            d.camera_to_world_between[d.between][r] = {m[0][r], m[1][r], m[2][r],
+                                                       m[3][r]};
+        d.between_times[d.between++] = t;
+    }
     return d;
 }
 

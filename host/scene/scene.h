@@ -39,6 +39,8 @@ struct CameraSpec {
     bool moving = false;
     glm::mat4 worldToCameraEnd{1.0f};
     float motionTimes[2] = {0, 0};
+    std::vector<std::pair<float, glm::mat4>>
+        worldToCameraBetween;                             // keys between: (time, map)
     float fstop = 0, focalLength = 0, focalDistance = 0;  // DepthOfField; fstop 0 = pinhole
     float shutter[2] = {0, 0};      // Shutter open, close
     float exposure[2] = {1, 1};     // Exposure gain, gamma

@@ -209,3 +209,22 @@ TEST(Motion, QuadricKeysMoveNothingAfterThem) {
         },
         "quadric_keys");
 }
+
+// A camera moved through three keys (out and back, at uneven times) blurs a still sphere
+// along the same path as the sphere moved by those keys in KeysBetweenTheFirstAndTheLast.
+TEST(Motion, CameraKeysBetweenTheFirstAndTheLast) {
+    std::ostringstream rib;
+    rib << "Format " << kW << " " << kH << " 1\nPixelSamples 16 16\nShutter 0 1\n"
+        << "Projection \"orthographic\"\nScreenWindow -2 2 -0.5 0.5\n"
+        << "MotionBegin [0 0.25 1] Translate -1 0 5 Translate 1 0 5 Translate 0 0 5 "
+           "MotionEnd\n"
+        << "WorldBegin\nSurface \"constant\"\nSphere 0.45 -0.45 0.45 360\nWorldEnd\n";
+    Rendered img = renderRib(rib.str());
+    compare(
+        img,
+        [](double x, double y, double t) {
+            const double c = t < 0.25 ? -1 + 2 * t / 0.25 : 1 - (t - 0.25) / 0.75;
+            return (x - c) * (x - c) + y * y < 0.45 * 0.45 ? 1.0 : 0.0;
+        },
+        "camera_three_keys");
+}
