@@ -623,9 +623,10 @@ void RibBuilder::sphere(L loc, float radius, float zmin, float zmax, float theta
     float depth = center.z - worldRadius;
     float rpx = worldRadius * pixelsPerUnit(depth > 0 ? center.z : 0.0f);
     if (depth <= 0.0f) rpx = 1e6f;
-    int nu = circleSegments(rpx, 0.1f);
+    const int n = circleSegments(rpx, 0.1f);
+    const auto [nu, nv] = keySegments(n, n / 2);
     VertexData mesh;
-    TriMesh m = tessellateSphere(radius, zmin, zmax, thetamax, nu, nu / 2, &mesh.st);
+    TriMesh m = tessellateSphere(radius, zmin, zmax, thetamax, nu, nv, &mesh.st);
     mesh.p = std::move(m.p), mesh.n = std::move(m.n), mesh.tris = std::move(m.tris);
     cornerPointParams(params, mesh);  // st is (u, v) here
     addMesh(loc, mesh);

@@ -311,8 +311,11 @@ private:
     int solidLeafForSurface(L);
     // Quadrics stay exact inside SolidBegin whatever the option: a diced one is not a
     // closed solid (its seams and poles do not meet exactly).
+    // (Inside MotionBegin a quadric's keys give its parameters' motion: they are diced,
+    // alike, into the keys of a deforming mesh; but a solid's members stay exact.)
     bool exactQuadrics() const {
         if (!m_solidStack.empty()) return true;
+        if (m_motion.active) return false;
         if (m_attrStack.back().areaLight >= 0) return false;  // its triangles are sampled
         return !m_forceTessellate && (m_inWorld ? m_world : m_options).render.exactQuadrics;
     }
@@ -343,10 +346,15 @@ private:
         Placement before;
         std::vector<glm::mat4> keys;  // the transform at each key
         std::vector<VertexData> meshKeys;
+        std::pair<int, int> segments{0,
+                                     0};  // a diced quadric's first key's (u, v) counts
     } m_motion;
     // Applies a transform request: concatenated (or replacing the ctm) on both ends of a
     // moving placement, or as the next key inside MotionBegin.
     void applyTransform(const glm::mat4& m, bool replace);
+    // The (u, v) segment counts to dice a quadric with: its own, or inside MotionBegin
+    // those of its first key, so that every key has the same topology.
+    std::pair<int, int> keySegments(int nu, int nv);
     // Adds a mesh whose points move through `keys` (object space, same topology) at
     // `times`, placed by the current transform (and its motion): one key, the
     // transform's keys; more, a deformation (the transform taken at their times).

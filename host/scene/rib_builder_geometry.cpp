@@ -224,7 +224,8 @@ void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float the
     std::string err;
     float rpx = screenRadius({0, 0, 0.5f * (zmin + zmax)},
                              std::max(std::fabs(radius), 0.5f * std::fabs(zmax - zmin)));
-    bool ok = tessellateCylinder(radius, zmin, zmax, thetamax, turnSegments(rpx), 1, m, &err);
+    const auto [nu, nv] = keySegments(turnSegments(rpx), 1);
+    bool ok = tessellateCylinder(radius, zmin, zmax, thetamax, nu, nv, m, &err);
     addSurface(loc, "Cylinder", ok, m, err);
 }
 
@@ -235,8 +236,9 @@ void RibBuilder::cone(L loc, float height, float radius, float thetamax, P param
     SurfaceMesh m;
     std::string err;
     float rpx = screenRadius({0, 0, 0.5f * height}, std::max(std::fabs(radius), std::fabs(height)));
-    int nu = turnSegments(rpx);
-    bool ok = tessellateCone(height, radius, thetamax, nu, std::max(1, nu / 8), m, &err);
+    const int n = turnSegments(rpx);
+    const auto [nu, nv] = keySegments(n, std::max(1, n / 8));
+    bool ok = tessellateCone(height, radius, thetamax, nu, nv, m, &err);
     addSurface(loc, "Cone", ok, m, err);
 }
 
@@ -246,8 +248,9 @@ void RibBuilder::disk(L loc, float height, float radius, float thetamax, P param
         return addQuadric(loc, "Disk", makeDisk(height, radius, thetamax), params);
     SurfaceMesh m;
     std::string err;
-    int nu = turnSegments(screenRadius({0, 0, height}, radius));
-    bool ok = tessellateDisk(height, radius, thetamax, nu, 1, m, &err);
+    const auto [nu, nv] =
+        keySegments(turnSegments(screenRadius({0, 0, height}, radius)), 1);
+    bool ok = tessellateDisk(height, radius, thetamax, nu, nv, m, &err);
     addSurface(loc, "Disk", ok, m, err);
 }
 
@@ -260,9 +263,10 @@ void RibBuilder::torus(L loc, float majorRadius, float minorRadius, float phiMin
     SurfaceMesh m;
     std::string err;
     float rpx = screenRadius({0, 0, 0}, std::fabs(majorRadius) + std::fabs(minorRadius));
-    int nu = turnSegments(rpx);
-    int nv = turnSegments(rpx * std::fabs(minorRadius) /
-                          std::max(1e-20f, std::fabs(majorRadius) + std::fabs(minorRadius)));
+    const auto [nu, nv] = keySegments(
+        turnSegments(rpx),
+        turnSegments(rpx * std::fabs(minorRadius) /
+                     std::max(1e-20f, std::fabs(majorRadius) + std::fabs(minorRadius))));
     bool ok = tessellateTorus(majorRadius, minorRadius, phiMin, phiMax, thetamax, nu, nv, m, &err);
     addSurface(loc, "Torus", ok, m, err);
 }
@@ -274,9 +278,10 @@ void RibBuilder::paraboloid(L loc, float rmax, float zmin, float zmax, float the
         return addQuadric(loc, "Paraboloid", makeParaboloid(rmax, zmin, zmax, thetamax), params);
     SurfaceMesh m;
     std::string err;
-    int nu = turnSegments(screenRadius({0, 0, 0.5f * (zmin + zmax)},
-                                       std::max(std::fabs(rmax), std::fabs(zmax - zmin))));
-    bool ok = tessellateParaboloid(rmax, zmin, zmax, thetamax, nu, std::max(2, nu / 4), m, &err);
+    const int n = turnSegments(screenRadius(
+        {0, 0, 0.5f * (zmin + zmax)}, std::max(std::fabs(rmax), std::fabs(zmax - zmin))));
+    const auto [nu, nv] = keySegments(n, std::max(2, n / 4));
+    bool ok = tessellateParaboloid(rmax, zmin, zmax, thetamax, nu, nv, m, &err);
     addSurface(loc, "Paraboloid", ok, m, err);
 }
 
@@ -291,8 +296,10 @@ void RibBuilder::hyperboloid(L loc, const float p1[3], const float p2[3], float 
     std::string err;
     glm::vec3 a(p1[0], p1[1], p1[2]), b(p2[0], p2[1], p2[2]);
     float r = std::max(glm::length(glm::vec2(a)), glm::length(glm::vec2(b)));
-    int nu = turnSegments(screenRadius(0.5f * (a + b), std::max(r, 0.5f * glm::length(b - a))));
-    bool ok = tessellateHyperboloid(a, b, thetamax, nu, std::max(2, nu / 4), m, &err);
+    const int n = turnSegments(
+        screenRadius(0.5f * (a + b), std::max(r, 0.5f * glm::length(b - a))));
+    const auto [nu, nv] = keySegments(n, std::max(2, n / 4));
+    bool ok = tessellateHyperboloid(a, b, thetamax, nu, nv, m, &err);
     addSurface(loc, "Hyperboloid", ok, m, err);
 }
 

@@ -27,6 +27,12 @@ void RibBuilder::applyTransform(const glm::mat4& m, bool replace) {
     }
 }
 
+std::pair<int, int> RibBuilder::keySegments(int nu, int nv) {
+    if (!m_motion.active) return {nu, nv};
+    if (m_motion.meshKeys.empty()) m_motion.segments = {nu, nv};
+    return m_motion.segments;
+}
+
 glm::mat4 RibBuilder::ctmAt(const Placement& p, float time) {
     if (!p.moving) return p.ctm;
     float ta = p.t0, tb = p.t1;
