@@ -316,6 +316,9 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
         case Req::CoordinateSystem:
             t.coordinateSystem(loc, s(0));
             break;
+        case Req::ScopedCoordinateSystem:
+            t.scopedCoordinateSystem(loc, s(0));
+            break;
         case Req::CoordSysTransform:
             t.coordSysTransform(loc, s(0));
             break;

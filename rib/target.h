@@ -142,6 +142,8 @@ public:
     virtual void skew(L, float /*angleDeg*/, float /*dx*/, float /*dy*/, float /*dz*/,
                       float /*ax*/, float /*ay*/, float /*az*/) {}
     virtual void coordinateSystem(L, S) {}
+    // A name for the current transform until the enclosing attribute block ends.
+    virtual void scopedCoordinateSystem(L, S) {}
     virtual void coordSysTransform(L, S) {}
 
     // Blocks

@@ -428,6 +428,11 @@ void RibWriter::coordinateSystem(L, S a1) {
     m_e->string(a1);
 }
 
+void RibWriter::scopedCoordinateSystem(L, S a1) {
+    req("ScopedCoordinateSystem");
+    m_e->string(a1);
+}
+
 void RibWriter::coordSysTransform(L, S a1) {
     req("CoordSysTransform");
     m_e->string(a1);

@@ -87,6 +87,7 @@ public:
     void perspective(L, float) override;
     void skew(L, float, float, float, float, float, float, float) override;
     void coordinateSystem(L, S) override;
+    void scopedCoordinateSystem(L, S) override;
     void coordSysTransform(L, S) override;
     void motionBegin(L, Floats) override;
     void motionEnd(L) override;

@@ -119,6 +119,7 @@ public:
     // the primitive inside out, or its transform a mirror (the cross product flips).
     bool flipWorldNormals() const;
     void coordinateSystem(L, S name) override;
+    void scopedCoordinateSystem(L, S name) override;
     void coordSysTransform(L, S name) override;
 
     void shutter(L, float open, float close) override;
@@ -188,6 +189,8 @@ private:
     // device does for a quadric), or its ctm when it does not move.
     static glm::mat4 ctmAt(const Placement& p, float time);
     struct Attributes : Placement {
+        // ScopedCoordinateSystem names given in this attribute block or those around it
+        std::vector<std::pair<std::string, glm::mat4>> scopedSystems;
         // in the scene's channels (ColorSamples::slots() of them)
         float color[ColorSamples::kMaxChannels] = {1, 1, 1, 1, 1, 1, 1, 1,
                                                    1, 1, 1, 1, 1, 1, 1};

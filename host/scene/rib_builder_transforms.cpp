@@ -102,10 +102,20 @@ void RibBuilder::transformEnd(L) {
 
 void RibBuilder::coordinateSystem(L, S name) { m_coordSystems[name] = m_attrStack.back().ctm; }
 
-// Makes a named coordinate system current: one CoordinateSystem named, or "world"
+// (kept in the attributes: the attribute block's end forgets it)
+void RibBuilder::scopedCoordinateSystem(L, S name) {
+    Attributes& a = m_attrStack.back();
+    a.scopedSystems.push_back({name, a.ctm});
+}
+
+// Makes a named coordinate system current: one ScopedCoordinateSystem named in the
+// attribute blocks around, or CoordinateSystem, or "world"
 // (identity inside the world), "camera" (camera to world); "object" and "shader" leave
 // the current transform as it is.
 void RibBuilder::coordSysTransform(L loc, S name) {
+    const auto& scoped = m_attrStack.back().scopedSystems;  // the latest of a name first
+    for (auto it = scoped.rbegin(); it != scoped.rend(); ++it)
+        if (it->first == name) return applyTransform(it->second, true);
     if (auto it = m_coordSystems.find(name); it != m_coordSystems.end())
         return applyTransform(it->second, true);
     if (name == "world") return applyTransform(glm::mat4(1.0f), true);

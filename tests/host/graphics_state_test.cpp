@@ -70,6 +70,38 @@ TEST(GraphicsState, CoordSysTransformRestoresANamedSpace) {
     EXPECT_NEAR(img.mean(3, 22, 6, 26, 10), 0.0, 1e-6);  // not at the origin
 }
 
+// ScopedCoordinateSystem names the transform until its attribute block ends: inside the
+// block (and blocks within it) CoordSysTransform finds it, after the block it is an
+// error (the name is not found), and it hides a CoordinateSystem of the same name.
+TEST(GraphicsState, ScopedCoordinateSystemEndsWithItsBlock) {
+    const std::string square =
+        "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\n";
+    Rendered img =
+        renderRib(std::string(kCamera) +
+                  "WorldBegin\nSurface \"constant\"\nTranslate -2 0 0\n"
+                  "CoordinateSystem \"spot\"\nTranslate 2 0 0\nAttributeBegin\n"
+                  "Translate 2 0 0\nScopedCoordinateSystem \"spot\"\nIdentity\n"
+                  "AttributeBegin\nCoordSysTransform \"spot\"\n" +
+                  square + "AttributeEnd\nAttributeEnd\nCoordSysTransform \"spot\"\n" +
+                  square + "WorldEnd\n");
+    EXPECT_NEAR(img.mean(3, 38, 6, 42, 10), 1.0, 1e-6);  // x = 2: the scoped one
+    EXPECT_NEAR(img.mean(3, 6, 6, 10, 10), 1.0, 1e-6);   // x = -2: the global one after
+    EXPECT_NEAR(img.mean(3, 22, 6, 26, 10), 0.0, 1e-6);  // nothing at the origin
+    std::ostringstream err;
+    rib::Diagnostics diag(&err);
+    rd::RibBuilder b(diag, "scoped.rib");
+    rib::readString(
+        "WorldBegin\nAttributeBegin\nScopedCoordinateSystem \"inner\"\n"
+        "AttributeEnd\nCoordSysTransform \"inner\"\nWorldEnd\n",
+        "scoped.rib", b, diag);
+    EXPECT_EQ(diag.errorCount(), 1);
+    EXPECT_NE(
+        err.str().find("scoped.rib:5: error: CoordSysTransform: no coordinate system "
+                       "named \"inner\""),
+        std::string::npos)
+        << err.str();
+}
+
 // AreaLightSource: its light shader lights the scene like the same LightSource.
 TEST(GraphicsState, AreaLightSourceLightsLikeItsShader) {
     const std::string rest =

@@ -78,6 +78,7 @@ WorldBegin
     Orientation "rh"
     ReverseOrientation
     CoordinateSystem "mycs"
+    ScopedCoordinateSystem "myscoped"
     CoordSysTransform "mycs"
     Skew 45 0 1 0 1 0 0
     Identity
