@@ -33,6 +33,10 @@ struct ReadOptions {
     std::string archiveSearchPath;
     // Format resolutions above this are refused.
     int maxResolution = 65536;
+    // A RunProgram procedural's program must answer within this time and output
+    // (run_program.h); past either it is stopped and the procedural is an error.
+    double runProgramSeconds = 60;
+    size_t runProgramMaxBytes = size_t(1) << 30;
 };
 
 // Reads a RIB file (gzip-compressed or plain). Returns true when no errors were reported

@@ -3,15 +3,16 @@
 // be binary or gzip-compressed whatever its parent is; inline archives (ArchiveBegin
 // "name" ... ArchiveEnd) are kept as tokens and replayed by ReadArchive "name". Nesting
 // is limited so an archive that reads itself is an error, not a stack overflow.
+#include <unistd.h>
 #include <zlib.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <unistd.h>
 
 #include "reader_impl.h"
+#include "run_program.h"
 
 namespace rib {
 namespace detail {
@@ -67,39 +68,34 @@ void Reader::expandProcedural(const std::string& name, const std::vector<std::st
     std::string temp;
     if (name == "RunProgram") {
         // RI protocol: the program reads "detail datablock" and answers with RIB ended
-        // by a 0377 byte. One run per request; its output goes through a temporary file
-        // so it is read like any archive (and may itself be gzip or binary).
+        // by a 0377 byte (run_program.h: bounded in time and size). One run per request;
+        // the answer goes through a temporary file so it is read like any archive (and
+        // may itself be gzip or binary).
+        std::string text, why;
+        if (!runProgram(args[0], "1000000 " + args[1],
+                        {m_opts.runProgramSeconds, m_opts.runProgramMaxBytes}, &text,
+                        &why)) {
+            error(loc, "RunProgram \"" + args[0] + "\": " + why);
+            return;
+        }
         char tmpl[] = "/tmp/raydrive-runprogram-XXXXXX";
         int fd = mkstemp(tmpl);
         if (fd < 0) {
             error(loc, "RunProgram: cannot create a temporary file");
             return;
         }
-        close(fd);
         temp = tmpl;
-        auto quote = [](const std::string& v) {
-            std::string q = "'";
-            for (char c : v) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-            return q + "'";
-        };
-        std::string cmd = "printf '%s\\n' " + quote("1000000 " + args[1]) + " | " +
-                          args[0] + " > " + quote(temp);
-        int rc = std::system(cmd.c_str());
-        if (rc != 0) {
-            error(loc, "RunProgram \"" + args[0] + "\" failed (exit status " +
-                           std::to_string(rc) + ")");
+        bool written = true;
+        for (size_t done = 0; written && done < text.size();) {
+            const ssize_t n = write(fd, text.data() + done, text.size() - done);
+            written = n > 0;
+            done += written ? size_t(n) : 0;
+        }
+        close(fd);
+        if (!written) {
+            error(loc, "RunProgram: cannot write a temporary file");
             std::remove(temp.c_str());
             return;
-        }
-        // Cut the output at the 0377 end marker.
-        std::FILE* in = std::fopen(temp.c_str(), "rb");
-        std::string text;
-        for (int c; in && (c = std::fgetc(in)) != EOF && c != 0377;) text += char(c);
-        if (in) std::fclose(in);
-        std::FILE* out = std::fopen(temp.c_str(), "wb");
-        if (out) {
-            std::fwrite(text.data(), 1, text.size(), out);
-            std::fclose(out);
         }
         file = temp;
     }

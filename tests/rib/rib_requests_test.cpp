@@ -4,6 +4,7 @@
 // forwarded (each violation is a file:line error and the request is skipped).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 
 #include "rib_corpus.h"
@@ -91,6 +92,42 @@ TEST(RibNewRequests, ProceduralsAreExpanded) {
     EXPECT_EQ(r.msgs, Lines{});
     EXPECT_EQ(r.target.calls, (Lines{"attributeBegin", "sphere 1 -1 1 360 { }", "attributeEnd",
                                      "attributeBegin", "disk 0 2.5 360 { }", "attributeEnd"}));
+}
+
+// A RunProgram program that misbehaves is a file:line error, never a hung or exhausted
+// reader: one that never answers is stopped at the time limit (0.5 s here, the read
+// over within 5 s), one that writes without end at the output limit (1 MiB here), one
+// that fails reports its exit status. One that ends well without the 0377 byte answered
+// with all it wrote.
+TEST(RibNewRequests, RunProgramIsBoundedInTimeAndOutput) {
+    rib::ReadOptions opts;
+    opts.runProgramSeconds = 0.5;
+    opts.runProgramMaxBytes = size_t(1) << 20;
+    auto run = [&](const std::string& program) {
+        return ribtest::readRib("WorldBegin\nProcedural \"RunProgram\" [\"" + program +
+                                    "\" \"x\"] [-1 1 -1 1 -1 1]\nWorldEnd",
+                                opts);
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    ribtest::ReadResult hang = run("sleep 30");
+    EXPECT_LT(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+        5.0);
+    EXPECT_EQ(
+        hang.msgs,
+        Lines{
+            "t.rib:2: error: RunProgram \"sleep 30\": no answer within 0.5 s (stopped)"});
+    ribtest::ReadResult flood = run("yes Sphere");
+    EXPECT_EQ(flood.msgs, Lines{"t.rib:2: error: RunProgram \"yes Sphere\": more than "
+                                "1048576 bytes of output (stopped)"});
+    ribtest::ReadResult failed = run("exit 3");
+    EXPECT_EQ(failed.msgs,
+              Lines{"t.rib:2: error: RunProgram \"exit 3\": failed (exit status 3)"});
+    ribtest::ReadResult plain = run("echo Sphere 1 -1 1 360");
+    EXPECT_EQ(plain.msgs, Lines{});
+    EXPECT_EQ(plain.target.calls,
+              (Lines{"worldBegin", "attributeBegin", "sphere 1 -1 1 360 { }",
+                     "attributeEnd", "worldEnd"}));
 }
 
 TEST(RibNewRequests, PolygonFamilyChecks) {
