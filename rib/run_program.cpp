@@ -17,9 +17,10 @@
 namespace rib {
 
 namespace {
-// Stops the child if it still runs and collects it; its wait status, or -1.
+// Stops the child (and what its shell started: its process group) if it still runs, and
+// collects it; its wait status, or -1.
 int finish(pid_t pid, bool stop) {
-    if (stop) kill(pid, SIGKILL);
+    if (stop && kill(-pid, SIGKILL) != 0) kill(pid, SIGKILL);
     int status = 0;
     while (waitpid(pid, &status, 0) < 0)
         if (errno != EINTR) return -1;
@@ -41,11 +42,13 @@ bool runProgram(const std::string& command, const std::string& request,
         return *why = std::string("fork: ") + std::strerror(errno), false;
     }
     if (pid == 0) {  // the child: the pipes as its standard input and output
+        setpgid(0, 0);
         dup2(in[0], 0), dup2(out[1], 1);
         for (int fd : {in[0], in[1], out[0], out[1]}) close(fd);
         execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
         _exit(127);
     }
+    setpgid(pid, pid);  // (as the child does: whichever runs first)
     close(in[0]), close(out[1]);
     // The request, then end of input: one answer is all that is asked.
     const std::string line = request + "\n";
