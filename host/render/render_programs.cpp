@@ -3,7 +3,6 @@
 
 #include <cctype>
 #include <sstream>
-#include <unordered_set>
 
 #include "shaders/shader_set.h"
 
@@ -15,27 +14,25 @@ const std::vector<std::string> kTraceSources = {
 
 namespace {
 bool isWordChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// Whether `word` occurs in `text` with no word character on either side.
+bool namesWord(const std::string& text, const std::string& word) {
+    for (size_t at = text.find(word); at != std::string::npos;
+         at = text.find(word, at + 1))
+        if ((at == 0 || !isWordChar(text[at - 1])) &&
+            (at + word.size() == text.size() || !isWordChar(text[at + word.size()])))
+            return true;
+    return false;
+}
 }  // namespace
 
 std::string optionsUsedBy(const std::string& source, const std::string& options) {
-    std::unordered_set<std::string> words;
-    for (size_t i = 0; i < source.size();) {
-        if (!isWordChar(source[i])) {
-            ++i;
-            continue;
-        }
-        size_t j = i;
-        while (j < source.size() && isWordChar(source[j])) ++j;
-        words.emplace(source, i, j - i);
-        i = j;
-    }
     std::istringstream in(options);
     std::string opt, out;
     while (in >> opt) {
-        if (opt.rfind("-D", 0) == 0) {
-            const std::string name = opt.substr(2, opt.find('=') - 2);
-            if (!words.count(name)) continue;
-        }
+        if (opt.rfind("-D", 0) == 0 &&
+            !namesWord(source, opt.substr(2, opt.find('=') - 2)))
+            continue;
         out += (out.empty() ? "" : " ") + opt;
     }
     return out;

@@ -539,8 +539,8 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
     // the instance's record), except inside a solid or with per-point values that each
     // instance moves, where they are copied; quadrics are one record each anyway.
     const ObjectDef& def = it->second;
-    if (m_solidStack.empty() && sharedPointParams(def)) {
-        addInstance(loc, handle, def);
+    if (const auto shared = sharedPointParams(def); m_solidStack.empty() && shared) {
+        addInstance(loc, handle, def, *shared);
     } else {
         for (const VertexData& piece : def.meshes) addMesh(loc, piece);
     }

@@ -401,8 +401,10 @@ private:
     std::map<std::string, uint32_t> m_lightHandles;  // per world: handle -> light index
     std::map<std::string, glm::mat4> m_coordSystems; // CoordinateSystem name -> object to world
     // ObjectInstance without copies: the object's meshes become a prototype (once per
-    // world, in object space), each instance a record placing it.
-    void addInstance(L, const std::string& handle, const ObjectDef& def);
+    // world, in object space), each instance a record placing it; `pointParams` are the
+    // per-point values all its meshes give (sharedPointParams).
+    void addInstance(L, const std::string& handle, const ObjectDef& def,
+                     const std::vector<std::pair<std::string, int>>& pointParams);
     // The per-point shader parameters (names, floats a value) that all of an object's
     // meshes give, or none; nullopt when its instances cannot share one prototype: its
     // meshes give different ones, or points, vectors or normals, which each instance

@@ -341,7 +341,9 @@ std::optional<std::vector<std::pair<std::string, int>>> RibBuilder::sharedPointP
     return list ? list : std::vector<std::pair<std::string, int>>{};
 }
 
-void RibBuilder::addInstance(L loc, const std::string& handle, const ObjectDef& def) {
+void RibBuilder::addInstance(
+    L loc, const std::string& handle, const ObjectDef& def,
+    const std::vector<std::pair<std::string, int>>& pointParams) {
     if (def.meshes.empty()) return;
     auto [it, fresh] = m_prototypes.try_emplace(handle, uint32_t(m_world.prototypes.size()));
     if (fresh) {
@@ -365,7 +367,7 @@ void RibBuilder::addInstance(L loc, const std::string& handle, const ObjectDef& 
     q.primvars = RT_NO_QUADRIC_PRIMVARS;
     q.point_params = RT_NO_POINT_PARAMS;
     // the prototype's per-point values are laid out as this surface takes them
-    m_carriedPointParams = *sharedPointParams(def);
+    m_carriedPointParams = pointParams;
     q.material = currentMaterial();
     m_carriedPointParams.clear();
     if (!placeQuadric(q, eyeRelative(m_attrStack.back().ctm, glm::mat4(1.0f)))) {
