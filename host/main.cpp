@@ -3,28 +3,25 @@
 // code: 0 success (also a render ended by its time budget or error target), 1 bad input
 // (RIB errors, missing file), 2 usage, 3 device or OpenCL failure, 4 output could not be
 // written, 128 + signal when SIGINT/SIGTERM stopped it (the image is still written).
+#include <CLI/CLI.hpp>
 #include <algorithm>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <new>
 #include <sstream>
-
-#include <CLI/CLI.hpp>
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
 #include <zlib.h>
 
-#include "film/exr_output.h"
 #include "ocl/check.h"
 #include "ocl/device.h"
+#include "render/frame_output.h"
 #include "render/render_with_archives.h"
 #include "render/renderer.h"
 #include "render/stop.h"
 #include "rib/reader.h"
 #include "rib/writer.h"
-#include "scene/depth_map.h"
 #include "scene/rib_builder.h"
 #include "stats/stats_report.h"
 #include "stats/timeline_trace.h"
@@ -138,23 +135,6 @@ int catribCommand(int argc, char** argv) {
         }
     }
     return ok ? 0 : 1;
-}
-
-std::string outputName(const rd::Scene& scene, const std::string& override, size_t frame,
-                       size_t frames) {
-    std::string name = override;
-    if (name.empty()) name = scene.display.name;
-    if (name.empty())
-        name = std::filesystem::path(scene.sourceFile).stem().string() + ".exr";
-    // Several frames sharing one name (-o, or no Display: the scene stem) are numbered,
-    // else each frame would overwrite the one before.
-    if (frames > 1 && (!override.empty() || scene.display.name.empty())) {
-        std::filesystem::path p(name);
-        name = (p.parent_path() / (p.stem().string() + "." + std::to_string(frame + 1) +
-                                   p.extension().string()))
-                   .string();
-    }
-    return name;
 }
 
 // Writes a JSON document to `path` (indented by `indent`, -1: compact); false when it
@@ -314,41 +294,9 @@ int main(int argc, char** argv) {
                 return std::move(b.scenes());
             };
             rd::RenderStats st = rd::renderWithArchives(renderer, readAgain, scenes[i], i, film, diag);
-            std::string out = outputName(scenes[i], output, i, scenes.size());
-            rd::ExrOptions opts;
-            opts.alpha = scenes[i].display.mode != "rgb";
-            if (scenes[i].display.mode == "z") {  // a depth map: Z and the camera's matrices
-                opts.colour = false;
-                rd::DepthMapMatrices m = rd::depthMapMatrices(scenes[i]);
-                opts.matrices["worldToCamera"] = m.worldToCamera;
-                opts.matrices["worldToScreen"] = m.worldToScreen;
-            }
-            opts.halfFloat = halfFloat;
-            opts.metadata["software"] = "RayDrive " RAYDRIVE_VERSION;
-            opts.metadata["raydrive:device"] = st.device;
-            opts.metadata["raydrive:scene"] = scenePath;
-            opts.metadata["raydrive:stop"] = st.stopReason;
-            opts.metadata["raydrive:estimated_error"] = std::to_string(st.estimatedError);
-            // (how the error was estimated: samples' spread or two replicates)
-            opts.metadata["raydrive:sampler"] = st.features.sobol ? "sobol" : "independent";
-            opts.metadata["raydrive:samples"] = std::to_string(st.filmSamples);
-            // Pixels never reached are filled from neighbours: say which, always.
-            if (st.unsampledPixels > 0) wanted.push_back("filled");
-            std::sort(wanted.begin(), wanted.end());
-            wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
-            for (const std::string& a : wanted)
-                for (rd::Channel& c : film.aovChannels(a)) {
-                    c.values = film.crop(c.values);
-                    opts.extra.push_back(std::move(c));
-                }
-            int outW = film.width, outH = film.height;
-            if (film.cropped()) {
-                opts.dataX = film.cropX0, opts.dataY = film.cropY0;
-                opts.displayWidth = film.width, opts.displayHeight = film.height;
-                outW = film.cropX1 - film.cropX0, outH = film.cropY1 - film.cropY0;
-            }
+            std::string out = rd::frameOutputName(scenes[i], output, i, scenes.size());
             try {
-                rd::writeExr(out, outW, outH, film.crop(film.resolve()), opts);
+                rd::writeFrameImage(out, scenes[i], film, st, aovs, halfFloat, scenePath);
             } catch (const std::exception& e) {
                 std::cerr << "raydrive: error: " << e.what() << "\n";
                 return 4;

@@ -9,6 +9,7 @@ namespace rib {
 void Diagnostics::emit(const SourceLoc& loc, const char* kind, const std::string& msg) {
     m_last = loc.str() + ": " + kind + ": " + msg;
     if (m_out) *m_out << m_last << "\n";
+    if (m_listener) m_listener(kind[0] == 'e', m_last);
 }
 
 void Diagnostics::error(const SourceLoc& loc, const std::string& msg) {

@@ -2,6 +2,7 @@
 // the scene builder. Messages print as `file:line: error: message` (the compiler convention
 // editors understand); callers recover and go on, and only main() decides the exit code.
 #pragma once
+#include <functional>
 #include <iosfwd>
 #include <map>
 #include <string>
@@ -40,10 +41,16 @@ public:
     // prints how many of each were not shown (main, at the end).
     static constexpr int kMaxRepeats = 5;
     void printSuppressed();
+    // Where messages go: the stream (nullptr: nowhere), and a listener also called with
+    // each message shown (the Ri API's RiErrorHandler).
+    void setOutput(std::ostream* out) { m_out = out; }
+    using Listener = std::function<void(bool isError, const std::string& message)>;
+    void setListener(Listener listener) { m_listener = std::move(listener); }
 
 private:
     void emit(const SourceLoc& loc, const char* kind, const std::string& msg);
     std::ostream* m_out;
+    Listener m_listener;
     int m_maxErrors;
     int m_errors = 0;
     int m_warnings = 0;

@@ -67,8 +67,11 @@ SourceLoc Reader::loc(int line) const {
 
 void Reader::run() {
     readStream();
+    finish(loc(m_lastLine));
+}
+
+void Reader::finish(const SourceLoc& end) {
     if (m_diag.tooManyErrors()) return;
-    SourceLoc end = loc(m_lastLine);
     for (auto it = m_blocks.rbegin(); it != m_blocks.rend(); ++it)
         error(end, std::string(it->name) + " at " + it->loc.str() + " never closed");
 }
@@ -90,8 +93,7 @@ void Reader::readStream() {
         strayReported = false;
         SourceLoc here = loc(t.line);
         std::vector<Value> vals;
-        const RequestInfo* info = findRequest(t.text);
-        if (!info) {
+        if (!findRequest(t.text)) {
             // Skip its values quietly: their shape is unknown, so only the lexer speaks.
             error(here, "unknown request \"" + t.text + "\"");
             m_quiet = true;
@@ -100,12 +102,22 @@ void Reader::readStream() {
             continue;
         }
         if (!collectValues(vals)) continue;
-        if (info->sig[0] == '-') continue;
-        Args args;
-        if (!parseArgs(*info, vals, args, here)) continue;
-        if (!checkScope(*info, here)) continue;
-        dispatch(*info, args, here);
+        request(t.text, vals, here);
     }
+}
+
+void Reader::request(const std::string& name, const std::vector<Value>& vals,
+                     const SourceLoc& here) {
+    const RequestInfo* info = findRequest(name);
+    if (!info) {
+        error(here, "unknown request \"" + name + "\"");
+        return;
+    }
+    if (info->sig[0] == '-') return;
+    Args args;
+    if (!parseArgs(*info, vals, args, here)) return;
+    if (!checkScope(*info, here)) return;
+    dispatch(*info, args, here);
 }
 
 // Reads every value up to the next request name. Returns false when any of them was bad
@@ -368,27 +380,17 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
                         Param& p, const SourceLoc& loc) {
     const std::string req = info.name;
     ParamDecl decl;
-    bool inferred = false;
-    if (token.find_first_of(" \t[") != std::string::npos) {
-        if (!parseParamDecl(token, true, decl, p.name)) {
-            error(loc, req + ": bad parameter declaration \"" + token + "\"");
-            return false;
-        }
-    } else {
-        p.name = token;
-        // A name must survive being written back inside a declaration.
-        if (token.empty() || token.find_first_of("]\n\r\f\v") != std::string::npos) {
-            error(loc, req + ": bad parameter name \"" + token + "\"");
-            return false;
-        }
-        auto it = m_declared.find(token);
-        if (it != m_declared.end()) {
-            decl = it->second;
-        } else if (!predefinedParamDecl(token, decl)) {
-            inferred =
-                true;  // undeclared: the values decide (numbers float, strings string)
-        }
+    const DeclLookup found = lookUpParam(token, decl, p.name);
+    if (found == DeclLookup::Bad) {
+        error(loc, req +
+                       (token.find_first_of(" \t[") != std::string::npos
+                            ? ": bad parameter declaration \""
+                            : ": bad parameter name \"") +
+                       token + "\"");
+        return false;
     }
+    // undeclared: the values decide (numbers float, strings string)
+    const bool inferred = found == DeclLookup::Undeclared;
     p.type = decl.type;
     p.storage = decl.storage;
     p.arraySize = decl.arraySize;
@@ -444,6 +446,24 @@ bool Reader::buildParam(const RequestInfo& info, const std::string& token, const
                                                         : m_nColor;
     }
     return true;
+}
+
+Reader::DeclLookup Reader::lookUpParam(const std::string& token, ParamDecl& decl,
+                                       std::string& name) const {
+    if (token.find_first_of(" \t[") != std::string::npos)
+        return parseParamDecl(token, true, decl, name) ? DeclLookup::Declared
+                                                       : DeclLookup::Bad;
+    name = token;
+    // A name must survive being written back inside a declaration.
+    if (token.empty() || token.find_first_of("]\n\r\f\v") != std::string::npos)
+        return DeclLookup::Bad;
+    auto it = m_declared.find(token);
+    if (it != m_declared.end()) {
+        decl = it->second;
+        return DeclLookup::Declared;
+    }
+    return predefinedParamDecl(token, decl) ? DeclLookup::Declared
+                                            : DeclLookup::Undeclared;
 }
 
 std::vector<float> Reader::targetColors(const std::vector<float>& n) const {

@@ -15,45 +15,6 @@ long long sum(const std::vector<int>& v) {
     return s;
 }
 
-// Patches along one direction of a patch mesh (or segments of a curve) and the number of
-// varying values along it. Returns false with `why` set when n does not fit the rules.
-bool spanCount(bool cubic, bool periodic, long long n, int step, long long& patches,
-               long long& varying, std::string& why) {
-    if (!cubic) {
-        if (n < (periodic ? 1 : 2)) {
-            why = "needs at least " + std::to_string(periodic ? 1 : 2) + " vertices";
-            return false;
-        }
-        patches = periodic ? n : n - 1;
-        varying = n;
-        return true;
-    }
-    if (periodic) {
-        if (n < step || n % step != 0) {
-            why = "periodic cubic needs a positive multiple of the basis step (" +
-                  std::to_string(step) + ") vertices";
-            return false;
-        }
-        patches = n / step;
-        varying = patches;
-        return true;
-    }
-    if (n < 4 || (n - 4) % step != 0) {
-        why = "nonperiodic cubic needs 4 + k*" + std::to_string(step) + " vertices";
-        return false;
-    }
-    patches = (n - 4) / step + 1;
-    varying = patches + 1;
-    return true;
-}
-
-bool wrapMode(const std::string& w, bool& periodic) {
-    if (w == "periodic") periodic = true;
-    else if (w == "nonperiodic") periodic = false;
-    else return false;
-    return true;
-}
-
 // The vertex positions of a primitive: "P" (3 floats a point), "Pw" (4) or "Pz" (1).
 // Returns the number of points, or -1 after reporting why there are none.
 long long Reader::countPoints(const char* req, const ParamList& params,

@@ -15,6 +15,7 @@
 #include "lexer.h"
 #include "param_decl.h"
 #include "reader.h"
+#include "request_feed.h"
 
 namespace rib {
 namespace detail {
@@ -43,15 +44,8 @@ struct RequestInfo {
 
 const RequestInfo* findRequest(const std::string& name);
 
-// One value after a request name: a number, a string, or a bracketed array of either.
-// An empty array is neither numeric nor string and matches both.
-struct Value {
-    bool array = false;
-    bool isString = false;
-    bool allInt = true;
-    std::vector<double> nums;
-    std::vector<std::string> strs;
-};
+// One value after a request name (request_feed.h).
+using Value = RequestValue;
 
 // A request's positional arguments by kind, in signature order within each kind.
 struct Args {
@@ -92,16 +86,26 @@ inline std::string plural(size_t n, const char* what) {
 
 // Shared by the geometry checks (reader_geometry.cpp).
 long long sum(const std::vector<int>& v);
-// Patches along one direction of a patch mesh (or segments of a curve) and the number of
-// varying values along it; false with `why` set when n does not fit the rules.
-bool spanCount(bool cubic, bool periodic, long long n, int step, long long& patches,
-               long long& varying, std::string& why);
-bool wrapMode(const std::string& w, bool& periodic);
 
 class Reader {
 public:
     Reader(Lexer& lex, Target& target, Diagnostics& diag, const ReadOptions& opts);
+    // Reads the lexer's stream to its end, then finish().
     void run();
+    // One request with its values, as read from a stream or given by an API
+    // (RequestFeed): checked, typed and dispatched.
+    void request(const std::string& name, const std::vector<Value>& vals,
+                 const SourceLoc& loc);
+    // Reports the blocks still open at `end`.
+    void finish(const SourceLoc& end);
+    // How a parameter token ("Kd", "uniform float Kd") is declared: inline, by Declare or
+    // predefined (Declared, `decl` and `name` set), not at all, or badly.
+    enum class DeclLookup { Declared, Undeclared, Bad };
+    DeclLookup lookUpParam(const std::string& token, ParamDecl& decl,
+                           std::string& name) const;
+    int colorSamples() const { return m_nColor; }
+    int ustep() const { return m_ustep; }
+    int vstep() const { return m_vstep; }
 
 private:
     // reader.cpp

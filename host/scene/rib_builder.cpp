@@ -578,7 +578,7 @@ void RibBuilder::pointsPolygons(L loc, const std::vector<int>& nverts,
     mesh.p.resize(np);
     for (size_t i = 0; i < np; ++i)
         mesh.p[i] = {P->floats[3 * i], P->floats[3 * i + 1], P->floats[3 * i + 2]};
-    readVertexPrimvars(params, np, mesh);
+    readVertexNormals(params, np, mesh);
     std::vector<int>& tris = mesh.tris;
     size_t offset = 0;
     for (int count : nverts) {

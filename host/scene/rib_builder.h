@@ -224,11 +224,12 @@ private:
     // Adds an object-space mesh (placed by the current transform) with its primitive
     // variables; degenerate and non-finite triangles are counted and left out.
     void addMesh(L, const VertexData& mesh);
-    // Per-vertex "N", "Cs", "Os", "st" or "s"+"t" of a polygon mesh with np points.
-    void readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh);
-    // Per-point shader parameters (rib_builder_point_params.cpp): of a polygon mesh
-    // (split into one vertex per face-vertex when some are facevarying or uniform;
-    // mesh.tris are then remade from nverts/verts), of a diced quadric (bilinear in the
+    // Per-vertex "N" of a polygon mesh with np points.
+    void readVertexNormals(const rib::ParamList& params, size_t np, VertexData& mesh);
+    // Per-point shader parameters (rib_builder_point_params.cpp): of a polygon mesh, with
+    // its Cs, Os and st whatever their class (split into one vertex per face-vertex when
+    // some are facevarying or uniform; mesh.tris are then remade from nverts/verts), of a
+    // diced quadric (bilinear in the
     // corner values at each vertex's (u, v) in mesh.st), and of an exact quadric (4
     // corner values appended to Scene::pointParamValues; returns the first or
     // RT_NO_POINT_PARAMS).

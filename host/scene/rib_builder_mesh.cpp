@@ -379,40 +379,13 @@ void RibBuilder::addInstance(
 
 static_assert(std::tuple_size<VertexData::Channels>::value == ColorSamples::kMaxChannels);
 
-void RibBuilder::readVertexPrimvars(const rib::ParamList& params, size_t np, VertexData& mesh) {
-    auto triples = [&](const char* name, std::vector<glm::vec3>& out) {
-        const rib::Param* q = params.find(name);
-        if (!q || q->floats.size() != 3 * np) return;
-        out.resize(np);
-        for (size_t i = 0; i < np; ++i)
-            out[i] = {q->floats[3 * i], q->floats[3 * i + 1], q->floats[3 * i + 2]};
-    };
-    triples("N", mesh.n);
-    const size_t k = size_t(m_world.colors.n);
-    auto channels = [&](const char* name, std::vector<VertexData::Channels>& out) {
-        const rib::Param* q = params.find(name);
-        if (!q || q->floats.size() != k * np) return;
-        out.assign(np, VertexData::Channels{});
-        for (size_t i = 0; i < np; ++i) std::copy_n(&q->floats[k * i], k, out[i].begin());
-    };
-    if (k > 3) {  // (the reader keeps Cs and Os in the scene's channels)
-        channels("Cs", mesh.csN);
-        channels("Os", mesh.osN);
-    } else {
-        triples("Cs", mesh.cs);
-        triples("Os", mesh.os);
-    }
-    const rib::Param* st = params.find("st");
-    const rib::Param* s = params.find("s");
-    const rib::Param* t = params.find("t");
-    if (st && st->floats.size() == 2 * np) {
-        mesh.st.resize(np);
-        for (size_t i = 0; i < np; ++i) mesh.st[i] = {st->floats[2 * i], st->floats[2 * i + 1]};
-    } else if (s && t && s->floats.size() == np && t->floats.size() == np) {
-        mesh.st.resize(np);
-        for (size_t i = 0; i < np; ++i) mesh.st[i] = {s->floats[i], t->floats[i]};
-    }
+void RibBuilder::readVertexNormals(const rib::ParamList& params, size_t np,
+                                   VertexData& mesh) {
+    const rib::Param* q = params.find("N");
+    if (!q || q->floats.size() != 3 * np) return;
+    mesh.n.resize(np);
+    for (size_t i = 0; i < np; ++i)
+        mesh.n[i] = {q->floats[3 * i], q->floats[3 * i + 1], q->floats[3 * i + 2]};
 }
-
 
 }  // namespace rd

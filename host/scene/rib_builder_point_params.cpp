@@ -8,9 +8,9 @@
 // from their 4 (u, v) corners; exact quadrics keep the 4 corner values. The values are
 // moved to world ("current") space and stored for the device, which interpolates them
 // at each hit (shade_common.clh) and hands them to the shader in place of its
-// parameters (rsl_abi.h, PER-POINT PARAMETERS). Cs, Os and st given per point ride the
-// same paths on every geometry but polygon meshes (whose reader takes them) and end in
-// the mesh's own colours and st (takeStandardPointValues).
+// parameters (rsl_abi.h, PER-POINT PARAMETERS). Cs, Os and st given per point (or per
+// face, or per face-vertex) ride the same paths on every geometry and end in the mesh's
+// own colours and st (takeStandardPointValues).
 #include <algorithm>
 #include <map>
 #include <set>
@@ -237,7 +237,8 @@ void takeStandardPointValues(VertexData& mesh, int channels) {
 
 void RibBuilder::readPointParams(const rib::ParamList& params, const std::vector<int>& nverts,
                                  const std::vector<int>& verts, VertexData& mesh) {
-    const std::vector<const rib::Param*> list = pointParamsOf(&params);
+    const std::vector<const rib::Param*> list =
+        pointParamsOf(&params, /*withStandard=*/true);
     if (list.empty()) return;
     const size_t np = mesh.p.size();
     bool perCorner = false;  // some value belongs to a face or a face's corner
@@ -281,6 +282,7 @@ void RibBuilder::readPointParams(const rib::ParamList& params, const std::vector
         }
         return valueAt(p, src);
     });
+    takeStandardPointValues(mesh, m_world.colors.slots());
 }
 
 void RibBuilder::generalPolygonPointParams(const rib::ParamList& params,

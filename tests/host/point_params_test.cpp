@@ -121,6 +121,41 @@ TEST(PointParams, FaceVaryingAndUniformPerFace) {
     expectPerFaceValues(mesh);
 }
 
+// The standard Cs and st per face and per face-vertex on a PointsPolygons (before
+// session 30 only per-vertex ones were read and these rendered white, st (0, 0)):
+// "uniform color Cs" red and green faces, exact; "facevarying float[2] st" read by the
+// shader as s, the left face's 0.2 and the right face's ramp, as for a parameter.
+TEST(PointParams, StandardValuesPerFaceOnPointsPolygons) {
+    const std::string mesh =
+        "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] "
+        "\"P\" [-1 -1 1  0 -1 1  1 -1 1  -1 1 1  0 1 1  1 1 1] ";
+    Rendered cs = renderRib(kCam + "WorldBegin\nSurface \"constant\"\n" + mesh +
+                            "\"uniform color Cs\" [1 0 0  0 1 0]\nWorldEnd\n");
+    EXPECT_LT(columnError(
+                  cs, 0, [](double) { return 1.0; }, 0, kSize / 2),
+              1e-5);
+    EXPECT_LT(columnError(
+                  cs, 1, [](double) { return 0.0; }, 0, kSize / 2),
+              1e-5);
+    EXPECT_LT(columnError(
+                  cs, 0, [](double) { return 0.0; }, kSize / 2, kSize),
+              1e-5);
+    EXPECT_LT(columnError(
+                  cs, 1, [](double) { return 1.0; }, kSize / 2, kSize),
+              1e-5);
+    std::ofstream(rd::test::scratchDir("raydrive_point_params") + "/pp_s.sl")
+        << "surface pp_s() {\n    Oi = 1;\n    Ci = s;\n}\n";
+    Rendered st = renderRib(shaders() + kCam + "WorldBegin\nSurface \"pp_s\"\n" + mesh +
+                            "\"facevarying float[2] st\" [0.2 0  0.2 0  0.2 0  0.2 0  "
+                            "0.6 0  1 0  1 0  0.6 0]\nWorldEnd\n");
+    EXPECT_LT(columnError(
+                  st, 0, [](double) { return 0.2; }, 0, kSize / 2),
+              1e-5);
+    EXPECT_LT(columnError(
+                  st, 0, [](double x) { return 0.6 + 0.4 * x; }, kSize / 2, kSize),
+              3e-3);
+}
+
 // General polygons (triangulated by ear clipping, vertices shared): a square with a
 // square hole, "varying float Kd" = (x + 1) / 2 at its 8 points, is that ramp on the
 // ring (the hole shows nothing); PointsGeneralPolygons with one value per polygon

@@ -1,0 +1,247 @@
+// ri_context.cpp: the Ri API's context, its parameter lists and its error handler.
+#include "ri_context.h"
+
+#include <climits>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <unordered_map>
+
+#include "ri_render_target.h"
+#include "rib/writer.h"
+
+namespace rd::ri {
+namespace {
+
+std::unique_ptr<Context> g_context;
+RtErrorHandler g_handler = RiErrorPrint;
+
+// The RI 3.2 standard shader and primitive parameters a RIB file may leave undeclared
+// (the reader then types them by their values), which C cannot: their declarations.
+const char* standardDeclaration(const std::string& name) {
+    static const std::unordered_map<std::string, const char*> table = {
+        {"Ka", "uniform float"},
+        {"Kd", "uniform float"},
+        {"Ks", "uniform float"},
+        {"Kr", "uniform float"},
+        {"roughness", "uniform float"},
+        {"intensity", "uniform float"},
+        {"coneangle", "uniform float"},
+        {"conedeltaangle", "uniform float"},
+        {"beamdistribution", "uniform float"},
+        {"mindistance", "uniform float"},
+        {"maxdistance", "uniform float"},
+        {"distance", "uniform float"},
+        {"amplitude", "uniform float"},
+        {"fov", "uniform float"},
+        {"background", "uniform color"},
+        {"texturename", "uniform string"},
+        {"width", "varying float"},
+        {"constantwidth", "constant float"},
+    };
+    auto it = table.find(name);
+    return it == table.end() ? nullptr : it->second;
+}
+
+}  // namespace
+
+rib::RequestValue number(double v) {
+    rib::RequestValue r;
+    r.nums.push_back(v);
+    r.allInt = false;
+    return r;
+}
+
+rib::RequestValue integer(long long v) {
+    rib::RequestValue r;
+    r.nums.push_back(double(v));
+    return r;
+}
+
+rib::RequestValue string(RtString s) {
+    rib::RequestValue r;
+    r.isString = true;
+    r.strs.emplace_back(s ? s : "");
+    return r;
+}
+
+rib::RequestValue floats(const RtFloat* v, long long n) {
+    rib::RequestValue r;
+    r.array = true;
+    r.allInt = false;
+    if (v && n > 0) r.nums.assign(v, v + n);
+    return r;
+}
+
+rib::RequestValue ints(const RtInt* v, long long n) {
+    rib::RequestValue r;
+    r.array = true;
+    if (v && n > 0) r.nums.assign(v, v + n);
+    return r;
+}
+
+rib::RequestValue strings(const RtString* v, long long n) {
+    rib::RequestValue r;
+    r.array = true;
+    r.isString = true;
+    for (long long i = 0; v && i < n; ++i) r.strs.emplace_back(v[i] ? v[i] : "");
+    return r;
+}
+
+void Context::setHandler(RtErrorHandler handler) {
+    g_handler = handler ? handler : RiErrorPrint;
+}
+
+void Context::report(int code, int severity, const std::string& message) {
+    if (severity >= RIE_ERROR) RiLastError = code;
+    g_handler(code, severity, message.c_str());
+}
+
+bool Context::active() {
+    return g_context != nullptr;
+}
+
+Context* Context::current(const char* call) {
+    if (!g_context) {
+        report(RIE_NOTSTARTED, RIE_ERROR,
+               std::string("Ri: error: ") + call + " before RiBegin: ignored");
+        return nullptr;
+    }
+    ++g_context->m_call;
+    return g_context.get();
+}
+
+void Context::begin(RtToken name) {
+    if (g_context) {
+        report(RIE_NESTING, RIE_ERROR,
+               "Ri: error: RiBegin inside RiBegin (one context at a time): ignored");
+        return;
+    }
+    RiLastError = RIE_NOERROR;
+    std::unique_ptr<Context> c(new Context(name));
+    if (c->m_target) g_context = std::move(c);
+}
+
+void Context::end() {
+    if (!g_context) {
+        report(RIE_NOTSTARTED, RIE_ERROR, "Ri: error: RiEnd before RiBegin: ignored");
+        return;
+    }
+    g_context->m_feed->finish(++g_context->m_call);
+    g_context.reset();
+}
+
+Context::Context(RtToken name) : m_diag(nullptr, INT_MAX) {
+    m_diag.setListener([this](bool isError, const std::string& message) {
+        const int code = m_code ? m_code : isError ? RIE_CONSISTENCY : RIE_INCAPABLE;
+        m_code = 0;
+        report(code, isError ? RIE_ERROR : RIE_WARNING, message);
+    });
+    if (name) {
+        m_file.open(name, std::ios::binary);
+        if (!m_file) {
+            report(RIE_NOFILE, RIE_SEVERE,
+                   std::string("Ri: error: RiBegin: cannot write \"") + name + "\"");
+            return;
+        }
+        m_target = std::make_unique<rib::RibWriter>(m_file);
+    } else {
+        m_target = std::make_unique<RenderTarget>(m_diag, [](const std::string& why) {
+            report(RIE_SYSTEM, RIE_SEVERE, "Ri: error: " + why);
+        });
+    }
+    m_feed = std::make_unique<rib::RequestFeed>(*m_target, m_diag, "Ri");
+}
+
+Context::~Context() {
+    m_feed.reset();
+    m_target.reset();  // (a writer ends its last line)
+    if (m_file.is_open()) {
+        m_file.close();
+        if (!m_file)
+            report(RIE_SYSTEM, RIE_SEVERE,
+                   "Ri: error: RiEnd: the RIB file was not written whole");
+    }
+}
+
+void Context::error(int code, const std::string& message) {
+    m_code = code;
+    m_diag.error(m_feed->at(m_call), message);
+    m_code = 0;
+}
+
+void Context::send(const char* name, Values values, const ParamArgs& params,
+                   const ClassCounts& counts) {
+    for (RtInt i = 0; i < params.n; ++i) {
+        const RtToken token = params.tokens ? params.tokens[i] : nullptr;
+        const RtPointer value = params.values ? params.values[i] : nullptr;
+        if (!token) break;  // (RI_NULL ends a list)
+        rib::ParamDecl decl;
+        std::string bare, spelled = token;
+        if (!m_feed->declaration(spelled, decl, bare))
+            if (const char* standard = standardDeclaration(spelled))
+                spelled =
+                    std::string(standard) + " " + spelled;  // (as if written inline)
+        if (!m_feed->declaration(spelled, decl, bare)) {
+            error(RIE_BADTOKEN, std::string(name) + ": parameter \"" + token +
+                                    "\" is not declared (RiDeclare it, or declare it "
+                                    "inline: \"uniform float " +
+                                    token + "\"); left out");
+            continue;
+        }
+        if (!value) {
+            error(RIE_MISSINGDATA, std::string(name) + ": parameter \"" + token +
+                                       "\" has no values (a null pointer); left out");
+            continue;
+        }
+        long long each = 1;
+        switch (decl.storage) {
+            case rib::StorageClass::Constant:
+                each = 1;
+                break;
+            case rib::StorageClass::Uniform:
+                each = counts.uniform;
+                break;
+            case rib::StorageClass::Varying:
+                each = counts.varying;
+                break;
+            case rib::StorageClass::Vertex:
+                each = counts.vertex;
+                break;
+            case rib::StorageClass::FaceVarying:
+                each = counts.faceVarying;
+                break;
+        }
+        rib::Param probe;
+        probe.type = decl.type;
+        probe.colorComponents = m_feed->colorSamples();
+        const long long n = std::max(0LL, each) * probe.components() * decl.arraySize;
+        values.push_back(string(spelled.c_str()));
+        if (decl.type == rib::ParamType::String)
+            values.push_back(strings(static_cast<const RtString*>(value), n));
+        else if (decl.type == rib::ParamType::Integer)
+            values.push_back(ints(static_cast<const RtInt*>(value), n));
+        else
+            values.push_back(floats(static_cast<const RtFloat*>(value), n));
+    }
+    m_feed->request(name, values, m_call);
+}
+
+}  // namespace rd::ri
+
+RtInt RiLastError = RIE_NOERROR;
+
+extern "C" {
+
+RtVoid RiErrorIgnore(RtInt, RtInt, RtString) {}
+
+RtVoid RiErrorPrint(RtInt, RtInt, RtString message) {
+    std::fprintf(stderr, "%s\n", message ? message : "");
+}
+
+RtVoid RiErrorAbort(RtInt, RtInt severity, RtString message) {
+    RiErrorPrint(0, severity, message);
+    if (severity >= RIE_ERROR) std::exit(1);
+}
+
+}  // extern "C"

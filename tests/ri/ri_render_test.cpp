@@ -1,0 +1,144 @@
+// ri_render_test.cpp: renders through RiBegin(RI_NULL): the image of a scene given by Ri
+// calls is the image of the same scene read from RIB, and each world block is a frame
+// written where its Display says (without one, ri.exr then ri.2.exr, ...).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "film/exr_output.h"
+#include "ocl/device.h"
+#include "render/frame_output.h"
+#include "render/renderer.h"
+#include "ri.h"
+#include "rib/reader.h"
+#include "scene/rib_builder.h"
+
+namespace {
+
+std::string scratchDir() {
+    const auto dir = std::filesystem::path(testing::TempDir()) /
+                     ("ri_render." + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}
+
+// A lit plastic sphere and a constant square behind it, 48x32.
+void world() {
+    RiWorldBegin();
+    RtPoint from = {2, 3, -4};
+    RtFloat intensity = 20;
+    RiLightSource(RI_POINTLIGHT, RI_FROM, from, RI_INTENSITY, &intensity, RI_NULL);
+    RiAttributeBegin();
+    RiTranslate(0, 0, 4);
+    RtFloat kd = 0.8f;
+    RiSurface(RI_PLASTIC, RI_KD, &kd, RI_NULL);
+    RiSphere(1, -1, 1, 360, RI_NULL);
+    RiAttributeEnd();
+    RiAttributeBegin();
+    RiSurface(RI_CONSTANT, RI_NULL);
+    RtColor green = {0.2f, 0.9f, 0.3f};
+    RiColor(green);
+    RtPoint square[4] = {{-10, -10, 8}, {10, -10, 8}, {10, 10, 8}, {-10, 10, 8}};
+    RiPolygon(4, RI_P, square, RI_NULL);
+    RiAttributeEnd();
+    RiWorldEnd();
+}
+
+const char* kWorldRib = R"(WorldBegin
+LightSource "pointlight" 1 "from" [2 3 -4] "intensity" [20]
+AttributeBegin
+Translate 0 0 4
+Surface "plastic" "Kd" [0.8]
+Sphere 1 -1 1 360
+AttributeEnd
+AttributeBegin
+Surface "constant"
+Color [0.2 0.9 0.3]
+Polygon "P" [-10 -10 8 10 -10 8 10 10 8 -10 10 8]
+AttributeEnd
+WorldEnd
+)";
+
+std::vector<rd::Rgba> readImage(const std::string& path, int& w, int& h) {
+    return rd::readExr(path, w, h);
+}
+
+}  // namespace
+
+TEST(RiRender, ImageOfTheCallsIsTheImageOfTheirRib) {
+    const std::string dir = scratchDir();
+    const std::string viaApi = dir + "/api.exr";
+    RiBegin(RI_NULL);
+    RiDisplay(viaApi.c_str(), RI_FILE, RI_RGBA, RI_NULL);
+    RiFormat(48, 32, 1);
+    RiPixelSamples(2, 2);
+    RtFloat fov = 50;
+    RiProjection(RI_PERSPECTIVE, RI_FOV, &fov, RI_NULL);
+    world();
+    RiEnd();
+    EXPECT_EQ(RiLastError, RIE_NOERROR);
+    ASSERT_TRUE(std::filesystem::exists(viaApi));
+
+    // The same scene from RIB, rendered as the raydrive command renders it.
+    const std::string viaRib = dir + "/rib.exr";
+    rib::Diagnostics diag(&std::cerr);
+    rd::RibBuilder builder(diag, "scene.rib");
+    ASSERT_TRUE(
+        rib::readString("Display \"" + viaRib +
+                            "\" \"file\" \"rgba\"\nFormat 48 32 1\nPixelSamples 2 2\n"
+                            "Projection \"perspective\" \"fov\" [50]\n" +
+                            kWorldRib,
+                        "scene.rib", builder, diag));
+    ASSERT_EQ(builder.scenes().size(), 1u);
+    rd::ClContext ctx(rd::selectDevice(""));
+    rd::RenderSettings settings;
+    settings.progress = false;
+    rd::Renderer renderer(ctx, settings);
+    rd::Film film;
+    const rd::RenderStats st = renderer.render(builder.scenes()[0], film, diag);
+    rd::writeFrameImage(viaRib, builder.scenes()[0], film, st, {}, false, "scene.rib");
+
+    int w = 0, h = 0, w2 = 0, h2 = 0;
+    const std::vector<rd::Rgba> a = readImage(viaApi, w, h),
+                                b = readImage(viaRib, w2, h2);
+    ASSERT_EQ(w, 48);
+    ASSERT_EQ(h, 32);
+    ASSERT_EQ(w2, w);
+    ASSERT_EQ(h2, h);
+    double differ = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+        differ = std::max({differ, double(std::fabs(a[i].r - b[i].r)),
+                           double(std::fabs(a[i].g - b[i].g)),
+                           double(std::fabs(a[i].b - b[i].b)),
+                           double(std::fabs(a[i].a - b[i].a))});
+    EXPECT_EQ(differ, 0.0);  // the same scene, the same random numbers
+    // And it is the scene: the square's constant green at a corner, the sphere lit.
+    const rd::Rgba& corner = a[1 * 48 + 1];
+    EXPECT_NEAR(corner.g, 0.9f, 1e-5);
+    EXPECT_NEAR(corner.r, 0.2f, 1e-5);
+    const rd::Rgba& centre = a[16 * 48 + 24];
+    EXPECT_GT(centre.r, 0.05f);
+    EXPECT_LT(std::fabs(centre.r - centre.b), 1e-4);  // white plastic, white light
+}
+
+TEST(RiRender, EachWorldBlockIsAFrame) {
+    const std::string dir = scratchDir() + "/frames";
+    std::filesystem::create_directories(dir);
+    const auto cwd = std::filesystem::current_path();
+    std::filesystem::current_path(dir);
+    RiBegin(RI_NULL);
+    RiFormat(16, 16, 1);
+    RiFrameBegin(1);
+    world();
+    RiFrameEnd();
+    RiFrameBegin(2);
+    world();
+    RiFrameEnd();
+    RiEnd();
+    std::filesystem::current_path(cwd);
+    EXPECT_TRUE(std::filesystem::exists(dir + "/ri.exr"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/ri.2.exr"));
+    EXPECT_EQ(RiLastError, RIE_NOERROR);
+}
