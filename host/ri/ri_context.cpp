@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <set>
 #include <unordered_map>
 
 #include "ri_render_target.h"
@@ -172,16 +173,32 @@ void Context::error(int code, const std::string& message) {
 
 void Context::send(const char* name, Values values, const ParamArgs& params,
                    const ClassCounts& counts) {
+    // A shader call's first value is the shader's name (RiLightSource: then its handle).
+    static const std::set<std::string> shaderCalls = {
+        "Surface", "Displacement", "Atmosphere",  "Interior",       "Exterior",
+        "Imager",  "Deformation",  "LightSource", "AreaLightSource"};
+    // (a copy: `values` grows below)
+    const std::string shader =
+        shaderCalls.count(name) && !values.empty() && !values[0].strs.empty()
+            ? values[0].strs[0]
+            : std::string();
+    const bool searchPath = std::string(name) == "Option" && !values.empty() &&
+                            !values[0].strs.empty() && values[0].strs[0] == "searchpath";
     for (RtInt i = 0; i < params.n; ++i) {
         const RtToken token = params.tokens ? params.tokens[i] : nullptr;
         const RtPointer value = params.values ? params.values[i] : nullptr;
         if (!token) break;  // (RI_NULL ends a list)
         rib::ParamDecl decl;
         std::string bare, spelled = token;
-        if (!m_feed->declaration(spelled, decl, bare))
-            if (const char* standard = standardDeclaration(spelled))
-                spelled =
-                    std::string(standard) + " " + spelled;  // (as if written inline)
+        // Else the shader's own declaration, else RI's (as if written inline)
+        if (!m_feed->declaration(spelled, decl, bare)) {
+            std::string found = shader.empty()
+                                    ? std::string()
+                                    : m_shaderParams.declaration(shader, token);
+            if (found.empty())
+                if (const char* standard = standardDeclaration(token)) found = standard;
+            if (!found.empty()) spelled = found + " " + token;
+        }
         if (!m_feed->declaration(spelled, decl, bare)) {
             error(RIE_BADTOKEN, std::string(name) + ": parameter \"" + token +
                                     "\" is not declared (RiDeclare it, or declare it "
@@ -223,6 +240,8 @@ void Context::send(const char* name, Values values, const ParamArgs& params,
             values.push_back(ints(static_cast<const RtInt*>(value), n));
         else
             values.push_back(floats(static_cast<const RtFloat*>(value), n));
+        if (searchPath && bare == "shader" && !values.back().strs.empty())
+            m_shaderParams.setSearchPath(values.back().strs[0]);
     }
     m_feed->request(name, values, m_call);
 }

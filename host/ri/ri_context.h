@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ri.h"
+#include "ri_shader_params.h"
 #include "rib/request_feed.h"
 
 namespace rd::ri {
@@ -70,6 +71,7 @@ private:
     std::ofstream m_file;  // RiBegin("file.rib")
     std::unique_ptr<rib::Target> m_target;
     std::unique_ptr<rib::RequestFeed> m_feed;
+    ShaderParams m_shaderParams;  // shaders' own parameter declarations
     uintptr_t m_lights = 0, m_objects = 0;
     int m_call = 0;  // the current call's number since RiBegin (its messages' "line")
     int m_code = 0;  // the code of the next message the diagnostics report

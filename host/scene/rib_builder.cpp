@@ -6,11 +6,11 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "rib_builder_util.h"
+#include "shaders/shader_path.h"
 #include "tessellate.h"
 
 namespace rd {
@@ -230,21 +230,9 @@ void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& pa
     if (name == "searchpath") {
         // "shader"/"texture" ["dir:dir:&"]: '&' stands for the path so far.
         for (auto [key, list] : {std::pair{"shader", &m_options.shaderSearchPath},
-                                 std::pair{"texture", &m_options.textureSearchPath}}) {
-            std::string path = params.getString(key, "");
-            if (path.empty()) continue;
-            std::vector<std::string> out;
-            size_t start = 0;
-            while (start <= path.size()) {
-                size_t end = path.find(':', start);
-                if (end == std::string::npos) end = path.size();
-                std::string dir = path.substr(start, end - start);
-                if (dir == "&") out.insert(out.end(), list->begin(), list->end());
-                else if (!dir.empty()) out.push_back(dir);
-                start = end + 1;
-            }
-            *list = out;
-        }
+                                 std::pair{"texture", &m_options.textureSearchPath}})
+            if (const std::string path = params.getString(key, ""); !path.empty())
+                *list = updatedSearchPath(*list, path);
         return;
     }
     if (name == "limits") {  // PRMan's texture cache size, in KiB; RayDrive's treelets

@@ -7,14 +7,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <set>
 #include <sstream>
-
-#include <glm/glm.hpp>
 
 #include "compiler.h"
 #include "emit_cl.h"
 #include "ocl/program.h"
+#include "shader_path.h"
 
 namespace rd {
 namespace fs = std::filesystem;
@@ -160,20 +160,11 @@ void noteTextures(ShadingSetup& out, const rsl::EmittedShader& sh, const ShaderR
 }
 }  // namespace
 
-ShaderSet::ShaderSet(const Scene& scene, rib::Diagnostics& diag) : m_scene(scene), m_diag(diag) {
-    // Option "searchpath" "shader" first, then the RIB's folder, the current folder,
-    // $RAYDRIVE_SHADER_PATH, and the standard shaders RayDrive ships.
-    m_path = scene.shaderSearchPath;
-    std::string ribDir = fs::path(scene.sourceFile).parent_path().string();
-    m_path.push_back(ribDir.empty() ? "." : ribDir);
-    m_path.push_back(".");
-    if (const char* env = std::getenv("RAYDRIVE_SHADER_PATH")) {
-        std::stringstream ss(env);
-        for (std::string d; std::getline(ss, d, ':');)
-            if (!d.empty()) m_path.push_back(d);
-    }
-    m_path.push_back(RAYDRIVE_SHADER_DIR);
-}
+ShaderSet::ShaderSet(const Scene& scene, rib::Diagnostics& diag)
+    : m_scene(scene),
+      m_diag(diag),
+      m_path(shaderSearchPath(scene.shaderSearchPath,
+                              fs::path(scene.sourceFile).parent_path().string())) {}
 
 ShaderSet::~ShaderSet() = default;
 
@@ -193,14 +184,7 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
     auto it = m_cache.find(name);
     if (it != m_cache.end()) return it->second.get();
     std::unique_ptr<rsl::EmittedShader>& slot = m_cache[name];
-    std::string file;
-    for (const std::string& dir : m_path) {
-        fs::path candidate = fs::path(dir) / (name + ".sl");
-        if (fs::exists(candidate)) {
-            file = candidate.string();
-            break;
-        }
-    }
+    const std::string file = findShaderFile(m_path, name);
     if (file.empty()) {
         m_diag.warning(loc, kind + " shader \"" + name + "\" not found (" + name +
                                 ".sl on the shader search path); " +

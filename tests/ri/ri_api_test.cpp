@@ -459,3 +459,44 @@ TEST(RiApiDeathTest, AbortEndsTheProgramAtTheFirstError) {
         },
         testing::ExitedWithCode(1), "Ri:1: error: AttributeEnd without AttributeBegin");
 }
+
+// A shader's own parameters need no RiDeclare: their declarations come from its source,
+// found on the shader search path the calls set (an array, a colour, a string, and a
+// parameter of the same name as a standard one, declared varying there).
+TEST(RiApi, AShadersOwnParametersAreSizedFromItsSource) {
+    const std::string dir = scratch("shaders");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/ri_mine.sl")
+        << "surface ri_mine(float gain = 1; color tint = 1; string map = \"\";\n"
+           "                float weights[3] = {1, 1, 1}; varying float Kd = 0.5;) {\n"
+           "    Oi = 1;\n    Ci = tint * gain * Kd * weights[1];\n}\n";
+    const std::string path = scratch("mine.rib");
+    RiErrorHandler(collect);
+    g_messages.clear();
+    RiBegin(path.c_str());
+    const std::string searchPath = dir + ":&";
+    RtString sp = searchPath.c_str();
+    RiOption("searchpath", "string shader", &sp, RI_NULL);
+    RiWorldBegin();
+    RtFloat gain = 2, kd = 0.25f, weights[3] = {0.5f, 1, 1.5f};
+    RtColor tint = {1, 0.5f, 0.25f};
+    RtString map = "grid.tx";
+    RiSurface("ri_mine", "gain", &gain, "tint", tint, "map", &map, "weights", weights,
+              RI_KD, &kd, RI_NULL);
+    RiSurface("ri_missing", "gain", &gain, RI_NULL);  // not found: not declared
+    RiWorldEnd();
+    RiEnd();
+    RiErrorHandler(RiErrorPrint);
+    ASSERT_EQ(g_messages.size(), 1u);
+    EXPECT_NE(
+        g_messages[0].find("Ri:4: error: Surface: parameter \"gain\" is not declared"),
+        std::string::npos)
+        << g_messages[0];
+    EXPECT_EQ(slurp(path),
+              rewritten("Option \"searchpath\" \"string shader\" [\"" + searchPath +
+                        "\"]\nWorldBegin\nSurface \"ri_mine\" \"uniform float "
+                        "gain\" [2] \"uniform color tint\" [1 0.5 0.25] \"uniform "
+                        "string map\" [\"grid.tx\"] \"uniform float[3] weights\" "
+                        "[0.5 1 1.5] \"varying float Kd\" [0.25]\nSurface "
+                        "\"ri_missing\"\nWorldEnd\n"));
+}
