@@ -74,6 +74,8 @@ void Reader::finish(const SourceLoc& end) {
     if (m_diag.tooManyErrors()) return;
     for (auto it = m_blocks.rbegin(); it != m_blocks.rend(); ++it)
         error(end, std::string(it->name) + " at " + it->loc.str() + " never closed");
+    for (auto it = m_conds.rbegin(); it != m_conds.rend(); ++it)
+        error(end, "IfBegin at " + it->loc.str() + " never closed");
 }
 
 // Reads requests until the current source ends.
@@ -114,6 +116,7 @@ void Reader::request(const std::string& name, const std::vector<Value>& vals,
         return;
     }
     if (info->sig[0] == '-') return;
+    if (conditional(*info, vals, here) || !branchActive()) return;
     Args args;
     if (!parseArgs(*info, vals, args, here)) return;
     if (!checkScope(*info, here)) return;

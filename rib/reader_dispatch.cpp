@@ -155,6 +155,7 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
             break;
         case Req::Option:
             noteOption(s(0), P);
+            noteCondValues(false, s(0), P);
             t.option(loc, s(0), P);
             break;
         case Req::ErrorHandler: {
@@ -179,6 +180,7 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
 
         // Attributes
         case Req::Attribute:
+            noteCondValues(true, s(0), P);
             t.attribute(loc, s(0), P);
             break;
         case Req::Color:

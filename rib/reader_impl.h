@@ -7,11 +7,13 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
+#include "conditional.h"
 #include "lexer.h"
 #include "param_decl.h"
 #include "reader.h"
@@ -58,6 +60,9 @@ struct Args {
     ParamList params;
 };
 
+// Attribute and Option values by "group:name" (their first value), for conditional RIB.
+using CondValues = std::unordered_map<std::string, CondValue>;
+
 struct OpenBlock {
     Req begin = Req::version;
     const char* name = "";
@@ -67,6 +72,17 @@ struct OpenBlock {
     size_t motionTimes = 0;    // MotionBegin: number of times
     size_t motionCount = 0;    // MotionBegin: requests seen so far
     const char* motionReq = nullptr;  // MotionBegin: the request being sampled
+    std::shared_ptr<const CondValues>
+        condAttributes;  // restored when an attribute block ends
+};
+
+// An IfBegin ... IfEnd being read: whether the branch being read is taken.
+struct CondFrame {
+    SourceLoc loc;
+    bool parentActive = true;  // the IfBegin itself is in a taken branch
+    bool taken = false;        // some branch so far was taken
+    bool active = false;       // the branch being read is
+    bool sawElse = false;
 };
 
 // An inline archive (ArchiveBegin "name" ... ArchiveEnd) kept as tokens for ReadArchive.
@@ -154,6 +170,17 @@ private:
     bool endBlock(Req begin, const char* beginName, const char* endName,
                   const SourceLoc& loc);
 
+    // reader_conditional.cpp
+    // IfBegin, ElseIf, Else, IfEnd; true when `info` is one of them (handled).
+    bool conditional(const RequestInfo& info, const std::vector<Value>& vals,
+                     const SourceLoc& loc);
+    bool branchActive() const { return m_conds.empty() || m_conds.back().active; }
+    bool evaluate(const std::string& expr, const SourceLoc& loc);
+    std::optional<CondValue> condVariable(const std::string& name) const;
+    // Notes an Attribute's or an Option's values for $group:name.
+    void noteCondValues(bool attribute, const std::string& group,
+                        const ParamList& params);
+
     // reader_archive.cpp
     // DelayedReadArchive and RunProgram, expanded at once inside an attribute block (the
     // renderer does not yet defer them until a ray reaches their bound).
@@ -197,6 +224,10 @@ private:
     size_t m_replayPos = 0;
     std::string m_replayFile;
     std::unordered_set<std::string> m_objects;  // ObjectBegin handles seen
+    std::vector<CondFrame> m_conds;             // open IfBegin blocks
+    std::shared_ptr<CondValues> m_condAttributes = std::make_shared<CondValues>();
+    CondValues m_condOptions;
+    std::optional<int> m_frame;  // FrameBegin's number, for $Frame
 };
 
 }  // namespace detail

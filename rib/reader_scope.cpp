@@ -17,6 +17,7 @@ void Reader::beginBlock(Req begin, const char* name, const SourceLoc& loc) {
     b.loc = loc;
     b.ustep = m_ustep;
     b.vstep = m_vstep;
+    b.condAttributes = m_condAttributes;  // (shared until an Attribute changes it)
     m_blocks.push_back(std::move(b));
     ++m_open[size_t(begin)];
 }
@@ -37,7 +38,9 @@ bool Reader::endBlock(Req begin, const char* beginName, const char* endName,
         begin == Req::FrameBegin) {
         m_ustep = top.ustep;  // Basis is an attribute: restored with the others
         m_vstep = top.vstep;
+        m_condAttributes = std::const_pointer_cast<CondValues>(top.condAttributes);
     }
+    if (begin == Req::FrameBegin) m_frame.reset();
     m_blocks.pop_back();
     --m_open[size_t(begin)];
     return true;
@@ -120,6 +123,7 @@ bool Reader::dispatchBlock(const RequestInfo& info, const Args& a, const SourceL
                 break;
             }
             beginBlock(Req::FrameBegin, info.name, loc);
+            m_frame = a.nums.empty() ? 0 : static_cast<int>(a.nums[0]);
             t.frameBegin(loc, a.nums.empty() ? 0 : static_cast<int>(a.nums[0]));
             break;
         case Req::WorldBegin:

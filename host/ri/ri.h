@@ -331,6 +331,12 @@ RtVoid RiReadArchiveV(RtToken name, RtArchiveCallback callback, RtInt n, RtToken
                       RtPointer values[]);
 RtVoid RiErrorHandler(RtErrorHandler handler);
 
+/* Conditional RIB (PRMan): the calls of the branches not taken are dropped. */
+RtVoid RiIfBegin(RtString expression);
+RtVoid RiElseIf(RtString expression);
+RtVoid RiElse(void);
+RtVoid RiIfEnd(void);
+
 #ifdef __cplusplus
 }
 #endif

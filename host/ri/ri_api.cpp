@@ -161,6 +161,8 @@ RI_BARE(Identity, Identity)
 RI_BARE(SolidEnd, SolidEnd)
 RI_BARE(ObjectEnd, ObjectEnd)
 RI_BARE(MotionEnd, MotionEnd)
+RI_BARE(Else, Else)
+RI_BARE(IfEnd, IfEnd)
 #undef RI_BARE
 
 // Requests of a name and a parameter list.
@@ -197,6 +199,8 @@ RI_STRING(CoordinateSystem)
 RI_STRING(ScopedCoordinateSystem)
 RI_STRING(CoordSysTransform)
 RI_STRING(SolidBegin)
+RI_STRING(IfBegin)
+RI_STRING(ElseIf)
 #undef RI_STRING
 
 // Requests of n numbers.

@@ -500,3 +500,23 @@ TEST(RiApi, AShadersOwnParametersAreSizedFromItsSource) {
                         "[0.5 1 1.5] \"varying float Kd\" [0.25]\nSurface "
                         "\"ri_missing\"\nWorldEnd\n"));
 }
+
+// Conditional RIB through the API: the branch the user option picks is the one written.
+TEST(RiApi, ConditionalCallsKeepTheBranchTaken) {
+    const std::string path = scratch("cond.rib");
+    RiBegin(path.c_str());
+    RtString pass = "shadow";
+    RiOption("user", "string pass", &pass, RI_NULL);
+    RiWorldBegin();
+    RiIfBegin("$user:pass == 'beauty'");
+    RiSphere(1, -1, 1, 360, RI_NULL);
+    RiElseIf("$pass =~ '^sha'");
+    RiSphere(2, -2, 2, 360, RI_NULL);
+    RiElse();
+    RiSphere(3, -3, 3, 360, RI_NULL);
+    RiIfEnd();
+    RiWorldEnd();
+    RiEnd();
+    EXPECT_EQ(slurp(path), rewritten("Option \"user\" \"string pass\" [\"shadow\"]\n"
+                                     "WorldBegin\nSphere 2 -2 2 360\nWorldEnd\n"));
+}
