@@ -179,6 +179,9 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
             break;
 
         // Attributes
+        case Req::Resource:
+            resource(a, loc);
+            break;
         case Req::Attribute:
             noteCondValues(true, s(0), P);
             t.attribute(loc, s(0), P);
@@ -346,6 +349,46 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
             return false;
     }
     return true;
+}
+
+void Reader::resource(const Args& a, const SourceLoc& loc) {
+    const std::string name = a.strs[0], type = a.strs[1];
+    if (type != "attributes") {
+        m_diag.warning(
+            loc, "Resource type \"" + type + "\" is not supported (attributes); ignored");
+        return;
+    }
+    const std::string op = a.params.getString("operation", "");
+    const std::string subset = a.params.getString("subset", "all");
+    if (op != "save" && op != "restore") {
+        error(loc, "Resource \"" + name +
+                       "\": \"string operation\" must be \"save\" or \"restore\"");
+        return;
+    }
+    if (subset != "all" && subset != "shading" && subset != "transform") {
+        error(loc, "Resource \"" + name + "\": unknown subset \"" + subset +
+                       "\" (all, shading, transform)");
+        return;
+    }
+    if (op == "save") {
+        m_resources.back()[name] = ReaderAttributes{m_ustep, m_vstep, m_condAttributes};
+    } else {
+        const ReaderAttributes* saved = nullptr;
+        for (auto it = m_resources.rbegin(); it != m_resources.rend() && !saved; ++it)
+            if (auto found = it->find(name); found != it->end()) saved = &found->second;
+        if (!saved) {
+            error(loc, "Resource \"" + name +
+                           "\" restored but never saved (or its "
+                           "ResourceBegin block has ended)");
+            return;
+        }
+        if (subset !=
+            "transform") {  // (the Basis and user values are shading attributes)
+            m_ustep = saved->ustep, m_vstep = saved->vstep;
+            m_condAttributes = std::const_pointer_cast<CondValues>(saved->condAttributes);
+        }
+    }
+    m_target.resource(loc, name, type, a.params);
 }
 
 }  // namespace detail

@@ -76,6 +76,13 @@ struct OpenBlock {
         condAttributes;  // restored when an attribute block ends
 };
 
+// What the reader keeps of the attributes (the Basis steps, the values conditions read),
+// saved by Resource "attributes" under a name.
+struct ReaderAttributes {
+    int ustep = 3, vstep = 3;
+    std::shared_ptr<const CondValues> condAttributes;
+};
+
 // An IfBegin ... IfEnd being read: whether the branch being read is taken.
 struct CondFrame {
     SourceLoc loc;
@@ -181,6 +188,9 @@ private:
     void noteCondValues(bool attribute, const std::string& group,
                         const ParamList& params);
 
+    // Resource: checked, mirrored in the reader's own attributes, forwarded.
+    void resource(const Args& a, const SourceLoc& loc);
+
     // reader_archive.cpp
     // DelayedReadArchive and RunProgram, expanded at once inside an attribute block (the
     // renderer does not yet defer them until a ray reaches their bound).
@@ -228,6 +238,8 @@ private:
     std::shared_ptr<CondValues> m_condAttributes = std::make_shared<CondValues>();
     CondValues m_condOptions;
     std::optional<int> m_frame;  // FrameBegin's number, for $Frame
+    // Resource "attributes" saves by name, one map per ResourceBegin block open
+    std::vector<std::unordered_map<std::string, ReaderAttributes>> m_resources{1};
 };
 
 }  // namespace detail

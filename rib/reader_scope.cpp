@@ -234,6 +234,17 @@ bool Reader::dispatchBlock(const RequestInfo& info, const Args& a, const SourceL
         case Req::SolidEnd:
             if (endBlock(Req::SolidBegin, "SolidBegin", info.name, loc)) t.solidEnd(loc);
             break;
+        case Req::ResourceBegin:
+            beginBlock(Req::ResourceBegin, info.name, loc);
+            m_resources.emplace_back();
+            t.resourceBegin(loc);
+            break;
+        case Req::ResourceEnd:
+            if (endBlock(Req::ResourceBegin, "ResourceBegin", info.name, loc)) {
+                m_resources.pop_back();
+                t.resourceEnd(loc);
+            }
+            break;
         case Req::ObjectEnd:
             if (endBlock(Req::ObjectBegin, "ObjectBegin", info.name, loc)) t.objectEnd(loc);
             break;

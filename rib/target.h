@@ -160,6 +160,13 @@ public:
     // Only called when ReadOptions::expandArchives is false; by default the reader reads
     // the archive itself and the target sees its requests.
     virtual void readArchive(L, S /*file*/, P) {}
+    // PRMan's Resource "name" "attributes" "string operation" ["save"|"restore"]
+    // "string subset" ["all"|"shading"|"transform"]: a named copy of the attributes,
+    // restored later; names given inside ResourceBegin/ResourceEnd end with the block.
+    // The reader has checked the operation, the subset and that a restored name exists.
+    virtual void resourceBegin(L) {}
+    virtual void resourceEnd(L) {}
+    virtual void resource(L, S /*name*/, S /*type*/, P) {}
 
     // Geometry
     virtual void generalPolygon(L, Ints /*nverts per loop*/, P) {}

@@ -433,6 +433,23 @@ void RibWriter::scopedCoordinateSystem(L, S a1) {
     m_e->string(a1);
 }
 
+void RibWriter::resourceBegin(L) {
+    req("ResourceBegin");
+    ++m_indent;
+}
+
+void RibWriter::resourceEnd(L) {
+    --m_indent;
+    req("ResourceEnd");
+}
+
+void RibWriter::resource(L, S name, S type, P p) {
+    req("Resource");
+    m_e->string(name);
+    m_e->string(type);
+    params(p);
+}
+
 void RibWriter::coordSysTransform(L, S a1) {
     req("CoordSysTransform");
     m_e->string(a1);

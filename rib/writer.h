@@ -88,6 +88,9 @@ public:
     void skew(L, float, float, float, float, float, float, float) override;
     void coordinateSystem(L, S) override;
     void scopedCoordinateSystem(L, S) override;
+    void resourceBegin(L) override;
+    void resourceEnd(L) override;
+    void resource(L, S, S, P) override;
     void coordSysTransform(L, S) override;
     void motionBegin(L, Floats) override;
     void motionEnd(L) override;

@@ -331,6 +331,15 @@ RtVoid RiReadArchiveV(RtToken name, RtArchiveCallback callback, RtInt n, RtToken
                       RtPointer values[]);
 RtVoid RiErrorHandler(RtErrorHandler handler);
 
+/* PRMan's named attribute sets: RiResource("look", "attributes", "string operation",
+ * &op, RI_NULL) with op "save" or "restore" ("string subset": "all", "shading",
+ * "transform"); names given inside RiResourceBegin/RiResourceEnd end with the block. */
+RtVoid RiResource(RtToken handle, RtToken type, ...);
+RtVoid RiResourceV(RtToken handle, RtToken type, RtInt n, RtToken tokens[],
+                   RtPointer values[]);
+RtVoid RiResourceBegin(void);
+RtVoid RiResourceEnd(void);
+
 /* Conditional RIB (PRMan): the calls of the branches not taken are dropped. */
 RtVoid RiIfBegin(RtString expression);
 RtVoid RiElseIf(RtString expression);

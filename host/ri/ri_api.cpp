@@ -162,6 +162,8 @@ RI_BARE(SolidEnd, SolidEnd)
 RI_BARE(ObjectEnd, ObjectEnd)
 RI_BARE(MotionEnd, MotionEnd)
 RI_BARE(Else, Else)
+RI_BARE(ResourceBegin, ResourceBegin)
+RI_BARE(ResourceEnd, ResourceEnd)
 RI_BARE(IfEnd, IfEnd)
 #undef RI_BARE
 
@@ -456,6 +458,15 @@ RtVoid RiReadArchiveV(RtToken name, RtArchiveCallback, RtInt n, RtToken tokens[]
 }
 RtVoid RiReadArchive(RtToken name, RtArchiveCallback callback, ...) {
     RI_VARARGS(callback, RiReadArchiveV(name, callback, vp.n(), vp.t(), vp.v()));
+}
+
+RtVoid RiResourceV(RtToken handle, RtToken type, RtInt n, RtToken tokens[],
+                   RtPointer values[]) {
+    if (Context* c = Context::current("RiResource"))
+        c->send("Resource", {string(handle), string(type)}, {n, tokens, values});
+}
+RtVoid RiResource(RtToken handle, RtToken type, ...) {
+    RI_VARARGS(type, RiResourceV(handle, type, vp.n(), vp.t(), vp.v()));
 }
 
 RtVoid RiErrorHandler(RtErrorHandler handler) {

@@ -134,6 +134,33 @@ void RibBuilder::attributeEnd(L) {
     if (m_attrStack.size() > 1) m_attrStack.pop_back();
 }
 
+void RibBuilder::resourceBegin(L) {
+    m_resources.emplace_back();
+}
+void RibBuilder::resourceEnd(L) {
+    if (m_resources.size() > 1) m_resources.pop_back();
+}
+
+void RibBuilder::resource(L, S name, S, P params) {
+    Attributes& current = m_attrStack.back();
+    if (params.getString("operation", "") == "save") {
+        m_resources.back()[name] = current;
+        return;
+    }
+    const Attributes* saved = nullptr;  // (the reader checked that there is one)
+    for (auto it = m_resources.rbegin(); it != m_resources.rend() && !saved; ++it)
+        if (auto found = it->find(name); found != it->end()) saved = &found->second;
+    if (!saved) return;
+    const std::string subset = params.getString("subset", "all");
+    const Placement placement = current;
+    // (the scoped coordinate systems are names of the blocks open, not attributes)
+    std::vector<std::pair<std::string, glm::mat4>> scoped =
+        std::move(current.scopedSystems);
+    if (subset != "transform") current = *saved;
+    static_cast<Placement&>(current) = subset == "shading" ? placement : *saved;
+    current.scopedSystems = std::move(scoped);
+}
+
 void RibBuilder::format(L loc, int x, int y, float aspect) {
     if (x <= 0 || y <= 0 || x > 65536 || y > 65536 || (int64_t)x * y > (int64_t)1 << 28) {
         m_diag.error(loc, "Format " + std::to_string(x) + " " + std::to_string(y) +

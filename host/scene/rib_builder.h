@@ -58,6 +58,11 @@ public:
     void attributeBegin(L) override;
     void attribute(L, const std::string& name, const rib::ParamList&) override;
     void attributeEnd(L) override;
+    // Resource "attributes": the current attributes saved by name, or restored whole or
+    // in part (the transform, or the shading: all but the transform).
+    void resourceBegin(L) override;
+    void resourceEnd(L) override;
+    void resource(L, S name, S type, P params) override;
     void transformBegin(L) override;
     void transformEnd(L) override;
 
@@ -339,6 +344,8 @@ private:
     bool m_inWorld = false;
     bool m_forceTessellate = false;
     std::vector<Attributes> m_attrStack;
+    // Resource saves by name, one map per ResourceBegin block open
+    std::vector<std::map<std::string, Attributes>> m_resources{1};
     std::vector<Placement> m_xformStack;
     // MotionBegin/End being read (rib_builder_transforms.cpp): its times, how many of
     // its requests came, the placement before it and the transform keys so far; meshes

@@ -102,6 +102,49 @@ TEST(GraphicsState, ScopedCoordinateSystemEndsWithItsBlock) {
         << err.str();
 }
 
+// Resource "attributes" (PRMan): a saved colour and place restored in part. Saved red at
+// x = -2; then blue at x = 0, where the shading is restored (red); green at x = 2; the
+// transform alone restored (back at x = -2, still green). A name saved inside
+// ResourceBegin/ResourceEnd ends with the block; restoring it after is an error at its
+// file:line.
+TEST(GraphicsState, ResourceSavesAndRestoresAttributes) {
+    const std::string square =
+        "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\n";
+    const std::string restore =
+        "Resource \"look\" \"attributes\" \"string operation\" "
+        "[\"restore\"] \"string subset\" ";
+    Rendered img = renderRib(
+        std::string(kCamera) +
+        "WorldBegin\nSurface \"constant\"\nAttributeBegin\n"
+        "Color [1 0 0]\nTranslate -2 0 0\nResource \"look\" \"attributes\" "
+        "\"string operation\" [\"save\"]\nColor [0 0 1]\nTranslate 2 0 0\n" +
+        restore + "[\"shading\"]\n" + square + "Color [0 1 0]\nTranslate 2 0 0\n" +
+        square + restore + "[\"transform\"]\n" + square + "AttributeEnd\nWorldEnd\n");
+    EXPECT_NEAR(img.mean(0, 22, 6, 26, 10), 1.0, 1e-6);  // x = 0: red
+    EXPECT_NEAR(img.mean(2, 22, 6, 26, 10), 0.0, 1e-6);
+    EXPECT_NEAR(img.mean(1, 38, 6, 42, 10), 1.0, 1e-6);  // x = 2: green
+    EXPECT_NEAR(img.mean(1, 6, 6, 10, 10), 1.0, 1e-6);   // x = -2: green, moved back
+    EXPECT_NEAR(img.mean(0, 6, 6, 10, 10), 0.0, 1e-6);
+    std::ostringstream err;
+    rib::Diagnostics diag(&err);
+    rd::RibBuilder b(diag, "res.rib");
+    rib::readString(
+        "WorldBegin\nResourceBegin\nResource \"inner\" \"attributes\" \"string "
+        "operation\" [\"save\"]\nResourceEnd\nResource \"inner\" \"attributes\" "
+        "\"string operation\" [\"restore\"]\nResource \"x\" \"attributes\" "
+        "\"string operation\" [\"load\"]\nWorldEnd\n",
+        "res.rib", b, diag);
+    EXPECT_EQ(diag.errorCount(), 2);
+    EXPECT_NE(
+        err.str().find("res.rib:5: error: Resource \"inner\" restored but never saved"),
+        std::string::npos)
+        << err.str();
+    EXPECT_NE(
+        err.str().find("res.rib:6: error: Resource \"x\": \"string operation\" must be"),
+        std::string::npos)
+        << err.str();
+}
+
 // AreaLightSource: its light shader lights the scene like the same LightSource.
 TEST(GraphicsState, AreaLightSourceLightsLikeItsShader) {
     const std::string rest =

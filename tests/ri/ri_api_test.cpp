@@ -520,3 +520,23 @@ TEST(RiApi, ConditionalCallsKeepTheBranchTaken) {
     EXPECT_EQ(slurp(path), rewritten("Option \"user\" \"string pass\" [\"shadow\"]\n"
                                      "WorldBegin\nSphere 2 -2 2 360\nWorldEnd\n"));
 }
+
+TEST(RiApi, ResourcesAreWritten) {
+    const std::string path = scratch("resource.rib");
+    RiBegin(path.c_str());
+    RiWorldBegin();
+    RiResourceBegin();
+    RtString save = "save", restore = "restore", shading = "shading";
+    RiResource("look", "attributes", "string operation", &save, RI_NULL);
+    RiResource("look", "attributes", "string operation", &restore, "string subset",
+               &shading, RI_NULL);
+    RiResourceEnd();
+    RiWorldEnd();
+    RiEnd();
+    EXPECT_EQ(
+        slurp(path),
+        rewritten("WorldBegin\nResourceBegin\nResource \"look\" \"attributes\" "
+                  "\"string operation\" [\"save\"]\nResource \"look\" \"attributes\" "
+                  "\"string operation\" [\"restore\"] \"string subset\" "
+                  "[\"shading\"]\nResourceEnd\nWorldEnd\n"));
+}

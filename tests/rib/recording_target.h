@@ -126,6 +126,11 @@ public:
     void skew(L l, float a1, float a2, float a3, float a4, float a5, float a6, float a7) override { add(l, std::string("skew") + " " + str(a1) + " " + str(a2) + " " + str(a3) + " " + str(a4) + " " + str(a5) + " " + str(a6) + " " + str(a7)); }
     void coordinateSystem(L l, S a1) override { add(l, std::string("coordinateSystem") + " " + str(a1)); }
     void scopedCoordinateSystem(L l, S a1) override { add(l, std::string("scopedCoordinateSystem") + " " + str(a1)); }
+    void resourceBegin(L l) override { add(l, "resourceBegin"); }
+    void resourceEnd(L l) override { add(l, "resourceEnd"); }
+    void resource(L l, S a1, S a2, P p) override {
+        add(l, std::string("resource") + " " + str(a1) + " " + str(a2) + " " + str(p));
+    }
     void coordSysTransform(L l, S a1) override { add(l, std::string("coordSysTransform") + " " + str(a1)); }
     void motionBegin(L l, Floats a1) override { add(l, std::string("motionBegin") + " " + str(a1)); }
     void motionEnd(L l) override { add(l, "motionEnd"); }

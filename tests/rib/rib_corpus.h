@@ -79,6 +79,10 @@ WorldBegin
     ReverseOrientation
     CoordinateSystem "mycs"
     ScopedCoordinateSystem "myscoped"
+    ResourceBegin
+      Resource "look" "attributes" "string operation" ["save"] "string subset" ["shading"]
+      Resource "look" "attributes" "string operation" ["restore"]
+    ResourceEnd
     CoordSysTransform "mycs"
     Skew 45 0 1 0 1 0 0
     Identity
