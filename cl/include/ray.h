@@ -46,6 +46,11 @@ typedef struct RayState {
 
 #define RT_NO_HIT 0xffffffffu
 
+/* RayState::alive of a traced ray that only asks whether it escapes (occlusion()): its
+ * weight goes to its sample when it meets nothing within its reach, and what it meets is
+ * not shaded (classify_hits) */
+#define RT_ALIVE_VISIBILITY 3u
+
 /* Compaction works on groups of this many traced rays (close_round.cl, compact.cl); the
  * host sizes its per-group counts by it. */
 #define RT_COMPACT_GROUP 64

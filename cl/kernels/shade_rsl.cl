@@ -294,15 +294,18 @@ __kernel void shade_SURFACE(uint begin, uint count,
         /* a zero direction (refract() under total internal reflection) traces nothing */
         if (!(rt_dot3(td, td) > 0.5f)) continue;
         float4 tp = ev.trace_org[i];
+        /* (rsl_abi.h TRACE: a visibility ray's flag, the ray's reach, 0 for no limit) */
+        const uint alive = tp.w > 0.5f ? RT_ALIVE_VISIBILITY : 1u;
+        const float reach = ev.trace_dir[i].w;
         tp.w = 0.0f;
         float4 to = rt_offset_ray(tp, rt_dot3(td, Ngf) >= 0.0f ? Ngf : -Ngf);
         to.w = 0.0f;
-        td.w = INFINITY;
+        td.w = reach > 0.0f ? reach : INFINITY;
         uint s = r * RT_SPAWN_SLOTS + 1 + (uint)i;
         next_origin[s] = to;
         next_direction[s] = td;
         next_weight[s] = rt_weight_of(tw);
-        RayState ts = {1u, rs.depth + 1u, h.prim, width_at_hit};
+        RayState ts = {alive, rs.depth + 1u, h.prim, width_at_hit};
         next_state[s] = ts;
         next_sample[s] = sample;
         spawned |= 2u << i;

@@ -8,8 +8,11 @@
  * also clears the spawn mask and shadow slots the shade stage may fill this round, and takes
  * the ray off its sample's count of rays in flight (what it spawns is counted when the
  * compaction keeps it). */
+#include "atomics.clh"
 #include "counters.clh"
+#include "film.h"
 #include "ray.h"
+#include "ray_weight.clh"
 #include "quadric.h"
 #include "scene_types.h"
 
@@ -28,6 +31,10 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
                             __global RayState* shadow_state,
                             __global const uint* ray_sample,
                             __global uint* slot_rays,
+                            /* RT_HAS_VISIBILITY_RAYS only: occlusion() rays */
+                            __global const RayState* state,
+                            __global const rt_weight* weight,
+                            __global SampleTotal* total,
                             __global uint* active_counter) {
     __local uint hist[RT_MAX_SHADER_KEYS];
     uint r = get_global_id(0), lid = get_local_id(0);
@@ -54,6 +61,15 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
 #endif
             k = materials[mat].shader;
         }
+#ifdef RT_HAS_VISIBILITY_RAYS
+        /* an occlusion() ray: its weight counts when it escaped; it is never shaded */
+        if (state[r].alive == RT_ALIVE_VISIBILITY) {
+            if (prim == RT_NO_HIT)
+                rt_atomic_add_float4(&total[ray_sample[r]].value,
+                                     rt_total_of(rt_weight_color(weight[r])));
+            k = shader_count;
+        }
+#endif
         key[r] = k;
         if (shader_count > 1) atomic_inc(&hist[k]); /* one shader: no sort, no counts */
         spawn_mask[r] = 0u;

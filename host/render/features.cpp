@@ -37,6 +37,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.trace = shading.usesTrace;
     f.traceSlots = shading.usesTrace ? std::max(1, shading.traceSlots) : 0;
     f.sampledTrace = shading.sampledTrace;
+    f.visibilityRays = shading.visibilityRays;
     f.maxSpecularDepth = scene.maxSpecularDepth;
     f.maxTransparentDepth = scene.maxTransparentDepth;
     f.rouletteDepth = scene.rouletteDepth;
@@ -106,6 +107,7 @@ std::vector<std::string> Features::names() const {
     if (lightCoefficients) n.push_back("light_coefficients");
     if (trace) n.push_back("trace");
     if (sampledTrace) n.push_back("sampled_trace");
+    if (visibilityRays) n.push_back("occlusion");
     if (aovs) n.push_back("aovs");
     if (sobol) n.push_back("sobol_sampler");
     if (treelets) n.push_back("treelets");
@@ -203,6 +205,7 @@ std::string buildOptions(const Features& f) {
     if (f.shadowPackets) o += " -DRT_SHADOW_PACKETS";
     if (f.closestPackets) o += " -DRT_CLOSEST_PACKETS";
     if (f.sampledTrace) o += " -DRT_INCOHERENT_TRACE";
+    if (f.visibilityRays) o += " -DRT_HAS_VISIBILITY_RAYS";
     if (f.specialisedLights) o += " -DRD_SPECIALISED_LIGHTS";
     if (f.trace && f.rouletteDepth > 0)
         o += " -DRT_ROULETTE_DEPTH=" + std::to_string(f.rouletteDepth) + "u";

@@ -21,6 +21,7 @@ struct Features {
     bool shadowRays = false;    // some light other than ambient
     bool trace = false;         // some surface shader calls trace()
     bool sampledTrace = false;  // ... and random(): traced rays in sampled directions
+    bool visibilityRays = false;  // ... occlusion(): traced rays that ask if they escape
     int maxSpecularDepth = 2;   // trace() recursion limit
     bool aovs = false;          // geometric AOVs (z, N) asked for
     uint32_t primvars = 0;      // RT_PRIMVAR_* some triangle carries per vertex

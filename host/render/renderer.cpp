@@ -334,7 +334,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         const cl_uint parity = cl_uint(st.iterations & 1);
         k.classify.launch(n, n, shaderCount, nl, parity, rp.hits, ds.attrs, ds.materials,
                           ds.quadrics, rp.hitInstance, rp.key, rp.keyCount, rp.keyCursor,
-                          rp.spawnMask, rp.shState, rp.sample, rp.slotRays);
+                          rp.spawnMask, rp.shState, rp.sample, rp.slotRays, rp.state,
+                          rp.weight, rp.totals);
         // One shader: no sort and no wait for the counts; its run is the whole pool in
         // order (`sorted` holds 0, 1, 2, ...) and the shade kernel skips the misses.
         if (shaderCount > 1) prof.markHostWait();

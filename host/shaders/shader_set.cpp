@@ -489,6 +489,7 @@ ShadingSetup ShaderSet::prepare() {
             out.traceSlots = std::max(out.traceSlots, sh->traceBound);
             out.lightCoefs |= lightCoefs && sh->lightCoefs;
             out.sampledTrace |= sh->usesTrace && sh->usesRandom;
+            out.visibilityRays |= sh->usesVisibility;
             out.derivatives |= sh->usesDerivatives;
         }
         refShader[r] = it->second;

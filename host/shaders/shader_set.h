@@ -52,6 +52,8 @@ struct ShadingSetup {
     // Some surface calls trace() and random(): its traced rays sample directions (glossy,
     // diffuse), incoherent, unlike mirror and glass rays.
     bool sampledTrace = false;
+    bool visibilityRays =
+        false;           // some surface calls occlusion(): rays that ask if they escape
     int traceSlots = 0;  // rays a hit may spawn with trace(): the surfaces' most a run
     bool atmosphere = false;                // some surface has an Atmosphere shader
     bool displacement = false;              // some surface has a Displacement shader

@@ -106,7 +106,11 @@
  *     shadow ray (per channel, multiply by nothing more: Cl is already in).
  *   - trace i (mode_light = -1, mode_trace = i): trace() call number i (dynamic
  *     count in execution order) returns color(1), all else 0: Ci - E = the weight of
- *     the ray trace_org/dir[i] recorded in base mode.
+ *     the ray trace_org/dir[i] recorded in base mode. trace_dir[i].w is the ray's reach
+ *     (0: no limit; occlusion(), indirectdiffuse() "maxdist"), trace_org[i].w 1 for a
+ *     visibility ray (occlusion(): its weight counts when it escapes, and what it
+ *     hits is not shaded), else 0. occlusion() and indirectdiffuse() are trace sites
+ *     in a cosine-distributed direction about N, from two random sites.
  *   Each evaluation resets ev->trace_count to 0 first.
  *   LIGHT COEFFICIENTS. A renderer that defines RSL_LIGHT_COEFS (the number of lights,
  *   >= 1) may get every light mode's result from the base evaluation: with ev->coefs
@@ -148,28 +152,27 @@
  *          Ps toward the light (surface-side), Cl = unshadowed colour.
  *   rsl_color rsl_ambient(const RslGlobals* g);  sum of the ambient lights' Cl
  *   RslMatrix rsl_space_matrix(const RslSpaces* sp, int space);
- *          maps points of `space` (RSL_SPACE_*) to current space (p_current = (p,1) * M); RSL_SPACE_CURRENT: identity; WORLD
- *          a translation when the renderer keeps the scene relative to the eye.
- *          Only called for WORLD, CAMERA, SCREEN, RASTER and NDC: SHADER and OBJECT come from
- *          the matrices after the parameter block (SPACES above).
- *   int    rsl_lightsource_param(const RslGlobals* g, int light, int nameId, float* out,
- *                                 int n);
+ *          maps points of `space` (RSL_SPACE_*) to current space (p_current = (p,1) * M);
+ * RSL_SPACE_CURRENT: identity; WORLD a translation when the renderer keeps the scene
+ * relative to the eye. Only called for WORLD, CAMERA, SCREEN, RASTER and NDC: SHADER and
+ * OBJECT come from the matrices after the parameter block (SPACES above). int
+ * rsl_lightsource_param(const RslGlobals* g, int light, int nameId, float* out, int n);
  *          light `light`'s parameter named nameId (rsl::stringId of the name): nonzero
  *          and out[0..n) written when that light's shader has such a parameter of n
  *          float slots (its value in the light's parameter block), else 0.
  *   int    rsl_attribute(int nameId, float* out, int n);  attribute("name", var) of
  *          the object being shaded, e.g. "identifier:name" (a string: its id as float)
  *   int    rsl_option(const RslSpaces* sp, int nameId, float* out, int n);
- *          option("name", var), e.g. "Format" (float[3]: x resolution, y resolution, pixel aspect)
- *          Both: nonzero and out[0..n) written when known with exactly n slots, else 0.
- *   float4 rsl_texture_service(RslEval* ev, int kind, int id, int channel, float4 p,
+ *          option("name", var), e.g. "Format" (float[3]: x resolution, y resolution,
+ * pixel aspect) Both: nonzero and out[0..n) written when known with exactly n slots, else
+ * 0. float4 rsl_texture_service(RslEval* ev, int kind, int id, int channel, float4 p,
  *                              float4 dpdu, float4 dpdv, float width, float blur,
  *                              float fill, float4 extra);
  *          TEXTURES. kind RSL_TEX_2D: map id at (s, t) = p.xy, filtered over the
  *          footprint spanned by dpdu.xy and dpdv.xy (the changes of s, t to the
  *          neighbours), times width, plus blur; RSL_TEX_ENVIRONMENT: the direction p.xyz,
- *          dpdu/dpdv its changes; RSL_TEX_SHADOW: the point p.xyz (current space), extra =
- *          (bias, samples). Returns channels channel.. channel+2 (a one-channel map in all
+ *          dpdu/dpdv its changes; RSL_TEX_SHADOW: the point p.xyz (current space), extra
+ * = (bias, samples). Returns channels channel.. channel+2 (a one-channel map in all
  *          three); fill where the map has no such channel. A renderer that must fetch
  *          data first may return anything and shade the point again later (its
  *          side effects are then not committed).

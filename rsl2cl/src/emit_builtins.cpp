@@ -69,6 +69,45 @@ std::string Emitter::message(const Expr& e) {
 // texture(), environment(), shadow() and bump() through the renderer's texture service
 // (rsl_abi.h, TEXTURES): the positional arguments, then "name", value pairs: blur,
 // width (swidth, twidth: their larger), fill, bias, samples.
+// occlusion(P, N, samples, ...) and indirectdiffuse(P, N, samples, ...): one ray a
+// shading sample in a cosine-distributed direction about N (the pixel's samples add up to
+// the hemisphere's average, so "samples" is not needed), drawn from two random sites; a
+// trace site like trace()'s. indirectdiffuse is the radiance it meets; occlusion is
+// 1 - (whether it escapes within "maxdist"), its ray a visibility ray.
+std::string Emitter::hemisphereCall(const Expr& e) {
+    const std::string& n = e.text;
+    m_out.usesTrace = true;
+    m_out.usesRandom = true;
+    if (m_func || !m_loops.empty() || !m_lightVars.empty())
+        m_traceRepeats = true;
+    else
+        m_traceSites.insert(&e);
+    std::string maxdist = "0.0f";  // (0: no limit)
+    for (size_t i = 3; i + 1 < e.args.size(); i += 2) {
+        const Expr& key = *e.args[i];
+        if (key.kind != ExprKind::String) {
+            m_diag.warning(key.loc,
+                           n + "(): a parameter name must be a string literal; ignored");
+            continue;
+        }
+        if (key.text == "maxdist")
+            maxdist = exprAs(*e.args[i + 1], BaseType::Float);
+        else if (key.text != "samples" && key.text != "bias" && key.text != "adaptive" &&
+                 key.text != "maxvariation" && key.text != "hitmode" &&
+                 key.text != "label" && key.text != "subset")
+            m_diag.warning(key.loc, n + "(): parameter \"" + key.text +
+                                        "\" is not supported; ignored");
+    }
+    const int site = m_randomSite;
+    m_randomSite += 2;
+    const std::string args = "(ev, g, " + exprAs(*e.args[0], BaseType::Point) + ", " +
+                             exprAs(*e.args[1], BaseType::Normal) + ", " +
+                             std::to_string(site) + ", " + maxdist + ")";
+    if (n == "indirectdiffuse") return "rsl_indirectdiffuse" + args;
+    m_out.usesVisibility = true;
+    return "rsl_occlusion" + args;
+}
+
 std::string Emitter::textureCall(const Expr& e, bool vret) {
     const std::string& n = e.text;
     m_out.usesTexture = true;
@@ -369,6 +408,7 @@ std::string Emitter::builtin(const Expr& e) {
         return "rsl_trace(ev, " + A(0) + ", " + A(1) + ")";
     }
     if (n == "transmission") return "rsl_f2c(1.0f)";
+    if (n == "occlusion" || n == "indirectdiffuse") return hemisphereCall(e);
     if (n == "texture" || n == "environment" || n == "shadow" || n == "bump")
         return textureCall(e, vret);
     if (n == "textureinfo") return textureInfo(e);

@@ -53,6 +53,8 @@ struct EmittedShader {
     int traceBound = 0;
     static constexpr int kMaxTrace = 8;
     bool usesRandom = false;  // calls random(): with trace(), rays in sampled directions
+    // calls occlusion(): rays that only ask whether they escape (rsl_abi.h TRACE)
+    bool usesVisibility = false;
     bool usesLighting = false;  // illuminance, diffuse, specular, phong, ambient
     bool ambientLight = false;  // a light shader with no illuminate/solar
     // A surface whose base evaluation also gives Ci's coefficient of every light's Cl

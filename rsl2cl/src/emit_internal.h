@@ -57,6 +57,7 @@ public:
     std::string colorSpaceArg(const Expr& e);
     std::string message(const Expr& e);  // lightsource(), attribute(), option(), ...
     std::string textureCall(const Expr& e, bool vret);  // texture, environment, shadow, bump
+    std::string hemisphereCall(const Expr& e);          // occlusion, indirectdiffuse
     std::string textureInfo(const Expr& e);
 
     // ---- light coefficients (emit_coefs.cpp) ----

@@ -124,6 +124,54 @@ TEST(Shading, SampledTraceWalksTheHitMasks) {
     EXPECT_EQ(differ, 0);
 }
 
+// occlusion() and indirectdiffuse() (session 30): one cosine-distributed ray a shading
+// sample about the normal, 64 samples a pixel. A small patch at z = 5, its hemisphere
+// toward +z (away from the camera): under half of a sky sphere, occlusion is 1/2 by
+// symmetry; under a disk of radius 1 centred 2 units along the normal, the
+// cosine-weighted fraction of the hemisphere it covers is sin^2 of its half-angle, 1 / (1
+// + 4) = 0.2 (1 - occlusion 0.8), none with "maxdist" 1.5 (it is out of reach), and
+// indirectdiffuse sees the disk's constant colour over that fraction. Image means, to
+// 0.02 (the samples are stratified: measured within 0.005).
+TEST(Shading, OcclusionAndIndirectDiffuseAreTheirHemisphereFractions) {
+    std::string dir = shaderDir("raydrive_occlusion");
+    std::ofstream(dir + "/hemi.sl")
+        << "surface hemi(float maxd = 0; float indirect = 0;) {\n"
+           "  normal Nz = normal(0, 0, 1);\n"
+           "  if (indirect > 0) Ci = indirectdiffuse(P, Nz, 16);\n"
+           "  else if (maxd > 0) Ci = 1 - occlusion(P, Nz, 16, \"maxdist\", maxd);\n"
+           "  else Ci = 1 - occlusion(P, Nz, 16);\n"
+           "  Oi = 1;\n}\n";
+    auto render = [&](const std::string& hemi, const std::string& above) {
+        return renderRib(
+            "Option \"searchpath\" \"shader\" [\"" + dir +
+            ":&\"]\nFormat 16 16 1\nPixelSamples 8 8\nProjection "
+            "\"orthographic\"\nScreenWindow -0.05 0.05 -0.05 0.05\nWorldBegin\n"
+            "AttributeBegin\nSurface \"constant\"\nColor [1 0.5 0.25]\n" +
+            above + "AttributeEnd\nSurface \"hemi\" " + hemi +
+            "\nPolygon \"P\" [-1 -1 5  1 -1 5  1 1 5  -1 1 5]\nWorldEnd\n");
+    };
+    const std::string halfSky = "Sphere 100 -100 100 180\n";
+    const std::string disk = "Translate 0 0 7\nDisk 0 1 360\n";
+    Rendered half = render("", halfSky), under = render("", disk),
+             reach = render("\"maxd\" 1.5", disk), light = render("\"indirect\" 1", disk);
+    EXPECT_NEAR(half.mean(0, 0, 0, 16, 16), 0.5, 0.02);
+    EXPECT_NEAR(under.mean(0, 0, 0, 16, 16), 0.8, 0.02);
+    EXPECT_NEAR(reach.mean(0, 0, 0, 16, 16), 1.0, 1e-6);
+    EXPECT_NEAR(light.mean(0, 0, 0, 16, 16), 0.2, 0.02);
+    EXPECT_NEAR(light.mean(1, 0, 0, 16, 16), 0.1, 0.01);
+    EXPECT_NEAR(light.mean(2, 0, 0, 16, 16), 0.05, 0.005);
+    std::printf("NUMERICS case=occlusion_half_sky tolerance=0.02 measured=%.4f\n",
+                half.mean(0, 0, 0, 16, 16) - 0.5);
+    std::printf("NUMERICS case=occlusion_disk tolerance=0.02 measured=%.4f\n",
+                under.mean(0, 0, 0, 16, 16) - 0.8);
+    std::printf("NUMERICS case=indirectdiffuse_disk tolerance=0.02 measured=%.4f\n",
+                light.mean(0, 0, 0, 16, 16) - 0.2);
+    const auto names = under.stats.features.names();
+    EXPECT_NE(std::find(names.begin(), names.end(), "occlusion"), names.end());
+    EXPECT_TRUE(under.stats.features.visibilityRays);
+    EXPECT_TRUE(light.stats.features.sampledTrace);
+}
+
 // spotlight: inside the cone a matte plane gets intensity * cos^beam / d^2 * N.L; outside
 // the cone (coneangle 10 degrees, plane corners) nothing.
 TEST(Shading, SpotlightConeAndFalloff) {
