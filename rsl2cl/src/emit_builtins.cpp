@@ -407,7 +407,19 @@ std::string Emitter::builtin(const Expr& e) {
         else m_traceSites.insert(&e);
         return "rsl_trace(ev, " + A(0) + ", " + A(1) + ")";
     }
-    if (n == "transmission") return "rsl_f2c(1.0f)";
+    if (n == "transmission") {
+        // In a light shader it is 1: RayDrive traces a shadow ray for every light (but
+        // those whose shadows a map gives), which asks the same. In a surface, a
+        // visibility ray from the first point to the second.
+        if (m_sh.kind != ShaderKind::Surface) return "rsl_f2c(1.0f)";
+        m_out.usesTrace = true;
+        m_out.usesVisibility = true;
+        if (m_func || !m_loops.empty() || !m_lightVars.empty())
+            m_traceRepeats = true;
+        else
+            m_traceSites.insert(&e);
+        return "rsl_transmission(ev, " + A(0) + ", " + A(1) + ")";
+    }
     if (n == "occlusion" || n == "indirectdiffuse") return hemisphereCall(e);
     if (n == "texture" || n == "environment" || n == "shadow" || n == "bump")
         return textureCall(e, vret);

@@ -172,6 +172,35 @@ TEST(Shading, OcclusionAndIndirectDiffuseAreTheirHemisphereFractions) {
     EXPECT_TRUE(light.stats.features.sampledTrace);
 }
 
+// transmission(P0, P1) in a surface shader (session 30; it returned 1 before): a ray from
+// P0 to P1. A patch at z = 5 asks toward P + (0, 0, 3); a square over its left half at
+// z = 6.5 blocks those rays (0), the right half sees through (1); the same square at
+// z = 9, beyond P1, blocks nothing. In a light shader it stays 1 (the light's shadow ray
+// asks the same).
+TEST(Shading, TransmissionInASurfaceIsAVisibilityRay) {
+    std::string dir = shaderDir("raydrive_transmission");
+    std::ofstream(dir + "/seethrough.sl")
+        << "surface seethrough() {\n"
+           "  Ci = transmission(P, P + vector(0, 0, 3));\n  Oi = 1;\n}\n";
+    auto render = [&](const char* z) {
+        return renderRib(
+            "Option \"searchpath\" \"shader\" [\"" + dir +
+            ":&\"]\nFormat 16 16 1\nPixelSamples 2 2\nProjection "
+            "\"orthographic\"\nWorldBegin\nAttributeBegin\nSurface "
+            "\"constant\"\nPolygon \"P\" [-2 -2 " +
+            std::string(z) + "  0 -2 " + z + "  0 2 " + z + "  -2 2 " + z +
+            "]\nAttributeEnd\nSurface "
+            "\"seethrough\"\nPolygon \"P\" [-1 -1 5  1 -1 5  1 1 5  -1 1 5]\n"
+            "WorldEnd\n");
+    };
+    Rendered near = render("6.5"), far = render("9");
+    EXPECT_NEAR(near.mean(0, 0, 0, 8, 16), 0.0,
+                1e-6);  // (the left half, behind the square)
+    EXPECT_NEAR(near.mean(0, 8, 0, 16, 16), 1.0, 1e-6);
+    EXPECT_NEAR(far.mean(0, 0, 0, 16, 16), 1.0, 1e-6);
+    EXPECT_TRUE(near.stats.features.visibilityRays);
+}
+
 // spotlight: inside the cone a matte plane gets intensity * cos^beam / d^2 * N.L; outside
 // the cone (coneangle 10 degrees, plane corners) nothing.
 TEST(Shading, SpotlightConeAndFalloff) {
