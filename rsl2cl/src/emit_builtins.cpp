@@ -69,6 +69,16 @@ std::string Emitter::message(const Expr& e) {
 // texture(), environment(), shadow() and bump() through the renderer's texture service
 // (rsl_abi.h, TEXTURES): the positional arguments, then "name", value pairs: blur,
 // width (swidth, twidth: their larger), fill, bias, samples.
+// A call that asks for a ray (rsl_abi.h TRACE): its site is counted once per evaluation
+// unless it may run more than once (in a function, a loop or a light loop).
+void Emitter::traceSite(const Expr& e) {
+    m_out.usesTrace = true;
+    if (m_func || !m_loops.empty() || !m_lightVars.empty())
+        m_traceRepeats = true;
+    else
+        m_traceSites.insert(&e);
+}
+
 // occlusion(P, N, samples, ...) and indirectdiffuse(P, N, samples, ...): one ray a
 // shading sample in a cosine-distributed direction about N (the pixel's samples add up to
 // the hemisphere's average, so "samples" is not needed), drawn from two random sites; a
@@ -76,12 +86,8 @@ std::string Emitter::message(const Expr& e) {
 // 1 - (whether it escapes within "maxdist"), its ray a visibility ray.
 std::string Emitter::hemisphereCall(const Expr& e) {
     const std::string& n = e.text;
-    m_out.usesTrace = true;
+    traceSite(e);
     m_out.usesRandom = true;
-    if (m_func || !m_loops.empty() || !m_lightVars.empty())
-        m_traceRepeats = true;
-    else
-        m_traceSites.insert(&e);
     std::string maxdist = "0.0f";  // (0: no limit)
     for (size_t i = 3; i + 1 < e.args.size(); i += 2) {
         const Expr& key = *e.args[i];
@@ -402,9 +408,7 @@ std::string Emitter::builtin(const Expr& e) {
         return s + ")";
     }
     if (n == "trace") {
-        m_out.usesTrace = true;
-        if (m_func || !m_loops.empty() || !m_lightVars.empty()) m_traceRepeats = true;
-        else m_traceSites.insert(&e);
+        traceSite(e);
         return "rsl_trace(ev, " + A(0) + ", " + A(1) + ")";
     }
     if (n == "transmission") {
@@ -412,12 +416,8 @@ std::string Emitter::builtin(const Expr& e) {
         // those whose shadows a map gives), which asks the same. In a surface, a
         // visibility ray from the first point to the second.
         if (m_sh.kind != ShaderKind::Surface) return "rsl_f2c(1.0f)";
-        m_out.usesTrace = true;
+        traceSite(e);
         m_out.usesVisibility = true;
-        if (m_func || !m_loops.empty() || !m_lightVars.empty())
-            m_traceRepeats = true;
-        else
-            m_traceSites.insert(&e);
         return "rsl_transmission(ev, " + A(0) + ", " + A(1) + ")";
     }
     if (n == "occlusion" || n == "indirectdiffuse") return hemisphereCall(e);

@@ -58,6 +58,7 @@ public:
     std::string message(const Expr& e);  // lightsource(), attribute(), option(), ...
     std::string textureCall(const Expr& e, bool vret);  // texture, environment, shadow, bump
     std::string hemisphereCall(const Expr& e);          // occlusion, indirectdiffuse
+    void traceSite(const Expr& e);  // trace, occlusion, indirectdiffuse, transmission
     std::string textureInfo(const Expr& e);
 
     // ---- light coefficients (emit_coefs.cpp) ----
