@@ -169,9 +169,11 @@ int main(int argc, char** argv) {
     bool quiet = false, halfFloat = false, tessellateQuadrics = false;
     double timeBudget = 0, errorTarget = 0;
     std::vector<std::string> aovs;
-    app.add_option("scene", scenePath,
-                   "RIB file to render, `devices` to list devices (or `raydrive txmake --help`, "
-                   "`raydrive catrib --help`)")
+    app.add_option(
+           "scene", scenePath,
+           "RIB file to render (`-`: the standard input, e.g. a program's RIB through a "
+           "pipe), `devices` to list devices (or `raydrive txmake --help`, "
+           "`raydrive catrib --help`)")
         ->required();
     app.add_option("-o,--output", output, "output file (overrides the RIB's Display)");
     app.add_option("--device", deviceSpec,
@@ -243,18 +245,23 @@ int main(int argc, char** argv) {
     if (scenePath == "devices") return listDevicesCommand();
 
     rib::Diagnostics diag(&std::cerr);
-    rd::RibBuilder builder(diag, scenePath);
+    // ("-": the standard input, read once, so its archives are read at once)
+    const bool standardInput = scenePath == "-";
+    const std::string sceneName = standardInput ? rib::kStandardInputName : scenePath;
+    rd::RibBuilder builder(diag, sceneName);
     builder.setTessellateQuadrics(tessellateQuadrics);
+    builder.setDeferProcedurals(!standardInput);
     rib::readFile(scenePath, builder, diag);
     diag.printSuppressed();
     if (diag.errorCount() > 0) {
-        std::cerr << "raydrive: " << diag.errorCount() << " error(s) in " << scenePath
+        std::cerr << "raydrive: " << diag.errorCount() << " error(s) in " << sceneName
                   << "; nothing rendered\n";
         return 1;
     }
     auto& scenes = builder.scenes();
     if (scenes.empty()) {
-        std::cerr << scenePath << ": error: no WorldBegin/WorldEnd block: nothing to render\n";
+        std::cerr << sceneName
+                  << ": error: no WorldBegin/WorldEnd block: nothing to render\n";
         return 1;
     }
 
@@ -296,7 +303,7 @@ int main(int argc, char** argv) {
             rd::RenderStats st = rd::renderWithArchives(renderer, readAgain, scenes[i], i, film, diag);
             std::string out = rd::frameOutputName(scenes[i], output, i, scenes.size());
             try {
-                rd::writeFrameImage(out, scenes[i], film, st, aovs, halfFloat, scenePath);
+                rd::writeFrameImage(out, scenes[i], film, st, aovs, halfFloat, sceneName);
             } catch (const std::exception& e) {
                 std::cerr << "raydrive: error: " << e.what() << "\n";
                 return 4;
@@ -313,7 +320,7 @@ int main(int argc, char** argv) {
             if (st.nonfiniteSamples > 0 && !quiet)
                 std::cerr << "raydrive: warning: " << st.nonfiniteSamples
                           << " sample(s) with NaN or Inf were left out of the image\n";
-            allStats.push_back(rd::statsToJson(st, scenePath, out));
+            allStats.push_back(rd::statsToJson(st, sceneName, out));
             for (nlohmann::json& e : rd::timelineTraceEvents(
                      st.timeline, int(i) + 1, "frame " + std::to_string(i + 1) + " (" + out + ")"))
                 traceEvents.push_back(std::move(e));

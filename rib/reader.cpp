@@ -5,9 +5,10 @@
 // Declare, the predefined names or the values themselves. The token source is the file
 // being read, an archive it reads (ReadArchive swaps the lexer and recurses), or the
 // recorded tokens of an inline archive.
-#include <algorithm>
+#include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -516,15 +517,19 @@ bool readFile(const std::string& path, Target& target, Diagnostics& diag,
               const ReadOptions& options) {
     int before = diag.errorCount();
     errno = 0;
-    gzFile file = gzopen(path.c_str(), "rb");
+    // "-": the standard input (a program's RIB through a pipe), plain or gzip
+    const bool standardInput = path == "-";
+    const std::string name = standardInput ? kStandardInputName : path;
+    gzFile file =
+        standardInput ? gzdopen(dup(STDIN_FILENO), "rb") : gzopen(path.c_str(), "rb");
     if (!file) {
-        diag.error(SourceLoc{path, 0}, std::string("cannot open RIB file: ") +
+        diag.error(SourceLoc{name, 0}, std::string("cannot open RIB file: ") +
                                            std::strerror(errno ? errno : ENOMEM));
         return false;
     }
     ErrorMode mode = diag.mode();
     diag.setMode(options.errorHandler);
-    Lexer lex(path, diag);
+    Lexer lex(name, diag);
     lex.setFile(file);
     detail::Reader reader(lex, target, diag, options);
     reader.run();

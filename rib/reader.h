@@ -39,8 +39,11 @@ struct ReadOptions {
     size_t runProgramMaxBytes = size_t(1) << 30;
 };
 
-// Reads a RIB file (gzip-compressed or plain). Returns true when no errors were reported
-// while reading it.
+// The name messages give the standard input.
+inline constexpr const char* kStandardInputName = "stdin";
+
+// Reads a RIB file (gzip-compressed or plain; "-" reads the standard input, named
+// "stdin" in messages). Returns true when no errors were reported while reading it.
 bool readFile(const std::string& path, Target& target, Diagnostics& diag,
               const ReadOptions& options = ReadOptions());
 

@@ -12,7 +12,9 @@ namespace rd::ri {
 
 RenderTarget::RenderTarget(rib::Diagnostics& diag,
                            std::function<void(const std::string&)> failed)
-    : RibBuilder(diag, "ri"), m_diag(diag), m_failed(std::move(failed)) {}
+    : RibBuilder(diag, "ri"), m_diag(diag), m_failed(std::move(failed)) {
+    setDeferProcedurals(false);
+}
 
 RenderTarget::~RenderTarget() = default;
 

@@ -20,7 +20,6 @@ public:
     RenderTarget(rib::Diagnostics& diag, std::function<void(const std::string&)> failed);
     ~RenderTarget() override;
     void worldEnd(L loc) override;
-    bool deferProcedural(L, S, Strings, const float[6], S) override { return false; }
 
 private:
     rib::Diagnostics& m_diag;

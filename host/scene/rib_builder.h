@@ -103,6 +103,9 @@ public:
     // The DelayedReadArchive calls (Scene::DeferredProcedural::key) to load when read;
     // the others wait, as boxes, until a ray reaches them.
     void setLoadedProcedurals(std::set<std::string> keys) { m_loadProcedurals = std::move(keys); }
+    // Off: every DelayedReadArchive is read at once (its RIB cannot be read again: the
+    // standard input, the Ri API's calls).
+    void setDeferProcedurals(bool on) { m_deferProcedurals = on; }
     void imager(L, S name, P params) override;
     void sides(L, int n) override;
     void skew(L, float angleDeg, float dx1, float dy1, float dz1, float dx2, float dy2,
@@ -332,6 +335,7 @@ private:
 
     rib::Diagnostics& m_diag;
     std::set<std::string> m_loadProcedurals;  // DelayedReadArchive keys read at once
+    bool m_deferProcedurals = true;
     // The geometry request being read: its constant primitive variables that are not the
     // standard ones override the surface shader's parameters of the same names
     const rib::ParamList* m_primVars = nullptr;

@@ -11,8 +11,8 @@ namespace rd {
 // renderer has the RIB read again with it loaded: setLoadedProcedurals). Inside solids
 // and object definitions it is read at once.
 bool RibBuilder::deferProcedural(L loc, S name, Strings args, const float bound[6], S file) {
-    if (name != "DelayedReadArchive" || !m_inWorld || m_defining || !m_solidStack.empty() ||
-        args.empty())
+    if (!m_deferProcedurals || name != "DelayedReadArchive" || !m_inWorld || m_defining ||
+        !m_solidStack.empty() || args.empty())
         return false;
     const std::string key = loc.str() + "|" + args[0];
     if (m_loadProcedurals.count(key)) return false;
