@@ -50,6 +50,10 @@ typedef struct Material {
 #define RT_MATERIAL_MATTE 1u
 /* Sides 1: hits on the back (the side its normal points away from) are ignored. */
 #define RT_MATERIAL_ONE_SIDED 2u
+/* Attribute "visibility" "int camera" [0] / "int trace" [0] (PRMan): camera rays (and
+ * their continuations through transparent surfaces), or traced rays, go through it. */
+#define RT_MATERIAL_NO_CAMERA 4u
+#define RT_MATERIAL_NO_TRACE 8u
 /* Bits 8..15: 1 + the index of the surface's Atmosphere shader, 0 for none. */
 #define RT_MATERIAL_ATMOSPHERE_SHIFT 8u
 #define RT_MATERIAL_ATMOSPHERE_MASK 0xff00u

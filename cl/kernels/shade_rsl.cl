@@ -124,9 +124,14 @@ __kernel void shade_SURFACE(uint begin, uint count,
     __global const float* p = params + m.params;
     /* Sides 1: the back of a one-sided surface is not there; the ray goes on unchanged */
 #ifdef RT_HAS_ONE_SIDED
-    const int culled = (m.flags & RT_MATERIAL_ONE_SIDED) && rt_dot3(dir, g.Ng) > 0.0f;
+    int culled = (m.flags & RT_MATERIAL_ONE_SIDED) && rt_dot3(dir, g.Ng) > 0.0f;
 #else
     int culled = 0; /* (not const: a constant operand of && makes the compiler warn) */
+#endif
+#ifdef RT_HAS_INVISIBLE
+    /* not visible to this kind of ray: it goes on unchanged, as past a culled back */
+    culled = culled || (m.flags & (RT_TRACE_DEPTH(rs) == 0u ? RT_MATERIAL_NO_CAMERA
+                                                            : RT_MATERIAL_NO_TRACE));
 #endif
     RslEval ev;
     RslDeriv* dsites = 0; /* the surface shader's derivatives, when it takes any */

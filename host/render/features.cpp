@@ -16,6 +16,8 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
         if (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f) f.transparency = true;
         // a one-sided surface's back continues the ray, as a transparent surface does
         if (m.flags & RT_MATERIAL_ONE_SIDED) f.oneSided = f.transparency = true;
+        if (m.flags & (RT_MATERIAL_NO_CAMERA | RT_MATERIAL_NO_TRACE))
+            f.invisible = f.transparency = true;
     }
     const size_t n = size_t(scene.colors.n);  // (more than three: the channels' opacity)
     for (size_t i = 0; n > 3 && i < scene.materialChannels.size(); ++i)
@@ -94,6 +96,7 @@ std::vector<std::string> Features::names() const {
     if (instances) n.push_back("instances");
     if (atmosphere) n.push_back("atmosphere");
     if (oneSided) n.push_back("one_sided");
+    if (invisible) n.push_back("visibility");
     if (derivatives) n.push_back("derivatives");
     if (displacement) n.push_back("displacement");
     if (textures) n.push_back("textures");
@@ -190,6 +193,7 @@ std::string buildOptions(const Features& f) {
     if (f.instances) o += " -DRT_HAS_INSTANCES";
     if (f.atmosphere) o += " -DRT_HAS_ATMOSPHERE";
     if (f.oneSided) o += " -DRT_HAS_ONE_SIDED";
+    if (f.invisible) o += " -DRT_HAS_INVISIBLE";
     if (f.derivatives) {
         char buf[64];
         std::snprintf(buf, sizeof buf, " -DRT_HAS_DERIVATIVES -DRT_PIXEL_SPREAD=%.9ef",

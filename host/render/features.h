@@ -33,6 +33,7 @@ struct Features {
     bool instances = false;     // ObjectInstance records over shared prototypes
     bool atmosphere = false;    // Atmosphere (volume) shaders on some surfaces
     bool oneSided = false;      // Sides 1 surfaces: their backs pass rays on
+    bool invisible = false;     // surfaces camera or traced rays go through (visibility)
     bool derivatives = false;   // some shader takes Du/Dv/area/calculatenormal/filterstep
     bool displacement = false;  // Displacement shaders (bump: N only)
     bool textures = false;      // some shader looks up a texture the scene has

@@ -97,7 +97,31 @@ void RibBuilder::worldEnd(L loc) {
     m_world = Scene();
 }
 
-void RibBuilder::attribute(L, const std::string& name, const rib::ParamList& params) {
+void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList& params) {
+    if (name == "visibility") {
+        // PRMan: "int camera", "int trace" (or, later, "int diffuse" and "int specular"
+        // together), "int transmission" / "string transmission"
+        uint32_t& v = m_attrStack.back().visibility;
+        auto set = [&](uint32_t flag, int on) {
+            if (on == 0)
+                v |= flag;
+            else if (on > 0)
+                v &= ~flag;
+        };
+        set(RT_MATERIAL_NO_CAMERA, params.getInt("camera", -1));
+        set(RT_MATERIAL_NO_TRACE, params.getInt("trace", -1));
+        const int diffuse = params.getInt("diffuse", -1),
+                  specular = params.getInt("specular", -1);
+        if (diffuse >= 0 && specular >= 0) set(RT_MATERIAL_NO_TRACE, diffuse + specular);
+        const std::string transmission = params.getString("transmission", "");
+        if ((params.getInt("transmission", -1) == 0 || transmission == "transparent") &&
+            m_warnedAt.insert({loc.file, -1}).second)
+            m_diag.warning(
+                loc,
+                "Attribute \"visibility\" \"transmission\": surfaces that cast "
+                "no shadow are not supported yet; this one still does");
+        return;
+    }
     if (name == "trace") {
         // Outside the world it sets the default; inside, the deepest limit any object
         // asks for holds for all (per-object limits are not carried yet).
@@ -503,6 +527,7 @@ uint32_t RibBuilder::currentMaterial() {
         m.flags |= RT_MATERIAL_MATTE;
         m_world.anyMatte = true;
     }
+    m.flags |= a.visibility;
     std::string key(reinterpret_cast<const char*>(&m), sizeof m);
     if (colors.n > 3) {
         key.append(reinterpret_cast<const char*>(a.color),

@@ -207,6 +207,7 @@ private:
         ShaderRef surface;    // the current Surface call
         uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;
+        uint32_t visibility = 0;  // RT_MATERIAL_NO_CAMERA, RT_MATERIAL_NO_TRACE
         uint32_t lightsOff = 0;  // bit l: light l turned off (Illuminate handle 0)
         // Orientation relative to the current coordinate system's handedness: true when
         // primitives are inside out (their normals flipped); Sides 1 or 2.

@@ -145,6 +145,52 @@ TEST(GraphicsState, ResourceSavesAndRestoresAttributes) {
         << err.str();
 }
 
+// Attribute "visibility" (PRMan, session 30). Seen by the camera (orthographic, x in
+// [-1, 1]): a red square over the left half invisible to the camera shows the green
+// plane behind it; a blue one over the right half invisible only to traced rays is seen.
+// In a mirror facing the camera: a red square behind the camera invisible to traced rays
+// leaves the green plane behind it in the reflection's left half; the blue one, visible
+// to them, is reflected in the right half.
+TEST(GraphicsState, VisibilityToCameraAndTracedRays) {
+    const std::string cam =
+        "Format 16 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\nWorldBegin\n"
+        "Surface \"constant\"\n";
+    const std::string green =
+        "AttributeBegin\nColor [0 1 0]\nPolygon \"P\" [-5 -5 Z  5 -5 Z  "
+        "5 5 Z  -5 5 Z]\nAttributeEnd\n";
+    auto plane = [&](const char* z) {
+        std::string g = green;
+        for (size_t at; (at = g.find('Z')) != std::string::npos;) g.replace(at, 1, z);
+        return g;
+    };
+    auto half = [](const char* colour, const char* vis, float x0, float x1,
+                   const char* z) {
+        return std::string("AttributeBegin\nColor [") + colour +
+               "]\nAttribute \"visibility\" " + vis + "\nPolygon \"P\" [" +
+               std::to_string(x0) + " -5 " + z + "  " + std::to_string(x1) + " -5 " + z +
+               "  " + std::to_string(x1) + " 5 " + z + "  " + std::to_string(x0) + " 5 " +
+               z + "]\nAttributeEnd\n";
+    };
+    Rendered direct =
+        renderRib(cam + plane("10") + half("1 0 0", "\"int camera\" [0]", -5, 0, "5") +
+                  half("0 0 1", "\"int trace\" [0]", 0, 5, "5") + "WorldEnd\n");
+    EXPECT_NEAR(direct.mean(1, 0, 0, 8, 16), 1.0, 1e-6);  // left: green through the red
+    EXPECT_NEAR(direct.mean(0, 0, 0, 8, 16), 0.0, 1e-6);
+    EXPECT_NEAR(direct.mean(2, 8, 0, 16, 16), 1.0, 1e-6);  // right: blue
+    EXPECT_TRUE(direct.stats.features.invisible);
+    // (the mirror's reflection of x is at -x... seen from the camera looking down +z, a
+    // ray at x reflects straight back to x, behind the camera)
+    Rendered mirrored =
+        renderRib(cam + plane("-10") + half("1 0 0", "\"int trace\" [0]", -5, 0, "-5") +
+                  half("0 0 1", "\"int camera\" [1] \"int trace\" [1]", 0, 5, "-5") +
+                  "AttributeBegin\nSurface \"mirror\"\nPolygon \"P\" [-5 -5 5  5 -5 5  5 "
+                  "5 5  -5 5 5]\n"
+                  "AttributeEnd\nWorldEnd\n");
+    EXPECT_NEAR(mirrored.mean(1, 0, 0, 8, 16), 1.0, 1e-6);  // left: green, not red
+    EXPECT_NEAR(mirrored.mean(0, 0, 0, 8, 16), 0.0, 1e-6);
+    EXPECT_NEAR(mirrored.mean(2, 8, 0, 16, 16), 1.0, 1e-6);  // right: blue reflected
+}
+
 // AreaLightSource: its light shader lights the scene like the same LightSource.
 TEST(GraphicsState, AreaLightSourceLightsLikeItsShader) {
     const std::string rest =
