@@ -132,6 +132,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
     /* not visible to this kind of ray: it goes on unchanged, as past a culled back */
     culled = culled || (m.flags & (RT_TRACE_DEPTH(rs) == 0u ? RT_MATERIAL_NO_CAMERA
                                                             : RT_MATERIAL_NO_TRACE));
+#ifdef RT_HAS_VISIBILITY_RAYS
+    culled = culled || rs.alive == RT_ALIVE_VISIBILITY; /* (classify sends only these here) */
+#endif
 #endif
     RslEval ev;
     RslDeriv* dsites = 0; /* the surface shader's derivatives, when it takes any */
@@ -333,7 +336,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
         next_origin[s] = o;
         next_direction[s] = d;
         next_weight[s] = rt_weight_of(wt);
-        RayState cs = {1u, rs.depth + RT_ONE_TRANSPARENT, h.prim, width_at_hit};
+        /* (an occlusion() ray going through stays one) */
+        RayState cs = {rs.alive, rs.depth + RT_ONE_TRANSPARENT, h.prim, width_at_hit};
         next_state[s] = cs;
         next_sample[s] = sample;
         spawned |= 1u;

@@ -48,26 +48,30 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
     barrier(CLK_LOCAL_MEM_FENCE);
     if (r < count) {
         uint prim = hits[r].prim;
-        uint k = shader_count;
+        uint k = shader_count, mat = 0u;
         if (prim != RT_NO_HIT) {
 #ifdef RT_HAS_QUADRICS
-            uint mat = (prim & RT_OBJECT_BIT) ? quadrics[prim & RT_OBJECT_MASK].material
-                                              : attrs[prim].material;
+            mat = (prim & RT_OBJECT_BIT) ? quadrics[prim & RT_OBJECT_MASK].material
+                                         : attrs[prim].material;
 #ifdef RT_HAS_INSTANCES
             if (hit_instance[r] != RT_NO_HIT) mat = quadrics[hit_instance[r]].material;
 #endif
 #else
-            uint mat = attrs[prim].material;
+            mat = attrs[prim].material;
 #endif
             k = materials[mat].shader;
         }
 #ifdef RT_HAS_VISIBILITY_RAYS
-        /* an occlusion() ray: its weight counts when it escaped; it is never shaded */
+        /* an occlusion() ray: its weight counts when it escaped; it is never shaded, but
+         * a surface traced rays go through passes it on (its shade kernel) */
         if (state[r].alive == RT_ALIVE_VISIBILITY) {
             if (prim == RT_NO_HIT)
                 rt_atomic_add_float4(&total[ray_sample[r]].value,
                                      rt_total_of(rt_weight_color(weight[r])));
-            k = shader_count;
+#ifdef RT_HAS_INVISIBLE
+            if (prim == RT_NO_HIT || !(materials[mat].flags & RT_MATERIAL_NO_TRACE))
+#endif
+                k = shader_count;
         }
 #endif
         key[r] = k;

@@ -129,7 +129,8 @@ TEST(Shading, SampledTraceWalksTheHitMasks) {
 // toward +z (away from the camera): under half of a sky sphere, occlusion is 1/2 by
 // symmetry; under a disk of radius 1 centred 2 units along the normal, the
 // cosine-weighted fraction of the hemisphere it covers is sin^2 of its half-angle, 1 / (1
-// + 4) = 0.2 (1 - occlusion 0.8), none with "maxdist" 1.5 (it is out of reach), and
+// + 4) = 0.2 (1 - occlusion 0.8), none with "maxdist" 1.5 (it is out of reach) or with
+// the disk invisible to traced rays (Attribute "visibility" "int trace" [0]), and
 // indirectdiffuse sees the disk's constant colour over that fraction. Image means, to
 // 0.02 (the samples are stratified: measured within 0.005).
 TEST(Shading, OcclusionAndIndirectDiffuseAreTheirHemisphereFractions) {
@@ -153,10 +154,12 @@ TEST(Shading, OcclusionAndIndirectDiffuseAreTheirHemisphereFractions) {
     const std::string halfSky = "Sphere 100 -100 100 180\n";
     const std::string disk = "Translate 0 0 7\nDisk 0 1 360\n";
     Rendered half = render("", halfSky), under = render("", disk),
-             reach = render("\"maxd\" 1.5", disk), light = render("\"indirect\" 1", disk);
+             reach = render("\"maxd\" 1.5", disk), light = render("\"indirect\" 1", disk),
+             hidden = render("", "Attribute \"visibility\" \"int trace\" [0]\n" + disk);
     EXPECT_NEAR(half.mean(0, 0, 0, 16, 16), 0.5, 0.02);
     EXPECT_NEAR(under.mean(0, 0, 0, 16, 16), 0.8, 0.02);
     EXPECT_NEAR(reach.mean(0, 0, 0, 16, 16), 1.0, 1e-6);
+    EXPECT_NEAR(hidden.mean(0, 0, 0, 16, 16), 1.0, 1e-6);  // traced rays go through it
     EXPECT_NEAR(light.mean(0, 0, 0, 16, 16), 0.2, 0.02);
     EXPECT_NEAR(light.mean(1, 0, 0, 16, 16), 0.1, 0.01);
     EXPECT_NEAR(light.mean(2, 0, 0, 16, 16), 0.05, 0.005);
