@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <new>
 #include <set>
 #include <unordered_map>
 
@@ -119,8 +120,12 @@ void Context::begin(RtToken name) {
         return;
     }
     RiLastError = RIE_NOERROR;
-    std::unique_ptr<Context> c(new Context(name));
-    if (c->m_target) g_context = std::move(c);
+    try {
+        std::unique_ptr<Context> c(new Context(name));
+        if (c->m_target) g_context = std::move(c);
+    } catch (const std::exception& e) {
+        report(RIE_SYSTEM, RIE_SEVERE, std::string("Ri: error: RiBegin: ") + e.what());
+    }
 }
 
 void Context::end() {
@@ -128,7 +133,11 @@ void Context::end() {
         report(RIE_NOTSTARTED, RIE_ERROR, "Ri: error: RiEnd before RiBegin: ignored");
         return;
     }
-    g_context->m_feed->finish(++g_context->m_call);
+    try {
+        g_context->m_feed->finish(++g_context->m_call);
+    } catch (const std::exception& e) {
+        report(RIE_SYSTEM, RIE_SEVERE, std::string("Ri: error: RiEnd: ") + e.what());
+    }
     g_context.reset();
 }
 
@@ -243,7 +252,17 @@ void Context::send(const char* name, Values values, const ParamArgs& params,
         if (searchPath && bare == "shader" && !values.back().strs.empty())
             m_shaderParams.setSearchPath(values.back().strs[0]);
     }
-    m_feed->request(name, values, m_call);
+    // (no exception may leave a C call: a render's or the builder's failure is reported)
+    try {
+        m_feed->request(name, values, m_call);
+    } catch (const std::bad_alloc&) {
+        report(RIE_NOMEM, RIE_SEVERE,
+               "Ri:" + std::to_string(m_call) + ": error: " + name +
+                   ": out of memory on the host");
+    } catch (const std::exception& e) {
+        report(RIE_SYSTEM, RIE_SEVERE,
+               "Ri:" + std::to_string(m_call) + ": error: " + name + ": " + e.what());
+    }
 }
 
 }  // namespace rd::ri
