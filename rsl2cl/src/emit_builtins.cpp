@@ -1,4 +1,7 @@
 // emit_builtins.cpp: OpenCL C for calls of RSL builtins (runtime/rsl_stdlib.clh).
+#include <algorithm>
+#include <cmath>
+
 #include "emit_internal.h"
 
 namespace rsl {
@@ -69,24 +72,38 @@ std::string Emitter::message(const Expr& e) {
 // texture(), environment(), shadow() and bump() through the renderer's texture service
 // (rsl_abi.h, TEXTURES): the positional arguments, then "name", value pairs: blur,
 // width (swidth, twidth: their larger), fill, bias, samples.
-// A call that asks for a ray (rsl_abi.h TRACE): its site is counted once per evaluation
+// A call that asks for rays (rsl_abi.h TRACE): its site is counted once per evaluation
 // unless it may run more than once (in a function, a loop or a light loop).
-void Emitter::traceSite(const Expr& e) {
+void Emitter::traceSite(const Expr& e, int rays) {
     m_out.usesTrace = true;
     if (m_func || !m_loops.empty() || !m_lightVars.empty())
         m_traceRepeats = true;
     else
-        m_traceSites.insert(&e);
+        m_traceSites[&e] = rays;
 }
 
-// occlusion(P, N, samples, ...) and indirectdiffuse(P, N, samples, ...): one ray a
-// shading sample in a cosine-distributed direction about N (the pixel's samples add up to
-// the hemisphere's average, so "samples" is not needed), drawn from two random sites; a
-// trace site like trace()'s. indirectdiffuse is the radiance it meets; occlusion is
-// 1 - (whether it escapes within "maxdist"), its ray a visibility ray.
+int Emitter::traceRaysSoFar() const {
+    int rays = 0;
+    for (const auto& [site, n] : m_traceSites) rays += n;
+    return rays;
+}
+
+// occlusion(P, N, samples, ...) and indirectdiffuse(P, N, samples, ...): rays in
+// cosine-distributed directions about N, spread over the hemisphere by a lattice rotated
+// by two random sites: as many as a literal `samples` asks for, up to the rays an
+// evaluation records (RSL_MAX_TRACE, with the other calls' rays), else one; the pixel's
+// samples add up to the hemisphere's average either way. indirectdiffuse is the mean
+// radiance they meet; occlusion is 1 - the fraction of them that escape within
+// "maxdist", its rays visibility rays.
 std::string Emitter::hemisphereCall(const Expr& e) {
     const std::string& n = e.text;
-    traceSite(e);
+    int rays = 1;
+    const Expr& samples = *e.args[2];
+    if (samples.kind == ExprKind::Number && !m_func && m_loops.empty() &&
+        m_lightVars.empty())
+        rays = std::clamp(int(std::lround(samples.number)), 1,
+                          std::max(1, EmittedShader::kMaxTrace - traceRaysSoFar()));
+    traceSite(e, rays);
     m_out.usesRandom = true;
     std::string maxdist = "0.0f";  // (0: no limit)
     for (size_t i = 3; i + 1 < e.args.size(); i += 2) {
@@ -108,7 +125,8 @@ std::string Emitter::hemisphereCall(const Expr& e) {
     m_randomSite += 2;
     const std::string args = "(ev, g, " + exprAs(*e.args[0], BaseType::Point) + ", " +
                              exprAs(*e.args[1], BaseType::Normal) + ", " +
-                             std::to_string(site) + ", " + maxdist + ")";
+                             std::to_string(site) + ", " + maxdist + ", " +
+                             std::to_string(rays) + ")";
     if (n == "indirectdiffuse") return "rsl_indirectdiffuse" + args;
     m_out.usesVisibility = true;
     return "rsl_occlusion" + args;

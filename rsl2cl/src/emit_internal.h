@@ -58,7 +58,8 @@ public:
     std::string message(const Expr& e);  // lightsource(), attribute(), option(), ...
     std::string textureCall(const Expr& e, bool vret);  // texture, environment, shadow, bump
     std::string hemisphereCall(const Expr& e);          // occlusion, indirectdiffuse
-    void traceSite(const Expr& e);  // trace, occlusion, indirectdiffuse, transmission
+    void traceSite(const Expr& e,
+                   int rays = 1);  // trace, occlusion, indirectdiffuse, transmission
     std::string textureInfo(const Expr& e);
 
     // ---- light coefficients (emit_coefs.cpp) ----
@@ -135,7 +136,9 @@ public:
     std::set<const FunctionDecl*> m_fnUsesSpaces;
     HoistPlan m_hoist;  // declarations computed once per instance
     std::vector<int> m_loops;  // ids of the enclosing loops, innermost last
-    std::set<const Expr*> m_traceSites;  // trace() calls met once per evaluation
+    // Calls that ask for rays, met once per evaluation, and how many rays each asks for
+    std::map<const Expr*, int> m_traceSites;
+    int traceRaysSoFar() const;
     bool m_traceRepeats = false;         // a trace() call that may run more than once
     std::set<int> m_breakTargets, m_continueTargets;  // loops a break/continue N names
 };

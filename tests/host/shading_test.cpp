@@ -175,6 +175,42 @@ TEST(Shading, OcclusionAndIndirectDiffuseAreTheirHemisphereFractions) {
     EXPECT_TRUE(light.stats.features.sampledTrace);
 }
 
+// occlusion()'s `samples`, a literal: that many rays from one shading sample (up to the
+// eight an evaluation records), spread over the hemisphere. Under the disk above, one
+// sample a pixel: 1 - occlusion is 0 or 1 a pixel with one ray (spread 0.4 about 0.8),
+// far less spread with eight; both means 0.8.
+TEST(Shading, OcclusionSamplesAreRaysOfOneShadingSample) {
+    std::string dir = shaderDir("raydrive_occlusion_samples");
+    for (int n : {1, 8})
+        std::ofstream(dir + "/occl" + std::to_string(n) + ".sl")
+            << "surface occl" << n << "() {\n  Ci = 1 - occlusion(P, normal(0, 0, 1), "
+            << n << ");\n  Oi = 1;\n}\n";
+    auto render = [&](int n) {
+        return renderRib(
+            "Option \"searchpath\" \"shader\" [\"" + dir +
+            ":&\"]\nFormat 16 16 1\nPixelSamples 1 1\nProjection "
+            "\"orthographic\"\nScreenWindow -0.05 0.05 -0.05 0.05\nWorldBegin\n"
+            "AttributeBegin\nSurface \"constant\"\nTranslate 0 0 7\nDisk 0 1 360\n"
+            "AttributeEnd\nSurface \"occl" +
+            std::to_string(n) +
+            "\"\nPolygon \"P\" [-1 -1 5  1 -1 5  1 1 5  -1 1 5]\nWorldEnd\n");
+    };
+    auto spread = [](const Rendered& img, double mean) {
+        double q = 0;
+        for (const rd::Rgba& p : img.pixels) q += (p.r - mean) * (p.r - mean);
+        return std::sqrt(q / double(img.pixels.size()));
+    };
+    Rendered one = render(1), eight = render(8);
+    const double m1 = one.mean(0, 0, 0, 16, 16), m8 = eight.mean(0, 0, 0, 16, 16);
+    std::printf(
+        "NUMERICS case=occlusion_samples_spread one=%.3f eight=%.3f means %.4f %.4f\n",
+        spread(one, 0.8), spread(eight, 0.8), m1, m8);
+    EXPECT_NEAR(m1, 0.8, 0.08);
+    EXPECT_NEAR(m8, 0.8, 0.03);
+    EXPECT_GT(spread(one, 0.8), 0.3);
+    EXPECT_LT(spread(eight, 0.8), 0.5 * spread(one, 0.8));
+}
+
 // transmission(P0, P1) in a surface shader (session 30; it returned 1 before): a ray from
 // P0 to P1. A patch at z = 5 asks toward P + (0, 0, 3); a square over its left half at
 // z = 6.5 blocks those rays (0), the right half sees through (1); the same square at
