@@ -31,6 +31,10 @@ void AsciiEmitter::request(const std::string& name, int indent) {
     m_out << name;
 }
 
+void AsciiEmitter::line(const std::string& text, int indent) {
+    request(text, indent);  // (a line of its own, the next request starts the next)
+}
+
 void AsciiEmitter::string(const std::string& s) {
     m_out << " \"";
     for (char c : s) {

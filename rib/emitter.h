@@ -23,6 +23,9 @@ public:
     virtual void intArray(const std::vector<int>& v);
     virtual void stringArray(const std::vector<std::string>& v);
     virtual void finish() {}
+    // A line of its own, as it is (a comment "# ...", a structure comment "## ...", or
+    // verbatim RIB); it must hold no newline.
+    virtual void line(const std::string& text, int indent) = 0;
 
 protected:
     virtual void open() = 0;   // '['
@@ -34,6 +37,7 @@ class AsciiEmitter : public Emitter {
 public:
     using Emitter::Emitter;
     void request(const std::string& name, int indent) override;
+    void line(const std::string& text, int indent) override;
     void string(const std::string& s) override;
     void integer(int v) override;
     void number(float v) override;
@@ -50,6 +54,7 @@ class BinaryEmitter : public Emitter {
 public:
     using Emitter::Emitter;
     void request(const std::string& name, int indent) override;
+    void line(const std::string& text, int) override { m_out << '\n' << text << '\n'; }
     void string(const std::string& s) override;
     void integer(int v) override;
     void number(float v) override;

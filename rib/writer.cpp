@@ -26,6 +26,20 @@ void RibWriter::finish() {
     m_e->finish();
 }
 
+void RibWriter::record(const std::string& type, const std::string& text) {
+    const std::string lead = type == "comment" ? "# " : type == "structure" ? "##" : "";
+    size_t start = 0;
+    while (start <= text.size()) {
+        size_t end = text.find_first_of("\r\n", start);
+        if (end == std::string::npos) end = text.size();
+        const std::string piece = text.substr(start, end - start);
+        if (!piece.empty() || text.empty())
+            m_e->line(lead + piece, m_indent > 0 ? m_indent : 0);
+        if (end == text.size()) break;
+        start = end + 1;
+    }
+}
+
 void RibWriter::req(const char* name) {
     m_e->request(name, m_indent > 0 ? m_indent : 0);
 }

@@ -19,6 +19,11 @@ public:
     ~RibWriter() override;
     // Ends the last line and flushes; also done by the destructor.
     void finish();
+    // RiArchiveRecord: "comment" writes "# text", "structure" "##text", "verbatim" the
+    // text itself, each on lines of their own (a newline in the text starts another line;
+    // a comment's next lines are comments too). Not a Target call: a reader skips
+    // comments.
+    void record(const std::string& type, const std::string& text);
 
     void frameBegin(L, int) override;
     void frameEnd(L) override;

@@ -330,6 +330,11 @@ RtVoid RiReadArchive(RtToken name, RtArchiveCallback callback, ...);
 RtVoid RiReadArchiveV(RtToken name, RtArchiveCallback callback, RtInt n, RtToken tokens[],
                       RtPointer values[]);
 RtVoid RiErrorHandler(RtErrorHandler handler);
+/* A line in the RIB file RiBegin("f.rib") writes, printf-formatted: RI_COMMENT ("# ..."),
+ * RI_STRUCTURE ("##...") or RI_VERBATIM (the text as it is). A render ignores comments;
+ * verbatim RIB is an error there (it is not read). */
+extern RtToken RI_COMMENT, RI_STRUCTURE, RI_VERBATIM;
+RtVoid RiArchiveRecord(RtToken type, const char* format, ...);
 
 /* PRMan's named attribute sets: RiResource("look", "attributes", "string operation",
  * &op, RI_NULL) with op "save" or "restore" ("string subset": "all", "shading",

@@ -3,6 +3,7 @@
 // and motion blocks, textures, archives and errors. Each becomes its RIB request's values
 // and goes through the context (ri_context.h).
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -84,7 +85,8 @@ RtToken RI_FRAMEBUFFER = "framebuffer", RI_FILE = "file", RI_RGB = "rgb",
         RI_UNION = "union", RI_DIFFERENCE = "difference", RI_PERIODIC = "periodic",
         RI_NONPERIODIC = "nonperiodic", RI_CLAMP = "clamp", RI_BLACK = "black",
         RI_IGNORE = "ignore", RI_PRINT = "print", RI_ABORT = "abort",
-        RI_HANDLER = "handler", RI_WIDTH = "width", RI_CONSTANTWIDTH = "constantwidth";
+        RI_HANDLER = "handler", RI_WIDTH = "width", RI_CONSTANTWIDTH = "constantwidth",
+        RI_COMMENT = "comment", RI_STRUCTURE = "structure", RI_VERBATIM = "verbatim";
 
 RtBasis RiBezierBasis = {{-1, 3, -3, 1}, {3, -6, 3, 0}, {-3, 3, 0, 0}, {1, 0, 0, 0}};
 RtBasis RiBSplineBasis = {{-1.0f / 6, 3.0f / 6, -3.0f / 6, 1.0f / 6},
@@ -467,6 +469,17 @@ RtVoid RiResourceV(RtToken handle, RtToken type, RtInt n, RtToken tokens[],
 }
 RtVoid RiResource(RtToken handle, RtToken type, ...) {
     RI_VARARGS(type, RiResourceV(handle, type, vp.n(), vp.t(), vp.v()));
+}
+
+RtVoid RiArchiveRecord(RtToken type, const char* format, ...) {
+    Context* c = Context::current("RiArchiveRecord");
+    if (!c) return;
+    char text[65536];  // (a longer record is cut there)
+    va_list ap;
+    va_start(ap, format);
+    std::vsnprintf(text, sizeof text, format ? format : "", ap);
+    va_end(ap);
+    c->record(type ? type : "", text);
 }
 
 RtVoid RiErrorHandler(RtErrorHandler handler) {

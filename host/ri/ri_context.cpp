@@ -154,7 +154,9 @@ Context::Context(RtToken name) : m_diag(nullptr, INT_MAX) {
                    std::string("Ri: error: RiBegin: cannot write \"") + name + "\"");
             return;
         }
-        m_target = std::make_unique<rib::RibWriter>(m_file);
+        auto writer = std::make_unique<rib::RibWriter>(m_file);
+        m_writer = writer.get();
+        m_target = std::move(writer);
     } else {
         m_target = std::make_unique<RenderTarget>(m_diag, [](const std::string& why) {
             report(RIE_SYSTEM, RIE_SEVERE, "Ri: error: " + why);
@@ -172,6 +174,20 @@ Context::~Context() {
             report(RIE_SYSTEM, RIE_SEVERE,
                    "Ri: error: RiEnd: the RIB file was not written whole");
     }
+}
+
+void Context::record(const std::string& type, const std::string& text) {
+    if (type != "comment" && type != "structure" && type != "verbatim") {
+        error(RIE_BADTOKEN, "RiArchiveRecord: type \"" + type +
+                                "\" is not comment, structure or verbatim");
+        return;
+    }
+    if (m_writer)
+        m_writer->record(type, text);
+    else if (type == "verbatim")
+        error(RIE_UNIMPLEMENT,
+              "RiArchiveRecord: verbatim RIB is written to a RIB file; a "
+              "render does not read it");
 }
 
 void Context::error(int code, const std::string& message) {

@@ -15,6 +15,7 @@
 #include "ri.h"
 #include "ri_shader_params.h"
 #include "rib/request_feed.h"
+#include "rib/writer.h"
 
 namespace rd::ri {
 
@@ -55,6 +56,8 @@ public:
               const ClassCounts& counts = {});
     // An error of the API's own at the current call.
     void error(int code, const std::string& message);
+    // RiArchiveRecord: a line of the RIB file written (comments ignored by a render).
+    void record(const std::string& type, const std::string& text);
     rib::RequestFeed& feed() { return *m_feed; }
     uintptr_t nextLight() { return ++m_lights; }
     uintptr_t nextObject() { return ++m_objects; }
@@ -70,6 +73,7 @@ private:
     rib::Diagnostics m_diag;
     std::ofstream m_file;  // RiBegin("file.rib")
     std::unique_ptr<rib::Target> m_target;
+    rib::RibWriter* m_writer = nullptr;  // m_target, when it writes RIB
     std::unique_ptr<rib::RequestFeed> m_feed;
     ShaderParams m_shaderParams;  // shaders' own parameter declarations
     uintptr_t m_lights = 0, m_objects = 0;

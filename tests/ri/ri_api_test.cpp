@@ -540,3 +540,35 @@ TEST(RiApi, ResourcesAreWritten) {
                   "\"string operation\" [\"restore\"] \"string subset\" "
                   "[\"shading\"]\nResourceEnd\nWorldEnd\n"));
 }
+
+// RiArchiveRecord: comments, structure comments and verbatim RIB in the file written,
+// each on lines of their own; the verbatim RIB reads back as the request it is. A render
+// ignores comments and refuses verbatim RIB; an unknown type is an error.
+TEST(RiApi, ArchiveRecordWritesLinesOfTheirOwn) {
+    const std::string path = scratch("records.rib");
+    g_messages.clear();
+    g_codes.clear();
+    RiErrorHandler(collect);
+    RiBegin(path.c_str());
+    RiArchiveRecord(RI_STRUCTURE, "RenderMan RIB-Structure 1.1");
+    RiArchiveRecord(RI_COMMENT, "frame %d of %s\nsecond line", 3, "shot");
+    RiWorldBegin();
+    RiArchiveRecord(RI_VERBATIM, "Sphere 1 -1 1 360\n");
+    RiWorldEnd();
+    RiEnd();
+    EXPECT_TRUE(g_messages.empty());
+    const std::string written = slurp(path);
+    EXPECT_EQ(written,
+              "##RenderMan RIB-Structure 1.1\n# frame 3 of shot\n# second line\n"
+              "WorldBegin\n  Sphere 1 -1 1 360\nWorldEnd\n");
+    EXPECT_EQ(rewritten(written), rewritten("WorldBegin\nSphere 1 -1 1 360\nWorldEnd\n"));
+    RiBegin(RI_NULL);
+    RiArchiveRecord(RI_COMMENT, "ignored");
+    RiArchiveRecord(RI_VERBATIM, "Sphere 1 -1 1 360");
+    RiArchiveRecord("note", "x");
+    RiEnd();
+    RiErrorHandler(RiErrorPrint);
+    ASSERT_EQ(g_codes.size(), 2u);
+    EXPECT_EQ(g_codes[0], RIE_UNIMPLEMENT);
+    EXPECT_EQ(g_codes[1], RIE_BADTOKEN);
+}
