@@ -113,6 +113,26 @@ bool predefinedParamDecl(const std::string& name, ParamDecl& decl) {
         {"to", {T::Point, S::Uniform, 1}},
         {"lightcolor", {T::Color, S::Uniform, 1}},
         {"specularcolor", {T::Color, S::Uniform, 1}},
+        // The other standard shader parameters and primitive widths RI 3.2 predeclares
+        // (the Ri API sizes a C caller's values by them)
+        {"Ka", {T::Float, S::Uniform, 1}},
+        {"Kd", {T::Float, S::Uniform, 1}},
+        {"Ks", {T::Float, S::Uniform, 1}},
+        {"Kr", {T::Float, S::Uniform, 1}},
+        {"roughness", {T::Float, S::Uniform, 1}},
+        {"intensity", {T::Float, S::Uniform, 1}},
+        {"coneangle", {T::Float, S::Uniform, 1}},
+        {"conedeltaangle", {T::Float, S::Uniform, 1}},
+        {"beamdistribution", {T::Float, S::Uniform, 1}},
+        {"mindistance", {T::Float, S::Uniform, 1}},
+        {"maxdistance", {T::Float, S::Uniform, 1}},
+        {"distance", {T::Float, S::Uniform, 1}},
+        {"amplitude", {T::Float, S::Uniform, 1}},
+        {"fov", {T::Float, S::Uniform, 1}},
+        {"background", {T::Color, S::Uniform, 1}},
+        {"texturename", {T::String, S::Uniform, 1}},
+        {"width", {T::Float, S::Varying, 1}},
+        {"constantwidth", {T::Float, S::Constant, 1}},
     };
     auto it = table.find(name);
     if (it == table.end()) return false;

@@ -24,6 +24,19 @@ struct Param {
     int components() const;
 };
 
+// How many values each storage class of a primitive's variables has (RI 3.2 section 5);
+// constant ones have one.
+struct ClassCounts {
+    long long uniform = 1, varying = 1, vertex = 1, faceVarying = 1;
+    long long of(StorageClass storage) const {
+        return storage == StorageClass::Constant  ? 1
+               : storage == StorageClass::Uniform ? uniform
+               : storage == StorageClass::Varying ? varying
+               : storage == StorageClass::Vertex  ? vertex
+                                                  : faceVarying;
+    }
+};
+
 // Spec spellings ("point", "varying"), for messages and for RIB writers.
 const char* paramTypeName(ParamType type);
 const char* storageClassName(StorageClass storage);

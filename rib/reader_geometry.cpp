@@ -51,24 +51,9 @@ bool Reader::checkVaryingCounts(const char* req, const ParamList& params,
                                 long long uniform, long long varying, long long vertex,
                                 long long faceVarying, const SourceLoc& loc) {
     for (const Param& p : params.params) {
-        long long want = -1;
-        switch (p.storage) {
-            case StorageClass::Constant:
-                want = 1;
-                break;
-            case StorageClass::Uniform:
-                want = uniform;  // one a face; -1: not checked (the caller has no count)
-                break;
-            case StorageClass::Varying:
-                want = varying;
-                break;
-            case StorageClass::Vertex:
-                want = vertex;
-                break;
-            case StorageClass::FaceVarying:
-                want = faceVarying;
-                break;
-        }
+        // (uniform: one a face; -1: not checked, the caller has no count)
+        const long long want =
+            ClassCounts{uniform, varying, vertex, faceVarying}.of(p.storage);
         if (want < 0) continue;
         size_t values = p.type == ParamType::String    ? p.strings.size()
                         : p.type == ParamType::Integer ? p.ints.size()

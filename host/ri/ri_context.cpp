@@ -7,7 +7,6 @@
 #include <iostream>
 #include <new>
 #include <set>
-#include <unordered_map>
 
 #include "ri_render_target.h"
 #include "rib/writer.h"
@@ -17,33 +16,6 @@ namespace {
 
 std::unique_ptr<Context> g_context;
 RtErrorHandler g_handler = RiErrorPrint;
-
-// The RI 3.2 standard shader and primitive parameters a RIB file may leave undeclared
-// (the reader then types them by their values), which C cannot: their declarations.
-const char* standardDeclaration(const std::string& name) {
-    static const std::unordered_map<std::string, const char*> table = {
-        {"Ka", "uniform float"},
-        {"Kd", "uniform float"},
-        {"Ks", "uniform float"},
-        {"Kr", "uniform float"},
-        {"roughness", "uniform float"},
-        {"intensity", "uniform float"},
-        {"coneangle", "uniform float"},
-        {"conedeltaangle", "uniform float"},
-        {"beamdistribution", "uniform float"},
-        {"mindistance", "uniform float"},
-        {"maxdistance", "uniform float"},
-        {"distance", "uniform float"},
-        {"amplitude", "uniform float"},
-        {"fov", "uniform float"},
-        {"background", "uniform color"},
-        {"texturename", "uniform string"},
-        {"width", "varying float"},
-        {"constantwidth", "constant float"},
-    };
-    auto it = table.find(name);
-    return it == table.end() ? nullptr : it->second;
-}
 
 }  // namespace
 
@@ -215,15 +187,11 @@ void Context::send(const char* name, Values values, const ParamArgs& params,
         if (!token) break;  // (RI_NULL ends a list)
         rib::ParamDecl decl;
         std::string bare, spelled = token;
-        // Else the shader's own declaration, else RI's (as if written inline)
-        if (!m_feed->declaration(spelled, decl, bare)) {
-            std::string found = shader.empty()
-                                    ? std::string()
-                                    : m_shaderParams.declaration(shader, token);
-            if (found.empty())
-                if (const char* standard = standardDeclaration(token)) found = standard;
-            if (!found.empty()) spelled = found + " " + token;
-        }
+        // Else, in a shader call, the shader's own (as if written inline)
+        if (!shader.empty() && !m_feed->declaration(spelled, decl, bare))
+            if (std::string found = m_shaderParams.declaration(shader, token);
+                !found.empty())
+                spelled = found + " " + token;
         if (!m_feed->declaration(spelled, decl, bare)) {
             error(RIE_BADTOKEN, std::string(name) + ": parameter \"" + token +
                                     "\" is not declared (RiDeclare it, or declare it "
@@ -236,28 +204,11 @@ void Context::send(const char* name, Values values, const ParamArgs& params,
                                        "\" has no values (a null pointer); left out");
             continue;
         }
-        long long each = 1;
-        switch (decl.storage) {
-            case rib::StorageClass::Constant:
-                each = 1;
-                break;
-            case rib::StorageClass::Uniform:
-                each = counts.uniform;
-                break;
-            case rib::StorageClass::Varying:
-                each = counts.varying;
-                break;
-            case rib::StorageClass::Vertex:
-                each = counts.vertex;
-                break;
-            case rib::StorageClass::FaceVarying:
-                each = counts.faceVarying;
-                break;
-        }
         rib::Param probe;
         probe.type = decl.type;
         probe.colorComponents = m_feed->colorSamples();
-        const long long n = std::max(0LL, each) * probe.components() * decl.arraySize;
+        const long long n =
+            std::max(0LL, counts.of(decl.storage)) * probe.components() * decl.arraySize;
         values.push_back(string(spelled.c_str()));
         if (decl.type == rib::ParamType::String)
             values.push_back(strings(static_cast<const RtString*>(value), n));

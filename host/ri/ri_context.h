@@ -19,10 +19,7 @@
 
 namespace rd::ri {
 
-// How many values each storage class of a primitive's parameters has.
-struct ClassCounts {
-    long long uniform = 1, varying = 1, vertex = 1, faceVarying = 1;
-};
+using rib::ClassCounts;
 
 using Values = std::vector<rib::RequestValue>;
 rib::RequestValue number(double v);

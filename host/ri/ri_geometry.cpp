@@ -30,10 +30,7 @@ long long pointsOf(const RtInt* indices, long long n) {
 
 ClassCounts allOf(long long uniform, long long varying, long long vertex,
                   long long faceVarying) {
-    ClassCounts c;
-    c.uniform = uniform, c.varying = varying, c.vertex = vertex,
-    c.faceVarying = faceVarying;
-    return c;
+    return ClassCounts{uniform, varying, vertex, faceVarying};
 }
 
 const ClassCounts kQuadric = allOf(1, 4, 4, 4);

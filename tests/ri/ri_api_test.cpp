@@ -461,8 +461,8 @@ TEST(RiApiDeathTest, AbortEndsTheProgramAtTheFirstError) {
 }
 
 // A shader's own parameters need no RiDeclare: their declarations come from its source,
-// found on the shader search path the calls set (an array, a colour, a string, and a
-// parameter of the same name as a standard one, declared varying there).
+// found on the shader search path the calls set (an array, a colour, a string); a
+// parameter of a standard name keeps RI's declaration, as it does read from RIB.
 TEST(RiApi, AShadersOwnParametersAreSizedFromItsSource) {
     const std::string dir = scratch("shaders");
     std::filesystem::create_directories(dir);
@@ -497,7 +497,7 @@ TEST(RiApi, AShadersOwnParametersAreSizedFromItsSource) {
                         "\"]\nWorldBegin\nSurface \"ri_mine\" \"uniform float "
                         "gain\" [2] \"uniform color tint\" [1 0.5 0.25] \"uniform "
                         "string map\" [\"grid.tx\"] \"uniform float[3] weights\" "
-                        "[0.5 1 1.5] \"varying float Kd\" [0.25]\nSurface "
+                        "[0.5 1 1.5] \"uniform float Kd\" [0.25]\nSurface "
                         "\"ri_missing\"\nWorldEnd\n"));
 }
 
