@@ -199,8 +199,9 @@ int main(int argc, char** argv) {
                    "which random numbers: another seed renders an independent image of the "
                    "same scene (default: Option \"render\" \"int seed\", else 0)")
         ->check(CLI::NonNegativeNumber);
-    app.add_option("--aov", aovs, "extra EXR channels: z, N, samples, error, filled")
-        ->check(CLI::IsMember({"z", "N", "samples", "error", "filled"}));
+    app.add_option("--aov", aovs,
+                   "extra EXR channels: z, N, samples, error, filled, a shader output "
+                   "variable or a global (Cs, Os, Oi, P, Ng, s, t, u, v)");
     app.add_flag("--half", halfFloat, "write 16-bit half-float channels");
     app.add_flag("-q,--quiet", quiet, "print nothing but errors");
     size_t textureTiles = 0;
@@ -271,8 +272,6 @@ int main(int argc, char** argv) {
         rd::installStopSignals();
         nlohmann::json allStats = nlohmann::json::array(), traceEvents = nlohmann::json::array();
         for (size_t i = 0; i < scenes.size() && !rd::stopSignal(); ++i) {
-            std::vector<std::string> wanted = scenes[i].aovs;
-            wanted.insert(wanted.end(), aovs.begin(), aovs.end());
             rd::RenderSettings settings;
             settings.timeBudget = timeBudget;
             settings.errorTarget = errorTarget;
@@ -289,7 +288,7 @@ int main(int argc, char** argv) {
             settings.jumpSmallPasses = !noJumpSmallPasses;
             settings.sceneMemoryBytes = sceneMemory;
             settings.timeline = !timelinePath.empty();
-            for (const std::string& a : wanted) settings.geometricAovs |= a == "z" || a == "N";
+            settings.extraAovs = aovs;  // (the scene's own AOVs: the renderer reads them)
             rd::Renderer renderer(ctx, settings);
             rd::Film film;
             // DelayedReadArchive: read when a ray reaches its bound (the RIB read again)

@@ -32,12 +32,16 @@ typedef struct AovAccum {
 } AovAccum;
 
 /* Per-sample AOV record: z is the camera depth per unit of ray distance until the eye ray
- * hits, then the depth; hit = 1 once it has. */
+ * hits, then the depth; hit = 1 once it has. shaded = 1 once the first surface a camera
+ * ray is shaded at has written the shader AOVs (RT_SHADER_AOVS floats a sample, in a
+ * buffer of their own: its output variables, and the parts of them that depend on a
+ * light, added when the light's shadow ray reaches it). */
 typedef struct SampleAov {
     rt_float4 normal;
     float z;
     uint32_t hit;
-    uint32_t pad[2];
+    uint32_t shaded;
+    uint32_t pad;
 } SampleAov;
 
 /* A pixel job: `count` consecutive samples of one pixel, in the sample slots

@@ -16,6 +16,10 @@ void close_round(uint count, /* traced rays */
                  __global const rt_weight* shadow_weight, /* ray i's: i * light_count + l */
                  __global RayState* shadow_state,
                  __global SampleTotal* total,
+                 /* RT_SHADER_AOVS: the parts of a sample's shader AOVs that a shadow ray
+                 * carries (i * light_count + l's), added when it reaches its light */
+                 __global const float* shadow_aov,
+                 __global float* aov_values,
                  __global const uint* spawn_mask,
                  __global uint* group_live,
                  __global uint* active_counter) {
@@ -30,8 +34,18 @@ void close_round(uint count, /* traced rays */
         for (uint l = 0; l < light_count; ++l) {
             uint j = i * light_count + l;
             if (shadow_state[j].alive) {
-                sum += rt_weight_color(shadow_weight[j]);
+                rsl_color w = rt_weight_color(shadow_weight[j]);
+                sum += w;
                 shadow_state[j].alive = 0u;
+#ifdef RT_SHADER_AOVS
+                /* an occluded ray's weight is zeroed; only the ray of the sample's first
+                 * shaded surface carries parts (one work-item per sample: no atomics) */
+                if (rsl_cnonzero(w))
+                    for (uint c = 0; c < RT_SHADER_AOVS; ++c) {
+                        float part = shadow_aov[j * RT_SHADER_AOVS + c];
+                        if (part != 0.0f) aov_values[ray_sample[i] * RT_SHADER_AOVS + c] += part;
+                    }
+#endif
             }
         }
         rt_atomic_add_float4(&total[ray_sample[i]].value, rt_total_of(sum));

@@ -30,6 +30,7 @@ __kernel void generate_eye(__constant Camera* cam,
                            __global uint* ray_sample,
                            __global SampleTotal* total,
                            __global SampleAov* aov, /* used with RT_HAS_AOVS */
+                           __global float* aov_values, /* RT_SHADER_AOVS a slot */
                            __global float* sample_time, /* RT_HAS_MOTION: in the shutter */
                            __global uint* active_counter) {
     uint k = get_global_id(0);
@@ -147,6 +148,10 @@ __kernel void generate_eye(__constant Camera* cam,
     aov[slot].normal = (float4)(0.0f);
     aov[slot].z = dz / len;
     aov[slot].hit = 0u;
+    aov[slot].shaded = 0u;
+#endif
+#ifdef RT_SHADER_AOVS
+    for (uint a = 0; a < RT_SHADER_AOVS; ++a) aov_values[slot * RT_SHADER_AOVS + a] = 0.0f;
 #endif
 }
 

@@ -38,6 +38,9 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
                              __global PixelAccum* film,
                              __global const SampleAov* aov,   /* used with RT_HAS_AOVS */
                              __global AovAccum* aov_film,
+                             /* RT_SHADER_AOVS floats a slot, and a pixel */
+                             __global const float* aov_values,
+                             __global float* aov_film_values,
                              __global uint* progress,
                              __global uint* active_counter) {
     const uint parity = launch & 1u, tag = RT_JOB_TAG(launch);
@@ -138,6 +141,23 @@ __kernel void retire_samples(uint window_start, uint window_count, uint job_capa
         rt_atomic_add_float4(&a->normal_sum, nsum);
         rt_atomic_add_float((volatile __global float*)&a->z_sum, zsum);
         atomic_add(&a->hits, hits);
+    }
+#endif
+#ifdef RT_SHADER_AOVS
+    /* the samples the film counted (finite totals): the pixel's value is the sum over
+     * its count, misses adding 0, so edges are antialiased as the colour is */
+    __global float* af = aov_film_values + (size_t)jobs[job].pixel * RT_SHADER_AOVS;
+    for (uint c = 0; c < RT_SHADER_AOVS; ++c) {
+        float v = 0.0f;
+        for (uint s = 0; s < count; ++s) {
+            uint slot = rt_ring_add(first, s, slot_capacity);
+            float x = aov_values[slot * RT_SHADER_AOVS + c];
+            if (rt_all_finite(total[slot].value) && isfinite(x)) v += x;
+        }
+        if (state & RT_JOB_EXCLUSIVE)
+            af[c] += v;
+        else
+            rt_atomic_add_float((volatile __global float*)&af[c], v);
     }
 #endif
 }

@@ -50,6 +50,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global rt_weight* shadow_weight,
                             __global RayState* shadow_state,
                             __global SampleAov* aov,
+                            /* RT_SHADER_AOVS floats a sample slot, and a shadow ray */
+                            __global float* aov_values,
+                            __global float* shadow_aov,
                             uint light_count,
                             __global uint* numerics, /* numerics.clh counters */
                             /* RT_HAS_TEXTURES only: the texture state (texture.h), and
@@ -189,6 +192,17 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
     if (dsites) dsites->lane = 3; /* every other mode replays the point's derivatives */
+#ifdef RT_SHADER_AOVS
+    /* the first surface a camera ray is shaded at gives the sample's shader AOVs: the
+     * output variables' values without the lights, the lights' parts riding on their
+     * shadow rays (close_round) */
+    const int aov_first = !culled && RT_TRACE_DEPTH(rs) == 0u && !aov[sample].shaded;
+    if (aov_first) {
+        aov[sample].shaded = 1u;
+        __global float* dst = aov_values + sample * RT_SHADER_AOVS;
+        RD_AOV_OUTPUTS_SURFACE(dst, ev, g);
+    }
+#endif
     rsl_color E = culled ? (rsl_color)(0.0f) : rsl_cw0(base.Ci);
     rsl_color Oi = culled ? (rsl_color)(0.0f) : base.Oi;
     /* the atmosphere between the ray's origin and P: Ci' = a Ci + b (affine in Ci, as
@@ -230,12 +244,23 @@ __kernel void shade_SURFACE(uint begin, uint count,
         rsl_surface_SURFACE(&lgl, p, &le);
         rsl_color coef = lgl.Ci - base.Ci;
 #endif
+#ifdef RT_SHADER_AOVS
+        float aov_part[RT_SHADER_AOVS];
+        for (int c = 0; c < RT_SHADER_AOVS; ++c) aov_part[c] = 0.0f;
+#if !RD_LIGHT_COEFS_SURFACE
+        if (aov_first) RD_AOV_LIGHT_SURFACE(aov_part, le, ev);
+#endif
+#endif
         rsl_color sw = w * atmo_a * coef;
         RSL_CW(sw) = 0.0f;
         sw = rt_sanitize_c(sw, numerics);
         if (!rsl_cnonzero(sw)) continue;
         if (!rd_light_traces_shadows((int)l)) { /* its shadow map did the shadowing */
             rt_atomic_add_float4(&total[sample].value, rt_total_of(sw));
+#ifdef RT_SHADER_AOVS
+            for (int c = 0; c < RT_SHADER_AOVS; ++c)
+                aov_values[sample * RT_SHADER_AOVS + c] += aov_part[c];
+#endif
             continue;
         }
         float dist = sqrt(rt_dot3(toward, toward));
@@ -262,6 +287,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
         shadow_weight[s] = rt_weight_of(sw);
         RayState ss = {1u, 0u, h.prim, 0.0f};
         shadow_state[s] = ss;
+#ifdef RT_SHADER_AOVS
+        for (int c = 0; c < RT_SHADER_AOVS; ++c) shadow_aov[s * RT_SHADER_AOVS + c] = aov_part[c];
+#endif
     }
 #endif
 

@@ -95,6 +95,8 @@ std::vector<Channel> Film::aovChannels(const std::string& name) const {
         return {c};
     }
     if (name == "filled") return {{"filled", filledMask()}};
+    for (const ShaderAov& a : shaderAovs)
+        if (a.name == name && name != "z" && name != "N") return shaderAovChannels(a);
     if (name != "z" && name != "N")
         throw std::runtime_error("unknown AOV \"" + name +
                                  "\" (known: z, N, samples, error, filled)");
@@ -119,6 +121,35 @@ std::vector<Channel> Film::aovChannels(const std::string& name) const {
         out[2].values[i] = s.z / len;
     }
     return out;
+}
+
+std::vector<Channel> Film::shaderAovChannels(const ShaderAov& a) const {
+    const size_t n = pixels.size();
+    if (shaderAovSums.size() != n * size_t(shaderAovFloats))
+        throw std::runtime_error("AOV \"" + a.name + "\" was not rendered");
+    const bool colour = a.type == "color";
+    const int out = a.floats == 1 ? 1 : 3;
+    static const char* rgb[] = {".R", ".G", ".B"};
+    static const char* xyz[] = {".X", ".Y", ".Z"};
+    std::vector<Channel> c(static_cast<size_t>(out));
+    for (int j = 0; j < out; ++j)
+        c[size_t(j)] = {out == 1 ? a.name : a.name + (colour ? rgb[j] : xyz[j]),
+                        std::vector<float>(n)};
+    const size_t slots = colourToRgb.size() / 3;
+    for (size_t i = 0; i < n; ++i) {
+        if (pixels[i].count == 0) continue;
+        const float* v = &shaderAovSums[i * size_t(shaderAovFloats) + size_t(a.offset)];
+        const float inv = 1.0f / float(pixels[i].count);
+        for (int j = 0; j < out; ++j) {
+            float x = 0;
+            if (colour && size_t(a.floats) == slots)  // the scene's channels to RGB
+                for (size_t k = 0; k < slots; ++k) x += v[k] * colourToRgb[3 * k + size_t(j)];
+            else
+                x = v[j];
+            c[size_t(j)].values[i] = x * inv;
+        }
+    }
+    return c;
 }
 
 }  // namespace rd

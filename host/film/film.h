@@ -21,10 +21,25 @@ struct Channel {
     std::vector<float> values;
 };
 
+// An AOV that shaders write (an output variable, or a global: Cs, Os, P, Ng, s, t, u, v):
+// its `floats` at `offset` of each sample's and pixel's RT_SHADER_AOVS floats. A colour
+// has the scene's colour channels (ColorSamples), made RGB when written.
+struct ShaderAov {
+    std::string name;
+    std::string type = "float";  // float, color, point, vector, normal
+    int floats = 1, offset = 0;
+};
+
 struct Film {
     int width = 0, height = 0;
     FilmPixels pixels;
     HostVector<AovAccum> aovs;  // empty unless an AOV was asked for (as pixels)
+    // Shader AOVs: their layout, and shaderAovFloats sums a pixel over its counted samples
+    std::vector<ShaderAov> shaderAovs;
+    int shaderAovFloats = 0;
+    HostVector<float> shaderAovSums;
+    // a colour AOV's channels to RGB: row-vector, colourSlots x 3 (ColorSamples::toRgb)
+    std::vector<float> colourToRgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
     // The crop window: the pixels rendered and written, [x0, x1) x [y0, y1).
     int cropX0 = 0, cropX1 = 0, cropY0 = 0, cropY1 = 0;
     // (cropX1 == 0: no crop window was set, the whole frame counts)
@@ -73,11 +88,15 @@ struct Film {
     };
     Tally tally() const;
 
-    // AOV channels by name: "z", "N" (N.X, N.Y, N.Z), "samples", "error", "filled".
+    // AOV channels by name: "z", "N" (N.X, N.Y, N.Z), "samples", "error", "filled", or a
+    // shader AOV (a float "name"; a colour name.R, .G, .B; a point, vector or normal
+    // name.X, .Y, .Z: the mean over the pixel's samples, 0 where a sample hit nothing).
     // Throws std::runtime_error for an unknown name or a geometric AOV not rendered.
     std::vector<Channel> aovChannels(const std::string& name) const;
 
 private:
+    std::vector<Channel> shaderAovChannels(const ShaderAov& a) const;
+
     // For each pixel, the index of the nearest pixel with samples (itself if sampled),
     // -1 when the film is empty. Breadth-first from all sampled pixels at once.
     std::vector<int64_t> nearestSampled() const;

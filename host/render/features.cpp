@@ -112,6 +112,7 @@ std::vector<std::string> Features::names() const {
     if (sampledTrace) n.push_back("sampled_trace");
     if (visibilityRays) n.push_back("occlusion");
     if (aovs) n.push_back("aovs");
+    if (shaderAovFloats > 0) n.push_back("shader_aovs");
     if (sobol) n.push_back("sobol_sampler");
     if (treelets) n.push_back("treelets");
     if (bvhWidth == 8) n.push_back("bvh8");
@@ -171,6 +172,7 @@ std::string buildOptions(const Features& f) {
         o += buf;
     }
     if (f.aovs) o += " -DRT_HAS_AOVS";
+    if (f.shaderAovFloats > 0) o += " -DRT_SHADER_AOVS=" + std::to_string(f.shaderAovFloats);
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
     if (!f.colors.isRgb()) {
         auto matrix = [](const std::vector<float>& m) {

@@ -26,17 +26,12 @@ std::string frameOutputName(const Scene& scene, const std::string& override, siz
     return name;
 }
 
-void writeFrameImage(const std::string& out, const Scene& scene, const Film& film,
-                     const RenderStats& st, const std::vector<std::string>& aovs,
-                     bool halfFloat, const std::string& scenePath) {
+namespace {
+
+// The header every image of the frame carries: how it was made.
+ExrOptions imageOptions(const Film& film, const RenderStats& st, bool halfFloat,
+                        const std::string& scenePath) {
     ExrOptions opts;
-    opts.alpha = scene.display.mode != "rgb";
-    if (scene.display.mode == "z") {  // a depth map: Z and the camera's matrices
-        opts.colour = false;
-        DepthMapMatrices m = depthMapMatrices(scene);
-        opts.matrices["worldToCamera"] = m.worldToCamera;
-        opts.matrices["worldToScreen"] = m.worldToScreen;
-    }
     opts.halfFloat = halfFloat;
     opts.metadata["software"] = "RayDrive " RAYDRIVE_VERSION;
     opts.metadata["raydrive:device"] = st.device;
@@ -46,10 +41,14 @@ void writeFrameImage(const std::string& out, const Scene& scene, const Film& fil
     // (how the error was estimated: samples' spread or two replicates)
     opts.metadata["raydrive:sampler"] = st.features.sobol ? "sobol" : "independent";
     opts.metadata["raydrive:samples"] = std::to_string(st.filmSamples);
-    std::vector<std::string> wanted = scene.aovs;
-    wanted.insert(wanted.end(), aovs.begin(), aovs.end());
-    // Pixels never reached are filled from neighbours: say which, always.
-    if (st.unsampledPixels > 0) wanted.push_back("filled");
+    if (film.cropped()) {
+        opts.dataX = film.cropX0, opts.dataY = film.cropY0;
+        opts.displayWidth = film.width, opts.displayHeight = film.height;
+    }
+    return opts;
+}
+
+void addAovChannels(ExrOptions& opts, const Film& film, std::vector<std::string> wanted) {
     std::sort(wanted.begin(), wanted.end());
     wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
     for (const std::string& a : wanted)
@@ -57,13 +56,47 @@ void writeFrameImage(const std::string& out, const Scene& scene, const Film& fil
             c.values = film.crop(c.values);
             opts.extra.push_back(std::move(c));
         }
-    int outW = film.width, outH = film.height;
-    if (film.cropped()) {
-        opts.dataX = film.cropX0, opts.dataY = film.cropY0;
-        opts.displayWidth = film.width, opts.displayHeight = film.height;
-        outW = film.cropX1 - film.cropX0, outH = film.cropY1 - film.cropY0;
-    }
+}
+
+void writeImage(const std::string& out, const Film& film, const ExrOptions& opts) {
+    const int outW = film.cropped() ? film.cropX1 - film.cropX0 : film.width;
+    const int outH = film.cropped() ? film.cropY1 - film.cropY0 : film.height;
     writeExr(out, outW, outH, film.crop(film.resolve()), opts);
+}
+
+// A secondary display (Display "+name"): its AOVs in a file of their own. One AOV alone
+// takes the channels a viewer shows: R, G, B for three, Y for one.
+void writeAovDisplay(const AovDisplay& d, const Film& film, ExrOptions opts) {
+    opts.colour = !d.colour.empty();
+    opts.alpha = d.colour == "rgba";
+    addAovChannels(opts, film, d.aovs);
+    if (d.aovs.size() == 1 && !opts.colour && opts.extra.size() == 1) opts.extra[0].name = "Y";
+    if (d.aovs.size() == 1 && !opts.colour && opts.extra.size() == 3)
+        for (size_t k = 0; k < 3; ++k) opts.extra[k].name = std::string(1, "RGB"[k]);
+    writeImage(d.name, film, opts);
+}
+
+}  // namespace
+
+void writeFrameImage(const std::string& out, const Scene& scene, const Film& film,
+                     const RenderStats& st, const std::vector<std::string>& aovs,
+                     bool halfFloat, const std::string& scenePath) {
+    const ExrOptions common = imageOptions(film, st, halfFloat, scenePath);
+    ExrOptions opts = common;
+    opts.alpha = scene.display.mode != "rgb";
+    if (scene.display.mode == "z") {  // a depth map: Z and the camera's matrices
+        opts.colour = false;
+        DepthMapMatrices m = depthMapMatrices(scene);
+        opts.matrices["worldToCamera"] = m.worldToCamera;
+        opts.matrices["worldToScreen"] = m.worldToScreen;
+    }
+    std::vector<std::string> wanted = scene.aovs;
+    wanted.insert(wanted.end(), aovs.begin(), aovs.end());
+    // Pixels never reached are filled from neighbours: say which, always.
+    if (st.unsampledPixels > 0) wanted.push_back("filled");
+    addAovChannels(opts, film, wanted);
+    writeImage(out, film, opts);
+    for (const AovDisplay& d : scene.aovDisplays) writeAovDisplay(d, film, common);
 }
 
 }  // namespace rd

@@ -21,7 +21,7 @@ namespace rd {
 struct RayPool {
     RayPool(const ClContext& ctx, size_t capacity, size_t spawn, uint32_t shadowLights,
             size_t slots, bool aovs, bool motion, bool instances, size_t shaderKeys,
-            size_t weightFloats)
+            size_t weightFloats, size_t shaderAovFloats = 0)
         : weightFloats(weightFloats),
           origin(ctx, capacity), direction(ctx, capacity), weight(ctx, capacity * weightFloats),
           state(ctx, capacity), sample(ctx, capacity), hits(ctx, capacity),
@@ -42,6 +42,8 @@ struct RayPool {
           newSample(ctx, 2 * capacity), refillEnds(ctx, capacity), refillFit(ctx, 3),
           totals(ctx, slots), samplePixel(ctx, slots), sampleIndex(ctx, slots),
           sampleTime(ctx, motion ? slots : 0), aov(ctx, aovs ? slots : 0),
+          aovValues(ctx, slots * shaderAovFloats),
+          shAov(ctx, capacity * shadowLights * shaderAovFloats),
           slotRays(ctx, slots), slotAbort(ctx, slots), jobs(ctx, slots), progress(ctx, 6) {
         shState.fillZero();
         spawnMask.fillZero();
@@ -129,6 +131,9 @@ struct RayPool {
     DeviceBuffer<uint32_t> samplePixel, sampleIndex;
     DeviceBuffer<float> sampleTime;  // motion blur: each sample's time
     DeviceBuffer<SampleAov> aov;
+    // the shaders' AOVs (RT_SHADER_AOVS floats): a sample slot's, and the parts of its
+    // first surface's that a shadow ray carries (the light's, added if it gets through)
+    DeviceBuffer<float> aovValues, shAov;
     DeviceBuffer<uint32_t> slotRays, slotAbort;
     DeviceBuffer<PixelJob> jobs;
     // retire_samples, two halves by launch parity: oldest job in flight, aborted, NaN/Inf

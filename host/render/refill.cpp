@@ -101,7 +101,7 @@ void Refill::launchEye(cl_uint items, cl_uint count, cl_uint offset) {
                          cl_uint(m_ring.nextSlot()), cl_uint(m_ring.slotCapacity()),
                          rp.newSample, rp.samplePixel, rp.sampleIndex, rp.slotRays,
                          rp.slotAbort, rp.origin, rp.direction, rp.weight, rp.state, rp.sample,
-                         rp.totals, rp.aov, rp.sampleTime);
+                         rp.totals, rp.aov, rp.aovValues, rp.sampleTime);
 }
 
 void Refill::book(std::deque<PlannedJob>& pending) {

@@ -85,7 +85,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     st.platform = m_ctx.info().platformName;
     st.threadsPinned = m_ctx.info().isPocl() && poclThreadsPinned();
     // The scene's RSL shaders, compiled and bound: they decide lights, trace and more.
-    ShadingSetup shading = ShaderSet(scene, diag).prepare();
+    std::vector<std::string> aovNames = scene.aovNames();
+    for (const std::string& a : m_settings.extraAovs)
+        if (std::find(aovNames.begin(), aovNames.end(), a) == aovNames.end())
+            aovNames.push_back(a);
+    ShadingSetup shading = ShaderSet(scene, diag).prepare(aovNames);
     // The textures those shaders may ask for: the texture search path, then the RIB's
     // folder and the current one.
     std::vector<std::string> texturePath = scene.textureSearchPath;
@@ -104,7 +108,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     shading.generated["rd_textures.cl"] = textures.deviceSource();
     Features f = analyse(scene, shading);
     f.textures = shading.textures && !textures.empty();
-    f.aovs = m_settings.geometricAovs;
+    f.shaderAovFloats = shading.aovFloats;
+    f.aovs = m_settings.geometricAovs || f.shaderAovFloats > 0 ||
+             std::find(aovNames.begin(), aovNames.end(), "z") != aovNames.end() ||
+             std::find(aovNames.begin(), aovNames.end(), "N") != aovNames.end();
     if (m_settings.seed >= 0) f.seed = uint32_t(m_settings.seed);
     if (m_settings.sobol >= 0) f.sobol = m_settings.sobol == 1;
     // Treelet-streamed traversal when a budget is set and the scene allows it.
@@ -201,7 +208,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // two is 60-70 ms on PoCL, most of it its preprocessor)
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
-               shaderCount + 1, weightFloats);
+               shaderCount + 1, weightFloats, size_t(f.shaderAovFloats));
     if (shaderCount == 1) {  // the one shader's run: every ray in pool order
         std::vector<uint32_t> order(pool);
         for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
@@ -259,6 +266,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     DeviceBuffer<PixelAccum> filmBuf(m_ctx, film.pixels);
     film.aovs.assign(f.aovs ? npix : 0, AovAccum{});
     DeviceBuffer<AovAccum> aovBuf(m_ctx, film.aovs);  // likewise
+    film.shaderAovs = shading.aovs;
+    film.shaderAovFloats = f.shaderAovFloats;
+    film.shaderAovSums.assign(npix * size_t(f.shaderAovFloats), 0.0f);
+    film.colourToRgb = scene.colors.toRgb;
+    DeviceBuffer<float> shaderAovBuf(m_ctx, film.shaderAovSums);  // likewise
     // numerics.clh RT_NUM_* counters, then a flag per archive not loaded yet
     DeviceBuffer<uint32_t> numerics(m_ctx, kProceduralFlags + scene.procedurals.size());
     numerics.fillZero();
@@ -295,7 +307,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 rp.weight, rp.state, rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                 rp.nextDirection, rp.nextWeight, rp.nextState, rp.nextSample,
                 rp.spawnMask, rp.slotRays, rp.shOrigin, rp.shDirection, rp.shWeight,
-                rp.shState, rp.aov, nl, numerics, textures.infoBuf, textures.pageBuf,
+                rp.shState, rp.aov, rp.aovValues, rp.shAov, nl, numerics, textures.infoBuf, textures.pageBuf,
                 textures.tileBuf, textures.requestBuf, textures.counterBuf,
                 textures.usedBuf, retry, reshade.counts(), s);
         }
@@ -390,7 +402,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         const cl_uint parity = retireLaunches & 1u, launch = retireLaunches;
         if (traced > 0 && (compact || nl > 0))
             k.closeRound.launch(traced, traced, nl, cl_uint(compact), rp.sample, rp.shWeight,
-                                rp.shState, rp.totals, rp.spawnMask, rp.groupLive);
+                                rp.shState, rp.totals, rp.shAov, rp.aovValues, rp.spawnMask,
+                                rp.groupLive);
         if (window > 0) {
             ++retireLaunches;
             const size_t most = m_settings.retireLaunchItems > 0
@@ -402,7 +415,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                 cl_uint(ring.frontPosition()), window,
                                 cl_uint(ring.jobCapacity()), cl_uint(ring.slotCapacity()),
                                 launch, cl_uint(base), rp.jobs, rp.slotRays, rp.slotAbort,
-                                rp.totals, filmBuf, rp.aov, aovBuf, rp.progress);
+                                rp.totals, filmBuf, rp.aov, aovBuf, rp.aovValues,
+                                shaderAovBuf, rp.progress);
         }
         refill.prepare(pending, roundCap);  // while the device finishes the round
         // Pipelined, the wait is for the retire's read (none without jobs in flight).
@@ -632,6 +646,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         filmBuf.syncToHost(/*blocking=*/false);
     }
     aovBuf.syncToHost(/*blocking=*/false);
+    shaderAovBuf.syncToHost(/*blocking=*/false);
     std::vector<uint32_t> num, texCounts;
     numerics.downloadInto(num, /*blocking=*/false);
     if (f.textures) textures.counterBuf.downloadInto(texCounts, /*blocking=*/false);

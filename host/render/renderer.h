@@ -43,6 +43,8 @@ struct RenderSettings {
     double errorTarget = 0;   // relative film error; 0 = none ("render" "error")
     int firstPassBlock = 0;   // 0 = the scene's option (default 2: 1/4 ray per pixel)
     bool geometricAovs = false;  // render z and N
+    // AOVs beyond the scene's (--aov): geometric ones, or shaders' output variables
+    std::vector<std::string> extraAovs;
     bool progress = false;       // progress bar on stderr (when it is a terminal)
     size_t textureCacheTiles = 0;  // device texture tiles (0: the scene's, else all that fit)
     // Treelet-streamed traversal (treelet_trace.h): treelet budget in bytes (0: the

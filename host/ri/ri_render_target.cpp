@@ -28,8 +28,6 @@ void RenderTarget::worldEnd(L loc) {
         const Scene& scene = scenes().back();
         RenderSettings settings;
         settings.progress = false;
-        for (const std::string& a : scene.aovs)
-            settings.geometricAovs |= a == "z" || a == "N";
         Renderer renderer(*m_ctx, settings);
         Film film;
         const RenderStats st = renderer.render(scene, film, m_diag);

@@ -228,7 +228,10 @@ private:
     uint32_t currentMaterial();
     // "trace" "maxtransparentdepth" of an Attribute or Option.
     void traceDepthOption(const rib::ParamList& params);
-    bool addAov(L, const std::string& name);
+    void addAov(const std::string& name);
+    // A display mode's entries ("rgba", "color diffuse,mask"): their names, their
+    // declared types noted in aovTypes.
+    std::vector<std::string> aovModeEntries(L, const std::string& mode);
     bool inWorld(L, const char* request);
     // Adds an object-space mesh (placed by the current transform) with its primitive
     // variables; degenerate and non-finite triangles are counted and left out.

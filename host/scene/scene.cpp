@@ -52,6 +52,14 @@ void ColorSamples::toRgbValues(float* c) const {
     mulRows(toRgb, size_t(slots()), c);
 }
 
+std::vector<std::string> Scene::aovNames() const {
+    std::vector<std::string> names = aovs;
+    for (const AovDisplay& d : aovDisplays)
+        for (const std::string& a : d.aovs)
+            if (std::find(names.begin(), names.end(), a) == names.end()) names.push_back(a);
+    return names;
+}
+
 Camera Scene::deviceCamera() const {
     Camera d{};
     const CameraSpec& c = camera;

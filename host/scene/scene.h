@@ -24,6 +24,15 @@ struct DisplaySpec {
     rib::SourceLoc loc;
 };
 
+// A secondary display (Display "+name" ...): a file of its own with the AOVs its mode
+// names ("diffuse", "color diffuse,float mask"; "rgba" or "rgb": the image's colour too).
+struct AovDisplay {
+    std::string name;
+    std::vector<std::string> aovs;
+    std::string colour;  // "", "rgb" or "rgba"
+    rib::SourceLoc loc;
+};
+
 struct CameraSpec {
     int width = 640, height = 480; // Format (RI default)
     float pixelAspect = 1.0f;
@@ -170,7 +179,13 @@ struct Scene {
     glm::dvec3 worldOrigin{0.0};
     CameraSpec camera;
     DisplaySpec display;
-    std::vector<std::string> aovs;  // AOVs the RIB asks for (Display "+name", DisplayChannel)
+    std::vector<std::string> aovs;  // the image's AOVs (DisplayChannel, the Display's mode)
+    std::vector<AovDisplay> aovDisplays;  // Display "+name": files of AOVs
+    // AOV types declared (DisplayChannel "color diffuse", or in a display's mode): float,
+    // color, point, vector or normal; an AOV not declared takes its shader output's type
+    std::map<std::string, std::string> aovTypes;
+    // Every AOV some image of the scene holds: aovs, then the secondary displays'.
+    std::vector<std::string> aovNames() const;
     RenderOptionsSpec render;
     bool anySmoothNormals = false;
     bool anyMatte = false;

@@ -2,6 +2,8 @@
 // generated part of the shade stage's OpenCL source.
 #include "shader_set.h"
 
+#include "shader_aovs.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -240,7 +242,7 @@ bool ShaderSet::bindCases(const std::vector<ShaderRef>& refs, const std::string&
     return any;
 }
 
-ShadingSetup ShaderSet::prepare() {
+ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     ShadingSetup out;
     std::ostringstream shaders;
     // --- the scene block, at the front of the params buffer (RslGlobals::scene_params):
@@ -466,6 +468,12 @@ ShadingSetup ShaderSet::prepare() {
         "#define RSL_LIGHT_CACHE " +
         std::to_string(std::clamp<uint32_t>(out.lightCount, 1, kLightCoefLimit)) + "\n" +
         (lightCoefs ? "#define RSL_LIGHT_COEFS " + std::to_string(out.lightCount) + "\n" : "");
+    // The AOVs the surface shaders write: laid out over every shader the scene uses
+    std::vector<const rsl::EmittedShader*> surfaces;
+    for (const ShaderRef& ref : m_scene.surfaceRefs)
+        surfaces.push_back(find(ref.name, "surface", ref.loc));
+    out.aovs = layoutShaderAovs(aovs, m_scene, surfaces, m_diag);
+    out.aovFloats = shaderAovFloats(out.aovs);
     for (size_t r = 0; r < m_scene.surfaceRefs.size(); ++r) {
         const ShaderRef& ref = m_scene.surfaceRefs[r];
         const rsl::EmittedShader* sh = find(ref.name, "surface", ref.loc);
@@ -481,6 +489,8 @@ ShadingSetup ShaderSet::prepare() {
             std::string k = "#define RSL_DERIVS_" + sh->name + " " +
                             (sh->usesDerivatives ? "1" : "0") + "\n#define RD_LIGHT_COEFS_" +
                             sh->name + " " + (lightCoefs && sh->lightCoefs ? "1" : "0") + "\n" +
+                            (out.aovFloats > 0 ? shaderAovMacros(*sh, out.aovs, m_diag, ref.loc)
+                                               : std::string()) +
                             kernelTemplate;
             for (size_t p = k.find("SURFACE"); p != std::string::npos; p = k.find("SURFACE", p))
                 k.replace(p, 7, sh->name);

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "film/film.h"
 #include "rib/diagnostics.h"
 #include "scene/scene.h"
 
@@ -66,6 +67,9 @@ struct ShadingSetup {
     // instances may pass as map names (parameter values, literals), for TextureSet.
     bool textures = false;
     std::vector<std::string> textureNames;
+    // The AOVs shaders write (shader_aovs.h), RT_SHADER_AOVS floats a sample in all.
+    std::vector<ShaderAov> aovs;
+    int aovFloats = 0;
 };
 
 class ShaderSet {
@@ -74,8 +78,9 @@ public:
     ~ShaderSet();
     // Compiles what the scene uses. Shaders that cannot be found or compiled are
     // reported (file:line of the request, then the compiler's own file:line:col) and
-    // replaced: surfaces by defaultsurface, lights dropped.
-    ShadingSetup prepare();
+    // replaced: surfaces by defaultsurface, lights dropped. `aovs`: the AOVs the render
+    // writes; the shaders write those that are not the renderer's own (shader_aovs.h).
+    ShadingSetup prepare(const std::vector<std::string>& aovs = {});
 
     // Directories searched for NAME.sl, in order.
     const std::vector<std::string>& searchPath() const { return m_path; }

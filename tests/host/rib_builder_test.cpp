@@ -27,10 +27,25 @@ const char* kWorld = "WorldBegin\nWorldEnd\n";
 
 TEST(RibBuilder, AovsFromDisplayChannelAndSecondaryDisplays) {
     Built r = build(std::string("DisplayChannel \"float z\"\nDisplay \"+n.exr\" \"file\" \"N\"\n"
-                                "Display \"+x.exr\" \"file\" \"bogus\"\n") + kWorld);
+                                "Display \"+x.exr\" \"file\" \"rgba,varying color diffuse, "
+                                "mask\"\nDisplay \"main.exr\" \"file\" \"rgbz\"\n"
+                                "Display \"+y.exr\" \"file\" \"bogus mask\"\n") +
+                    kWorld);
     ASSERT_EQ(r.scenes.size(), 1u);
-    EXPECT_EQ(r.scenes[0].aovs, (std::vector<std::string>{"z", "N"}));
-    EXPECT_NE(r.messages.find("t.rib:3: warning: AOV \"bogus\""), std::string::npos)
+    const rd::Scene& s = r.scenes[0];
+    // the image's: DisplayChannel's and its Display's mode (rgbz: the colour and z)
+    EXPECT_EQ(s.aovs, (std::vector<std::string>{"z"}));
+    EXPECT_EQ(s.display.mode, "rgb");
+    ASSERT_EQ(s.aovDisplays.size(), 3u);  // files of their own
+    EXPECT_EQ(s.aovDisplays[0].name, "n.exr");
+    EXPECT_EQ(s.aovDisplays[0].aovs, (std::vector<std::string>{"N"}));
+    EXPECT_EQ(s.aovDisplays[1].colour, "rgba");
+    EXPECT_EQ(s.aovDisplays[1].aovs, (std::vector<std::string>{"diffuse", "mask"}));
+    EXPECT_EQ(s.aovTypes.at("diffuse"), "color");
+    EXPECT_EQ(s.aovTypes.at("z"), "float");
+    EXPECT_EQ(s.aovNames(), (std::vector<std::string>{"z", "N", "diffuse", "mask"}));
+    EXPECT_NE(r.messages.find("t.rib:5: warning: AOV \"mask\": type \"bogus\""),
+              std::string::npos)
         << r.messages;
 }
 
