@@ -468,9 +468,9 @@ int benchMain(int argc, char** argv) {
                         ks.launch(items(n, p > 0 ? variants[p - 1] : std::string(),
                                         "RT_SHADOW_PACKETS"),
                                   cl_uint(n), nodeBuf, blockBuf, org, dir, state, weight,
-                                  noQuadrics,
-                                  noCsg, noTris, noMotion, noTris, noSample, noTime, cl_uint(1),
-                                  noNumerics);
+                                  noQuadrics, noCsg, noTris, noMotion, noTris, noSample,
+                                  noTime, cl_uint(1), noNumerics, noNumerics,
+                                  noNumerics);  // (opaque shadows)
                         ctx.finish();
                         return std::chrono::duration<double>(Clock::now() - t0).count();
                     }
@@ -497,9 +497,11 @@ int benchMain(int argc, char** argv) {
                 if (k.shadow) weight8.upload(ones);
                 auto t0 = Clock::now();
                 if (k.shadow)
-                    ks8->launch(items(n, options8, "RT_SHADOW_PACKETS"), cl_uint(n), nodes8,
-                                blocks8, org, dir, state8, weight8, noQuadrics, noCsg, noTris,
-                                noMotion, noTris, noSample, noTime, cl_uint(1), noNumerics);
+                    ks8->launch(items(n, options8, "RT_SHADOW_PACKETS"), cl_uint(n),
+                                nodes8, blocks8, org, dir, state8, weight8, noQuadrics,
+                                noCsg, noTris, noMotion, noTris, noSample, noTime,
+                                cl_uint(1), noNumerics, noNumerics,
+                                noNumerics);  // (opaque shadows)
                 else
                     kc8->launch(items(n, options8, "RT_CLOSEST_PACKETS"), cl_uint(n), nodes8,
                                 blocks8, org, dir, state8, hits8,

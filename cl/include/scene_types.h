@@ -54,6 +54,11 @@ typedef struct Material {
  * their continuations through transparent surfaces), or traced rays, go through it. */
 #define RT_MATERIAL_NO_CAMERA 4u
 #define RT_MATERIAL_NO_TRACE 8u
+/* Attribute "visibility" "int transmission" [0]: shadow rays go through it (it casts no
+ * shadow). */
+#define RT_MATERIAL_NO_TRANSMISSION 16u
+/* "string transmission" "opaque": a full shadow whatever its opacity Os. */
+#define RT_MATERIAL_OPAQUE_SHADOW 32u
 /* Bits 8..15: 1 + the index of the surface's Atmosphere shader, 0 for none. */
 #define RT_MATERIAL_ATMOSPHERE_SHIFT 8u
 #define RT_MATERIAL_ATMOSPHERE_MASK 0xff00u

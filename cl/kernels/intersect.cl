@@ -148,7 +148,42 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
         __global const float* sample_time,                                                 \
         uint light_count,        /* shadow ray i: shaded ray i / count */                  \
         __global uint* numerics, /* RT_HAS_PROCEDURALS: flags */                           \
-        __global uint* active_counter
+        __global const TriangleAttr* attrs, /* RT_HAS_TRANSPARENT_SHADOWS only */          \
+        __global const Material* materials, __global uint* active_counter
+
+#ifdef RT_HAS_TRANSPARENT_SHADOWS
+/* What of a shadow ray's light gets through the surface it met: 1 - Os, the material's
+ * constant opacity (PRMan's default, "primitive" transmission), all of it when the
+ * surface casts no shadow (Attribute "visibility" "transmission" 0), none for "opaque"
+ * transmission. In the scene's RGB
+ * (xyz); with other colour channels than RGB the mean (w). */
+inline float4 rt_transmittance(uint prim, uint inst, __global const TriangleAttr* attrs,
+                               __global const Material* materials,
+                               __global const Quadric* quadrics) {
+#ifdef RT_HAS_QUADRICS
+    uint mat = (prim & RT_OBJECT_BIT) ? quadrics[prim & RT_OBJECT_MASK].material
+                                      : attrs[prim].material;
+#ifdef RT_HAS_INSTANCES
+    if (inst != RT_NO_HIT) mat = quadrics[inst].material;
+#endif
+#else
+    uint mat = attrs[prim].material;
+#endif
+    if (materials[mat].flags & RT_MATERIAL_NO_TRANSMISSION) return (float4)(1.0f);
+    if (materials[mat].flags & RT_MATERIAL_OPAQUE_SHADOW) return (float4)(0.0f);
+    return clamp((float4)(1.0f) - materials[mat].os, 0.0f, 1.0f);
+}
+
+/* A shadow ray's weight times what got through (the alpha lane, 0 in a shadow ray,
+ * stays 0). */
+inline rt_weight rt_attenuate(rt_weight w, float4 t) {
+#if !defined(RSL_COLOR_SAMPLES) || RSL_COLOR_SAMPLES == 3
+    return w * t;
+#else
+    return w * t.w;
+#endif
+}
+#endif
 
 #ifndef RT_SHADOW_PACKETS
 __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
@@ -159,7 +194,37 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     RT_DECLARE_OBJECT_SCENE(i / light_count);
     float4 o = origin[i], d = direction[i];
     RayHit h;
-    uint inst;
+    uint inst = RT_NO_HIT;
+#ifdef RT_HAS_TRANSPARENT_SHADOWS
+    /* Surfaces that let light through: the nearest hit, its transmittance, then on from
+     * it, up to the transparent depth; an opaque one ends the ray. (A closest-hit walk:
+     * only scenes with such surfaces trace their shadows so.) */
+    float4 through = (float4)(1.0f);
+    float tmin = o.w;
+    uint skip = state[i].from_prim;
+    int occluded = 1;
+    for (uint layer = 0; layer <= RT_MAX_TRANSPARENT_DEPTH; ++layer) {
+        inst = RT_NO_HIT;
+        if (!rt_traverse(nodes, blocks, o, d, tmin, d.w, skip, 0, 1,
+                         &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG)) {
+            occluded = 0;
+            break;
+        }
+#ifdef RT_HAS_PROCEDURALS
+        if ((h.prim & RT_OBJECT_BIT) && quadrics[h.prim & RT_OBJECT_MASK].kind == RT_Q_PROCEDURAL) {
+            numerics[RT_NUM_PROCEDURAL_BASE + quadrics[h.prim & RT_OBJECT_MASK].first_member] = 1u;
+            break;
+        }
+#endif
+        through *= rt_transmittance(h.prim, inst, attrs, materials, quadrics);
+        if (!(through.x > 0.0f || through.y > 0.0f || through.z > 0.0f || through.w > 0.0f))
+            break;
+        tmin = h.t;
+        skip = h.prim;
+    }
+    /* an occluded ray carries nothing; its state stays as the group count read it */
+    weight[i] = occluded ? (rt_weight)(0.0f) : rt_attenuate(weight[i], through);
+#else
     /* shadow rays converge on their light: the lane walk */
     if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, 1,
                     &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG)) {
@@ -170,6 +235,7 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
             numerics[RT_NUM_PROCEDURAL_BASE + quadrics[h.prim & RT_OBJECT_MASK].first_member] = 1u;
 #endif
     }
+#endif
 }
 #else
 /* Lane j of packet w: the shadow ray toward light w % lights of shaded ray

@@ -18,6 +18,11 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
         if (m.flags & RT_MATERIAL_ONE_SIDED) f.oneSided = f.transparency = true;
         if (m.flags & (RT_MATERIAL_NO_CAMERA | RT_MATERIAL_NO_TRACE))
             f.invisible = f.transparency = true;
+        // (os.w: the mean opacity, what a shadow through it keeps in other channels)
+        if ((m.flags & RT_MATERIAL_NO_TRANSMISSION) ||
+            (!(m.flags & RT_MATERIAL_OPAQUE_SHADOW) &&
+             (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f || m.os.w < 1.0f)))
+            f.transparentShadows = true;
     }
     const size_t n = size_t(scene.colors.n);  // (more than three: the channels' opacity)
     for (size_t i = 0; n > 3 && i < scene.materialChannels.size(); ++i)
@@ -35,6 +40,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.lightCount = shading.lightCount;
     f.specialisedLights = f.lightCount > 0;  // (shader_set.cpp: rd_run_light)
     f.shadowRays = shading.shadowRays;
+    f.transparentShadows = f.transparentShadows && f.shadowRays;
     f.lightCoefficients = shading.lightCoefs;
     f.trace = shading.usesTrace;
     f.traceSlots = shading.usesTrace ? std::max(1, shading.traceSlots) : 0;
@@ -105,6 +111,7 @@ std::vector<std::string> Features::names() const {
     if (trace && rouletteDepth > 0) n.push_back("roulette");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
+    if (transparentShadows) n.push_back("transparent_shadows");
     if (shadowRays) n.push_back("shadow_rays");
     if (specialisedLights) n.push_back("specialised_lights");
     if (lightCoefficients) n.push_back("light_coefficients");
@@ -151,7 +158,8 @@ void chooseTraversal(Features& f, int bvhWidth, bool shadowPackets, bool closest
     // balls 1.1-1.2x: none there.
     const bool packetsFit = f.bvhWidth == 8 && !f.treelets && !f.quadrics && !f.instances &&
                             !f.motion && !f.procedurals;
-    f.shadowPackets = shadowPackets && f.shadowRays && packetsFit;
+    f.shadowPackets =
+        shadowPackets && f.shadowRays && packetsFit && !f.transparentShadows;
     f.closestPackets = closestPackets && packetsFit;
 }
 
@@ -162,9 +170,10 @@ std::string buildOptions(const Features& f) {
                     " -DRT_MAX_SPECULAR_DEPTH=" + std::to_string(f.maxSpecularDepth) +
                     " -DRSL_MAX_LOOP_ITERATIONS=" + std::to_string(kShaderLoopPasses);
     if (f.smoothNormals) o += " -DRT_HAS_SMOOTH_NORMALS";
-    if (f.transparency)
-        o += " -DRT_HAS_TRANSPARENCY -DRT_MAX_TRANSPARENT_DEPTH=" +
-             std::to_string(f.maxTransparentDepth) + "u";
+    if (f.transparency) o += " -DRT_HAS_TRANSPARENCY";
+    if (f.transparentShadows) o += " -DRT_HAS_TRANSPARENT_SHADOWS";
+    if (f.transparency || f.transparentShadows)
+        o += " -DRT_MAX_TRANSPARENT_DEPTH=" + std::to_string(f.maxTransparentDepth) + "u";
     if (f.shadowRays) o += " -DRT_HAS_SHADOW_RAYS";
     if (f.sceneScale < 1.0f) {
         char buf[48];

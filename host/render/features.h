@@ -18,6 +18,9 @@ constexpr int kShaderLoopPasses = 65536;
 struct Features {
     bool smoothNormals = false; // per-vertex normals to interpolate
     bool transparency = false;  // some Os < 1: continuation rays
+    // shadow rays through surfaces that let light through (Os < 1, or Attribute
+    // "visibility" "transmission" 0): a closest-hit walk attenuating at each
+    bool transparentShadows = false;
     bool shadowRays = false;    // some light other than ambient
     bool trace = false;         // some surface shader calls trace()
     bool sampledTrace = false;  // ... and random(): traced rays in sampled directions

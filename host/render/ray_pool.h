@@ -59,25 +59,29 @@ struct RayPool {
     // and traced rounds of 3-30% of the pool (pool fill 0.47; four: 0.57).
     static constexpr size_t kSlotsPerRay = 4;
     // Device bytes per ray of capacity, for sizing the pool to a memory budget.
-    static size_t bytesPerRay(size_t spawn, uint32_t shadowLights, size_t weightFloats = 4) {
+    static size_t bytesPerRay(size_t spawn, uint32_t shadowLights,
+                              size_t weightFloats = 4, size_t shaderAovFloats = 0) {
         const size_t weights = 1 + spawn + spillCapacity(1, spawn) + shadowLights;
         return 144 + 2 * 100 + spawn * 72 + spillCapacity(1, spawn) * 68 +
                size_t(shadowLights) * 64 + kSlotsPerRay * 56 +
                weights * weightFloats * 4 -
-               weights * 16;  // (the figures above count four floats a weight)
+               weights * 16 +  // (the figures above count four floats a weight)
+               (kSlotsPerRay + shadowLights) * shaderAovFloats * 4;
     }
     // Rays of one round: `wanted`, or (0) enough to keep every compute unit busy (16k rays
     // each), within a memory budget of an eighth of the device's memory (64-512 MiB).
     static size_t capacityFor(size_t wanted, const DeviceInfo& device, size_t spawn,
-                              uint32_t shadowLights, size_t weightFloats) {
+                              uint32_t shadowLights, size_t weightFloats,
+                              size_t shaderAovFloats = 0) {
         if (wanted == 0)
             wanted = std::clamp<size_t>(size_t(device.computeUnits) << 14, size_t(1) << 14,
                                         size_t(1) << 20);
         const size_t memoryBudget = std::clamp<size_t>(device.globalMemBytes / 8,
                                                        size_t(64) << 20, size_t(512) << 20);
         return std::clamp<size_t>(
-            std::min(wanted, memoryBudget / bytesPerRay(spawn, shadowLights, weightFloats)), 64,
-            std::max<size_t>(64, wanted));
+            std::min(wanted, memoryBudget / bytesPerRay(spawn, shadowLights, weightFloats,
+                                                        shaderAovFloats)),
+            64, std::max<size_t>(64, wanted));
     }
     // Floats of a ray's weight (cl/include/ray.h rt_weight): 2 under ColorSamples 1, 4 up
     // to three channels, else the scene's colour vector (8 or 16).

@@ -123,6 +123,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                      "treelet budget not used: " + st.treelets.why);
     chooseTraversal(f, m_settings.bvhWidth, m_settings.shadowPackets, m_settings.closestPackets,
                     m_ctx.info().type & CL_DEVICE_TYPE_CPU);
+    if (f.treelets && f.transparentShadows)
+        diag.warning(
+            rib::SourceLoc{scene.sourceFile, 0},
+            "treelets: surfaces with Os < 1 or \"visibility\" \"transmission\" 0 "
+            "cast full shadows (the treelet shadow rays stop at the first surface)");
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
@@ -137,10 +142,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // The pool (RayPool::capacityFor); the sample slots kSlotsPerRay times it, pixel jobs
     // at most a quarter of it so several pixels share a round.
     const size_t weightFloats = RayPool::weightFloatsOf(f.colors.n);
-    const size_t pool = RayPool::capacityFor(m_settings.poolCapacity, m_ctx.info(), spawn, nl,
-                                             weightFloats);
+    const size_t aovFloats = size_t(f.shaderAovFloats);
+    const size_t pool = RayPool::capacityFor(m_settings.poolCapacity, m_ctx.info(), spawn,
+                                             nl, weightFloats, aovFloats);
     st.poolCapacity = pool;
-    st.poolBytesPerRay = RayPool::bytesPerRay(spawn, nl, weightFloats);
+    st.poolBytesPerRay = RayPool::bytesPerRay(spawn, nl, weightFloats, aovFloats);
     SampleRing ring(RayPool::kSlotsPerRay * pool);
     const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
     // Sampling: the first pass needs no film, so it is planned on another thread while
@@ -208,7 +214,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // two is 60-70 ms on PoCL, most of it its preprocessor)
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
-               shaderCount + 1, weightFloats, size_t(f.shaderAovFloats));
+               shaderCount + 1, weightFloats, aovFloats);
     if (shaderCount == 1) {  // the one shader's run: every ray in pool order
         std::vector<uint32_t> order(pool);
         for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
@@ -371,12 +377,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
                                  rp.shWeight, traceScene, nl);
             else
-                k.intersectShadow.launch(f.shadowItems(n, nl), cl_uint(n * nl), ds.nodes, ds.blocks,
-                                         rp.shOrigin, rp.shDirection, rp.shState,
-                                         rp.shWeight, ds.quadrics,
-                                         ds.csg, ds.triangles, ds.quadricMotion,
-                                         ds.trianglesEnd, rp.sample, rp.sampleTime, nl,
-                                         numerics);
+                k.intersectShadow.launch(
+                    f.shadowItems(n, nl), cl_uint(n * nl), ds.nodes, ds.blocks,
+                    rp.shOrigin, rp.shDirection, rp.shState, rp.shWeight, ds.quadrics,
+                    ds.csg, ds.triangles, ds.quadricMotion, ds.trianglesEnd, rp.sample,
+                    rp.sampleTime, nl, numerics, ds.attrs, ds.materials);
         }
     };
     // The end of a round: add the shadow rays that reached their light and count the rays

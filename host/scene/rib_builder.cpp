@@ -114,13 +114,23 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
         const int diffuse = params.getInt("diffuse", -1),
                   specular = params.getInt("specular", -1);
         if (diffuse >= 0 && specular >= 0) set(RT_MATERIAL_NO_TRACE, diffuse + specular);
+        // transmission: 0 or "transparent" cast no shadow; 1, "Os" or "shader" one by
+        // their opacity Os; "opaque" a full one whatever their Os
         const std::string transmission = params.getString("transmission", "");
-        if ((params.getInt("transmission", -1) == 0 || transmission == "transparent") &&
-            m_warnedAt.insert({loc.file, -1}).second)
-            m_diag.warning(
-                loc,
-                "Attribute \"visibility\" \"transmission\": surfaces that cast "
-                "no shadow are not supported yet; this one still does");
+        set(RT_MATERIAL_NO_TRANSMISSION, transmission == "transparent" ? 0
+                                         : transmission.empty()
+                                             ? params.getInt("transmission", -1)
+                                             : 1);
+        if (transmission == "opaque")
+            v |= RT_MATERIAL_OPAQUE_SHADOW;
+        else if (!transmission.empty() || params.getInt("transmission", -1) >= 0)
+            v &= ~RT_MATERIAL_OPAQUE_SHADOW;
+        if (!transmission.empty() && transmission != "transparent" &&
+            transmission != "opaque" && transmission != "Os" && transmission != "shader")
+            m_diag.warning(loc,
+                           "Attribute \"visibility\" \"string transmission\" \"" +
+                               transmission +
+                               "\": not transparent, opaque, Os or shader; taken as Os");
         return;
     }
     if (name == "trace") {

@@ -191,6 +191,62 @@ TEST(GraphicsState, VisibilityToCameraAndTracedRays) {
     EXPECT_NEAR(mirrored.mean(2, 8, 0, 16, 16), 1.0, 1e-6);  // right: blue reflected
 }
 
+// Shadows through surfaces that let light through (DESIGN.md section 4): a shadow ray
+// keeps 1 - Os of each surface it passes (PRMan's "primitive" transmission), all of it
+// past a surface with "transmission" 0, none past an "opaque" one. A white matte floor
+// under a distant light straight on; squares the camera does not see (visibility camera
+// 0) float between, at x = -2 (two layers), 0 and 2.
+TEST(GraphicsState, ShadowsThroughSurfacesTakeTheirTransmission) {
+    auto square = [](double x, double z, const std::string& attributes) {
+        std::ostringstream s;
+        s << "AttributeBegin\nAttribute \"visibility\" \"int camera\" [0]\n"
+          << attributes << "\nPolygon \"P\" [" << x - 0.6 << " -0.6 " << z << "  "
+          << x + 0.6 << " -0.6 " << z << "  " << x + 0.6 << " 0.6 " << z << "  "
+          << x - 0.6 << " 0.6 " << z << "]\nAttributeEnd\n";
+        return s.str();
+    };
+    const std::string floor =
+        "WorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+        "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n";
+    const std::string squares =
+        square(-2, -1, "Opacity [0.25 0.5 1]") + square(-2, -2, "Opacity [0.5 0.5 0.5]") +
+        square(0, -1, "Attribute \"visibility\" \"int transmission\" [0]") +
+        square(2, -1,
+               "Opacity [0.5 0.5 0.5]\nAttribute \"visibility\" \"string transmission\" "
+               "[\"opaque\"]");
+    Rendered r = renderRib(std::string(kCamera) + floor + squares + "WorldEnd\n");
+    auto at = [&](int channel, int column) {
+        return r.mean(channel, column - 2, 6, column + 2, 10);
+    };
+    EXPECT_NEAR(at(0, 8), 0.75 * 0.5, 1e-5);  // two layers: (1 - Os) each
+    EXPECT_NEAR(at(1, 8), 0.5 * 0.5, 1e-5);
+    EXPECT_NEAR(at(2, 8), 0.0, 1e-6);
+    EXPECT_NEAR(at(0, 24), 1.0, 1e-5);  // casts no shadow
+    EXPECT_NEAR(at(0, 40), 0.0, 1e-6);  // a full one
+    EXPECT_NEAR(at(0, 16), 1.0, 1e-5);  // between them
+    EXPECT_TRUE(r.stats.features.transparentShadows);
+    EXPECT_FALSE(r.stats.features.shadowPackets);  // (the closest-hit walk)
+    // A sphere is two surfaces on the way: (1 - Os)^2; a triangle mesh's closed box too.
+    Rendered sphere =
+        renderRib(std::string(kCamera) + floor +
+                  "AttributeBegin\nAttribute \"visibility\" \"int camera\" [0]\nOpacity "
+                  "[0.5 0.5 0.5]\n"
+                  "Translate -2 0 -1\nSphere 0.9 -0.9 0.9 360\nTranslate 4 0 0\n"
+                  "PointsPolygons [4 4 4 4 4 4] [0 1 3 2  4 6 7 5  0 4 5 1  2 3 7 6  0 2 "
+                  "6 4  1 5 7 3] "
+                  "\"P\" [-0.6 -0.6 -0.6  0.6 -0.6 -0.6  -0.6 0.6 -0.6  0.6 0.6 -0.6  "
+                  "-0.6 -0.6 0.6  "
+                  "0.6 -0.6 0.6  -0.6 0.6 0.6  0.6 0.6 0.6]\nAttributeEnd\nWorldEnd\n");
+    EXPECT_NEAR(sphere.mean(0, 7, 7, 9, 9), 0.25, 1e-5);
+    EXPECT_NEAR(sphere.mean(0, 39, 6, 41, 10), 0.25, 1e-5);
+    // Opaque surfaces alone keep the any-hit walk, in packets.
+    Rendered opaque =
+        renderRib(std::string(kCamera) + floor + square(0, -1, "") + "WorldEnd\n");
+    EXPECT_FALSE(opaque.stats.features.transparentShadows);
+    EXPECT_TRUE(opaque.stats.features.shadowPackets);
+    EXPECT_NEAR(opaque.mean(0, 22, 6, 26, 10), 0.0, 1e-6);
+}
+
 // AreaLightSource: its light shader lights the scene like the same LightSource.
 TEST(GraphicsState, AreaLightSourceLightsLikeItsShader) {
     const std::string rest =
