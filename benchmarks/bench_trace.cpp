@@ -469,7 +469,7 @@ int benchMain(int argc, char** argv) {
                                         "RT_SHADOW_PACKETS"),
                                   cl_uint(n), nodeBuf, blockBuf, org, dir, state, weight,
                                   noQuadrics, noCsg, noTris, noMotion, noTris, noSample,
-                                  noTime, cl_uint(1), noNumerics, noNumerics,
+                                  noTime, cl_uint(1), noNumerics, noNumerics, noNumerics,
                                   noNumerics);  // (opaque shadows)
                         ctx.finish();
                         return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -500,7 +500,7 @@ int benchMain(int argc, char** argv) {
                     ks8->launch(items(n, options8, "RT_SHADOW_PACKETS"), cl_uint(n),
                                 nodes8, blocks8, org, dir, state8, weight8, noQuadrics,
                                 noCsg, noTris, noMotion, noTris, noSample, noTime,
-                                cl_uint(1), noNumerics, noNumerics,
+                                cl_uint(1), noNumerics, noNumerics, noNumerics,
                                 noNumerics);  // (opaque shadows)
                 else
                     kc8->launch(items(n, options8, "RT_CLOSEST_PACKETS"), cl_uint(n), nodes8,

@@ -71,6 +71,8 @@ typedef struct Material {
 /* The camera's motion keys between its first and last (more are left out, with a
  * warning) */
 #define RT_CAMERA_MAX_BETWEEN 8
+#define RT_FILTER_TABLE 128
+#define RT_FILTER_FLIPS 16 /* sign changes a filter may have per axis */
 
 typedef struct Camera {
     rt_float4 camera_to_world[3];
@@ -92,6 +94,21 @@ typedef struct Camera {
     uint32_t between;
     rt_float4 camera_to_world_between[RT_CAMERA_MAX_BETWEEN][3];
     float between_times[RT_CAMERA_MAX_BETWEEN];
+    /* PixelFilter, by filter importance sampling (host/scene/pixel_filter.h): a sample's
+     * place about its pixel's centre is drawn from the filter's |f|, so each pixel is the
+     * plain mean of its samples. With filter_table 0 the place is uniform over a box of
+     * filter_width pixels. Else along axis a it is filter_icdf[a] at u * RT_FILTER_TABLE
+     * (linear between entries: the inverse of the cumulative |f|), a sample in a cell
+     * where the filter is negative counts negatively (its sign: filter_negative_start[a]
+     * at u = 0, flipped at each u of filter_flips[a], 2 past the last), and every sample
+     * weighs filter_weight (the integral of |f| over that of f, per axis). */
+    float filter_width[2];
+    float filter_weight;
+    uint32_t filter_table;
+    uint32_t filter_negative_start[2];
+    uint32_t filter_pad[2];
+    float filter_icdf[2][RT_FILTER_TABLE + 4]; /* RT_FILTER_TABLE + 1 used */
+    float filter_flips[2][RT_FILTER_FLIPS];
 } Camera;
 
 #ifndef __OPENCL_C_VERSION__
@@ -99,6 +116,7 @@ RT_ASSERT_SIZE(Triangle, 48);
 RT_ASSERT_SIZE(Triangle4, 160);
 RT_ASSERT_SIZE(TriangleAttr, 16);
 RT_ASSERT_SIZE(Material, 48);
-RT_ASSERT_SIZE(Camera, 176 + RT_CAMERA_MAX_BETWEEN * (48 + 4));
+RT_ASSERT_SIZE(Camera, 176 + RT_CAMERA_MAX_BETWEEN * (48 + 4) + 32 +
+                           2 * (RT_FILTER_TABLE + 4) * 4 + 2 * RT_FILTER_FLIPS * 4);
 #endif
 #endif

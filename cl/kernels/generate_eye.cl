@@ -12,6 +12,18 @@
 #include "ray.h"
 #include "scene_types.h"
 
+/* A place along one axis from the filter's inverse cumulative table (Camera::filter_icdf),
+ * linear between entries; where the filter is negative the sample's weight changes sign
+ * (the same trip count in every work-item). */
+inline float rt_filter_place(__constant Camera* cam, int axis, float u, float* weight) {
+    int negative = (int)cam->filter_negative_start[axis];
+    for (int f = 0; f < RT_FILTER_FLIPS; ++f) negative ^= u >= cam->filter_flips[axis][f];
+    if (negative) *weight = -*weight;
+    const float x = clamp(u, 0.0f, 1.0f) * (float)RT_FILTER_TABLE;
+    const int k = min((int)x, RT_FILTER_TABLE - 1);
+    return mix(cam->filter_icdf[axis][k], cam->filter_icdf[axis][k + 1], x - (float)k);
+}
+
 __kernel void generate_eye(__constant Camera* cam,
                            uint count, /* ~0u: fit[1], what fit_refill found fits */
                            __global const uint* fit,
@@ -45,7 +57,18 @@ __kernel void generate_eye(__constant Camera* cam,
     slot_abort[slot] = 0u;
     int px = (int)(pixel % (uint)cam->width), py = (int)(pixel / (uint)cam->width);
     float2 j = rt_pixel_sample(pixel, s);
-    float jx = j.x, jy = j.y;
+    /* PixelFilter by importance: the sample's place about the pixel's centre drawn from
+     * the filter (Camera::filter_*), its weight the filter's sign times filter_weight */
+    float jx, jy, filter_w = 1.0f;
+    if (cam->filter_table) {
+        jx = 0.5f + rt_filter_place(cam, 0, j.x, &filter_w);
+        jy = 0.5f + rt_filter_place(cam, 1, j.y, &filter_w);
+        filter_w *= cam->filter_weight;
+    } else {
+        /* (a box a pixel wide: the sample's own place, bit for bit) */
+        jx = cam->filter_width[0] == 1.0f ? j.x : 0.5f + (j.x - 0.5f) * cam->filter_width[0];
+        jy = cam->filter_width[1] == 1.0f ? j.y : 0.5f + (j.y - 0.5f) * cam->filter_width[1];
+    }
     /* raster -> screen window: x grows right, y grows up */
     float sx = cam->screen[0] + ((float)px + jx) / (float)cam->width *
                                     (cam->screen[1] - cam->screen[0]);
@@ -129,7 +152,7 @@ __kernel void generate_eye(__constant Camera* cam,
     o[0] = wox, o[1] = woy, o[2] = woz, o[3] = tmin * len;
     d[0] = wdx / len, d[1] = wdy / len, d[2] = wdz / len, d[3] = tmax * len;
     __global float* w = (__global float*)(weight + i);
-    for (int c = 0; c < (int)(sizeof(rt_weight) / sizeof(float)); ++c) w[c] = 1.0f;
+    for (int c = 0; c < (int)(sizeof(rt_weight) / sizeof(float)); ++c) w[c] = filter_w;
     /* an eye ray's footprint: a pixel wide where an orthographic ray starts; a
      * perspective one starts as a point and widens by RT_PIXEL_SPREAD per unit */
     state[i].alive = 1u;

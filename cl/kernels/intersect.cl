@@ -149,17 +149,20 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
         uint light_count,        /* shadow ray i: shaded ray i / count */                  \
         __global uint* numerics, /* RT_HAS_PROCEDURALS: flags */                           \
         __global const TriangleAttr* attrs, /* RT_HAS_TRANSPARENT_SHADOWS only */          \
-        __global const Material* materials, __global uint* active_counter
+        __global const Material* materials,                                               \
+        __global const float* material_channels, /* and more than three channels */      \
+        __global uint* active_counter
 
 #ifdef RT_HAS_TRANSPARENT_SHADOWS
-/* What of a shadow ray's light gets through the surface it met: 1 - Os, the material's
- * constant opacity (PRMan's default, "primitive" transmission), all of it when the
- * surface casts no shadow (Attribute "visibility" "transmission" 0), none for "opaque"
- * transmission. In the scene's RGB
- * (xyz); with other colour channels than RGB the mean (w). */
-inline float4 rt_transmittance(uint prim, uint inst, __global const TriangleAttr* attrs,
-                               __global const Material* materials,
-                               __global const Quadric* quadrics) {
+/* What of a shadow ray's light gets through the surface it met, in the scene's colour
+ * channels (the alpha lane 1): 1 - Os, the material's constant opacity (PRMan's default,
+ * "primitive" transmission), all of it when the surface casts no shadow (Attribute
+ * "visibility" "transmission" 0), none for "opaque" transmission. *most: its largest
+ * channel. */
+inline rt_weight rt_transmittance(uint prim, uint inst, __global const TriangleAttr* attrs,
+                                  __global const Material* materials,
+                                  __global const float* material_channels,
+                                  __global const Quadric* quadrics, float* most) {
 #ifdef RT_HAS_QUADRICS
     uint mat = (prim & RT_OBJECT_BIT) ? quadrics[prim & RT_OBJECT_MASK].material
                                       : attrs[prim].material;
@@ -169,18 +172,35 @@ inline float4 rt_transmittance(uint prim, uint inst, __global const TriangleAttr
 #else
     uint mat = attrs[prim].material;
 #endif
-    if (materials[mat].flags & RT_MATERIAL_NO_TRANSMISSION) return (float4)(1.0f);
-    if (materials[mat].flags & RT_MATERIAL_OPAQUE_SHADOW) return (float4)(0.0f);
-    return clamp((float4)(1.0f) - materials[mat].os, 0.0f, 1.0f);
-}
-
-/* A shadow ray's weight times what got through (the alpha lane, 0 in a shadow ray,
- * stays 0). */
-inline rt_weight rt_attenuate(rt_weight w, float4 t) {
-#if !defined(RSL_COLOR_SAMPLES) || RSL_COLOR_SAMPLES == 3
-    return w * t;
+    const uint flags = materials[mat].flags;
+    *most = 1.0f;
+    if (flags & RT_MATERIAL_NO_TRANSMISSION) return (rt_weight)(1.0f);
+    *most = 0.0f;
+    if (flags & RT_MATERIAL_OPAQUE_SHADOW) return (rt_weight)(0.0f);
+#if defined(RSL_COLOR_LANES) && RSL_COLOR_LANES > 4
+    /* (Os in the scene's n channels: material_channels, Cs then Os a material) */
+    float t[RSL_COLOR_LANES];
+    for (int c = 0; c < RSL_COLOR_LANES; ++c) {
+        t[c] = c < RSL_COLOR_SAMPLES
+                   ? clamp(1.0f - material_channels[2u * RSL_COLOR_SAMPLES * mat +
+                                                     RSL_COLOR_SAMPLES + (uint)c],
+                           0.0f, 1.0f)
+                   : 1.0f;
+        if (c < RSL_COLOR_SAMPLES) *most = fmax(*most, t[c]);
+    }
+#if RSL_COLOR_LANES == 8
+    return vload8(0, t);
 #else
-    return w * t.w;
+    return vload16(0, t);
+#endif
+#else
+    const float4 t = clamp((float4)(1.0f) - materials[mat].os, 0.0f, 1.0f);
+    *most = fmax(t.x, fmax(t.y, t.z));
+#if defined(RSL_COLOR_SAMPLES) && RSL_COLOR_SAMPLES == 1
+    return (float2)(t.x, 1.0f);
+#else
+    return (float4)(t.x, t.y, t.z, 1.0f);
+#endif
 #endif
 }
 #endif
@@ -199,7 +219,7 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     /* Surfaces that let light through: the nearest hit, its transmittance, then on from
      * it, up to the transparent depth; an opaque one ends the ray. (A closest-hit walk:
      * only scenes with such surfaces trace their shadows so.) */
-    float4 through = (float4)(1.0f);
+    rt_weight through = (rt_weight)(1.0f);
     float tmin = o.w;
     uint skip = state[i].from_prim;
     int occluded = 1;
@@ -216,14 +236,15 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
             break;
         }
 #endif
-        through *= rt_transmittance(h.prim, inst, attrs, materials, quadrics);
-        if (!(through.x > 0.0f || through.y > 0.0f || through.z > 0.0f || through.w > 0.0f))
-            break;
+        float most;
+        through *= rt_transmittance(h.prim, inst, attrs, materials, material_channels,
+                                    quadrics, &most);
+        if (!(most > 0.0f)) break; /* (opaque: nothing gets through) */
         tmin = h.t;
         skip = h.prim;
     }
     /* an occluded ray carries nothing; its state stays as the group count read it */
-    weight[i] = occluded ? (rt_weight)(0.0f) : rt_attenuate(weight[i], through);
+    weight[i] = occluded ? (rt_weight)(0.0f) : weight[i] * through;
 #else
     /* shadow rays converge on their light: the lane walk */
     if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, 1,

@@ -61,7 +61,11 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
                 extent = std::fmax(extent, std::fmax(std::fabs(b.lo[k]), std::fabs(b.hi[k])));
     while (f.sceneScale > 1e-30f && f.sceneScale * 0.5f >= extent) f.sceneScale *= 0.5f;
     f.colors = scene.colors;
-    f.depthOfField = scene.deviceCamera().lens_radius > 0;
+    const Camera camera = scene.deviceCamera();
+    f.depthOfField = camera.lens_radius > 0;
+    for (int axis = 0; axis < 2; ++axis)  // (a sign change, or negative from the start)
+        f.signedFilter |= camera.filter_table && (camera.filter_negative_start[axis] ||
+                                                  camera.filter_flips[axis][0] <= 1.0f);
     f.quadrics = !scene.quadrics.empty();
     f.csg = !scene.csg.empty();
     f.quadricPrimvars = !scene.quadricPrimvars.empty();
@@ -126,6 +130,7 @@ std::vector<std::string> Features::names() const {
     if (shadowPackets) n.push_back("shadow_packets");
     if (closestPackets) n.push_back("closest_packets");
     if (depthOfField) n.push_back("depth_of_field");
+    if (signedFilter) n.push_back("signed_filter");
     if (!colors.isRgb()) n.push_back("color_samples_" + std::to_string(colors.n));
     if (primvars & RT_PRIMVAR_ST) n.push_back("vertex_st");
     if (primvars & RT_PRIMVAR_CS) n.push_back("vertex_Cs");
@@ -183,6 +188,7 @@ std::string buildOptions(const Features& f) {
     if (f.aovs) o += " -DRT_HAS_AOVS";
     if (f.shaderAovFloats > 0) o += " -DRT_SHADER_AOVS=" + std::to_string(f.shaderAovFloats);
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
+    if (f.signedFilter) o += " -DRT_SIGNED_FILTER";
     if (!f.colors.isRgb()) {
         auto matrix = [](const std::vector<float>& m) {
             std::string v;

@@ -30,6 +30,7 @@ struct Features {
     int shaderAovFloats = 0;    // floats a sample of the shaders' AOVs (shader_aovs.h)
     uint32_t primvars = 0;      // RT_PRIMVAR_* some triangle carries per vertex
     bool depthOfField = false;  // a thin-lens camera
+    bool signedFilter = false;  // a pixel filter with negative lobes: samples weigh < 0
     bool quadrics = false;      // exact quadrics (RT_HAS_QUADRICS)
     bool csg = false;           // some of them CSG solids
     bool quadricPrimvars = false;  // some quadric has varying Cs or Os

@@ -377,11 +377,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
                                  rp.shWeight, traceScene, nl);
             else
-                k.intersectShadow.launch(
-                    f.shadowItems(n, nl), cl_uint(n * nl), ds.nodes, ds.blocks,
-                    rp.shOrigin, rp.shDirection, rp.shState, rp.shWeight, ds.quadrics,
-                    ds.csg, ds.triangles, ds.quadricMotion, ds.trianglesEnd, rp.sample,
-                    rp.sampleTime, nl, numerics, ds.attrs, ds.materials);
+                k.intersectShadow.launch(f.shadowItems(n, nl), cl_uint(n * nl), ds.nodes,
+                                         ds.blocks, rp.shOrigin, rp.shDirection,
+                                         rp.shState, rp.shWeight, ds.quadrics, ds.csg,
+                                         ds.triangles, ds.quadricMotion, ds.trianglesEnd,
+                                         rp.sample, rp.sampleTime, nl, numerics, ds.attrs,
+                                         ds.materials, ds.materialChannels);
         }
     };
     // The end of a round: add the shadow rays that reached their light and count the rays

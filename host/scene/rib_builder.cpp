@@ -6,10 +6,11 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <sstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <sstream>
 
+#include "pixel_filter.h"
 #include "rib_builder_util.h"
 #include "shaders/shader_path.h"
 #include "tessellate.h"
@@ -244,6 +245,25 @@ void RibBuilder::clipping(L loc, float n, float f) {
     m_options.camera.clipNear = n;
     m_options.camera.clipFar = f;
 }
+void RibBuilder::pixelFilter(L loc, const std::string& filter, float xwidth,
+                             float ywidth) {
+    if (!(xwidth > 0) || !(ywidth > 0) || !(xwidth <= 64) || !(ywidth <= 64)) {
+        m_diag.error(loc, "PixelFilter widths must be in (0, 64] pixels");
+        return;
+    }
+    std::string name = filter;
+    if (!pixelFilterKnown(name)) {
+        m_diag.warning(loc, "PixelFilter \"" + filter +
+                                "\" is not known (box, triangle, gaussian, catmull-rom, "
+                                "separable-catmull-rom, sinc, mitchell, blackman-harris, "
+                                "lanczos); using gaussian");
+        name = "gaussian";
+    }
+    m_options.camera.pixelFilter = name;
+    m_options.camera.filterWidth[0] = xwidth;
+    m_options.camera.filterWidth[1] = ywidth;
+}
+
 void RibBuilder::pixelSamples(L loc, float x, float y) {
     if (!(x >= 1.0f && y >= 1.0f && x <= 64.0f && y <= 64.0f)) {
         m_diag.error(loc, "PixelSamples must be between 1 and 64 per axis");

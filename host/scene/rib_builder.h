@@ -72,6 +72,7 @@ public:
     void projection(L, const std::string& name, const rib::ParamList&) override;
     void clipping(L, float, float) override;
     void pixelSamples(L, float, float) override;
+    void pixelFilter(L, const std::string& filter, float xwidth, float ywidth) override;
     void display(L, const std::string& name, const std::string& type,
                  const std::string& mode, const rib::ParamList&) override;
 
@@ -178,6 +179,12 @@ public:
     // Quadrics are tessellated instead of intersected exactly (for comparisons).
     // (The command line's choice wins over Option "render" "exactquadrics".)
     void setTessellateQuadrics(bool on) { m_forceTessellate = on; }
+    // The pixel filter until the RIB gives one (RI's default: gaussian 2 2).
+    void setPixelFilter(const std::string& name, float xwidth, float ywidth) {
+        m_options.camera.pixelFilter = name;
+        m_options.camera.filterWidth[0] = xwidth,
+        m_options.camera.filterWidth[1] = ywidth;
+    }
 
 private:
     template <typename F>

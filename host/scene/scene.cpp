@@ -4,8 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "pixel_filter.h"
 
 namespace rd {
 
@@ -82,6 +83,8 @@ Camera Scene::deviceCamera() const {
     d.height = c.height;
     d.spp_x = static_cast<int32_t>(c.pixelSamples[0]);
     d.spp_y = static_cast<int32_t>(c.pixelSamples[1]);
+    // (the builder checked the filter: a box of the widths if the table cannot be made)
+    setCameraFilter(d, c.pixelFilter, c.filterWidth[0], c.filterWidth[1]);
     if (c.perspective && c.fstop > 0 && std::isfinite(c.fstop) && c.focalLength > 0 &&
         c.focalDistance > 0) {
         d.lens_radius = c.focalLength / (2.0f * c.fstop);

@@ -43,6 +43,8 @@ struct CameraSpec {
     float fovDeg = 90.0f;
     float clipNear = 1e-10f, clipFar = 1e30f;
     float pixelSamples[2] = {2, 2}; // RI default PixelSamples 2 2
+    std::string pixelFilter = "gaussian";  // PixelFilter (RI default gaussian 2 2)
+    float filterWidth[2] = {2, 2};
     glm::mat4 worldToCamera{1.0f};  // column-vector convention (glm)
     // A moving camera: worldToCamera holds at motionTimes[0], this at motionTimes[1].
     bool moving = false;

@@ -53,6 +53,7 @@ Scene sceneOfWorld(const std::string& world) {
 Rendered renderRib(const std::string& rib, const RenderSettings& settings) {
     rib::Diagnostics diag(&std::cerr);
     RibBuilder builder(diag, "test.rib");
+    builder.setPixelFilter("box", 1, 1);  // (render_harness.h: unless the RIB gives one)
     rib::readString(rib, "test.rib", builder, diag);
     EXPECT_EQ(diag.errorCount(), 0) << diag.lastMessage();
     Rendered out;
@@ -64,6 +65,7 @@ Rendered renderRib(const std::string& rib, const RenderSettings& settings) {
     Film film;
     auto readAgain = [&](const std::set<std::string>& loaded, rib::Diagnostics& d) {
         RibBuilder b(d, "test.rib");
+        b.setPixelFilter("box", 1, 1);
         b.setLoadedProcedurals(loaded);
         rib::readString(rib, "test.rib", b, d);
         return std::move(b.scenes());

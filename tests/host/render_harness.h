@@ -35,6 +35,9 @@ const ClContext& testContext();
 Scene sceneOfWorld(const std::string& world);
 
 // Fails the calling test (gtest) if the RIB has errors; renders the first world block.
+// Unless the RIB gives a PixelFilter, a box one pixel wide: the tests' references are
+// exact pixel coverages and per-pixel values (RI's default gaussian 2 2 blends a pixel
+// with its neighbours; tests/host/pixel_filter_test.cpp renders it).
 Rendered renderRib(const std::string& rib, const RenderSettings& settings = {});
 
 }  // namespace rd::test

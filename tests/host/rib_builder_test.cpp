@@ -49,6 +49,28 @@ TEST(RibBuilder, AovsFromDisplayChannelAndSecondaryDisplays) {
         << r.messages;
 }
 
+// PixelFilter: RI's default gaussian 2 2; a filter and its widths; widths out of (0, 64]
+// are an error at the request, an unknown filter a warning (gaussian is used).
+TEST(RibBuilder, PixelFilterAndItsErrors) {
+    Built plain = build(kWorld);
+    ASSERT_EQ(plain.scenes.size(), 1u);
+    EXPECT_EQ(plain.scenes[0].camera.pixelFilter, "gaussian");
+    EXPECT_EQ(plain.scenes[0].camera.filterWidth[0], 2.0f);
+    Built r = build(std::string("PixelFilter \"catmull-rom\" 4 3\n") + kWorld);
+    ASSERT_EQ(r.scenes.size(), 1u);
+    EXPECT_EQ(r.scenes[0].camera.pixelFilter, "catmull-rom");
+    EXPECT_EQ(r.scenes[0].camera.filterWidth[1], 3.0f);
+    Built bad = build(std::string("PixelFilter \"gaussian\" 0 2\nPixelFilter \"box\" 2 "
+                                  "1e9\nPixelFilter \"bessel\" 2 2\n") +
+                      kWorld);
+    EXPECT_EQ(bad.errors, 2);
+    EXPECT_NE(bad.messages.find("t.rib:1: error: PixelFilter widths"), std::string::npos)
+        << bad.messages;
+    EXPECT_NE(bad.messages.find("t.rib:3: warning: PixelFilter \"bessel\" is not known"),
+              std::string::npos)
+        << bad.messages;
+}
+
 TEST(RibBuilder, RenderOptionsAndTheirErrors) {
     Built r = build(std::string("Option \"render\" \"float time\" [2.5] \"float error\" [0.02] "
                                 "\"int firstpassblock\" [4]\n") + kWorld);

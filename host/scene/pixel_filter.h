@@ -1,0 +1,29 @@
+// pixel_filter.h: RI pixel filters (PixelFilter "gaussian" 2 2 ...) as the distribution
+// of each sample's place about its pixel's centre (filter importance sampling, as Cycles
+// does): a sample lands at x with probability |f(x)| / the integral of |f|, so a pixel's
+// plain mean of its samples is the filtered image, and adaptive sampling and the error
+// estimates stay per pixel. Filters are separable (f(x, y) = g(x) g(y), RI's
+// catmull-rom taken in its separable form); where g is negative a sample counts
+// negatively, and every sample weighs (the integral of |g| over that of g) per axis.
+#pragma once
+#include <string>
+
+#include "cl/include/scene_types.h"
+
+namespace rd {
+
+// The filters known: box, triangle, gaussian, catmull-rom (and separable-catmull-rom),
+// sinc, mitchell, blackman-harris, lanczos.
+bool pixelFilterKnown(const std::string& name);
+
+// g(x) of a filter `width` pixels wide (its support [-width / 2, width / 2]), x in
+// pixels.
+double pixelFilter1D(const std::string& name, double x, double width);
+
+// Writes the camera's filter fields (Camera::filter_*) for a filter and its widths.
+// Returns false (and leaves a box of the widths) when the filter's integral is not
+// positive, or it changes sign more than RT_FILTER_FLIPS times along an axis (a sinc or
+// lanczos wider than about 16 pixels).
+bool setCameraFilter(Camera& cam, const std::string& name, float xwidth, float ywidth);
+
+}  // namespace rd
