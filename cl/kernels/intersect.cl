@@ -231,10 +231,7 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
             break;
         }
 #ifdef RT_HAS_PROCEDURALS
-        if ((h.prim & RT_OBJECT_BIT) && quadrics[h.prim & RT_OBJECT_MASK].kind == RT_Q_PROCEDURAL) {
-            numerics[RT_NUM_PROCEDURAL_BASE + quadrics[h.prim & RT_OBJECT_MASK].first_member] = 1u;
-            break;
-        }
+        if (rt_flag_procedural(h.prim, quadrics, numerics)) break;
 #endif
         float most;
         through *= rt_transmittance(h.prim, inst, attrs, materials, material_channels,
@@ -252,8 +249,7 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
         /* an occluded ray carries nothing; its state stays as the group count read it */
         weight[i] = (rt_weight)(0.0f);
 #ifdef RT_HAS_PROCEDURALS
-        if ((h.prim & RT_OBJECT_BIT) && quadrics[h.prim & RT_OBJECT_MASK].kind == RT_Q_PROCEDURAL)
-            numerics[RT_NUM_PROCEDURAL_BASE + quadrics[h.prim & RT_OBJECT_MASK].first_member] = 1u;
+        rt_flag_procedural(h.prim, quadrics, numerics);
 #endif
     }
 #endif

@@ -86,11 +86,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
     const float time = 0.0f;
 #endif
 #ifdef RT_HAS_PROCEDURALS
-    if ((h.prim & RT_OBJECT_BIT) && quadrics[h.prim & RT_OBJECT_MASK].kind == RT_Q_PROCEDURAL) {
-        /* an archive not loaded yet: the host loads it and renders again */
-        numerics[RT_NUM_PROCEDURAL_BASE + quadrics[h.prim & RT_OBJECT_MASK].first_member] = 1u;
-        return;
-    }
+    /* an archive not loaded yet: the host loads it and renders again */
+    if (rt_flag_procedural(h.prim, quadrics, numerics)) return;
 #endif
     Material m;
     RslGlobals g;

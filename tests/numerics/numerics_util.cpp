@@ -23,6 +23,7 @@ Diagnosed renderWithDiagnostics(const std::string& rib, const RenderSettings& se
     std::ostringstream text;
     rib::Diagnostics diag(&text);
     RibBuilder builder(diag, "test.rib");
+    builder.setPixelFilter("box", 1, 1);  // (as renderRib: per-pixel references)
     rib::readString(rib, "test.rib", builder, diag);
     Diagnosed out;
     if (builder.scenes().empty()) {
