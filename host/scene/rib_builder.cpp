@@ -28,9 +28,18 @@ bool RibBuilder::inWorld(L loc, const char* request) {
     return false;
 }
 
-void RibBuilder::frameBegin(L, int) { m_attrStack.push_back(m_attrStack.back()); }
+// A frame saves the options and restores them at its end (RI 3.2): a frame's Display,
+// its secondary displays and its other options are its own.
+void RibBuilder::frameBegin(L, int) {
+    m_attrStack.push_back(m_attrStack.back());
+    m_frameOptions.push_back(m_options);
+}
 void RibBuilder::frameEnd(L) {
     if (m_attrStack.size() > 1) m_attrStack.pop_back();
+    if (!m_frameOptions.empty()) {
+        m_options = std::move(m_frameOptions.back());
+        m_frameOptions.pop_back();
+    }
 }
 
 void RibBuilder::worldBegin(L loc) {

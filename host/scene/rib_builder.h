@@ -355,6 +355,7 @@ private:
     uint32_t surfaceFor(const Attributes& a);  // the surface reference of this primitive
     bool m_projectionNull = false;  // Projection "null": a Perspective defines it
     Scene m_options;               // option state; copied into each new world
+    std::vector<Scene> m_frameOptions;  // the options at each open FrameBegin
     Scene m_world;                 // the world being built
     bool m_inWorld = false;
     bool m_forceTessellate = false;

@@ -71,6 +71,22 @@ TEST(RibBuilder, PixelFilterAndItsErrors) {
         << bad.messages;
 }
 
+// A frame's options are its own (RI: FrameBegin saves them, FrameEnd restores them): its
+// secondary displays and Format do not reach the next frame.
+TEST(RibBuilder, FramesKeepTheirOwnOptions) {
+    Built r = build(
+        "Format 8 8 1\nFrameBegin 1\nFormat 16 16 1\n"
+        "Display \"+a.1.exr\" \"file\" \"albedo\"\n" +
+        std::string(kWorld) +
+        "FrameEnd\nFrameBegin 2\nDisplay \"+a.2.exr\" \"file\" \"albedo\"\n" + kWorld +
+        "FrameEnd\n");
+    ASSERT_EQ(r.scenes.size(), 2u);
+    EXPECT_EQ(r.scenes[0].camera.width, 16);
+    EXPECT_EQ(r.scenes[1].camera.width, 8);
+    ASSERT_EQ(r.scenes[1].aovDisplays.size(), 1u);
+    EXPECT_EQ(r.scenes[1].aovDisplays[0].name, "a.2.exr");
+}
+
 TEST(RibBuilder, RenderOptionsAndTheirErrors) {
     Built r = build(std::string("Option \"render\" \"float time\" [2.5] \"float error\" [0.02] "
                                 "\"int firstpassblock\" [4]\n") + kWorld);
