@@ -35,17 +35,19 @@ void close_round(uint count, /* traced rays */
             uint j = i * light_count + l;
             if (shadow_state[j].alive) {
                 rsl_color w = rt_weight_color(shadow_weight[j]);
-                sum += w;
                 shadow_state[j].alive = 0u;
 #ifdef RT_SHADER_AOVS
-                /* an occluded ray's weight is zeroed; only the ray of the sample's first
-                 * shaded surface carries parts (one work-item per sample: no atomics) */
-                if (rsl_cnonzero(w))
+                /* a ray with AOV parts has its alpha lane set (shade_rsl.cl), zeroed with
+                 * the rest if it was occluded; only the ray of the sample's first shaded
+                 * surface carries parts (one work-item per sample: no atomics) */
+                if (RSL_CW(w) != 0.0f)
                     for (uint c = 0; c < RT_SHADER_AOVS; ++c) {
                         float part = shadow_aov[j * RT_SHADER_AOVS + c];
                         if (part != 0.0f) aov_values[ray_sample[i] * RT_SHADER_AOVS + c] += part;
                     }
+                RSL_CW(w) = 0.0f;
 #endif
+                sum += w;
             }
         }
         rt_atomic_add_float4(&total[ray_sample[i]].value, rt_total_of(sum));

@@ -251,7 +251,13 @@ __kernel void shade_SURFACE(uint begin, uint count,
         rsl_color sw = w * atmo_a * coef;
         RSL_CW(sw) = 0.0f;
         sw = rt_sanitize_c(sw, numerics);
+#ifdef RT_SHADER_AOVS
+        int carries = 0; /* parts of the sample's AOVs: traced even when Ci takes nothing */
+        for (int c = 0; c < RT_SHADER_AOVS; ++c) carries |= aov_part[c] != 0.0f;
+        if (!rsl_cnonzero(sw) && !carries) continue;
+#else
         if (!rsl_cnonzero(sw)) continue;
+#endif
         if (!rd_light_traces_shadows((int)l)) { /* its shadow map did the shadowing */
             rt_atomic_add_float4(&total[sample].value, rt_total_of(sw));
 #ifdef RT_SHADER_AOVS
@@ -281,6 +287,11 @@ __kernel void shade_SURFACE(uint begin, uint count,
         uint s = r * light_count + l;
         shadow_origin[s] = so;
         shadow_direction[s] = sd;
+#ifdef RT_SHADER_AOVS
+        /* its alpha lane (0 in a shadow ray's weight) marks the parts: still there if it
+         * reaches the light, as every traversal zeroes an occluded ray's whole weight */
+        if (carries) RSL_CW(sw) = 1.0f;
+#endif
         shadow_weight[s] = rt_weight_of(sw);
         RayState ss = {1u, 0u, h.prim, 0.0f};
         shadow_state[s] = ss;

@@ -39,10 +39,20 @@ surface aovtest(output varying color albedo = 0; output varying float mask = 0;
 }
 )";
 
+// Ci takes nothing from the lights; diff does.
+const char* kUnlit = R"(
+surface aovunlit(output varying color diff = 0;) {
+    diff = diffuse(faceforward(normalize(N), I));
+    Ci = Cs;
+    Oi = Os;
+}
+)";
+
 std::string shaderDir(const std::string& name) {
     std::string dir = rd::test::scratchDir(name);
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/aovtest.sl") << kShader;
+    std::ofstream(dir + "/aovunlit.sl") << kUnlit;
     return dir;
 }
 
@@ -53,13 +63,17 @@ std::string shaderDir(const std::string& name) {
 // at z = -1 (pixels [28, 36) x [12, 20)) in front of it; a distant light toward (1, 0, 1):
 // the plane is lit at cos 45 degrees, and the square's shadow falls on x in
 // [0.75, 1.25] (pixels [44, 52) x [12, 20)).
-std::string scene(const std::string& dir, const std::string& displays) {
+std::string scene(const std::string& dir, const std::string& displays,
+                  const std::string& shader = "aovtest") {
     return "Option \"searchpath\" \"shader\" [\"" + dir +
            ":&\"]\nFormat 64 32 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
-           "ScreenWindow -2 2 -1 1\n" + displays +
+           "ScreenWindow -2 2 -1 1\n" +
+           displays +
            "Translate 0 0 5\nWorldBegin\n"
            "LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [1 0 1]\n"
-           "AttributeBegin\nSurface \"aovtest\"\nColor [0.2 0.4 0.6]\n"
+           "AttributeBegin\nSurface \"" +
+           shader +
+           "\"\nColor [0.2 0.4 0.6]\n"
            "Polygon \"P\" [-1.5 -0.75 0  1.5 -0.75 0  1.5 0.75 0  -1.5 0.75 0]\n"
            "AttributeEnd\n"
            "AttributeBegin\nSurface \"constant\"\nTranslate 0 0 -1\n"
@@ -126,6 +140,21 @@ TEST(ShaderAovs, OutputVariablesAreTheFirstSurfacesAndShadowed) {
     Rendered plain = renderRib(scene(shaderDir("aov_outputs"), ""));
     EXPECT_EQ(plain.stats.program.options.find("RT_SHADER_AOVS"), std::string::npos);
     EXPECT_NEAR(plain.mean(0, 12, 8, 24, 24), 0.2 * lit, 1e-5);
+}
+
+// A light's part of an output rides on its shadow ray even when Ci takes nothing from
+// that light (no light weight to carry): diff is lit and shadowed as before, while the
+// image is Cs throughout.
+TEST(ShaderAovs, ALightsPartRidesWhenCiTakesNothingFromIt) {
+    rd::RenderSettings settings;
+    settings.extraAovs = {"diff"};
+    Rendered r = renderRib(scene(shaderDir("aov_unlit"), "", "aovunlit"), settings);
+    const std::vector<rd::Channel> c = channels(r.film, {"diff"});
+    EXPECT_NEAR(mean(c, "diff.G", 12, 8, 24, 24), std::sqrt(0.5), 1e-5);
+    EXPECT_NEAR(mean(c, "diff.G", 45, 13, 51, 19), 0.0, 1e-6);
+    EXPECT_NEAR(r.mean(0, 12, 8, 24, 24), 0.2, 1e-6);  // Cs: no light, no alpha from it
+    EXPECT_NEAR(r.mean(0, 45, 13, 51, 19), 0.2, 1e-6);
+    EXPECT_NEAR(r.mean(3, 12, 8, 24, 24), 1.0, 1e-6);
 }
 
 // The globals as AOVs: Cs, Oi, and P in the RIB's world space (the camera is 5 units
