@@ -1,11 +1,16 @@
 // frame_output.cpp: a rendered frame's image file (frame_output.h).
 #include "frame_output.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <filesystem>
 
 #include "film/exr_output.h"
 #include "scene/depth_map.h"
+#include "texture/texture_backend.h"
 
 namespace rd {
 
@@ -58,22 +63,85 @@ void addAovChannels(ExrOptions& opts, const Film& film, std::vector<std::string>
         }
 }
 
-void writeImage(const std::string& out, const Film& film, const ExrOptions& opts) {
+// Whether a file's name asks for a picture (written through OpenImageIO) rather than
+// OpenEXR.
+bool isPicture(const std::string& name) {
+    std::string ext = std::filesystem::path(name).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* e : {".tif", ".tiff", ".png", ".jpg", ".jpeg", ".tga", ".bmp",
+                          ".ppm", ".pnm", ".hdr", ".sgi"})
+        if (ext == e) return true;
+    return false;
+}
+
+// A picture's channels (interleaved) quantized as Quantize says (Scene::quantize),
+// through OpenImageIO; written under a temporary name and renamed into place, as
+// writeExr does.
+void writePicture(const std::string& out, int width, int height, int channels,
+                  std::vector<float> data, const QuantizeSpec& q) {
+    if (q.one > 0)
+        for (size_t i = 0; i < data.size(); ++i) {
+            // (dither: a hash of the value's index, uniform in [-1, 1))
+            uint32_t h = uint32_t(i);
+            h ^= h >> 16, h *= 0x7feb352du, h ^= h >> 15, h *= 0x846ca68bu, h ^= h >> 16;
+            const float r = float(h >> 8) * (2.0f / 16777216.0f) - 1.0f;
+            const float level = std::round(float(q.one) * data[i] + q.dither * r);
+            data[i] = std::clamp(level, float(q.min), float(q.max)) / float(q.one);
+        }
+    const int bits = q.one == 0 ? 32 : q.one <= 255 ? 8 : 16;
+    const std::filesystem::path p(out);
+    const std::string tmp =
+        (p.parent_path() / (p.stem().string() + ".partial-" + std::to_string(::getpid()) +
+                            p.extension().string()))
+            .string();
+    try {
+        textureBackend().writePicture(tmp, width, height, channels, data.data(), bits);
+        std::filesystem::rename(tmp, out);
+    } catch (...) {
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+        throw;
+    }
+}
+
+// The image to `out`: OpenEXR with its AOV channels, or a picture when the name asks for
+// one, which holds the colour (and alpha), or without colour the AOV channels.
+void writeImage(const std::string& out, const Film& film, const ExrOptions& opts,
+                const QuantizeSpec& quantize) {
     const int outW = film.cropped() ? film.cropX1 - film.cropX0 : film.width;
     const int outH = film.cropped() ? film.cropY1 - film.cropY0 : film.height;
-    writeExr(out, outW, outH, film.crop(film.resolve()), opts);
+    if (!isPicture(out) || (!opts.colour && opts.extra.empty())) {
+        writeExr(out, outW, outH, film.crop(film.resolve()), opts);
+        return;
+    }
+    const size_t n = size_t(outW) * size_t(outH);
+    std::vector<const float*> planes;
+    std::vector<Rgba> colour;
+    if (opts.colour) {
+        colour = film.crop(film.resolve());
+        for (int c = 0; c < (opts.alpha ? 4 : 3); ++c) planes.push_back(&colour[0].r + c);
+    }
+    const size_t stride = opts.colour ? 4 : 1;
+    for (const Channel& c : opts.extra)
+        if (!opts.colour) planes.push_back(c.values.data());
+    std::vector<float> data(n * planes.size());
+    for (size_t i = 0; i < n; ++i)
+        for (size_t c = 0; c < planes.size(); ++c)
+            data[i * planes.size() + c] = planes[c][i * stride];
+    writePicture(out, outW, outH, int(planes.size()), std::move(data), quantize);
 }
 
 // A secondary display (Display "+name"): its AOVs in a file of their own. One AOV alone
 // takes the channels a viewer shows: R, G, B for three, Y for one.
-void writeAovDisplay(const AovDisplay& d, const Film& film, ExrOptions opts) {
+void writeAovDisplay(const AovDisplay& d, const Film& film, ExrOptions opts,
+                     const QuantizeSpec& quantize) {
     opts.colour = !d.colour.empty();
     opts.alpha = d.colour == "rgba";
     addAovChannels(opts, film, d.aovs);
     if (d.aovs.size() == 1 && !opts.colour && opts.extra.size() == 1) opts.extra[0].name = "Y";
     if (d.aovs.size() == 1 && !opts.colour && opts.extra.size() == 3)
         for (size_t k = 0; k < 3; ++k) opts.extra[k].name = std::string(1, "RGB"[k]);
-    writeImage(d.name, film, opts);
+    writeImage(d.name, film, opts, quantize);
 }
 
 }  // namespace
@@ -95,8 +163,9 @@ void writeFrameImage(const std::string& out, const Scene& scene, const Film& fil
     // Pixels never reached are filled from neighbours: say which, always.
     if (st.unsampledPixels > 0) wanted.push_back("filled");
     addAovChannels(opts, film, wanted);
-    writeImage(out, film, opts);
-    for (const AovDisplay& d : scene.aovDisplays) writeAovDisplay(d, film, common);
+    writeImage(out, film, opts, scene.quantize);
+    for (const AovDisplay& d : scene.aovDisplays)
+        writeAovDisplay(d, film, common, scene.quantize);
 }
 
 }  // namespace rd

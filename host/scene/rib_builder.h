@@ -73,6 +73,8 @@ public:
     void clipping(L, float, float) override;
     void pixelSamples(L, float, float) override;
     void pixelFilter(L, const std::string& filter, float xwidth, float ywidth) override;
+    void quantize(L, const std::string& type, int one, int min, int max,
+                  float dither) override;
     void display(L, const std::string& name, const std::string& type,
                  const std::string& mode, const rib::ParamList&) override;
 

@@ -1,7 +1,8 @@
 // rib_builder_display.cpp: the RIB's image requests: Display (the image and its mode;
-// secondary "+name" displays as files of AOVs), DisplayChannel (an AOV's type) and
-// PixelFilter.
+// secondary "+name" displays as files of AOVs), DisplayChannel (an AOV's type),
+// PixelFilter and Quantize.
 #include <algorithm>
+#include <iterator>
 #include <sstream>
 
 #include "pixel_filter.h"
@@ -26,6 +27,18 @@ void RibBuilder::pixelFilter(L loc, const std::string& filter, float xwidth,
     m_options.camera.pixelFilter = name;
     m_options.camera.filterWidth[0] = xwidth;
     m_options.camera.filterWidth[1] = ywidth;
+}
+
+void RibBuilder::quantize(L loc, const std::string& type, int one, int min, int max,
+                          float dither) {
+    if (type != "rgba") return;  // ("z": depth maps are floats)
+    if (one < 0 || min > max || one > 65535 || !(dither >= 0 && dither <= 1e3f)) {
+        m_diag.error(loc, "Quantize \"rgba\" " + std::to_string(one) + " " +
+                              std::to_string(min) + " " + std::to_string(max) +
+                              ": one must be in [0, 65535], min <= max, a dither >= 0");
+        return;
+    }
+    m_options.quantize = {one, min, max, dither};
 }
 
 void RibBuilder::display(L loc, const std::string& name, const std::string& type,
@@ -54,10 +67,13 @@ void RibBuilder::display(L loc, const std::string& name, const std::string& type
     // "zfile" and "shadow" are depth maps (mode "z"): one channel Z and the camera's
     // matrices, for MakeShadow
     const bool depth = mode == "z" || type == "zfile" || type == "shadow";
-    if (type != "file" && type != "openexr" && type != "exr" && type != "zfile" &&
-        type != "shadow")
-        m_diag.warning(loc,
-                       "display type \"" + type + "\" is written as an OpenEXR file");
+    // The file's format follows its name (OpenEXR, or a picture: .tif, .png, .jpg ...).
+    static const char* known[] = {"file", "openexr", "exr",  "zfile", "shadow",
+                                  "tiff", "png",     "jpeg", "targa"};
+    if (std::none_of(std::begin(known), std::end(known),
+                     [&](const char* k) { return type == k; }))
+        m_diag.warning(loc, "display type \"" + type +
+                                "\" is written as a file, in the format its name says");
     if (!depth && colour.empty() && !(mode.empty() && entries.empty()))
         m_diag.warning(loc, "display mode \"" + mode +
                                 "\" has no rgb or rgba: written as rgba" +

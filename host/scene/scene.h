@@ -24,6 +24,14 @@ struct DisplaySpec {
     rib::SourceLoc loc;
 };
 
+// Quantize "rgba" one min max ditheramplitude: how a picture that is not OpenEXR (a
+// TIFF, PNG, ...) stores its colour: round(one * value + dither * r) clamped to
+// [min, max], r uniform in [-1, 1); one 0 stores floats. (OpenEXR keeps the floats.)
+struct QuantizeSpec {
+    int one = 255, min = 0, max = 255;
+    float dither = 0.5f;
+};
+
 // A secondary display (Display "+name" ...): a file of its own with the AOVs its mode
 // names ("diffuse", "color diffuse,float mask"; "rgba" or "rgb": the image's colour too).
 struct AovDisplay {
@@ -181,6 +189,7 @@ struct Scene {
     glm::dvec3 worldOrigin{0.0};
     CameraSpec camera;
     DisplaySpec display;
+    QuantizeSpec quantize;
     std::vector<std::string> aovs;  // the image's AOVs (DisplayChannel, the Display's mode)
     std::vector<AovDisplay> aovDisplays;  // Display "+name": files of AOVs
     // AOV types declared (DisplayChannel "color diffuse", or in a display's mode): float,

@@ -2,8 +2,10 @@
 // module libraydrive_oiio.so: texture making through make_texture (maketx): tiled
 // (RT_TEX_TILE), mip-mapped, float, OpenEXR, with the wrap modes in its metadata; and
 // describing and reading images through a private ImageCache.
-#include "texture_backend.h"
-#include "texture_maker.h"
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imagecache.h>
+#include <OpenImageIO/imageio.h>
 
 #include <cmath>
 #include <cstdint>
@@ -11,11 +13,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imagecache.h>
-
 #include "cl/include/texture.h"
+#include "texture_backend.h"
+#include "texture_maker.h"
 
 namespace rd {
 namespace {
@@ -129,6 +129,22 @@ public:
                                  const std::string& texture, float fovDegrees,
                                  const MakeTextureOptions& opts) override;
     void makeShadow(const std::string& picture, const std::string& texture) override;
+    void writePicture(const std::string& file, int width, int height, int channels,
+                      const float* pixels, int bits) override {
+        OIIO::ImageSpec spec(width, height, channels,
+                             bits == 8    ? OIIO::TypeDesc::UINT8
+                             : bits == 16 ? OIIO::TypeDesc::UINT16
+                                          : OIIO::TypeDesc::FLOAT);
+        if (channels == 4) spec.alpha_channel = 3;
+        auto out = OIIO::ImageOutput::create(file);
+        if (!out)
+            throw std::runtime_error("cannot write \"" + file +
+                                     "\": " + oneLine(OIIO::geterror()));
+        if (!out->open(file, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels) ||
+            !out->close())
+            throw std::runtime_error("cannot write \"" + file +
+                                     "\": " + oneLine(out->geterror()));
+    }
 
 private:
     OIIO::ImageCache* m_ic = OIIO::ImageCache::create(false);  // a private cache

@@ -1,5 +1,6 @@
 // texture_backend.h: what RayDrive asks of an image library for textures: making them
-// (maketx), describing them and reading their texels. OpenImageIO does it, in a module
+// (maketx), describing them and reading their texels; and for a Display that is not
+// OpenEXR, writing its picture. OpenImageIO does it, in a module
 // (libraydrive_oiio.so beside the binaries) loaded the first time a texture is made or
 // opened: OpenImageIO brings ~200 shared libraries, whose loading would otherwise cost
 // every render 0.1 s and 150 MB before it starts.
@@ -40,6 +41,12 @@ public:
                                          const std::string& texture, float fovDegrees,
                                          const MakeTextureOptions& opts) = 0;
     virtual void makeShadow(const std::string& picture, const std::string& texture) = 0;
+    // Writes a picture in the format its name's extension says (TIFF, PNG, JPEG, ...):
+    // `channels` floats a pixel, row by row, stored as `bits` 8 or 16 bit integers of
+    // full scale 1 (values already quantized) or 32 bit floats. Throws
+    // std::runtime_error naming the file.
+    virtual void writePicture(const std::string& file, int width, int height,
+                              int channels, const float* pixels, int bits) = 0;
 };
 
 // The backend, its module loaded on first use; throws std::runtime_error when the module
