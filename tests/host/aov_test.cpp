@@ -2,11 +2,10 @@
 // output variables and the shading globals as image channels, the parts that depend on a
 // light carried by its shadow ray (so they are shadowed), and secondary displays
 // (Display "+name") written as files of their own.
-#include <gtest/gtest.h>
-
 #include <ImfChannelList.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
@@ -14,7 +13,6 @@
 #include <sstream>
 
 #include "film/exr_output.h"
-#include "render/frame_output.h"
 #include "render_harness.h"
 #include "rib/reader.h"
 #include "scene/rib_builder.h"
@@ -188,18 +186,8 @@ TEST(ShaderAovs, SecondaryDisplaysAreFilesOfTheirOwn) {
                    "Display \"+" + out + "/albedo.exr\" \"file\" \"color albedo\"\n"
                    "Display \"+" + out + "/mask.exr\" \"file\" \"mask\"\n"
                    "Display \"+" + out + "/both.exr\" \"file\" \"rgb,diff,z\"\n");
-    std::ostringstream messages;
-    rib::Diagnostics diag(&messages);
-    rd::RibBuilder builder(diag, "test.rib");
-    rib::readString(rib, "test.rib", builder, diag);
-    ASSERT_EQ(diag.errorCount(), 0) << messages.str();
-    ASSERT_EQ(builder.scenes().size(), 1u);
-    const rd::Scene& s = builder.scenes()[0];
-    rd::Renderer renderer(rd::test::testContext(), {});
-    rd::Film film;
-    const rd::RenderStats st = renderer.render(s, film, diag);
-    rd::writeFrameImage(s.display.name, s, film, st, {}, false, "test.rib");
-    EXPECT_EQ(messages.str().find("warning"), std::string::npos) << messages.str();
+    const std::string messages = rd::test::renderRibToFiles(rib);
+    EXPECT_EQ(messages.find("warning"), std::string::npos) << messages;
 
     auto names = [](const std::string& file) {
         Imf::InputFile f(file.c_str());

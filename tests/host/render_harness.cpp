@@ -1,17 +1,16 @@
 // render_harness.cpp: the in-process render used by the render tests.
 #include "render_harness.h"
 
-#include "render/render_with_archives.h"
-
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <iostream>
 #include <sstream>
 
-#include <unistd.h>
-
 #include "ocl/device.h"
+#include "render/frame_output.h"
+#include "render/render_with_archives.h"
 #include "rib/reader.h"
 #include "scene/rib_builder.h"
 
@@ -76,6 +75,24 @@ Rendered renderRib(const std::string& rib, const RenderSettings& settings) {
     out.pixels = film.resolve();
     out.film = std::move(film);
     return out;
+}
+
+std::string renderRibToFiles(const std::string& rib) {
+    std::ostringstream messages;
+    rib::Diagnostics diag(&messages);
+    RibBuilder builder(diag, "test.rib");
+    rib::readString(rib, "test.rib", builder, diag);
+    EXPECT_EQ(diag.errorCount(), 0) << messages.str();
+    if (builder.scenes().empty()) {
+        ADD_FAILURE() << "no world block rendered";
+        return messages.str();
+    }
+    const Scene& s = builder.scenes()[0];
+    Renderer renderer(testContext(), {});
+    Film film;
+    const RenderStats st = renderer.render(s, film, diag);
+    writeFrameImage(frameOutputName(s, "", 0, 1), s, film, st, {}, false, "test.rib");
+    return messages.str();
 }
 
 }  // namespace rd::test

@@ -40,4 +40,9 @@ Scene sceneOfWorld(const std::string& world);
 // with its neighbours; tests/host/pixel_filter_test.cpp renders it).
 Rendered renderRib(const std::string& rib, const RenderSettings& settings = {});
 
+// Renders the first world block of a RIB as the command does and writes its files (its
+// Display's name, else the scene's, and its secondary displays); fails the calling test
+// on an error. Returns the diagnostics' text (warnings).
+std::string renderRibToFiles(const std::string& rib);
+
 }  // namespace rd::test
