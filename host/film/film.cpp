@@ -135,19 +135,15 @@ std::vector<Channel> Film::shaderAovChannels(const ShaderAov& a) const {
     for (int j = 0; j < out; ++j)
         c[size_t(j)] = {out == 1 ? a.name : a.name + (colour ? rgb[j] : xyz[j]),
                         std::vector<float>(n)};
-    const size_t slots = colourToRgb.size() / 3;
+    std::vector<float> v(size_t(std::max(a.floats, 3)));
     for (size_t i = 0; i < n; ++i) {
         if (pixels[i].count == 0) continue;
-        const float* v = &shaderAovSums[i * size_t(shaderAovFloats) + size_t(a.offset)];
-        const float inv = 1.0f / float(pixels[i].count);
-        for (int j = 0; j < out; ++j) {
-            float x = 0;
-            if (colour && size_t(a.floats) == slots)  // the scene's channels to RGB
-                for (size_t k = 0; k < slots; ++k) x += v[k] * colourToRgb[3 * k + size_t(j)];
-            else
-                x = v[j];
-            c[size_t(j)].values[i] = x * inv;
-        }
+        const float* sums =
+            &shaderAovSums[i * size_t(shaderAovFloats) + size_t(a.offset)];
+        std::copy(sums, sums + a.floats, v.begin());
+        if (colour) colours.toRgbValues(v.data());  // the scene's channels to RGB
+        for (int j = 0; j < out; ++j)
+            c[size_t(j)].values[i] = v[size_t(j)] / float(pixels[i].count);
     }
     return c;
 }

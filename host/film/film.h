@@ -8,6 +8,7 @@
 
 #include "cl/include/film.h"
 #include "host/film/film_error.h"
+#include "host/scene/color_samples.h"
 
 namespace rd {
 
@@ -38,8 +39,7 @@ struct Film {
     std::vector<ShaderAov> shaderAovs;
     int shaderAovFloats = 0;
     HostVector<float> shaderAovSums;
-    // a colour AOV's channels to RGB: row-vector, colourSlots x 3 (ColorSamples::toRgb)
-    std::vector<float> colourToRgb{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    ColorSamples colours;  // the scene's colour channels: a colour AOV's, made RGB
     // The crop window: the pixels rendered and written, [x0, x1) x [y0, y1).
     int cropX0 = 0, cropX1 = 0, cropY0 = 0, cropY1 = 0;
     // (cropX1 == 0: no crop window was set, the whole frame counts)

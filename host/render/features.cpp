@@ -85,9 +85,9 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     if (f.derivatives) {
         // a pixel's width at unit distance along a perspective eye ray (0 orthographic:
         // the ray's width stays the pixel's)
-        const Camera cam = scene.deviceCamera();
-        f.pixelSpread = cam.perspective
-                            ? std::fabs(cam.screen[1] - cam.screen[0]) / float(cam.width) * cam.tan_half_fov
+        f.pixelSpread = camera.perspective
+                            ? std::fabs(camera.screen[1] - camera.screen[0]) /
+                                  float(camera.width) * camera.tan_half_fov
                             : 0.0f;
     }
     for (size_t i = 0; i < scene.quadricPrimvars.size(); ++i) {

@@ -1,14 +1,14 @@
 // frame_output.cpp: a rendered frame's image file (frame_output.h).
 #include "frame_output.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <random>
 
 #include "film/exr_output.h"
+#include "film/replace_file.h"
 #include "scene/depth_map.h"
 #include "texture/texture_backend.h"
 
@@ -75,33 +75,21 @@ bool isPicture(const std::string& name) {
 }
 
 // A picture's channels (interleaved) quantized as Quantize says (Scene::quantize),
-// through OpenImageIO; written under a temporary name and renamed into place, as
-// writeExr does.
+// through OpenImageIO (replace_file.h, as writeExr).
 void writePicture(const std::string& out, int width, int height, int channels,
                   std::vector<float> data, const QuantizeSpec& q) {
-    if (q.one > 0)
-        for (size_t i = 0; i < data.size(); ++i) {
-            // (dither: a hash of the value's index, uniform in [-1, 1))
-            uint32_t h = uint32_t(i);
-            h ^= h >> 16, h *= 0x7feb352du, h ^= h >> 15, h *= 0x846ca68bu, h ^= h >> 16;
-            const float r = float(h >> 8) * (2.0f / 16777216.0f) - 1.0f;
-            const float level = std::round(float(q.one) * data[i] + q.dither * r);
-            data[i] = std::clamp(level, float(q.min), float(q.max)) / float(q.one);
-        }
-    const int bits = q.one == 0 ? 32 : q.one <= 255 ? 8 : 16;
-    const std::filesystem::path p(out);
-    const std::string tmp =
-        (p.parent_path() / (p.stem().string() + ".partial-" + std::to_string(::getpid()) +
-                            p.extension().string()))
-            .string();
-    try {
-        textureBackend().writePicture(tmp, width, height, channels, data.data(), bits);
-        std::filesystem::rename(tmp, out);
-    } catch (...) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
-        throw;
+    if (q.one > 0) {
+        std::minstd_rand dither(1);  // (the same noise in every render)
+        std::uniform_real_distribution<float> r(-1.0f, 1.0f);
+        for (float& v : data)
+            v = std::clamp(std::round(float(q.one) * v + q.dither * r(dither)),
+                           float(q.min), float(q.max)) /
+                float(q.one);
     }
+    const int bits = q.one == 0 ? 32 : q.one <= 255 ? 8 : 16;
+    writeReplacing(out, [&](const std::string& tmp) {
+        textureBackend().writePicture(tmp, width, height, channels, data.data(), bits);
+    });
 }
 
 // The image to `out`: OpenEXR with its AOV channels, or a picture when the name asks for

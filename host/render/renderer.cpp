@@ -275,7 +275,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     film.shaderAovs = shading.aovs;
     film.shaderAovFloats = f.shaderAovFloats;
     film.shaderAovSums.assign(npix * size_t(f.shaderAovFloats), 0.0f);
-    film.colourToRgb = scene.colors.toRgb;
+    film.colours = scene.colors;
     DeviceBuffer<float> shaderAovBuf(m_ctx, film.shaderAovSums);  // likewise
     // numerics.clh RT_NUM_* counters, then a flag per archive not loaded yet
     DeviceBuffer<uint32_t> numerics(m_ctx, kProceduralFlags + scene.procedurals.size());

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <utility>
 #include <vector>
 
 namespace rd {
@@ -29,22 +31,83 @@ double mitchell(double t) {
     return 0;
 }
 
+// g(x) of a filter `width` pixels wide, inside its support (x in pixels).
+using Filter1D = double (*)(double x, double width);
+
+double boxG(double, double) {
+    return 1;
+}
+double triangleG(double x, double width) {
+    return 1 - std::fabs(x) / (width / 2);
+}
+double gaussianG(double x, double width) {  // RI: x scaled by 2 / width, exp(-2 x^2)
+    const double t = 2 * x / width;
+    return std::exp(-2 * t * t);
+}
+double catmullRomG(double x, double) {  // in pixels
+    const double r = std::fabs(x);
+    if (r < 1) return 1.5 * r * r * r - 2.5 * r * r + 1;
+    if (r < 2) return -0.5 * r * r * r + 2.5 * r * r - 4 * r + 2;
+    return 0;
+}
+double sincG(double x, double) {
+    return sinc(x);
+}  // RI: in pixels, cut at the width
+double mitchellG(double x, double width) {
+    return mitchell(4 * x / width);
+}  // [-2, 2]
+double blackmanHarrisG(double x, double width) {
+    const double t = x / width + 0.5;
+    return 0.35875 - 0.48829 * std::cos(2 * kPi * t) + 0.14128 * std::cos(4 * kPi * t) -
+           0.01168 * std::cos(6 * kPi * t);
+}
+double lanczosG(double x, double width) {
+    return sinc(x) * sinc(x / (width / 2));
+}
+
+// The filter of a name; null for one not known.
+Filter1D filterNamed(const std::string& name) {
+    static const std::pair<const char*, Filter1D> filters[] = {
+        {"box", boxG},
+        {"triangle", triangleG},
+        {"gaussian", gaussianG},
+        {"catmull-rom", catmullRomG},
+        {"separable-catmull-rom", catmullRomG},
+        {"sinc", sincG},
+        {"mitchell", mitchellG},
+        {"blackman-harris", blackmanHarrisG},
+        {"lanczos", lanczosG}};
+    for (const auto& [n, g] : filters)
+        if (name == n) return g;
+    return nullptr;
+}
+
 // One axis's table: the inverse cumulative |g| at u = k / RT_FILTER_TABLE, g's sign at
 // the support's start and the u where it changes, and the integral of |g| over that of g
-// (0 when that is not > 0, or g changes sign more than RT_FILTER_FLIPS times).
-double fillAxis(const std::string& name, double width, float* icdf,
-                uint32_t* negativeStart, float* flips) {
-    constexpr int kSteps = 8192;  // the integration grid over the support
+// (0 when that is not > 0, or g changes sign more than RT_FILTER_FLIPS times). One pass
+// over g on a fine grid (midpoint rule per step).
+double fillAxis(Filter1D g, double width, float* icdf, uint32_t* negativeStart,
+                float* flips) {
+    constexpr int kSteps = 8192;
     const double half = width / 2, h = width / kSteps;
-    std::vector<double> cdf(kSteps + 1, 0.0);
+    std::vector<double> cdf(kSteps + 1, 0.0), flipAt;
     double signedSum = 0;
-    for (int i = 0; i < kSteps; ++i) {  // (midpoint rule per step)
-        const double g = pixelFilter1D(name, -half + (i + 0.5) * h, width);
-        cdf[size_t(i) + 1] = cdf[size_t(i)] + std::fabs(g) * h;
-        signedSum += g * h;
+    int sign = 0;
+    *negativeStart = 0;
+    for (int i = 0; i < kSteps; ++i) {
+        const double v = g(-half + (i + 0.5) * h, width);
+        cdf[size_t(i) + 1] = cdf[size_t(i)] + std::fabs(v) * h;
+        signedSum += v * h;
+        const int s = v > 0 ? 1 : v < 0 ? -1 : 0;
+        if (s == 0) continue;
+        if (sign == 0)
+            *negativeStart = s < 0;
+        else if (s != sign)
+            flipAt.push_back(cdf[size_t(i)]);
+        sign = s;
     }
     const double total = cdf[kSteps];
-    if (!(signedSum > 0) || !(total > 0)) return 0;
+    if (!(signedSum > 0) || !(total > 0) || flipAt.size() > RT_FILTER_FLIPS) return 0;
     int i = 0;
     for (int k = 0; k <= RT_FILTER_TABLE; ++k) {
         const double target = total * k / RT_FILTER_TABLE;
@@ -56,69 +119,40 @@ double fillAxis(const std::string& name, double width, float* icdf,
     }
     icdf[0] = float(-half), icdf[RT_FILTER_TABLE] = float(half);
     for (int k = RT_FILTER_TABLE + 1; k < RT_FILTER_TABLE + 4; ++k) icdf[k] = float(half);
-    // The sign changes, at the u of the cumulative |g| where g crosses zero.
-    int nflips = 0, sign = 0;
-    for (int f = 0; f < RT_FILTER_FLIPS; ++f) flips[f] = 2.0f;  // (never reached)
-    *negativeStart = 0;
-    for (int j = 0; j < kSteps; ++j) {
-        const double g = pixelFilter1D(name, -half + (j + 0.5) * h, width);
-        const int s = g > 0 ? 1 : g < 0 ? -1 : 0;
-        if (s == 0) continue;
-        if (sign == 0) {
-            *negativeStart = s < 0;
-        } else if (s != sign) {
-            if (nflips == RT_FILTER_FLIPS) return 0;
-            flips[nflips++] = float(cdf[size_t(j)] / total);
-        }
-        sign = s;
-    }
+    for (size_t f = 0; f < RT_FILTER_FLIPS; ++f)  // (2: never reached)
+        flips[f] = f < flipAt.size() ? float(flipAt[f] / total) : 2.0f;
     return total / signedSum;
 }
 }  // namespace
 
 bool pixelFilterKnown(const std::string& name) {
-    for (const char* n :
-         {"box", "triangle", "gaussian", "catmull-rom", "separable-catmull-rom", "sinc",
-          "mitchell", "blackman-harris", "lanczos"})
-        if (name == n) return true;
-    return false;
+    return filterNamed(name) != nullptr;
 }
 
 double pixelFilter1D(const std::string& name, double x, double width) {
-    const double half = width / 2, r = std::fabs(x);
-    if (r > half) return 0;
-    if (name == "triangle") return 1 - r / half;
-    if (name == "gaussian") {  // RI: x scaled by 2 / width, exp(-2 x^2)
-        const double t = 2 * x / width;
-        return std::exp(-2 * t * t);
-    }
-    if (name == "catmull-rom" || name == "separable-catmull-rom") {  // in pixels
-        if (r < 1) return 1.5 * r * r * r - 2.5 * r * r + 1;
-        if (r < 2) return -0.5 * r * r * r + 2.5 * r * r - 4 * r + 2;
-        return 0;
-    }
-    if (name == "sinc")
-        return sinc(x);  // RI: sin(pi x) / (pi x) in pixels, cut at the width
-    if (name == "mitchell")
-        return mitchell(4 * x / width);  // the cubic's [-2, 2] on the width
-    if (name == "blackman-harris") {
-        const double t = x / width + 0.5;
-        return 0.35875 - 0.48829 * std::cos(2 * kPi * t) +
-               0.14128 * std::cos(4 * kPi * t) - 0.01168 * std::cos(6 * kPi * t);
-    }
-    if (name == "lanczos") return sinc(x) * sinc(x / half);
-    return 1;  // box
+    const Filter1D g = filterNamed(name);
+    return std::fabs(x) > width / 2 ? 0 : g ? g(x, width) : 1;  // (unknown: a box)
 }
 
 bool setCameraFilter(Camera& cam, const std::string& name, float xwidth, float ywidth) {
     cam.filter_width[0] = xwidth, cam.filter_width[1] = ywidth;
     cam.filter_weight = 1.0f;
     cam.filter_table = 0;
-    if (name == "box") return true;
-    const double rx = fillAxis(name, xwidth, cam.filter_icdf[0],
+    const Filter1D g = filterNamed(name);
+    if (!g || g == boxG) return g != nullptr;
+    const double rx = fillAxis(g, xwidth, cam.filter_icdf[0],
                                &cam.filter_negative_start[0], cam.filter_flips[0]);
-    const double ry = fillAxis(name, ywidth, cam.filter_icdf[1],
-                               &cam.filter_negative_start[1], cam.filter_flips[1]);
+    double ry = rx;
+    if (ywidth != xwidth)
+        ry = fillAxis(g, ywidth, cam.filter_icdf[1], &cam.filter_negative_start[1],
+                      cam.filter_flips[1]);
+    else {  // (the same axis: its table once)
+        std::copy(std::begin(cam.filter_icdf[0]), std::end(cam.filter_icdf[0]),
+                  cam.filter_icdf[1]);
+        std::copy(std::begin(cam.filter_flips[0]), std::end(cam.filter_flips[0]),
+                  cam.filter_flips[1]);
+        cam.filter_negative_start[1] = cam.filter_negative_start[0];
+    }
     if (!(rx > 0) || !(ry > 0)) return false;
     cam.filter_weight = float(rx * ry);
     cam.filter_table = 1;

@@ -21,9 +21,9 @@ bool pixelFilterKnown(const std::string& name);
 double pixelFilter1D(const std::string& name, double x, double width);
 
 // Writes the camera's filter fields (Camera::filter_*) for a filter and its widths.
-// Returns false (and leaves a box of the widths) when the filter's integral is not
-// positive, or it changes sign more than RT_FILTER_FLIPS times along an axis (a sinc or
-// lanczos wider than about 16 pixels).
+// Returns false (and leaves a box of the widths) for a filter not known, or one whose
+// integral is not positive, or that changes sign more than RT_FILTER_FLIPS times along
+// an axis (a sinc or lanczos wider than about 16 pixels).
 bool setCameraFilter(Camera& cam, const std::string& name, float xwidth, float ywidth);
 
 }  // namespace rd

@@ -24,6 +24,11 @@ void RibBuilder::pixelFilter(L loc, const std::string& filter, float xwidth,
                                 "lanczos); using gaussian");
         name = "gaussian";
     }
+    Camera probe{};
+    if (!setCameraFilter(probe, name, xwidth, ywidth))
+        m_diag.warning(loc, "PixelFilter \"" + name + "\" changes sign more than " +
+                                std::to_string(RT_FILTER_FLIPS) +
+                                " times across its width; a box of that width is used");
     m_options.camera.pixelFilter = name;
     m_options.camera.filterWidth[0] = xwidth;
     m_options.camera.filterWidth[1] = ywidth;

@@ -155,6 +155,24 @@ TEST(ShaderAovs, ALightsPartRidesWhenCiTakesNothingFromIt) {
     EXPECT_NEAR(r.mean(3, 12, 8, 24, 24), 1.0, 1e-6);
 }
 
+// A colour AOV in the scene's own channels reaches the image as RGB through nRGB: two
+// channels shown as red and blue, Cs (0.2, 0.5) gives albedo (0.2, 0, 0.5) (kept as the
+// channels it would read (0.2, 0.5, 0.5)), and diff, lit by white, (cos 45, 0, cos 45).
+TEST(ShaderAovs, ColourAovsAreMadeRgb) {
+    std::string rib = "ColorSamples [1 0 0  0 0 1] [1 0  0 0  0 1]\n" +
+                      scene(shaderDir("aov_two_channels"), "");
+    rib.replace(rib.find("Color [0.2 0.4 0.6]"), 19, "Color [0.2 0.5]");
+    rd::RenderSettings settings;
+    settings.extraAovs = {"albedo", "diff"};
+    Rendered r = renderRib(rib, settings);
+    const std::vector<rd::Channel> c = channels(r.film, {"albedo", "diff"});
+    EXPECT_NEAR(mean(c, "albedo.R", 12, 8, 24, 24), 0.2, 1e-6);
+    EXPECT_NEAR(mean(c, "albedo.G", 12, 8, 24, 24), 0.0, 1e-6);
+    EXPECT_NEAR(mean(c, "albedo.B", 12, 8, 24, 24), 0.5, 1e-6);
+    EXPECT_NEAR(mean(c, "diff.G", 12, 8, 24, 24), 0.0, 1e-6);
+    EXPECT_NEAR(mean(c, "diff.B", 12, 8, 24, 24), std::sqrt(0.5), 1e-5);
+}
+
 // The globals as AOVs: Cs, Oi, and P in the RIB's world space (the camera is 5 units
 // from its origin, RayDrive's own origin), s on the plane.
 TEST(ShaderAovs, GlobalsInWorldSpace) {

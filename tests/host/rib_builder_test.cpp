@@ -60,13 +60,18 @@ TEST(RibBuilder, PixelFilterAndItsErrors) {
     ASSERT_EQ(r.scenes.size(), 1u);
     EXPECT_EQ(r.scenes[0].camera.pixelFilter, "catmull-rom");
     EXPECT_EQ(r.scenes[0].camera.filterWidth[1], 3.0f);
-    Built bad = build(std::string("PixelFilter \"gaussian\" 0 2\nPixelFilter \"box\" 2 "
-                                  "1e9\nPixelFilter \"bessel\" 2 2\n") +
-                      kWorld);
+    Built bad =
+        build(std::string("PixelFilter \"gaussian\" 0 2\nPixelFilter \"box\" 2 "
+                          "1e9\nPixelFilter \"bessel\" 2 2\nPixelFilter \"sinc\" 40 "
+                          "4\n") +
+              kWorld);
     EXPECT_EQ(bad.errors, 2);
     EXPECT_NE(bad.messages.find("t.rib:1: error: PixelFilter widths"), std::string::npos)
         << bad.messages;
     EXPECT_NE(bad.messages.find("t.rib:3: warning: PixelFilter \"bessel\" is not known"),
+              std::string::npos)
+        << bad.messages;
+    EXPECT_NE(bad.messages.find("t.rib:4: warning: PixelFilter \"sinc\" changes sign"),
               std::string::npos)
         << bad.messages;
 }
