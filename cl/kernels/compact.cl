@@ -15,6 +15,16 @@
  * Work-groups are RT_COMPACT_GROUP wide. */
 #include "counters.clh"
 #include "ray.h"
+#ifdef RT_TRACE_AOVS
+#include "trace_aovs.clh"
+/* a ray's AOV weights go with it, when it has any */
+inline void rt_move_aovw(__global float* dst, uint to, __global const float* src, uint from,
+                         RayState s) {
+    if (!(s.depth & RT_CARRIES_AOVS)) return;
+    for (int c = 0; c < RT_AOV_PAYLOAD; ++c)
+        dst[(size_t)to * RT_AOV_PAYLOAD + c] = src[(size_t)from * RT_AOV_PAYLOAD + c];
+}
+#endif
 
 __kernel __attribute__((reqd_work_group_size(RT_COMPACT_GROUP, 1, 1)))
 void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_SPAWN_SLOTS + k */
@@ -40,6 +50,10 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
                      __global rt_weight* spill_weight,
                      __global RayState* spill_state,
                      __global uint* spill_sample,
+                     /* RT_TRACE_AOVS only: the AOV weights of rays that carry them */
+                     __global const float* src_aovw,
+                     __global float* dst_aovw,
+                     __global float* spill_aovw,
                      __global uint* slot_rays,
                      __global uint* slot_abort,
                      __global uint* active_counter) {
@@ -71,6 +85,9 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
             dst_weight[j] = src_weight[from];
             dst_state[j] = src_state[from];
             dst_sample[j] = sample;
+#ifdef RT_TRACE_AOVS
+            rt_move_aovw(dst_aovw, j, src_aovw, from, src_state[from]);
+#endif
         } else if (spill_top + (j - capacity) < spill_capacity) {
             const uint to = spill_top + (j - capacity);
             spill_origin[to] = src_origin[from];
@@ -78,6 +95,9 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
             spill_weight[to] = src_weight[from];
             spill_state[to] = src_state[from];
             spill_sample[to] = sample;
+#ifdef RT_TRACE_AOVS
+            rt_move_aovw(spill_aovw, to, src_aovw, from, src_state[from]);
+#endif
         } else { /* dropped: no longer in flight, and its sample goes again */
             slot_abort[sample] = 1u;
             atomic_dec(&slot_rays[sample]);

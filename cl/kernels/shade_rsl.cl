@@ -53,6 +53,10 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             /* RT_SHADER_AOVS floats a sample slot, and a shadow ray */
                             __global float* aov_values,
                             __global float* shadow_aov,
+                            /* RT_TRACE_AOVS only: AOV weights (trace_aovs.clh), a pool
+                             * ray's and a spawn slot's */
+                            __global const float* ray_aovw,
+                            __global float* next_aovw,
                             uint light_count,
                             __global uint* numerics, /* numerics.clh counters */
                             /* RT_HAS_TEXTURES only: the texture state (texture.h), and
@@ -189,6 +193,12 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
     if (dsites) dsites->lane = 3; /* every other mode replays the point's derivatives */
+#ifdef RT_TRACE_AOVS
+    /* a ray below a trace() of the first surface brings back part of the AOVs */
+    float ain[RT_AOV_PAYLOAD];
+    const int carries_in = (rs.depth & RT_CARRIES_AOVS) != 0u;
+    if (carries_in) rt_aov_load(ain, ray_aovw + (size_t)r * RT_AOV_PAYLOAD);
+#endif
 #ifdef RT_SHADER_AOVS
     /* the first surface a camera ray is shaded at gives the sample's shader AOVs: the
      * output variables' values without the lights, the lights' parts riding on their
@@ -222,6 +232,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
     rsl_color add = culled ? (rsl_color)(0.0f) : w * E;
     RSL_CW(add) = RSL_CW(w) * RSL_CHANNEL_MEAN(Oi); /* coverage */
     rt_atomic_add_float4(&total[sample].value, rt_sanitize(rt_total_of(add), numerics));
+#ifdef RT_TRACE_AOVS
+    if (carries_in && !culled) rt_aov_add(aov_values + sample * RT_SHADER_AOVS, ain, E);
+#endif
 
 #ifdef RT_HAS_SHADOW_RAYS
     float4 Pl = rt_offset_ray(g.P, Ngf);
@@ -247,6 +260,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #if !RD_LIGHT_COEFS_SURFACE
         if (aov_first) RD_AOV_LIGHT_SURFACE(aov_part, le, ev);
 #endif
+#ifdef RT_TRACE_AOVS
+        if (carries_in) rt_aov_parts(aov_part, ain, atmo_a * coef);
+#endif
 #endif
         rsl_color sw = w * atmo_a * coef;
         RSL_CW(sw) = 0.0f;
@@ -262,7 +278,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
             rt_atomic_add_float4(&total[sample].value, rt_total_of(sw));
 #ifdef RT_SHADER_AOVS
             for (int c = 0; c < RT_SHADER_AOVS; ++c)
-                aov_values[sample * RT_SHADER_AOVS + c] += aov_part[c];
+                rt_atomic_add_float(&aov_values[sample * RT_SHADER_AOVS + c], aov_part[c]);
 #endif
             continue;
         }
@@ -317,23 +333,51 @@ __kernel void shade_SURFACE(uint begin, uint count,
         rsl_surface_SURFACE(&tg, p, &te);
         rsl_color tw = w * atmo_a * (tg.Ci - base.Ci);
         RSL_CW(tw) = 0.0f;
-        tw = rt_sanitize_c(tw, numerics);
+        /* an occlusion() ray may weigh less than zero and be no fault: Ci = occlusion()
+         * is 1 from the base evaluation less a part for each ray that escapes */
+        if (ev.trace_org[i].w > 0.5f)
+            tw = copysign(rt_sanitize_c(fabs(tw), numerics), tw);
+        else
+            tw = rt_sanitize_c(tw, numerics);
+#ifdef RT_TRACE_AOVS
+        /* the AOVs' part in this call: the first surface's outputs' own (their value
+         * when trace() returns 1, less the base value), or the weights brought here */
+        float achild[RT_AOV_PAYLOAD];
+        int child_carries = 0;
+        if (aov_first) {
+            for (int c = 0; c < RT_AOV_PAYLOAD; ++c) achild[c] = 0.0f;
+            RD_AOV_TRACE_SURFACE(achild, te, ev);
+            for (int c = 0; c < RT_AOV_PAYLOAD; ++c) child_carries |= achild[c] != 0.0f;
+        } else if (carries_in)
+            child_carries = rt_aov_scale(achild, ain, atmo_a * (tg.Ci - base.Ci));
+#endif
 #ifdef RT_ROULETTE_DEPTH
         /* Russian roulette from the given depth on: a ray survives with probability p =
          * its largest weight (at least 0.05, at most 1) and carries weight / p, so the
          * estimate stays unbiased while dim paths end early; the random number is the
          * sample's own (pixel, sample, depth, call), never the pool slot's */
         if (RT_TRACE_DEPTH(rs) + 1u >= RT_ROULETTE_DEPTH) {
-            float surv = clamp(rsl_cmax(fabs(tw)), 0.05f, 1.0f);
+            float surv = rsl_cmax(fabs(tw));
+#ifdef RT_TRACE_AOVS
+            if (child_carries) surv = fmax(surv, rt_aov_largest(achild));
+#endif
+            surv = clamp(surv, 0.05f, 1.0f);
             uint dim = 1024u + 16u * RT_TRACE_DEPTH(rs) + (uint)i;
             if (rt_random(sample_pixel[sample], sample_index[sample], dim) >= surv) {
                 atomic_inc(&numerics[RT_NUM_ROULETTE]);
                 continue;
             }
             tw /= surv;
+#ifdef RT_TRACE_AOVS
+            for (int c = 0; c < RT_AOV_PAYLOAD; ++c) achild[c] /= surv;
+#endif
         }
 #endif
+#ifdef RT_TRACE_AOVS
+        if (rsl_cmax(fabs(tw)) < 1e-6f && !child_carries) continue;
+#else
         if (rsl_cmax(fabs(tw)) < 1e-6f) continue;
+#endif
         float4 td = rt_normalize3(ev.trace_dir[i]);
         /* a zero direction (refract() under total internal reflection) traces nothing */
         if (!(rt_dot3(td, td) > 0.5f)) continue;
@@ -350,6 +394,10 @@ __kernel void shade_SURFACE(uint begin, uint count,
         next_direction[s] = td;
         next_weight[s] = rt_weight_of(tw);
         RayState ts = {alive, rs.depth + 1u, h.prim, width_at_hit};
+#ifdef RT_TRACE_AOVS
+        ts.depth = child_carries ? ts.depth | RT_CARRIES_AOVS : ts.depth & ~RT_CARRIES_AOVS;
+        if (child_carries) rt_aov_store(next_aovw + (size_t)s * RT_AOV_PAYLOAD, achild);
+#endif
         next_state[s] = ts;
         next_sample[s] = sample;
         spawned |= 2u << i;
@@ -361,9 +409,17 @@ __kernel void shade_SURFACE(uint begin, uint count,
     rsl_color wt = w * (rsl_f2c(1.0f) - Oi);
     RSL_CW(wt) = RSL_CW(w) * (1.0f - RSL_CHANNEL_MEAN(Oi));
     wt = rt_sanitize_c(wt, numerics);
-    if (rsl_cmax(wt) > 1e-6f && RT_TRANSPARENT_DEPTH(rs) >= RT_MAX_TRANSPARENT_DEPTH)
+    int goes_on = rsl_cmax(wt) > 1e-6f;
+#ifdef RT_TRACE_AOVS
+    /* behind the surface, the weights brought here times what it lets through */
+    float acont[RT_AOV_PAYLOAD];
+    const int cont_carries =
+        carries_in && rt_aov_scale(acont, ain, rsl_f2c(1.0f) - Oi);
+    goes_on = goes_on || cont_carries;
+#endif
+    if (goes_on && RT_TRANSPARENT_DEPTH(rs) >= RT_MAX_TRANSPARENT_DEPTH)
         atomic_inc(&numerics[RT_NUM_TRANSPARENT_DEPTH]);
-    else if (rsl_cmax(wt) > 1e-6f) {
+    else if (goes_on) {
         float4 o = rt_offset_ray(g.P, -Ngf);
         o.w = 0.0f;
         float4 d = dir;
@@ -374,6 +430,10 @@ __kernel void shade_SURFACE(uint begin, uint count,
         next_weight[s] = rt_weight_of(wt);
         /* (an occlusion() ray going through stays one) */
         RayState cs = {rs.alive, rs.depth + RT_ONE_TRANSPARENT, h.prim, width_at_hit};
+#ifdef RT_TRACE_AOVS
+        cs.depth = cont_carries ? cs.depth | RT_CARRIES_AOVS : cs.depth & ~RT_CARRIES_AOVS;
+        if (cont_carries) rt_aov_store(next_aovw + (size_t)s * RT_AOV_PAYLOAD, acont);
+#endif
         next_state[s] = cs;
         next_sample[s] = sample;
         spawned |= 1u;

@@ -15,6 +15,9 @@
 #include "ray_weight.clh"
 #include "quadric.h"
 #include "scene_types.h"
+#ifdef RT_TRACE_AOVS
+#include "trace_aovs.clh"
+#endif
 
 #define RT_MAX_SHADER_KEYS 65 /* 64 shaders + the miss key */
 
@@ -35,6 +38,9 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
                             __global const RayState* state,
                             __global const rt_weight* weight,
                             __global SampleTotal* total,
+                            /* RT_TRACE_AOVS only: AOV weights, and the samples' AOVs */
+                            __global const float* ray_aovw,
+                            __global float* aov_values,
                             __global uint* active_counter) {
     __local uint hist[RT_MAX_SHADER_KEYS];
     uint r = get_global_id(0), lid = get_local_id(0);
@@ -65,9 +71,17 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
         /* an occlusion() ray: its weight counts when it escaped; it is never shaded, but
          * a surface traced rays go through passes it on (its shade kernel) */
         if (state[r].alive == RT_ALIVE_VISIBILITY) {
-            if (prim == RT_NO_HIT)
+            if (prim == RT_NO_HIT) {
                 rt_atomic_add_float4(&total[ray_sample[r]].value,
                                      rt_total_of(rt_weight_color(weight[r])));
+#ifdef RT_TRACE_AOVS
+                if (state[r].depth & RT_CARRIES_AOVS) {
+                    float a[RT_AOV_PAYLOAD];
+                    rt_aov_load(a, ray_aovw + (size_t)r * RT_AOV_PAYLOAD);
+                    rt_aov_add(aov_values + ray_sample[r] * RT_SHADER_AOVS, a, (rsl_color)(1.0f));
+                }
+#endif
+            }
 #ifdef RT_HAS_INVISIBLE
             if (prim == RT_NO_HIT || !(materials[mat].flags & RT_MATERIAL_NO_TRACE))
 #endif

@@ -84,6 +84,11 @@ struct Features {
     int traceSlots = 0;         // the most trace() rays a surface's evaluation spawns
     // Rays a shaded hit may spawn: its continuation, plus its traced rays.
     int spawnSlots() const { return trace ? 1 + traceSlots : 1; }
+    // Floats of a ray's AOV weights (trace_aovs.clh): shader AOVs that rays below trace()
+    // calls bring parts back to, one weight an AOV float and colour channel; 0 otherwise.
+    int traceAovFloats() const {
+        return trace && shaderAovFloats > 0 ? shaderAovFloats * colors.n : 0;
+    }
 };
 
 Features analyse(const Scene& scene, const ShadingSetup& shading);

@@ -143,10 +143,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // at most a quarter of it so several pixels share a round.
     const size_t weightFloats = RayPool::weightFloatsOf(f.colors.n);
     const size_t aovFloats = size_t(f.shaderAovFloats);
+    const size_t traceAovFloats = size_t(f.traceAovFloats());
     const size_t pool = RayPool::capacityFor(m_settings.poolCapacity, m_ctx.info(), spawn,
-                                             nl, weightFloats, aovFloats);
+                                             nl, weightFloats, aovFloats, traceAovFloats);
     st.poolCapacity = pool;
-    st.poolBytesPerRay = RayPool::bytesPerRay(spawn, nl, weightFloats, aovFloats);
+    st.poolBytesPerRay =
+        RayPool::bytesPerRay(spawn, nl, weightFloats, aovFloats, traceAovFloats);
     SampleRing ring(RayPool::kSlotsPerRay * pool);
     const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
     // Sampling: the first pass needs no film, so it is planned on another thread while
@@ -214,7 +216,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // two is 60-70 ms on PoCL, most of it its preprocessor)
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
-               shaderCount + 1, weightFloats, aovFloats);
+               shaderCount + 1, weightFloats, aovFloats, traceAovFloats);
     if (shaderCount == 1) {  // the one shader's run: every ray in pool order
         std::vector<uint32_t> order(pool);
         for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
@@ -313,9 +315,10 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                 rp.weight, rp.state, rp.sample, rp.hits, rp.totals, rp.nextOrigin,
                 rp.nextDirection, rp.nextWeight, rp.nextState, rp.nextSample,
                 rp.spawnMask, rp.slotRays, rp.shOrigin, rp.shDirection, rp.shWeight,
-                rp.shState, rp.aov, rp.aovValues, rp.shAov, nl, numerics, textures.infoBuf, textures.pageBuf,
-                textures.tileBuf, textures.requestBuf, textures.counterBuf,
-                textures.usedBuf, retry, reshade.counts(), s);
+                rp.shState, rp.aov, rp.aovValues, rp.shAov, rp.aovw, rp.nextAovw, nl,
+                numerics, textures.infoBuf, textures.pageBuf, textures.tileBuf,
+                textures.requestBuf, textures.counterBuf, textures.usedBuf, retry,
+                reshade.counts(), s);
         }
     };
     // The rays in the pool now, and on the spill stack. Refill tops the pool up to
@@ -353,7 +356,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         k.classify.launch(n, n, shaderCount, nl, parity, rp.hits, ds.attrs, ds.materials,
                           ds.quadrics, rp.hitInstance, rp.key, rp.keyCount, rp.keyCursor,
                           rp.spawnMask, rp.shState, rp.sample, rp.slotRays, rp.state,
-                          rp.weight, rp.totals);
+                          rp.weight, rp.totals, rp.aovw, rp.aovValues);
         // One shader: no sort and no wait for the counts; its run is the whole pool in
         // order (`sorted` holds 0, 1, 2, ...) and the shade kernel skips the misses.
         if (shaderCount > 1) prof.markHostWait();
@@ -439,13 +442,13 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         if (window > 0)
             rp.progress.downloadRangeTo(3 * parity, 3, prog, /*blocking=*/false, &readsDone);
         auto compactBehind = [&](cl_uint base) {
-            k.compactScatter.launch(traced, traced, base, rp.refillFit, cl_uint(pool),
-                                    cl_uint(spillTop), cl_uint(spillCapacity), rp.groupLive,
-                                    rp.spawnMask, rp.nextOrigin, rp.nextDirection,
-                                    rp.nextWeight, rp.nextState, rp.nextSample, rp.origin,
-                                    rp.direction, rp.weight, rp.state, rp.sample,
-                                    rp.spillOrigin, rp.spillDirection, rp.spillWeight,
-                                    rp.spillState, rp.spillSample, rp.slotRays, rp.slotAbort);
+            k.compactScatter.launch(
+                traced, traced, base, rp.refillFit, cl_uint(pool), cl_uint(spillTop),
+                cl_uint(spillCapacity), rp.groupLive, rp.spawnMask, rp.nextOrigin,
+                rp.nextDirection, rp.nextWeight, rp.nextState, rp.nextSample, rp.origin,
+                rp.direction, rp.weight, rp.state, rp.sample, rp.spillOrigin,
+                rp.spillDirection, rp.spillWeight, rp.spillState, rp.spillSample,
+                rp.nextAovw, rp.aovw, rp.spillAovw, rp.slotRays, rp.slotAbort);
         };
         if (refilled) refill.commitFitted(pending);  // eye rays at the pool's front
         if (pipelined && compact) compactBehind(refilled ? ~0u : 0u);  // spawned rays behind
@@ -484,6 +487,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                       take * rp.weightFloats);
                 rp.spillState.copyTo(rp.state, from, n, take);
                 rp.spillSample.copyTo(rp.sample, from, n, take);
+                if (rp.traceAovFloats > 0)
+                    rp.spillAovw.copyTo(rp.aovw, from * rp.traceAovFloats,
+                                        n * rp.traceAovFloats, take * rp.traceAovFloats);
                 spillTop = from;
                 n += cl_uint(take);
             }

@@ -104,7 +104,7 @@ int shaderAovFloats(const std::vector<ShaderAov>& aovs) {
 std::string shaderAovMacros(const rsl::EmittedShader& sh, const std::vector<ShaderAov>& aovs,
                             rib::Diagnostics& diag,
                             const rib::SourceLoc& loc) {
-    std::string outputs, light;
+    std::string outputs, light, trace;
     for (const ShaderAov& a : aovs) {
         const std::string o = std::to_string(a.offset);
         const rsl::ParamSlot* p = outputNamed(sh, a.name);
@@ -133,6 +133,21 @@ std::string shaderAovMacros(const rsl::EmittedShader& sh, const std::vector<Shad
                 light += "(dst)[" + d + "] = (le).outputs[" + s + "] - (ev).outputs[" + s +
                          "]; ";
             }
+            // A trace() call's part (trace_aovs.clh): a colour's channel k weighs channel
+            // k of what the ray brings back, a float the channels' mean.
+            const std::string q0 = std::to_string(p->outputOffset);
+            const std::string part0 =
+                "((te).outputs[" + q0 + "] - (ev).outputs[" + q0 + "])";
+            if (a.type == "color")
+                for (int k = 0; k < a.floats; ++k) {
+                    const std::string q = std::to_string(p->outputOffset + k);
+                    trace += "(A)[(" + o + " + " + std::to_string(k) +
+                             ") * RSL_CHANNELS + " + std::to_string(k) +
+                             "] = (te).outputs[" + q + "] - (ev).outputs[" + q + "]; ";
+                }
+            else if (a.type == "float")
+                trace += "for (int k_ = 0; k_ < RSL_CHANNELS; ++k_) (A)[" + o +
+                         " * RSL_CHANNELS + k_] = " + part0 + " / (float)RSL_CHANNELS; ";
             continue;
         }
         const GlobalAov* g = globalAov(a.name);
@@ -149,8 +164,9 @@ std::string shaderAovMacros(const rsl::EmittedShader& sh, const std::vector<Shad
         }
     }
     return "#define RD_AOV_OUTPUTS_" + sh.name + "(dst, ev, g) do { " + outputs +
-           "} while (0)\n#define RD_AOV_LIGHT_" + sh.name + "(dst, le, ev) do { " + light +
-           "} while (0)\n";
+           "} while (0)\n#define RD_AOV_LIGHT_" + sh.name + "(dst, le, ev) do { " +
+           light + "} while (0)\n#define RD_AOV_TRACE_" + sh.name + "(A, te, ev) do { " +
+           trace + "} while (0)\n";
 }
 
 }  // namespace rd
