@@ -35,18 +35,23 @@ typedef struct RayHit {
  * the scene's pixel angle RT_PIXEL_SPREAD; written only when shaders take derivatives). */
 typedef struct RayState {
     uint32_t alive;
-    uint32_t depth; /* bits 0-14: trace() depth; 15: RT_CARRIES_AOVS; 16-31: transparent
-                     * surfaces passed */
+    uint32_t depth;     /* bits 0-13: trace() depth; 14, 15: RT_COMPOSITES_AOVS,
+                         * RT_CARRIES_AOVS; 16-31: transparent surfaces passed */
     uint32_t from_prim; /* RT_NO_HIT for eye rays */
     float width;
 } RayState;
 
-#define RT_TRACE_DEPTH(s) ((s).depth & 0x7fffu)
+#define RT_TRACE_DEPTH(s) ((s).depth & 0x3fffu)
 #define RT_TRANSPARENT_DEPTH(s) ((s).depth >> 16)
 #define RT_ONE_TRANSPARENT 0x10000u
-/* The ray brings back part of its sample's shader AOVs (trace_aovs.clh): its AOV weights
- * wait in the pool's AOV payload. The rays it spawns inherit the bit with the depths. */
+/* The ray brings back part of its sample's shader AOVs (ray_aovs.clh): its AOV weights
+ * wait in the pool's AOV payload. */
 #define RT_CARRIES_AOVS 0x8000u
+/* A camera ray behind a surface that gave the sample's AOVs: the next surface it is
+ * shaded at adds its own, scaled by what the payload says the ones in front let through.
+ */
+#define RT_COMPOSITES_AOVS 0x4000u
+#define RT_AOV_FLAGS (RT_CARRIES_AOVS | RT_COMPOSITES_AOVS)
 
 #define RT_NO_HIT 0xffffffffu
 

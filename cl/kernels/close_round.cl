@@ -40,11 +40,11 @@ void close_round(uint count, /* traced rays */
                 /* a ray with AOV parts has its alpha lane set (shade_rsl.cl), zeroed with
                  * the rest if it was occluded; only the ray of the sample's first shaded
                  * surface carries parts (one work-item per sample: no atomics), unless
-                 * rays below its trace() calls bring parts back (RT_TRACE_AOVS) */
+                 * rays below its trace() calls bring parts back (RT_RAY_AOVS) */
                 if (RSL_CW(w) != 0.0f)
                     for (uint c = 0; c < RT_SHADER_AOVS; ++c) {
                         float part = shadow_aov[j * RT_SHADER_AOVS + c];
-#ifdef RT_TRACE_AOVS /* (rays below trace() calls too: several a sample) */
+#ifdef RT_RAY_AOVS /* (rays below trace() calls too: several a sample) */
                         rt_atomic_add_float(&aov_values[ray_sample[i] * RT_SHADER_AOVS + c], part);
 #else
                         if (part != 0.0f) aov_values[ray_sample[i] * RT_SHADER_AOVS + c] += part;

@@ -15,12 +15,12 @@
  * Work-groups are RT_COMPACT_GROUP wide. */
 #include "counters.clh"
 #include "ray.h"
-#ifdef RT_TRACE_AOVS
-#include "trace_aovs.clh"
+#include "ray_aovs.clh"
+#ifdef RT_RAY_AOVS
 /* a ray's AOV weights go with it, when it has any */
 inline void rt_move_aovw(__global float* dst, uint to, __global const float* src, uint from,
                          RayState s) {
-    if (!(s.depth & RT_CARRIES_AOVS)) return;
+    if (!(s.depth & RT_AOV_FLAGS)) return;
     for (int c = 0; c < RT_AOV_PAYLOAD; ++c)
         dst[(size_t)to * RT_AOV_PAYLOAD + c] = src[(size_t)from * RT_AOV_PAYLOAD + c];
 }
@@ -50,7 +50,7 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
                      __global rt_weight* spill_weight,
                      __global RayState* spill_state,
                      __global uint* spill_sample,
-                     /* RT_TRACE_AOVS only: the AOV weights of rays that carry them */
+                     /* RT_RAY_AOVS only: the AOV weights of rays that carry them */
                      __global const float* src_aovw,
                      __global float* dst_aovw,
                      __global float* spill_aovw,
@@ -85,7 +85,7 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
             dst_weight[j] = src_weight[from];
             dst_state[j] = src_state[from];
             dst_sample[j] = sample;
-#ifdef RT_TRACE_AOVS
+#ifdef RT_RAY_AOVS
             rt_move_aovw(dst_aovw, j, src_aovw, from, src_state[from]);
 #endif
         } else if (spill_top + (j - capacity) < spill_capacity) {
@@ -95,7 +95,7 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
             spill_weight[to] = src_weight[from];
             spill_state[to] = src_state[from];
             spill_sample[to] = sample;
-#ifdef RT_TRACE_AOVS
+#ifdef RT_RAY_AOVS
             rt_move_aovw(spill_aovw, to, src_aovw, from, src_state[from]);
 #endif
         } else { /* dropped: no longer in flight, and its sample goes again */

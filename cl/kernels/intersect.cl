@@ -5,6 +5,7 @@
 #include "counters.clh"
 #include "quadric.h"
 #include "traverse.clh"
+#include "ray_aovs.clh"
 #if defined(RT_SHADOW_PACKETS) || defined(RT_CLOSEST_PACKETS)
 #include "packet_traverse.clh"
 /* A packet with fewer live rays than this traces them one at a time. */
@@ -151,6 +152,7 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
         __global const TriangleAttr* attrs, /* RT_HAS_TRANSPARENT_SHADOWS only */          \
         __global const Material* materials,                                               \
         __global const float* material_channels, /* and more than three channels */      \
+        __global float* shadow_aov, /* RT_SHADER_AOVS, transparent shadows: parts it carries */ \
         __global uint* active_counter
 
 #ifdef RT_HAS_TRANSPARENT_SHADOWS
@@ -242,6 +244,15 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     }
     /* an occluded ray carries nothing; its state stays as the group count read it */
     weight[i] = occluded ? (rt_weight)(0.0f) : weight[i] * through;
+#if defined(RT_SHADER_AOVS) && defined(RD_AOV_CHANNELS)
+    /* the parts of its sample's AOVs it carries dim as its weight does */
+    if (!occluded) {
+        float parts[RT_SHADER_AOVS];
+        for (int c = 0; c < RT_SHADER_AOVS; ++c) parts[c] = shadow_aov[i * RT_SHADER_AOVS + c];
+        rt_aov_composite(parts, parts, rt_weight_color(through));
+        for (int c = 0; c < RT_SHADER_AOVS; ++c) shadow_aov[i * RT_SHADER_AOVS + c] = parts[c];
+    }
+#endif
 #else
     /* shadow rays converge on their light: the lane walk */
     if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, 1,

@@ -53,7 +53,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             /* RT_SHADER_AOVS floats a sample slot, and a shadow ray */
                             __global float* aov_values,
                             __global float* shadow_aov,
-                            /* RT_TRACE_AOVS only: AOV weights (trace_aovs.clh), a pool
+                            /* RT_RAY_AOVS only: AOV weights (ray_aovs.clh), a pool
                              * ray's and a spawn slot's */
                             __global const float* ray_aovw,
                             __global float* next_aovw,
@@ -193,21 +193,36 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
     if (dsites) dsites->lane = 3; /* every other mode replays the point's derivatives */
-#ifdef RT_TRACE_AOVS
-    /* a ray below a trace() of the first surface brings back part of the AOVs */
+#ifdef RT_RAY_AOVS
+    /* a ray below a trace() call of an AOV surface brings back part of the AOVs (its AOV
+     * weights); a camera ray behind one composites the next (its scales): ray_aovs.clh */
     float ain[RT_AOV_PAYLOAD];
     const int carries_in = (rs.depth & RT_CARRIES_AOVS) != 0u;
-    if (carries_in) rt_aov_load(ain, ray_aovw + (size_t)r * RT_AOV_PAYLOAD);
+    const int composites_in = (rs.depth & RT_COMPOSITES_AOVS) != 0u;
+    if (carries_in || composites_in) rt_aov_load(ain, ray_aovw + (size_t)r * RT_AOV_PAYLOAD);
 #endif
 #ifdef RT_SHADER_AOVS
-    /* the first surface a camera ray is shaded at gives the sample's shader AOVs: the
-     * output variables' values without the lights, the lights' parts riding on their
-     * shadow rays (close_round) */
-    const int aov_first = !culled && RT_TRACE_DEPTH(rs) == 0u && !aov[sample].shaded;
-    if (aov_first) {
+    /* The surfaces a camera ray is shaded at give the sample's shader AOVs: the first
+     * one's in full, each behind it (RT_RAY_AOVS) scaled by what those in front let
+     * through. The output variables' values without the lights go in now, the lights'
+     * parts ride on their shadow rays (close_round), the trace() calls' on their rays. */
+    float aov_scale[RT_SHADER_AOVS];
+    for (int c = 0; c < RT_SHADER_AOVS; ++c) aov_scale[c] = 1.0f;
+    int aov_surface = !culled && RT_TRACE_DEPTH(rs) == 0u && !aov[sample].shaded;
+#ifdef RT_RAY_AOVS
+    if (composites_in) {
+        for (int c = 0; c < RT_SHADER_AOVS; ++c) aov_scale[c] = ain[c];
+        aov_surface = !culled;
+    }
+#endif
+    if (aov_surface) {
         aov[sample].shaded = 1u;
-        __global float* dst = aov_values + sample * RT_SHADER_AOVS;
-        RD_AOV_OUTPUTS_SURFACE(dst, ev, g);
+        float out[RT_SHADER_AOVS];
+        for (int c = 0; c < RT_SHADER_AOVS; ++c) out[c] = 0.0f;
+        RD_AOV_OUTPUTS_SURFACE(out, ev, g);
+        /* (rays below an earlier surface may add in the same launch) */
+        for (int c = 0; c < RT_SHADER_AOVS; ++c)
+            rt_atomic_add_float(&aov_values[sample * RT_SHADER_AOVS + c], aov_scale[c] * out[c]);
     }
 #endif
     rsl_color E = culled ? (rsl_color)(0.0f) : rsl_cw0(base.Ci);
@@ -232,7 +247,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     rsl_color add = culled ? (rsl_color)(0.0f) : w * E;
     RSL_CW(add) = RSL_CW(w) * RSL_CHANNEL_MEAN(Oi); /* coverage */
     rt_atomic_add_float4(&total[sample].value, rt_sanitize(rt_total_of(add), numerics));
-#ifdef RT_TRACE_AOVS
+#ifdef RT_RAY_AOVS
     if (carries_in && !culled) rt_aov_add(aov_values + sample * RT_SHADER_AOVS, ain, E);
 #endif
 
@@ -258,9 +273,12 @@ __kernel void shade_SURFACE(uint begin, uint count,
         float aov_part[RT_SHADER_AOVS];
         for (int c = 0; c < RT_SHADER_AOVS; ++c) aov_part[c] = 0.0f;
 #if !RD_LIGHT_COEFS_SURFACE
-        if (aov_first) RD_AOV_LIGHT_SURFACE(aov_part, le, ev);
+        if (aov_surface) {
+            RD_AOV_LIGHT_SURFACE(aov_part, le, ev);
+            for (int c = 0; c < RT_SHADER_AOVS; ++c) aov_part[c] *= aov_scale[c];
+        }
 #endif
-#ifdef RT_TRACE_AOVS
+#ifdef RT_RAY_AOVS
         if (carries_in) rt_aov_parts(aov_part, ain, atmo_a * coef);
 #endif
 #endif
@@ -339,15 +357,18 @@ __kernel void shade_SURFACE(uint begin, uint count,
             tw = copysign(rt_sanitize_c(fabs(tw), numerics), tw);
         else
             tw = rt_sanitize_c(tw, numerics);
-#ifdef RT_TRACE_AOVS
-        /* the AOVs' part in this call: the first surface's outputs' own (their value
-         * when trace() returns 1, less the base value), or the weights brought here */
+#ifdef RT_RAY_AOVS
+        /* the AOVs' part in this call: an AOV surface's outputs' own (their value when
+         * trace() returns 1, less the base value), or the weights brought here */
         float achild[RT_AOV_PAYLOAD];
         int child_carries = 0;
-        if (aov_first) {
+        if (aov_surface) {
             for (int c = 0; c < RT_AOV_PAYLOAD; ++c) achild[c] = 0.0f;
             RD_AOV_TRACE_SURFACE(achild, te, ev);
-            for (int c = 0; c < RT_AOV_PAYLOAD; ++c) child_carries |= achild[c] != 0.0f;
+            for (int c = 0; c < RT_AOV_PAYLOAD; ++c) {
+                achild[c] *= aov_scale[c / RSL_CHANNELS];
+                child_carries |= achild[c] != 0.0f;
+            }
         } else if (carries_in)
             child_carries = rt_aov_scale(achild, ain, atmo_a * (tg.Ci - base.Ci));
 #endif
@@ -358,7 +379,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
          * sample's own (pixel, sample, depth, call), never the pool slot's */
         if (RT_TRACE_DEPTH(rs) + 1u >= RT_ROULETTE_DEPTH) {
             float surv = rsl_cmax(fabs(tw));
-#ifdef RT_TRACE_AOVS
+#ifdef RT_RAY_AOVS
             if (child_carries) surv = fmax(surv, rt_aov_largest(achild));
 #endif
             surv = clamp(surv, 0.05f, 1.0f);
@@ -368,12 +389,12 @@ __kernel void shade_SURFACE(uint begin, uint count,
                 continue;
             }
             tw /= surv;
-#ifdef RT_TRACE_AOVS
+#ifdef RT_RAY_AOVS
             for (int c = 0; c < RT_AOV_PAYLOAD; ++c) achild[c] /= surv;
 #endif
         }
 #endif
-#ifdef RT_TRACE_AOVS
+#ifdef RT_RAY_AOVS
         if (rsl_cmax(fabs(tw)) < 1e-6f && !child_carries) continue;
 #else
         if (rsl_cmax(fabs(tw)) < 1e-6f) continue;
@@ -394,8 +415,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
         next_direction[s] = td;
         next_weight[s] = rt_weight_of(tw);
         RayState ts = {alive, rs.depth + 1u, h.prim, width_at_hit};
-#ifdef RT_TRACE_AOVS
-        ts.depth = child_carries ? ts.depth | RT_CARRIES_AOVS : ts.depth & ~RT_CARRIES_AOVS;
+#ifdef RT_RAY_AOVS
+        ts.depth = (ts.depth & ~RT_AOV_FLAGS) | (child_carries ? RT_CARRIES_AOVS : 0u);
         if (child_carries) rt_aov_store(next_aovw + (size_t)s * RT_AOV_PAYLOAD, achild);
 #endif
         next_state[s] = ts;
@@ -410,12 +431,18 @@ __kernel void shade_SURFACE(uint begin, uint count,
     RSL_CW(wt) = RSL_CW(w) * (1.0f - RSL_CHANNEL_MEAN(Oi));
     wt = rt_sanitize_c(wt, numerics);
     int goes_on = rsl_cmax(wt) > 1e-6f;
-#ifdef RT_TRACE_AOVS
-    /* behind the surface, the weights brought here times what it lets through */
+#ifdef RT_RAY_AOVS
+    /* behind the surface, the weights brought here times what it lets through, or the
+     * AOV scales of the surfaces behind an AOV surface */
     float acont[RT_AOV_PAYLOAD];
-    const int cont_carries =
-        carries_in && rt_aov_scale(acont, ain, rsl_f2c(1.0f) - Oi);
-    goes_on = goes_on || cont_carries;
+    int cont_carries = 0, cont_composites = 0;
+    if (carries_in)
+        cont_carries = rt_aov_scale(acont, ain, rsl_f2c(1.0f) - Oi);
+#ifdef RT_SHADER_AOVS
+    else if (composites_in || aov_surface)
+        cont_composites = rt_aov_composite(acont, aov_scale, rsl_f2c(1.0f) - Oi);
+#endif
+    goes_on = goes_on || cont_carries || cont_composites;
 #endif
     if (goes_on && RT_TRANSPARENT_DEPTH(rs) >= RT_MAX_TRANSPARENT_DEPTH)
         atomic_inc(&numerics[RT_NUM_TRANSPARENT_DEPTH]);
@@ -430,9 +457,11 @@ __kernel void shade_SURFACE(uint begin, uint count,
         next_weight[s] = rt_weight_of(wt);
         /* (an occlusion() ray going through stays one) */
         RayState cs = {rs.alive, rs.depth + RT_ONE_TRANSPARENT, h.prim, width_at_hit};
-#ifdef RT_TRACE_AOVS
-        cs.depth = cont_carries ? cs.depth | RT_CARRIES_AOVS : cs.depth & ~RT_CARRIES_AOVS;
-        if (cont_carries) rt_aov_store(next_aovw + (size_t)s * RT_AOV_PAYLOAD, acont);
+#ifdef RT_RAY_AOVS
+        cs.depth = (cs.depth & ~RT_AOV_FLAGS) | (cont_carries ? RT_CARRIES_AOVS : 0u) |
+                   (cont_composites ? RT_COMPOSITES_AOVS : 0u);
+        if (cont_carries || cont_composites)
+            rt_aov_store(next_aovw + (size_t)s * RT_AOV_PAYLOAD, acont);
 #endif
         next_state[s] = cs;
         next_sample[s] = sample;

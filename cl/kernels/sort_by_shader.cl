@@ -15,9 +15,7 @@
 #include "ray_weight.clh"
 #include "quadric.h"
 #include "scene_types.h"
-#ifdef RT_TRACE_AOVS
-#include "trace_aovs.clh"
-#endif
+#include "ray_aovs.clh"
 
 #define RT_MAX_SHADER_KEYS 65 /* 64 shaders + the miss key */
 
@@ -38,7 +36,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
                             __global const RayState* state,
                             __global const rt_weight* weight,
                             __global SampleTotal* total,
-                            /* RT_TRACE_AOVS only: AOV weights, and the samples' AOVs */
+                            /* RT_RAY_AOVS only: AOV weights, and the samples' AOVs */
                             __global const float* ray_aovw,
                             __global float* aov_values,
                             __global uint* active_counter) {
@@ -74,7 +72,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
             if (prim == RT_NO_HIT) {
                 rt_atomic_add_float4(&total[ray_sample[r]].value,
                                      rt_total_of(rt_weight_color(weight[r])));
-#ifdef RT_TRACE_AOVS
+#ifdef RT_RAY_AOVS
                 if (state[r].depth & RT_CARRIES_AOVS) {
                     float a[RT_AOV_PAYLOAD];
                     rt_aov_load(a, ray_aovw + (size_t)r * RT_AOV_PAYLOAD);

@@ -124,7 +124,7 @@ std::vector<std::string> Features::names() const {
     if (visibilityRays) n.push_back("occlusion");
     if (aovs) n.push_back("aovs");
     if (shaderAovFloats > 0) n.push_back("shader_aovs");
-    if (traceAovFloats() > 0) n.push_back("trace_aovs");
+    if (rayAovFloats() > 0) n.push_back("ray_aovs");
     if (sobol) n.push_back("sobol_sampler");
     if (treelets) n.push_back("treelets");
     if (bvhWidth == 8) n.push_back("bvh8");
@@ -188,7 +188,7 @@ std::string buildOptions(const Features& f) {
     }
     if (f.aovs) o += " -DRT_HAS_AOVS";
     if (f.shaderAovFloats > 0) o += " -DRT_SHADER_AOVS=" + std::to_string(f.shaderAovFloats);
-    if (f.traceAovFloats() > 0) o += " -DRT_TRACE_AOVS";
+    if (f.rayAovFloats() > 0) o += " -DRT_RAY_AOVS -DRD_AOV_CHANNELS=" + f.aovChannels;
     if (f.depthOfField) o += " -DRT_HAS_DEPTH_OF_FIELD";
     if (f.signedFilter) o += " -DRT_SIGNED_FILTER";
     if (!f.colors.isRgb()) {

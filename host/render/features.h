@@ -84,11 +84,15 @@ struct Features {
     int traceSlots = 0;         // the most trace() rays a surface's evaluation spawns
     // Rays a shaded hit may spawn: its continuation, plus its traced rays.
     int spawnSlots() const { return trace ? 1 + traceSlots : 1; }
-    // Floats of a ray's AOV weights (trace_aovs.clh): shader AOVs that rays below trace()
-    // calls bring parts back to, one weight an AOV float and colour channel; 0 otherwise.
-    int traceAovFloats() const {
-        return trace && shaderAovFloats > 0 ? shaderAovFloats * colors.n : 0;
+    // Floats of a ray's AOV payload (ray_aovs.clh): shader AOVs that rays below trace()
+    // calls bring parts back to, or that surfaces behind transparent ones add to, one
+    // weight an AOV float and colour channel; 0 otherwise.
+    int rayAovFloats() const {
+        return (trace || transparency) && shaderAovFloats > 0 ? shaderAovFloats * colors.n
+                                                              : 0;
     }
+    std::string
+        aovChannels;  // each AOV float's channel (shaderAovChannels), when it has any
 };
 
 Features analyse(const Scene& scene, const ShadingSetup& shading);

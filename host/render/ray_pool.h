@@ -21,9 +21,9 @@ namespace rd {
 struct RayPool {
     RayPool(const ClContext& ctx, size_t capacity, size_t spawn, uint32_t shadowLights,
             size_t slots, bool aovs, bool motion, bool instances, size_t shaderKeys,
-            size_t weightFloats, size_t shaderAovFloats = 0, size_t traceAovFloats = 0)
+            size_t weightFloats, size_t shaderAovFloats = 0, size_t rayAovFloats = 0)
         : weightFloats(weightFloats),
-          traceAovFloats(traceAovFloats),
+          rayAovFloats(rayAovFloats),
           origin(ctx, capacity),
           direction(ctx, capacity),
           weight(ctx, capacity * weightFloats),
@@ -61,9 +61,9 @@ struct RayPool {
           aov(ctx, aovs ? slots : 0),
           aovValues(ctx, slots * shaderAovFloats),
           shAov(ctx, capacity * shadowLights * shaderAovFloats),
-          aovw(ctx, capacity * traceAovFloats),
-          nextAovw(ctx, capacity * spawn * traceAovFloats),
-          spillAovw(ctx, spillCapacity(capacity, spawn) * traceAovFloats),
+          aovw(ctx, capacity * rayAovFloats),
+          nextAovw(ctx, capacity * spawn * rayAovFloats),
+          spillAovw(ctx, spillCapacity(capacity, spawn) * rayAovFloats),
           slotRays(ctx, slots),
           slotAbort(ctx, slots),
           jobs(ctx, slots),
@@ -84,20 +84,20 @@ struct RayPool {
     // Device bytes per ray of capacity, for sizing the pool to a memory budget.
     static size_t bytesPerRay(size_t spawn, uint32_t shadowLights,
                               size_t weightFloats = 4, size_t shaderAovFloats = 0,
-                              size_t traceAovFloats = 0) {
+                              size_t rayAovFloats = 0) {
         const size_t weights = 1 + spawn + spillCapacity(1, spawn) + shadowLights;
         return 144 + 2 * 100 + spawn * 72 + spillCapacity(1, spawn) * 68 +
                size_t(shadowLights) * 64 + kSlotsPerRay * 56 +
                weights * weightFloats * 4 -
                weights * 16 +  // (the figures above count four floats a weight)
                (kSlotsPerRay + shadowLights) * shaderAovFloats * 4 +
-               (1 + spawn + spillCapacity(1, spawn)) * traceAovFloats * 4;
+               (1 + spawn + spillCapacity(1, spawn)) * rayAovFloats * 4;
     }
     // Rays of one round: `wanted`, or (0) enough to keep every compute unit busy (16k rays
     // each), within a memory budget of an eighth of the device's memory (64-512 MiB).
     static size_t capacityFor(size_t wanted, const DeviceInfo& device, size_t spawn,
                               uint32_t shadowLights, size_t weightFloats,
-                              size_t shaderAovFloats = 0, size_t traceAovFloats = 0) {
+                              size_t shaderAovFloats = 0, size_t rayAovFloats = 0) {
         if (wanted == 0)
             wanted = std::clamp<size_t>(size_t(device.computeUnits) << 14, size_t(1) << 14,
                                         size_t(1) << 20);
@@ -105,7 +105,7 @@ struct RayPool {
                                                        size_t(64) << 20, size_t(512) << 20);
         return std::clamp<size_t>(
             std::min(wanted, memoryBudget / bytesPerRay(spawn, shadowLights, weightFloats,
-                                                        shaderAovFloats, traceAovFloats)),
+                                                        shaderAovFloats, rayAovFloats)),
             64, std::max<size_t>(64, wanted));
     }
     // Floats of a ray's weight (cl/include/ray.h rt_weight): 2 under ColorSamples 1, 4 up
@@ -117,7 +117,7 @@ struct RayPool {
                                     : 16;
     }
     const size_t weightFloats;
-    const size_t traceAovFloats;  // a ray's AOV weights (trace_aovs.clh), 0 when none
+    const size_t rayAovFloats;  // a ray's AOV weights (ray_aovs.clh), 0 when none
     // Only a scene whose shaders trace can spawn more rays than it traced: the rest
     // (continuations through Opacity < 1 at most one a ray) never need the stack. Ray
     // trees outgrow the pool over rounds, not in one, so the stack is as deep as a pool
@@ -164,7 +164,7 @@ struct RayPool {
     // the shaders' AOVs (RT_SHADER_AOVS floats): a sample slot's, and the parts of its
     // first surface's that a shadow ray carries (the light's, added if it gets through)
     DeviceBuffer<float> aovValues, shAov;
-    // AOV weights (traceAovFloats a ray) of the pool's rays, the spawn slots, the spill
+    // AOV weights (rayAovFloats a ray) of the pool's rays, the spawn slots, the spill
     // stack
     DeviceBuffer<float> aovw, nextAovw, spillAovw;
     DeviceBuffer<uint32_t> slotRays, slotAbort;

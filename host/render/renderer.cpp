@@ -34,6 +34,7 @@
 #include "render_summary.h"
 #include "sample_ring.h"
 #include "scene_bvh.h"
+#include "shaders/shader_aovs.h"
 #include "shaders/shader_set.h"
 #include "stop.h"
 #include "texture_reshade.h"
@@ -109,6 +110,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     Features f = analyse(scene, shading);
     f.textures = shading.textures && !textures.empty();
     f.shaderAovFloats = shading.aovFloats;
+    f.aovChannels = shaderAovChannels(shading.aovs);
     f.aovs = m_settings.geometricAovs || f.shaderAovFloats > 0 ||
              std::find(aovNames.begin(), aovNames.end(), "z") != aovNames.end() ||
              std::find(aovNames.begin(), aovNames.end(), "N") != aovNames.end();
@@ -143,12 +145,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // at most a quarter of it so several pixels share a round.
     const size_t weightFloats = RayPool::weightFloatsOf(f.colors.n);
     const size_t aovFloats = size_t(f.shaderAovFloats);
-    const size_t traceAovFloats = size_t(f.traceAovFloats());
+    const size_t rayAovFloats = size_t(f.rayAovFloats());
     const size_t pool = RayPool::capacityFor(m_settings.poolCapacity, m_ctx.info(), spawn,
-                                             nl, weightFloats, aovFloats, traceAovFloats);
+                                             nl, weightFloats, aovFloats, rayAovFloats);
     st.poolCapacity = pool;
     st.poolBytesPerRay =
-        RayPool::bytesPerRay(spawn, nl, weightFloats, aovFloats, traceAovFloats);
+        RayPool::bytesPerRay(spawn, nl, weightFloats, aovFloats, rayAovFloats);
     SampleRing ring(RayPool::kSlotsPerRay * pool);
     const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
     // Sampling: the first pass needs no film, so it is planned on another thread while
@@ -216,7 +218,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // two is 60-70 ms on PoCL, most of it its preprocessor)
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
-               shaderCount + 1, weightFloats, aovFloats, traceAovFloats);
+               shaderCount + 1, weightFloats, aovFloats, rayAovFloats);
     if (shaderCount == 1) {  // the one shader's run: every ray in pool order
         std::vector<uint32_t> order(pool);
         for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
@@ -385,7 +387,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                          rp.shState, rp.shWeight, ds.quadrics, ds.csg,
                                          ds.triangles, ds.quadricMotion, ds.trianglesEnd,
                                          rp.sample, rp.sampleTime, nl, numerics, ds.attrs,
-                                         ds.materials, ds.materialChannels);
+                                         ds.materials, ds.materialChannels, rp.shAov);
         }
     };
     // The end of a round: add the shadow rays that reached their light and count the rays
@@ -487,9 +489,9 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                       take * rp.weightFloats);
                 rp.spillState.copyTo(rp.state, from, n, take);
                 rp.spillSample.copyTo(rp.sample, from, n, take);
-                if (rp.traceAovFloats > 0)
-                    rp.spillAovw.copyTo(rp.aovw, from * rp.traceAovFloats,
-                                        n * rp.traceAovFloats, take * rp.traceAovFloats);
+                if (rp.rayAovFloats > 0)
+                    rp.spillAovw.copyTo(rp.aovw, from * rp.rayAovFloats,
+                                        n * rp.rayAovFloats, take * rp.rayAovFloats);
                 spillTop = from;
                 n += cl_uint(take);
             }

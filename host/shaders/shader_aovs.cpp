@@ -101,6 +101,16 @@ int shaderAovFloats(const std::vector<ShaderAov>& aovs) {
     return n;
 }
 
+std::string shaderAovChannels(const std::vector<ShaderAov>& aovs) {
+    std::string out;
+    for (const ShaderAov& a : aovs)
+        for (int k = 0; k < a.floats; ++k)
+            out += (out.empty() ? "" : ",") + std::to_string(a.type == "color"   ? k
+                                                             : a.type == "float" ? -1
+                                                                                 : -2);
+    return out;
+}
+
 std::string shaderAovMacros(const rsl::EmittedShader& sh, const std::vector<ShaderAov>& aovs,
                             rib::Diagnostics& diag,
                             const rib::SourceLoc& loc) {
@@ -133,7 +143,7 @@ std::string shaderAovMacros(const rsl::EmittedShader& sh, const std::vector<Shad
                 light += "(dst)[" + d + "] = (le).outputs[" + s + "] - (ev).outputs[" + s +
                          "]; ";
             }
-            // A trace() call's part (trace_aovs.clh): a colour's channel k weighs channel
+            // A trace() call's part (ray_aovs.clh): a colour's channel k weighs channel
             // k of what the ray brings back, a float the channels' mean.
             const std::string q0 = std::to_string(p->outputOffset);
             const std::string part0 =

@@ -30,11 +30,15 @@ std::vector<ShaderAov> layoutShaderAovs(const std::vector<std::string>& names,
 // Floats a sample of `aovs` holds.
 int shaderAovFloats(const std::vector<ShaderAov>& aovs);
 
+// Each AOV float's colour channel, comma-separated (ray_aovs.clh rd_aov_channel): k for a
+// colour's channel k, -1 for a float, -2 for a coordinate of a point, vector or normal.
+std::string shaderAovChannels(const std::vector<ShaderAov>& aovs);
+
 // The macros shade_rsl.cl calls for the shader `sh` (its name in theirs):
 // RD_AOV_OUTPUTS_<name>(dst, ev, g) writes every AOV from its output variables (or the
 // globals g) after the base evaluation ev; RD_AOV_LIGHT_<name>(dst, le, ev) the parts of
 // its output variables one light's evaluation le adds; RD_AOV_TRACE_<name>(A, te, ev) the
-// AOV weights (cl/lib/trace_aovs.clh) of the ray of trace() call te's evaluation: what
+// AOV weights (cl/lib/ray_aovs.clh) of the ray of trace() call te's evaluation: what
 // its colour and float outputs take of the radiance it brings back. An output of another
 // type than the AOV's is reported (at `loc`) and left out.
 std::string shaderAovMacros(const rsl::EmittedShader& sh, const std::vector<ShaderAov>& aovs,

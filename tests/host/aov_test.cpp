@@ -155,6 +155,35 @@ TEST(ShaderAovs, ALightsPartRidesWhenCiTakesNothingFromIt) {
     EXPECT_NEAR(r.mean(3, 12, 8, 24, 24), 1.0, 1e-6);
 }
 
+// Through a transparent surface the AOVs are composited as Ci is: the white constant
+// square (no outputs) at Opacity 0.5 in front of the plane gives albedo = 0.5 Cs, mask
+// 0.5 and diff 0.5 cos 45 there (the plane's light part scaled too), while a point (P)
+// stays the first surface's. Before, the plane behind gave nothing (albedo 0); and in the
+// square's shadow diff was cos 45, the light's part undimmed by the square.
+TEST(ShaderAovs, CompositedThroughTransparentSurfaces) {
+    std::string rib = scene(shaderDir("aov_composite"), "");
+    rib.replace(rib.find("Surface \"constant\"\n"), 19,
+                "Surface \"constant\"\nOpacity [0.5 0.5 0.5]\n");
+    rd::RenderSettings settings;
+    settings.extraAovs = {"albedo", "mask", "diff", "P"};
+    Rendered r = renderRib(rib, settings);
+    const std::vector<rd::Channel> c = channels(r.film, {"albedo", "mask", "diff", "P"});
+    const double lit = std::sqrt(0.5);
+    EXPECT_NEAR(mean(c, "albedo.R", 29, 13, 35, 19), 0.1, 1e-6);
+    EXPECT_NEAR(mean(c, "albedo.B", 29, 13, 35, 19), 0.3, 1e-6);
+    EXPECT_NEAR(mean(c, "mask", 29, 13, 35, 19), 0.5, 1e-6);
+    EXPECT_NEAR(mean(c, "diff.G", 29, 13, 35, 19), 0.5 * lit, 1e-5);
+    EXPECT_NEAR(mean(c, "P.Z", 29, 13, 35, 19), -1.0, 1e-4);
+    EXPECT_NEAR(r.mean(0, 29, 13, 35, 19), 0.5 + 0.5 * 0.2 * lit, 1e-5);
+    // beside the square, the plane's own in full; in the square's shadow the light's part
+    // comes through dimmed as the light is (transparent shadows), as Ci = Cs diff there
+    EXPECT_NEAR(mean(c, "albedo.R", 12, 8, 24, 24), 0.2, 1e-6);
+    EXPECT_NEAR(mean(c, "diff.G", 45, 13, 51, 19), 0.5 * lit, 1e-5);
+    EXPECT_NEAR(r.mean(0, 45, 13, 51, 19), 0.2 * 0.5 * lit, 1e-5);
+    EXPECT_NEAR(mean(c, "P.Z", 12, 8, 24, 24), 0.0, 1e-4);
+    EXPECT_NE(r.stats.program.options.find("-DRT_RAY_AOVS"), std::string::npos);
+}
+
 // A colour AOV in the scene's own channels reaches the image as RGB through nRGB: two
 // channels shown as red and blue, Cs (0.2, 0.5) gives albedo (0.2, 0, 0.5) (kept as the
 // channels it would read (0.2, 0.5, 0.5)), and diff, lit by white, (cos 45, 0, cos 45).

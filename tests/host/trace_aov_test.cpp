@@ -1,5 +1,5 @@
 // trace_aov_test.cpp: the parts of shader AOVs that come back along traced rays
-// (cl/lib/trace_aovs.clh): `output color refl = Kr * trace(P, R)` gets what its ray
+// (cl/lib/ray_aovs.clh): `output color refl = Kr * trace(P, R)` gets what its ray
 // brings back, emission and light (shadowed) alike, whether or not Ci takes it too; and
 // a float output of occlusion() equals the same occlusion() in Ci.
 #include <gtest/gtest.h>
@@ -130,12 +130,12 @@ TEST(TraceAovs, AnOutputGetsWhatItsTracedRayBringsBack) {
         EXPECT_NEAR(mean(r, std::string("Ci.") + c, kRight),
                     mean(r, std::string("refl.") + c, kRight), 1e-5);
     }
-    EXPECT_NE(r.stats.program.options.find("-DRT_TRACE_AOVS"), std::string::npos)
+    EXPECT_NE(r.stats.program.options.find("-DRT_RAY_AOVS"), std::string::npos)
         << r.stats.program.options;
 
     // Without the AOV the kernels carry no AOV weights.
     const Rendered plain = renderRib(scene(shaderDir("trace_aov"), "aovrefl", false));
-    EXPECT_EQ(plain.stats.program.options.find("RT_TRACE_AOVS"), std::string::npos);
+    EXPECT_EQ(plain.stats.program.options.find("RT_RAY_AOVS"), std::string::npos);
     EXPECT_NEAR(mean(plain, "Ci.B", kRight), 0.5, 1e-5);
 }
 

@@ -118,7 +118,8 @@ Traced trace(size_t budget, size_t sceneMemory, bool int64Min, size_t rays) {
         DeviceBuffer<rt_float4> weight(ctx, std::vector<rt_float4>(n, {1, 1, 1, 1}),
                                          CL_MEM_READ_WRITE);
         ks.launch(n, n, nodes, blocks, org, dir, state, weight, noQ, noU, tris, noM, tris,
-                  noU, noT, cl_uint(1), noU, noU, noU, noU);  // (no attrs, materials)
+                  noU, noT, cl_uint(1), noU, noU, noU, noU,
+                  noU);  // (no attrs, materials)
         for (const rt_float4& w : weight.download()) out.occluded.push_back(w.x == 0);
     } else {
         TreeletTracer tracer(ctx, program.get(), prof, f.bvh, budget, sceneMemory, rays,
