@@ -107,16 +107,21 @@ double mean(const Rendered& r, const std::string& name, const Box& box) {
     return mean(r, name, box[0], box[1], box[2], box[3]);
 }
 
+// The scene rendered with the AOV `aov` (shaders in a scratch folder of their own).
+Rendered renderAov(const std::string& aov, const std::string& folder,
+                   const std::string& shader, bool planeShadows) {
+    rd::RenderSettings settings;
+    settings.extraAovs = {aov};
+    return renderRib(scene(shaderDir(folder), shader, planeShadows), settings);
+}
+
 }  // namespace
 
 // refl is Kr times what its ray brings back: the constant square's emission, the matte
 // square's light (a shadow ray below the traced one), nothing where the ray escapes; the
 // image holds the same in Ci.
 TEST(TraceAovs, AnOutputGetsWhatItsTracedRayBringsBack) {
-    rd::RenderSettings settings;
-    settings.extraAovs = {"refl"};
-    const Rendered r =
-        renderRib(scene(shaderDir("trace_aov"), "aovrefl", false), settings);
+    const Rendered r = renderAov("refl", "trace_aov", "aovrefl", false);
     EXPECT_NEAR(mean(r, "refl.R", kLeft), 0.5, 1e-5);
     EXPECT_NEAR(mean(r, "refl.G", kLeft), 0.25, 1e-5);
     EXPECT_NEAR(mean(r, "refl.B", kLeft), 0.125, 1e-5);
@@ -142,10 +147,7 @@ TEST(TraceAovs, AnOutputGetsWhatItsTracedRayBringsBack) {
 // When Ci takes nothing from trace(), the ray is traced for the AOV alone: refl as
 // before, the image Cs.
 TEST(TraceAovs, ARayIsTracedForTheAovAlone) {
-    rd::RenderSettings settings;
-    settings.extraAovs = {"refl"};
-    const Rendered r =
-        renderRib(scene(shaderDir("trace_aov_only"), "aovreflonly", false), settings);
+    const Rendered r = renderAov("refl", "trace_aov_only", "aovreflonly", false);
     EXPECT_NEAR(mean(r, "refl.R", kLeft), 0.5, 1e-5);
     EXPECT_NEAR(mean(r, "refl.B", kRight), 0.5, 1e-5);
     EXPECT_NEAR(mean(r, "Ci.R", kLeft), 0.2, 1e-6);
@@ -156,10 +158,7 @@ TEST(TraceAovs, ARayIsTracedForTheAovAlone) {
 // casts its shadow over the square, refl has none of it (the constant square's emission
 // stays).
 TEST(TraceAovs, TheLightBelowATracedRayIsShadowed) {
-    rd::RenderSettings settings;
-    settings.extraAovs = {"refl"};
-    const Rendered r =
-        renderRib(scene(shaderDir("trace_aov_shadow"), "aovreflonly", true), settings);
+    const Rendered r = renderAov("refl", "trace_aov_shadow", "aovreflonly", true);
     EXPECT_NEAR(mean(r, "refl.R", kLeft), 0.5, 1e-5);
     EXPECT_NEAR(mean(r, "refl.B", kRight), 0.0, 1e-6);
 }
@@ -170,10 +169,7 @@ TEST(TraceAovs, TheLightBelowATracedRayIsShadowed) {
 // zero, 1 less a part for each that escapes: they were refused as negative shader
 // results, and the image was 1.)
 TEST(TraceAovs, AnOcclusionOutputIsTheOcclusion) {
-    rd::RenderSettings settings;
-    settings.extraAovs = {"occ"};
-    const Rendered r =
-        renderRib(scene(shaderDir("trace_aov_occ"), "aovocc", false), settings);
+    const Rendered r = renderAov("occ", "trace_aov_occ", "aovocc", false);
     for (const Box& box : {kLeft, kRight, kMiddle})
         EXPECT_NEAR(mean(r, "occ", box), mean(r, "Ci.R", box), 1e-5);
     EXPECT_GT(mean(r, "occ", kLeft), 0.05);
