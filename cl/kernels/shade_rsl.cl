@@ -220,9 +220,18 @@ __kernel void shade_SURFACE(uint begin, uint count,
         float out[RT_SHADER_AOVS];
         for (int c = 0; c < RT_SHADER_AOVS; ++c) out[c] = 0.0f;
         RD_AOV_OUTPUTS_SURFACE(out, ev, g);
-        /* (rays below an earlier surface may add in the same launch) */
-        for (int c = 0; c < RT_SHADER_AOVS; ++c)
-            rt_atomic_add_float(&aov_values[sample * RT_SHADER_AOVS + c], aov_scale[c] * out[c]);
+        /* the first is the sample's only ray; behind it, rays below an earlier surface
+         * may add in the same launch */
+        __global float* dst = aov_values + sample * RT_SHADER_AOVS;
+        for (int c = 0; c < RT_SHADER_AOVS; ++c) {
+#ifdef RT_RAY_AOVS
+            if (composites_in) {
+                rt_atomic_add_float(&dst[c], aov_scale[c] * out[c]);
+                continue;
+            }
+#endif
+            dst[c] = out[c];
+        }
     }
 #endif
     rsl_color E = culled ? (rsl_color)(0.0f) : rsl_cw0(base.Ci);
