@@ -494,10 +494,32 @@ void Emitter::lightLoop(const Stmt& s) {
     line("}");
 }
 
+// A whole array assigned as a statement (`b = a;`, arrays of one element type and
+// length): element by element. Elsewhere in an expression it is an error (emit_expr.cpp).
+void Emitter::arrayAssign(const Expr& e) {
+    const TypeSpec& l = e.args[0]->type;
+    const TypeSpec& r = e.args[1]->type;
+    if (!r.isArray() || r.element().base != l.element().base ||
+        r.arraySize != l.arraySize || l.arraySize <= 0) {
+        error(e.loc, "an array takes a whole array only of its own type and length ('" +
+                         l.str() + "' from '" + r.str() + "')");
+        return;
+    }
+    const std::string k = "_k" + std::to_string(m_tmp++);
+    const std::string to = expr(*e.args[0]), from = expr(*e.args[1]);
+    line("for (int " + k + " = 0; " + k + " < " + std::to_string(l.arraySize) + "; ++" +
+         k + ") " + to + "[" + k + "] = " + from + "[" + k + "];");
+}
+
 void Emitter::stmt(const Stmt& s) {
     switch (s.kind) {
     case StmtKind::Empty: break;
     case StmtKind::Expr:
+        if (s.expr->kind == ExprKind::Assign && s.expr->text == "=" &&
+            s.expr->args[0]->type.isArray()) {
+            arrayAssign(*s.expr);
+            break;
+        }
         if (coefTarget(*s.expr)) hoistAssign(*s.expr);
         line(expr(*s.expr) + ";");
         if (coefTarget(*s.expr)) coefAssign(*s.expr);

@@ -206,7 +206,8 @@ std::string Emitter::expr(const Expr& e) {
         const Expr& l = *e.args[0];
         const Expr& r = *e.args[1];
         if (l.type.isArray()) {
-            error(e.loc, "assigning whole arrays is not supported by the code generator");
+            error(e.loc,
+                  "a whole array is assigned only as a statement of its own (b = a;)");
             return "0";
         }
         std::string lv = lvalue(l);

@@ -100,6 +100,7 @@ private:
     std::string blockRead(BaseType base, const std::string& offset) const;
     void stmt(const Stmt& s);
     void decl(const VarDecl& d);
+    void arrayAssign(const Expr& e);  // `a = b;` of whole arrays
     void lightLoop(const Stmt& s);
     void loopBody(const Stmt& body);  // a loop's body; its labels for break/continue N
     void loopEnd();

@@ -304,6 +304,36 @@ TEST(Codegen, BreakAndContinueWithALevel) {
     expectNear(out[0].Ci, {10, 10, 3}, 1e-6f, "break/continue N");
 }
 
+// A whole array assigned as a statement copies it (a colour array too); the copy does not
+// follow later changes of the source; another length is an error with its place. (Before,
+// every whole-array assignment was an error of the code generator.)
+TEST(Codegen, WholeArraysAreAssigned) {
+    REQUIRE_DEVICE();
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource(
+        "surface s(float k[3] = {1, 2, 3};) {\n"
+        "    float b[3];\n"
+        "    b = k;\n"
+        "    b[1] += 10;\n"
+        "    color c[2] = {color(1, 0, 0), color(0, 0, 4)}, d[2];\n"
+        "    d = c;\n"
+        "    c[1] = 0;\n"
+        "    Ci = color(b[0], b[1], b[2]) + d[1] + 100 * c[1]; Oi = 1;\n}\n",
+        "s.sl", &err))
+        << err;
+    ts::Scene sc;
+    auto out = sh.run(ts::grid(1), sc);
+    ASSERT_EQ(out.size(), 1u);
+    expectNear(out[0].Ci, {1, 12, 7}, 1e-6f, "whole arrays");
+    EXPECT_FALSE(sh.compileSource("surface s() {\n  float a[2], b[3];\n  b = a;\n}\n",
+                                  "s.sl", &err));
+    EXPECT_NE(err.find("s.sl:3:5: error: cannot assign a value of type 'float[2]' to "
+                       "'float[3]' 'b'"),
+              std::string::npos)
+        << err;
+}
+
 // ---- (c) closed forms with one distant light ------------------------------------------
 struct Closed {
     ts::Scene sc;
