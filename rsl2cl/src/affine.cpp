@@ -122,6 +122,28 @@ private:
         return 0;
     }
 
+    // gather() (gather.cpp): the branch on whether a pass's ray escaped
+    static bool isGatherBranch(const Expr& e) {
+        return e.kind == ExprKind::Binary && e.text == "==" &&
+               e.args[0]->kind == ExprKind::Call && e.args[0]->text == "__gather_visible";
+    }
+    // An assignment in a gather() branch: what it assigns depends on which rays escape,
+    // which Ci is affine in only through sums: a variable declared outside the loop may
+    // change by += and -= alone (the loop's own outputs are set by its code).
+    unsigned gatherAssign(const Expr& e) {
+        const Symbol* t = target(*e.args[0]);
+        const Expr& r = *e.args[1];
+        const bool own =
+            (r.kind == ExprKind::Call && r.text.rfind("__gather_", 0) == 0) ||
+            (r.kind == ExprKind::Ident && r.text.rfind("__g", 0) == 0);
+        if (t && !m_gatherLocals.count(t) && !own && e.text != "+=" && e.text != "-=")
+            fail(e, T_TRACE,
+                 "'" + t->name + "' (declared outside the gather loop) changed by '" +
+                     e.text + "' in it; only += and -= keep it a sum over the rays");
+        // (a pass's direction and origin are known before any ray is traced)
+        return r.kind == ExprKind::Ident && r.text.rfind("__g", 0) == 0 ? 0u : T_TRACE;
+    }
+
     void condition(const Expr& e, const char* what) {
         unsigned m = expr(e);
         if (m) fail(e, m, describe(m) + " used in the condition of " + what);
@@ -142,7 +164,7 @@ private:
         }
         for (size_t i = 0; i < a.size(); ++i)
             if (a[i]) fail(e, a[i], describe(a[i]) + " passed to " + n + "()");
-        if (n == "trace") return T_TRACE;
+        if (n == "trace" || n == "__gather_trace") return T_TRACE;
         if (n == "diffuse" || n == "specular" || n == "phong") return T_LIGHT;
         return 0;
     }
@@ -183,6 +205,7 @@ private:
             unsigned l = expr(*e.args[0]);
             unsigned r = expr(*e.args[1]);
             unsigned v = e.text == "=" ? r : binary(e, e.text.substr(0, 1), l, r);
+            if (m_gather > 0) v |= gatherAssign(e);
             taintSym(target(*e.args[0]), v, e.loc);
             return v;
         }
@@ -206,13 +229,23 @@ private:
         switch (s.kind) {
         case StmtKind::Expr: expr(*s.expr); break;
         case StmtKind::Decl:
-            for (const VarDecl& d : s.decls)
+            for (const VarDecl& d : s.decls) {
+                if (m_gather > 0) m_gatherLocals.insert(d.symbol);
                 if (d.init) taintSym(d.symbol, expr(*d.init), d.loc);
+            }
             break;
         case StmtKind::Block:
             for (const StmtPtr& c : s.stmts) stmt(*c);
             break;
         case StmtKind::If:
+            if (isGatherBranch(*s.expr)) {  // gather(): which of its rays escape
+                expr(*s.expr);
+                ++m_gather;
+                stmt(*s.body);
+                if (s.elseBody) stmt(*s.elseBody);
+                --m_gather;
+                break;
+            }
             condition(*s.expr, "if");
             stmt(*s.body);
             if (s.elseBody) stmt(*s.elseBody);
@@ -260,6 +293,8 @@ private:
     std::set<std::string> m_reported;
     std::vector<std::pair<SourceLoc, std::string>> m_errors;
     const FunctionDecl* m_fn = nullptr;
+    int m_gather = 0;                        // gather() branches around
+    std::set<const Symbol*> m_gatherLocals;  // variables declared inside them
     SourceLoc m_oiLoc;
     bool m_changed = false, m_report = false, m_failed = false;
 };

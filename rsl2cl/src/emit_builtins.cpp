@@ -132,6 +132,68 @@ std::string Emitter::hemisphereCall(const Expr& e) {
     return "rsl_occlusion" + args;
 }
 
+// The gather() loop's calls (gather.cpp): __gather_begin reserves two trace sites for
+// each of m directions, m the literal samples it is given up to what an evaluation
+// records with the other calls' rays (at least one); every pass k of the loop then takes
+// direction k mod m, its visibility ray at site base + 2 (k mod m) and its traced ray
+// after it, so that the shader's own sums over `samples` passes stay as written.
+namespace {
+int countCalls(const Expr& e, const std::string& name) {
+    int n = e.kind == ExprKind::Call && e.text == name;
+    for (const ExprPtr& a : e.args) n += countCalls(*a, name);
+    return n;
+}
+int countCalls(const Stmt& s, const std::string& name) {
+    int n = 0;
+    if (s.expr) n += countCalls(*s.expr, name);
+    if (s.step) n += countCalls(*s.step, name);
+    for (const VarDecl& d : s.decls)
+        if (d.init) n += countCalls(*d.init, name);
+    for (const StmtPtr& c : s.stmts) n += countCalls(*c, name);
+    for (const StmtPtr* c : {&s.body, &s.elseBody, &s.init})
+        if (*c) n += countCalls(**c, name);
+    return n;
+}
+}  // namespace
+
+std::string Emitter::gatherCall(const Expr& e) {
+    const std::string& n = e.text;
+    auto lit = [&](size_t i) { return int(std::lround(e.args[i]->number)); };
+    auto A = [&](size_t i, BaseType t) { return exprAs(*e.args[i], t); };
+    if (n == "__gather_begin") {
+        // (the gathers after this one keep a direction each)
+        const int id = lit(1);
+        if (m_gathersLeft < 0) m_gathersLeft = countCalls(*m_sh.body, "__gather_begin");
+        const int after = std::max(0, --m_gathersLeft);
+        const int m = std::clamp(
+            lit(0), 1,
+            std::max(1, (EmittedShader::kMaxTrace - traceRaysSoFar()) / 2 - after));
+        m_gather[id] = {m, m_randomSite};
+        m_randomSite += 2;
+        traceSite(e, 2 * m);
+        m_out.usesVisibility = true;
+        m_out.usesRandom = true;
+        return "(float)rsl_gather_begin(ev, " + std::to_string(m) + ")";
+    }
+    const auto [m, dirSite] = m_gather[lit(5)];
+    const std::string ms = std::to_string(m);
+    if (n == "__gather_dir")
+        return "rsl_gather_dir(g, " + A(1, BaseType::Vector) + ", " +
+               A(2, BaseType::Float) + ", (int)(" + A(3, BaseType::Float) + ") % " + ms +
+               ", " + ms + ", " + std::to_string(dirSite) + ", " +
+               std::to_string(lit(6)) + ")";
+    // (p, d, maxdist, pass, base, id): the pass's visibility ray, or its traced ray
+    const bool visible = n == "__gather_visible";
+    const std::string k = "(int)(" + A(4, BaseType::Float) + ") + 2 * ((int)(" +
+                          A(3, BaseType::Float) + ") % " + ms + ")" +
+                          (visible ? "" : " + 1");
+    const std::string site = "rsl_trace_site(ev, " + k + ", " + A(0, BaseType::Point) +
+                             ", " + A(1, BaseType::Vector) + ", " +
+                             (visible ? "1.0f" : "0.0f") + ", " + A(2, BaseType::Float) +
+                             ")";
+    return visible ? site : "rsl_f2c(" + site + ")";
+}
+
 std::string Emitter::textureCall(const Expr& e, bool vret) {
     const std::string& n = e.text;
     m_out.usesTexture = true;
@@ -439,6 +501,7 @@ std::string Emitter::builtin(const Expr& e) {
         return "rsl_transmission(ev, " + A(0) + ", " + A(1) + ")";
     }
     if (n == "occlusion" || n == "indirectdiffuse") return hemisphereCall(e);
+    if (n.rfind("__gather_", 0) == 0) return gatherCall(e);
     if (n == "texture" || n == "environment" || n == "shadow" || n == "bump")
         return textureCall(e, vret);
     if (n == "textureinfo") return textureInfo(e);

@@ -58,6 +58,7 @@ public:
     std::string message(const Expr& e);  // lightsource(), attribute(), option(), ...
     std::string textureCall(const Expr& e, bool vret);  // texture, environment, shadow, bump
     std::string hemisphereCall(const Expr& e);          // occlusion, indirectdiffuse
+    std::string gatherCall(const Expr& e);  // the gather() loop's (gather.cpp)
     void traceSite(const Expr& e,
                    int rays = 1);  // trace, occlusion, indirectdiffuse, transmission
     std::string textureInfo(const Expr& e);
@@ -139,6 +140,9 @@ public:
     std::vector<int> m_loops;  // ids of the enclosing loops, innermost last
     // Calls that ask for rays, met once per evaluation, and how many rays each asks for
     std::map<const Expr*, int> m_traceSites;
+    std::map<int, std::pair<int, int>>
+        m_gather;            // gather() id -> (directions, random site)
+    int m_gathersLeft = -1;  // gather() loops not emitted yet (-1: not counted)
     int traceRaysSoFar() const;
     bool m_traceRepeats = false;         // a trace() call that may run more than once
     std::set<int> m_breakTargets, m_continueTargets;  // loops a break/continue N names

@@ -3,6 +3,8 @@
 // ^ (cross), . (dot), unary - !, postfix [] and calls.
 #include "parser.h"
 
+#include "gather.h"
+
 namespace rsl {
 namespace {
 
@@ -76,9 +78,10 @@ private:
     }
     static bool isKeyword(const std::string& s) {
         static const char* const kw[] = {
-            "if", "else", "while", "for", "break", "continue", "return", "illuminance",
-            "illuminate", "solar", "uniform", "varying", "output", "extern", "surface",
-            "light", "displacement", "volume", "imager"};
+            "if",       "else",    "while",        "for",    "break",
+            "continue", "return",  "illuminance",  "gather", "illuminate",
+            "solar",    "uniform", "varying",      "output", "extern",
+            "surface",  "light",   "displacement", "volume", "imager"};
         for (const char* k : kw)
             if (s == k) return true;
         return isTypeName(s);
@@ -295,6 +298,23 @@ private:
                 if (!cur().is(";")) s->expr = expression();
                 expect(";");
                 return s;
+            }
+            if (w == "gather") {
+                next();
+                expect("(");
+                std::vector<ExprPtr> args;
+                if (!cur().is(")")) {
+                    args.push_back(assignment());
+                    while (accept(",")) args.push_back(assignment());
+                }
+                expect(")");
+                StmtPtr hit = statement(), miss;
+                if (cur().isIdent("else")) {
+                    next();
+                    miss = statement();
+                }
+                return desugarGather(loc, std::move(args), std::move(hit),
+                                     std::move(miss), m_gathers++, m_diag);
             }
             if (w == "illuminance" || w == "illuminate" || w == "solar") {
                 StmtKind k = w == "illuminance"  ? StmtKind::Illuminance
@@ -553,6 +573,7 @@ private:
     Diagnostics& m_diag;
     size_t m_pos = 0;
     int m_depth = 0;
+    int m_gathers = 0;  // gather() loops so far (their variables' names)
 };
 
 }  // namespace

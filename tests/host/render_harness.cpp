@@ -95,4 +95,16 @@ std::string renderRibToFiles(const std::string& rib) {
     return messages.str();
 }
 
+std::string patchUnder(const std::string& dir, int spp, const std::string& surface,
+                       const std::string& above) {
+    return "Option \"searchpath\" \"shader\" [\"" + dir +
+           ":&\"]\nFormat 16 16 1\nPixelSamples " + std::to_string(spp) + " " +
+           std::to_string(spp) +
+           "\nProjection \"orthographic\"\nScreenWindow -0.05 0.05 -0.05 "
+           "0.05\nWorldBegin\n"
+           "AttributeBegin\nSurface \"constant\"\nColor [1 0.5 0.25]\n" +
+           above + "AttributeEnd\nSurface " + surface +
+           "\nPolygon \"P\" [-1 -1 5  1 -1 5  1 1 5  -1 1 5]\nWorldEnd\n";
+}
+
 }  // namespace rd::test

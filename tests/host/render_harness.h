@@ -40,6 +40,12 @@ Scene sceneOfWorld(const std::string& world);
 // with its neighbours; tests/host/pixel_filter_test.cpp renders it).
 Rendered renderRib(const std::string& rib, const RenderSettings& settings = {});
 
+// A patch at z = 5 seen head on (orthographic, 16 x 16 pixels over 0.1 units, spp x spp
+// samples) with the surface call `surface` (a shader in `dir`), under `above`: geometry
+// in an attribute block with a constant surface of colour (1, 0.5, 0.25).
+std::string patchUnder(const std::string& dir, int spp, const std::string& surface,
+                       const std::string& above);
+
 // Renders the first world block of a RIB as the command does and writes its files (its
 // Display's name, else the scene's, and its secondary displays); fails the calling test
 // on an error. Returns the diagnostics' text (warnings).

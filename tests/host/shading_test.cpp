@@ -124,23 +124,6 @@ TEST(Shading, SampledTraceWalksTheHitMasks) {
     EXPECT_EQ(differ, 0);
 }
 
-namespace {
-// A patch at z = 5 seen head on (orthographic, 16 x 16 pixels over 0.1 units, spp x spp
-// samples) with the surface call `surface` (a shader in `dir`), under `above`: geometry
-// in an attribute block with a constant surface of colour (1, 0.5, 0.25).
-std::string patchUnder(const std::string& dir, int spp, const std::string& surface,
-                       const std::string& above) {
-    return "Option \"searchpath\" \"shader\" [\"" + dir +
-           ":&\"]\nFormat 16 16 1\nPixelSamples " + std::to_string(spp) + " " +
-           std::to_string(spp) +
-           "\nProjection \"orthographic\"\nScreenWindow -0.05 0.05 -0.05 "
-           "0.05\nWorldBegin\n"
-           "AttributeBegin\nSurface \"constant\"\nColor [1 0.5 0.25]\n" +
-           above + "AttributeEnd\nSurface " + surface +
-           "\nPolygon \"P\" [-1 -1 5  1 -1 5  1 1 5  -1 1 5]\nWorldEnd\n";
-}
-}  // namespace
-
 // occlusion() and indirectdiffuse() (session 30): one cosine-distributed ray a shading
 // sample about the normal, 64 samples a pixel. A small patch at z = 5, its hemisphere
 // toward +z (away from the camera): under half of a sky sphere, occlusion is 1/2 by
@@ -160,7 +143,7 @@ TEST(Shading, OcclusionAndIndirectDiffuseAreTheirHemisphereFractions) {
            "  else Ci = 1 - occlusion(P, Nz, 16);\n"
            "  Oi = 1;\n}\n";
     auto render = [&](const std::string& hemi, const std::string& above) {
-        return renderRib(patchUnder(dir, 8, "\"hemi\" " + hemi, above));
+        return renderRib(rd::test::patchUnder(dir, 8, "\"hemi\" " + hemi, above));
     };
     const std::string halfSky = "Sphere 100 -100 100 180\n";
     const std::string disk = "Translate 0 0 7\nDisk 0 1 360\n";
@@ -197,8 +180,8 @@ TEST(Shading, OcclusionSamplesAreRaysOfOneShadingSample) {
             << "surface occl" << n << "() {\n  Ci = 1 - occlusion(P, normal(0, 0, 1), "
             << n << ");\n  Oi = 1;\n}\n";
     auto render = [&](int n) {
-        return renderRib(patchUnder(dir, 1, "\"occl" + std::to_string(n) + "\"",
-                                    "Translate 0 0 7\nDisk 0 1 360\n"));
+        return renderRib(rd::test::patchUnder(dir, 1, "\"occl" + std::to_string(n) + "\"",
+                                              "Translate 0 0 7\nDisk 0 1 360\n"));
     };
     auto spread = [](const Rendered& img, double mean) {
         double q = 0;

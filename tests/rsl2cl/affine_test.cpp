@@ -32,6 +32,31 @@ TEST(Affine, ProductOfTwoTraces) {
               "results in '((Kr * c) * trace(P, -R))'\n");
 }
 
+// gather() (gather.cpp): Ci stays affine in what its rays bring back only while a
+// variable declared outside the loop changes in it by += and -=; an output gather()
+// cannot give is refused; a sum is accepted.
+TEST(Affine, GatherLoopsAreSums) {
+    auto diags = [](const std::string& body) {
+        return codegenDiags(
+            "surface s()\n{\n    color c = 0, hitc = 0;\n" + body + "    Ci = c;\n}\n",
+            "s.sl");
+    };
+    EXPECT_EQ(
+        diags("    gather(\"\", P, N, 0.5, 4, \"surface:Ci\", hitc) { c = hitc; }\n"),
+        "s.sl:4:54: error: Ci is not affine in trace(): 'c' (declared outside the gather "
+        "loop) changed by '=' in it; only += and -= keep it a sum over the rays in "
+        "'c = hitc'\n");
+    EXPECT_EQ(diags("    float l = 0;\n    gather(\"\", P, N, 0.5, 4, \"ray:length\", l) "
+                    "{ c += 1; }\n"),
+              "front end: s.sl:5:30: error: gather(): \"ray:length\" is not supported "
+              "(outputs: "
+              "\"surface:Ci\", \"ray:direction\", \"ray:origin\"; inputs: \"maxdist\", "
+              "\"distribution\")\n");
+    EXPECT_EQ(
+        diags("    gather(\"\", P, N, 0.5, 4, \"surface:Ci\", hitc) { c += hitc; }\n"),
+        "");
+}
+
 TEST(Affine, TraceInCondition) {
     EXPECT_EQ(codegenDiags("surface a2()\n{\n    color c = trace(P, N);\n"
                            "    if (c == color 1)\n        Ci = 1;\n}\n",

@@ -1,0 +1,88 @@
+// gather_test.cpp: the gather() loop (rsl2cl gather.cpp): its passes' rays, the hit
+// branch with what a ray met ("surface:Ci"), the else branch when it escaped, against the
+// same analytic hemisphere fractions as occlusion() (shading_test.cpp). The loops the
+// affine model cannot take are refused: tests/rsl2cl/affine_test.cpp.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "render_harness.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+// `hits` counts the passes whose ray met something within maxd (0: no limit): 1 - hits /
+// 16 is the fraction that escaped. `gathered` adds what the rays meet, or blue (0, 0,
+// 0.5) for those that escape, over 16 passes.
+const char* kShaders[][2] = {{"gao", R"(
+surface gao(float maxd = 0;) {
+    float hits = 0;
+    gather("illuminance", P, normal(0, 0, 1), PI / 2, 16, "maxdist", maxd) {
+        hits += 1;
+    }
+    Ci = 1 - hits / 16;
+    Oi = 1;
+}
+)"},
+                             {"gathered", R"(
+surface gathered() {
+    color hitc = 0, sum = 0;
+    vector dir = 0;
+    gather("illuminance", P, normal(0, 0, 1), PI / 2, 16, "surface:Ci", hitc,
+           "ray:direction", dir) {
+        sum += hitc;
+    } else {
+        sum += color(0, 0, 0.5) * (zcomp(dir) > 0 ? 1 : 0);
+    }
+    Ci = sum / 16;
+    Oi = 1;
+}
+)"}};
+
+std::string shaderDir(const std::string& name) {
+    std::string dir = rd::test::scratchDir(name);
+    std::filesystem::create_directories(dir);
+    for (const auto& s : kShaders) std::ofstream(dir + "/" + s[0] + ".sl") << s[1];
+    return dir;
+}
+
+const std::string kDisk =
+    "Translate 0 0 7\nDisk 0 1 360\n";  // covers 0.2 of the hemisphere
+
+}  // namespace
+
+// A patch under a disk that covers 0.2 of its cosine-weighted hemisphere (see
+// Shading.OcclusionAndIndirectDiffuseAreTheirHemisphereFractions): 0.8 of the passes
+// escape, as occlusion() finds; under half a sky sphere 0.5; none are stopped with the
+// disk beyond "maxdist". Eight by eight samples a pixel, 16 passes each (four traced
+// directions, cycled); image means.
+TEST(Gather, PassesAreTheHemisphereFractions) {
+    const std::string dir = shaderDir("gather_ao");
+    auto render = [&](const std::string& call, const std::string& above) {
+        return renderRib(rd::test::patchUnder(dir, 8, call, above));
+    };
+    Rendered under = render("\"gao\"", kDisk),
+             half = render("\"gao\"", "Sphere 100 -100 100 180\n"),
+             reach = render("\"gao\" \"maxd\" 1.5", kDisk);
+    EXPECT_NEAR(under.mean(0, 0, 0, 16, 16), 0.8, 0.02);
+    EXPECT_NEAR(half.mean(0, 0, 0, 16, 16), 0.5, 0.02);
+    EXPECT_NEAR(reach.mean(0, 0, 0, 16, 16), 1.0, 1e-6);
+    EXPECT_TRUE(under.stats.features.visibilityRays);
+    EXPECT_TRUE(under.stats.features.sampledTrace);
+    std::printf("NUMERICS case=gather_disk tolerance=0.02 measured=%.4f\n",
+                under.mean(0, 0, 0, 16, 16) - 0.8);
+}
+
+// What the rays meet: the disk's constant colour (1, 0.5, 0.25) over 0.2 of the passes,
+// the else branch's blue (0, 0, 0.5) over the 0.8 that escape (their direction, given by
+// "ray:direction", points up): Ci = (0.2, 0.1, 0.05 + 0.4).
+TEST(Gather, TheHitBranchGetsWhatTheRayMetTheElseBranchTheRest) {
+    Rendered r =
+        renderRib(rd::test::patchUnder(shaderDir("gather_ci"), 8, "\"gathered\"", kDisk));
+    EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), 0.2, 0.02);
+    EXPECT_NEAR(r.mean(1, 0, 0, 16, 16), 0.1, 0.01);
+    EXPECT_NEAR(r.mean(2, 0, 0, 16, 16), 0.45, 0.02);
+}
