@@ -132,11 +132,6 @@ std::string Emitter::hemisphereCall(const Expr& e) {
     return "rsl_occlusion" + args;
 }
 
-// The gather() loop's calls (gather.cpp): __gather_begin reserves two trace sites for
-// each of m directions, m the literal samples it is given up to what an evaluation
-// records with the other calls' rays (at least one); every pass k of the loop then takes
-// direction k mod m, its visibility ray at site base + 2 (k mod m) and its traced ray
-// after it, so that the shader's own sums over `samples` passes stay as written.
 namespace {
 int countCalls(const Expr& e, const std::string& name) {
     int n = e.kind == ExprKind::Call && e.text == name;
@@ -156,6 +151,13 @@ int countCalls(const Stmt& s, const std::string& name) {
 }
 }  // namespace
 
+// The gather() loop's calls (gather.cpp): __gather_begin reserves two trace sites for
+// each of at most M directions, M what it is given (a literal samples, else 64) up to
+// what an evaluation records with the other calls' rays, keeping one direction for each
+// gather after it (at least one); a shading sample traces m = min(samples, M) of them,
+// and every pass k of the loop takes direction k mod m, its visibility ray at site
+// base + 2 (k mod m) and its traced ray after it, so that the shader's own sums over
+// `samples` passes stay as written.
 std::string Emitter::gatherCall(const Expr& e) {
     const std::string& n = e.text;
     auto lit = [&](size_t i) { return int(std::lround(e.args[i]->number)); };
@@ -175,14 +177,18 @@ std::string Emitter::gatherCall(const Expr& e) {
         m_out.usesRandom = true;
         return "(float)rsl_gather_begin(ev, " + std::to_string(m) + ")";
     }
-    const auto [m, dirSite] = m_gather[lit(5)];
-    const std::string ms = std::to_string(m);
+    // (the passes' directions: samples, up to the sites reserved)
+    const auto [most, dirSite] = m_gather[lit(5)];
+    const std::string ms = "clamp((int)(" +
+                           A(n == "__gather_dir" ? 7 : 6, BaseType::Float) + "), 1, " +
+                           std::to_string(most) + ")";
     if (n == "__gather_dir")
         return "rsl_gather_dir(g, " + A(1, BaseType::Vector) + ", " +
                A(2, BaseType::Float) + ", (int)(" + A(3, BaseType::Float) + ") % " + ms +
                ", " + ms + ", " + std::to_string(dirSite) + ", " +
                std::to_string(lit(6)) + ")";
-    // (p, d, maxdist, pass, base, id): the pass's visibility ray, or its traced ray
+    // (p, d, maxdist, pass, base, id, samples): the pass's visibility ray, or its traced
+    // ray
     const bool visible = n == "__gather_visible";
     const std::string k = "(int)(" + A(4, BaseType::Float) + ") + 2 * ((int)(" +
                           A(3, BaseType::Float) + ") % " + ms + ")" +

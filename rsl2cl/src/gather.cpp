@@ -87,11 +87,12 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
         diag.warning(args[0]->loc,
                      "gather(): category \"" + args[0]->text +
                          "\" is taken as \"illuminance\" (rays into the scene)");
-    // the traced directions a shading sample: a literal count, else one
+    // the traced directions a shading sample: as many as samples (its literal, else the
+    // most), up to what the emitter finds room for
     const int wanted =
         args[4]->kind == ExprKind::Number
             ? int(std::lround(std::fmax(1.0, std::fmin(args[4]->number, 64.0))))
-            : 1;
+            : 64;
     ExprPtr maxdist = number(loc, 0.0);
     int cosine = 1;
     std::vector<std::pair<ExprPtr, ExprPtr>> outputs;  // (variable, value)
@@ -123,6 +124,7 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
                                    a.push_back(v("i"));
                                    a.push_back(v("b"));
                                    a.push_back(number(loc, id));
+                                   a.push_back(v("n"));
                                    return a;
                                }())});
         else if (k == "ray:direction" || k == "ray:origin")
@@ -165,6 +167,7 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
         a.push_back(v("b"));
         a.push_back(number(loc, id));
         a.push_back(number(loc, cosine));
+        a.push_back(v("n"));
         body->stmts.push_back(decl(loc, BaseType::Vector, pre + "d",
                                    call(loc, "__gather_dir", std::move(a))));
     }
@@ -177,6 +180,7 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
         a.push_back(v("i"));
         a.push_back(v("b"));
         a.push_back(number(loc, id));
+        a.push_back(v("n"));
         branch->expr = binary(loc, "==", call(loc, "__gather_visible", std::move(a)),
                               number(loc, 0));
     }

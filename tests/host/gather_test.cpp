@@ -16,7 +16,8 @@ namespace {
 
 // `hits` counts the passes whose ray met something within maxd (0: no limit): 1 - hits /
 // 16 is the fraction that escaped. `gathered` adds what the rays meet, or blue (0, 0,
-// 0.5) for those that escape, over 16 passes.
+// 0.5) for those that escape, over `samples` passes (a parameter: the directions a
+// shading sample traces are chosen when it runs).
 const char* kShaders[][2] = {{"gao", R"(
 surface gao(float maxd = 0;) {
     float hits = 0;
@@ -28,16 +29,16 @@ surface gao(float maxd = 0;) {
 }
 )"},
                              {"gathered", R"(
-surface gathered() {
+surface gathered(float samples = 16;) {
     color hitc = 0, sum = 0;
     vector dir = 0;
-    gather("illuminance", P, normal(0, 0, 1), PI / 2, 16, "surface:Ci", hitc,
+    gather("illuminance", P, normal(0, 0, 1), PI / 2, samples, "surface:Ci", hitc,
            "ray:direction", dir) {
         sum += hitc;
     } else {
         sum += color(0, 0, 0.5) * (zcomp(dir) > 0 ? 1 : 0);
     }
-    Ci = sum / 16;
+    Ci = sum / samples;
     Oi = 1;
 }
 )"}};
@@ -78,11 +79,14 @@ TEST(Gather, PassesAreTheHemisphereFractions) {
 
 // What the rays meet: the disk's constant colour (1, 0.5, 0.25) over 0.2 of the passes,
 // the else branch's blue (0, 0, 0.5) over the 0.8 that escape (their direction, given by
-// "ray:direction", points up): Ci = (0.2, 0.1, 0.05 + 0.4).
+// "ray:direction", points up): Ci = (0.2, 0.1, 0.05 + 0.4), with 16 passes over the four
+// directions a shading sample traces, and with 3 (three directions).
 TEST(Gather, TheHitBranchGetsWhatTheRayMetTheElseBranchTheRest) {
-    Rendered r =
-        renderRib(rd::test::patchUnder(shaderDir("gather_ci"), 8, "\"gathered\"", kDisk));
-    EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), 0.2, 0.02);
-    EXPECT_NEAR(r.mean(1, 0, 0, 16, 16), 0.1, 0.01);
-    EXPECT_NEAR(r.mean(2, 0, 0, 16, 16), 0.45, 0.02);
+    const std::string dir = shaderDir("gather_ci");
+    for (const char* call : {"\"gathered\"", "\"gathered\" \"samples\" 3"}) {
+        Rendered r = renderRib(rd::test::patchUnder(dir, 8, call, kDisk));
+        EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), 0.2, 0.02) << call;
+        EXPECT_NEAR(r.mean(1, 0, 0, 16, 16), 0.1, 0.01) << call;
+        EXPECT_NEAR(r.mean(2, 0, 0, 16, 16), 0.45, 0.02) << call;
+    }
 }
