@@ -133,6 +133,7 @@ private:
     unsigned gatherAssign(const Expr& e) {
         const Symbol* t = target(*e.args[0]);
         const Expr& r = *e.args[1];
+        if (t && t->name.rfind("__g", 0) == 0) return 0;  // (an inner gather's own)
         const bool own =
             (r.kind == ExprKind::Call && r.text.rfind("__gather_", 0) == 0) ||
             (r.kind == ExprKind::Ident && r.text.rfind("__g", 0) == 0);
