@@ -145,6 +145,11 @@ public:
     // A name for the current transform until the enclosing attribute block ends.
     virtual void scopedCoordinateSystem(L, S) {}
     virtual void coordSysTransform(L, S) {}
+    // RiTransformPoints: moves n points (x, y, z each) from the space `from` to `to` as
+    // the state stands; false when the target keeps no state (a RIB writer) or cannot.
+    virtual bool transformPoints(S /*from*/, S /*to*/, float* /*xyz*/, int /*n*/) {
+        return false;
+    }
 
     // Blocks
     virtual void motionBegin(L, Floats /*times*/) {}

@@ -213,6 +213,8 @@ RtVoid RiDeformationV(RtToken name, RtInt n, RtToken tokens[], RtPointer values[
 RtVoid RiCoordinateSystem(RtToken space);
 RtVoid RiScopedCoordinateSystem(RtToken space);
 RtVoid RiCoordSysTransform(RtToken space);
+RtPoint* RiTransformPoints(RtToken fromspace, RtToken tospace, RtInt npoints,
+                           RtPoint* points);
 RtVoid RiTransformBegin(void);
 RtVoid RiTransformEnd(void);
 

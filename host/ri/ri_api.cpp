@@ -207,6 +207,18 @@ RI_STRING(IfBegin)
 RI_STRING(ElseIf)
 #undef RI_STRING
 
+// Points from one coordinate system to another in the current state (RI 3.2 section
+// 4.3.4): the points themselves, moved, or RI_NULL when a space is unknown or the calls
+// are written to a RIB file (which keeps no state).
+RtPoint* RiTransformPoints(RtToken fromspace, RtToken tospace, RtInt npoints,
+                           RtPoint* points) {
+    Context* c = Context::current("RiTransformPoints");
+    if (!c || !fromspace || !tospace || npoints < 0 || (npoints > 0 && !points))
+        return nullptr;
+    if (!c->transformPoints(fromspace, tospace, &points[0][0], npoints)) return nullptr;
+    return points;
+}
+
 // Requests of n numbers.
 #define RI_NUMBERS(Fn, ...) \
     if (Context* c = Context::current("Ri" #Fn)) c->send(#Fn, {__VA_ARGS__})

@@ -56,6 +56,11 @@ public:
     // RiArchiveRecord: a line of the RIB file written (comments ignored by a render).
     void record(const std::string& type, const std::string& text);
     rib::RequestFeed& feed() { return *m_feed; }
+    // RiTransformPoints through the target (false: it keeps no state, or cannot).
+    bool transformPoints(const std::string& from, const std::string& to, float* xyz,
+                         int n) {
+        return m_target->transformPoints(from, to, xyz, n);
+    }
     uintptr_t nextLight() { return ++m_lights; }
     uintptr_t nextObject() { return ++m_objects; }
 

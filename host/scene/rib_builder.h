@@ -132,6 +132,7 @@ public:
     void coordinateSystem(L, S name) override;
     void scopedCoordinateSystem(L, S name) override;
     void coordSysTransform(L, S name) override;
+    bool transformPoints(S from, S to, float* xyz, int n) override;
 
     void shutter(L, float open, float close) override;
     void motionBegin(L, Floats times) override;

@@ -252,4 +252,62 @@ void RibBuilder::scale(L, float x, float y, float z) {
     applyTransform(glm::scale(glm::mat4(1.0f), {x, y, z}), false);
 }
 
+// RiTransformPoints, inside a world block: "object", "current" and "shader" (the current
+// transform), "world", "camera", "screen", "NDC", "raster" (RI 3.2 section 4.1: screen is
+// the projection of camera space, its z the camera depth, so a point can leave these
+// spaces as well as enter them) and the names CoordinateSystem and
+// ScopedCoordinateSystem gave. False for any other space, or outside a world.
+bool RibBuilder::transformPoints(S from, S to, float* xyz, int n) {
+    if (!m_inWorld) return false;
+    const Camera dc = m_world.deviceCamera();
+    const glm::mat4& worldToCamera = m_world.camera.worldToCamera;
+    // object to world of an affine space; false for a projected or unknown one
+    auto affine = [&](const std::string& s, glm::mat4& m) {
+        const auto& scoped = m_attrStack.back().scopedSystems;
+        for (auto it = scoped.rbegin(); it != scoped.rend(); ++it)
+            if (it->first == s) return m = it->second, true;
+        if (auto it = m_coordSystems.find(s); it != m_coordSystems.end())
+            return m = it->second, true;
+        if (s == "object" || s == "current" || s == "shader")
+            return m = m_attrStack.back().ctm, true;
+        if (s == "world") return m = glm::mat4(1.0f), true;
+        if (s == "camera") return m = glm::inverse(worldToCamera), true;
+        return false;
+    };
+    const float l = dc.screen[0], r = dc.screen[1], b = dc.screen[2], t = dc.screen[3];
+    const float tanHalf = dc.perspective ? dc.tan_half_fov : 1.0f;
+    // camera -> screen -> NDC -> raster, and back: `steps` of them from camera space
+    auto project = [&](glm::vec3 p, int steps) {
+        if (steps >= 1 && dc.perspective)
+            p = {p.x / (p.z * tanHalf), p.y / (p.z * tanHalf), p.z};
+        if (steps >= 2) p = {(p.x - l) / (r - l), (t - p.y) / (t - b), p.z};
+        if (steps >= 3) p = {p.x * float(dc.width), p.y * float(dc.height), p.z};
+        return p;
+    };
+    auto unproject = [&](glm::vec3 p, int steps) {
+        if (steps >= 3) p = {p.x / float(dc.width), p.y / float(dc.height), p.z};
+        if (steps >= 2) p = {l + p.x * (r - l), t - p.y * (t - b), p.z};
+        if (steps >= 1 && dc.perspective)
+            p = {p.x * p.z * tanHalf, p.y * p.z * tanHalf, p.z};
+        return p;
+    };
+    auto projected = [](const std::string& s) {
+        return s == "screen" ? 1 : s == "NDC" ? 2 : s == "raster" ? 3 : 0;
+    };
+    glm::mat4 fromWorld, toWorld;
+    const int pf = projected(from), pt = projected(to);
+    if (!pf && !affine(from, toWorld)) return false;
+    if (!pt && !affine(to, fromWorld)) return false;
+    if (pf) toWorld = glm::inverse(worldToCamera);
+    fromWorld = pt ? worldToCamera : glm::inverse(fromWorld);
+    for (int i = 0; i < n; ++i) {
+        glm::vec3 p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+        if (pf) p = unproject(p, pf);
+        p = glm::vec3(fromWorld * toWorld * glm::vec4(p, 1.0f));
+        if (pt) p = project(p, pt);
+        xyz[3 * i] = p.x, xyz[3 * i + 1] = p.y, xyz[3 * i + 2] = p.z;
+    }
+    return true;
+}
+
 }  // namespace rd

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -141,4 +143,60 @@ TEST(RiRender, EachWorldBlockIsAFrame) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/ri.exr"));
     EXPECT_TRUE(std::filesystem::exists(dir + "/ri.2.exr"));
     EXPECT_EQ(RiLastError, RIE_NOERROR);
+}
+
+// RiTransformPoints (session 32; it did not exist): points between the current transform,
+// world, camera, a named system, screen, NDC and raster. The camera 5 units back, 90
+// degrees, a 200 x 100 frame (screen window -2..2 x -1..1): the object origin translated
+// to (1, 2, 3) is (1, 2, 8) in camera space, (1/8, 2/8) on the screen, NDC ((2 + 1/8) /
+// 4, (1 - 2/8) / 2), raster 200 and 100 times those; back from raster it is the origin
+// again. An unknown space, or a call outside a world, gives RI_NULL; a RIB file target
+// too.
+TEST(RiRender, TransformPointsBetweenSpaces) {
+    const std::string dir = scratchDir() + "/transform_points";
+    std::filesystem::create_directories(dir);
+    RiBegin(RI_NULL);
+    RiFormat(200, 100, 1);
+    RtFloat fov = 90;
+    RiProjection(RI_PERSPECTIVE, RI_FOV, &fov, RI_NULL);
+    const std::string out = dir + "/empty.exr";
+    RiDisplay(out.c_str(), RI_FILE, RI_RGBA, RI_NULL);
+    RtPoint p[1] = {{0, 0, 0}};
+    EXPECT_EQ(RiTransformPoints("world", "camera", 1, p), nullptr);  // (no world yet)
+    RiTranslate(0, 0, 5);
+    RiWorldBegin();
+    RiTranslate(1, 2, 3);
+    RiCoordinateSystem("mine");
+    auto moved = [&](const char* from, const char* to, RtPoint q) {
+        RtPoint pts[1] = {{q[0], q[1], q[2]}};
+        RtPoint* r = RiTransformPoints(from, to, 1, pts);
+        EXPECT_EQ(r, r ? pts : nullptr);
+        return r ? std::array<float, 3>{pts[0][0], pts[0][1], pts[0][2]}
+                 : std::array<float, 3>{NAN, NAN, NAN};
+    };
+    RtPoint origin = {0, 0, 0};
+    auto expectNear = [](std::array<float, 3> a, std::array<float, 3> b,
+                         const char* what) {
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k], b[k], 1e-5f) << what << " " << k;
+    };
+    expectNear(moved("current", "world", origin), {1, 2, 3}, "current");
+    expectNear(moved("current", "camera", origin), {1, 2, 8}, "camera");
+    expectNear(moved("current", "screen", origin), {0.125f, 0.25f, 8}, "screen");
+    expectNear(moved("current", "NDC", origin), {2.125f / 4, 0.75f / 2, 8}, "NDC");
+    expectNear(moved("current", "raster", origin), {200 * 2.125f / 4, 100 * 0.75f / 2, 8},
+               "raster");
+    RtPoint raster = {200 * 2.125f / 4, 100 * 0.75f / 2, 8};
+    expectNear(moved("raster", "mine", raster), {0, 0, 0}, "raster to mine");
+    RiTranslate(1, 0, 0);
+    expectNear(moved("mine", "object", origin), {-1, 0, 0}, "mine to object");
+    EXPECT_EQ(RiTransformPoints("world", "nosuch", 1, p), nullptr);
+    RiWorldEnd();
+    RiEnd();
+    EXPECT_EQ(RiLastError, RIE_NOERROR);
+
+    RiBegin((dir + "/calls.rib").c_str());  // (a RIB file keeps no state)
+    RiWorldBegin();
+    EXPECT_EQ(RiTransformPoints("current", "world", 1, p), nullptr);
+    RiWorldEnd();
+    RiEnd();
 }
