@@ -59,6 +59,9 @@ typedef struct RayState {
  * weight goes to its sample when it meets nothing within its reach, and what it meets is
  * not shaded (classify_hits) */
 #define RT_ALIVE_VISIBILITY 3u
+/* ... and one that asks how far it goes (gather()'s "ray:length"): its weight times the
+ * distance to what it meets goes to its sample, nothing when it escapes; never shaded */
+#define RT_ALIVE_DISTANCE 5u
 
 /* Compaction works on groups of this many traced rays (close_round.cl, compact.cl); the
  * host sizes its per-group counts by it. */

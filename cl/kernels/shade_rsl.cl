@@ -360,8 +360,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
         rsl_surface_SURFACE(&tg, p, &te);
         rsl_color tw = w * atmo_a * (tg.Ci - base.Ci);
         RSL_CW(tw) = 0.0f;
-        /* an occlusion() ray may weigh less than zero and be no fault: Ci = occlusion()
-         * is 1 from the base evaluation less a part for each ray that escapes */
+        /* an occlusion() or distance ray may weigh less than zero and be no fault: Ci =
+         * occlusion() is 1 from the base evaluation less a part for each ray that
+         * escapes */
         if (ev.trace_org[i].w > 0.5f)
             tw = copysign(rt_sanitize_c(fabs(tw), numerics), tw);
         else
@@ -413,7 +414,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
         if (!(rt_dot3(td, td) > 0.5f)) continue;
         float4 tp = ev.trace_org[i];
         /* (rsl_abi.h TRACE: a visibility ray's flag, the ray's reach, 0 for no limit) */
-        const uint alive = tp.w > 0.5f ? RT_ALIVE_VISIBILITY : 1u;
+        const uint alive = tp.w > 1.5f   ? RT_ALIVE_DISTANCE
+                           : tp.w > 0.5f ? RT_ALIVE_VISIBILITY
+                                         : 1u;
         const float reach = ev.trace_dir[i].w;
         tp.w = 0.0f;
         float4 to = rt_offset_ray(tp, rt_dot3(td, Ngf) >= 0.0f ? Ngf : -Ngf);

@@ -85,6 +85,24 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
 #endif
                 k = shader_count;
         }
+        /* a distance ray (gather()'s "ray:length"): its weight times the distance to what
+         * it met counts, nothing when it escaped; it is never shaded (a surface invisible
+         * to traced rays stops it too) */
+        if (state[r].alive == RT_ALIVE_DISTANCE) {
+            if (prim != RT_NO_HIT) {
+                const float t = hits[r].t;
+                rt_atomic_add_float4(&total[ray_sample[r]].value,
+                                     rt_total_of(rt_weight_color(weight[r]) * t));
+#ifdef RT_RAY_AOVS
+                if (state[r].depth & RT_CARRIES_AOVS) {
+                    float a[RT_AOV_PAYLOAD];
+                    rt_aov_load(a, ray_aovw + (size_t)r * RT_AOV_PAYLOAD);
+                    rt_aov_add(aov_values + ray_sample[r] * RT_SHADER_AOVS, a, (rsl_color)(t));
+                }
+#endif
+            }
+            k = shader_count;
+        }
 #endif
         key[r] = k;
         if (shader_count > 1) atomic_inc(&hist[k]); /* one shader: no sort, no counts */

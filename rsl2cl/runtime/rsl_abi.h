@@ -109,6 +109,8 @@
  *     the ray trace_org/dir[i] recorded in base mode. trace_dir[i].w is the ray's reach
  *     (0: no limit; occlusion(), indirectdiffuse() "maxdist"), trace_org[i].w 1 for a
  *     visibility ray (occlusion(): its weight counts when it escapes, and what it
+ *     hits is not shaded), 2 for a distance ray (gather()'s "ray:length": its weight
+ *     times the distance to what it hits counts, nothing when it escapes, and what it
  *     hits is not shaded), else 0. occlusion() and indirectdiffuse() are trace sites
  *     in a cosine-distributed direction about N, from two random sites.
  *   Each evaluation resets ev->trace_count to 0 first.

@@ -165,7 +165,8 @@ private:
         }
         for (size_t i = 0; i < a.size(); ++i)
             if (a[i]) fail(e, a[i], describe(a[i]) + " passed to " + n + "()");
-        if (n == "trace" || n == "__gather_trace") return T_TRACE;
+        if (n == "trace" || n == "__gather_trace" || n == "__gather_length")
+            return T_TRACE;
         if (n == "diffuse" || n == "specular" || n == "phong") return T_LIGHT;
         return 0;
     }

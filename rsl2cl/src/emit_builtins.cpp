@@ -151,53 +151,56 @@ int countCalls(const Stmt& s, const std::string& name) {
 }
 }  // namespace
 
-// The gather() loop's calls (gather.cpp): __gather_begin reserves two trace sites for
-// each of at most M directions, M what it is given (a literal samples, else 64) up to
-// what an evaluation records with the other calls' rays, keeping one direction for each
-// gather after it (at least one); a shading sample traces m = min(samples, M) of them,
-// and every pass k of the loop takes direction k mod m, its visibility ray at site
-// base + 2 (k mod m) and its traced ray after it, so that the shader's own sums over
-// `samples` passes stay as written.
+// The gather() loop's calls (gather.cpp): __gather_begin reserves two trace sites (three
+// with "ray:length") for each of at most M directions, M what it is given (a literal
+// samples, else 64) up to what an evaluation records with the other calls' rays, keeping
+// one direction for each gather after it (at least one); a shading sample traces m =
+// min(samples, M) of them, and every pass k of the loop takes direction k mod m, its
+// visibility ray at site base + 2 (k mod m) (3 (k mod m)) and its traced ray (and its
+// distance ray) after it, so that the shader's own sums over `samples` passes stay as
+// written.
 std::string Emitter::gatherCall(const Expr& e) {
     const std::string& n = e.text;
     auto lit = [&](size_t i) { return int(std::lround(e.args[i]->number)); };
     auto A = [&](size_t i, BaseType t) { return exprAs(*e.args[i], t); };
     if (n == "__gather_begin") {
         // (the gathers after this one keep a direction each)
-        const int id = lit(1);
+        const int id = lit(1), per = lit(2);
         if (m_gathersLeft < 0) m_gathersLeft = countCalls(*m_sh.body, "__gather_begin");
         const int after = std::max(0, --m_gathersLeft);
         const int m = std::clamp(
             lit(0), 1,
-            std::max(1, (EmittedShader::kMaxTrace - traceRaysSoFar()) / 2 - after));
-        m_gather[id] = {m, m_randomSite};
+            std::max(1, (EmittedShader::kMaxTrace - traceRaysSoFar()) / per - after));
+        m_gather[id] = {m, m_randomSite, per};
         m_randomSite += 2;
-        traceSite(e, 2 * m);
+        traceSite(e, per * m);
         m_out.usesVisibility = true;
         m_out.usesRandom = true;
-        return "(float)rsl_gather_begin(ev, " + std::to_string(m) + ")";
+        return "(float)rsl_gather_begin(ev, " + std::to_string(per * m) + ")";
     }
     // (the passes' directions: samples, up to the sites reserved)
-    const auto [most, dirSite] = m_gather[lit(5)];
+    const GatherSites& gs = m_gather[lit(5)];
     const std::string ms = "clamp((int)(" +
                            A(n == "__gather_dir" ? 7 : 6, BaseType::Float) + "), 1, " +
-                           std::to_string(most) + ")";
+                           std::to_string(gs.most) + ")";
     if (n == "__gather_dir")
         return "rsl_gather_dir(g, " + A(1, BaseType::Vector) + ", " +
                A(2, BaseType::Float) + ", (int)(" + A(3, BaseType::Float) + ") % " + ms +
-               ", " + ms + ", " + std::to_string(dirSite) + ", " +
+               ", " + ms + ", " + std::to_string(gs.randomSite) + ", " +
                std::to_string(lit(6)) + ")";
-    // (p, d, maxdist, pass, base, id, samples): the pass's visibility ray, or its traced
-    // ray
-    const bool visible = n == "__gather_visible";
-    const std::string k = "(int)(" + A(4, BaseType::Float) + ") + 2 * ((int)(" +
-                          A(3, BaseType::Float) + ") % " + ms + ")" +
-                          (visible ? "" : " + 1");
+    // (p, d, maxdist, pass, base, id, samples): the pass's visibility ray (rsl_abi.h
+    // TRACE: flag 1), its traced ray (0), or its distance ray (2: "ray:length")
+    const int kind = n == "__gather_visible" ? 0 : n == "__gather_trace" ? 1 : 2;
+    const std::string k = "(int)(" + A(4, BaseType::Float) + ") + " +
+                          std::to_string(gs.per) + " * ((int)(" + A(3, BaseType::Float) +
+                          ") % " + ms + ") + " + std::to_string(kind);
     const std::string site = "rsl_trace_site(ev, " + k + ", " + A(0, BaseType::Point) +
                              ", " + A(1, BaseType::Vector) + ", " +
-                             (visible ? "1.0f" : "0.0f") + ", " + A(2, BaseType::Float) +
-                             ")";
-    return visible ? site : "rsl_f2c(" + site + ")";
+                             (kind == 0   ? "1.0f"
+                              : kind == 1 ? "0.0f"
+                                          : "2.0f") +
+                             ", " + A(2, BaseType::Float) + ")";
+    return kind == 1 ? "rsl_f2c(" + site + ")" : site;
 }
 
 std::string Emitter::textureCall(const Expr& e, bool vret) {

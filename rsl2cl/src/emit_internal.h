@@ -140,8 +140,11 @@ public:
     std::vector<int> m_loops;  // ids of the enclosing loops, innermost last
     // Calls that ask for rays, met once per evaluation, and how many rays each asks for
     std::map<const Expr*, int> m_traceSites;
-    std::map<int, std::pair<int, int>>
-        m_gather;            // gather() id -> (directions, random site)
+    struct GatherSites {
+        int most = 1, randomSite = 0,
+            per = 2;  // directions, their random site, sites each
+    };
+    std::map<int, GatherSites> m_gather;  // gather() id -> its trace sites
     int m_gathersLeft = -1;  // gather() loops not emitted yet (-1: not counted)
     int traceRaysSoFar() const;
     bool m_traceRepeats = false;         // a trace() call that may run more than once

@@ -95,6 +95,7 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
             : 64;
     ExprPtr maxdist = number(loc, 0.0);
     int cosine = 1;
+    bool lengths = false;  // "ray:length": a third ray a direction, its distance
     std::vector<std::pair<ExprPtr, ExprPtr>> outputs;  // (variable, value)
     std::vector<std::pair<ExprPtr, std::string>>
         both;  // "ray:direction", "ray:origin": both branches
@@ -115,29 +116,33 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
                 diag.warning(d.loc,
                              "gather(): distribution must be \"uniform\" or \"cosine\"; "
                              "\"cosine\" taken");
-        } else if (k == "surface:Ci")
-            outputs.push_back({std::move(args[i + 1]), call(loc, "__gather_trace", [&] {
-                                   std::vector<ExprPtr> a;
-                                   a.push_back(v("p"));
-                                   a.push_back(v("d"));
-                                   a.push_back(v("md"));
-                                   a.push_back(v("i"));
-                                   a.push_back(v("b"));
-                                   a.push_back(number(loc, id));
-                                   a.push_back(v("n"));
-                                   return a;
-                               }())});
-        else if (k == "ray:direction" || k == "ray:origin")
+        } else if (k == "surface:Ci" || k == "ray:length") {
+            lengths |= k == "ray:length";
+            outputs.push_back(
+                {std::move(args[i + 1]),
+                 call(loc, k == "ray:length" ? "__gather_length" : "__gather_trace", [&] {
+                     std::vector<ExprPtr> a;
+                     a.push_back(v("p"));
+                     a.push_back(v("d"));
+                     a.push_back(v("md"));
+                     a.push_back(v("i"));
+                     a.push_back(v("b"));
+                     a.push_back(number(loc, id));
+                     a.push_back(v("n"));
+                     return a;
+                 }())});
+        } else if (k == "ray:direction" || k == "ray:origin")
             both.push_back({std::move(args[i + 1]), k == "ray:direction" ? "d" : "p"});
         else if (k == "bias" || k == "label" || k == "subset" || k == "samplebase" ||
                  k == "hitmode" || k == "hitsides" || k == "othreshold" || k == "volumes")
             continue;  // (robust offsets replace the bias; the rest do not apply)
         else
-            diag.error(key.loc,
-                       "gather(): \"" + k +
-                           "\" is not supported (outputs: \"surface:Ci\", "
-                           "\"ray:direction\", \"ray:origin\"; inputs: \"maxdist\", "
-                           "\"distribution\")");
+            diag.error(
+                key.loc,
+                "gather(): \"" + k +
+                    "\" is not supported (outputs: \"surface:Ci\", \"ray:length\", "
+                    "\"ray:direction\", \"ray:origin\"; inputs: \"maxdist\", "
+                    "\"distribution\")");
     }
     out->stmts.push_back(decl(loc, BaseType::Point, pre + "p", std::move(args[1])));
     out->stmts.push_back(decl(loc, BaseType::Vector, pre + "d0", std::move(args[2])));
@@ -148,6 +153,7 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
         std::vector<ExprPtr> a;
         a.push_back(number(loc, wanted));
         a.push_back(number(loc, id));
+        a.push_back(number(loc, lengths ? 3 : 2));  // trace sites a direction
         out->stmts.push_back(decl(loc, BaseType::Float, pre + "b",
                                   call(loc, "__gather_begin", std::move(a))));
     }

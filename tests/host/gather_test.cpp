@@ -4,6 +4,8 @@
 // affine model cannot take are refused: tests/rsl2cl/affine_test.cpp.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -39,6 +41,16 @@ surface gathered(float samples = 16;) {
         sum += color(0, 0, 0.5) * (zcomp(dir) > 0 ? 1 : 0);
     }
     Ci = sum / samples;
+    Oi = 1;
+}
+)"},
+                             {"gatherlen", R"(
+surface gatherlen() {
+    float len = 0, sum = 0;
+    gather("illuminance", P, normal(0, 0, 1), PI / 2, 16, "ray:length", len) {
+        sum += len;
+    }
+    Ci = sum / 16;
     Oi = 1;
 }
 )"}};
@@ -89,4 +101,18 @@ TEST(Gather, TheHitBranchGetsWhatTheRayMetTheElseBranchTheRest) {
         EXPECT_NEAR(r.mean(1, 0, 0, 16, 16), 0.1, 0.01) << call;
         EXPECT_NEAR(r.mean(2, 0, 0, 16, 16), 0.45, 0.02) << call;
     }
+}
+
+// "ray:length": the distance to what a pass's ray met (a distance ray, not shaded). Under
+// the disk (radius 1, 2 units up) a ray at angle theta from the normal meets it at 2 /
+// cos theta while tan theta < 1/2; over the cosine-weighted hemisphere the mean of (hit ?
+// length : 0) is the integral of (2 / cos theta) 2 cos theta sin theta to that angle,
+// 4 (1 - 2 / sqrt 5) = 0.4223.
+TEST(Gather, RayLengthIsTheDistanceToWhatTheRayMet) {
+    Rendered r = renderRib(
+        rd::test::patchUnder(shaderDir("gather_length"), 8, "\"gatherlen\"", kDisk));
+    const double expected = 4 * (1 - 2 / std::sqrt(5.0));
+    EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), expected, 0.02);
+    std::printf("NUMERICS case=gather_ray_length tolerance=0.02 measured=%.4f\n",
+                r.mean(0, 0, 0, 16, 16) - expected);
 }

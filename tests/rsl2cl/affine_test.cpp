@@ -46,12 +46,19 @@ TEST(Affine, GatherLoopsAreSums) {
         "s.sl:4:54: error: Ci is not affine in trace(): 'c' (declared outside the gather "
         "loop) changed by '=' in it; only += and -= keep it a sum over the rays in "
         "'c = hitc'\n");
-    EXPECT_EQ(diags("    float l = 0;\n    gather(\"\", P, N, 0.5, 4, \"ray:length\", l) "
-                    "{ c += 1; }\n"),
-              "front end: s.sl:5:30: error: gather(): \"ray:length\" is not supported "
-              "(outputs: "
-              "\"surface:Ci\", \"ray:direction\", \"ray:origin\"; inputs: \"maxdist\", "
-              "\"distribution\")\n");
+    EXPECT_EQ(
+        diags("    float l = 0;\n    gather(\"\", P, N, 0.5, 4, \"primitive:P\", l) "
+              "{ c += 1; }\n"),
+        "front end: s.sl:5:30: error: gather(): \"primitive:P\" is not supported "
+        "(outputs: \"surface:Ci\", \"ray:length\", \"ray:direction\", "
+        "\"ray:origin\"; inputs: \"maxdist\", \"distribution\")\n");
+    // the distance is a ray's result too: a sum of it, not a product
+    EXPECT_EQ(
+        diags(
+            "    float l = 0, s = 0;\n    gather(\"\", P, N, 0.5, 4, \"ray:length\", l) "
+            "{ s += l * l; }\n"),
+        "s.sl:5:56: error: Ci is not affine in trace(): product of two trace() results "
+        "in '(l * l)'\n");
     EXPECT_EQ(
         diags("    gather(\"\", P, N, 0.5, 4, \"surface:Ci\", hitc) { c += hitc; }\n"),
         "");
