@@ -151,27 +151,28 @@ int countCalls(const Stmt& s, const std::string& name) {
 }
 }  // namespace
 
-// The gather() loop's calls (gather.cpp): __gather_begin reserves two trace sites (three
-// with "ray:length") for each of at most M directions, M what it is given (a literal
-// samples, else 64) up to what an evaluation records with the other calls' rays, keeping
-// one direction for each gather after it (at least one); a shading sample traces m =
-// min(samples, M) of them, and every pass k of the loop takes direction k mod m, its
-// visibility ray at site base + 2 (k mod m) (3 (k mod m)) and its traced ray (and its
-// distance ray) after it, so that the shader's own sums over `samples` passes stay as
-// written.
+// The gather() loop's calls (gather.cpp): __gather_begin reserves a trace site for each
+// of at most M directions (a visibility ray), and one more each for a traced ray when
+// "surface:Ci" is asked for and for a distance ray when "ray:length" is, M what it is
+// given (a literal samples, else 64) up to what an evaluation records with the other
+// calls' rays, keeping one direction for each gather after it (at least one); a shading
+// sample traces m = min(samples, M) of them, and every pass k of the loop takes direction
+// k mod m, its visibility ray at site base + 2 (k mod m) (3 (k mod m)) and its traced ray
+// (and its distance ray) after it, so that the shader's own sums over `samples` passes
+// stay as written.
 std::string Emitter::gatherCall(const Expr& e) {
     const std::string& n = e.text;
     auto lit = [&](size_t i) { return int(std::lround(e.args[i]->number)); };
     auto A = [&](size_t i, BaseType t) { return exprAs(*e.args[i], t); };
     if (n == "__gather_begin") {
         // (the gathers after this one keep a direction each)
-        const int id = lit(1), per = lit(2);
+        const int id = lit(1), traced = lit(2), per = 1 + traced + lit(3);
         if (m_gathersLeft < 0) m_gathersLeft = countCalls(*m_sh.body, "__gather_begin");
         const int after = std::max(0, --m_gathersLeft);
         const int m = std::clamp(
             lit(0), 1,
             std::max(1, (EmittedShader::kMaxTrace - traceRaysSoFar()) / per - after));
-        m_gather[id] = {m, m_randomSite, per};
+        m_gather[id] = {m, m_randomSite, per, 1 + traced};
         m_randomSite += 2;
         traceSite(e, per * m);
         m_out.usesVisibility = true;
@@ -191,9 +192,10 @@ std::string Emitter::gatherCall(const Expr& e) {
     // (p, d, maxdist, pass, base, id, samples): the pass's visibility ray (rsl_abi.h
     // TRACE: flag 1), its traced ray (0), or its distance ray (2: "ray:length")
     const int kind = n == "__gather_visible" ? 0 : n == "__gather_trace" ? 1 : 2;
+    const int offset = kind == 2 ? gs.lengthOffset : kind;
     const std::string k = "(int)(" + A(4, BaseType::Float) + ") + " +
                           std::to_string(gs.per) + " * ((int)(" + A(3, BaseType::Float) +
-                          ") % " + ms + ") + " + std::to_string(kind);
+                          ") % " + ms + ") + " + std::to_string(offset);
     const std::string site = "rsl_trace_site(ev, " + k + ", " + A(0, BaseType::Point) +
                              ", " + A(1, BaseType::Vector) + ", " +
                              (kind == 0   ? "1.0f"

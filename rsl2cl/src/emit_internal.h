@@ -141,8 +141,8 @@ public:
     // Calls that ask for rays, met once per evaluation, and how many rays each asks for
     std::map<const Expr*, int> m_traceSites;
     struct GatherSites {
-        int most = 1, randomSite = 0,
-            per = 2;  // directions, their random site, sites each
+        // directions, their random site, sites each, the distance ray's among them
+        int most = 1, randomSite = 0, per = 2, lengthOffset = 2;
     };
     std::map<int, GatherSites> m_gather;  // gather() id -> its trace sites
     int m_gathersLeft = -1;  // gather() loops not emitted yet (-1: not counted)

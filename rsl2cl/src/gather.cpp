@@ -95,7 +95,9 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
             : 64;
     ExprPtr maxdist = number(loc, 0.0);
     int cosine = 1;
-    bool lengths = false;  // "ray:length": a third ray a direction, its distance
+    // a direction's rays: its visibility ray, then a traced one for "surface:Ci" and a
+    // distance ray for "ray:length" when asked for
+    bool traced = false, lengths = false;
     std::vector<std::pair<ExprPtr, ExprPtr>> outputs;  // (variable, value)
     std::vector<std::pair<ExprPtr, std::string>>
         both;  // "ray:direction", "ray:origin": both branches
@@ -118,6 +120,7 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
                              "\"cosine\" taken");
         } else if (k == "surface:Ci" || k == "ray:length") {
             lengths |= k == "ray:length";
+            traced |= k == "surface:Ci";
             outputs.push_back(
                 {std::move(args[i + 1]),
                  call(loc, k == "ray:length" ? "__gather_length" : "__gather_trace", [&] {
@@ -153,7 +156,8 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
         std::vector<ExprPtr> a;
         a.push_back(number(loc, wanted));
         a.push_back(number(loc, id));
-        a.push_back(number(loc, lengths ? 3 : 2));  // trace sites a direction
+        a.push_back(number(loc, traced));
+        a.push_back(number(loc, lengths));
         out->stmts.push_back(decl(loc, BaseType::Float, pre + "b",
                                   call(loc, "__gather_begin", std::move(a))));
     }
