@@ -82,6 +82,14 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
     }
     const std::string pre = "__g" + std::to_string(id) + "_";
     auto v = [&](const char* n) { return ident(loc, pre + n); };
+    // a pass's ray at its trace site: (p, d, maxdist, pass, base, id, samples)
+    auto siteArgs = [&] {
+        std::vector<ExprPtr> a;
+        for (const char* n : {"p", "d", "md", "i", "b"}) a.push_back(v(n));
+        a.push_back(number(loc, id));
+        a.push_back(v("n"));
+        return a;
+    };
     if (args[0]->kind == ExprKind::String && !args[0]->text.empty() &&
         args[0]->text != "illuminance")
         diag.warning(args[0]->loc,
@@ -123,17 +131,8 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
             traced |= k == "surface:Ci";
             outputs.push_back(
                 {std::move(args[i + 1]),
-                 call(loc, k == "ray:length" ? "__gather_length" : "__gather_trace", [&] {
-                     std::vector<ExprPtr> a;
-                     a.push_back(v("p"));
-                     a.push_back(v("d"));
-                     a.push_back(v("md"));
-                     a.push_back(v("i"));
-                     a.push_back(v("b"));
-                     a.push_back(number(loc, id));
-                     a.push_back(v("n"));
-                     return a;
-                 }())});
+                 call(loc, k == "ray:length" ? "__gather_length" : "__gather_trace",
+                      siteArgs())});
         } else if (k == "ray:direction" || k == "ray:origin")
             both.push_back({std::move(args[i + 1]), k == "ray:direction" ? "d" : "p"});
         else if (k == "bias" || k == "label" || k == "subset" || k == "samplebase" ||
@@ -183,16 +182,8 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
     }
     auto branch = std::make_unique<Stmt>(StmtKind::If, loc);
     {
-        std::vector<ExprPtr> a;
-        a.push_back(v("p"));
-        a.push_back(v("d"));
-        a.push_back(v("md"));
-        a.push_back(v("i"));
-        a.push_back(v("b"));
-        a.push_back(number(loc, id));
-        a.push_back(v("n"));
-        branch->expr = binary(loc, "==", call(loc, "__gather_visible", std::move(a)),
-                              number(loc, 0));
+        branch->expr =
+            binary(loc, "==", call(loc, "__gather_visible", siteArgs()), number(loc, 0));
     }
     auto hitBlock = block(loc), missBlock = block(loc);
     for (auto& [var, value] : outputs)

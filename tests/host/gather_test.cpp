@@ -6,8 +6,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 
 #include "render_harness.h"
 
@@ -56,10 +54,7 @@ surface gatherlen() {
 )"}};
 
 std::string shaderDir(const std::string& name) {
-    std::string dir = rd::test::scratchDir(name);
-    std::filesystem::create_directories(dir);
-    for (const auto& s : kShaders) std::ofstream(dir + "/" + s[0] + ".sl") << s[1];
-    return dir;
+    return rd::test::shaderFolder(name, kShaders);
 }
 
 const std::string kDisk =

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -105,6 +106,10 @@ std::string patchUnder(const std::string& dir, int spp, const std::string& surfa
            "AttributeBegin\nSurface \"constant\"\nColor [1 0.5 0.25]\n" +
            above + "AttributeEnd\nSurface " + surface +
            "\nPolygon \"P\" [-1 -1 5  1 -1 5  1 1 5  -1 1 5]\nWorldEnd\n";
+}
+
+void writeFile(const std::string& path, const std::string& text) {
+    std::ofstream(path) << text;
 }
 
 }  // namespace rd::test

@@ -26,6 +26,17 @@ struct Rendered {
 // tests two at a time, each in its own process; a folder shared by name had one test
 // truncate a shader file while another compiled it.
 std::string scratchDir(const std::string& name);
+// Writes `text` to `path` (replacing it).
+void writeFile(const std::string& path, const std::string& text);
+
+// A scratch folder (scratchDir) holding the shaders `sources` lists as (name, source):
+// name.sl each.
+template <size_t N>
+std::string shaderFolder(const std::string& name, const char* const (&sources)[N][2]) {
+    const std::string dir = scratchDir(name);
+    for (const auto& s : sources) writeFile(dir + "/" + s[0] + ".sl", s[1]);
+    return dir;
+}
 
 // The context every test shares (building one per test would dominate the run time).
 const ClContext& testContext();

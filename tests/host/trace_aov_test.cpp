@@ -5,8 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <filesystem>
-#include <fstream>
 
 #include "render_harness.h"
 
@@ -44,10 +42,7 @@ surface aovocc(output varying float occ = 0;) {
 )"}};
 
 std::string shaderDir(const std::string& name) {
-    std::string dir = rd::test::scratchDir(name);
-    std::filesystem::create_directories(dir);
-    for (const auto& s : kShaders) std::ofstream(dir + "/" + s[0] + ".sl") << s[1];
-    return dir;
+    return rd::test::shaderFolder(name, kShaders);
 }
 
 // Orthographic, 1/16 unit a pixel: x = -2 + (px + 0.5) / 16, y = 1 - (py + 0.5) / 16. A
