@@ -367,11 +367,11 @@ __kernel void shade_SURFACE(uint begin, uint count,
             tw = copysign(rt_sanitize_c(fabs(tw), numerics), tw);
         else
             tw = rt_sanitize_c(tw, numerics);
+        int child_carries = 0; /* the ray brings back part of the AOVs */
 #ifdef RT_RAY_AOVS
         /* the AOVs' part in this call: an AOV surface's outputs' own (their value when
          * trace() returns 1, less the base value), or the weights brought here */
         float achild[RT_AOV_PAYLOAD];
-        int child_carries = 0;
         if (aov_surface) {
             for (int c = 0; c < RT_AOV_PAYLOAD; ++c) achild[c] = 0.0f;
             RD_AOV_TRACE_SURFACE(achild, te, ev);
@@ -404,11 +404,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #endif
         }
 #endif
-#ifdef RT_RAY_AOVS
         if (rsl_cmax(fabs(tw)) < 1e-6f && !child_carries) continue;
-#else
-        if (rsl_cmax(fabs(tw)) < 1e-6f) continue;
-#endif
         float4 td = rt_normalize3(ev.trace_dir[i]);
         /* a zero direction (refract() under total internal reflection) traces nothing */
         if (!(rt_dot3(td, td) > 0.5f)) continue;

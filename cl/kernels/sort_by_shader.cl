@@ -73,11 +73,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
                 rt_atomic_add_float4(&total[ray_sample[r]].value,
                                      rt_total_of(rt_weight_color(weight[r])));
 #ifdef RT_RAY_AOVS
-                if (state[r].depth & RT_CARRIES_AOVS) {
-                    float a[RT_AOV_PAYLOAD];
-                    rt_aov_load(a, ray_aovw + (size_t)r * RT_AOV_PAYLOAD);
-                    rt_aov_add(aov_values + ray_sample[r] * RT_SHADER_AOVS, a, (rsl_color)(1.0f));
-                }
+                rt_aov_add_ray(aov_values, ray_aovw, r, state[r], ray_sample[r], (rsl_color)(1.0f));
 #endif
             }
 #ifdef RT_HAS_INVISIBLE
@@ -94,11 +90,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
                 rt_atomic_add_float4(&total[ray_sample[r]].value,
                                      rt_total_of(rt_weight_color(weight[r]) * t));
 #ifdef RT_RAY_AOVS
-                if (state[r].depth & RT_CARRIES_AOVS) {
-                    float a[RT_AOV_PAYLOAD];
-                    rt_aov_load(a, ray_aovw + (size_t)r * RT_AOV_PAYLOAD);
-                    rt_aov_add(aov_values + ray_sample[r] * RT_SHADER_AOVS, a, (rsl_color)(t));
-                }
+                rt_aov_add_ray(aov_values, ray_aovw, r, state[r], ray_sample[r], (rsl_color)(t));
 #endif
             }
             k = shader_count;

@@ -4,8 +4,8 @@
 // declared under it, quadrics exactly); around a mesh's keys it makes the mesh deform.
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <optional>
 
 #include "rib_builder.h"
 #include "rib_builder_util.h"
@@ -108,22 +108,26 @@ void RibBuilder::scopedCoordinateSystem(L, S name) {
     a.scopedSystems.push_back({name, a.ctm});
 }
 
-// Makes a named coordinate system current: one ScopedCoordinateSystem named in the
-// attribute blocks around, or CoordinateSystem, or "world"
-// (identity inside the world), "camera" (camera to world); "object" and "shader" leave
-// the current transform as it is.
-void RibBuilder::coordSysTransform(L loc, S name) {
-    const auto& scoped = m_attrStack.back().scopedSystems;  // the latest of a name first
+// A named coordinate system's transform to world: one ScopedCoordinateSystem named in the
+// attribute blocks around (the latest first), or CoordinateSystem, or "world" (identity
+// inside the world), "camera" (camera to world). Not "object" or "shader", whose meaning
+// the caller decides.
+std::optional<glm::mat4> RibBuilder::namedSpace(const std::string& name) const {
+    const auto& scoped = m_attrStack.back().scopedSystems;
     for (auto it = scoped.rbegin(); it != scoped.rend(); ++it)
-        if (it->first == name) return applyTransform(it->second, true);
+        if (it->first == name) return it->second;
     if (auto it = m_coordSystems.find(name); it != m_coordSystems.end())
-        return applyTransform(it->second, true);
-    if (name == "world") return applyTransform(glm::mat4(1.0f), true);
-    if (name == "camera") {
-        const glm::mat4 worldToCamera =
-            m_inWorld ? m_world.camera.worldToCamera : glm::mat4(1.0f);
-        return applyTransform(glm::inverse(worldToCamera), true);
-    }
+        return it->second;
+    if (name == "world") return glm::mat4(1.0f);
+    if (name == "camera")
+        return glm::inverse(m_inWorld ? m_world.camera.worldToCamera : glm::mat4(1.0f));
+    return std::nullopt;
+}
+
+// Makes a named coordinate system current (namedSpace); "object" and "shader" leave the
+// current transform as it is.
+void RibBuilder::coordSysTransform(L loc, S name) {
+    if (const auto m = namedSpace(name)) return applyTransform(*m, true);
     if (name == "object" || name == "shader") return;
     m_diag.error(loc, "CoordSysTransform: no coordinate system named \"" + name + "\"");
 }
@@ -261,18 +265,12 @@ bool RibBuilder::transformPoints(S from, S to, float* xyz, int n) {
     if (!m_inWorld) return false;
     const Camera dc = m_world.deviceCamera();
     const glm::mat4& worldToCamera = m_world.camera.worldToCamera;
-    // object to world of an affine space; false for a projected or unknown one
-    auto affine = [&](const std::string& s, glm::mat4& m) {
-        const auto& scoped = m_attrStack.back().scopedSystems;
-        for (auto it = scoped.rbegin(); it != scoped.rend(); ++it)
-            if (it->first == s) return m = it->second, true;
-        if (auto it = m_coordSystems.find(s); it != m_coordSystems.end())
-            return m = it->second, true;
+    // object to world of an affine space (namedSpace, or the current transform); none for
+    // a projected or unknown one
+    auto affine = [&](const std::string& s) -> std::optional<glm::mat4> {
         if (s == "object" || s == "current" || s == "shader")
-            return m = m_attrStack.back().ctm, true;
-        if (s == "world") return m = glm::mat4(1.0f), true;
-        if (s == "camera") return m = glm::inverse(worldToCamera), true;
-        return false;
+            return m_attrStack.back().ctm;
+        return namedSpace(s);
     };
     const float l = dc.screen[0], r = dc.screen[1], b = dc.screen[2], t = dc.screen[3];
     const float tanHalf = dc.perspective ? dc.tan_half_fov : 1.0f;
@@ -294,16 +292,18 @@ bool RibBuilder::transformPoints(S from, S to, float* xyz, int n) {
     auto projected = [](const std::string& s) {
         return s == "screen" ? 1 : s == "NDC" ? 2 : s == "raster" ? 3 : 0;
     };
-    glm::mat4 fromWorld, toWorld;
+    // from `from` (camera space when projected) to world, and from world to `to`
     const int pf = projected(from), pt = projected(to);
-    if (!pf && !affine(from, toWorld)) return false;
-    if (!pt && !affine(to, fromWorld)) return false;
-    if (pf) toWorld = glm::inverse(worldToCamera);
-    fromWorld = pt ? worldToCamera : glm::inverse(fromWorld);
+    const std::optional<glm::mat4> fromSpace =
+        pf ? glm::inverse(worldToCamera) : affine(from);
+    const std::optional<glm::mat4> toSpace =
+        pt ? glm::inverse(worldToCamera) : affine(to);
+    if (!fromSpace || !toSpace) return false;
+    const glm::mat4 m = glm::inverse(*toSpace) * *fromSpace;
     for (int i = 0; i < n; ++i) {
         glm::vec3 p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
         if (pf) p = unproject(p, pf);
-        p = glm::vec3(fromWorld * toWorld * glm::vec4(p, 1.0f));
+        p = glm::vec3(m * glm::vec4(p, 1.0f));
         if (pt) p = project(p, pt);
         xyz[3 * i] = p.x, xyz[3 * i + 1] = p.y, xyz[3 * i + 2] = p.z;
     }
