@@ -6,6 +6,7 @@
 #include "quadric.h"
 #include "traverse.clh"
 #include "ray_aovs.clh"
+#include "transmittance.clh"
 #if defined(RT_SHADOW_PACKETS) || defined(RT_CLOSEST_PACKETS)
 #include "packet_traverse.clh"
 /* A packet with fewer live rays than this traces them one at a time. */
@@ -155,58 +156,6 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
         __global float* shadow_aov, /* RT_SHADER_AOVS, transparent shadows: parts it carries */ \
         __global uint* active_counter
 
-#ifdef RT_HAS_TRANSPARENT_SHADOWS
-/* What of a shadow ray's light gets through the surface it met, in the scene's colour
- * channels (the alpha lane 1): 1 - Os, the material's constant opacity (PRMan's default,
- * "primitive" transmission), all of it when the surface casts no shadow (Attribute
- * "visibility" "transmission" 0), none for "opaque" transmission. *most: its largest
- * channel. */
-inline rt_weight rt_transmittance(uint prim, uint inst, __global const TriangleAttr* attrs,
-                                  __global const Material* materials,
-                                  __global const float* material_channels,
-                                  __global const Quadric* quadrics, float* most) {
-#ifdef RT_HAS_QUADRICS
-    uint mat = (prim & RT_OBJECT_BIT) ? quadrics[prim & RT_OBJECT_MASK].material
-                                      : attrs[prim].material;
-#ifdef RT_HAS_INSTANCES
-    if (inst != RT_NO_HIT) mat = quadrics[inst].material;
-#endif
-#else
-    uint mat = attrs[prim].material;
-#endif
-    const uint flags = materials[mat].flags;
-    *most = 1.0f;
-    if (flags & RT_MATERIAL_NO_TRANSMISSION) return (rt_weight)(1.0f);
-    *most = 0.0f;
-    if (flags & RT_MATERIAL_OPAQUE_SHADOW) return (rt_weight)(0.0f);
-#if defined(RSL_COLOR_LANES) && RSL_COLOR_LANES > 4
-    /* (Os in the scene's n channels: material_channels, Cs then Os a material) */
-    float t[RSL_COLOR_LANES];
-    for (int c = 0; c < RSL_COLOR_LANES; ++c) {
-        t[c] = c < RSL_COLOR_SAMPLES
-                   ? clamp(1.0f - material_channels[2u * RSL_COLOR_SAMPLES * mat +
-                                                     RSL_COLOR_SAMPLES + (uint)c],
-                           0.0f, 1.0f)
-                   : 1.0f;
-        if (c < RSL_COLOR_SAMPLES) *most = fmax(*most, t[c]);
-    }
-#if RSL_COLOR_LANES == 8
-    return vload8(0, t);
-#else
-    return vload16(0, t);
-#endif
-#else
-    const float4 t = clamp((float4)(1.0f) - materials[mat].os, 0.0f, 1.0f);
-    *most = fmax(t.x, fmax(t.y, t.z));
-#if defined(RSL_COLOR_SAMPLES) && RSL_COLOR_SAMPLES == 1
-    return (float2)(t.x, 1.0f);
-#else
-    return (float4)(t.x, t.y, t.z, 1.0f);
-#endif
-#endif
-}
-#endif
-
 #ifndef RT_SHADOW_PACKETS
 __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     uint i = get_global_id(0);
@@ -242,17 +191,7 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
         tmin = h.t;
         skip = h.prim;
     }
-    /* an occluded ray carries nothing; its state stays as the group count read it */
-    weight[i] = occluded ? (rt_weight)(0.0f) : weight[i] * through;
-#if defined(RT_SHADER_AOVS) && defined(RD_AOV_CHANNELS)
-    /* the parts of its sample's AOVs it carries dim as its weight does */
-    if (!occluded) {
-        float parts[RT_SHADER_AOVS];
-        for (int c = 0; c < RT_SHADER_AOVS; ++c) parts[c] = shadow_aov[i * RT_SHADER_AOVS + c];
-        rt_aov_composite(parts, parts, rt_weight_color(through));
-        for (int c = 0; c < RT_SHADER_AOVS; ++c) shadow_aov[i * RT_SHADER_AOVS + c] = parts[c];
-    }
-#endif
+    rt_shadow_passes(i, occluded, through, weight, shadow_aov);
 #else
     /* shadow rays converge on their light: the lane walk */
     if (rt_traverse(nodes, blocks, o, d, o.w, d.w, state[i].from_prim, 1, 1,

@@ -5,10 +5,14 @@
  * entering other treelets are queued for the next round. The first round
  * (treelet_closest_root, treelet_shadow_root) takes the rays themselves into the root
  * treelet. After the last round treelet_resolve turns each ray's closest-hit key into
- * its RayHit, recomputing u, v for the winning triangle or object. */
+ * its RayHit, recomputing u, v for the winning triangle or object. Shadow rays of scenes
+ * with surfaces that let light through walk them a layer a trace, as intersect_shadow
+ * does: treelet_shadow_walk_begin, then per layer a closest-hit trace
+ * (treelet_walk_root, treelet_walk, treelet_resolve) and treelet_shadow_walk_step. */
 #ifdef RT_HAS_TREELETS
 #include "counters.clh"
 #include "ray.h"
+#include "transmittance.clh"
 #include "treelet_traverse.clh"
 
 /* The pair work-item i handles: in the first round (root_only) ray i in the root
@@ -142,6 +146,74 @@ RT_TREELET_CLOSEST_KERNEL(treelet_closest_root, 1u)
 RT_TREELET_CLOSEST_KERNEL(treelet_closest, 0u)
 RT_TREELET_SHADOW_KERNEL(treelet_shadow_root, 1u)
 RT_TREELET_SHADOW_KERNEL(treelet_shadow, 0u)
+
+#ifdef RT_HAS_TRANSPARENT_SHADOWS
+/* The transparent walk's closest-hit traces, named apart so that --stats counts their
+ * rays as shadow rays' layers, not as closest-hit rays. */
+RT_TREELET_CLOSEST_KERNEL(treelet_walk_root, 1u)
+RT_TREELET_CLOSEST_KERNEL(treelet_walk, 0u)
+
+/* The walk's start: each live shadow ray that carries something walks from its own
+ * origin, having let everything through so far. (Its active count is the shadow rays.) */
+__kernel void treelet_shadow_walk_begin(uint count, __global const float4* origin,
+                                        __global const RayState* state,
+                                        __global const rt_weight* weight,
+                                        __global float4* walk_origin,
+                                        __global RayState* walk_state,
+                                        __global rt_weight* through,
+                                        __global uint* active_counter) {
+    uint i = get_global_id(0);
+    int active = i < count && state[i].alive;
+    RT_COUNT_GROUP(active_counter, j, j < count && state[j].alive);
+    if (i >= count) return;
+    RayState s = state[i];
+    s.alive = active && any(weight[i] != (rt_weight)(0.0f));
+    walk_state[i] = s;
+    walk_origin[i] = origin[i];
+    through[i] = (rt_weight)(1.0f);
+}
+
+/* A layer of the walk, after the closest-hit trace of the rays still walking: a ray that
+ * met nothing reaches its light with what got through; an opaque surface, or a
+ * transparent one at the last layer (`last`: the transparent depth, as intersect_shadow's
+ * loop ends), occludes it; past any other it goes on from there (its origin's t and
+ * fromSurface moved to the hit), counted in *walking. */
+__kernel void treelet_shadow_walk_step(uint count, uint last, __global const RayHit* hits,
+                                       __global float4* walk_origin,
+                                       __global RayState* walk_state,
+                                       __global rt_weight* through, __global rt_weight* weight,
+                                       __global float* shadow_aov,
+                                       __global const TriangleAttr* attrs,
+                                       __global const Material* materials,
+                                       __global const float* material_channels,
+                                       __global const Quadric* quadrics,
+                                       __global uint* walking,
+                                       __global uint* active_counter) {
+    uint i = get_global_id(0);
+    int active = i < count && walk_state[i].alive;
+    RT_COUNT_GROUP(active_counter, j, j < count && walk_state[j].alive);
+    if (!active) return;
+    const RayHit h = hits[i];
+    rt_weight th = through[i];
+    int ends = 1, occluded = 0;
+    if (h.prim != RT_NO_HIT) {
+        float most;
+        th *= rt_transmittance(h.prim, RT_NO_HIT, attrs, materials, material_channels,
+                               quadrics, &most);
+        occluded = !(most > 0.0f) || last;
+        ends = occluded;
+    }
+    if (ends) {
+        rt_shadow_passes(i, occluded, th, weight, shadow_aov);
+        walk_state[i].alive = 0u;
+        return;
+    }
+    through[i] = th;
+    walk_origin[i].w = h.t;
+    walk_state[i].from_prim = h.prim;
+    atomic_inc(walking);
+}
+#endif
 
 /* Groups a round's queue by treelet: cursor[t] starts at treelet t's offset. */
 __kernel void treelet_scatter(uint count,

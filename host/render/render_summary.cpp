@@ -18,7 +18,8 @@ void summariseRays(RenderStats& st, const std::vector<uint32_t>& num, int maxTra
     // (the treelet path's first rounds take each ray once, as the intersect kernels do)
     const uint64_t closestRays = active("intersect_closest") + active("treelet_closest_root");
     st.continuationRays = closestRays > st.eyeRays ? closestRays - st.eyeRays : 0;
-    st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root");
+    st.shadowRays = active("intersect_shadow") + active("treelet_shadow_root") +
+                    active("treelet_shadow_walk_begin");
     st.shadeNonfinite = num[RT_NUM_NONFINITE], st.shadeNegative = num[RT_NUM_NEGATIVE];
     st.shadeHuge = num[RT_NUM_HUGE], st.shadeDenormal = num[RT_NUM_DENORMAL];
     st.transparentDepthCut = num[RT_NUM_TRANSPARENT_DEPTH];

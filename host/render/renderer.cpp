@@ -123,13 +123,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     if (treeletBudget > 0 && !f.treelets)
         diag.warning(rib::SourceLoc{scene.sourceFile, 0},
                      "treelet budget not used: " + st.treelets.why);
-    chooseTraversal(f, m_settings.bvhWidth, m_settings.shadowPackets, m_settings.closestPackets,
-                    m_ctx.info().type & CL_DEVICE_TYPE_CPU);
-    if (f.treelets && f.transparentShadows)
-        diag.warning(
-            rib::SourceLoc{scene.sourceFile, 0},
-            "treelets: surfaces with Os < 1 or \"visibility\" \"transmission\" 0 "
-            "cast full shadows (the treelet shadow rays stop at the first surface)");
+    chooseTraversal(f, m_settings.bvhWidth, m_settings.shadowPackets,
+                    m_settings.closestPackets, m_ctx.info().type & CL_DEVICE_TYPE_CPU);
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
@@ -255,6 +250,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     }
     const TraceScene traceScene{ds.quadrics,      ds.csg,    ds.triangles, ds.quadricMotion,
                                 ds.trianglesEnd, rp.sample, rp.sampleTime};
+    const ShadowSurfaces shadowSurfaces{ds.attrs, ds.materials, ds.materialChannels,
+                                        rp.shAov, f.maxTransparentDepth};
     // Textures: the device tile cache (Option "limits" "texturememory" or the command
     // line; else every tile when they fit in 256 MiB), and the lists of points to shade
     // again once the tiles they missed are there.
@@ -380,7 +377,8 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         if (nl > 0) {
             if (treelets)
                 treelets->shadow(cl_uint(n * nl), rp.shOrigin, rp.shDirection, rp.shState,
-                                 rp.shWeight, traceScene, nl);
+                                 rp.shWeight, traceScene, nl,
+                                 f.transparentShadows ? &shadowSurfaces : nullptr);
             else
                 k.intersectShadow.launch(f.shadowItems(n, nl), cl_uint(n * nl), ds.nodes,
                                          ds.blocks, rp.shOrigin, rp.shDirection,

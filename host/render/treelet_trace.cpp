@@ -6,6 +6,7 @@
 #include <cstring>
 #include <deque>
 #include <functional>
+#include <optional>
 
 namespace rd {
 
@@ -69,19 +70,46 @@ void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
 }
 
 struct TreeletTracer::Impl {
-    Impl(const ClContext& c, cl_program p, Profiler& prof, NodeCut&& theCut, TreeletStats& s)
-        : ctx(c), st(s), cut(std::move(theCut)),
+    Impl(const ClContext& c, cl_program p, Profiler& prof, NodeCut&& theCut,
+         TreeletStats& s)
+        : ctx(c),
+          st(s),
+          cut(std::move(theCut)),
           closestRoot(c, p, "treelet_closest_root", prof),
           closestPairs(c, p, "treelet_closest", prof),
           shadowRoot(c, p, "treelet_shadow_root", prof),
           shadowPairs(c, p, "treelet_shadow", prof),
-          scatter(c, p, "treelet_scatter", prof), resolve(c, p, "treelet_resolve", prof),
-          counters(c, cut.count() + 1), cursor(c, cut.count()) {}
+          scatter(c, p, "treelet_scatter", prof),
+          resolve(c, p, "treelet_resolve", prof),
+          program(p),
+          prof(prof),
+          counters(c, cut.count() + 1),
+          cursor(c, cut.count()) {}
 
     const ClContext& ctx;
     TreeletStats& st;
     NodeCut cut;
     Kernel closestRoot, closestPairs, shadowRoot, shadowPairs, scatter, resolve;
+    // The transparent shadow walk (made at its first use: only programs built with
+    // RT_HAS_TRANSPARENT_SHADOWS have its kernels): its closest-hit kernels, its rays'
+    // moving origins and states, their hits, what got through so far, the rays going on.
+    struct Walk {
+        Walk(const ClContext& c, cl_program p, Profiler& prof)
+            : root(c, p, "treelet_walk_root", prof),
+              pairs(c, p, "treelet_walk", prof),
+              begin(c, p, "treelet_shadow_walk_begin", prof),
+              step(c, p, "treelet_shadow_walk_step", prof),
+              walking(c, 1) {}
+        Kernel root, pairs, begin, step;
+        DeviceBuffer<rt_float4> origin;
+        DeviceBuffer<RayState> state;
+        DeviceBuffer<RayHit> hits;
+        DeviceBuffer<float> through;
+        DeviceBuffer<cl_uint> walking;
+    };
+    std::optional<Walk> walk;
+    cl_program program;
+    Profiler& prof;
     DeviceBuffer<unsigned char> nodes;  // every treelet, or the cache's slots
     DeviceBuffer<Triangle4> blocks;
     DeviceBuffer<TreeletRef> refs;  // where each treelet is in nodes and blocks
@@ -170,6 +198,29 @@ struct TreeletTracer::Impl {
         }
         launch(offset[chunkFirst], total - offset[chunkFirst]);
         return st.uploads - uploadsBefore;
+    }
+
+    // Closest hits of the first n live rays through `root` and `pairs` (closest kernels),
+    // then resolved into hits; `lights` rays share a sample (their time).
+    void closest(Kernel& root, Kernel& pairs, cl_uint n,
+                 const DeviceBuffer<rt_float4>& origin,
+                 const DeviceBuffer<rt_float4>& direction,
+                 const DeviceBuffer<RayState>& state, DeviceBuffer<RayHit>& hits,
+                 const TraceScene& sc, cl_uint lights) {
+        if (keys.size() < n) keys = DeviceBuffer<cl_ulong>(ctx, n);
+        const cl_uint T = cl_uint(cut.count());
+        rounds(n, [&](bool isRoot, cl_uint first, cl_uint count) {
+            ++st.launches;
+            (isRoot ? root : pairs)
+                .launch(count, first, count, sorted, refs, nodes, blocks, origin,
+                        direction, state, keys, queue, cl_uint(capacity), counters, T,
+                        cl_uint(st.streamed), sc.quadrics, sc.csg, sc.triangles,
+                        sc.quadricMotion, sc.trianglesEnd, sc.raySample, sc.sampleTime,
+                        lights);
+        });
+        resolve.launch(n, n, origin, direction, state, keys, hits, sc.quadrics, sc.csg,
+                       sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
+                       sc.sampleTime, lights);
     }
 
     // The rounds of one trace; `launch(rootOnly, first, count)` runs the closest or the
@@ -289,47 +340,65 @@ void TreeletTracer::closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                             const DeviceBuffer<rt_float4>& direction,
                             const DeviceBuffer<RayState>& state, DeviceBuffer<RayHit>& hits,
                             const TraceScene& sc) {
-    Impl& s = *m;
-    if (s.keys.size() < n) s.keys = DeviceBuffer<cl_ulong>(s.ctx, n);
-    const cl_uint T = cl_uint(s.cut.count());
-    s.rounds(n, [&](bool root, cl_uint first, cl_uint count) {
-        ++s.st.launches;
-        (root ? s.closestRoot : s.closestPairs)
-            .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin, direction,
-                    state, s.keys, s.queue, cl_uint(s.capacity), s.counters, T,
-                    cl_uint(s.st.streamed), sc.quadrics,
-                    sc.csg, sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
-                    sc.sampleTime, cl_uint(1));
-    });
-    s.resolve.launch(n, n, origin, direction, state, s.keys, hits, sc.quadrics, sc.csg,
-                     sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
-                     sc.sampleTime, cl_uint(1));
+    m->closest(m->closestRoot, m->closestPairs, n, origin, direction, state, hits, sc, 1);
 }
 
 void TreeletTracer::shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
                            const DeviceBuffer<rt_float4>& direction,
-                           const DeviceBuffer<RayState>& state, DeviceBuffer<float>& weight,
-                           const TraceScene& sc, cl_uint lights) {
+                           const DeviceBuffer<RayState>& state,
+                           DeviceBuffer<float>& weight, const TraceScene& sc,
+                           cl_uint lights, const ShadowSurfaces* surfaces) {
     Impl& s = *m;
+    lights = std::max<cl_uint>(lights, 1);
+    if (surfaces) {
+        // A layer a trace, from front to back, as intersect_shadow's loop: the walk ends
+        // when no ray goes on, or at the transparent depth.
+        if (!s.walk) s.walk.emplace(s.ctx, s.program, s.prof);
+        Impl::Walk& w = *s.walk;
+        if (w.state.size() < n) {
+            w.origin = DeviceBuffer<rt_float4>(s.ctx, n);
+            w.state = DeviceBuffer<RayState>(s.ctx, n);
+            w.hits = DeviceBuffer<RayHit>(s.ctx, n);
+        }
+        if (w.through.size() < weight.size())
+            w.through = DeviceBuffer<float>(s.ctx, weight.size());
+        w.begin.launch(n, n, origin, state, weight, w.origin, w.state, w.through);
+        for (int layer = 0; layer <= surfaces->maxTransparentDepth; ++layer) {
+            s.closest(w.root, w.pairs, n, w.origin, direction, w.state, w.hits, sc,
+                      lights);
+            w.walking.fillZero();
+            w.step.launch(n, n, cl_uint(layer == surfaces->maxTransparentDepth), w.hits,
+                          w.origin, w.state, w.through, weight, surfaces->shadowAov,
+                          surfaces->attrs, surfaces->materials,
+                          surfaces->materialChannels, sc.quadrics, w.walking);
+            if (w.walking.download()[0] == 0) break;
+        }
+        return;
+    }
     const cl_uint T = cl_uint(s.cut.count());
     s.rounds(n, [&](bool root, cl_uint first, cl_uint count) {
         ++s.st.launches;
         (root ? s.shadowRoot : s.shadowPairs)
-            .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin, direction,
-                    state, weight, s.queue, cl_uint(s.capacity), s.counters, T,
-                    cl_uint(s.st.streamed), sc.quadrics, sc.csg,
-                    sc.triangles, sc.quadricMotion, sc.trianglesEnd, sc.raySample,
-                    sc.sampleTime, std::max<cl_uint>(lights, 1));
+            .launch(count, first, count, s.sorted, s.refs, s.nodes, s.blocks, origin,
+                    direction, state, weight, s.queue, cl_uint(s.capacity), s.counters, T,
+                    cl_uint(s.st.streamed), sc.quadrics, sc.csg, sc.triangles,
+                    sc.quadricMotion, sc.trianglesEnd, sc.raySample, sc.sampleTime,
+                    lights);
     });
 }
 
 uint64_t TreeletTracer::peekRays() const {
-    return m->closestRoot.peekActive() + m->shadowRoot.peekActive();
+    return m->closestRoot.peekActive() + m->shadowRoot.peekActive() +
+           (m->walk ? m->walk->begin.peekActive() : 0);
 }
 
 void TreeletTracer::collectActive() {
-    Kernel::collectActive({&m->closestRoot, &m->closestPairs, &m->shadowRoot, &m->shadowPairs,
-                           &m->scatter, &m->resolve});
+    std::vector<Kernel*> k = {&m->closestRoot, &m->closestPairs, &m->shadowRoot,
+                              &m->shadowPairs, &m->scatter,      &m->resolve};
+    if (m->walk)
+        k.insert(k.end(),
+                 {&m->walk->root, &m->walk->pairs, &m->walk->begin, &m->walk->step});
+    Kernel::collectActive(k);
 }
 
 }  // namespace rd

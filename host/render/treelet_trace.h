@@ -14,6 +14,7 @@
 
 #include "bvh/treelets.h"
 #include "cl/include/ray.h"
+#include "cl/include/scene_types.h"
 #include "features.h"
 #include "ocl/kernel.h"
 
@@ -50,6 +51,17 @@ struct TraceScene {
     const DeviceBuffer<float>& sampleTime;
 };
 
+// What shadow rays read of the surfaces they pass in scenes where some let light through
+// (RT_HAS_TRANSPARENT_SHADOWS): they walk them a layer a closest-hit trace, as
+// intersect_shadow does, and dim their weights and AOV parts by each one's transmittance.
+struct ShadowSurfaces {
+    const DeviceBuffer<TriangleAttr>& attrs;
+    const DeviceBuffer<Material>& materials;
+    const DeviceBuffer<float>& materialChannels;
+    DeviceBuffer<float>& shadowAov;  // RT_SHADER_AOVS: the parts each shadow ray carries
+    int maxTransparentDepth;         // layers after the first
+};
+
 // Decides whether the scene traces through treelets with this budget (0: no) and sets
 // f.treelets and f.int64Min for buildOptions(). The treelet kernels handle triangles,
 // quadrics, CSG solids and motion; a scene with instances or deferred archives (whose
@@ -73,10 +85,13 @@ public:
                  const DeviceBuffer<rt_float4>& direction, const DeviceBuffer<RayState>& state,
                  DeviceBuffer<RayHit>& hits, const TraceScene& scene);
     // intersect_shadow's work: weight[i] zeroed for the occluded ones (their states left
-    // as they were); `lights` shadow rays per shaded ray (for their time).
+    // as they were), or dimmed by the surfaces passed when `surfaces` is given; `lights`
+    // shadow rays per shaded ray (for their time).
     void shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
-                const DeviceBuffer<rt_float4>& direction, const DeviceBuffer<RayState>& state,
-                DeviceBuffer<float>& weight, const TraceScene& scene, cl_uint lights);
+                const DeviceBuffer<rt_float4>& direction,
+                const DeviceBuffer<RayState>& state, DeviceBuffer<float>& weight,
+                const TraceScene& scene, cl_uint lights,
+                const ShadowSurfaces* surfaces = nullptr);
 
     // Rays traced so far (the first rounds' active counters, read without resetting), and
     // the per-kernel active counts handed to the profiler for --stats.

@@ -182,6 +182,13 @@ TEST(ShaderAovs, CompositedThroughTransparentSurfaces) {
     EXPECT_NEAR(r.mean(0, 45, 13, 51, 19), 0.2 * 0.5 * lit, 1e-5);
     EXPECT_NEAR(mean(c, "P.Z", 12, 8, 24, 24), 0.0, 1e-4);
     EXPECT_NE(r.stats.program.options.find("-DRT_RAY_AOVS"), std::string::npos);
+    // through treelets the shadow rays walk the square as well, and dim the part alike
+    settings.treeletBytes = 1;
+    Rendered t = renderRib(rib, settings);
+    EXPECT_TRUE(t.stats.treelets.used);
+    EXPECT_NEAR(mean(channels(t.film, {"diff"}), "diff.G", 45, 13, 51, 19), 0.5 * lit,
+                1e-5);
+    EXPECT_NEAR(t.mean(0, 45, 13, 51, 19), 0.2 * 0.5 * lit, 1e-5);
 }
 
 // A colour AOV in the scene's own channels reaches the image as RGB through nRGB: two

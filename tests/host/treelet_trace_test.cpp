@@ -456,6 +456,53 @@ TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
     }
 }
 
+// Shadows through surfaces that let light through walk them through the treelets a layer
+// a trace, as the resident intersect_shadow does a layer a traversal: the image is the
+// resident one bit for bit at every budget, streamed too, at both node widths, with
+// triangles and exact quadrics, and with a transparent depth of 1 (a shadow ray that
+// meets a third surface is occluded). Before, treelet shadow rays stopped at the first
+// surface (a full shadow) with a warning.
+TEST(TreeletTrace, TransparentShadowsWalkTheSurfacesTheyPass) {
+    std::string base = mirrorScene();
+    // a coloured glassy sphere (two surfaces on the way), one that casts no shadow, and a
+    // pane over the floor: the floor under both spheres' shadows is lit through them
+    base.replace(base.find("Color [0.2 0.7 0.25]\n"), 21,
+                 "Color [0.2 0.7 0.25]\nOpacity [0.5 0.3 0.8]\n");
+    base.replace(
+        base.find("Color [0.9 0.3 0.2]\n"), 20,
+        "Color [0.9 0.3 0.2]\nAttribute \"visibility\" \"int transmission\" [0]\n");
+    base.replace(
+        base.find("WorldEnd"), 8,
+        "AttributeBegin\nOpacity [0.4 0.4 0.4]\nAttribute \"visibility\" \"int camera\" "
+        "[0]\nPolygon \"P\" [0 2.5 -3  0 2.5 1  3 2.5 1  3 2.5 -3]\nAttributeEnd\n"
+        "WorldEnd");
+    for (const char* quadrics : {"0", "1"})
+        for (const char* depth :
+             {"", "Option \"trace\" \"int maxtransparentdepth\" [1]\n"}) {
+            std::string rib = std::string(depth) + base;
+            rib.replace(rib.find("exactquadrics\" [0]"), 18,
+                        std::string("exactquadrics\" [") + quadrics + "]");
+            SCOPED_TRACE(rib.substr(0, 80));
+            Rendered resident = renderRib(rib);
+            ASSERT_TRUE(resident.stats.features.transparentShadows);
+            EXPECT_FALSE(resident.stats.treelets.used);
+            struct Case {
+                size_t budget, memory;
+            } cases[] = {
+                {size_t(1) << 30, 0},
+                {1, 0},
+                {1024, quadrics[0] == '0' ? size_t(2048)
+                                          : 0}};  // (five objects: too few to stream)
+            for (int width : {4, 8})
+                for (const Case& c : cases) {
+                    Rendered t = renderThroughTreelets(rib, c.budget, c.memory, width);
+                    EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
+                    EXPECT_EQ(t.stats.continuationRays, resident.stats.continuationRays);
+                    expectSameImage(resident, t);
+                }
+        }
+}
+
 // Instances are not in the treelet cut (their prototypes' trees are reached through
 // instance records): the render keeps the resident traversal, says why in --stats, and
 // the image is the resident one.
