@@ -137,7 +137,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
     culled = culled || (m.flags & (RT_TRACE_DEPTH(rs) == 0u ? RT_MATERIAL_NO_CAMERA
                                                             : RT_MATERIAL_NO_TRACE));
 #ifdef RT_HAS_VISIBILITY_RAYS
-    culled = culled || rs.alive == RT_ALIVE_VISIBILITY; /* (classify sends only these here) */
+    /* (classify sends only these here) */
+    culled = culled || rs.alive == RT_ALIVE_VISIBILITY || rs.alive == RT_ALIVE_DISTANCE;
 #endif
 #endif
     RslEval ev;
@@ -459,6 +460,13 @@ __kernel void shade_SURFACE(uint begin, uint count,
         o.w = 0.0f;
         float4 d = dir;
         d.w = dir.w - h.t;
+#if defined(RT_HAS_VISIBILITY_RAYS) && defined(RT_HAS_INVISIBLE)
+        if (rs.alive == RT_ALIVE_DISTANCE) { /* its distance counts from where it started */
+            o = org;
+            o.w = h.t; /* (past the surface: fromSurface below skips it) */
+            d.w = dir.w;
+        }
+#endif
         uint s = r * RT_SPAWN_SLOTS;
         next_origin[s] = o;
         next_direction[s] = d;

@@ -82,10 +82,15 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
                 k = shader_count;
         }
         /* a distance ray (gather()'s "ray:length"): its weight times the distance to what
-         * it met counts, nothing when it escaped; it is never shaded (a surface invisible
-         * to traced rays stops it too) */
+         * it met counts, nothing when it escaped; it is never shaded, but goes on through
+         * a surface traced rays go through (its shade kernel), measuring from its start */
         if (state[r].alive == RT_ALIVE_DISTANCE) {
-            if (prim != RT_NO_HIT) {
+#ifdef RT_HAS_INVISIBLE
+            const int passes = prim != RT_NO_HIT && (materials[mat].flags & RT_MATERIAL_NO_TRACE);
+#else
+            const int passes = 0;
+#endif
+            if (prim != RT_NO_HIT && !passes) {
                 const float t = hits[r].t;
                 rt_atomic_add_float4(&total[ray_sample[r]].value,
                                      rt_total_of(rt_weight_color(weight[r]) * t));
@@ -93,7 +98,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
                 rt_aov_add_ray(aov_values, ray_aovw, r, state[r], ray_sample[r], (rsl_color)(t));
 #endif
             }
-            k = shader_count;
+            if (!passes) k = shader_count;
         }
 #endif
         key[r] = k;

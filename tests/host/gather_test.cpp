@@ -110,4 +110,13 @@ TEST(Gather, RayLengthIsTheDistanceToWhatTheRayMet) {
     EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), expected, 0.02);
     std::printf("NUMERICS case=gather_ray_length tolerance=0.02 measured=%.4f\n",
                 r.mean(0, 0, 0, 16, 16) - expected);
+    // A wider disk halfway up that traced rays do not see: the rays go through it and
+    // measure from where they started, to the same mean (before, they stopped at it).
+    Rendered through = renderRib(rd::test::patchUnder(
+        shaderDir("gather_length"), 8, "\"gatherlen\"",
+        "AttributeBegin\nAttribute \"visibility\" \"int trace\" [0]\nTranslate 0 0 6\n"
+        "Disk 0 1.5 360\nAttributeEnd\n" +
+            kDisk));
+    EXPECT_NEAR(through.mean(0, 0, 0, 16, 16), expected, 0.02);
+    EXPECT_TRUE(through.stats.features.invisible);
 }
