@@ -68,6 +68,7 @@ void RibBuilder::worldBegin(L loc) {
     if (!finite3(glm::vec3(m_origin))) m_origin = glm::dvec3(0.0);
     m_inWorld = true;
     m_materialKeys.clear();
+    m_attributeSetIndex.clear();
     m_surfaceKeys.clear();
     m_surfaceVariants.clear();
     m_atmosphereKeys.clear();
@@ -107,6 +108,8 @@ void RibBuilder::worldEnd(L loc) {
 }
 
 void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList& params) {
+    setMessageValues(loc, name, params, m_attrStack.back().messages,
+                     &m_attrStack.back().ctm);
     if (name == "visibility") {
         // PRMan: "int camera", "int trace" (or, later, "int diffuse" and "int specular"
         // together), "int transmission" / "string transmission"
@@ -261,6 +264,8 @@ void RibBuilder::pixelSamples(L loc, float x, float y) {
     m_options.camera.pixelSamples[1] = std::floor(y);
 }
 void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& params) {
+    setMessageValues(loc, name, params, (m_inWorld ? m_world : m_options).optionValues,
+                     nullptr);
     if (name == "searchpath") {
         // "shader"/"texture" ["dir:dir:&"]: '&' stands for the path so far.
         for (auto [key, list] : {std::pair{"shader", &m_options.shaderSearchPath},
@@ -518,17 +523,19 @@ uint32_t RibBuilder::currentMaterial() {
         key.append(reinterpret_cast<const char*>(a.opacity),
                    sizeof(float) * size_t(colors.n));
     }
-    for (const auto& [k, index] : m_materialKeys)
-        if (k == key) return index;
+    const uint32_t attributeSet = attributeSetIndex(a.messages);
+    key.append(reinterpret_cast<const char*>(&attributeSet), sizeof attributeSet);
+    if (auto it = m_materialKeys.find(key); it != m_materialKeys.end()) return it->second;
     uint32_t index = static_cast<uint32_t>(m_world.materials.size());
     m_world.materials.push_back(m);
+    m_world.materialAttributes.push_back(attributeSet);
     if (colors.n > 3) {
         m_world.materialChannels.insert(m_world.materialChannels.end(), a.color,
                                         a.color + colors.n);
         m_world.materialChannels.insert(m_world.materialChannels.end(), a.opacity,
                                         a.opacity + colors.n);
     }
-    m_materialKeys.emplace_back(key, index);
+    m_materialKeys.emplace(std::move(key), index);
     return index;
 }
 

@@ -3,23 +3,22 @@
 // attribute and transform stacks, binds shaders and lights, and hands geometry to the
 // tessellator in world space.
 #pragma once
-#include <vector>
-
-#include <glm/glm.hpp>
-
 #include <functional>
+#include <glm/glm.hpp>
 #include <map>
 #include <memory>
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
-#include "rib/target.h"
 #include "quadric_shapes.h"
+#include "rib/target.h"
 #include "scene.h"
+#include "tessellate_curves_points.h"
 #include "tessellate_nurbs.h"
 #include "tessellate_patches.h"
-#include "tessellate_curves_points.h"
 #include "tessellate_subdiv.h"
 #include "tessellate_types.h"
 
@@ -214,6 +213,7 @@ private:
                                                    1, 1, 1, 1, 1, 1, 1};
         float opacity[ColorSamples::kMaxChannels] = {1, 1, 1, 1, 1, 1, 1, 1,
                                                      1, 1, 1, 1, 1, 1, 1};
+        MessageValues messages;  // what attribute() finds (Attribute values given)
         ShaderRef surface;    // the current Surface call
         uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;
@@ -236,6 +236,14 @@ private:
     enum class Block { Frame, World, Attribute, Transform };
 
     uint32_t currentMaterial();
+    // Attribute and Option values for attribute() and option()
+    // (rib_builder_messages.cpp): params of `category` into `into` as "category:name",
+    // replacing those of the same name; `ctm` (attributes) moves points, vectors and
+    // normals to current space.
+    void setMessageValues(L, const std::string& category, const rib::ParamList& params,
+                          MessageValues& into, const glm::mat4* ctm);
+    // The index of an attribute set in m_world.attributeSets, added when new.
+    uint32_t attributeSetIndex(const MessageValues& set);
     // "trace" "maxtransparentdepth" of an Attribute or Option.
     void traceDepthOption(const rib::ParamList& params);
     void addAov(const std::string& name);
@@ -407,7 +415,8 @@ private:
     void addMovingTriangle(const Triangle& first, const std::vector<Triangle>& keys,
                            const std::vector<float>& times);
     std::vector<Scene> m_scenes;
-    std::vector<std::pair<std::string, uint32_t>> m_materialKeys;
+    std::unordered_map<std::string, uint32_t> m_materialKeys;
+    std::map<MessageValues, uint32_t> m_attributeSetIndex;
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
     std::vector<uint64_t> m_atmosphereKeys;  // per atmospheres entry: its Atmosphere call
     std::vector<uint64_t> m_displacementKeys;  // per displacements entry: its call

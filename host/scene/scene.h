@@ -100,6 +100,23 @@ struct RenderOptionsSpec {
     bool sobol = true;         // "string sampler": "sobol" (default) or "independent"
 };
 
+// A value attribute() or option() gives shaders (rsl_abi.h, MESSAGE PASSING): an
+// Attribute or Option parameter as "category:name" (Attribute "user" "float k" [1] is
+// "user:k"), its floats: integers as floats, strings as their ids (rsl::stringId), an
+// attribute's points, vectors and normals in the renderer's current (eye-relative world)
+// space. A set is sorted by name.
+struct MessageValue {
+    std::string name;
+    std::vector<float> values;
+    bool operator<(const MessageValue& o) const {
+        return name != o.name ? name < o.name : values < o.values;
+    }
+    bool operator==(const MessageValue& o) const {
+        return name == o.name && values == o.values;
+    }
+};
+using MessageValues = std::vector<MessageValue>;
+
 struct Scene {
     std::string sourceFile;
     ColorSamples colors;
@@ -141,6 +158,11 @@ struct Scene {
     std::vector<Prototype> prototypes;
     // Materials: Material::shader indexes surfaceRefs until the shader set compiles them.
     std::vector<Material> materials;
+    // attribute(): the distinct sets of attribute values (set 0: none) and each
+    // material's set, by material index
+    std::vector<MessageValues> attributeSets{MessageValues{}};
+    std::vector<uint32_t> materialAttributes;
+    MessageValues optionValues;          // option(): every Option's values
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
     // DelayedReadArchive calls not loaded yet (RT_Q_PROCEDURAL boxes); key: where the
     // call is and what it reads, the same from one reading of the RIB to the next

@@ -2,8 +2,6 @@
 // generated part of the shade stage's OpenCL source.
 #include "shader_set.h"
 
-#include "shader_aovs.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,7 +13,9 @@
 
 #include "compiler.h"
 #include "emit_cl.h"
+#include "message_services.h"
 #include "ocl/program.h"
+#include "shader_aovs.h"
 #include "shader_path.h"
 
 namespace rd {
@@ -27,7 +27,9 @@ namespace {
 // camera to current (16, the RSL row-vector matrix), the "world" row (-worldOrigin, 1),
 // Format (x, y resolution, pixel aspect) then Clipping (near, far); a multiple of four
 // floats, as light blocks after it load float4s.
-constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20, kSceneFloats = 28;
+// Then the starts of attribute()'s table and option()'s block (message_services.h).
+constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20,
+                 kSceneAttributes = 25, kSceneOptions = 26, kSceneFloats = 28;
 
 // Moves a triple of a point/vector/normal parameter from a space to world space.
 void toWorld(rsl::BaseType base, const glm::mat4& m, float* v) {
@@ -337,15 +339,6 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     out.lightCount = uint32_t(lightShaderOf.size());
     // --- services the generated code calls (rsl_abi.h)
     std::ostringstream svc;
-    // attribute() knows nothing yet; option("Format", f[3]) is the image size.
-    svc << "int rsl_attribute(int nameId, float* out, int n) { return 0; }\n"
-           "int rsl_option(const RslSpaces* sp, int nameId, float* out, int n) {\n"
-           "    int at = nameId == " << rsl::stringId("Format") << " && n == 3 ? " << kSceneFormat
-        << " : nameId == " << rsl::stringId("Clipping") << " && n == 2 ? " << kSceneFormat + 3
-        << " : -1;\n"
-           "    if (at < 0) return 0;\n"
-           "    for (int k = 0; k < n; ++k) out[k] = sp->scene[at + k];\n"
-           "    return 1;\n}\n";
     svc << "int rsl_light_count(void) { return " << out.lightCount << "; }\n";
     // Each light shader is called from one place (and its parameters read by name in
     // one), its instances told apart by where their data is (tables of offsets: the
@@ -539,7 +532,8 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
             shaders << sh->source << "\n";
             out.imager = true;
             imagerKernel =
-                "__kernel void imager_apply(uint width, uint count, __global float4* pixels,\n"
+                "__kernel void imager_apply(uint width, uint count, __global float4* "
+                "pixels,\n"
                 "                           __global const float* params,\n"
                 "                           __global uint* active_counter) {\n"
                 "    uint i = get_global_id(0);\n"
@@ -547,8 +541,10 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
                 "    if (i >= count) return;\n"
                 "    float4 c = pixels[i];\n"
                 "    RslGlobals g;\n"
-                "    g.P = (float4)((float)(i % width) + 0.5f, (float)(i / width) + 0.5f, 0.0f, 0.0f);\n"
-                "    g.N = g.Ng = g.I = g.E = g.dPdu = g.dPdv = g.L = g.Ps = (float4)(0.0f);\n"
+                "    g.P = (float4)((float)(i % width) + 0.5f, (float)(i / width) + "
+                "0.5f, 0.0f, 0.0f);\n"
+                "    g.N = g.Ng = g.I = g.E = g.dPdu = g.dPdv = g.L = g.Ps = "
+                "(float4)(0.0f);\n"
                 "    g.Cl = rsl_f2c(0.0f);\n"
                 "    g.Cs = g.Os = rsl_f2c(1.0f);\n"
                 "    g.Ci = rsl_c3(c); /* the film's RGB (rsl_abi.h, COLOURS) */\n"
@@ -564,9 +560,12 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
                 "    g.rng_pixel = i;\n    g.rng_sample = 0u;\n    g.rng_depth = 0u;\n"
                 "    g.texctx = 0;\n"
                 "    g.scene_params = params;\n"
+                "    g.material = -1;\n    g.ray_depth = 0u;\n"
                 "    RslEval ev;\n"
                 "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
-                "    " + sh->functionName + "(&g, params + " + std::to_string(offset) + ", &ev);\n"
+                "    " +
+                sh->functionName + "(&g, params + " + std::to_string(offset) +
+                ", &ev);\n"
                 "    float4 rgb = rsl_c2v(g.Ci);\n"
                 "    pixels[i] = (float4)(rgb.x, rgb.y, rgb.z, RSL_CW(g.Ol));\n"
                 "}\n";
@@ -612,6 +611,15 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     const std::string w = "(p)[" + std::to_string(kSceneWorld);
     const std::string sceneDefines = "#define RD_SCENE_WORLD_ORIGIN(p) (float4)(-" + w +
                                      "], -" + w + " + 1], -" + w + " + 2], 0.0f)\n";
+    // attribute() and option(), once every shader is known (attribute data only when
+    // some shader asks)
+    bool attributesUsed = false;
+    for (const auto& [name, sh] : m_cache)
+        attributesUsed |= sh && sh->source.find("rsl_attribute(g") != std::string::npos;
+    svc << messageServices(
+        m_scene, attributesUsed,
+        MessageSlots{kSceneFormat, kSceneFormat + 3, kSceneAttributes, kSceneOptions},
+        out.params, m_diag);
     out.generated["rd_shading.cl"] = lightDefines + sceneDefines + "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
                                      "inline __attribute__((always_inline))\n#endif\n"
                                      "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"

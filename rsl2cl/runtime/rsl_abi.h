@@ -58,8 +58,9 @@
  *
  * MESSAGE PASSING. `lightsource("name", var)` inside an illuminance loop calls
  * rsl_lightsource_param(g, l, stringId("name"), buf, n) with the loop's current light l
- * and n = the float slots of var (its parameter-block size); `attribute("name", var)`
- * and `option("name", var)` call rsl_attribute / rsl_option the same way. A service
+ * and n = the float slots of var (its parameter-block size); `attribute("name", var)`,
+ * `option("name", var)` and `rayinfo("name", var)` call rsl_attribute(g, ...),
+ * rsl_option(sp, ...) and rsl_rayinfo(g, ...) (rsl_stdlib.clh) the same way. A service
  * returns nonzero and fills buf[0..n) when it has a value of exactly that size, else
  * returns 0 and var is left unchanged; the RSL call returns 1.0 / 0.0 accordingly.
  * lightsource() outside an illuminance loop (including inside user functions),
@@ -162,8 +163,9 @@
  *          light `light`'s parameter named nameId (rsl::stringId of the name): nonzero
  *          and out[0..n) written when that light's shader has such a parameter of n
  *          float slots (its value in the light's parameter block), else 0.
- *   int    rsl_attribute(int nameId, float* out, int n);  attribute("name", var) of
- *          the object being shaded, e.g. "identifier:name" (a string: its id as float)
+ *   int    rsl_attribute(const RslGlobals* g, int nameId, float* out, int n);
+ *          attribute("name", var) of the object being shaded (g->material), e.g.
+ *          "identifier:name" (a string: its id as float) or "user:name"
  *   int    rsl_option(const RslSpaces* sp, int nameId, float* out, int n);
  *          option("name", var), e.g. "Format" (float[3]: x resolution, y resolution,
  * pixel aspect) Both: nonzero and out[0..n) written when known with exactly n slots, else
@@ -259,6 +261,10 @@ typedef struct RslGlobals {
     /* the renderer's data for its services (the camera, the lights' blocks): what
      * changes with the camera or a light is data, so the program stays the same */
     __global const float* scene_params;
+    /* the material being shaded, whose attributes attribute() reads (-1: none), and the
+     * trace depth of the ray that reached it (rayinfo("depth"): 0 for camera rays) */
+    int material;
+    unsigned int ray_depth;
     /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global
      * s, t, which texture lookups use at a shading point's neighbours (DERIVATIVES) */
     float4 st_footprint;

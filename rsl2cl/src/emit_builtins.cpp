@@ -30,14 +30,17 @@ std::string Emitter::colorSpaceArg(const Expr& e) {
     return "rsl_color_from_id(" + expr(e) + ")";
 }
 
-// lightsource() in an illuminance loop, attribute() and option() ask the renderer
-// (rsl_abi.h, MESSAGE PASSING); every other message call is "not found" (0).
+// lightsource() in an illuminance loop, attribute(), option() and rayinfo() ask the
+// renderer (rsl_abi.h, MESSAGE PASSING); every other message call is "not found" (0).
 std::string Emitter::message(const Expr& e) {
     const std::string& n = e.text;
     std::string svc;
     if (n == "lightsource" && !m_func && !m_lightVars.empty())
         svc = "rsl_lightsource_param(g, " + m_lightVars.back() + ", ";
-    else if (n == "attribute") svc = "rsl_attribute(";
+    else if (n == "attribute")
+        svc = "rsl_attribute(g, ";
+    else if (n == "rayinfo")
+        svc = "rsl_rayinfo(g, ";
     else if (n == "option") {  // (the service reads the scene through the spaces)
         svc = "rsl_option(sp, ";
         m_usesSpaces = true;

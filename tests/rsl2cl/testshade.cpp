@@ -211,12 +211,16 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  if (space == RSL_SPACE_CAMERA) m.r[3] = (float4)("
         << fl(sc.cameraOffset[0]) << ", " << fl(sc.cameraOffset[1]) << ", " << fl(sc.cameraOffset[2])
         << ", 1.0f);\n  return m;\n}\n";
-    src << messageService("int rsl_lightsource_param(const RslGlobals* g, int light, int nameId, "
-                          "float* out, int n)",
-                          sc.lightParams, true)
-        << messageService("int rsl_attribute(int nameId, float* out, int n)", sc.attributes, false)
-        << messageService("int rsl_option(const RslSpaces* sp, int nameId, float* out, int n)",
-                          sc.options, false);
+    src << messageService(
+               "int rsl_lightsource_param(const RslGlobals* g, int light, int nameId, "
+               "float* out, int n)",
+               sc.lightParams, true)
+        << messageService(
+               "int rsl_attribute(const RslGlobals* g, int nameId, float* out, int n)",
+               sc.attributes, false)
+        << messageService(
+               "int rsl_option(const RslSpaces* sp, int nameId, float* out, int n)",
+               sc.options, false);
     // no textures here: every lookup gives its fill value
     src << "float4 rsl_texture_service(RslEval* ev, int kind, int id, int channel, float4 p, float4 dpdu,\n"
     "                           float4 dpdv, float width, float blur, float fill, float4 extra) {\n"
@@ -230,34 +234,45 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
         src << "__kernel void ts_prep(__global float* params) { " << shader.prepFunction
             << "(params, params); }\n";
     const std::string gf = std::to_string(kGlobalFloats);
-    src << "__kernel void ts_main(__global const float* gin, __global const float* params,\n"
-           "                      int mode_light, int mode_trace, __global float* out) {\n"
+    src << "__kernel void ts_main(__global const float* gin, __global const float* "
+           "params,\n"
+           "                      int mode_light, int mode_trace, __global float* out) "
+           "{\n"
            "  int i = get_global_id(0);\n"
-           "  __global const float4* gi = (__global const float4*)(gin + i * " + gf + ");\n"
-           "  __global const float* gs = gin + i * " + gf + " + 60;\n"
-           "  RslGlobals g;\n"
-           "  g.P = gi[0]; g.N = gi[1]; g.Ng = gi[2]; g.I = gi[3]; g.E = gi[4];\n"
-           "  g.dPdu = gi[5]; g.dPdv = gi[6];\n"
-           "  g.Cs = rsl_rgb_color(gi[7]); g.Os = rsl_rgb_color(gi[8]);\n"
-           "  g.Ci = rsl_rgb_color(gi[9]); g.Oi = rsl_rgb_color(gi[10]);\n"
-           "  g.L = gi[11]; g.Cl = rsl_rgb_color(gi[12]); g.Ol = rsl_rgb_color(gi[13]);\n"
-           "  g.Ps = gi[14];\n"
-           "  g.u = gs[0]; g.v = gs[1]; g.s = gs[2]; g.t = gs[3]; g.du = gs[4]; g.dv = gs[5];\n"
-           "  g.ncomps = (float)RSL_CHANNELS; g.time = gs[7];\n"
-           "  g.light_cache_count = 0; g.light_cache = 0; g.lights_off = 0u;\n"
-           "  g.rng_pixel = g.rng_sample = g.rng_depth = 0u;\n"
-           "  g.st_footprint = (float4)(0.0f);\n"
-           "  g.texctx = 0;\n  g.loops_cut = 0;\n  g.scene_params = params;\n"
-           "  RslEval ev; ev.deriv = 0; ev.mode_light = max(mode_light, -1);\n"
-           "  ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
-           "#ifdef RSL_LIGHT_COEFS\n"
-           "  ev.coefs = mode_light == -2;\n"
-           "  for (int k = 0; k < RSL_LIGHT_COEFS; ++k) ev.Ci_light[k] = (rsl_color)(-12345.0f);\n"
-           "#endif\n"
-           "  for (int k = 0; k < RSL_MAX_TRACE; ++k) {\n"
-           "    ev.trace_org[k] = (float4)(0); ev.trace_dir[k] = (float4)(0);\n"
-           "  }\n"
-           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) ev.outputs[k] = -12345.0f;\n"
+           "  __global const float4* gi = (__global const float4*)(gin + i * " +
+               gf +
+               ");\n"
+               "  __global const float* gs = gin + i * " +
+               gf +
+               " + 60;\n"
+               "  RslGlobals g;\n"
+               "  g.P = gi[0]; g.N = gi[1]; g.Ng = gi[2]; g.I = gi[3]; g.E = gi[4];\n"
+               "  g.dPdu = gi[5]; g.dPdv = gi[6];\n"
+               "  g.Cs = rsl_rgb_color(gi[7]); g.Os = rsl_rgb_color(gi[8]);\n"
+               "  g.Ci = rsl_rgb_color(gi[9]); g.Oi = rsl_rgb_color(gi[10]);\n"
+               "  g.L = gi[11]; g.Cl = rsl_rgb_color(gi[12]); g.Ol = "
+               "rsl_rgb_color(gi[13]);\n"
+               "  g.Ps = gi[14];\n"
+               "  g.u = gs[0]; g.v = gs[1]; g.s = gs[2]; g.t = gs[3]; g.du = gs[4]; g.dv "
+               "= gs[5];\n"
+               "  g.ncomps = (float)RSL_CHANNELS; g.time = gs[7];\n"
+               "  g.light_cache_count = 0; g.light_cache = 0; g.lights_off = 0u;\n"
+               "  g.rng_pixel = g.rng_sample = g.rng_depth = 0u;\n"
+               "  g.st_footprint = (float4)(0.0f);\n"
+               "  g.texctx = 0;\n  g.loops_cut = 0;\n  g.scene_params = params;\n"
+               "  g.material = 0;\n  g.ray_depth = 0u;\n"
+               "  RslEval ev; ev.deriv = 0; ev.mode_light = max(mode_light, -1);\n"
+               "  ev.mode_trace = mode_trace; ev.trace_count = 0;\n"
+               "#ifdef RSL_LIGHT_COEFS\n"
+               "  ev.coefs = mode_light == -2;\n"
+               "  for (int k = 0; k < RSL_LIGHT_COEFS; ++k) ev.Ci_light[k] = "
+               "(rsl_color)(-12345.0f);\n"
+               "#endif\n"
+               "  for (int k = 0; k < RSL_MAX_TRACE; ++k) {\n"
+               "    ev.trace_org[k] = (float4)(0); ev.trace_dir[k] = (float4)(0);\n"
+               "  }\n"
+               "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) ev.outputs[k] = "
+               "-12345.0f;\n"
         << (light ? "  (void)ev; " + shader.functionName + "(&g, params);\n"
                   : "  " + shader.functionName + "(&g, params, &ev);\n")
         << "  __global float* o = out + i * " << (kGlobalFloats + kEvalFloats) << ";\n"
@@ -268,18 +283,21 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
            "  go[9] = rsl_color_rgb(g.Ci); go[10] = rsl_color_rgb(g.Oi);\n"
            "  go[11] = g.L; go[12] = rsl_color_rgb(g.Cl); go[13] = rsl_color_rgb(g.Ol);\n"
            "  go[14] = g.Ps;\n"
-           "  o[60] = g.u; o[61] = g.v; o[62] = g.s; o[63] = g.t; o[64] = g.du; o[65] = g.dv;\n"
+           "  o[60] = g.u; o[61] = g.v; o[62] = g.s; o[63] = g.t; o[64] = g.du; o[65] = "
+           "g.dv;\n"
            "  o[66] = g.ncomps; o[67] = g.time;\n"
-        << "  o += " + gf + "; o[0] = (float)ev.trace_count;\n"
-           "  for (int k = 0; k < RSL_MAX_TRACE; ++k) {\n"
-           "    vstore4(ev.trace_org[k], 0, o + 4 + 4 * k);\n"
-           "    vstore4(ev.trace_dir[k], 0, o + 36 + 4 * k);\n"
-           "  }\n"
-           "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) o[68 + k] = ev.outputs[k];\n"
-           "#ifdef RSL_LIGHT_COEFS\n"
-           "  for (int k = 0; k < min(RSL_LIGHT_COEFS, 8); ++k)\n"
-           "    vstore4(rsl_color_rgb(ev.Ci_light[k]), 0, o + 100 + 4 * k);\n"
-           "#endif\n}\n";
+        << "  o += " + gf +
+               "; o[0] = (float)ev.trace_count;\n"
+               "  for (int k = 0; k < RSL_MAX_TRACE; ++k) {\n"
+               "    vstore4(ev.trace_org[k], 0, o + 4 + 4 * k);\n"
+               "    vstore4(ev.trace_dir[k], 0, o + 36 + 4 * k);\n"
+               "  }\n"
+               "  for (int k = 0; k < RSL_MAX_OUTPUT_FLOATS; ++k) o[68 + k] = "
+               "ev.outputs[k];\n"
+               "#ifdef RSL_LIGHT_COEFS\n"
+               "  for (int k = 0; k < min(RSL_LIGHT_COEFS, 8); ++k)\n"
+               "    vstore4(rsl_color_rgb(ev.Ci_light[k]), 0, o + 100 + 4 * k);\n"
+               "#endif\n}\n";
     std::string text = src.str();
     const char* p = text.c_str();
     cl_int err;

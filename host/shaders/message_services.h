@@ -1,0 +1,31 @@
+// message_services.h: the services behind attribute() and option() (rsl_abi.h, MESSAGE
+// PASSING): the Attribute and Option values the scene gives (Scene::attributeSets,
+// optionValues) laid out in the parameter buffer, and the OpenCL source of rsl_attribute
+// and rsl_option that finds them by name id and size.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "rib/diagnostics.h"
+#include "scene/scene.h"
+
+namespace rd {
+
+// Where the services find the data and the options they always know, float offsets into
+// the parameter buffer's scene block (RslGlobals::scene_params).
+struct MessageSlots {
+    size_t format = 0, clipping = 0;  // Format (3 floats), Clipping (2)
+    size_t attributeTable = 0;        // the table's start (an int's bits)
+    size_t optionBlock = 0;           // the option block's start (an int's bits)
+};
+
+// Appends the attribute blocks (one per set, every name the sets give laid out alike;
+// a found flag then the values each), the per-material table of block offsets and the
+// option block to `params`, writes their starts into the scene block's slots, and
+// returns rsl_attribute and rsl_option. `attributesUsed`: some shader calls attribute()
+// (else rsl_attribute finds nothing and no attribute data is laid out).
+std::string messageServices(const Scene& scene, bool attributesUsed,
+                            const MessageSlots& slots, std::vector<float>& params,
+                            rib::Diagnostics& diag);
+
+}  // namespace rd
