@@ -156,8 +156,12 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                                       : scene.render.firstPassBlock;
     ss.pixelError = scene.render.pixelError;
     const bool openEnded = timeBudget > 0 || errorTarget > 0;
-    ss.maxSamples = openEnded ? 1u << 16 : uint32_t(cam0.spp_x * cam0.spp_y);
-    ss.minSamples = std::min(2u, ss.maxSamples);
+    ss.maxSamples = scene.render.maxSamples > 0 ? uint32_t(scene.render.maxSamples)
+                    : openEnded                 ? 1u << 16
+                                                : uint32_t(cam0.spp_x * cam0.spp_y);
+    ss.minSamples =
+        std::min(scene.render.minSamples > 0 ? uint32_t(scene.render.minSamples) : 2u,
+                 ss.maxSamples);
     scene.camera.cropPixels(film.cropX0, film.cropX1, film.cropY0, film.cropY1);
     // (from the frame, not the pool: the image must not depend on the pool's capacity)
     ss.smallPass = m_settings.jumpSmallPasses

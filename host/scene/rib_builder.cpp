@@ -255,6 +255,37 @@ void RibBuilder::clipping(L loc, float n, float f) {
     m_options.camera.clipNear = n;
     m_options.camera.clipFar = f;
 }
+// PixelVariance: the error adaptive sampling refines each pixel to (PRMan's meaning
+// under RIS), RayDrive's "pixelerror".
+void RibBuilder::pixelVariance(L loc, float v) {
+    if (!(v > 0.0f && v < 1e30f)) {
+        m_diag.error(loc, "PixelVariance must be above 0");
+        return;
+    }
+    m_options.render.pixelError = v;
+}
+
+// Hider "raytrace" (PRMan's RIS) or "hidden": RayDrive ray traces either way; "int
+// minsamples" and "int maxsamples" bound each pixel's adaptive samples in place of
+// PixelSamples. Other hiders are not RayDrive's: a warning.
+void RibBuilder::hider(L loc, const std::string& type, const rib::ParamList& params) {
+    if (type != "raytrace" && type != "hidden") {
+        m_diag.warning(loc,
+                       "Hider \"" + type +
+                           "\" is not RayDrive's; it ray traces as Hider \"raytrace\"");
+        return;
+    }
+    const int most = params.getInt("maxsamples", -1),
+              least = params.getInt("minsamples", -1);
+    if (most == 0 || most > 65536 || least == 0 || least > 65536) {
+        m_diag.error(
+            loc, "Hider \"" + type + "\": minsamples and maxsamples must be 1 to 65536");
+        return;
+    }
+    if (most > 0) m_options.render.maxSamples = most;
+    if (least > 0) m_options.render.minSamples = least;
+}
+
 void RibBuilder::pixelSamples(L loc, float x, float y) {
     if (!(x >= 1.0f && y >= 1.0f && x <= 64.0f && y <= 64.0f)) {
         m_diag.error(loc, "PixelSamples must be between 1 and 64 per axis");

@@ -71,6 +71,8 @@ public:
     void projection(L, const std::string& name, const rib::ParamList&) override;
     void clipping(L, float, float) override;
     void pixelSamples(L, float, float) override;
+    void pixelVariance(L, float) override;
+    void hider(L, const std::string& type, const rib::ParamList& params) override;
     void pixelFilter(L, const std::string& filter, float xwidth, float ywidth) override;
     void quantize(L, const std::string& type, int one, int min, int max,
                   float dither) override;

@@ -755,3 +755,35 @@ TEST(Aov, DepthAndNormalOfAPlane) {
     auto samples = img.film.aovChannels("samples");
     EXPECT_EQ(samples[0].values[0], float(img.count(0, 0)));
 }
+
+// PixelVariance is the pixel error adaptive sampling refines to (PRMan's meaning under
+// RIS): the same image as Option "render" "pixelerror"; Hider "raytrace" "int minsamples"
+// and "int maxsamples" bound each pixel's samples in place of PixelSamples. Before, both
+// requests were ignored.
+TEST(Sampling, PixelVarianceAndHiderSamplesSteerTheAdaptiveSampling) {
+    std::string rib = grainPlane("pixel_variance", "grain_pv", 16, 8);
+    const std::string option = "Option \"render\" \"float pixelerror\" [0.1]\n";
+    const size_t at = rib.find(option);
+    ASSERT_NE(at, std::string::npos);
+    Rendered byOption = renderRib(rib);
+    std::string variance = rib;
+    variance.replace(at, option.size(), "PixelVariance 0.1\n");
+    Rendered byVariance = renderRib(variance);
+    EXPECT_EQ(pixelsDiffering(byOption, byVariance), 0u);
+    std::string tight = rib;
+    tight.replace(at, option.size(), "PixelVariance 0.001\n");
+    uint64_t loose = 0, many = 0;
+    Rendered tighter = renderRib(tight);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            loose += byVariance.count(x, y), many += tighter.count(x, y);
+    EXPECT_GT(many, loose);  // (up to PixelSamples' 64 each)
+    // every pixel exactly 12 samples, whatever PixelSamples and the error say
+    std::string bounded = variance;
+    bounded.replace(
+        bounded.find("PixelVariance 0.1\n"), 18,
+        "Hider \"raytrace\" \"int minsamples\" [12] \"int maxsamples\" [12]\n");
+    Rendered twelve = renderRib(bounded);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) ASSERT_EQ(twelve.count(x, y), 12u) << x << ", " << y;
+}
