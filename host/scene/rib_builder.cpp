@@ -599,6 +599,7 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
     // attributes. Meshes are shared (a prototype under its own BVH, reached through
     // the instance's record), except inside a solid or with per-point values that each
     // instance moves, where they are copied; quadrics are one record each anyway.
+    if (m_attrStack.back().lodHidden) return;  // (DetailRange)
     const ObjectDef& def = it->second;
     if (const auto shared = sharedPointParams(def); m_solidStack.empty() && shared) {
         addInstance(loc, handle, def, *shared);
@@ -613,7 +614,7 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
 }
 
 void RibBuilder::polygon(L loc, const rib::ParamList& params) {
-    if (!inWorld(loc, "Polygon")) return;
+    if (!shown(loc, "Polygon")) return;
     std::vector<int> nverts;
     const rib::Param* P = params.find("P");
     if (!P) {
@@ -628,7 +629,7 @@ void RibBuilder::polygon(L loc, const rib::ParamList& params) {
 
 void RibBuilder::pointsPolygons(L loc, const std::vector<int>& nverts,
                                 const std::vector<int>& verts, const rib::ParamList& params) {
-    if (!inWorld(loc, "PointsPolygons")) return;
+    if (!shown(loc, "PointsPolygons")) return;
     const rib::Param* P = params.find("P");
     if (!P || P->floats.size() % 3 != 0) {
         m_diag.error(loc, "polygons need \"P\" with 3 floats per point");
@@ -671,7 +672,7 @@ float RibBuilder::pixelsPerUnit(float depth) const {
 
 void RibBuilder::sphere(L loc, float radius, float zmin, float zmax, float thetamax,
                         const rib::ParamList& params) {
-    if (!inWorld(loc, "Sphere")) return;
+    if (!shown(loc, "Sphere")) return;
     if (exactQuadrics()) {
         addQuadric(loc, "Sphere", makeSphere(radius, zmin, zmax, thetamax), params);
         return;

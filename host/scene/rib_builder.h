@@ -72,6 +72,11 @@ public:
     void clipping(L, float, float) override;
     void pixelSamples(L, float, float) override;
     void pixelVariance(L, float) override;
+    // Level of detail (rib_builder_detail.cpp)
+    void relativeDetail(L, float) override;
+    void detail(L, const float bound[6]) override;
+    void detailRange(L, float minVisible, float lowerTransition, float upperTransition,
+                     float maxVisible) override;
     void hider(L, const std::string& type, const rib::ParamList& params) override;
     void pixelFilter(L, const std::string& filter, float xwidth, float ywidth) override;
     void quantize(L, const std::string& type, int one, int min, int max,
@@ -216,6 +221,8 @@ private:
         float opacity[ColorSamples::kMaxChannels] = {1, 1, 1, 1, 1, 1, 1, 1,
                                                      1, 1, 1, 1, 1, 1, 1};
         MessageValues messages;  // what attribute() finds (Attribute values given)
+        float detail = -1.0f;    // Detail: its bound's raster area (-1: none given)
+        bool lodHidden = false;  // DetailRange leaves geometry out at this detail
         ShaderRef surface;    // the current Surface call
         uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;
@@ -253,6 +260,8 @@ private:
     // declared types noted in aovTypes.
     std::vector<std::string> aovModeEntries(L, const std::string& mode);
     bool inWorld(L, const char* request);
+    // inWorld, and the current DetailRange shows geometry at the current Detail
+    bool shown(L, const char* request);
     // Adds an object-space mesh (placed by the current transform) with its primitive
     // variables; degenerate and non-finite triangles are counted and left out.
     void addMesh(L, const VertexData& mesh);

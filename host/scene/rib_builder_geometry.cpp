@@ -217,7 +217,7 @@ void RibBuilder::addObjectRecord(L loc, const char* what, Quadric q, glm::vec3 l
 }
 
 void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float thetamax, P params) {
-    if (!inWorld(loc, "Cylinder")) return;
+    if (!shown(loc, "Cylinder")) return;
     if (exactQuadrics())
         return addQuadric(loc, "Cylinder", makeCylinder(radius, zmin, zmax, thetamax), params);
     SurfaceMesh m;
@@ -230,7 +230,7 @@ void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float the
 }
 
 void RibBuilder::cone(L loc, float height, float radius, float thetamax, P params) {
-    if (!inWorld(loc, "Cone")) return;
+    if (!shown(loc, "Cone")) return;
     if (exactQuadrics())
         return addQuadric(loc, "Cone", makeCone(height, radius, thetamax), params);
     SurfaceMesh m;
@@ -243,7 +243,7 @@ void RibBuilder::cone(L loc, float height, float radius, float thetamax, P param
 }
 
 void RibBuilder::disk(L loc, float height, float radius, float thetamax, P params) {
-    if (!inWorld(loc, "Disk")) return;
+    if (!shown(loc, "Disk")) return;
     if (exactQuadrics())
         return addQuadric(loc, "Disk", makeDisk(height, radius, thetamax), params);
     SurfaceMesh m;
@@ -256,7 +256,7 @@ void RibBuilder::disk(L loc, float height, float radius, float thetamax, P param
 
 void RibBuilder::torus(L loc, float majorRadius, float minorRadius, float phiMin, float phiMax,
                        float thetamax, P params) {
-    if (!inWorld(loc, "Torus")) return;
+    if (!shown(loc, "Torus")) return;
     if (exactQuadrics())
         return addQuadric(loc, "Torus",
                           makeTorus(majorRadius, minorRadius, phiMin, phiMax, thetamax), params);
@@ -273,7 +273,7 @@ void RibBuilder::torus(L loc, float majorRadius, float minorRadius, float phiMin
 
 void RibBuilder::paraboloid(L loc, float rmax, float zmin, float zmax, float thetamax,
                             P params) {
-    if (!inWorld(loc, "Paraboloid")) return;
+    if (!shown(loc, "Paraboloid")) return;
     if (exactQuadrics())
         return addQuadric(loc, "Paraboloid", makeParaboloid(rmax, zmin, zmax, thetamax), params);
     SurfaceMesh m;
@@ -287,7 +287,7 @@ void RibBuilder::paraboloid(L loc, float rmax, float zmin, float zmax, float the
 
 void RibBuilder::hyperboloid(L loc, const float p1[3], const float p2[3], float thetamax,
                              P params) {
-    if (!inWorld(loc, "Hyperboloid")) return;
+    if (!shown(loc, "Hyperboloid")) return;
     if (exactQuadrics())
         return addQuadric(loc, "Hyperboloid",
                           makeHyperboloid({p1[0], p1[1], p1[2]}, {p2[0], p2[1], p2[2]}, thetamax),
@@ -304,7 +304,7 @@ void RibBuilder::hyperboloid(L loc, const float p1[3], const float p2[3], float 
 }
 
 void RibBuilder::generalPolygon(L loc, Ints nverts, P params) {
-    if (!inWorld(loc, "GeneralPolygon")) return;
+    if (!shown(loc, "GeneralPolygon")) return;
     const rib::Param* Pp = params.find("P");
     if (!Pp) return m_diag.error(loc, "GeneralPolygon needs \"P\"");
     SurfaceMesh m;
@@ -318,7 +318,7 @@ void RibBuilder::generalPolygon(L loc, Ints nverts, P params) {
 }
 
 void RibBuilder::pointsGeneralPolygons(L loc, Ints nloops, Ints nverts, Ints verts, P params) {
-    if (!inWorld(loc, "PointsGeneralPolygons")) return;
+    if (!shown(loc, "PointsGeneralPolygons")) return;
     const rib::Param* Pp = params.find("P");
     if (!Pp) return m_diag.error(loc, "PointsGeneralPolygons needs \"P\"");
     SurfaceMesh m;
@@ -360,7 +360,7 @@ std::vector<glm::vec3> controlHull(PositionKind kind, const std::vector<float>& 
 }  // namespace
 
 void RibBuilder::patch(L loc, S type, P params) {
-    if (!inWorld(loc, "Patch")) return;
+    if (!shown(loc, "Patch")) return;
     PositionKind kind;
     std::vector<float> pos;
     if (!patchPositions(params, kind, pos)) return m_diag.error(loc, "Patch needs \"P\"");
@@ -379,7 +379,7 @@ void RibBuilder::patch(L loc, S type, P params) {
 }
 
 void RibBuilder::patchMesh(L loc, S type, int nu, S uwrap, int nv, S vwrap, P params) {
-    if (!inWorld(loc, "PatchMesh")) return;
+    if (!shown(loc, "PatchMesh")) return;
     PatchMeshInput in;
     if (!patchPositions(params, in.kind, in.positions))
         return m_diag.error(loc, "PatchMesh needs \"P\"");
@@ -417,7 +417,7 @@ void RibBuilder::trimCurve(L loc, Ints ncurves, Ints order, Floats knot, Floats 
 
 void RibBuilder::nuPatch(L loc, int nu, int uorder, Floats uknot, float umin, float umax,
                          int nv, int vorder, Floats vknot, float vmin, float vmax, P params) {
-    if (!inWorld(loc, "NuPatch")) return;
+    if (!shown(loc, "NuPatch")) return;
     NuPatchInput in;
     in.nu = nu, in.uorder = uorder, in.uknot = uknot, in.umin = umin, in.umax = umax;
     in.nv = nv, in.vorder = vorder, in.vknot = vknot, in.vmin = vmin, in.vmax = vmax;
@@ -444,7 +444,7 @@ void RibBuilder::nuPatch(L loc, int nu, int uorder, Floats uknot, float umin, fl
 
 void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strings tags,
                                  Ints nargs, Ints intargs, Floats floatargs, P params) {
-    if (!inWorld(loc, "SubdivisionMesh")) return;
+    if (!shown(loc, "SubdivisionMesh")) return;
     const rib::Param* Pp = params.find("P");
     if (!Pp) return m_diag.error(loc, "SubdivisionMesh needs \"P\"");
     SubdivInput in;
@@ -466,7 +466,7 @@ void RibBuilder::subdivisionMesh(L loc, S scheme, Ints nverts, Ints verts, Strin
 }
 
 void RibBuilder::curves(L loc, S type, Ints nvertices, S wrap, P params) {
-    if (!inWorld(loc, "Curves")) return;
+    if (!shown(loc, "Curves")) return;
     const rib::Param* Pp = params.find("P");
     if (!Pp) return m_diag.error(loc, "Curves needs \"P\"");
     CurvesInput in;
@@ -493,7 +493,7 @@ void RibBuilder::curves(L loc, S type, Ints nvertices, S wrap, P params) {
 }
 
 void RibBuilder::points(L loc, P params) {
-    if (!inWorld(loc, "Points")) return;
+    if (!shown(loc, "Points")) return;
     const rib::Param* Pp = params.find("P");
     if (!Pp) return m_diag.error(loc, "Points needs \"P\"");
     std::vector<glm::vec3> P = points3(Pp->floats);

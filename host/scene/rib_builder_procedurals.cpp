@@ -11,6 +11,8 @@ namespace rd {
 // renderer has the RIB read again with it loaded: setLoadedProcedurals). Inside solids
 // and object definitions it is read at once.
 bool RibBuilder::deferProcedural(L loc, S name, Strings args, const float bound[6], S file) {
+    if (m_inWorld && m_attrStack.back().lodHidden)
+        return true;  // (DetailRange: not read)
     if (!m_deferProcedurals || name != "DelayedReadArchive" || !m_inWorld || m_defining ||
         !m_solidStack.empty() || args.empty())
         return false;

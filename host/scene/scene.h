@@ -91,11 +91,11 @@ struct RenderOptionsSpec {
     float time = 0;          // "float time": seconds, 0 = none
     float error = 0;         // "float error": relative film error target, 0 = none
     int firstPassBlock = 2;  // "int firstpassblock": first pass at 1 ray per N x N pixels
-    float pixelError = 0.01f;  // "float pixelerror" or PixelVariance: per-pixel relative
-                               // error to refine to
-    int minSamples = 0,
-        maxSamples =
-            0;  // Hider "raytrace" "int minsamples"/"maxsamples" (0: PixelSamples')
+    // "float pixelerror" or PixelVariance: per-pixel relative error to refine to
+    float pixelError = 0.01f;
+    // Hider "raytrace" "int minsamples"/"maxsamples": each pixel's (0: PixelSamples')
+    int minSamples = 0, maxSamples = 0;
+    float relativeDetail = 1.0f;  // RelativeDetail: scales every Detail's raster area
     bool exactQuadrics = true; // "int exactquadrics": 0 tessellates quadrics into triangles
     int textureMemoryKB = 0;   // Option "limits" "texturememory": the device tile cache (0: auto)
     int treeletBytes = 0;      // Option "limits" "treeletbytes": treelet budget (0: resident BVH)

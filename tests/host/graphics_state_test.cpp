@@ -488,3 +488,34 @@ TEST(GraphicsState, AreaLightGeometryEmitsWithSoftShadows) {
     EXPECT_NEAR(shadowed.mean(0, 27, 15, 28, 17), lit.mean(0, 27, 15, 28, 17), 1e-6)
         << "x = 1.44: the whole disk is seen";
 }
+
+// Level of detail (RI 3.2 4.1.5): two representations of one square, red for a detail
+// (the Detail bound's area in raster pixels) below 150 and blue above (DetailRange [0 0
+// 100 200] and [100 200 1e38 1e38], each transition cut at its middle). The square's
+// bound covers 8 x 8 = 64 pixels at Format 16 16 (red alone) and 32 x 32 = 1024 at 64 64
+// (blue alone); RelativeDetail 0.1 brings the large image back to red. Red is nearer the
+// camera, so a blue area shows that red was left out. Before, Detail and DetailRange were
+// ignored and both were drawn (red everywhere).
+TEST(GraphicsState, DetailRangePicksOneRepresentation) {
+    auto render = [](int res, const std::string& options) {
+        const std::string r = std::to_string(res);
+        return renderRib(
+            options + "Format " + r + " " + r +
+            " 1\nProjection \"orthographic\"\nScreenWindow -2 2 -2 2\n"
+            "Translate 0 0 5\nWorldBegin\nSurface \"constant\"\n"
+            "AttributeBegin\nDetail [-1 1 -1 1 0 0]\n"
+            "AttributeBegin\nDetailRange [0 0 100 200]\nColor [1 0 0]\n"
+            "Polygon \"P\" [-1 -1 -0.1  1 -1 -0.1  1 1 -0.1  -1 1 -0.1]\n"
+            "AttributeEnd\n"
+            "AttributeBegin\nDetailRange [100 200 1e38 1e38]\nColor [0 0 1]\n"
+            "Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\nAttributeEnd\n"
+            "AttributeEnd\nWorldEnd\n");
+    };
+    Rendered small = render(16, ""), large = render(64, ""),
+             relative = render(64, "RelativeDetail 0.1\n");
+    EXPECT_NEAR(small.mean(0, 6, 6, 10, 10), 1.0, 1e-6);
+    EXPECT_NEAR(small.mean(2, 6, 6, 10, 10), 0.0, 1e-6);
+    EXPECT_NEAR(large.mean(0, 24, 24, 40, 40), 0.0, 1e-6);
+    EXPECT_NEAR(large.mean(2, 24, 24, 40, 40), 1.0, 1e-6);
+    EXPECT_NEAR(relative.mean(0, 24, 24, 40, 40), 1.0, 1e-6);
+}
