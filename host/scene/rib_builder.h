@@ -180,6 +180,9 @@ public:
     void subdivisionMesh(L, S scheme, Ints nverts, Ints verts, Strings tags, Ints nargs,
                          Ints intargs, Floats floatargs, P) override;
     void curves(L, S type, Ints nvertices, S wrap, P) override;
+    void blobby(L, int nleaf, const std::vector<int>& code,
+                const std::vector<float>& floats, const std::vector<std::string>& strings,
+                const rib::ParamList&) override;
     void points(L, P) override;
     // CSG (rib_builder_solids.cpp)
     void solidBegin(L, S op) override;

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "rib_builder.h"
+#include "tessellate_blobby.h"
 #include "tessellate_curves_points.h"
 #include "tessellate_polygons.h"
 #include "tessellate_quadrics.h"
@@ -511,6 +512,24 @@ void RibBuilder::points(L loc, P params) {
     addSurface(loc, "Points", ok, m, err, [&](VertexData& mesh) {
         pointsPointParams(params, m.faceIndex, mesh);
     });
+}
+
+// Blobby: the implicit surface polygonised in object space (tessellate_blobby.h), up to
+// 128 cells a side. Per-blob (vertex, varying) values are not blended yet: a warning.
+void RibBuilder::blobby(L loc, int, const std::vector<int>& code,
+                        const std::vector<float>& floats, const std::vector<std::string>&,
+                        const rib::ParamList& params) {
+    if (!shown(loc, "Blobby")) return;
+    for (const rib::Param& p : params.params)
+        if (p.storage != rib::StorageClass::Constant &&
+            p.storage != rib::StorageClass::Uniform)
+            m_diag.warning(loc,
+                           "Blobby: per-blob \"" + p.name + "\" is not blended; ignored");
+    SurfaceMesh m;
+    std::string err, note;
+    const bool ok = tessellateBlobby(code, floats, 128, m, &err, &note);
+    if (!note.empty()) m_diag.warning(loc, "Blobby: " + note);
+    addSurface(loc, "Blobby", ok, m, err, nullptr);
 }
 
 }  // namespace rd

@@ -248,6 +248,19 @@ TEST(Geometry, PerPointTextureCoordinatesOnEveryGeometry) {
         }
 }
 
+// Blobby (RI 3.2 5.6): a lone blob is a sphere of radius 0.5 under its matrix (here
+// scaled by 2: a disc of radius 1 seen head on); two such blobs 2.4 apart add into one
+// shape bridged between them, whose covered area is more than two discs'. Before,
+// Blobby was ignored (nothing drawn).
+TEST(Geometry, BlobbyImplicitSurfaces) {
+    const std::string scale2 = "2 0 0 0 0 2 0 0 0 0 2 0 ";
+    EXPECT_NEAR(coverage("Blobby 1 [1001 0] [" + scale2 + "0 0 0 1] []\n"), kPi, 0.1);
+    const double two = coverage("Blobby 2 [1001 0 1001 16 0 2 0 1] [" + scale2 +
+                                "-1.2 0 0 1 " + scale2 + "1.2 0 0 1] []\n");
+    EXPECT_GT(two, 2 * kPi + 0.1);
+    EXPECT_LT(two, 16.0);
+}
+
 TEST(Geometry, CurvesAndPoints) {
     // A straight linear curve of length 3 and width 0.5.
     EXPECT_NEAR(coverage("Curves \"linear\" [2] \"nonperiodic\" \"P\" [-1.5 0 0  1.5 0 0] "

@@ -1,0 +1,24 @@
+// tessellate_blobby.h: RiBlobby implicit surfaces (RI 3.2 section 5.6) made triangles.
+// The code's primitive fields (constant, ellipsoid, segment blob) and operators (add,
+// multiply, maximum, minimum, subtract, divide, negate, identity) give a field whose
+// 0.5 level set is the surface, polygonised by marching tetrahedra over a grid that
+// covers every bounded primitive.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "host/scene/tessellate_types.h"
+
+namespace rd {
+
+// Each ellipsoid and segment blob's field is Wyvill's soft-object polynomial of its
+// squared distance r^2 (from the centre, or from the segment, in the space of its matrix,
+// over the segment's radius squared): 1 - 22/9 r^2 + 17/9 r^4 - 4/9 r^6 inside r < 1, so
+// that a lone blob's surface is a sphere of radius 0.5 under its matrix. A repelling
+// plane (opcode 1003) needs a depth file RayDrive does not read: its field is 0 and
+// `note` says so. `cells` bounds the grid's cells per axis. Returns false with `err` when
+// no surface can be made (no bounded primitive).
+bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& floats,
+                      int cells, SurfaceMesh& out, std::string* err, std::string* note);
+
+}  // namespace rd

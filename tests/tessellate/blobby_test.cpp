@@ -1,0 +1,99 @@
+// blobby_test.cpp: RiBlobby polygonised (tessellate_blobby.h): a lone blob is a sphere of
+// radius 0.5 under its matrix, blobs near each other blend under add and not under
+// maximum, and a segment blob is a capsule of half its radius.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "host/scene/tessellate_blobby.h"
+#include "test_util.h"
+
+using namespace rd;
+
+namespace {
+
+std::vector<float> matrix(float sx, float sy, float sz, float tx, float ty, float tz) {
+    return {sx, 0, 0, 0, 0, sy, 0, 0, 0, 0, sz, 0, tx, ty, tz, 1};  // RI row-vector order
+}
+
+// Every edge of a closed surface is shared by exactly two triangles.
+bool closed(const SurfaceMesh& m) {
+    std::map<std::pair<int, int>, int> edges;
+    for (size_t k = 0; k < m.mesh.tris.size(); k += 3)
+        for (int e = 0; e < 3; ++e) {
+            int a = m.mesh.tris[k + size_t(e)], b = m.mesh.tris[k + size_t((e + 1) % 3)];
+            ++edges[{std::min(a, b), std::max(a, b)}];
+        }
+    for (const auto& [edge, count] : edges)
+        if (count != 2) return false;
+    return !edges.empty();
+}
+
+}  // namespace
+
+TEST(Blobby, LoneBlobIsASphereOfRadiusHalf) {
+    SurfaceMesh m;
+    std::string err, note;
+    ASSERT_TRUE(
+        tessellateBlobby({1001, 0}, matrix(1, 1, 1, 0, 0, 0), 128, m, &err, &note))
+        << err;
+    test::expectWellFormed(m);
+    EXPECT_TRUE(closed(m));
+    for (size_t i = 0; i < m.mesh.p.size(); ++i) {
+        const glm::vec3 p = m.mesh.p[i];
+        EXPECT_NEAR(glm::length(p), 0.5f, 0.005f);
+        EXPECT_GT(glm::dot(m.mesh.n[i], glm::normalize(p)), 0.999f);  // outward
+    }
+    EXPECT_NEAR(meshArea(m.mesh), M_PI, 0.02 * M_PI);
+    // scaled by 2 along x: an ellipsoid with semi-axes 1, 0.5, 0.5
+    SurfaceMesh e;
+    ASSERT_TRUE(
+        tessellateBlobby({1001, 0}, matrix(2, 1, 1, 0, 0, 0), 128, e, &err, &note));
+    float most = 0;
+    for (const glm::vec3& p : e.mesh.p) most = std::max(most, std::fabs(p.x));
+    EXPECT_NEAR(most, 1.0f, 0.01f);
+}
+
+// Two blobs 1.2 apart: their spheres (radius 0.5) would not touch, but the fields add to
+// 2 w(0.36) = 0.69 > 0.5 half way, so the sum bridges them; their maximum does not.
+TEST(Blobby, AddBlendsMaximumDoesNot) {
+    std::vector<float> f = matrix(1, 1, 1, -0.6f, 0, 0);
+    const std::vector<float> second = matrix(1, 1, 1, 0.6f, 0, 0);
+    f.insert(f.end(), second.begin(), second.end());
+    auto nearMiddle = [](const SurfaceMesh& m) {
+        int n = 0;
+        for (const glm::vec3& p : m.mesh.p) n += std::fabs(p.x) < 0.05f;
+        return n;
+    };
+    SurfaceMesh sum, most;
+    std::string err, note;
+    ASSERT_TRUE(
+        tessellateBlobby({1001, 0, 1001, 16, 0, 2, 0, 1}, f, 128, sum, &err, &note));
+    ASSERT_TRUE(
+        tessellateBlobby({1001, 0, 1001, 16, 2, 2, 0, 1}, f, 128, most, &err, &note));
+    test::expectWellFormed(sum);
+    EXPECT_TRUE(closed(sum));
+    EXPECT_GT(nearMiddle(sum), 0);
+    EXPECT_EQ(nearMiddle(most), 0);
+    EXPECT_TRUE(closed(most));
+}
+
+// A segment blob from (0,0,0) to (1,0,0) of radius 1: the points half a unit from the
+// segment (a capsule).
+TEST(Blobby, SegmentBlobIsACapsule) {
+    std::vector<float> f = {0, 0, 0, 1, 0, 0, 1};
+    const std::vector<float> m4 = matrix(1, 1, 1, 0, 0, 0);
+    f.insert(f.end(), m4.begin(), m4.end());
+    SurfaceMesh m;
+    std::string err, note;
+    ASSERT_TRUE(tessellateBlobby({1002, 0}, f, 128, m, &err, &note)) << err;
+    test::expectWellFormed(m);
+    for (const glm::vec3& p : m.mesh.p) {
+        const float t = std::clamp(p.x, 0.0f, 1.0f);
+        EXPECT_NEAR(glm::length(p - glm::vec3(t, 0, 0)), 0.5f, 0.005f);
+    }
+    // a constant alone bounds nothing: an error, not an endless grid
+    SurfaceMesh none;
+    EXPECT_FALSE(tessellateBlobby({1000, 0}, {1.0f}, 128, none, &err, &note));
+}
