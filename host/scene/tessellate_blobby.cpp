@@ -208,7 +208,15 @@ bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& fl
                 bhi = glm::max(in.a, in.b) + glm::vec3(in.value);
             }
             boxOf(m, blo, bhi, in);
-            if (in.bounded && (in.op == 1001 || in.value > 0.0f)) {
+            // (a singular or non-finite matrix, or a segment of radius 0, reaches
+            // nothing)
+            const glm::mat4& u = in.toUnit;
+            bool finite = true;
+            for (int k = 0; k < 16; ++k) finite = finite && std::isfinite((&u[0][0])[k]);
+            in.bounded = in.bounded && finite && (in.op == 1001 || in.value > 0.0f) &&
+                         glm::all(glm::greaterThan(in.hi - in.lo, glm::vec3(0.0f)));
+            if (!in.bounded) in.op = 1000, in.value = 0.0f;
+            if (in.bounded) {
                 lo = glm::min(lo, in.lo), hi = glm::max(hi, in.hi);
                 const glm::vec3 e = in.hi - in.lo;
                 smallest = std::min(smallest, std::min(e.x, std::min(e.y, e.z)));

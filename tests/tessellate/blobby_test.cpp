@@ -97,3 +97,21 @@ TEST(Blobby, SegmentBlobIsACapsule) {
     SurfaceMesh none;
     EXPECT_FALSE(tessellateBlobby({1000, 0}, {1.0f}, 128, none, &err, &note));
 }
+
+// A blob under a singular matrix (or with non-finite numbers) reaches nothing: the others
+// are polygonised as without it.
+TEST(Blobby, DegenerateBlobsAreLeftOut) {
+    std::vector<float> f = matrix(1, 1, 1, 0, 0, 0);
+    const std::vector<float> flat = matrix(0, 0, 0, 0.2f, 0, 0);
+    std::vector<float> bad = matrix(1, 1, 1, 0, 0, 0);
+    bad[0] = NAN;
+    f.insert(f.end(), flat.begin(), flat.end());
+    f.insert(f.end(), bad.begin(), bad.end());
+    SurfaceMesh m;
+    std::string err, note;
+    ASSERT_TRUE(tessellateBlobby({1001, 0, 1001, 16, 1001, 32, 0, 3, 0, 1, 2}, f, 128, m,
+                                 &err, &note))
+        << err;
+    ASSERT_FALSE(m.mesh.p.empty());
+    for (const glm::vec3& p : m.mesh.p) EXPECT_NEAR(glm::length(p), 0.5f, 0.005f);
+}
