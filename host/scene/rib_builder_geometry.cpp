@@ -529,6 +529,7 @@ void RibBuilder::blobby(L loc, int, const std::vector<int>& code,
     std::string err, note;
     const bool ok = tessellateBlobby(code, floats, 128, m, &err, &note);
     if (!note.empty()) m_diag.warning(loc, "Blobby: " + note);
+    if (ok && m.mesh.tris.empty()) return;
     addSurface(loc, "Blobby", ok, m, err, nullptr);
 }
 

@@ -232,9 +232,9 @@ bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& fl
         }
         program.push_back(std::move(in));
     }
-    if (!(smallest > 0.0f) || !std::isfinite(smallest)) {
-        if (err) *err = "no bounded ellipsoid or segment blob: nothing to polygonise";
-        return false;
+    if (!(smallest > 0.0f) || !std::isfinite(smallest)) {  // (valid, but no surface)
+        if (note) *note = "no ellipsoid or segment blob reaches anywhere: nothing drawn";
+        return true;
     }
     // Cells: about 32 across the narrowest blob's reach (16 across its surface), within
     // `cells` a side; one cell of margin so the surface closes inside the grid.

@@ -16,8 +16,9 @@ namespace rd {
 // over the segment's radius squared): 1 - 22/9 r^2 + 17/9 r^4 - 4/9 r^6 inside r < 1, so
 // that a lone blob's surface is a sphere of radius 0.5 under its matrix. A repelling
 // plane (opcode 1003) needs a depth file RayDrive does not read: its field is 0 and
-// `note` says so. `cells` bounds the grid's cells per axis. Returns false with `err` when
-// no surface can be made (no bounded primitive).
+// `note` says so, as it does when no primitive reaches anywhere (an empty surface).
+// `cells` bounds the grid's cells per axis. Returns false with `err` when the surface
+// would pass the vertex cap.
 bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& floats,
                       int cells, SurfaceMesh& out, std::string* err, std::string* note);
 

@@ -93,9 +93,11 @@ TEST(Blobby, SegmentBlobIsACapsule) {
         const float t = std::clamp(p.x, 0.0f, 1.0f);
         EXPECT_NEAR(glm::length(p - glm::vec3(t, 0, 0)), 0.5f, 0.005f);
     }
-    // a constant alone bounds nothing: an error, not an endless grid
+    // a constant alone bounds nothing: no surface and a note, not an endless grid
     SurfaceMesh none;
-    EXPECT_FALSE(tessellateBlobby({1000, 0}, {1.0f}, 128, none, &err, &note));
+    EXPECT_TRUE(tessellateBlobby({1000, 0}, {1.0f}, 128, none, &err, &note));
+    EXPECT_TRUE(none.mesh.tris.empty());
+    EXPECT_FALSE(note.empty());
 }
 
 // A blob under a singular matrix (or with non-finite numbers) reaches nothing: the others
