@@ -127,6 +127,11 @@ RtToken RiDeclare(RtString name, RtString declaration);
 
 RtVoid RiBegin(RtToken name);
 RtVoid RiEnd(void);
+/* Several contexts (RI 3.2): RiBegin makes a new one current, RiGetContext returns the
+ * current one (RI_NULL: none), RiContext makes one current again; RiEnd ends the current
+ * one and leaves none current. */
+RtContextHandle RiGetContext(void);
+RtVoid RiContext(RtContextHandle handle);
 RtVoid RiFrameBegin(RtInt frame);
 RtVoid RiFrameEnd(void);
 RtVoid RiWorldBegin(void);

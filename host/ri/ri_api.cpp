@@ -146,6 +146,12 @@ RtVoid RiBegin(RtToken name) {
 RtVoid RiEnd(void) {
     Context::end();
 }
+RtContextHandle RiGetContext(void) {
+    return Context::handle();
+}
+RtVoid RiContext(RtContextHandle handle) {
+    Context::makeCurrent(handle);
+}
 
 #define RI_BARE(Fn, Req)                                                \
     RtVoid Ri##Fn(void) {                                               \

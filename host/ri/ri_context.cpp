@@ -1,6 +1,7 @@
 // ri_context.cpp: the Ri API's context, its parameter lists and its error handler.
 #include "ri_context.h"
 
+#include <algorithm>
 #include <climits>
 #include <cstdio>
 #include <cstdlib>
@@ -14,7 +15,10 @@
 namespace rd::ri {
 namespace {
 
-std::unique_ptr<Context> g_context;
+// Every context begun and not ended (RI 3.2 RiContext), and the current one (none after
+// RiEnd until RiBegin or RiContext makes one current).
+std::vector<std::unique_ptr<Context>> g_contexts;
+Context* g_context = nullptr;
 RtErrorHandler g_handler = RiErrorPrint;
 
 }  // namespace
@@ -82,19 +86,18 @@ Context* Context::current(const char* call) {
         return nullptr;
     }
     ++g_context->m_call;
-    return g_context.get();
+    return g_context;
 }
 
+// A new context, made current; the one current before stays, for RiContext.
 void Context::begin(RtToken name) {
-    if (g_context) {
-        report(RIE_NESTING, RIE_ERROR,
-               "Ri: error: RiBegin inside RiBegin (one context at a time): ignored");
-        return;
-    }
     RiLastError = RIE_NOERROR;
     try {
         std::unique_ptr<Context> c(new Context(name));
-        if (c->m_target) g_context = std::move(c);
+        if (c->m_target) {
+            g_contexts.push_back(std::move(c));
+            g_context = g_contexts.back().get();
+        }
     } catch (const std::exception& e) {
         report(RIE_SYSTEM, RIE_SEVERE, std::string("Ri: error: RiBegin: ") + e.what());
     }
@@ -110,7 +113,26 @@ void Context::end() {
     } catch (const std::exception& e) {
         report(RIE_SYSTEM, RIE_SEVERE, std::string("Ri: error: RiEnd: ") + e.what());
     }
-    g_context.reset();
+    const Context* ended = g_context;
+    g_context = nullptr;
+    g_contexts.erase(std::find_if(
+        g_contexts.begin(), g_contexts.end(),
+        [&](const std::unique_ptr<Context>& c) { return c.get() == ended; }));
+}
+
+RtContextHandle Context::handle() {
+    return g_context;
+}
+
+void Context::makeCurrent(RtContextHandle h) {
+    for (const std::unique_ptr<Context>& c : g_contexts)
+        if (c.get() == h) {
+            g_context = c.get();
+            return;
+        }
+    report(RIE_BADHANDLE, RIE_ERROR,
+           "Ri: error: RiContext: not a context RiGetContext gave (or it has ended): "
+           "ignored");
 }
 
 Context::Context(RtToken name) : m_diag(nullptr, INT_MAX) {

@@ -46,6 +46,9 @@ public:
     static bool active();
     static void begin(RtToken name);
     static void end();
+    // RiGetContext (nullptr: none current) and RiContext.
+    static RtContextHandle handle();
+    static void makeCurrent(RtContextHandle h);
 
     // Request `name` with its positional `values` and the parameters, counted by
     // `counts`.

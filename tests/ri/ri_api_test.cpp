@@ -171,6 +171,49 @@ WorldEnd
 )"));
 }
 
+// Several contexts (RiContext, RiGetContext): two RIB files written by turns, each
+// getting only its own calls; RiEnd ends the current one and leaves none current; a
+// handle that is not a live context is RIE_BADHANDLE. Before, a second RiBegin was
+// refused (one context at a time) and RiContext did not exist.
+TEST(RiApi, ContextsTakeTheirOwnCallsByTurns) {
+    const std::string a = scratch("first.rib"), b = scratch("second.rib");
+    g_messages.clear();
+    g_codes.clear();
+    RiErrorHandler(collect);
+    RiBegin(a.c_str());
+    RtContextHandle first = RiGetContext();
+    RiBegin(b.c_str());
+    RtContextHandle second = RiGetContext();
+    ASSERT_NE(first, nullptr);
+    ASSERT_NE(second, nullptr);
+    EXPECT_NE(first, second);
+    RiWorldBegin();  // the second's
+    RiContext(first);
+    EXPECT_EQ(RiGetContext(), first);
+    RiWorldBegin();
+    RiSphere(1, -1, 1, 360, RI_NULL);
+    RiContext(second);
+    RiCylinder(1, -1, 1, 360, RI_NULL);
+    RiWorldEnd();
+    RiEnd();  // the second ends; none is current
+    EXPECT_EQ(RiGetContext(), nullptr);
+    RiContext(second);
+    ASSERT_EQ(g_codes.size(), 1u);
+    EXPECT_EQ(g_codes[0], RIE_BADHANDLE);
+    RiContext(first);
+    RiWorldEnd();
+    RiEnd();
+    RiErrorHandler(RiErrorPrint);
+    EXPECT_EQ(g_messages.size(), 1u);
+    const std::string one = slurp(a), two = slurp(b);
+    EXPECT_NE(one.find("Sphere 1 -1 1 360"), std::string::npos) << one;
+    EXPECT_EQ(one.find("Cylinder"), std::string::npos) << one;
+    EXPECT_NE(two.find("Cylinder 1 -1 1 360"), std::string::npos) << two;
+    EXPECT_EQ(two.find("Sphere"), std::string::npos) << two;
+    EXPECT_NE(one.find("WorldEnd"), std::string::npos);
+    EXPECT_NE(two.find("WorldEnd"), std::string::npos);
+}
+
 TEST(RiApi, BadCallsReachTheHandlerWithTheirCallNumberAndAreSkipped) {
     g_messages.clear();
     g_codes.clear();
