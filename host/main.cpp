@@ -20,6 +20,7 @@
 #include "render/render_with_archives.h"
 #include "render/renderer.h"
 #include "render/stop.h"
+#include "ri_dynamic_load.h"
 #include "rib/reader.h"
 #include "rib/writer.h"
 #include "scene/rib_builder.h"
@@ -162,6 +163,7 @@ void keepFreedMemory() {
 
 int main(int argc, char** argv) {
     keepFreedMemory();
+    rd::ri::enableDynamicLoad();  // (DynamicLoad procedurals in the RIB it reads)
     if (argc > 1 && std::string(argv[1]) == "txmake") return txmakeCommand(argc - 1, argv + 1);
     if (argc > 1 && std::string(argv[1]) == "catrib") return catribCommand(argc - 1, argv + 1);
     CLI::App app{"RayDrive: a RenderMan renderer on OpenCL, after ART's RenderDrive"};

@@ -62,26 +62,42 @@ std::string Reader::resolveArchive(const std::string& name) const {
     return std::string();
 }
 
+// A DynamicLoad object's path: as named when that exists, else beside the reading file,
+// then on the archive search path, each also with ".so" added (PRMan's convention).
+std::string Reader::resolveDynamicObject(const std::string& name) {
+    for (const std::string& n : {name, name + ".so"}) {
+        if (fileExists(n)) return n;
+        if (std::string found = resolveArchive(n); !found.empty()) return found;
+    }
+    return name;  // (dlopen's own search: LD_LIBRARY_PATH, the system's)
+}
+
 void Reader::expandProcedural(const std::string& name, const std::vector<std::string>& args,
                               const SourceLoc& loc) {
     std::string file = args[0];
     std::string temp;
-    if (name == "RunProgram") {
+    if (name == "RunProgram" || name == "DynamicLoad") {
         // RI protocol: the program reads "detail datablock" and answers with RIB ended
-        // by a 0377 byte (run_program.h: bounded in time and size). One run per request;
-        // the answer goes through a temporary file so it is read like any archive (and
-        // may itself be gzip or binary).
+        // by a 0377 byte (run_program.h: bounded in time and size); a DynamicLoad object
+        // is run in this process and its Ri calls are captured as RIB. One run per
+        // request; the answer goes through a temporary file so it is read like any
+        // archive (and may itself be gzip or binary).
         std::string text, why;
-        if (!runProgram(args[0], "1000000 " + args[1],
-                        {m_opts.runProgramSeconds, m_opts.runProgramMaxBytes}, &text,
-                        &why)) {
-            error(loc, "RunProgram \"" + args[0] + "\": " + why);
+        const bool ran =
+            name == "RunProgram"
+                ? runProgram(args[0], "1000000 " + args[1],
+                             {m_opts.runProgramSeconds, m_opts.runProgramMaxBytes}, &text,
+                             &why)
+                : dynamicLoader()(resolveDynamicObject(args[0]), args[1], 1000000.0f,
+                                  &text, &why);
+        if (!ran) {
+            error(loc, name + " \"" + args[0] + "\": " + why);
             return;
         }
         char tmpl[] = "/tmp/raydrive-runprogram-XXXXXX";
         int fd = mkstemp(tmpl);
         if (fd < 0) {
-            error(loc, "RunProgram: cannot create a temporary file");
+            error(loc, name + ": cannot create a temporary file");
             return;
         }
         temp = tmpl;
@@ -93,7 +109,7 @@ void Reader::expandProcedural(const std::string& name, const std::vector<std::st
         }
         close(fd);
         if (!written) {
-            error(loc, "RunProgram: cannot write a temporary file");
+            error(loc, name + ": cannot write a temporary file");
             std::remove(temp.c_str());
             return;
         }

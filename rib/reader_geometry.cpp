@@ -5,6 +5,7 @@
 // are the lengths of vertex/varying/facevarying primitive variables. Counts are summed
 // in 64 bits, so no hostile count can overflow or cause an allocation.
 #include "reader_impl.h"
+#include "run_program.h"
 
 namespace rib {
 namespace detail {
@@ -382,7 +383,8 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
                                       file.empty() ? a.strArrays[0][0] : file))
                     break;
             }
-            if (m_opts.expandArchives && name != "DynamicLoad")
+            if (m_opts.expandArchives &&
+                (name != "DynamicLoad" || (dynamicLoader() && t.runsDynamicLoad())))
                 expandProcedural(name, a.strArrays[0], loc);
             else
                 t.procedural(loc, name, a.strArrays[0], bound);

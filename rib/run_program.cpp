@@ -114,4 +114,14 @@ bool runProgram(const std::string& command, const std::string& request,
     return false;
 }
 
+namespace {
+DynamicLoader g_dynamicLoader = nullptr;
+}  // namespace
+void setDynamicLoader(DynamicLoader loader) {
+    g_dynamicLoader = loader;
+}
+DynamicLoader dynamicLoader() {
+    return g_dynamicLoader;
+}
+
 }  // namespace rib

@@ -20,4 +20,14 @@ struct RunProgramLimits {
 bool runProgram(const std::string& command, const std::string& request,
                 const RunProgramLimits& limits, std::string* rib, std::string* why);
 
+// DynamicLoad procedurals (RI 3.2 section 5.7): a loader runs the shared object's
+// ConvertParameters, Subdivide (at `detail`) and Free, and gives back in *rib the RIB of
+// the Ri calls it made, which the reader then reads in place, as RunProgram's answer.
+// The Ri library sets it (host/ri/ri_dynamic_load.h); with none set, DynamicLoad is a
+// warning and skipped.
+using DynamicLoader = bool (*)(const std::string& dso, const std::string& data,
+                               float detail, std::string* rib, std::string* why);
+void setDynamicLoader(DynamicLoader loader);
+DynamicLoader dynamicLoader();
+
 }  // namespace rib

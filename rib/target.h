@@ -211,6 +211,9 @@ public:
                                  S /*file*/) {
         return false;
     }
+    // Whether the reader runs DynamicLoad procedurals for this target (a scene builder)
+    // when a loader is set (run_program.h), rather than passing them on (a RIB writer).
+    virtual bool runsDynamicLoad() const { return false; }
 
     // Texture making (outside World)
     virtual void makeTexture(L, S /*picture*/, S /*texture*/, S /*swrap*/, S /*twrap*/,

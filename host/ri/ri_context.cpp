@@ -9,6 +9,7 @@
 #include <new>
 #include <set>
 
+#include "ri_dynamic_load.h"
 #include "ri_render_target.h"
 #include "rib/writer.h"
 
@@ -19,6 +20,7 @@ namespace {
 // RiEnd until RiBegin or RiContext makes one current).
 std::vector<std::unique_ptr<Context>> g_contexts;
 Context* g_context = nullptr;
+std::vector<Context*> g_captureSaved;  // the contexts current before each capture
 RtErrorHandler g_handler = RiErrorPrint;
 
 }  // namespace
@@ -92,6 +94,7 @@ Context* Context::current(const char* call) {
 // A new context, made current; the one current before stays, for RiContext.
 void Context::begin(RtToken name) {
     RiLastError = RIE_NOERROR;
+    enableDynamicLoad();  // (RiProcDynamicLoad in a render, or in RIB it reads)
     try {
         std::unique_ptr<Context> c(new Context(name));
         if (c->m_target) {
@@ -135,13 +138,40 @@ void Context::makeCurrent(RtContextHandle h) {
            "ignored");
 }
 
-Context::Context(RtToken name) : m_diag(nullptr, INT_MAX) {
+// The object's calls come inside the world block the procedural is in: the capture's
+// feed is put inside one (its WorldBegin left out of the RIB) so that it takes geometry.
+void Context::beginCapture() {
+    g_contexts.push_back(std::unique_ptr<Context>(new Context(nullptr, true)));
+    g_captureSaved.push_back(g_context);
+    g_context = g_contexts.back().get();
+    g_context->send("WorldBegin", {});
+    g_context->m_text.str("");
+}
+
+std::string Context::endCapture() {
+    Context* capture = g_contexts.back().get();
+    capture->send("WorldEnd", {});
+    capture->m_feed.reset();
+    capture->m_target.reset();  // (the writer ends its last line)
+    std::string rib = capture->m_text.str();
+    rib.erase(std::min(rib.size(), rib.rfind("WorldEnd")));
+    g_contexts.pop_back();
+    g_context = g_captureSaved.back();
+    g_captureSaved.pop_back();
+    return rib;
+}
+
+Context::Context(RtToken name, bool capture) : m_diag(nullptr, INT_MAX) {
     m_diag.setListener([this](bool isError, const std::string& message) {
         const int code = m_code ? m_code : isError ? RIE_CONSISTENCY : RIE_INCAPABLE;
         m_code = 0;
         report(code, isError ? RIE_ERROR : RIE_WARNING, message);
     });
-    if (name) {
+    if (capture) {
+        auto writer = std::make_unique<rib::RibWriter>(m_text);
+        m_writer = writer.get();
+        m_target = std::move(writer);
+    } else if (name) {
         m_file.open(name, std::ios::binary);
         if (!m_file) {
             report(RIE_NOFILE, RIE_SEVERE,

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,11 @@ public:
     // RiGetContext (nullptr: none current) and RiContext.
     static RtContextHandle handle();
     static void makeCurrent(RtContextHandle h);
+    // While a DynamicLoad object runs: a context that writes its calls as RIB into
+    // memory is current (beginCapture); endCapture ends it, returns that RIB and makes
+    // current again the context that was (ri_dynamic_load.h).
+    static void beginCapture();
+    static std::string endCapture();
 
     // Request `name` with its positional `values` and the parameters, counted by
     // `counts`.
@@ -74,9 +80,10 @@ public:
     ~Context();
 
 private:
-    explicit Context(RtToken name);
+    explicit Context(RtToken name, bool capture = false);
     rib::Diagnostics m_diag;
     std::ofstream m_file;  // RiBegin("file.rib")
+    std::ostringstream m_text;  // beginCapture's RIB
     std::unique_ptr<rib::Target> m_target;
     rib::RibWriter* m_writer = nullptr;  // m_target, when it writes RIB
     std::unique_ptr<rib::RequestFeed> m_feed;

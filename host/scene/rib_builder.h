@@ -72,6 +72,7 @@ public:
     void clipping(L, float, float) override;
     void pixelSamples(L, float, float) override;
     void pixelVariance(L, float) override;
+    bool runsDynamicLoad() const override { return true; }
     // Level of detail (rib_builder_detail.cpp)
     void relativeDetail(L, float) override;
     void detail(L, const float bound[6]) override;

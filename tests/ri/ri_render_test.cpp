@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -143,6 +144,41 @@ TEST(RiRender, EachWorldBlockIsAFrame) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/ri.exr"));
     EXPECT_TRUE(std::filesystem::exists(dir + "/ri.2.exr"));
     EXPECT_EQ(RiLastError, RIE_NOERROR);
+}
+
+// RiProcedural with RiProcDynamicLoad (session 33; it was a warning, skipped): the test
+// object (tests/cli/dynamic_spheres.cpp) makes a sphere and, two levels down, two more
+// one unit apart along x through its own DynamicLoad procedurals; the image shows three
+// spheres where they are and nothing between.
+TEST(RiRender, DynamicLoadProceduralsRenderTheirCalls) {
+    const std::string dir = scratchDir() + "/dynamic_load";
+    std::filesystem::create_directories(dir);
+    const std::string out = dir + "/dl.exr";
+    RiBegin(RI_NULL);
+    RiDisplay(out.c_str(), RI_FILE, RI_RGBA, RI_NULL);
+    RiFormat(48, 16, 1);
+    RiProjection(RI_ORTHOGRAPHIC, RI_NULL);
+    RiScreenWindow(-1, 5, -1, 1);
+    RiTranslate(0, 0, 5);
+    RiWorldBegin();
+    RiSurface("constant", RI_NULL);
+    const std::string data = std::string(RD_DYNAMIC_SPHERES) + " 2";
+    RtString* args = static_cast<RtString*>(std::malloc(2 * sizeof(RtString)));
+    args[0] = const_cast<char*>(RD_DYNAMIC_SPHERES);
+    args[1] = const_cast<char*>(data.c_str());
+    RtBound bound = {-1, 10, -1, 1, -1, 1};
+    RiProcedural(args, bound, RiProcDynamicLoad, RiProcFree);
+    RiWorldEnd();
+    RiEnd();
+    EXPECT_EQ(RiLastError, RIE_NOERROR);
+    int w = 0, h = 0;
+    const std::vector<rd::Rgba> img = readImage(out, w, h);
+    ASSERT_EQ(w, 48);
+    // sphere centres at x = 0, 1, 2 (pixels 8, 16, 24 of 8 a unit); between them (0.2
+    // units of gap, blurred by the 2 x 2 gaussian) partly covered; beyond, nothing
+    for (int x : {8, 16, 24}) EXPECT_GT(img[size_t(8 * w + x)].a, 0.99f) << x;
+    for (int x : {12, 20}) EXPECT_LT(img[size_t(8 * w + x)].a, 0.6f) << x;
+    for (int x : {32, 40}) EXPECT_LT(img[size_t(8 * w + x)].a, 0.01f) << x;
 }
 
 // RiTransformPoints (session 32; it did not exist): points between the current transform,
