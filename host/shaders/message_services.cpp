@@ -147,4 +147,45 @@ std::string messageServices(const Scene& scene, bool attributesUsed,
     return src.str();
 }
 
+std::string shaderParamService(const ShaderBlocks& blocks, bool used, size_t tableSlot,
+                               std::vector<float>& params) {
+    std::ostringstream src;
+    src << "int rsl_shader_param(const RslGlobals* g, int kind, int nameId, float* out, "
+           "int n) {\n";
+    if (!used || blocks.materials.empty()) {
+        src << "    (void)g; (void)kind; (void)nameId; (void)out; (void)n;\n    return "
+               "0;\n}\n";
+        return src.str();
+    }
+    params[tableSlot] = intBits(params.size());
+    for (const auto& m : blocks.materials)
+        for (int32_t v : m) {
+            float f;
+            std::memcpy(&f, &v, sizeof f);
+            params.push_back(f);
+        }
+    src << "    if (g->material < 0 || kind < 0 || kind > 2) return 0;\n"
+           "    __global const float* s = g->scene_params;\n"
+           "    const int at = as_int(s["
+        << tableSlot
+        << "]) + 6 * g->material + 2 * kind;\n"
+           "    const int shader = as_int(s[at]), block = as_int(s[at + 1]);\n"
+           "    if (shader < 0) return 0;\n    int off = -1;\n    switch (kind * 4096 + "
+           "shader) {\n";
+    for (int kind = 0; kind < 3; ++kind)
+        for (size_t i = 0; i < blocks.shaders[kind].size(); ++i) {
+            src << "    case " << kind * 4096 + int(i) << ":";
+            // (parameters: an output variable's current value is not in the block)
+            for (const rsl::ParamSlot& slot : blocks.shaders[kind][i]->params)
+                if (!slot.output)
+                    src << "\n        if (nameId == " << rsl::stringId(slot.name)
+                        << " && n == " << slot.size << ") off = " << slot.offset << ";";
+            src << "\n        break;\n";
+        }
+    src << "    default: return 0;\n    }\n    if (off < 0) return 0;\n"
+           "    for (int k = 0; k < n; ++k) out[k] = s[block + off + k];\n    return "
+           "1;\n}\n";
+    return src.str();
+}
+
 }  // namespace rd

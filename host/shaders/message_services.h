@@ -3,11 +3,16 @@
 // optionValues) laid out in the parameter buffer, and the OpenCL source of rsl_attribute
 // and rsl_option that finds them by name id and size.
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
 #include "rib/diagnostics.h"
 #include "scene/scene.h"
+
+namespace rsl {
+struct EmittedShader;
+}
 
 namespace rd {
 
@@ -27,5 +32,19 @@ struct MessageSlots {
 std::string messageServices(const Scene& scene, bool attributesUsed,
                             const MessageSlots& slots, std::vector<float>& params,
                             rib::Diagnostics& diag);
+
+// surface(), displacement() and atmosphere() (rsl_abi.h, MESSAGE PASSING): a parameter of
+// the shaded material's surface, displacement or atmosphere shader, from its bound block.
+struct ShaderBlocks {
+    // per kind (0 surface, 1 displacement, 2 atmosphere): the shaders, each once
+    std::vector<const rsl::EmittedShader*> shaders[3];
+    // per material and kind: (index into shaders[kind], or -1 for none; its block's
+    // start)
+    std::vector<std::array<int32_t, 6>> materials;
+};
+// Appends the per-material table to `params` (its start into params[tableSlot]) and
+// returns rsl_shader_param; a stub that finds nothing when `used` is false.
+std::string shaderParamService(const ShaderBlocks& blocks, bool used, size_t tableSlot,
+                               std::vector<float>& params);
 
 }  // namespace rd

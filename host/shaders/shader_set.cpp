@@ -29,7 +29,8 @@ namespace {
 // floats, as light blocks after it load float4s.
 // Then the starts of attribute()'s table and option()'s block (message_services.h).
 constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20,
-                 kSceneAttributes = 25, kSceneOptions = 26, kSceneFloats = 28;
+                 kSceneAttributes = 25, kSceneOptions = 26, kSceneShaderBlocks = 27,
+                 kSceneFloats = 28;
 
 // Moves a triple of a point/vector/normal parameter from a space to world space.
 void toWorld(rsl::BaseType base, const glm::mat4& m, float* v) {
@@ -225,13 +226,17 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
 // Binds each call of a list of shaders run by index (atmospheres, displacements): its
 // parameter block goes into out.params, its case into `cases`, its code into `shaders`
 // once. A shader that cannot be used is reported by find() and skipped.
-bool ShaderSet::bindCases(const std::vector<ShaderRef>& refs, const std::string& kind,
-                          const std::string& evArg, ShadingSetup& out, std::ostream& cases,
-                          std::ostream& shaders, std::set<std::string>& emitted) {
+bool ShaderSet::bindCases(
+    const std::vector<ShaderRef>& refs, const std::string& kind, const std::string& evArg,
+    ShadingSetup& out, std::ostream& cases, std::ostream& shaders,
+    std::set<std::string>& emitted,
+    std::vector<std::pair<const rsl::EmittedShader*, int32_t>>& bound) {
     bool any = false;
+    bound.assign(refs.size(), {nullptr, -1});
     for (size_t i = 0; i < refs.size(); ++i) {
         const rsl::EmittedShader* sh = find(refs[i].name, kind, refs[i].loc);
         if (!sh) continue;
+        bound[i] = {sh, int32_t(out.params.size())};
         std::vector<float> block = bindParameters(*sh, refs[i], m_diag, m_scene.colors);
         addPrepare(out, *sh);
         noteTextures(out, *sh, refs[i]);
@@ -448,6 +453,7 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         << ");\n    return m;\n}\n";
     // --- surfaces: one compiled shader per name, one parameter block per call
     std::map<std::string, uint32_t> surfaceIndex;
+    std::vector<const rsl::EmittedShader*> surfaceShaders;  // by surfaceIndex
     std::vector<uint32_t> refBlock(m_scene.surfaceRefs.size());
     std::vector<uint32_t> refShader(m_scene.surfaceRefs.size());
     std::vector<std::vector<int32_t>> refPointParams(m_scene.surfaceRefs.size());
@@ -476,6 +482,7 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         if (!sh) continue;
         auto [it, fresh] = surfaceIndex.emplace(sh->name, uint32_t(out.surfaceNames.size()));
         if (fresh) {
+            surfaceShaders.push_back(sh);
             out.surfaceNames.push_back(sh->name);
             out.shadeKernels.push_back("shade_" + sh->name);
             shaders << sh->source << "\n";
@@ -506,7 +513,9 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     // --- atmospheres: volume shaders on a surface's Ci and Oi, parameters in the buffer
     std::set<std::string> emitted;
     std::ostringstream atmo;
-    out.atmosphere = bindCases(m_scene.atmospheres, "volume", "&ev", out, atmo, shaders, emitted);
+    std::vector<std::pair<const rsl::EmittedShader*, int32_t>> atmoBound, dispBound;
+    out.atmosphere = bindCases(m_scene.atmospheres, "volume", "&ev", out, atmo, shaders,
+                               emitted, atmoBound);
     if (out.atmosphere)
         svc << "static void rd_atmosphere(int a, RslGlobals* g, __global const float* params) {\n"
                "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
@@ -514,7 +523,8 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
             << "    default: break;\n    }\n}\n";
     // --- displacements: bump shaders run before the surface (shade_common.clh)
     std::ostringstream disp;
-    out.displacement = bindCases(m_scene.displacements, "displacement", "ev", out, disp, shaders, emitted);
+    out.displacement = bindCases(m_scene.displacements, "displacement", "ev", out, disp,
+                                 shaders, emitted, dispBound);
     if (out.displacement)
         svc << "static void rd_displace(int d, RslGlobals* g, __global const float* params, "
                "RslEval* ev) {\n    switch (d) {\n" << disp.str()
@@ -616,6 +626,37 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     bool attributesUsed = false;
     for (const auto& [name, sh] : m_cache)
         attributesUsed |= sh && sh->source.find("rsl_attribute(g") != std::string::npos;
+    // surface(), displacement(), atmosphere(): the material's shaders' blocks
+    ShaderBlocks blocks;
+    blocks.shaders[0] = surfaceShaders;
+    auto kindIndex = [&](int kind, const rsl::EmittedShader* sh) {
+        auto& list = blocks.shaders[kind];
+        auto it = std::find(list.begin(), list.end(), sh);
+        if (it != list.end()) return int32_t(it - list.begin());
+        list.push_back(sh);
+        return int32_t(list.size() - 1);
+    };
+    bool shaderParamsUsed = false;
+    for (const auto& [name, sh] : m_cache)
+        shaderParamsUsed |=
+            sh && sh->source.find("rsl_shader_param(g") != std::string::npos;
+    for (size_t mi = 0; shaderParamsUsed && mi < out.materials.size(); ++mi) {
+        const Material& m = out.materials[mi];
+        const uint32_t r = m_scene.materials[mi].shader;
+        std::array<int32_t, 6> e = {-1, 0, -1, 0, -1, 0};
+        if (r < refShader.size() && !surfaceShaders.empty())
+            e[0] = int32_t(m.shader), e[1] = int32_t(m.params);
+        const uint32_t d =
+            (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT;
+        if (d > 0 && d <= dispBound.size() && dispBound[d - 1].first)
+            e[2] = kindIndex(1, dispBound[d - 1].first), e[3] = dispBound[d - 1].second;
+        const uint32_t a =
+            (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT;
+        if (a > 0 && a <= atmoBound.size() && atmoBound[a - 1].first)
+            e[4] = kindIndex(2, atmoBound[a - 1].first), e[5] = atmoBound[a - 1].second;
+        blocks.materials.push_back(e);
+    }
+    svc << shaderParamService(blocks, shaderParamsUsed, kSceneShaderBlocks, out.params);
     svc << messageServices(
         m_scene, attributesUsed,
         MessageSlots{kSceneFormat, kSceneFormat + 3, kSceneAttributes, kSceneOptions},

@@ -88,9 +88,11 @@ public:
 private:
     const rsl::EmittedShader* find(const std::string& name, const std::string& kind,
                                    const rib::SourceLoc& loc);
+    // (`bound`: per call, its shader and its block's start; nullptr, -1 when skipped)
     bool bindCases(const std::vector<ShaderRef>& refs, const std::string& kind,
                    const std::string& evArg, ShadingSetup& out, std::ostream& cases,
-                   std::ostream& shaders, std::set<std::string>& emitted);
+                   std::ostream& shaders, std::set<std::string>& emitted,
+                   std::vector<std::pair<const rsl::EmittedShader*, int32_t>>& bound);
     const Scene& m_scene;
     rib::Diagnostics& m_diag;
     std::vector<std::string> m_path;

@@ -63,9 +63,11 @@
  * rsl_option(sp, ...) and rsl_rayinfo(g, ...) (rsl_stdlib.clh) the same way. A service
  * returns nonzero and fills buf[0..n) when it has a value of exactly that size, else
  * returns 0 and var is left unchanged; the RSL call returns 1.0 / 0.0 accordingly.
+ * `surface("name", var)`, `displacement(...)` and `atmosphere(...)` call
+ * rsl_shader_param(g, kind 0, 1 or 2, ...): a parameter (not an output variable) of the
+ * shaded material's surface, displacement or atmosphere shader, as bound.
  * lightsource() outside an illuminance loop (including inside user functions),
- * surface() from a light, and atmosphere(), displacement(), incident(), opposite(),
- * rendererinfo() return 0 without calling anything.
+ * incident(), opposite() and rendererinfo() return 0 without calling anything.
  *
  * PER-POINT PARAMETERS. A renderer that defines RSL_MAX_PARAM_PRIMVARS (> 0) gives
  * surface shaders parameter values per shading point (RI primitive variables of class

@@ -30,8 +30,9 @@ std::string Emitter::colorSpaceArg(const Expr& e) {
     return "rsl_color_from_id(" + expr(e) + ")";
 }
 
-// lightsource() in an illuminance loop, attribute(), option() and rayinfo() ask the
-// renderer (rsl_abi.h, MESSAGE PASSING); every other message call is "not found" (0).
+// lightsource() in an illuminance loop, attribute(), option(), rayinfo(), surface(),
+// displacement() and atmosphere() ask the renderer (rsl_abi.h, MESSAGE PASSING); the
+// other message calls (incident(), opposite(), rendererinfo()) are "not found" (0).
 std::string Emitter::message(const Expr& e) {
     const std::string& n = e.text;
     std::string svc;
@@ -41,6 +42,12 @@ std::string Emitter::message(const Expr& e) {
         svc = "rsl_attribute(g, ";
     else if (n == "rayinfo")
         svc = "rsl_rayinfo(g, ";
+    else if (n == "surface")
+        svc = "rsl_shader_param(g, 0, ";
+    else if (n == "displacement")
+        svc = "rsl_shader_param(g, 1, ";
+    else if (n == "atmosphere")
+        svc = "rsl_shader_param(g, 2, ";
     else if (n == "option") {  // (the service reads the scene through the spaces)
         svc = "rsl_option(sp, ";
         m_usesSpaces = true;

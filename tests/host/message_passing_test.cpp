@@ -31,6 +31,37 @@ surface msg() {
     Oi = 1;
 }
 )"},
+                             {"showkd", R"(
+surface showkd(float Kd = 0.25;) {
+    float km = 0, dens = 0;
+    displacement("Km", km);
+    atmosphere("dens", dens);
+    Ci = color(Kd, km, dens / 10);
+    Oi = 1;
+}
+)"},
+                             {"noop", R"(
+volume noop(float dens = 7;) {
+}
+)"},
+                             {"sumcl", R"(
+surface sumcl(float Kd = 0.3;) {
+    Ci = 0;
+    illuminance(P) {
+        Ci += Cl;
+    }
+    Oi = 1;
+}
+)"},
+                             {"kdlight", R"(
+light kdlight() {
+    float kd = -1;
+    surface("Kd", kd);
+    solar(vector(0, 0, 1), 0) {
+        Cl = kd;
+    }
+}
+)"},
                              {"raydepth", R"(
 surface raydepth() {
     float d = -1;
@@ -108,4 +139,36 @@ TEST(MessagePassing, RayinfoGivesTheRaysDepth) {
     EXPECT_EQ(rsl::stringId("length"), 13645333);
     EXPECT_EQ(rsl::stringId("camera"), 12490830);
     EXPECT_EQ(rsl::stringId("trace"), 4027822);
+}
+
+// surface(), displacement() and atmosphere(): a parameter of the shaded material's own
+// shaders, as bound. showkd shows its Kd, its displacement's Km and its atmosphere's dens
+// / 10: (0.5, 0.75, 0.4) on the left square, which has all three; (0.25, 0, 0) on the
+// right, with its default Kd and neither of the others (not found). A light reads the
+// surface it lights: kdlight's Cl is the surface's Kd (0.6 left, the default 0.3 right).
+// Before, each of these calls found nothing (0).
+TEST(MessagePassing, ShadersReadTheMaterialsOtherShaders) {
+    const std::string dir = rd::test::shaderFolder("message_passing", kShaders);
+    const std::string search = "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n";
+    Rendered r = renderRib(search + kCamera + "WorldBegin\n" +
+                           square(-2,
+                                  "Surface \"showkd\" \"Kd\" [0.5]\n"
+                                  "Displacement \"bumpy\" \"Km\" [0.75]\n"
+                                  "Atmosphere \"noop\" \"dens\" [4]") +
+                           square(2, "Surface \"showkd\"") + "WorldEnd\n");
+    auto at = [&](const Rendered& img, int channel, int column) {
+        return img.mean(channel, column - 2, 6, column + 2, 10);
+    };
+    EXPECT_NEAR(at(r, 0, 8), 0.5, 1e-6);
+    EXPECT_NEAR(at(r, 1, 8), 0.75, 1e-6);
+    EXPECT_NEAR(at(r, 2, 8), 0.4, 1e-6);
+    EXPECT_NEAR(at(r, 0, 40), 0.25, 1e-6);
+    EXPECT_NEAR(at(r, 1, 40), 0.0, 1e-6);
+    EXPECT_NEAR(at(r, 2, 40), 0.0, 1e-6);
+    Rendered lit =
+        renderRib(search + kCamera + "WorldBegin\nLightSource \"kdlight\" 1\n" +
+                  square(-2, "Surface \"sumcl\" \"Kd\" [0.6]") +
+                  square(2, "Surface \"sumcl\"") + "WorldEnd\n");
+    EXPECT_NEAR(at(lit, 0, 8), 0.6, 1e-6);
+    EXPECT_NEAR(at(lit, 0, 40), 0.3, 1e-6);
 }

@@ -220,7 +220,10 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
                sc.attributes, false)
         << messageService(
                "int rsl_option(const RslSpaces* sp, int nameId, float* out, int n)",
-               sc.options, false);
+               sc.options, false)
+        << "int rsl_shader_param(const RslGlobals* g, int kind, int nameId, float* out, "
+           "int n) {\n"
+           "  (void)g; (void)kind; (void)nameId; (void)out; (void)n; return 0;\n}\n";
     // no textures here: every lookup gives its fill value
     src << "float4 rsl_texture_service(RslEval* ev, int kind, int id, int channel, float4 p, float4 dpdu,\n"
     "                           float4 dpdv, float width, float blur, float fill, float4 extra) {\n"
