@@ -127,6 +127,14 @@ private:
         return e.kind == ExprKind::Binary && e.text == "==" &&
                e.args[0]->kind == ExprKind::Call && e.args[0]->text == "__gather_visible";
     }
+    // A value the gather loop's code computes: its builtins, its variables, and sums and
+    // products of them ("primitive:P" is its origin plus its direction times a length).
+    static bool gatherOwn(const Expr& r) {
+        if (r.kind == ExprKind::Call) return r.text.rfind("__gather_", 0) == 0;
+        if (r.kind == ExprKind::Ident) return r.text.rfind("__g", 0) == 0;
+        return r.kind == ExprKind::Binary && (r.text == "+" || r.text == "*") &&
+               gatherOwn(*r.args[0]) && gatherOwn(*r.args[1]);
+    }
     // An assignment in a gather() branch: what it assigns depends on which rays escape,
     // which Ci is affine in only through sums: a variable declared outside the loop may
     // change by += and -= alone (the loop's own outputs are set by its code).
@@ -134,9 +142,7 @@ private:
         const Symbol* t = target(*e.args[0]);
         const Expr& r = *e.args[1];
         if (t && t->name.rfind("__g", 0) == 0) return 0;  // (an inner gather's own)
-        const bool own =
-            (r.kind == ExprKind::Call && r.text.rfind("__gather_", 0) == 0) ||
-            (r.kind == ExprKind::Ident && r.text.rfind("__g", 0) == 0);
+        const bool own = gatherOwn(r);
         if (t && !m_gatherLocals.count(t) && !own && e.text != "+=" && e.text != "-=")
             fail(e, T_TRACE,
                  "'" + t->name + "' (declared outside the gather loop) changed by '" +
@@ -159,6 +165,13 @@ private:
             return function(*e.function);
         }
         const std::string& n = e.text;
+        // a point's or vector's component is linear in it; such a triple depends on the
+        // rays only through a scalar (gather()'s "primitive:P": origin + direction x
+        // length), the same in every colour channel. (comp() of a colour is not: a
+        // traced colour's coefficients are per channel.)
+        if ((n == "xcomp" || n == "ycomp" || n == "zcomp") && a.size() == 1 &&
+            !(a[0] & T_LIGHT))
+            return a[0];
         if (n == "mix" && a.size() == 3) {
             if (a[2]) fail(e, a[2], describe(a[2]) + " used as the weight of mix()");
             return a[0] | a[1];

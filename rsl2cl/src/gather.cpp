@@ -133,6 +133,14 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
                 {std::move(args[i + 1]),
                  call(loc, k == "ray:length" ? "__gather_length" : "__gather_trace",
                       siteArgs())});
+        } else if (k == "primitive:P") {
+            // where the ray met the surface: its origin plus its direction times its
+            // distance ray's length (affine in what the ray brings back)
+            lengths = true;
+            outputs.push_back({std::move(args[i + 1]),
+                               binary(loc, "+", v("p"),
+                                      binary(loc, "*", v("d"),
+                                             call(loc, "__gather_length", siteArgs())))});
         } else if (k == "ray:direction" || k == "ray:origin")
             both.push_back({std::move(args[i + 1]), k == "ray:direction" ? "d" : "p"});
         else if (k == "bias" || k == "label" || k == "subset" || k == "samplebase" ||
@@ -143,7 +151,8 @@ StmtPtr desugarGather(const SourceLoc& loc, std::vector<ExprPtr> args, StmtPtr h
                 key.loc,
                 "gather(): \"" + k +
                     "\" is not supported (outputs: \"surface:Ci\", \"ray:length\", "
-                    "\"ray:direction\", \"ray:origin\"; inputs: \"maxdist\", "
+                    "\"primitive:P\", \"ray:direction\", \"ray:origin\"; inputs: "
+                    "\"maxdist\", "
                     "\"distribution\")");
     }
     out->stmts.push_back(decl(loc, BaseType::Point, pre + "p", std::move(args[1])));

@@ -18,7 +18,18 @@ namespace {
 // 16 is the fraction that escaped. `gathered` adds what the rays meet, or blue (0, 0,
 // 0.5) for those that escape, over `samples` passes (a parameter: the directions a
 // shading sample traces are chosen when it runs).
-const char* kShaders[][2] = {{"gao", R"(
+const char* kShaders[][2] = {{"gatherhitp", R"(
+surface gatherhitp() {
+    point hp = 0;
+    float sum = 0;
+    gather("illuminance", P, normal(0, 0, 1), PI / 2, 16, "primitive:P", hp) {
+        sum += zcomp(hp);
+    }
+    Ci = sum / 16;
+    Oi = 1;
+}
+)"},
+                             {"gao", R"(
 surface gao(float maxd = 0;) {
     float hits = 0;
     gather("illuminance", P, normal(0, 0, 1), PI / 2, 16, "maxdist", maxd) {
@@ -119,4 +130,15 @@ TEST(Gather, RayLengthIsTheDistanceToWhatTheRayMet) {
             kDisk));
     EXPECT_NEAR(through.mean(0, 0, 0, 16, 16), expected, 0.02);
     EXPECT_TRUE(through.stats.features.invisible);
+}
+
+// "primitive:P": where a pass's ray met the surface (its origin plus its direction times
+// its length). Under the disk at z = 7, which 0.2 of the cosine-weighted passes meet, the
+// mean of (hit ? zcomp(P) : 0) is 0.2 x 7 = 1.4.
+TEST(Gather, PrimitivePIsWhereTheRayMetTheSurface) {
+    Rendered r = renderRib(
+        rd::test::patchUnder(shaderDir("gather_hitp"), 8, "\"gatherhitp\"", kDisk));
+    EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), 1.4, 0.05);
+    std::printf("NUMERICS case=gather_primitive_p tolerance=0.05 measured=%.4f\n",
+                r.mean(0, 0, 0, 16, 16) - 1.4);
 }

@@ -47,11 +47,16 @@ TEST(Affine, GatherLoopsAreSums) {
         "loop) changed by '=' in it; only += and -= keep it a sum over the rays in "
         "'c = hitc'\n");
     EXPECT_EQ(
-        diags("    float l = 0;\n    gather(\"\", P, N, 0.5, 4, \"primitive:P\", l) "
+        diags("    float l = 0;\n    gather(\"\", P, N, 0.5, 4, \"primitive:N\", l) "
               "{ c += 1; }\n"),
-        "front end: s.sl:5:30: error: gather(): \"primitive:P\" is not supported "
-        "(outputs: \"surface:Ci\", \"ray:length\", \"ray:direction\", "
+        "front end: s.sl:5:30: error: gather(): \"primitive:N\" is not supported "
+        "(outputs: \"surface:Ci\", \"ray:length\", \"primitive:P\", \"ray:direction\", "
         "\"ray:origin\"; inputs: \"maxdist\", \"distribution\")\n");
+    // "primitive:P" (origin + direction x length) is a sum's term, its components too
+    EXPECT_EQ(
+        diags("    point q = 0;\n    gather(\"\", P, N, 0.5, 4, \"primitive:P\", q) "
+              "{ c += zcomp(q); }\n"),
+        "");
     // the distance is a ray's result too: a sum of it, not a product
     EXPECT_EQ(
         diags(
