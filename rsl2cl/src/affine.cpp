@@ -225,7 +225,13 @@ private:
             return v;
         }
         case ExprKind::Call: return call(e);
-        case ExprKind::Cast: return expr(*e.args[0]);
+        case ExprKind::Cast: {
+            // (a colour's channels made a point's coordinates would be mixed by xcomp())
+            const unsigned a = expr(*e.args[0]);
+            if (a && e.args[0]->type.isColor() && e.type.isTriple() && !e.type.isColor())
+                fail(e, a, describe(a) + " made a point, vector or normal");
+            return a;
+        }
         case ExprKind::Tuple: {
             unsigned m = 0;
             for (const ExprPtr& a : e.args) m |= expr(*a);

@@ -57,6 +57,13 @@ TEST(Affine, GatherLoopsAreSums) {
         diags("    point q = 0;\n    gather(\"\", P, N, 0.5, 4, \"primitive:P\", q) "
               "{ c += zcomp(q); }\n"),
         "");
+    // a traced colour made a point is not (its channels would be mixed by zcomp())
+    EXPECT_EQ(
+        codegenDiags("surface t()\n{\n    color c = trace(P, N);\n"
+                     "    Ci = zcomp(point(c));\n}\n",
+                     "t.sl"),
+        "t.sl:4:16: error: Ci is not affine in trace(): a trace() result made a point, "
+        "vector or normal in 'point c'\n");
     // the distance is a ray's result too: a sum of it, not a product
     EXPECT_EQ(
         diags(
