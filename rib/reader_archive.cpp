@@ -64,7 +64,7 @@ std::string Reader::resolveArchive(const std::string& name) const {
 
 // A DynamicLoad object's path: as named when that exists, else beside the reading file,
 // then on the archive search path, each also with ".so" added (PRMan's convention).
-std::string Reader::resolveDynamicObject(const std::string& name) {
+std::string Reader::resolveDynamicObject(const std::string& name) const {
     for (const std::string& n : {name, name + ".so"}) {
         if (fileExists(n)) return n;
         if (std::string found = resolveArchive(n); !found.empty()) return found;

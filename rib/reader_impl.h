@@ -200,7 +200,7 @@ private:
                      const SourceLoc& loc);
     void recordInlineArchive(const std::string& name, const SourceLoc& loc);
     std::string resolveArchive(const std::string& name) const;
-    std::string resolveDynamicObject(const std::string& name);
+    std::string resolveDynamicObject(const std::string& name) const;
     void noteOption(const std::string& name, const ParamList& params);
 
     Lexer* m_lex;

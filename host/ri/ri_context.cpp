@@ -111,6 +111,11 @@ void Context::end() {
         report(RIE_NOTSTARTED, RIE_ERROR, "Ri: error: RiEnd before RiBegin: ignored");
         return;
     }
+    if (g_context->m_capture) {  // (endCapture ends it, once the object returns)
+        report(RIE_ILLSTATE, RIE_ERROR,
+               "Ri: error: RiEnd inside a DynamicLoad procedural's Subdivide: ignored");
+        return;
+    }
     try {
         g_context->m_feed->finish(++g_context->m_call);
     } catch (const std::exception& e) {
@@ -128,6 +133,12 @@ RtContextHandle Context::handle() {
 }
 
 void Context::makeCurrent(RtContextHandle h) {
+    if (g_context && g_context->m_capture) {
+        report(
+            RIE_ILLSTATE, RIE_ERROR,
+            "Ri: error: RiContext inside a DynamicLoad procedural's Subdivide: ignored");
+        return;
+    }
     for (const std::unique_ptr<Context>& c : g_contexts)
         if (c.get() == h) {
             g_context = c.get();
@@ -167,6 +178,7 @@ Context::Context(RtToken name, bool capture) : m_diag(nullptr, INT_MAX) {
         m_code = 0;
         report(code, isError ? RIE_ERROR : RIE_WARNING, message);
     });
+    m_capture = capture;
     if (capture) {
         auto writer = std::make_unique<rib::RibWriter>(m_text);
         m_writer = writer.get();

@@ -84,6 +84,7 @@ private:
     rib::Diagnostics m_diag;
     std::ofstream m_file;  // RiBegin("file.rib")
     std::ostringstream m_text;  // beginCapture's RIB
+    bool m_capture = false;     // a DynamicLoad object's calls: RiEnd may not end it
     std::unique_ptr<rib::Target> m_target;
     rib::RibWriter* m_writer = nullptr;  // m_target, when it writes RIB
     std::unique_ptr<rib::RequestFeed> m_feed;

@@ -1,6 +1,7 @@
-// message_services.cpp: rsl_attribute and rsl_option, and the Attribute and Option values
-// they read from the parameter buffer. A value is data: editing it keeps the program;
-// only the set of names and sizes is in the code.
+// message_services.cpp: rsl_attribute, rsl_option and rsl_shader_param, and what they
+// read from the parameter buffer (Attribute and Option values, the materials' shader
+// blocks). A value is data: editing it keeps the program; only the set of names and sizes
+// is in the code.
 #include "message_services.h"
 
 #include <algorithm>
@@ -50,9 +51,10 @@ void writeBlock(const MessageValues& set, const std::vector<Slot>& slots,
             }
 }
 
-// An offset into the buffer as a float's bits (exact however large; read by as_int).
-float intBits(size_t offset) {
-    const int32_t i = int32_t(offset);
+// An int (an offset into the buffer, a shader's index) as a float's bits: exact however
+// large, read by as_int.
+float intBits(int64_t value) {
+    const int32_t i = int32_t(value);
     float f;
     std::memcpy(&f, &i, sizeof f);
     return f;
@@ -107,11 +109,11 @@ std::string messageServices(const Scene& scene, bool attributesUsed,
             blockAt.push_back(params.size());
             writeBlock(*set, attrSlots, blockFloats, params);
         }
-        params[slots.attributeTable] = intBits(params.size());
+        params[slots.attributeTable] = intBits(int64_t(params.size()));
         for (size_t m = 0; m < scene.materials.size(); ++m) {
             const uint32_t set =
                 m < scene.materialAttributes.size() ? scene.materialAttributes[m] : 0;
-            params.push_back(intBits(blockAt[set < blockAt.size() ? set : 0]));
+            params.push_back(intBits(int64_t(blockAt[set < blockAt.size() ? set : 0])));
         }
         src << "int rsl_attribute(const RslGlobals* g, int nameId, float* out, int n) {\n"
             << findSlot(attrSlots, "")
@@ -130,7 +132,7 @@ std::string messageServices(const Scene& scene, bool attributesUsed,
         std::remove_if(optionSlots.begin(), optionSlots.end(),
                        [&](const Slot& o) { return o.id == format || o.id == clipping; }),
         optionSlots.end());
-    params[slots.optionBlock] = intBits(params.size());
+    params[slots.optionBlock] = intBits(int64_t(params.size()));
     writeBlock(scene.optionValues, optionSlots, optionFloats, params);
     std::ostringstream known;
     known << "    case " << format << ": if (n != 3) return 0;\n"
@@ -157,13 +159,9 @@ std::string shaderParamService(const ShaderBlocks& blocks, bool used, size_t tab
                "0;\n}\n";
         return src.str();
     }
-    params[tableSlot] = intBits(params.size());
+    params[tableSlot] = intBits(int64_t(params.size()));
     for (const auto& m : blocks.materials)
-        for (int32_t v : m) {
-            float f;
-            std::memcpy(&f, &v, sizeof f);
-            params.push_back(f);
-        }
+        for (int32_t v : m) params.push_back(intBits(v));
     src << "    if (g->material < 0 || kind < 0 || kind > 2) return 0;\n"
            "    __global const float* s = g->scene_params;\n"
            "    const int at = as_int(s["

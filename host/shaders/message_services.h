@@ -1,7 +1,8 @@
-// message_services.h: the services behind attribute() and option() (rsl_abi.h, MESSAGE
-// PASSING): the Attribute and Option values the scene gives (Scene::attributeSets,
-// optionValues) laid out in the parameter buffer, and the OpenCL source of rsl_attribute
-// and rsl_option that finds them by name id and size.
+// message_services.h: the services behind attribute(), option(), surface(),
+// displacement() and atmosphere() (rsl_abi.h, MESSAGE PASSING): the Attribute and Option
+// values the scene gives (Scene::attributeSets, optionValues) and each material's shader
+// blocks laid out in the parameter buffer, and the OpenCL source that finds them by name
+// id and size.
 #pragma once
 #include <array>
 #include <string>
@@ -43,7 +44,8 @@ struct ShaderBlocks {
     std::vector<std::array<int32_t, 6>> materials;
 };
 // Appends the per-material table to `params` (its start into params[tableSlot]) and
-// returns rsl_shader_param; a stub that finds nothing when `used` is false.
+// returns rsl_shader_param; when `used` is false (no shader calls it) the function finds
+// nothing and no table is laid out.
 std::string shaderParamService(const ShaderBlocks& blocks, bool used, size_t tableSlot,
                                std::vector<float>& params);
 

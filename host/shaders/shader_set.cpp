@@ -623,9 +623,13 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
                                      "], -" + w + " + 1], -" + w + " + 2], 0.0f)\n";
     // attribute() and option(), once every shader is known (attribute data only when
     // some shader asks)
-    bool attributesUsed = false;
-    for (const auto& [name, sh] : m_cache)
-        attributesUsed |= sh && sh->source.find("rsl_attribute(g") != std::string::npos;
+    auto someShaderCalls = [&](const char* service) {
+        return std::any_of(m_cache.begin(), m_cache.end(), [&](const auto& entry) {
+            return entry.second &&
+                   entry.second->source.find(service) != std::string::npos;
+        });
+    };
+    const bool attributesUsed = someShaderCalls("rsl_attribute(g");
     // surface(), displacement(), atmosphere(): the material's shaders' blocks
     ShaderBlocks blocks;
     blocks.shaders[0] = surfaceShaders;
@@ -636,10 +640,7 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         list.push_back(sh);
         return int32_t(list.size() - 1);
     };
-    bool shaderParamsUsed = false;
-    for (const auto& [name, sh] : m_cache)
-        shaderParamsUsed |=
-            sh && sh->source.find("rsl_shader_param(g") != std::string::npos;
+    const bool shaderParamsUsed = someShaderCalls("rsl_shader_param(g");
     for (size_t mi = 0; shaderParamsUsed && mi < out.materials.size(); ++mi) {
         const Material& m = out.materials[mi];
         const uint32_t r = m_scene.materials[mi].shader;
