@@ -44,6 +44,10 @@
 #define RT_QF_CSG_MEMBER 2u /* reached only through its solid, not from the BVH */
 #define RT_QF_MOVING 4u     /* placement (or triangle vertices) interpolated by ray time */
 #define RT_QF_PROTOTYPE 8u  /* a triangle of an instanced object: reached through instances */
+#define RT_QF_DICED \
+    16u /* a triangle replaced by its diced, displaced pieces: not in the BVH */
+#define RT_QF_DISPLACED \
+    32u /* such a piece: moved by its displacement shader, not bump mapped */
 
 typedef struct Quadric {
     rt_float4 center;       /* world position of the object-space origin */

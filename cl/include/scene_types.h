@@ -59,6 +59,9 @@ typedef struct Material {
 #define RT_MATERIAL_NO_TRANSMISSION 16u
 /* "string transmission" "opaque": a full shadow whatever its opacity Os. */
 #define RT_MATERIAL_OPAQUE_SHADOW 32u
+/* Displaced truly (host/scene/dice_displaced.h): diced and moved before rendering, so
+ * the shade stage leaves its displacement shader alone. */
+#define RT_MATERIAL_TRUE_DISPLACEMENT 64u
 /* Bits 8..15: 1 + the index of the surface's Atmosphere shader, 0 for none. */
 #define RT_MATERIAL_ATMOSPHERE_SHIFT 8u
 #define RT_MATERIAL_ATMOSPHERE_MASK 0xff00u

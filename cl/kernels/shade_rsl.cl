@@ -163,7 +163,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
         RD_NEIGHBOUR_GLOBALS(g, g1, g2, h, rs, dir, RD_HIT_BUFFERS);
         g1.loops_cut = g2.loops_cut = &loops_cut;
 #ifdef RT_HAS_DISPLACEMENT
-        if (disp) rd_displace_lanes((int)disp - 1, &g, &g1, &g2, params, tc);
+        if (disp) rd_displace_lanes((int)disp - 1, &g, &g1, &g2, params, tc, 0);
 #endif
         if (RSL_DERIVS_SURFACE) { /* the neighbours first: they record what the point differences */
             dsites = &deriv;

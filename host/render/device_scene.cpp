@@ -21,7 +21,10 @@ BvhPrimitives bvhPrimitives(const Scene& scene) {
     for (size_t i = 0; i < tb.size(); ++i) {
         // solid members are reached through their solid, moving triangles through their
         // motion records, prototypes through their instances
-        if (scene.attrs[i].flags & (RT_QF_CSG_MEMBER | RT_QF_MOVING | RT_QF_PROTOTYPE)) continue;
+        // (and diced triangles through their pieces)
+        if (scene.attrs[i].flags &
+            (RT_QF_CSG_MEMBER | RT_QF_MOVING | RT_QF_PROTOTYPE | RT_QF_DICED))
+            continue;
         p.ids.push_back(uint32_t(i));
         p.bounds.push_back(tb[i]);
     }

@@ -38,6 +38,7 @@
 #include "shaders/shader_set.h"
 #include "stop.h"
 #include "texture_reshade.h"
+#include "true_displacement.h"
 
 namespace rd {
 
@@ -79,9 +80,21 @@ const char* signalName(int sig) { return sig == 2 ? "SIGINT" : sig == 15 ? "SIGT
 Renderer::Renderer(const ClContext& ctx, const RenderSettings& settings)
     : m_ctx(ctx), m_settings(settings) {}
 
-RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& diag) {
+RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& diag) {
     const auto t0 = Clock::now();
     RenderStats st;
+    // Truly displaced surfaces are diced first (dice_displaced.h): the render is of a
+    // copy of the scene with their micropolygons, moved once the shading program is
+    // built.
+    std::optional<Scene> dicedScene;
+    DicedSurfaces diced;
+    const DicingView dicingView = dicingViewOf(input.deviceCamera());
+    if (hasTrueDisplacement(input)) {
+        dicedScene.emplace(input);
+        diced = diceDisplacedSurfaces(*dicedScene, dicingView, kMaxDicedTriangles);
+        reportDicing(diced, input, diag);
+    }
+    const Scene& scene = dicedScene ? *dicedScene : input;
     st.device = m_ctx.name();
     st.platform = m_ctx.info().platformName;
     st.threadsPinned = m_ctx.info().isPocl() && poclThreadsPinned();
@@ -195,6 +208,29 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
     // build is a second or more of the compiler, a warm one 40-60 ms on PoCL).
     std::future<RenderPrograms> programBuild = std::async(
         std::launch::async, [&] { return RenderPrograms(m_ctx, shading, buildOptions(f)); });
+    // Textures: the device tile cache (Option "limits" "texturememory" or the command
+    // line; else every tile when they fit in 256 MiB).
+    size_t cacheTiles = m_settings.textureCacheTiles;
+    if (cacheTiles == 0 && scene.render.textureMemoryKB > 0)
+        cacheTiles = size_t(scene.render.textureMemoryKB) * 1024 /
+                     (sizeof(rt_float4) * RT_TEX_TILE_TEXELS);
+    textures.createDevice(m_ctx, f.textures ? cacheTiles : 1);
+    Profiler prof(m_ctx);
+    if (m_settings.timeline) prof.keepTimeline();
+    // Displacement moves the diced surfaces before their tree is built: it waits for
+    // the program.
+    std::optional<RenderPrograms> builtEarly;
+    if (dicedScene && !diced.vertexCorner.empty()) {
+        builtEarly.emplace(programBuild.get());
+        const auto td = Clock::now();
+        const DisplacementReport dr = displaceDicedSurfaces(
+            m_ctx, builtEarly->shade->get(), prof, *dicedScene, diced, f, shading,
+            textures, dicingView, dicingView.perspective ? 0.0f : dicingView.pixelWidth);
+        st.displacedVertices = dr.vertices;
+        st.displaceMs = secondsSince(td) * 1e3;
+        reportDisplacement(dr, scene, diag);
+    }
+    st.dicedTriangles = diced.cornerVertex.size() / 3;
     auto tb = Clock::now();
     SceneBvh sceneBvh = buildSceneBvh(scene, f.bvhWidth);
     const Bvh4& bvh4 = sceneBvh.bvh4;  // (empty when the tree is eight-wide)
@@ -223,12 +259,11 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
         for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
         rp.sorted.upload(order);
     }
-    const RenderPrograms programs = programBuild.get();
+    const RenderPrograms programs =
+        builtEarly ? std::move(*builtEarly) : programBuild.get();
     st.program = programs.info();
     st.traceProgram = programs.trace->info();
     st.shadeProgram = programs.shade->info();
-    Profiler prof(m_ctx);
-    if (m_settings.timeline) prof.keepTimeline();
     RenderKernels k(m_ctx, programs.trace->get(), programs.shade->get(), prof,
                     shading.shadeKernels);
     if (f.shadowPackets) k.intersectShadow.setLanesPerItem(RT_PACKET_RAYS);
@@ -256,14 +291,7 @@ RenderStats Renderer::render(const Scene& scene, Film& film, rib::Diagnostics& d
                                 ds.trianglesEnd, rp.sample, rp.sampleTime};
     const ShadowSurfaces shadowSurfaces{ds.attrs, ds.materials, ds.materialChannels,
                                         rp.shAov, f.maxTransparentDepth};
-    // Textures: the device tile cache (Option "limits" "texturememory" or the command
-    // line; else every tile when they fit in 256 MiB), and the lists of points to shade
-    // again once the tiles they missed are there.
-    size_t cacheTiles = m_settings.textureCacheTiles;
-    if (cacheTiles == 0 && scene.render.textureMemoryKB > 0)
-        cacheTiles = size_t(scene.render.textureMemoryKB) * 1024 /
-                     (sizeof(rt_float4) * RT_TEX_TILE_TEXELS);
-    textures.createDevice(m_ctx, f.textures ? cacheTiles : 1);
+    // The lists of points to shade again once the tiles they missed are there.
     TextureReshade reshade(m_ctx, textures, pool, shaderCount, f.textures);
     const size_t npix = size_t(cam.width) * size_t(cam.height);
     film.width = cam.width;

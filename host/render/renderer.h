@@ -80,6 +80,9 @@ struct RenderStats {
     uint64_t eyeRays = 0, continuationRays = 0, shadowRays = 0;
     uint64_t triangles = 0, quadrics = 0, csgSolids = 0, instances = 0, bvhNodes = 0;
     uint64_t droppedPrims = 0;
+    // true displacement (true_displacement.h): diced triangles, vertices moved, the time
+    uint64_t dicedTriangles = 0, displacedVertices = 0;
+    double displaceMs = 0;
     uint64_t sceneBytes = 0;  // device bytes of geometry: BVH, blocks, triangles, quadrics
     uint64_t nonfiniteSamples = 0, unsampledPixels = 0, abortedSamples = 0;
     uint64_t filmSamples = 0;  // whole samples in the film (re-issued ones counted once)

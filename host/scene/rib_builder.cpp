@@ -144,6 +144,21 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
                                "\": not transparent, opaque, Os or shader; taken as Os");
         return;
     }
+    if (name ==
+        "displacementbound") {  // PRMan: "float sphere", "string coordinatesystem"
+        const float r = params.getFloat("sphere", 0.0f);
+        if (!(r >= 0.0f) || !std::isfinite(r))
+            m_diag.warning(loc,
+                           "Attribute \"displacementbound\" \"sphere\" must be finite "
+                           "and not negative; ignored");
+        else
+            m_attrStack.back().displacementBound = r;
+        return;
+    }
+    if (name == "render") {  // BMRT: "int truedisplacement" 1 moves the surface
+        const int on = params.getInt("truedisplacement", -1);
+        if (on >= 0) m_attrStack.back().trueDisplacement = on > 0 ? 1 : 0;
+    }
     if (name == "trace") {
         // Outside the world it sets the default; inside, the deepest limit any object
         // asks for holds for all (per-object limits are not carried yet).
@@ -541,6 +556,7 @@ uint32_t RibBuilder::currentMaterial() {
         }
         if (index < 255) m.flags |= uint32_t(index + 1) << RT_MATERIAL_DISPLACEMENT_SHIFT;
         else m_diag.warning(a.displacement.loc, "more than 255 Displacement calls; this one is not used");
+        if (index < 255 && a.displacesTruly()) m.flags |= RT_MATERIAL_TRUE_DISPLACEMENT;
     }
     if (a.matte) {
         m.flags |= RT_MATERIAL_MATTE;
@@ -556,10 +572,15 @@ uint32_t RibBuilder::currentMaterial() {
     }
     const uint32_t attributeSet = attributeSetIndex(a.messages);
     key.append(reinterpret_cast<const char*>(&attributeSet), sizeof attributeSet);
+    // a truly displaced surface's micropolygon edge, in pixels
+    const float dicing =
+        (m.flags & RT_MATERIAL_TRUE_DISPLACEMENT) ? std::sqrt(a.shadingRate) : 0.0f;
+    key.append(reinterpret_cast<const char*>(&dicing), sizeof dicing);
     if (auto it = m_materialKeys.find(key); it != m_materialKeys.end()) return it->second;
     uint32_t index = static_cast<uint32_t>(m_world.materials.size());
     m_world.materials.push_back(m);
     m_world.materialAttributes.push_back(attributeSet);
+    m_world.materialDicing.push_back(dicing);
     if (colors.n > 3) {
         m_world.materialChannels.insert(m_world.materialChannels.end(), a.color,
                                         a.color + colors.n);
@@ -677,15 +698,8 @@ void RibBuilder::sphere(L loc, float radius, float zmin, float zmax, float theta
         addQuadric(loc, "Sphere", makeSphere(radius, zmin, zmax, thetamax), params);
         return;
     }
-    const glm::mat4& ctm = m_attrStack.back().ctm;
     // Dice for the sphere's size on screen: chord error under 0.1 pixel.
-    glm::mat4 objToCam = m_world.camera.worldToCamera * ctm;
-    glm::vec3 center = xformPoint(objToCam, glm::vec3(0.0f));
-    float worldRadius = std::fabs(radius) * std::cbrt(std::fabs(glm::determinant(glm::mat3(objToCam))));
-    float depth = center.z - worldRadius;
-    float rpx = worldRadius * pixelsPerUnit(depth > 0 ? center.z : 0.0f);
-    if (depth <= 0.0f) rpx = 1e6f;
-    const int n = circleSegments(rpx, 0.1f);
+    const int n = circleSegments(screenRadius(glm::vec3(0.0f), radius), 0.1f);
     const auto [nu, nv] = keySegments(n, n / 2);
     VertexData mesh;
     TriMesh m = tessellateSphere(radius, zmin, zmax, thetamax, nu, nv, &mesh.st);

@@ -118,6 +118,7 @@ public:
     void setDeferProcedurals(bool on) { m_deferProcedurals = on; }
     void imager(L, S name, P params) override;
     void sides(L, int n) override;
+    void shadingRate(L, float size) override;
     void skew(L, float angleDeg, float dx1, float dy1, float dz1, float dx2, float dy2,
               float dz2) override;
     void perspective(L, float fovDeg) override;
@@ -243,6 +244,17 @@ private:
         ShaderRef displacement;  // the current Displacement call (name empty: none)
         int areaLight = -1;      // AreaLightSource in this block: the geometry emits
         uint64_t displacementKey = 0;
+        // True displacement (the surface diced and moved, host/scene/dice_displaced.h):
+        // Attribute "render" "truedisplacement" (BMRT; -1 not given), else a nonzero
+        // Attribute "displacementbound" "sphere" (PRMan); ShadingRate sets the dicing.
+        int trueDisplacement = -1;
+        float displacementBound = 0.0f;
+        float shadingRate = 1.0f;
+        bool displacesTruly() const {
+            return displacementKey != 0 &&
+                   (trueDisplacement > 0 ||
+                    (trueDisplacement < 0 && displacementBound > 0.0f));
+        }
         CubicBasis ubasis = bezierBasis(), vbasis = bezierBasis();
         std::shared_ptr<const TrimCurves> trim;  // TrimCurve applies to later NuPatches
     };
@@ -366,6 +378,7 @@ private:
         if (!m_solidStack.empty()) return true;
         if (m_motion.active) return false;
         if (m_attrStack.back().areaLight >= 0) return false;  // its triangles are sampled
+        if (m_attrStack.back().displacesTruly()) return false;  // diced, then displaced
         return !m_forceTessellate && (m_inWorld ? m_world : m_options).render.exactQuadrics;
     }
     void finishSolid(int root);

@@ -36,8 +36,11 @@ float RibBuilder::screenRadius(const glm::vec3& centre, float radius) const {
     glm::vec3 c = glm::vec3(objToCam * glm::vec4(centre, 1.0f));
     float scale = std::cbrt(std::fabs(glm::determinant(glm::mat3(objToCam))));
     float r = std::fabs(radius) * scale;
-    if (c.z - r <= 0.0f) return 1e6f;  // reaches the camera plane: the finest dicing
-    return r * pixelsPerUnit(c.z);
+    // A truly displaced surface is diced again to its ShadingRate (dice_displaced.h):
+    // its tessellation need only follow its curvature.
+    const float most = m_attrStack.back().displacesTruly() ? 1000.0f : 1e6f;
+    if (c.z - r <= 0.0f) return most;  // reaches the camera plane: the finest dicing
+    return std::min(r * pixelsPerUnit(c.z), most);
 }
 
 float RibBuilder::screenRadius(const std::vector<glm::vec3>& pts) const {

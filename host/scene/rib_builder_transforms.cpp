@@ -140,6 +140,13 @@ void RibBuilder::sides(L loc, int n) {
     if (n != 1 && n != 2) return m_diag.error(loc, "Sides must be 1 or 2");
     m_attrStack.back().sides = n;
 }
+// ShadingRate: the area in pixels of a micropolygon; here it sets how finely truly
+// displaced surfaces are diced (an edge of sqrt(size) pixels).
+void RibBuilder::shadingRate(L loc, float size) {
+    if (!(size > 0.0f) || !std::isfinite(size))
+        return m_diag.error(loc, "ShadingRate must be a positive number");
+    m_attrStack.back().shadingRate = size;
+}
 void RibBuilder::orientation(L loc, const std::string& o) {
     Attributes& a = m_attrStack.back();
     const glm::mat4 toCamera = m_inWorld ? m_world.camera.worldToCamera * a.ctm : a.ctm;

@@ -166,6 +166,9 @@ struct Scene {
     // material's set, by material index
     std::vector<MessageValues> attributeSets{MessageValues{}};
     std::vector<uint32_t> materialAttributes;
+    // By material: a truly displaced surface's micropolygon edge in pixels (sqrt of its
+    // ShadingRate), 0 for every other (RT_MATERIAL_TRUE_DISPLACEMENT)
+    std::vector<float> materialDicing;
     MessageValues optionValues;          // option(): every Option's values
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
     // DelayedReadArchive calls not loaded yet (RT_Q_PROCEDURAL boxes); key: where the

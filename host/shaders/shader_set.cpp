@@ -15,6 +15,7 @@
 #include "emit_cl.h"
 #include "message_services.h"
 #include "ocl/program.h"
+#include "scene/dice_displaced.h"
 #include "shader_aovs.h"
 #include "shader_path.h"
 
@@ -672,6 +673,8 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     out.generated["rd_shade_kernels.cl"] =
         "#include \"counters.clh\"\n#include \"shade_common.clh\"\n" + kernels.str() + imagerKernel + prep.str();
     out.sourceOrder = {"rd_shading.cl", "rd_textures.cl", "rd_shade_kernels.cl"};
+    if (out.displacement && hasTrueDisplacement(m_scene))  // (true_displacement.h)
+        out.sourceOrder.push_back("displace_vertices.cl");
     return out;
 }
 

@@ -349,6 +349,43 @@ TEST(Textures, BumpyDisplacesByItsMap) {
     EXPECT_LT(changed, 32 * 32) << "inside the checks the map is flat";
 }
 
+// bumpy as a true displacement: a 2 x 2 patch head on, its white checks raised by Km
+// toward the camera or away (the patch's normal decides), the black ones left; the
+// camera-space depth a pixel sees is then 5 - or + Km there, so its mean distance from 5
+// is Km times the map's mean, 0.5 (the filtered lookups keep the mean; the pieces slope
+// across each check's edge). As a bump map P stays on the patch: 0. With a tile cache far
+// smaller than the map, the vertices whose lookups missed run again: the same image.
+TEST(Textures, TrueDisplacementByAMap) {
+    std::string tex = texture("heights", 256, 8, false);
+    std::ofstream(dir() + "/depthlook.sl")
+        << "surface depthlook() {\n    Ci = abs(zcomp(transform(\"camera\", P)) - 5);\n"
+           "    Oi = 1;\n}\n";
+    auto scene = [&](const std::string& attr) {
+        return searchPath() +
+               "Format 32 32 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
+               "ScreenWindow -0.8 0.8 -0.8 0.8\nWorldBegin\nSurface \"depthlook\"\n" +
+               attr + "Displacement \"bumpy\" \"texturename\" \"" + tex +
+               "\" \"Km\" 0.2\n"
+               "Patch \"bilinear\" \"P\" [-1 1 5  1 1 5  -1 -1 5  1 -1 5]\nWorldEnd\n";
+    };
+    const std::string truly = "Attribute \"render\" \"int truedisplacement\" [1]\n";
+    Rendered bumped = renderRib(scene(""));
+    EXPECT_NEAR(bumped.mean(0, 0, 0, 32, 32), 0.0, 1e-5);
+    Rendered resident = renderRib(scene(truly));
+    EXPECT_NEAR(resident.mean(0, 0, 0, 32, 32), 0.2 * 0.5, 0.01);
+    EXPECT_GT(resident.stats.displacedVertices, 1000u);
+    rd::RenderSettings small;
+    small.textureCacheTiles = 8;
+    Rendered streamed = renderRib(scene(truly), small);
+    EXPECT_FALSE(streamed.stats.textures.resident);
+    EXPECT_GT(streamed.stats.textures.totalTiles, 60u);
+    EXPECT_EQ(streamed.stats.textures.unresolved, 0u);
+    size_t differ = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) differ += resident.at(x, y).r != streamed.at(x, y).r;
+    EXPECT_EQ(differ, 0u);
+}
+
 // MakeCubeFaceEnvironment: six constant faces (+x red, -x green, +y blue, -y yellow,
 // +z white, -z grey) resampled into a lat-long map; each axis reads its face's colour.
 TEST(Textures, CubeFacesBecomeALatLongMap) {

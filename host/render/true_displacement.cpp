@@ -1,0 +1,177 @@
+// true_displacement.cpp: running the displacement shaders at the diced vertices and
+// moving the diced surfaces (true_displacement.h).
+#include "true_displacement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "device_scene.h"
+
+namespace rd {
+
+namespace {
+
+glm::vec3 v3(const rt_float4& f) {
+    return glm::vec3(f.x, f.y, f.z);
+}
+
+// Normals of the moved surface: about each vertex, the pieces' normals weighted by
+// their areas, turned to the side the surface's own normal was on.
+void remakeNormals(Scene& s, const DicedSurfaces& d,
+                   const std::vector<rt_float4>& moved) {
+    std::vector<glm::dvec3> sum(moved.size(), glm::dvec3(0.0));
+    const size_t pieces = d.cornerVertex.size() / 3;
+    for (size_t i = 0; i < pieces; ++i) {
+        const uint32_t* v = &d.cornerVertex[3 * i];
+        const glm::dvec3 a = v3(moved[v[0]]), b = v3(moved[v[1]]), c = v3(moved[v[2]]);
+        const glm::dvec3 n = glm::cross(b - a, c - a);
+        for (int k = 0; k < 3; ++k) sum[v[k]] += n;
+    }
+    for (size_t i = 0; i < pieces; ++i)
+        for (int k = 0; k < 3; ++k) {
+            rt_float4& stored = s.normals[3 * (d.firstTriangle + i) + size_t(k)];
+            glm::dvec3 n = sum[d.cornerVertex[3 * i + size_t(k)]];
+            const double len = glm::length(n);
+            if (!(len > 0.0) || !std::isfinite(len))
+                continue;  // keep the undisplaced one
+            n /= len;
+            if (glm::dot(n, glm::dvec3(v3(stored))) < 0.0) n = -n;
+            stored = {float(n.x), float(n.y), float(n.z), 0.0f};
+        }
+}
+
+}  // namespace
+
+DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program program,
+                                         Profiler& prof, Scene& scene,
+                                         const DicedSurfaces& diced, const Features& f,
+                                         const ShadingSetup& shading,
+                                         TextureSet& textures, const DicingView& view,
+                                         float eyeWidth) {
+    DisplacementReport r;
+    const size_t nv = diced.vertexCorner.size();
+    if (nv == 0) return r;
+    // The scene's arrays as the shade stage reads them (no tree: nothing is traced).
+    DeviceScene ds(ctx, scene, SceneBvh{}, f, shading);
+    if (!shading.prepares.empty()) {  // the shaders' uniform work, as for shading
+        Kernel prepare(ctx, program, "rd_prepare_uniforms", prof);
+        prepare.launch(shading.prepares.size(), cl_uint(shading.prepares.size()),
+                       ds.params);
+        prepare.collectActive();
+    }
+    std::vector<cl_uint2> corners(nv);
+    std::vector<uint32_t> todo(nv);
+    for (size_t i = 0; i < nv; ++i) {
+        corners[i] = {{diced.vertexCorner[i][0], diced.vertexCorner[i][1]}};
+        todo[i] = uint32_t(i);
+    }
+    DeviceBuffer<cl_uint2> cornerBuf(ctx, corners);
+    DeviceBuffer<rt_float4> movedBuf(ctx, nv);
+    DeviceBuffer<uint32_t> todoA(ctx, todo), todoB(ctx, nv + 1);
+    Kernel displace(ctx, program, "displace_vertices", prof);
+    const rt_float4 eye = {view.eye.x, view.eye.y, view.eye.z, 0.0f};
+    const std::vector<std::string> names = {"displacement"};
+    size_t count = nv;
+    DeviceBuffer<uint32_t>* src = &todoA;
+    // a vertex whose tiles keep missing (a cache too small for one vertex's lookups) is
+    // given up after this many passes
+    constexpr size_t kMaxPasses = 256;
+    while (count > 0) {
+        const uint32_t zero = 0;
+        todoB.uploadRange(0, &zero, 1);
+        displace.launch(
+            count, cl_uint(count), *src, cornerBuf, movedBuf, eye, eyeWidth, ds.triangles,
+            ds.attrs, ds.normals, ds.vertexSt, ds.vertexCs, ds.vertexOs, ds.materials,
+            ds.materialChannels, ds.quadrics, ds.quadricPrimvars, ds.quadricMotion,
+            ds.trianglesEnd, ds.params, ds.triangleParams, ds.pointParamValues,
+            ds.pointParamLayout, textures.infoBuf, textures.pageBuf, textures.tileBuf,
+            textures.requestBuf, textures.counterBuf, textures.usedBuf, todoB);
+        ++r.passes;
+        count = todoB.downloadFirst(1)[0];
+        if (f.textures) {
+            const uint32_t asked = textures.counterBuf.downloadFirst(1)[0];
+            if (asked > 0) {
+                std::vector<TexRequest> req = textures.requestBuf.downloadFirst(
+                    std::min<size_t>(asked, TextureSet::kMaxRequests));
+                textures.counterBuf.uploadRange(0, &zero, 1);
+                textures.serve(req, names);
+            }
+        }
+        if (count == 0) break;
+        if (r.passes >= kMaxPasses) {
+            r.unresolved = count;
+            break;
+        }
+        // the vertices to run again, from the list's second entry on, to the front
+        std::vector<uint32_t> again = todoB.downloadFirst(count + 1);
+        src->uploadRange(0, again.data() + 1, count);
+    }
+    displace.collectActive();
+    std::vector<rt_float4> moved = movedBuf.download();
+    // Vertices given up on (and never written) or moved to NaN stay where they were.
+    std::vector<uint8_t> left(nv, 0);
+    if (r.unresolved > 0) {
+        std::vector<uint32_t> again = todoB.downloadFirst(r.unresolved + 1);
+        for (size_t i = 1; i <= r.unresolved; ++i) left[again[i]] = 1;
+    }
+    for (size_t i = 0; i < nv; ++i) {
+        const Triangle& t = scene.triangles[diced.vertexCorner[i][0]];
+        const uint32_t k = diced.vertexCorner[i][1];
+        const rt_float4& p = k == 0 ? t.v0 : k == 1 ? t.v1 : t.v2;
+        const rt_float4& m = moved[i];
+        if (!left[i] &&
+            !(std::isfinite(m.x) && std::isfinite(m.y) && std::isfinite(m.z))) {
+            ++r.nonFinite;
+            left[i] = 1;
+        }
+        if (left[i]) moved[i] = {p.x, p.y, p.z, 0.0f};
+    }
+    r.vertices = nv - size_t(std::count(left.begin(), left.end(), uint8_t(1)));
+    for (size_t i = 0; i < diced.cornerVertex.size() / 3; ++i) {
+        Triangle& t = scene.triangles[diced.firstTriangle + i];
+        t.v0 = moved[diced.cornerVertex[3 * i]];
+        t.v1 = moved[diced.cornerVertex[3 * i + 1]];
+        t.v2 = moved[diced.cornerVertex[3 * i + 2]];
+    }
+    remakeNormals(scene, diced, moved);
+    return r;
+}
+
+namespace {
+rib::SourceLoc displacementLoc(const Scene& scene) {
+    return scene.displacements.empty() ? rib::SourceLoc{scene.sourceFile, 0}
+                                       : scene.displacements.front().loc;
+}
+}  // namespace
+
+void reportDicing(const DicedSurfaces& d, const Scene& scene, rib::Diagnostics& diag) {
+    const rib::SourceLoc loc = displacementLoc(scene);
+    if (d.skipped > 0)
+        diag.warning(loc,
+                     std::to_string(d.skipped) +
+                         " truly displaced triangle(s) moving, instanced or in a solid: "
+                         "bump mapped instead");
+    if (d.coarsening > 1.0f)
+        diag.warning(loc, "true displacement diced " + std::to_string(int(d.coarsening)) +
+                              "x coarser than ShadingRate asks, to stay within " +
+                              std::to_string(kMaxDicedTriangles) + " triangles");
+    if (d.truncated)
+        diag.warning(loc,
+                     "true displacement: the dicing budget ran out; some surfaces are "
+                     "left undisplaced");
+}
+
+void reportDisplacement(const DisplacementReport& r, const Scene& scene,
+                        rib::Diagnostics& diag) {
+    const rib::SourceLoc loc = displacementLoc(scene);
+    if (r.nonFinite > 0)
+        diag.warning(loc, "displacement moved " + std::to_string(r.nonFinite) +
+                              " vertices to NaN or Inf; they are left in place");
+    if (r.unresolved > 0)
+        diag.warning(loc, "displacement: the texture cache could not hold what " +
+                              std::to_string(r.unresolved) +
+                              " vertices look up; they are left in place");
+}
+
+}  // namespace rd

@@ -1,0 +1,310 @@
+// dice_displaced.cpp: cutting truly displaced surfaces into micropolygons
+// (dice_displaced.h).
+#include "dice_displaced.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace rd {
+
+float DicingView::pixels(const glm::vec3& a, const glm::vec3& b) const {
+    const float len = glm::length(b - a);
+    if (!perspective) return len / pixelWidth;
+    const float d =
+        std::max(std::min(glm::length(a - eye), glm::length(b - eye)), nearest);
+    return len / (pixelSpread * d);
+}
+
+DicingView dicingViewOf(const Camera& c) {
+    DicingView v;
+    v.eye =
+        glm::vec3(c.camera_to_world[0].w, c.camera_to_world[1].w, c.camera_to_world[2].w);
+    v.perspective = c.perspective != 0;
+    const float across =
+        std::fabs(c.screen[1] - c.screen[0]) / float(std::max(c.width, 1));
+    v.pixelSpread = std::max(across * c.tan_half_fov, 1e-12f);
+    v.pixelWidth = std::max(across, 1e-12f);
+    v.nearest = std::max(c.clip_near, 1e-4f);
+    return v;
+}
+
+bool hasTrueDisplacement(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) {
+                           return (m.flags & RT_MATERIAL_TRUE_DISPLACEMENT) &&
+                                  (m.flags & RT_MATERIAL_DISPLACEMENT_MASK);
+                       });
+}
+
+namespace {
+
+// A corner of a piece: its place, and its barycentric (u, v) in the original triangle.
+struct Corner {
+    glm::vec3 p;
+    glm::vec2 b;
+};
+
+Corner midpoint(const Corner& x, const Corner& y) {
+    // (x + y) * 0.5 is the same bits whichever end comes first: neighbours agree
+    return {(x.p + y.p) * 0.5f, (x.b + y.b) * 0.5f};
+}
+
+// Cuts one triangle by the pattern of its edges longer than `limit` pixels, down to
+// pieces with none, handing each piece to `emit`; false once `emit` says stop.
+template <class Emit>
+bool dice(const DicingView& view, float limit, const Corner& a, const Corner& b,
+          const Corner& c, Emit& emit) {
+    const bool ab = view.pixels(a.p, b.p) > limit, bc = view.pixels(b.p, c.p) > limit,
+               ca = view.pixels(c.p, a.p) > limit;
+    const int cuts = int(ab) + int(bc) + int(ca);
+    if (cuts == 0) return emit(a, b, c);
+    if (cuts == 3) {
+        const Corner mab = midpoint(a, b), mbc = midpoint(b, c), mca = midpoint(c, a);
+        return dice(view, limit, a, mab, mca, emit) &&
+               dice(view, limit, mab, b, mbc, emit) &&
+               dice(view, limit, mca, mbc, c, emit) &&
+               dice(view, limit, mab, mbc, mca, emit);
+    }
+    // turned (keeping the winding) so that x-y is cut, and with two cuts z-x is the other
+    const Corner *x = &a, *y = &b, *z = &c;
+    if (cuts == 1 ? bc : !ca)
+        x = &b, y = &c, z = &a;
+    else if (cuts == 1 ? ca : !ab)
+        x = &c, y = &a, z = &b;
+    const Corner mxy = midpoint(*x, *y);
+    if (cuts == 1)
+        return dice(view, limit, *x, mxy, *z, emit) &&
+               dice(view, limit, mxy, *y, *z, emit);
+    // the corner x on its own, the quad left split along its shorter diagonal (both
+    // pieces come from this triangle, so the choice is no neighbour's)
+    const Corner mzx = midpoint(*z, *x);
+    if (!dice(view, limit, *x, mxy, mzx, emit)) return false;
+    if (glm::length(y->p - mzx.p) <= glm::length(z->p - mxy.p))
+        return dice(view, limit, mxy, *y, mzx, emit) &&
+               dice(view, limit, *y, *z, mzx, emit);
+    return dice(view, limit, mxy, *y, *z, emit) && dice(view, limit, mxy, *z, mzx, emit);
+}
+
+// Whether a triangle is diced: truly displaced, neither moving, instanced nor in a solid.
+bool isDiced(const Scene& s, size_t t) {
+    const TriangleAttr& a = s.attrs[t];
+    if (a.material >= s.materials.size()) return false;
+    const Material& m = s.materials[a.material];
+    return (m.flags & RT_MATERIAL_TRUE_DISPLACEMENT) &&
+           (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) &&
+           !(a.flags & (RT_QF_CSG_MEMBER | RT_QF_MOVING | RT_QF_PROTOTYPE | RT_QF_DICED));
+}
+
+glm::vec3 v3(const rt_float4& f) {
+    return glm::vec3(f.x, f.y, f.z);
+}
+rt_float4 f4(const glm::vec3& v) {
+    return {v.x, v.y, v.z, 0.0f};
+}
+
+rt_float4 blend(const rt_float4* corners, const glm::vec2& b) {
+    const float w0 = 1.0f - b.x - b.y;
+    return {w0 * corners[0].x + b.x * corners[1].x + b.y * corners[2].x,
+            w0 * corners[0].y + b.x * corners[1].y + b.y * corners[2].y,
+            w0 * corners[0].z + b.x * corners[1].z + b.y * corners[2].z,
+            w0 * corners[0].w + b.x * corners[1].w + b.y * corners[2].w};
+}
+
+// The vertices met so far, found by place: a corner is an earlier vertex when it is of
+// the same material, within `cell` of it and of nearly the same normal. The tolerance
+// welds what a tessellator computed twice (a sphere's seam, cos 0 against cos 2 pi; its
+// poles), so the displaced surface stays closed there, whatever (s, t) each side has
+// (a texture seam takes one side's); creases (normals apart) keep their vertices apart,
+// and so crack open as they do in a REYES renderer.
+class VertexWeld {
+public:
+    explicit VertexWeld(float cell) : m_cell(cell > 0.0f ? cell : 1e-30f) {}
+    // The vertex of this corner: an earlier one, or `fresh` (added).
+    uint32_t find(const glm::vec3& p, const glm::vec3& n, uint32_t material,
+                  uint32_t fresh) {
+        const glm::ivec3 c = cellOf(p);
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    auto it = m_cells.find(key(c + glm::ivec3(dx, dy, dz), material));
+                    if (it == m_cells.end()) continue;
+                    for (uint32_t v : it->second) {
+                        const Vertex& w = m_vertices[v];
+                        if (glm::length(w.p - p) <= m_cell && glm::dot(w.n, n) > 0.999f)
+                            return w.id;
+                    }
+                }
+        m_cells[key(c, material)].push_back(uint32_t(m_vertices.size()));
+        m_vertices.push_back({p, n, fresh});
+        return fresh;
+    }
+
+private:
+    struct Vertex {
+        glm::vec3 p, n;
+        uint32_t id;
+    };
+    glm::ivec3 cellOf(const glm::vec3& p) const {
+        return glm::ivec3(glm::floor(glm::dvec3(p) / double(m_cell)));
+    }
+    static uint64_t key(const glm::ivec3& c, uint32_t material) {
+        uint64_t h = 1469598103934665603ull;
+        for (uint32_t x : {uint32_t(c.x), uint32_t(c.y), uint32_t(c.z), material})
+            h = (h ^ x) * 1099511628211ull;
+        return h;  // (a collision only costs a look at another cell's vertices)
+    }
+    float m_cell;
+    std::unordered_map<uint64_t, std::vector<uint32_t>> m_cells;
+    std::vector<Vertex> m_vertices;
+};
+
+}  // namespace
+
+DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
+                                    size_t maxTriangles) {
+    DicedSurfaces out;
+    const size_t n = s.triangles.size();
+    std::vector<size_t> diced;
+    for (size_t t = 0; t < n; ++t) {
+        if (isDiced(s, t))
+            diced.push_back(t);
+        else if (s.attrs[t].material < s.materials.size() &&
+                 (s.materials[s.attrs[t].material].flags &
+                  RT_MATERIAL_TRUE_DISPLACEMENT) &&
+                 !(s.attrs[t].flags & RT_QF_DICED))
+            ++out.skipped;
+    }
+    out.firstTriangle = uint32_t(n);
+    if (diced.empty()) return out;
+    auto limitOf = [&](size_t t) {
+        const uint32_t m = s.attrs[t].material;
+        const float d = m < s.materialDicing.size() ? s.materialDicing[m] : 1.0f;
+        return (d > 0.0f ? d : 1.0f) * out.coarsening;
+    };
+    auto cornersOf = [&](size_t t) {
+        const Triangle& tr = s.triangles[t];
+        return std::array<Corner, 3>{Corner{v3(tr.v0), {0, 0}}, Corner{v3(tr.v1), {1, 0}},
+                                     Corner{v3(tr.v2), {0, 1}}};
+    };
+    // Count first, coarser while over the budget (a bounded number of tries: each
+    // doubles the edge limit).
+    for (int tries = 0;; ++tries) {
+        size_t count = 0;
+        auto counter = [&](const Corner&, const Corner&, const Corner&) {
+            return ++count <= maxTriangles;
+        };
+        bool fits = true;
+        for (size_t t : diced) {
+            const auto c = cornersOf(t);
+            if (!dice(view, limitOf(t), c[0], c[1], c[2], counter)) {
+                fits = false;
+                break;
+            }
+        }
+        if (fits || tries >= 40) break;
+        out.coarsening *= 2.0f;
+    }
+
+    // Every per-triangle array takes the diced pieces after the scene's triangles.
+    s.normals.resize(3 * n, rt_float4{0, 0, 0, 0});
+    if (s.vertexSt.empty()) s.vertexSt.assign(3 * n, rt_float4{0, 0, 0, 0});
+    s.primvarsUsed |= RT_PRIMVAR_ST;
+    const size_t csChunks = s.vertexCs.size() / (3 * std::max<size_t>(n, 1));
+    const size_t osChunks = s.vertexOs.size() / (3 * std::max<size_t>(n, 1));
+    const bool params = !s.triangleParams.empty();
+    if (params) s.triangleParams.resize(n, RT_NO_POINT_PARAMS);
+    // the weld's tolerance: a millionth of the diced surfaces' extent
+    glm::vec3 lo(std::numeric_limits<float>::max()),
+        hi(-std::numeric_limits<float>::max());
+    for (size_t t : diced)
+        for (const rt_float4* v :
+             {&s.triangles[t].v0, &s.triangles[t].v1, &s.triangles[t].v2})
+            lo = glm::min(lo, v3(*v)), hi = glm::max(hi, v3(*v));
+    VertexWeld weld(glm::length(hi - lo) * 1e-6f);
+    for (size_t t : diced) {
+        const TriangleAttr attr = s.attrs[t];
+        const Triangle tr = s.triangles[t];
+        rt_float4 nrm[3], st[3];
+        const glm::vec3 face =
+            glm::normalize(glm::cross(v3(tr.v1) - v3(tr.v0), v3(tr.v2) - v3(tr.v0)));
+        bool smooth = attr.has_normals != 0;
+        for (int k = 0; k < 3; ++k) {
+            nrm[k] = s.normals[3 * t + size_t(k)];
+            smooth = smooth && (nrm[k].x != 0.0f || nrm[k].y != 0.0f || nrm[k].z != 0.0f);
+            st[k] = (attr.primvars & RT_PRIMVAR_ST)
+                        ? s.vertexSt[3 * t + size_t(k)]
+                        : rt_float4{k == 1 ? 1.0f : 0.0f, k == 2 ? 1.0f : 0.0f, 0, 0};
+        }
+        if (!smooth)
+            for (rt_float4& v : nrm) v = f4(face);
+        // per-point shader parameters: K values a corner
+        size_t paramCount = 0;
+        const uint32_t firstParam = params ? s.triangleParams[t] : RT_NO_POINT_PARAMS;
+        if (firstParam != RT_NO_POINT_PARAMS) {
+            const uint32_t shader = s.materials[attr.material].shader;
+            if (shader < s.surfaceRefs.size())
+                for (const auto& [name, floats] : s.surfaceRefs[shader].pointParams)
+                    paramCount += size_t(pointParamEntries(floats));
+        }
+        auto emit = [&](const Corner& a, const Corner& b, const Corner& c) {
+            const uint32_t index = uint32_t(s.triangles.size());
+            s.triangles.push_back({f4(a.p), f4(b.p), f4(c.p)});
+            s.attrs.push_back({attr.material, 1u, attr.primvars | RT_PRIMVAR_ST,
+                               attr.flags | RT_QF_DISPLACED});
+            int k = 0;
+            for (const Corner* q : {&a, &b, &c}) {
+                rt_float4 nq = blend(nrm, q->b);
+                const float len = std::sqrt(nq.x * nq.x + nq.y * nq.y + nq.z * nq.z);
+                if (len > 0.0f) nq = {nq.x / len, nq.y / len, nq.z / len, 0.0f};
+                s.normals.push_back(nq);
+                const rt_float4 sq = blend(st, q->b);
+                s.vertexSt.push_back(sq);
+                for (auto [buf, chunks, bit] :
+                     {std::make_tuple(&s.vertexCs, csChunks, RT_PRIMVAR_CS),
+                      std::make_tuple(&s.vertexOs, osChunks, RT_PRIMVAR_OS)})
+                    for (size_t ch = 0; ch < chunks; ++ch) {
+                        rt_float4 c3[3];
+                        for (size_t j = 0; j < 3; ++j)
+                            c3[j] = (*buf)[(3 * t + j) * chunks + ch];
+                        buf->push_back((attr.primvars & bit) ? blend(c3, q->b)
+                                                             : rt_float4{0, 0, 0, 0});
+                    }
+                const uint32_t fresh = uint32_t(out.vertexCorner.size());
+                const uint32_t v = weld.find(q->p, v3(nq), attr.material, fresh);
+                if (v == fresh) out.vertexCorner.push_back({index, uint32_t(k)});
+                out.cornerVertex.push_back(v);
+                ++k;
+            }
+            if (params) {
+                if (firstParam == RT_NO_POINT_PARAMS) {
+                    s.triangleParams.push_back(RT_NO_POINT_PARAMS);
+                } else {
+                    s.triangleParams.push_back(uint32_t(s.pointParamValues.size()));
+                    for (const Corner* q : {&a, &b, &c})
+                        for (size_t e = 0; e < paramCount; ++e) {
+                            rt_float4 p3[3];
+                            for (size_t j = 0; j < 3; ++j)
+                                p3[j] =
+                                    s.pointParamValues[firstParam + j * paramCount + e];
+                            s.pointParamValues.push_back(blend(p3, q->b));
+                        }
+                }
+            }
+            return s.triangles.size() - n < maxTriangles;
+        };
+        const auto c = cornersOf(t);
+        const bool whole = dice(view, limitOf(t), c[0], c[1], c[2], emit);
+        s.attrs[t].flags |= RT_QF_DICED;
+        ++out.diced;
+        if (!whole) {  // (only where even the coarsest limit could not fit)
+            out.truncated = true;
+            break;
+        }
+    }
+    if (!s.trianglesEnd.empty()) s.trianglesEnd.resize(s.triangles.size());
+    return out;
+}
+
+}  // namespace rd

@@ -1,0 +1,206 @@
+// true_displacement_test.cpp: true displacement (host/scene/dice_displaced.h,
+// host/render/true_displacement.h): the dicing's pieces meet edge to edge, within the
+// ShadingRate's edge length, and a displaced surface moves its silhouette (a bump map
+// does not), stays closed, and is shaded with the moved surface's normals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "render_harness.h"
+#include "scene/dice_displaced.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+const double kPi = 3.14159265358979;
+
+// The test shaders, in a folder on the search path; returns the RIB option.
+std::string shaderPath() {
+    static const char* const kShaders[][2] = {
+        {"push",
+         "displacement push(float amount = 0.5) {\n"
+         "    P += amount * normalize(N);\n    N = calculatenormal(P);\n}\n"},
+        // ripples around the sphere and along it: a closed surface moved unevenly
+        {"ripple",
+         "displacement ripple(float amp = 0.2) {\n"
+         "    point Q = transform(\"object\", P);\n"
+         "    P += amp * sin(7 * xcomp(Q)) * cos(5 * ycomp(Q) + zcomp(Q)) * "
+         "normalize(N);\n"
+         "    N = calculatenormal(P);\n}\n"},
+        // N . I toward the camera: 1 where the surface faces it
+        {"facing",
+         "surface facing() {\n    Ci = abs(normalize(N) . normalize(I));\n"
+         "    Oi = 1;\n}\n"},
+    };
+    return "Option \"searchpath\" \"shader\" [\"" +
+           rd::test::shaderFolder("raydrive_true_displacement", kShaders) + ":&\"]\n";
+}
+
+// Covered area of the view [-2, 2]^2 (orthographic, looking down +z at z = 5).
+double coverage(const std::string& attributes, const std::string& geometry) {
+    Rendered img = renderRib(shaderPath() +
+                             "Format 64 64 1\nPixelSamples 4 4\n"
+                             "Option \"render\" \"float pixelerror\" [1e-9]\n"
+                             "Projection \"orthographic\"\nScreenWindow -2 2 -2 2\n"
+                             "Translate 0 0 5\nWorldBegin\nSurface \"constant\"\n" +
+                             attributes + geometry + "WorldEnd\n");
+    return img.mean(3, 0, 0, img.width, img.height) * 16.0;
+}
+
+}  // namespace
+
+// A unit sphere pushed out by 0.5 along its normal is a sphere of radius 1.5 (area 2.25
+// pi seen head on) when truly displaced, by BMRT's attribute or PRMan's displacement
+// bound; as a bump map (no attribute, or truedisplacement 0) its silhouette stays the
+// unit circle's.
+TEST(TrueDisplacement, SilhouetteMovesWithTheSurface) {
+    const std::string sphere = "Sphere 1 -1 1 360\n";
+    const std::string push = "Displacement \"push\" \"float amount\" [0.5]\n";
+    EXPECT_NEAR(coverage(push, sphere), kPi, 0.1) << "bump mapped";
+    EXPECT_NEAR(
+        coverage("Attribute \"render\" \"int truedisplacement\" [1]\n" + push, sphere),
+        2.25 * kPi, 0.1);
+    EXPECT_NEAR(
+        coverage("Attribute \"displacementbound\" \"float sphere\" [0.5]\n" + push,
+                 sphere),
+        2.25 * kPi, 0.1);
+    EXPECT_NEAR(coverage("Attribute \"displacementbound\" \"float sphere\" [0.5]\n"
+                         "Attribute \"render\" \"int truedisplacement\" [0]\n" +
+                             push,
+                         sphere),
+                kPi, 0.1);
+    // a polygon mesh moved toward the camera does not change its outline; one pushed
+    // along a tilted normal does: a square of side 2 tilted 60 degrees about x covers
+    // 2 x 1; pushed by 0.5 it slides sideways but keeps its area
+    EXPECT_NEAR(coverage("Attribute \"render\" \"int truedisplacement\" [1]\n" + push +
+                             "Rotate 60 1 0 0\n",
+                         "Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\n"),
+                2.0, 0.1);
+}
+
+// From inside a rippled sphere no eye ray gets out: the moved surface is closed at its
+// seam and its poles (the tessellator computes their vertices twice; the dicing welds
+// them), and between the pieces of differently diced triangles.
+TEST(TrueDisplacement, DisplacedSphereStaysClosed) {
+    for (const char* view :
+         {"Rotate 90 1 0 0\n", "Rotate -90 1 0 0\n", "Rotate 90 0 1 0\n", ""}) {
+        Rendered img =
+            renderRib(shaderPath() +
+                      "Format 48 48 1\nPixelSamples 2 2\n"
+                      "Projection \"perspective\" \"fov\" 120\n" +
+                      view +
+                      "WorldBegin\nSurface \"constant\"\n"
+                      "Attribute \"render\" \"int truedisplacement\" [1]\n"
+                      "Displacement \"ripple\" \"float amp\" [0.3]\nShadingRate 4\n"
+                      "Sphere 2 -2 2 360\nWorldEnd\n");
+        int open = 0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) open += img.at(x, y).a < 1.0f;
+        EXPECT_EQ(open, 0) << "view " << view;
+        EXPECT_GT(img.stats.dicedTriangles, 1000u);
+        EXPECT_GT(img.stats.displacedVertices, 500u);
+    }
+}
+
+// The moved surface is shaded with its own normals: a plane pushed toward the camera
+// faces it (N . I = 1) as before, and where a ripple tilts it the normals tilt too.
+TEST(TrueDisplacement, ShadedWithTheMovedSurfacesNormals) {
+    auto render = [](const std::string& shader) {
+        return renderRib(shaderPath() +
+                         "Format 32 32 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"
+                         "ScreenWindow -1 1 -1 1\nTranslate 0 0 5\nWorldBegin\n"
+                         "Surface \"facing\"\n"
+                         "Attribute \"render\" \"int truedisplacement\" [1]\n" +
+                         shader +
+                         "Polygon \"P\" [-2 -2 0  2 -2 0  2 2 0  -2 2 0]\nWorldEnd\n");
+    };
+    Rendered flat = render("Displacement \"push\" \"float amount\" [-0.5]\n");
+    EXPECT_NEAR(flat.mean(0, 0, 0, 32, 32), 1.0, 1e-4);
+    Rendered rippled = render("Displacement \"ripple\" \"float amp\" [0.2]\n");
+    const double mean = rippled.mean(0, 0, 0, 32, 32);
+    EXPECT_LT(mean, 0.97) << "the ripples' slopes turn the normals away from the camera";
+    EXPECT_GT(mean, 0.5);
+}
+
+namespace {
+
+// Every edge of the diced pieces (by their welded vertices), with how many pieces have
+// it.
+std::map<std::pair<uint32_t, uint32_t>, int> dicedEdges(const rd::DicedSurfaces& d) {
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;
+    for (size_t i = 0; i + 2 < d.cornerVertex.size(); i += 3)
+        for (int k = 0; k < 3; ++k) {
+            uint32_t a = d.cornerVertex[i + size_t(k)],
+                     b = d.cornerVertex[i + size_t(k + 1) % 3];
+            ++edges[{std::min(a, b), std::max(a, b)}];
+        }
+    return edges;
+}
+
+}  // namespace
+
+// The dicing of a square of two triangles, one of them seen much nearer: every piece's
+// edges are within the limit, the pieces cover the square's area, and each inner edge
+// is shared by exactly two pieces (no T-junction, so no crack), the outline's by one.
+TEST(TrueDisplacement, DicedPiecesMeetEdgeToEdge) {
+    rd::Scene scene = rd::test::sceneOfWorld(
+        "Attribute \"render\" \"int truedisplacement\" [1]\nDisplacement \"bumpy\"\n"
+        "ShadingRate 4\nPolygon \"P\" [0 0 0  8 0 0  8 8 0  0 8 0]\n");
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    rd::DicingView view;
+    view.eye = glm::vec3(0.0f, 0.0f, -1.0f);  // near the corner (0, 0)
+    view.pixelSpread = 0.05f;
+    const rd::DicedSurfaces d = rd::diceDisplacedSurfaces(scene, view, 1u << 20);
+    EXPECT_EQ(d.diced, 2u);
+    EXPECT_EQ(d.coarsening, 1.0f);
+    const size_t pieces = d.cornerVertex.size() / 3;
+    ASSERT_EQ(scene.triangles.size(), 2 + pieces);
+    EXPECT_GT(pieces, 100u);
+    double area = 0, worst = 0;
+    for (size_t i = 2; i < scene.triangles.size(); ++i) {
+        const rt_float4 &a = scene.triangles[i].v0, &b = scene.triangles[i].v1,
+                        &c = scene.triangles[i].v2;
+        const glm::vec3 pa(a.x, a.y, a.z), pb(b.x, b.y, b.z), pc(c.x, c.y, c.z);
+        area += 0.5 * glm::length(glm::cross(pb - pa, pc - pa));
+        for (auto [p, q] : {std::pair{pa, pb}, std::pair{pb, pc}, std::pair{pc, pa}})
+            worst = std::max(worst, double(view.pixels(p, q)));
+        EXPECT_TRUE(scene.attrs[i].flags & RT_QF_DISPLACED);
+    }
+    EXPECT_NEAR(area, 64.0, 1e-3);
+    EXPECT_LE(worst, 2.0) << "edges within sqrt(ShadingRate) pixels";
+    EXPECT_TRUE(scene.attrs[0].flags & RT_QF_DICED);
+    int outline = 0;
+    for (const auto& [edge, count] : dicedEdges(d)) {
+        EXPECT_TRUE(count == 1 || count == 2) << count << " pieces on one edge";
+        outline += count == 1;
+    }
+    EXPECT_GT(outline, 8);
+    // a budget too small for the limit: a coarser dicing that fits
+    rd::Scene again = rd::test::sceneOfWorld(
+        "Attribute \"render\" \"int truedisplacement\" [1]\nDisplacement \"bumpy\"\n"
+        "ShadingRate 4\nPolygon \"P\" [0 0 0  8 0 0  8 8 0  0 8 0]\n");
+    const rd::DicedSurfaces coarse = rd::diceDisplacedSurfaces(again, view, pieces / 4);
+    EXPECT_GT(coarse.coarsening, 1.0f);
+    EXPECT_LE(coarse.cornerVertex.size() / 3, pieces / 4);
+    EXPECT_FALSE(coarse.truncated);
+}
+
+// A diced sphere is closed: every edge of its welded pieces is in exactly two pieces.
+// The tessellator computes the seam's vertices twice (cos 0, cos 2 pi) and each pole once
+// per column; without the weld those edges would each be in one piece, and the
+// displaced surface would open there.
+TEST(TrueDisplacement, DicedSphereIsClosed) {
+    rd::Scene scene = rd::test::sceneOfWorld(
+        "Attribute \"render\" \"int truedisplacement\" [1]\nDisplacement \"bumpy\"\n"
+        "Translate 0 0 5\nRotate 30 1 1 0\nSphere 1 -1 1 360\n");
+    rd::DicingView view;
+    view.pixelSpread = 0.01f;
+    const rd::DicedSurfaces d = rd::diceDisplacedSurfaces(scene, view, 1u << 22);
+    EXPECT_GT(d.cornerVertex.size() / 3, 1000u);
+    size_t open = 0;
+    for (const auto& [edge, count] : dicedEdges(d)) open += count != 2;
+    EXPECT_EQ(open, 0u);
+}
