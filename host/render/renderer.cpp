@@ -91,7 +91,10 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     const DicingView dicingView = dicingViewOf(input.deviceCamera());
     if (hasTrueDisplacement(input)) {
         dicedScene.emplace(input);
-        diced = diceDisplacedSurfaces(*dicedScene, dicingView, kMaxDicedTriangles);
+        diced = diceDisplacedSurfaces(*dicedScene, dicingView,
+                                      input.render.dicedTriangles > 0
+                                          ? size_t(input.render.dicedTriangles)
+                                          : kMaxDicedTriangles);
         reportDicing(diced, input, diag);
     }
     const Scene& scene = dicedScene ? *dicedScene : input;

@@ -123,6 +123,11 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
         if (!left[i] &&
             !(std::isfinite(m.x) && std::isfinite(m.y) && std::isfinite(m.z))) {
             ++r.nonFinite;
+            const Material& mat =
+                scene.materials[scene.attrs[diced.vertexCorner[i][0]].material];
+            ++r.nonFiniteBy[((mat.flags & RT_MATERIAL_DISPLACEMENT_MASK) >>
+                             RT_MATERIAL_DISPLACEMENT_SHIFT) -
+                            1];
             left[i] = 1;
         }
         if (left[i]) moved[i] = {p.x, p.y, p.z, 0.0f};
@@ -155,7 +160,10 @@ void reportDicing(const DicedSurfaces& d, const Scene& scene, rib::Diagnostics& 
     if (d.coarsening > 1.0f)
         diag.warning(loc, "true displacement diced " + std::to_string(int(d.coarsening)) +
                               "x coarser than ShadingRate asks, to stay within " +
-                              std::to_string(kMaxDicedTriangles) + " triangles");
+                              std::to_string(scene.render.dicedTriangles > 0
+                                                 ? size_t(scene.render.dicedTriangles)
+                                                 : kMaxDicedTriangles) +
+                              " triangles (Option \"limits\" \"dicedtriangles\")");
     if (d.truncated)
         diag.warning(loc,
                      "true displacement: the dicing budget ran out; some surfaces are "
@@ -165,9 +173,11 @@ void reportDicing(const DicedSurfaces& d, const Scene& scene, rib::Diagnostics& 
 void reportDisplacement(const DisplacementReport& r, const Scene& scene,
                         rib::Diagnostics& diag) {
     const rib::SourceLoc loc = displacementLoc(scene);
-    if (r.nonFinite > 0)
-        diag.warning(loc, "displacement moved " + std::to_string(r.nonFinite) +
-                              " vertices to NaN or Inf; they are left in place");
+    for (const auto& [index, count] : r.nonFiniteBy)
+        diag.warning(
+            index < scene.displacements.size() ? scene.displacements[index].loc : loc,
+            "displacement moved " + std::to_string(count) +
+                " vertices to NaN or Inf; they are left in place");
     if (r.unresolved > 0)
         diag.warning(loc, "displacement: the texture cache could not hold what " +
                               std::to_string(r.unresolved) +

@@ -6,6 +6,7 @@
 // Vertices whose texture lookups met absent tiles are run again once the host has
 // served them, as the shade stage's points are (texture_reshade.h).
 #pragma once
+#include <map>
 #include <string>
 
 #include "features.h"
@@ -21,6 +22,7 @@ struct DisplacementReport {
     size_t vertices = 0;    // displacement shader runs that stuck (one per vertex)
     size_t passes = 0;      // kernel launches (more with texture misses)
     size_t nonFinite = 0;   // vertices a shader moved to NaN or Inf: left in place
+    std::map<uint32_t, size_t> nonFiniteBy;  // by Scene::displacements index
     size_t unresolved = 0;  // vertices whose tiles never fitted the cache: left in place
 };
 

@@ -327,6 +327,8 @@ void RibBuilder::option(L loc, const std::string& name, const rib::ParamList& pa
         if (tb > 0) m_options.render.treeletBytes = tb;
         int sm = params.getInt("scenememory", -1);
         if (sm > 0) m_options.render.sceneMemoryKB = sm;
+        int dt = params.getInt("dicedtriangles", -1);  // true displacement's budget
+        if (dt > 0) m_options.render.dicedTriangles = dt;
         return;
     }
     if (name == "trace") traceDepthOption(params);

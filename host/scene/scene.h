@@ -98,6 +98,9 @@ struct RenderOptionsSpec {
     float relativeDetail = 1.0f;  // RelativeDetail: scales every Detail's raster area
     bool exactQuadrics = true; // "int exactquadrics": 0 tessellates quadrics into triangles
     int textureMemoryKB = 0;   // Option "limits" "texturememory": the device tile cache (0: auto)
+    // Option "limits" "dicedtriangles": true displacement's most diced triangles (0: 4M,
+    // dice_displaced.h kMaxDicedTriangles)
+    int dicedTriangles = 0;
     int treeletBytes = 0;      // Option "limits" "treeletbytes": treelet budget (0: resident BVH)
     int sceneMemoryKB = 0;     // Option "limits" "scenememory": device BVH bytes (0: all)
     int seed = 0;              // "int seed": which random numbers (0 is the default set)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 #include "render_harness.h"
@@ -30,6 +31,7 @@ std::string shaderPath() {
          "    P += amp * sin(7 * xcomp(Q)) * cos(5 * ycomp(Q) + zcomp(Q)) * "
          "normalize(N);\n"
          "    N = calculatenormal(P);\n}\n"},
+        {"nanmove", "displacement nanmove() {\n    P += (0 / 0) * N;\n}\n"},
         // N . I toward the camera: 1 where the surface faces it
         {"facing",
          "surface facing() {\n    Ci = abs(normalize(N) . normalize(I));\n"
@@ -203,4 +205,36 @@ TEST(TrueDisplacement, DicedSphereIsClosed) {
     size_t open = 0;
     for (const auto& [edge, count] : dicedEdges(d)) open += count != 2;
     EXPECT_EQ(open, 0u);
+}
+
+// A displacement that moves its vertices to NaN is reported at its own request's line,
+// the vertices left in place; a negative displacement bound is a warning; a coarser
+// dicing than asked (a plane to the horizon at a tiny ShadingRate) is a warning and stays
+// within the budget.
+TEST(TrueDisplacement, BadValuesAreReported) {
+    const std::string dir = rd::test::scratchDir("raydrive_true_displacement_bad");
+    const std::string messages = rd::test::renderRibToFiles(
+        shaderPath() +
+        "Option \"limits\" \"int dicedtriangles\" [100000]\n"
+        "Format 32 32 1\nProjection \"perspective\" \"fov\" 90\n"
+        "Display \"" +
+        dir +
+        "/bad.exr\" \"file\" \"rgba\"\nWorldBegin\n"
+        "Attribute \"displacementbound\" \"float sphere\" [-1]\n"
+        "AttributeBegin\nAttribute \"render\" \"int truedisplacement\" [1]\n"
+        "ShadingRate 0.000001\nDisplacement \"push\" \"float amount\" [0.1]\n"
+        "Translate 0 -1 0\nRotate 90 1 0 0\n"
+        "Polygon \"P\" [-1e5 -1e5 0  1e5 -1e5 0  1e5 1e5 0  -1e5 1e5 0]\nAttributeEnd\n"
+        "Attribute \"render\" \"int truedisplacement\" [1]\n"
+        "Displacement \"nanmove\"\nTranslate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n");
+    EXPECT_NE(messages.find("test.rib:7: warning: Attribute \"displacementbound\""),
+              std::string::npos)
+        << messages;
+    EXPECT_NE(messages.find("coarser than ShadingRate asks, to stay within 100000"),
+              std::string::npos)
+        << messages;
+    EXPECT_NE(messages.find("test.rib:17: warning: displacement moved"),
+              std::string::npos)
+        << messages;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/bad.exr"));
 }
