@@ -104,6 +104,8 @@ public:
     // Texture making, when read (rib_builder_textures.cpp)
     void makeTexture(L, S picture, S texture, S swrap, S twrap, S filter, float swidth,
                      float twidth, P) override;
+    void makeBump(L, S picture, S texture, S swrap, S twrap, S filter, float swidth,
+                  float twidth, P) override;
     void makeLatLongEnvironment(L, S picture, S texture, S filter, float swidth, float twidth,
                                 P) override;
     void makeCubeFaceEnvironment(L, Strings faces, S texture, float fov, S filter, float swidth,

@@ -49,6 +49,17 @@ void RibBuilder::makeTexture(L loc, S picture, S texture, S swrap, S twrap, S fi
     });
 }
 
+// MakeBump: a height map for bump(), which reads its first channel as a texture's, so
+// it is made as MakeTexture makes one (PRMan's own bump format held the slopes instead).
+void RibBuilder::makeBump(L loc, S picture, S texture, S swrap, S twrap, S filter,
+                          float swidth, float twidth, P) {
+    const std::string& rib = m_options.sourceFile;
+    makeTextureFile(loc, "MakeBump", texture, [&] {
+        rd::makeTexture(besideRib(rib, picture), besideRib(rib, texture),
+                        options(swrap, twrap, filter, swidth, twidth));
+    });
+}
+
 void RibBuilder::makeLatLongEnvironment(L loc, S picture, S texture, S filter, float swidth,
                                         float twidth, P) {
     const std::string& rib = m_options.sourceFile;

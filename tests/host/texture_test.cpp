@@ -386,6 +386,44 @@ TEST(Textures, TrueDisplacementByAMap) {
     EXPECT_EQ(differ, 0u);
 }
 
+// MakeBump makes a height map that bump() reads as MakeTexture's: the same image (before,
+// MakeBump was ignored, the map never made, and bump() left N alone with a warning).
+TEST(Textures, MakeBumpMakesAHeightMapForBump) {
+    const std::string pic = picture("bumpsrc.exr", 64, 4, false);
+    std::ofstream(dir() + "/bumplook.sl")
+        << "surface bumplook(string map = \"\") {\n"
+           "    normal n = normalize(bump(map, normalize(N), dPdu, dPdv));\n"
+           "    Ci = abs(n . normalize(I));\n    Oi = 1;\n}\n";
+    const std::string made = dir() + "/bumpmade.tex";
+    std::filesystem::remove(made);
+    auto scene = [&](const std::string& before, const std::string& map) {
+        return searchPath() + before +
+               "Format 32 32 1\nPixelSamples 1 1\nProjection "
+               "\"orthographic\"\nWorldBegin\n"
+               "Surface \"bumplook\" \"map\" \"" +
+               map +
+               "\"\nPatch \"bilinear\" \"P\" [-1 1 5  1 1 5  -1 -1 5  1 -1 "
+               "5]\nWorldEnd\n";
+    };
+    Rendered viaBump = renderRib(scene("MakeBump \"" + pic + "\" \"" + made +
+                                           "\" \"periodic\" \"periodic\" \"box\" 1 1\n",
+                                       made));
+    ASSERT_TRUE(std::filesystem::exists(made));
+    rd::MakeTextureOptions o;
+    o.swrap = o.twrap = "periodic";
+    o.filter = "box";
+    const std::string direct = dir() + "/bumpdirect.tex";
+    rd::makeTexture(pic, direct, o);
+    Rendered viaTexture = renderRib(scene("", direct));
+    int tilted = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            EXPECT_EQ(viaBump.at(x, y).r, viaTexture.at(x, y).r);
+            tilted += viaBump.at(x, y).r < 0.999f;
+        }
+    EXPECT_GT(tilted, 20) << "the map's edges tilt the normal";
+}
+
 // MakeCubeFaceEnvironment: six constant faces (+x red, -x green, +y blue, -y yellow,
 // +z white, -z grey) resampled into a lat-long map; each axis reads its face's colour.
 TEST(Textures, CubeFacesBecomeALatLongMap) {
