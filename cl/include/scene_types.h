@@ -68,6 +68,10 @@ typedef struct Material {
 /* Bits 16..23: 1 + the index of the surface's Displacement shader, 0 for none. */
 #define RT_MATERIAL_DISPLACEMENT_SHIFT 16u
 #define RT_MATERIAL_DISPLACEMENT_MASK 0xff0000u
+/* Bits 24..31: 1 + the index of the surface's Interior volume shader, 0 for none: it runs
+ * on what a ray brings back from this surface's back, the segment inside the object. */
+#define RT_MATERIAL_INTERIOR_SHIFT 24u
+#define RT_MATERIAL_INTERIOR_MASK 0xff000000u
 
 /* Camera: rays start in camera space (RenderMan: left-handed, looking down +z) and are
  * moved to world space by the 3x4 matrix camera_to_world (rows, column-vector convention). */

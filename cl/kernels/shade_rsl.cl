@@ -241,14 +241,33 @@ __kernel void shade_SURFACE(uint begin, uint count,
     /* the atmosphere between the ray's origin and P: Ci' = a Ci + b (affine in Ci, as
      * fog and depthcue are), so it scales every contribution and adds b once */
     rsl_color atmo_a = (rsl_color)(1.0f);
+#if defined(RT_HAS_ATMOSPHERE) || defined(RT_HAS_INTERIOR)
+    uint atmo = 0u, inside = 0u;
 #ifdef RT_HAS_ATMOSPHERE
-    uint atmo = (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT;
+    atmo = (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT;
+#endif
+#ifdef RT_HAS_INTERIOR
+    /* a hit on the back of a surface with an Interior shader: the ray came through the
+     * object's inside, whose shader takes the segment in place of the atmosphere */
+    const uint interior = (m.flags & RT_MATERIAL_INTERIOR_MASK) >> RT_MATERIAL_INTERIOR_SHIFT;
+    if (interior && rt_dot3(dir, g.Ng) > 0.0f) atmo = interior, inside = 1u;
+#endif
     if (atmo && !culled) {
         RslGlobals g0 = base, g1 = base;
         g0.Ci = rsl_f2c(0.0f);
         g1.Ci = rsl_f2c(1.0f);
-        rd_atmosphere((int)atmo - 1, &g0, params);
-        rd_atmosphere((int)atmo - 1, &g1, params);
+#ifdef RT_HAS_INTERIOR
+        if (inside) {
+            rd_interior((int)atmo - 1, &g0, params);
+            rd_interior((int)atmo - 1, &g1, params);
+        } else
+#endif
+        {
+#ifdef RT_HAS_ATMOSPHERE
+            rd_atmosphere((int)atmo - 1, &g0, params);
+            rd_atmosphere((int)atmo - 1, &g1, params);
+#endif
+        }
         atmo_a = g1.Ci - g0.Ci;
         RSL_CW(atmo_a) = 1.0f;
         E = rsl_cw0(atmo_a * E + g0.Ci);

@@ -80,6 +80,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
         for (int32_t i = 1; i <= shading.pointParamLayout[size_t(k)]; ++i)
             if (shading.pointParamLayout[size_t(k + i)] >= 0) f.pointParams = shading.maxPointParams;
     f.atmosphere = shading.atmosphere;
+    f.interior = shading.interior;
     f.displacement = shading.displacement;
     f.derivatives = shading.derivatives || shading.displacement;
     if (f.derivatives) {
@@ -105,6 +106,7 @@ std::vector<std::string> Features::names() const {
     if (motion) n.push_back("motion_blur");
     if (instances) n.push_back("instances");
     if (atmosphere) n.push_back("atmosphere");
+    if (interior) n.push_back("interior");
     if (oneSided) n.push_back("one_sided");
     if (invisible) n.push_back("visibility");
     if (derivatives) n.push_back("derivatives");
@@ -211,6 +213,7 @@ std::string buildOptions(const Features& f) {
     if (f.motion) o += " -DRT_HAS_MOTION";
     if (f.instances) o += " -DRT_HAS_INSTANCES";
     if (f.atmosphere) o += " -DRT_HAS_ATMOSPHERE";
+    if (f.interior) o += " -DRT_HAS_INTERIOR";
     if (f.oneSided) o += " -DRT_HAS_ONE_SIDED";
     if (f.invisible) o += " -DRT_HAS_INVISIBLE";
     if (f.derivatives) {

@@ -37,6 +37,7 @@ struct Features {
     bool motion = false;        // moving quadrics or triangles: a time per sample
     bool instances = false;     // ObjectInstance records over shared prototypes
     bool atmosphere = false;    // Atmosphere (volume) shaders on some surfaces
+    bool interior = false;      // Interior (volume) shaders on some surfaces
     bool oneSided = false;      // Sides 1 surfaces: their backs pass rays on
     bool invisible = false;     // surfaces camera or traced rays go through (visibility)
     bool derivatives = false;   // some shader takes Du/Dv/area/calculatenormal/filterstep

@@ -72,6 +72,7 @@ void RibBuilder::worldBegin(L loc) {
     m_surfaceKeys.clear();
     m_surfaceVariants.clear();
     m_atmosphereKeys.clear();
+    m_interiorKeys.clear();
     m_displacementKeys.clear();
     m_degenerate = 0;
     m_solidNodes.clear();
@@ -90,7 +91,8 @@ void RibBuilder::worldEnd(L loc) {
     (void)loc;  // degenerate geometry is reported where it was given (addMesh)
     const glm::dmat4 toOrigin = glm::translate(glm::dmat4(1.0), -m_origin);
     for (ShaderRef& r : m_world.lights) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
-    for (auto* refs : {&m_world.surfaceRefs, &m_world.displacements, &m_world.atmospheres})
+    for (auto* refs : {&m_world.surfaceRefs, &m_world.displacements, &m_world.atmospheres,
+                       &m_world.interiors})
         for (ShaderRef& r : *refs) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
     m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
                                              glm::translate(glm::dmat4(1.0), m_origin));
@@ -419,6 +421,31 @@ void RibBuilder::atmosphere(L loc, S name, P params) {
     a.atmosphereKey = a.atmosphere.name.empty() ? 0 : ++m_surfaceCalls;
 }
 
+// Interior "" (or "null") removes it. The volume shader runs on what a ray brings back
+// from the inside of this surface (a hit on its back), over the segment from the ray's
+// origin: absorption in coloured glass, fog inside an object.
+void RibBuilder::interior(L loc, S name, P params) {
+    Attributes& a = m_attrStack.back();
+    a.interior = (name.empty() || name == "null") ? ShaderRef()
+                                                  : ShaderRef{name, params, a.ctm, loc};
+    a.interiorKey = a.interior.name.empty() ? 0 : ++m_surfaceCalls;
+}
+
+// Exterior shaders would run on rays between objects, Deformation shaders were never
+// carried out by any renderer: both are warnings.
+void RibBuilder::exterior(L loc, S name, P) {
+    if (!name.empty() && name != "null")
+        m_diag.warning(loc,
+                       "Exterior \"" + name +
+                           "\": exterior volume shaders are not carried out (Atmosphere "
+                           "covers the space between objects); ignored");
+}
+void RibBuilder::deformation(L loc, S name, P) {
+    if (!name.empty() && name != "null")
+        m_diag.warning(loc, "Deformation \"" + name +
+                                "\": deformation shaders are not carried out; ignored");
+}
+
 // Displacement "" (or "null") removes it. Displacements are rendered as bump maps: the
 // shader's N shades the surface, rays still leave from the undisplaced one.
 void RibBuilder::displacement(L loc, S name, P params) {
@@ -547,6 +574,20 @@ uint32_t RibBuilder::currentMaterial() {
             m_world.atmospheres.push_back(a.atmosphere);
         }
         if (index < 255) m.flags |= uint32_t(index + 1) << RT_MATERIAL_ATMOSPHERE_SHIFT;
+    }
+    if (a.interiorKey != 0) {
+        size_t index = 0;
+        while (index < m_interiorKeys.size() && m_interiorKeys[index] != a.interiorKey)
+            ++index;
+        if (index == m_interiorKeys.size()) {
+            m_interiorKeys.push_back(a.interiorKey);
+            m_world.interiors.push_back(a.interior);
+        }
+        if (index < 255)
+            m.flags |= uint32_t(index + 1) << RT_MATERIAL_INTERIOR_SHIFT;
+        else
+            m_diag.warning(a.interior.loc,
+                           "more than 255 Interior calls; this one is not used");
     }
     if (a.displacementKey != 0) {
         size_t index = 0;

@@ -100,6 +100,9 @@ public:
     void illuminate(L, const std::string& handle, bool on) override;
     void areaLightSource(L, S name, S handle, P params) override;
     void atmosphere(L, S name, P params) override;
+    void interior(L, S name, P params) override;
+    void exterior(L, S name, P params) override;
+    void deformation(L, S name, P params) override;
     void displacement(L, S name, P params) override;
     // Texture making, when read (rib_builder_textures.cpp)
     void makeTexture(L, S picture, S texture, S swrap, S twrap, S filter, float swidth,
@@ -243,6 +246,8 @@ private:
         float texS[4] = {0, 1, 0, 1}, texT[4] = {0, 0, 1, 1};
         ShaderRef atmosphere;    // the current Atmosphere call (name empty: none)
         uint64_t atmosphereKey = 0;
+        ShaderRef interior;  // the current Interior call (name empty: none)
+        uint64_t interiorKey = 0;
         ShaderRef displacement;  // the current Displacement call (name empty: none)
         int areaLight = -1;      // AreaLightSource in this block: the geometry emits
         uint64_t displacementKey = 0;
@@ -449,6 +454,7 @@ private:
     std::map<MessageValues, uint32_t> m_attributeSetIndex;
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
     std::vector<uint64_t> m_atmosphereKeys;  // per atmospheres entry: its Atmosphere call
+    std::vector<uint64_t> m_interiorKeys;    // per interiors entry: its Interior call
     std::vector<uint64_t> m_displacementKeys;  // per displacements entry: its call
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;

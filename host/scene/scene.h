@@ -186,6 +186,7 @@ struct Scene {
     // block (world, eye-relative, facing where they emit), by index into lights
     std::map<uint32_t, std::vector<std::array<glm::vec3, 3>>> areaLightTriangles;
     std::vector<ShaderRef> atmospheres;  // one per distinct Atmosphere call in use
+    std::vector<ShaderRef> interiors;    // one per distinct Interior call in use
     std::vector<ShaderRef> displacements;  // one per distinct Displacement call in use
     ShaderRef imager;                    // the Imager option (name empty: none)
     std::vector<std::string> shaderSearchPath;  // Option "searchpath" "shader", split

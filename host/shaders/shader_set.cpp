@@ -178,7 +178,7 @@ namespace {
 // What happens to a shader of this kind that cannot be used.
 std::string leftOut(const std::string& kind) {
     return kind == "light"          ? "light left out"
-           : kind == "volume"       ? "atmosphere left out"
+           : kind == "volume"       ? "volume shader left out"
            : kind == "displacement" ? "displacement left out"
            : kind == "imager"       ? "imager left out"
                                     : "using defaultsurface";
@@ -522,6 +522,18 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
                "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
                "    ev.trace_count = 0;\n    switch (a) {\n" << atmo.str()
             << "    default: break;\n    }\n}\n";
+    // --- interiors: volume shaders on what comes back from inside a surface
+    std::ostringstream inter;
+    std::vector<std::pair<const rsl::EmittedShader*, int32_t>> interBound;
+    out.interior = bindCases(m_scene.interiors, "volume", "&ev", out, inter, shaders,
+                             emitted, interBound);
+    if (out.interior)
+        svc << "static void rd_interior(int a, RslGlobals* g, __global const float* "
+               "params) {\n"
+               "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    ev.mode_light = "
+               "-1;\n    ev.mode_trace = -1;\n"
+               "    ev.trace_count = 0;\n    switch (a) {\n"
+            << inter.str() << "    default: break;\n    }\n}\n";
     // --- displacements: bump shaders run before the surface (shade_common.clh)
     std::ostringstream disp;
     out.displacement = bindCases(m_scene.displacements, "displacement", "ev", out, disp,

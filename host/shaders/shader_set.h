@@ -57,6 +57,7 @@ struct ShadingSetup {
         false;           // some surface calls occlusion(): rays that ask if they escape
     int traceSlots = 0;  // rays a hit may spawn with trace(): the surfaces' most a run
     bool atmosphere = false;                // some surface has an Atmosphere shader
+    bool interior = false;                  // some surface has an Interior shader
     bool displacement = false;              // some surface has a Displacement shader
     bool derivatives = false;               // some surface shader takes derivatives
     bool imager = false;                    // the kernel imager_apply runs the Imager
