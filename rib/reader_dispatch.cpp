@@ -101,6 +101,12 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
         case Req::Clipping:
             t.clipping(loc, f(0), f(1));
             break;
+        case Req::ClippingPlane:
+            t.clippingPlane(loc, f(0), f(1), f(2), f(3), f(4), f(5));
+            break;
+        case Req::Camera:
+            t.camera(loc, s(0), P);
+            break;
         case Req::DepthOfField:
             if (a.optionalMissing)
                 t.depthOfField(loc, HUGE_VALF, 0.f, 0.f);

@@ -33,6 +33,12 @@ public:
     virtual void screenWindow(L, float, float, float, float) {}
     virtual void projection(L, const std::string& /*name*/, const ParamList&) {}
     virtual void clipping(L, float /*near*/, float /*far*/) {}
+    // A point on the plane and its normal, in the current space: what lies on the side
+    // the normal points to is clipped away.
+    virtual void clippingPlane(L, float /*x*/, float /*y*/, float /*z*/, float /*nx*/,
+                               float /*ny*/, float /*nz*/) {}
+    // Names the camera as it stands (a coordinate system of that name).
+    virtual void camera(L, const std::string& /*name*/, const ParamList&) {}
     virtual void pixelSamples(L, float /*x*/, float /*y*/) {}
     virtual void display(L, const std::string& /*name*/, const std::string& /*type*/,
                          const std::string& /*mode*/, const ParamList&) {}

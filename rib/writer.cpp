@@ -139,6 +139,18 @@ void RibWriter::clipping(L, float a1, float a2) {
     m_e->number(a2);
 }
 
+void RibWriter::clippingPlane(L, float x, float y, float z, float nx, float ny,
+                              float nz) {
+    req("ClippingPlane");
+    for (float v : {x, y, z, nx, ny, nz}) m_e->number(v);
+}
+
+void RibWriter::camera(L, S name, P params) {
+    req("Camera");
+    m_e->string(name);
+    this->params(params);
+}
+
 void RibWriter::pixelSamples(L, float a1, float a2) {
     req("PixelSamples");
     m_e->number(a1);

@@ -38,6 +38,8 @@ public:
     void screenWindow(L, float, float, float, float) override;
     void projection(L, const std::string&, const ParamList&) override;
     void clipping(L, float, float) override;
+    void clippingPlane(L, float, float, float, float, float, float) override;
+    void camera(L, S, P) override;
     void pixelSamples(L, float, float) override;
     void display(L, const std::string&, const std::string&, const std::string&, const ParamList&) override;
     void displayChannel(L, const std::string&, const ParamList&) override;

@@ -142,6 +142,14 @@ __kernel void shade_SURFACE(uint begin, uint count,
     culled = culled || rs.alive == RT_ALIVE_VISIBILITY || rs.alive == RT_ALIVE_DISTANCE;
 #endif
 #endif
+#ifdef RT_CLIP_PLANES
+    /* ClippingPlane: camera rays do not see what lies on a plane's clipped side */
+    if (RT_TRACE_DEPTH(rs) == 0u)
+        for (int k = 0; k < RT_CLIP_PLANES; ++k) {
+            float4 c = vload4(0, params + RD_SCENE_CLIP_PLANES + 4 * k);
+            culled = culled || rt_dot3(c, g.P) + c.w > 0.0f;
+        }
+#endif
     RslEval ev;
     RslDeriv* dsites = 0; /* the surface shader's derivatives, when it takes any */
 #ifdef RT_HAS_TEXTURES

@@ -145,6 +145,10 @@ RtVoid RiCropWindow(RtFloat xmin, RtFloat xmax, RtFloat ymin, RtFloat ymax);
 RtVoid RiProjection(RtToken name, ...);
 RtVoid RiProjectionV(RtToken name, RtInt n, RtToken tokens[], RtPointer values[]);
 RtVoid RiClipping(RtFloat hither, RtFloat yon);
+RtVoid RiClippingPlane(RtFloat x, RtFloat y, RtFloat z, RtFloat nx, RtFloat ny,
+                       RtFloat nz);
+RtVoid RiCamera(RtToken name, ...);
+RtVoid RiCameraV(RtToken name, RtInt n, RtToken tokens[], RtPointer values[]);
 RtVoid RiDepthOfField(RtFloat fstop, RtFloat focallength, RtFloat focaldistance);
 RtVoid RiShutter(RtFloat opentime, RtFloat closetime);
 RtVoid RiPixelVariance(RtFloat variation);

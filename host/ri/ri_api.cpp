@@ -185,6 +185,7 @@ RI_BARE(IfEnd, IfEnd)
         RI_VARARGS(name, Ri##Fn##V(name, vp.n(), vp.t(), vp.v()));                  \
     }
 RI_NAMED(Projection)
+RI_NAMED(Camera)
 RI_NAMED(Imager)
 RI_NAMED(DisplayChannel)
 RI_NAMED(Hider)
@@ -245,6 +246,11 @@ RtVoid RiCropWindow(RtFloat x0, RtFloat x1, RtFloat y0, RtFloat y1) {
 }
 RtVoid RiClipping(RtFloat hither, RtFloat yon) {
     RI_NUMBERS(Clipping, number(hither), number(yon));
+}
+RtVoid RiClippingPlane(RtFloat x, RtFloat y, RtFloat z, RtFloat nx, RtFloat ny,
+                       RtFloat nz) {
+    RI_NUMBERS(ClippingPlane, number(x), number(y), number(z), number(nx), number(ny),
+               number(nz));
 }
 RtVoid RiDepthOfField(RtFloat fstop, RtFloat focallength, RtFloat focaldistance) {
     if (Context* c = Context::current("RiDepthOfField")) {

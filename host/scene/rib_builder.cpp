@@ -59,6 +59,9 @@ void RibBuilder::worldBegin(L loc) {
     m_options.camera.motionTimes[0] = camera.t0;
     m_options.camera.motionTimes[1] = camera.t1;
     m_world = m_options;
+    // clipping planes given before the world: from camera space to the world
+    for (auto& plane : m_world.clipPlanes)
+        plane = transformPlane(glm::inverse(camera.ctm), plane);
     // Camera-relative world: what reaches the device is world space moved so the eye is
     // at the origin (in double here), so a scene far from the origin keeps the float
     // precision it has near the eye. Applied to triangles as they come, to the camera,
@@ -102,6 +105,8 @@ void RibBuilder::worldEnd(L loc) {
         key.second =
             glm::mat4(glm::dmat4(key.second) * glm::translate(glm::dmat4(1.0), m_origin));
     m_world.worldOrigin = m_origin;
+    for (auto& plane : m_world.clipPlanes)
+        plane[0] = glm::vec3(glm::dvec3(plane[0]) - m_origin);
     if (!m_world.trianglesEnd.empty()) m_world.trianglesEnd.resize(m_world.triangles.size());
     m_inWorld = false;
     if (m_attrStack.size() > 1) m_attrStack.pop_back();

@@ -70,6 +70,9 @@ public:
     void screenWindow(L, float, float, float, float) override;
     void projection(L, const std::string& name, const rib::ParamList&) override;
     void clipping(L, float, float) override;
+    void clippingPlane(L, float x, float y, float z, float nx, float ny,
+                       float nz) override;
+    void camera(L, S name, P params) override;
     void pixelSamples(L, float, float) override;
     void pixelVariance(L, float) override;
     bool runsDynamicLoad() const override { return true; }

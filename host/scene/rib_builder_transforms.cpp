@@ -100,6 +100,34 @@ void RibBuilder::transformEnd(L) {
     m_xformStack.pop_back();
 }
 
+// ClippingPlane (RI 3.2): the plane in the current space; camera space before the world
+// (WorldBegin takes it to the world), world space inside it.
+std::array<glm::vec3, 2> transformPlane(const glm::mat4& m,
+                                        const std::array<glm::vec3, 2>& p) {
+    return {glm::vec3(m * glm::vec4(p[0], 1.0f)),
+            glm::normalize(glm::transpose(glm::inverse(glm::mat3(m))) * p[1])};
+}
+void RibBuilder::clippingPlane(L loc, float x, float y, float z, float nx, float ny,
+                               float nz) {
+    const glm::vec3 p(x, y, z), n(nx, ny, nz);
+    if (!finite3(p) || !finite3(n) || !(glm::dot(n, n) > 0.0f))
+        return m_diag.error(loc,
+                            "ClippingPlane needs a finite point and a nonzero normal");
+    const std::array<glm::vec3, 2> plane = transformPlane(m_attrStack.back().ctm, {p, n});
+    if (!finite3(plane[0]) || !finite3(plane[1]))
+        return m_diag.error(loc, "ClippingPlane: the current transform is singular");
+    auto& planes = (m_inWorld ? m_world : m_options).clipPlanes;
+    if (planes.size() == kMaxClipPlanes)
+        m_diag.warning(loc, "more than " + std::to_string(kMaxClipPlanes) +
+                                " ClippingPlane requests; the later ones are not used");
+    planes.push_back(plane);
+}
+
+// Camera "name" (PRMan): the camera as it stands is a coordinate system of that name.
+void RibBuilder::camera(L, S name, P) {
+    m_coordSystems[name] = glm::inverse(m_attrStack.back().ctm);
+}
+
 void RibBuilder::coordinateSystem(L, S name) { m_coordSystems[name] = m_attrStack.back().ctm; }
 
 // (kept in the attributes: the attribute block's end forgets it)

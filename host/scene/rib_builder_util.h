@@ -1,13 +1,17 @@
 // rib_builder_util.h: small conversions the RibBuilder's files share.
 #pragma once
+#include <array>
 #include <cmath>
-
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "cl/include/compat.h"
 
 namespace rd {
+
+// A plane (a point, its normal) moved by m.
+std::array<glm::vec3, 2> transformPlane(const glm::mat4& m,
+                                        const std::array<glm::vec3, 2>& p);
 
 inline rt_float4 f4(float x, float y, float z, float w = 0.0f) { return {x, y, z, w}; }
 inline rt_float4 f4(const glm::vec3& v, float w = 0.0f) { return {v.x, v.y, v.z, w}; }

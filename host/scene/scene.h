@@ -68,6 +68,9 @@ struct CameraSpec {
     void cropPixels(int& x0, int& x1, int& y0, int& y1) const;
 };
 
+// The most ClippingPlane requests a render honours (the rest are a warning).
+constexpr size_t kMaxClipPlanes = 8;
+
 // A Surface or LightSource as the RIB gave it: the shader's name, its parameter list and
 // the transform current when it was declared ("shader" space to world).
 struct ShaderRef {
@@ -187,6 +190,10 @@ struct Scene {
     std::map<uint32_t, std::vector<std::array<glm::vec3, 3>>> areaLightTriangles;
     std::vector<ShaderRef> atmospheres;  // one per distinct Atmosphere call in use
     std::vector<ShaderRef> interiors;    // one per distinct Interior call in use
+    // ClippingPlane: (a point, its normal) each; what lies on the normal's side is not
+    // seen by camera rays. Camera space outside the world, world space inside (device
+    // space after WorldEnd).
+    std::vector<std::array<glm::vec3, 2>> clipPlanes;
     std::vector<ShaderRef> displacements;  // one per distinct Displacement call in use
     ShaderRef imager;                    // the Imager option (name empty: none)
     std::vector<std::string> shaderSearchPath;  // Option "searchpath" "shader", split

@@ -28,10 +28,12 @@ namespace {
 // camera to current (16, the RSL row-vector matrix), the "world" row (-worldOrigin, 1),
 // Format (x, y resolution, pixel aspect) then Clipping (near, far); a multiple of four
 // floats, as light blocks after it load float4s.
-// Then the starts of attribute()'s table and option()'s block (message_services.h).
+// Then the starts of attribute()'s table and option()'s block (message_services.h),
+// then the clipping planes (normal, offset: clipped where n.P + offset > 0).
 constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20,
                  kSceneAttributes = 25, kSceneOptions = 26, kSceneShaderBlocks = 27,
-                 kSceneFloats = 28;
+                 kSceneClipPlanes = 28,
+                 kSceneFloats = kSceneClipPlanes + 4 * kMaxClipPlanes;
 
 // Moves a triple of a point/vector/normal parameter from a space to world space.
 void toWorld(rsl::BaseType base, const glm::mat4& m, float* v) {
@@ -265,6 +267,11 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         const glm::dvec3& wo = m_scene.worldOrigin;
         float* w = &out.params[kSceneWorld];
         w[0] = float(-wo.x), w[1] = float(-wo.y), w[2] = float(-wo.z), w[3] = 1.0f;
+        for (size_t k = 0; k < std::min(m_scene.clipPlanes.size(), kMaxClipPlanes); ++k) {
+            const auto& [p, n] = m_scene.clipPlanes[k];
+            float* c = &out.params[kSceneClipPlanes + 4 * k];
+            c[0] = n.x, c[1] = n.y, c[2] = n.z, c[3] = -glm::dot(n, p);
+        }
         float* f = &out.params[kSceneFormat];
         f[0] = float(m_scene.camera.width), f[1] = float(m_scene.camera.height);
         f[2] = m_scene.camera.pixelAspect;
@@ -633,7 +640,10 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     // the shadow lookups' world origin: the world row's translation, negated
     const std::string w = "(p)[" + std::to_string(kSceneWorld);
     const std::string sceneDefines = "#define RD_SCENE_WORLD_ORIGIN(p) (float4)(-" + w +
-                                     "], -" + w + " + 1], -" + w + " + 2], 0.0f)\n";
+                                     "], -" + w + " + 1], -" + w +
+                                     " + 2], 0.0f)\n"
+                                     "#define RD_SCENE_CLIP_PLANES " +
+                                     std::to_string(kSceneClipPlanes) + "\n";
     // attribute() and option(), once every shader is known (attribute data only when
     // some shader asks)
     auto someShaderCalls = [&](const char* service) {

@@ -2,6 +2,8 @@
 // PoCL and checked against what the RI spec says they do.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "render_harness.h"
 
 using rd::test::Rendered;
@@ -88,4 +90,50 @@ TEST(Camera, PerspectiveRequestIsTheProjection) {
         }
     EXPECT_GT(projection.at(12, 12).a, 0.5f);
     EXPECT_EQ(projection.at(0, 0).a, 0.0f) << "fov 40 at distance 5 leaves the corners empty";
+}
+
+// ClippingPlane (RI 3.2): camera rays do not see what lies on the side its normal points
+// to. A unit sphere over a blue plane, head on: clipped at x = 0 (normal +x, given in the
+// world) the right halves of both are gone. A plane given before the world
+// is in camera space: at camera z = 4.5, normal -z, it clips the sphere's nearer cap (a
+// disc of radius sqrt(0.75) seen head on), through which, the sphere one-sided, the plane
+// shows: a white ring of area pi / 4 is left. Camera "main" names the camera space as a
+// coordinate system: a disk placed in it at z = 3 is seen head on.
+TEST(Camera, ClippingPlanesHideWhatLiesBeyondThem) {
+    auto render = [](const std::string& options, const std::string& world,
+                     const std::string& sphere = "") {
+        return renderRib(
+            "Format 32 32 1\nPixelSamples 4 4\n"
+            "Option \"render\" \"float pixelerror\" [1e-9]\n"
+            "Projection \"orthographic\"\nScreenWindow -2 2 -2 2\n" +
+            options + "Translate 0 0 5\nWorldBegin\n" + world +
+            "AttributeBegin\nColor [0 0 1]\nSurface \"constant\"\n"
+            "Polygon \"P\" [-3 -3 3  3 -3 3  3 3 3  -3 3 3]\nAttributeEnd\n"
+            "Surface \"constant\"\n" +
+            sphere + "Sphere 1 -1 1 360\nWorldEnd\n");
+    };
+    const double kPi = 3.14159265358979;
+    const Rendered whole = render("", "");
+    EXPECT_NEAR(whole.mean(0, 0, 0, 32, 32) * 16, kPi, 0.1);
+    const Rendered half = render("", "ClippingPlane 0 0 0 1 0 0\n");
+    EXPECT_NEAR(half.mean(0, 0, 0, 32, 32) * 16, kPi / 2, 0.1)
+        << "the right half clipped";
+    EXPECT_NEAR(half.mean(3, 17, 0, 32, 32), 0.0, 1e-6) << "nothing right of the plane";
+    EXPECT_NEAR(half.mean(2, 0, 0, 15, 32), 1.0, 1e-6) << "the blue plane left of it";
+    EXPECT_NEAR(half.mean(0, 10, 14, 14, 18), 1.0, 1e-6) << "the sphere's left half";
+    const auto& names = half.stats.features.names();
+    EXPECT_TRUE(std::find(names.begin(), names.end(), "clipping_planes") != names.end());
+    // camera space, before the world: the cap nearer than camera z = 4.5 is clipped, and
+    // through it (the sphere one-sided: its inside is not there) the blue plane shows
+    const Rendered cap = render("ClippingPlane 0 0 4.5 0 0 -1\n", "", "Sides 1\n");
+    EXPECT_NEAR(cap.mean(0, 0, 0, 32, 32) * 16, kPi * 0.25, 0.1) << "a ring left";
+    EXPECT_NEAR(cap.mean(2, 14, 14, 18, 18), 1.0, 1e-6) << "the plane through the cap";
+    // the camera named, and a disk placed in its space
+    const Rendered named = renderRib(
+        "Format 32 32 1\nPixelSamples 4 4\nOption \"render\" \"float pixelerror\" "
+        "[1e-9]\n"
+        "Projection \"orthographic\"\nScreenWindow -2 2 -2 2\nRotate 30 0 1 0\n"
+        "Translate 0 0 5\nCamera \"main\"\nWorldBegin\nSurface \"constant\"\n"
+        "CoordSysTransform \"main\"\nTranslate 0 0 3\nDisk 0 1 360\nWorldEnd\n");
+    EXPECT_NEAR(named.mean(3, 0, 0, 32, 32) * 16, kPi, 0.1) << "a disc seen head on";
 }

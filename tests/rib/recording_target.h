@@ -71,6 +71,14 @@ public:
     void screenWindow(L l, float a1, float a2, float a3, float a4) override { add(l, std::string("screenWindow") + " " + str(a1) + " " + str(a2) + " " + str(a3) + " " + str(a4)); }
     void projection(L l, const std::string& a1, const ParamList& a2) override { add(l, std::string("projection") + " " + str(a1) + " " + str(a2)); }
     void clipping(L l, float a1, float a2) override { add(l, std::string("clipping") + " " + str(a1) + " " + str(a2)); }
+    void clippingPlane(L l, float a1, float a2, float a3, float a4, float a5,
+                       float a6) override {
+        add(l, std::string("clippingPlane") + " " + str(a1) + " " + str(a2) + " " +
+                   str(a3) + " " + str(a4) + " " + str(a5) + " " + str(a6));
+    }
+    void camera(L l, S a1, const ParamList& a2) override {
+        add(l, std::string("camera") + " " + str(a1) + " " + str(a2));
+    }
     void pixelSamples(L l, float a1, float a2) override { add(l, std::string("pixelSamples") + " " + str(a1) + " " + str(a2)); }
     void displayChannel(L l, const std::string& a1, const ParamList& a2) override { add(l, std::string("displayChannel") + " " + str(a1) + " " + str(a2)); }
     void display(L l, const std::string& a1, const std::string& a2, const std::string& a3, const ParamList& a4) override { add(l, std::string("display") + " " + str(a1) + " " + str(a2) + " " + str(a3) + " " + str(a4)); }

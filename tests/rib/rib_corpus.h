@@ -29,6 +29,8 @@ DepthOfField 2.8 0.05 10
 DepthOfField
 Shutter 0 1
 PixelVariance 0.01
+ClippingPlane 0 0 1 0 0 -1
+Camera "main" "float shutteropening" [0 1]
 PixelSamples 4 4
 PixelFilter "catmull-rom" 3 3
 PixelFilter "box" 1 1
