@@ -5,16 +5,23 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 namespace rd {
 
+bool DicingView::inView(const glm::vec3& p) const {
+    if (halfX <= 0.0f) return true;
+    const glm::vec3 c = glm::vec3(worldToCamera * glm::vec4(p, 1.0f));
+    if (!perspective) return std::fabs(c.x) <= halfX && std::fabs(c.y) <= halfY;
+    return c.z > 0.0f && std::fabs(c.x) <= halfX * c.z && std::fabs(c.y) <= halfY * c.z;
+}
+
 float DicingView::pixels(const glm::vec3& a, const glm::vec3& b) const {
     const float len = glm::length(b - a);
-    if (!perspective) return len / pixelWidth;
+    const float scale = inView(a) || inView(b) ? 1.0f : 1.0f / offscreen;
+    if (!perspective) return scale * len / pixelWidth;
     const float d =
         std::max(std::min(glm::length(a - eye), glm::length(b - eye)), nearest);
-    return len / (pixelSpread * d);
+    return scale * len / (pixelSpread * d);
 }
 
 DicingView dicingViewOf(const Camera& c) {
@@ -27,6 +34,18 @@ DicingView dicingViewOf(const Camera& c) {
     v.pixelSpread = std::max(across * c.tan_half_fov, 1e-12f);
     v.pixelWidth = std::max(across, 1e-12f);
     v.nearest = std::max(c.clip_near, 1e-4f);
+    glm::mat4 toWorld(1.0f);
+    for (int r = 0; r < 3; ++r) {
+        const rt_float4& row = c.camera_to_world[r];
+        toWorld[0][r] = row.x, toWorld[1][r] = row.y, toWorld[2][r] = row.z,
+        toWorld[3][r] = row.w;
+    }
+    v.worldToCamera = glm::inverse(toWorld);
+    const float sx = std::max(std::fabs(c.screen[0]), std::fabs(c.screen[1])),
+                sy = std::max(std::fabs(c.screen[2]), std::fabs(c.screen[3]));
+    const float unit = v.perspective ? c.tan_half_fov : 1.0f;
+    v.halfX = 1.1f * sx * unit, v.halfY = 1.1f * sy * unit;
+    if (!std::isfinite(v.halfX) || !std::isfinite(v.halfY)) v.halfX = v.halfY = 0.0f;
     return v;
 }
 
@@ -51,21 +70,28 @@ Corner midpoint(const Corner& x, const Corner& y) {
     return {(x.p + y.p) * 0.5f, (x.b + y.b) * 0.5f};
 }
 
+// How deep the cutting goes at most: the edge rule's limit changes along a surface
+// (with distance, and off screen), so cutting one edge can make a shorter one that must
+// be cut and so on without end near the change; past this depth a piece is kept (a
+// neighbour may cut the edge it shares once more: a crack of 2^-24 of the edge).
+constexpr int kMaxDiceDepth = 24;
+
 // Cuts one triangle by the pattern of its edges longer than `limit` pixels, down to
 // pieces with none, handing each piece to `emit`; false once `emit` says stop.
 template <class Emit>
 bool dice(const DicingView& view, float limit, const Corner& a, const Corner& b,
-          const Corner& c, Emit& emit) {
+          const Corner& c, Emit& emit, int depth = 0) {
     const bool ab = view.pixels(a.p, b.p) > limit, bc = view.pixels(b.p, c.p) > limit,
                ca = view.pixels(c.p, a.p) > limit;
-    const int cuts = int(ab) + int(bc) + int(ca);
+    const int cuts = depth >= kMaxDiceDepth ? 0 : int(ab) + int(bc) + int(ca);
     if (cuts == 0) return emit(a, b, c);
+    auto next = [&](const Corner& p, const Corner& q, const Corner& r) {
+        return dice(view, limit, p, q, r, emit, depth + 1);
+    };
     if (cuts == 3) {
         const Corner mab = midpoint(a, b), mbc = midpoint(b, c), mca = midpoint(c, a);
-        return dice(view, limit, a, mab, mca, emit) &&
-               dice(view, limit, mab, b, mbc, emit) &&
-               dice(view, limit, mca, mbc, c, emit) &&
-               dice(view, limit, mab, mbc, mca, emit);
+        return next(a, mab, mca) && next(mab, b, mbc) && next(mca, mbc, c) &&
+               next(mab, mbc, mca);
     }
     // turned (keeping the winding) so that x-y is cut, and with two cuts z-x is the other
     const Corner *x = &a, *y = &b, *z = &c;
@@ -74,17 +100,14 @@ bool dice(const DicingView& view, float limit, const Corner& a, const Corner& b,
     else if (cuts == 1 ? ca : !ab)
         x = &c, y = &a, z = &b;
     const Corner mxy = midpoint(*x, *y);
-    if (cuts == 1)
-        return dice(view, limit, *x, mxy, *z, emit) &&
-               dice(view, limit, mxy, *y, *z, emit);
+    if (cuts == 1) return next(*x, mxy, *z) && next(mxy, *y, *z);
     // the corner x on its own, the quad left split along its shorter diagonal (both
     // pieces come from this triangle, so the choice is no neighbour's)
     const Corner mzx = midpoint(*z, *x);
-    if (!dice(view, limit, *x, mxy, mzx, emit)) return false;
+    if (!next(*x, mxy, mzx)) return false;
     if (glm::length(y->p - mzx.p) <= glm::length(z->p - mxy.p))
-        return dice(view, limit, mxy, *y, mzx, emit) &&
-               dice(view, limit, *y, *z, mzx, emit);
-    return dice(view, limit, mxy, *y, *z, emit) && dice(view, limit, mxy, *z, mzx, emit);
+        return next(mxy, *y, mzx) && next(*y, *z, mzx);
+    return next(mxy, *y, *z) && next(mxy, *z, mzx);
 }
 
 // Whether a triangle is diced: truly displaced, neither moving, instanced nor in a solid.
@@ -118,36 +141,106 @@ rt_float4 blend(const rt_float4* corners, const glm::vec2& b) {
 // poles), so the displaced surface stays closed there, whatever (s, t) each side has
 // (a texture seam takes one side's); creases (normals apart) keep their vertices apart,
 // and so crack open as they do in a REYES renderer.
+// A hash map from 64-bit keys to vertex indices, open addressing: the node-based
+// std::unordered_map spent a fifth of a 3.4M-piece dicing in its lookups.
+class FlatIndex {
+public:
+    explicit FlatIndex(size_t expected) {
+        size_t cap = 16;
+        while (cap < 2 * expected) cap *= 2;
+        m_keys.assign(cap, kEmpty);
+        m_vals.assign(cap, 0);
+    }
+    // The value under `key`, or nullptr.
+    const uint32_t* find(uint64_t key) const {
+        for (size_t i = slot(key);; i = (i + 1) & (m_keys.size() - 1)) {
+            if (m_keys[i] == kEmpty) return nullptr;
+            if (m_keys[i] == key) return &m_vals[i];
+        }
+    }
+    // The value under `key`, made `fresh` when there was none.
+    uint32_t& at(uint64_t key, uint32_t fresh) {
+        if (2 * (m_used + 1) > m_keys.size()) grow();
+        size_t i = slot(key);
+        for (; m_keys[i] != kEmpty; i = (i + 1) & (m_keys.size() - 1))
+            if (m_keys[i] == key) return m_vals[i];
+        ++m_used;
+        m_keys[i] = key;
+        m_vals[i] = fresh;
+        return m_vals[i];
+    }
+
+private:
+    static constexpr uint64_t kEmpty = ~uint64_t(0);
+    size_t slot(uint64_t key) const {
+        return size_t((key * 0x9e3779b97f4a7c15ull) >> 17) & (m_keys.size() - 1);
+    }
+    void grow() {
+        std::vector<uint64_t> keys = std::move(m_keys);
+        std::vector<uint32_t> vals = std::move(m_vals);
+        m_keys.assign(2 * keys.size(), kEmpty);
+        m_vals.assign(2 * keys.size(), 0);
+        m_used = 0;
+        for (size_t i = 0; i < keys.size(); ++i)
+            if (keys[i] != kEmpty) at(keys[i], vals[i]);
+    }
+    std::vector<uint64_t> m_keys;
+    std::vector<uint32_t> m_vals;
+    size_t m_used = 0;
+};
+
 class VertexWeld {
 public:
-    explicit VertexWeld(float cell) : m_cell(cell > 0.0f ? cell : 1e-30f) {}
+    // tol: how far apart two corners may be and be one vertex
+    VertexWeld(float tol, size_t expected)
+        : m_tol(tol > 0.0f ? tol : 1e-30f), m_exact(expected), m_cells(expected) {
+        m_vertices.reserve(expected);
+    }
     // The vertex of this corner: an earlier one, or `fresh` (added).
     uint32_t find(const glm::vec3& p, const glm::vec3& n, uint32_t material,
                   uint32_t fresh) {
-        const glm::ivec3 c = cellOf(p);
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    auto it = m_cells.find(key(c + glm::ivec3(dx, dy, dz), material));
-                    if (it == m_cells.end()) continue;
-                    for (uint32_t v : it->second) {
-                        const Vertex& w = m_vertices[v];
-                        if (glm::length(w.p - p) <= m_cell && glm::dot(w.n, n) > 0.999f)
-                            return w.id;
-                    }
+        // most corners repeat a vertex bit for bit (neighbours compute shared midpoints
+        // alike): one look in the map of exact places first
+        const uint64_t exact = key(glm::floatBitsToInt(p), material);
+        if (const uint32_t* head = m_exact.find(exact))
+            for (uint32_t v = *head; v != kNone; v = m_vertices[v].nextExact)
+                if (matches(m_vertices[v], p, n, material)) return m_vertices[v].id;
+        // else the cells (twice the tolerance wide) a vertex within it may lie in: two a
+        // side
+        const double c = 2.0 * double(m_tol);
+        const glm::dvec3 lo = glm::floor((glm::dvec3(p) - double(m_tol)) / c),
+                         hi = glm::floor((glm::dvec3(p) + double(m_tol)) / c);
+        for (double z = lo.z; z <= hi.z; ++z)
+            for (double y = lo.y; y <= hi.y; ++y)
+                for (double x = lo.x; x <= hi.x; ++x) {
+                    const uint32_t* head =
+                        m_cells.find(key(glm::ivec3(int(x), int(y), int(z)), material));
+                    for (uint32_t v = head ? *head : kNone; v != kNone;
+                         v = m_vertices[v].nextInCell)
+                        if (matches(m_vertices[v], p, n, material))
+                            return m_vertices[v].id;
                 }
-        m_cells[key(c, material)].push_back(uint32_t(m_vertices.size()));
-        m_vertices.push_back({p, n, fresh});
+        const uint32_t index = uint32_t(m_vertices.size());
+        const glm::ivec3 own(glm::floor(glm::dvec3(p) / c));
+        uint32_t& cellHead = m_cells.at(key(own, material), kNone);
+        const uint32_t nextInCell = cellHead;
+        cellHead = index;
+        uint32_t& exactHead = m_exact.at(exact, kNone);
+        m_vertices.push_back({p, n, material, fresh, nextInCell, exactHead});
+        exactHead = index;
         return fresh;
     }
 
 private:
+    static constexpr uint32_t kNone = ~0u;
     struct Vertex {
         glm::vec3 p, n;
-        uint32_t id;
+        uint32_t material, id, nextInCell, nextExact;
     };
-    glm::ivec3 cellOf(const glm::vec3& p) const {
-        return glm::ivec3(glm::floor(glm::dvec3(p) / double(m_cell)));
+    bool matches(const Vertex& w, const glm::vec3& p, const glm::vec3& n,
+                 uint32_t material) const {
+        return w.material == material && glm::length(w.p - p) <= m_tol &&
+               glm::dot(w.n, n) > 0.999f;
     }
     static uint64_t key(const glm::ivec3& c, uint32_t material) {
         uint64_t h = 1469598103934665603ull;
@@ -155,8 +248,8 @@ private:
             h = (h ^ x) * 1099511628211ull;
         return h;  // (a collision only costs a look at another cell's vertices)
     }
-    float m_cell;
-    std::unordered_map<uint64_t, std::vector<uint32_t>> m_cells;
+    float m_tol;
+    FlatIndex m_exact, m_cells;  // the chains' first vertices
     std::vector<Vertex> m_vertices;
 };
 
@@ -190,8 +283,10 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
     };
     // Count first, coarser while over the budget (a bounded number of tries: each
     // doubles the edge limit).
+    size_t counted = 0;  // the pieces of the dicing that fits
     for (int tries = 0;; ++tries) {
-        size_t count = 0;
+        size_t& count = counted;
+        count = 0;
         auto counter = [&](const Corner&, const Corner&, const Corner&) {
             return ++count <= maxTriangles;
         };
@@ -208,6 +303,12 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
     }
 
     // Every per-triangle array takes the diced pieces after the scene's triangles.
+    counted = std::min(counted, maxTriangles);
+    s.triangles.reserve(n + counted);
+    s.attrs.reserve(n + counted);
+    s.normals.reserve(3 * (n + counted));
+    s.vertexSt.reserve(3 * (n + counted));
+    out.cornerVertex.reserve(3 * counted);
     s.normals.resize(3 * n, rt_float4{0, 0, 0, 0});
     if (s.vertexSt.empty()) s.vertexSt.assign(3 * n, rt_float4{0, 0, 0, 0});
     s.primvarsUsed |= RT_PRIMVAR_ST;
@@ -222,7 +323,7 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
         for (const rt_float4* v :
              {&s.triangles[t].v0, &s.triangles[t].v1, &s.triangles[t].v2})
             lo = glm::min(lo, v3(*v)), hi = glm::max(hi, v3(*v));
-    VertexWeld weld(glm::length(hi - lo) * 1e-6f);
+    VertexWeld weld(glm::length(hi - lo) * 1e-6f, counted / 2 + 16);
     for (size_t t : diced) {
         const TriangleAttr attr = s.attrs[t];
         const Triangle tr = s.triangles[t];

@@ -27,6 +27,13 @@ struct DicingView {
     float pixelSpread = 0.0f;  // perspective: a pixel's width at unit distance
     float pixelWidth = 1.0f;   // orthographic: a pixel's width
     float nearest = 1e-3f;     // distances are taken as at least this
+    // The view, to dice what the camera does not see coarser (as Cycles does: reflections
+    // and shadows of it need less): world to camera, the screen window's half extents
+    // (at unit depth for a perspective camera) widened by a tenth; 0 sees everything.
+    glm::mat4 worldToCamera{1.0f};
+    float halfX = 0.0f, halfY = 0.0f;
+    float offscreen = 4.0f;  // an edge with both ends out of view: this many times longer
+    bool inView(const glm::vec3& p) const;
     // The edge's length in pixels where its nearer end is (symmetric in a and b).
     float pixels(const glm::vec3& a, const glm::vec3& b) const;
 };

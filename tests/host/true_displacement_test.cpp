@@ -180,6 +180,19 @@ TEST(TrueDisplacement, DicedPiecesMeetEdgeToEdge) {
         outline += count == 1;
     }
     EXPECT_GT(outline, 8);
+    // what the camera does not see is diced four times coarser (here all but the
+    // square's corner within 2 of the origin), and still meets edge to edge
+    rd::Scene partly = rd::test::sceneOfWorld(
+        "Attribute \"render\" \"int truedisplacement\" [1]\nDisplacement \"bumpy\"\n"
+        "ShadingRate 4\nPolygon \"P\" [0 0 0  8 0 0  8 8 0  0 8 0]\n");
+    rd::DicingView seen = view;
+    seen.worldToCamera = glm::mat4(1.0f);
+    seen.worldToCamera[3][2] = 1.0f;  // camera z = world z + 1: the square at depth 1
+    seen.halfX = seen.halfY = 2.0f;
+    const rd::DicedSurfaces fewer = rd::diceDisplacedSurfaces(partly, seen, 1u << 20);
+    EXPECT_LT(fewer.cornerVertex.size() / 3, pieces * 3 / 4);
+    for (const auto& [edge, count] : dicedEdges(fewer))
+        EXPECT_TRUE(count == 1 || count == 2) << count << " pieces on one edge";
     // a budget too small for the limit: a coarser dicing that fits
     rd::Scene again = rd::test::sceneOfWorld(
         "Attribute \"render\" \"int truedisplacement\" [1]\nDisplacement \"bumpy\"\n"
