@@ -3,7 +3,8 @@
  * vertices, as a REYES renderer runs it on a grid's points. A vertex is a corner of one
  * of its diced triangles: its globals are those the shade stage would take there (P,
  * N, s, t, Cs, per-point parameters...), seen from the eye along one camera ray, with
- * neighbours a pixel's footprint away for derivatives. The moved P comes back; a texture
+ * neighbours a pixel's footprint away for derivatives. The moved P and the shader's N
+ * (normalised; the moved surface's when the shader sets none) come back; a texture
  * lookup that met an absent tile lists the vertex to run again once the host has served
  * it. Part of the shading program, only for scenes with truly displaced surfaces. */
 #if defined(RT_HAS_DISPLACEMENT) && defined(RT_HAS_DERIVATIVES)
@@ -11,6 +12,7 @@ __kernel void displace_vertices(uint count,
                                 __global const uint* todo,        /* vertex indices */
                                 __global const uint2* vertex_corner, /* (triangle, corner) */
                                 __global float4* moved,           /* by vertex */
+                                __global float4* moved_normal,    /* the shader's N */
                                 float4 eye, float eye_width,      /* the camera ray's */
                                 __global const Triangle* tris,
                                 __global const TriangleAttr* attrs,
@@ -83,6 +85,7 @@ __kernel void displace_vertices(uint count,
     g.texctx = 0;
 #endif
     float4 out = g.P;
+    float4 n = g.N;
     if (disp) {
         struct {
             float width;
@@ -91,6 +94,7 @@ __kernel void displace_vertices(uint count,
         RD_NEIGHBOUR_GLOBALS(g, g1, g2, h, rs, dir, RD_HIT_BUFFERS);
         g1.loops_cut = g2.loops_cut = &loops_cut;
         rd_displace_lanes((int)disp - 1, &g, &g1, &g2, params, tc, &out);
+        n = g.N; /* what the shader made of N (the moved surface's, if it set none) */
     }
 #ifdef RT_HAS_TEXTURES
     rd_tex_context_done(&texc);
@@ -101,5 +105,7 @@ __kernel void displace_vertices(uint count,
 #endif
     out.w = 0.0f;
     moved[vi] = out;
+    n.w = 0.0f;
+    moved_normal[vi] = n;
 }
 #endif

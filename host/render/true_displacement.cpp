@@ -16,10 +16,12 @@ glm::vec3 v3(const rt_float4& f) {
     return glm::vec3(f.x, f.y, f.z);
 }
 
-// Normals of the moved surface: about each vertex, the pieces' normals weighted by
-// their areas, turned to the side the surface's own normal was on.
-void remakeNormals(Scene& s, const DicedSurfaces& d,
-                   const std::vector<rt_float4>& moved) {
+// Normals of the moved surface: the shader's N at each vertex (as a REYES renderer
+// shades with the N its displacement leaves: calculatenormal(P) of the moved points, or
+// a bump on top), else, where it is not usable, the pieces' normals about the vertex
+// weighted by their areas; turned to the side the surface's own normal was on.
+void remakeNormals(Scene& s, const DicedSurfaces& d, const std::vector<rt_float4>& moved,
+                   const std::vector<rt_float4>& shaderN) {
     std::vector<glm::dvec3> sum(moved.size(), glm::dvec3(0.0));
     const size_t pieces = d.cornerVertex.size() / 3;
     for (size_t i = 0; i < pieces; ++i) {
@@ -31,7 +33,9 @@ void remakeNormals(Scene& s, const DicedSurfaces& d,
     for (size_t i = 0; i < pieces; ++i)
         for (int k = 0; k < 3; ++k) {
             rt_float4& stored = s.normals[3 * (d.firstTriangle + i) + size_t(k)];
-            glm::dvec3 n = sum[d.cornerVertex[3 * i + size_t(k)]];
+            const uint32_t v = d.cornerVertex[3 * i + size_t(k)];
+            glm::dvec3 n = glm::dvec3(v3(shaderN[v]));
+            if (!(glm::length(n) > 0.5) || !std::isfinite(glm::length(n))) n = sum[v];
             const double len = glm::length(n);
             if (!(len > 0.0) || !std::isfinite(len))
                 continue;  // keep the undisplaced one
@@ -67,7 +71,7 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
         todo[i] = uint32_t(i);
     }
     DeviceBuffer<cl_uint2> cornerBuf(ctx, corners);
-    DeviceBuffer<rt_float4> movedBuf(ctx, nv);
+    DeviceBuffer<rt_float4> movedBuf(ctx, nv), normalBuf(ctx, nv);
     DeviceBuffer<uint32_t> todoA(ctx, todo), todoB(ctx, nv + 1);
     Kernel displace(ctx, program, "displace_vertices", prof);
     const rt_float4 eye = {view.eye.x, view.eye.y, view.eye.z, 0.0f};
@@ -80,13 +84,14 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
     while (count > 0) {
         const uint32_t zero = 0;
         todoB.uploadRange(0, &zero, 1);
-        displace.launch(
-            count, cl_uint(count), *src, cornerBuf, movedBuf, eye, eyeWidth, ds.triangles,
-            ds.attrs, ds.normals, ds.vertexSt, ds.vertexCs, ds.vertexOs, ds.materials,
-            ds.materialChannels, ds.quadrics, ds.quadricPrimvars, ds.quadricMotion,
-            ds.trianglesEnd, ds.params, ds.triangleParams, ds.pointParamValues,
-            ds.pointParamLayout, textures.infoBuf, textures.pageBuf, textures.tileBuf,
-            textures.requestBuf, textures.counterBuf, textures.usedBuf, todoB);
+        displace.launch(count, cl_uint(count), *src, cornerBuf, movedBuf, normalBuf, eye,
+                        eyeWidth, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
+                        ds.vertexCs, ds.vertexOs, ds.materials, ds.materialChannels,
+                        ds.quadrics, ds.quadricPrimvars, ds.quadricMotion,
+                        ds.trianglesEnd, ds.params, ds.triangleParams,
+                        ds.pointParamValues, ds.pointParamLayout, textures.infoBuf,
+                        textures.pageBuf, textures.tileBuf, textures.requestBuf,
+                        textures.counterBuf, textures.usedBuf, todoB);
         ++r.passes;
         count = todoB.downloadFirst(1)[0];
         if (f.textures) {
@@ -109,6 +114,7 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
     }
     displace.collectActive();
     std::vector<rt_float4> moved = movedBuf.download();
+    std::vector<rt_float4> shaderN = normalBuf.download();
     // Vertices given up on (and never written) or moved to NaN stay where they were.
     std::vector<uint8_t> left(nv, 0);
     if (r.unresolved > 0) {
@@ -130,7 +136,7 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
                             1];
             left[i] = 1;
         }
-        if (left[i]) moved[i] = {p.x, p.y, p.z, 0.0f};
+        if (left[i]) moved[i] = {p.x, p.y, p.z, 0.0f}, shaderN[i] = {0, 0, 0, 0};
     }
     r.vertices = nv - size_t(std::count(left.begin(), left.end(), uint8_t(1)));
     for (size_t i = 0; i < diced.cornerVertex.size() / 3; ++i) {
@@ -139,7 +145,7 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
         t.v1 = moved[diced.cornerVertex[3 * i + 1]];
         t.v2 = moved[diced.cornerVertex[3 * i + 2]];
     }
-    remakeNormals(scene, diced, moved);
+    remakeNormals(scene, diced, moved, shaderN);
     return r;
 }
 

@@ -312,6 +312,7 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
     s.normals.resize(3 * n, rt_float4{0, 0, 0, 0});
     if (s.vertexSt.empty()) s.vertexSt.assign(3 * n, rt_float4{0, 0, 0, 0});
     s.primvarsUsed |= RT_PRIMVAR_ST;
+    s.anySmoothNormals = true;  // the pieces carry the moved surface's normals
     const size_t csChunks = s.vertexCs.size() / (3 * std::max<size_t>(n, 1));
     const size_t osChunks = s.vertexOs.size() / (3 * std::max<size_t>(n, 1));
     const bool params = !s.triangleParams.empty();

@@ -31,6 +31,10 @@ std::string shaderPath() {
          "    P += amp * sin(7 * xcomp(Q)) * cos(5 * ycomp(Q) + zcomp(Q)) * "
          "normalize(N);\n"
          "    N = calculatenormal(P);\n}\n"},
+        // moved out, and bumped on top: its N tilted toward +x
+        {"pushtilt",
+         "displacement pushtilt() {\n    P += 0.1 * normalize(N);\n"
+         "    N = normalize(normalize(N) + vector(0.5, 0, 0));\n}\n"},
         {"nanmove", "displacement nanmove() {\n    P += (0 / 0) * N;\n}\n"},
         // N . I toward the camera: 1 where the surface faces it
         {"facing",
@@ -107,8 +111,9 @@ TEST(TrueDisplacement, DisplacedSphereStaysClosed) {
     }
 }
 
-// The moved surface is shaded with its own normals: a plane pushed toward the camera
-// faces it (N . I = 1) as before, and where a ripple tilts it the normals tilt too.
+// The moved surface is shaded with the normals its shader leaves: a plane pushed toward
+// the camera faces it (N . I = 1) as before, where a ripple tilts it the normals tilt
+// too, and a shader that tilts N after moving P (a bump on a displacement) is shaded so.
 TEST(TrueDisplacement, ShadedWithTheMovedSurfacesNormals) {
     auto render = [](const std::string& shader) {
         return renderRib(shaderPath() +
@@ -125,6 +130,9 @@ TEST(TrueDisplacement, ShadedWithTheMovedSurfacesNormals) {
     const double mean = rippled.mean(0, 0, 0, 32, 32);
     EXPECT_LT(mean, 0.97) << "the ripples' slopes turn the normals away from the camera";
     EXPECT_GT(mean, 0.5);
+    // the N the shader leaves shades the moved surface: a bump on top of a displacement
+    Rendered tilted = render("Displacement \"pushtilt\"\n");
+    EXPECT_NEAR(tilted.mean(0, 0, 0, 32, 32), 1.0 / std::sqrt(1.25), 1e-4);
 }
 
 namespace {
