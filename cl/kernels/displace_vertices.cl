@@ -30,12 +30,7 @@ __kernel void displace_vertices(uint count,
                                 __global const uint* tri_params,
                                 __global const float4* point_params,
                                 __global const int* param_layout,
-                                __global const TexInfo* tex_info,
-                                __global const uint* tex_pages,
-                                __global const float4* tex_tiles,
-                                __global TexRequest* tex_requests,
-                                __global uint* tex_counters,
-                                __global uint* tex_used,
+                                RD_TEXTURE_KERNEL_ARGS,
                                 __global uint* retry,       /* [0] count, then vertices */
                                 __global uint* active_counter) {
     uint j = get_global_id(0);

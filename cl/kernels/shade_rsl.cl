@@ -62,12 +62,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             /* RT_HAS_TEXTURES only: the texture state (texture.h), and
                              * the points to shade again once missing tiles are there,
                              * at begin + their rank in this shader's run */
-                            __global const TexInfo* tex_info,
-                            __global const uint* tex_pages,
-                            __global const float4* tex_tiles,
-                            __global TexRequest* tex_requests,
-                            __global uint* tex_counters,
-                            __global uint* tex_used,
+                            RD_TEXTURE_KERNEL_ARGS,
                             __global uint* retry_sorted,
                             __global uint* retry_count,
                             uint shader_index,

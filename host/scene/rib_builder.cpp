@@ -571,41 +571,32 @@ uint32_t RibBuilder::currentMaterial() {
     m.os = f4(os[0], os[1], os[2], (os[0] + os[1] + os[2]) / 3.0f);
     m.lights_off = a.lightsOff;
     if (a.sides == 1) m.flags |= RT_MATERIAL_ONE_SIDED;
-    if (a.atmosphereKey != 0) {
-        size_t index = 0;
-        while (index < m_atmosphereKeys.size() && m_atmosphereKeys[index] != a.atmosphereKey) ++index;
-        if (index == m_atmosphereKeys.size()) {
-            m_atmosphereKeys.push_back(a.atmosphereKey);
-            m_world.atmospheres.push_back(a.atmosphere);
-        }
-        if (index < 255) m.flags |= uint32_t(index + 1) << RT_MATERIAL_ATMOSPHERE_SHIFT;
-    }
-    if (a.interiorKey != 0) {
-        size_t index = 0;
-        while (index < m_interiorKeys.size() && m_interiorKeys[index] != a.interiorKey)
-            ++index;
-        if (index == m_interiorKeys.size()) {
-            m_interiorKeys.push_back(a.interiorKey);
-            m_world.interiors.push_back(a.interior);
+    // each volume or displacement call in use gets an index, 1 + it in the material's
+    // bits
+    auto bind = [&](uint64_t callKey, const ShaderRef& call, std::vector<uint64_t>& keys,
+                    std::vector<ShaderRef>& calls, uint32_t shift, const char* request) {
+        if (callKey == 0) return false;
+        const size_t index =
+            size_t(std::find(keys.begin(), keys.end(), callKey) - keys.begin());
+        if (index == keys.size()) {
+            keys.push_back(callKey);
+            calls.push_back(call);
         }
         if (index < 255)
-            m.flags |= uint32_t(index + 1) << RT_MATERIAL_INTERIOR_SHIFT;
+            m.flags |= uint32_t(index + 1) << shift;
         else
-            m_diag.warning(a.interior.loc,
-                           "more than 255 Interior calls; this one is not used");
-    }
-    if (a.displacementKey != 0) {
-        size_t index = 0;
-        while (index < m_displacementKeys.size() && m_displacementKeys[index] != a.displacementKey)
-            ++index;
-        if (index == m_displacementKeys.size()) {
-            m_displacementKeys.push_back(a.displacementKey);
-            m_world.displacements.push_back(a.displacement);
-        }
-        if (index < 255) m.flags |= uint32_t(index + 1) << RT_MATERIAL_DISPLACEMENT_SHIFT;
-        else m_diag.warning(a.displacement.loc, "more than 255 Displacement calls; this one is not used");
-        if (index < 255 && a.displacesTruly()) m.flags |= RT_MATERIAL_TRUE_DISPLACEMENT;
-    }
+            m_diag.warning(call.loc, std::string("more than 255 ") + request +
+                                         " calls; this one is not used");
+        return index < 255;
+    };
+    bind(a.atmosphereKey, a.atmosphere, m_atmosphereKeys, m_world.atmospheres,
+         RT_MATERIAL_ATMOSPHERE_SHIFT, "Atmosphere");
+    bind(a.interiorKey, a.interior, m_interiorKeys, m_world.interiors,
+         RT_MATERIAL_INTERIOR_SHIFT, "Interior");
+    if (bind(a.displacementKey, a.displacement, m_displacementKeys, m_world.displacements,
+             RT_MATERIAL_DISPLACEMENT_SHIFT, "Displacement") &&
+        a.displacesTruly())
+        m.flags |= RT_MATERIAL_TRUE_DISPLACEMENT;
     if (a.matte) {
         m.flags |= RT_MATERIAL_MATTE;
         m_world.anyMatte = true;

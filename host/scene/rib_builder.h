@@ -24,6 +24,8 @@
 
 namespace rd {
 
+struct MakeTextureOptions;  // texture/texture_maker.h
+
 // Primitive variables that give shader parameters per-point values
 // (rib_builder_point_params.cpp): at most this many per primitive.
 constexpr int kMaxPointParams = 8;
@@ -211,6 +213,9 @@ public:
 private:
     template <typename F>
     void makeTextureFile(L loc, const char* request, const std::string& output, F&& make);
+    // MakeTexture and MakeBump: a 2D texture of a picture (rib_builder_textures.cpp)
+    void make2dTexture(L loc, const char* request, S picture, S texture,
+                       const MakeTextureOptions& o);
 
     // The current transform, with its motion: between the shutter times t0 and t1 the
     // object-to-world map moves from ctm to ctmEnd through the keys between (MotionBegin

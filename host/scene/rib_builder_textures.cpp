@@ -42,10 +42,15 @@ void RibBuilder::makeTextureFile(L loc, const char* request, const std::string& 
 
 void RibBuilder::makeTexture(L loc, S picture, S texture, S swrap, S twrap, S filter,
                              float swidth, float twidth, P) {
+    make2dTexture(loc, "MakeTexture", picture, texture,
+                  options(swrap, twrap, filter, swidth, twidth));
+}
+
+void RibBuilder::make2dTexture(L loc, const char* request, S picture, S texture,
+                               const MakeTextureOptions& o) {
     const std::string& rib = m_options.sourceFile;
-    makeTextureFile(loc, "MakeTexture", texture, [&] {
-        rd::makeTexture(besideRib(rib, picture), besideRib(rib, texture),
-                        options(swrap, twrap, filter, swidth, twidth));
+    makeTextureFile(loc, request, texture, [&] {
+        rd::makeTexture(besideRib(rib, picture), besideRib(rib, texture), o);
     });
 }
 
@@ -53,11 +58,8 @@ void RibBuilder::makeTexture(L loc, S picture, S texture, S swrap, S twrap, S fi
 // it is made as MakeTexture makes one (PRMan's own bump format held the slopes instead).
 void RibBuilder::makeBump(L loc, S picture, S texture, S swrap, S twrap, S filter,
                           float swidth, float twidth, P) {
-    const std::string& rib = m_options.sourceFile;
-    makeTextureFile(loc, "MakeBump", texture, [&] {
-        rd::makeTexture(besideRib(rib, picture), besideRib(rib, texture),
-                        options(swrap, twrap, filter, swidth, twidth));
-    });
+    make2dTexture(loc, "MakeBump", picture, texture,
+                  options(swrap, twrap, filter, swidth, twidth));
 }
 
 void RibBuilder::makeLatLongEnvironment(L loc, S picture, S texture, S filter, float swidth,
