@@ -9,7 +9,7 @@
  * it. Part of the shading program, only for scenes with truly displaced surfaces. */
 #if defined(RT_HAS_DISPLACEMENT) && defined(RT_HAS_DERIVATIVES)
 __kernel void displace_vertices(uint count,
-                                __global const uint* todo,        /* vertex indices */
+                                __global const uint* pending,     /* vertex indices */
                                 __global const uint2* vertex_corner, /* (triangle, corner) */
                                 __global float4* moved,           /* by vertex */
                                 __global float4* moved_normal,    /* the shader's N */
@@ -36,7 +36,7 @@ __kernel void displace_vertices(uint count,
     uint j = get_global_id(0);
     RT_COUNT_RANGE(active_counter, count);
     if (j >= count) return;
-    const uint vi = todo[j];
+    const uint vi = pending[j];
     const uint2 vc = vertex_corner[vi];
     const uint tri = vc.x;
     RayHit h;

@@ -65,25 +65,25 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
         prepare.collectActive();
     }
     std::vector<cl_uint2> corners(nv);
-    std::vector<uint32_t> todo(nv);
+    std::vector<uint32_t> pending(nv);
     for (size_t i = 0; i < nv; ++i) {
         corners[i] = {{diced.vertexCorner[i][0], diced.vertexCorner[i][1]}};
-        todo[i] = uint32_t(i);
+        pending[i] = uint32_t(i);
     }
     DeviceBuffer<cl_uint2> cornerBuf(ctx, corners);
     DeviceBuffer<rt_float4> movedBuf(ctx, nv), normalBuf(ctx, nv);
-    DeviceBuffer<uint32_t> todoA(ctx, todo), todoB(ctx, nv + 1);
+    DeviceBuffer<uint32_t> listA(ctx, pending), listB(ctx, nv + 1);
     Kernel displace(ctx, program, "displace_vertices", prof);
     const rt_float4 eye = {view.eye.x, view.eye.y, view.eye.z, 0.0f};
     const std::vector<std::string> names = {"displacement"};
     size_t count = nv;
-    DeviceBuffer<uint32_t>* src = &todoA;
+    DeviceBuffer<uint32_t>* src = &listA;
     // a vertex whose tiles keep missing (a cache too small for one vertex's lookups) is
     // given up after this many passes
     constexpr size_t kMaxPasses = 256;
     while (count > 0) {
         const uint32_t zero = 0;
-        todoB.uploadRange(0, &zero, 1);
+        listB.uploadRange(0, &zero, 1);
         displace.launch(count, cl_uint(count), *src, cornerBuf, movedBuf, normalBuf, eye,
                         eyeWidth, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
                         ds.vertexCs, ds.vertexOs, ds.materials, ds.materialChannels,
@@ -91,9 +91,9 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
                         ds.trianglesEnd, ds.params, ds.triangleParams,
                         ds.pointParamValues, ds.pointParamLayout, textures.infoBuf,
                         textures.pageBuf, textures.tileBuf, textures.requestBuf,
-                        textures.counterBuf, textures.usedBuf, todoB);
+                        textures.counterBuf, textures.usedBuf, listB);
         ++r.passes;
-        count = todoB.downloadFirst(1)[0];
+        count = listB.downloadFirst(1)[0];
         if (f.textures) {
             const uint32_t asked = textures.counterBuf.downloadFirst(1)[0];
             if (asked > 0) {
@@ -109,7 +109,7 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
             break;
         }
         // the vertices to run again, from the list's second entry on, to the front
-        std::vector<uint32_t> again = todoB.downloadFirst(count + 1);
+        std::vector<uint32_t> again = listB.downloadFirst(count + 1);
         src->uploadRange(0, again.data() + 1, count);
     }
     displace.collectActive();
@@ -118,7 +118,7 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
     // Vertices given up on (and never written) or moved to NaN stay where they were.
     std::vector<uint8_t> left(nv, 0);
     if (r.unresolved > 0) {
-        std::vector<uint32_t> again = todoB.downloadFirst(r.unresolved + 1);
+        std::vector<uint32_t> again = listB.downloadFirst(r.unresolved + 1);
         for (size_t i = 1; i <= r.unresolved; ++i) left[again[i]] = 1;
     }
     for (size_t i = 0; i < nv; ++i) {
