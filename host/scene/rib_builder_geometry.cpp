@@ -87,6 +87,10 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         m_diag.error(loc, std::string(what) + ": " + shape.error);
         return;
     }
+    if (m_attrStack.back().displacesTruly())  // (only in a solid: its members stay exact)
+        m_diag.warning(loc,
+                       std::string(what) +
+                           " in a solid stays exact: its displacement is a bump map");
     Quadric& q = shape.q;
     if (placement == glm::mat4(1.0f)) {  // not an instance's copy: TextureCoordinates apply
         const Attributes& current = m_attrStack.back();
