@@ -244,8 +244,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
     /* the atmosphere between the ray's origin and P: Ci' = a Ci + b (affine in Ci, as
      * fog and depthcue are), so it scales every contribution and adds b once */
     rsl_color atmo_a = (rsl_color)(1.0f);
-#if defined(RT_HAS_ATMOSPHERE) || defined(RT_HAS_INTERIOR)
-    uint atmo = 0u, inside = 0u;
+#if defined(RT_HAS_ATMOSPHERE) || defined(RT_HAS_INTERIOR) || defined(RT_HAS_EXTERIOR)
+    uint atmo = 0u, inside = 0u, outside = 0u;
 #ifdef RT_HAS_ATMOSPHERE
     atmo = (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT;
 #endif
@@ -255,6 +255,19 @@ __kernel void shade_SURFACE(uint begin, uint count,
     const uint interior = (m.flags & RT_MATERIAL_INTERIOR_MASK) >> RT_MATERIAL_INTERIOR_SHIFT;
     if (interior && rt_dot3(dir, g.Ng) > 0.0f) atmo = interior, inside = 1u;
 #endif
+#ifdef RT_HAS_EXTERIOR
+    /* a ray that left a surface with an Exterior shader and does not end on that surface's
+     * own back (the segment inside it) crossed its outside: the Exterior takes it */
+    if (!inside && rs.from_prim != RT_NO_HIT) {
+        const uint from = rs.from_prim;
+        const uint fm = (from & RT_OBJECT_BIT) ? quadrics[from & RT_OBJECT_MASK].material
+                                               : attrs[from].material;
+        const int own_back = fm == (uint)g.material && rt_dot3(dir, g.Ng) > 0.0f;
+        __global const float* table = params + as_int(params[RD_SCENE_EXTERIORS]);
+        const uint exterior = own_back ? 0u : (uint)table[fm];
+        if (exterior) atmo = exterior, outside = 1u;
+    }
+#endif
     if (atmo && !culled) {
         RslGlobals g0 = base, g1 = base;
         g0.Ci = rsl_f2c(0.0f);
@@ -263,6 +276,12 @@ __kernel void shade_SURFACE(uint begin, uint count,
         if (inside) {
             rd_interior((int)atmo - 1, &g0, params);
             rd_interior((int)atmo - 1, &g1, params);
+        } else
+#endif
+#ifdef RT_HAS_EXTERIOR
+        if (outside) {
+            rd_exterior((int)atmo - 1, &g0, params);
+            rd_exterior((int)atmo - 1, &g1, params);
         } else
 #endif
         {

@@ -81,6 +81,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
             if (shading.pointParamLayout[size_t(k + i)] >= 0) f.pointParams = shading.maxPointParams;
     f.atmosphere = shading.atmosphere;
     f.interior = shading.interior;
+    f.exterior = shading.exterior;
     // clipped camera rays go on past what they meet, as through a transparent surface
     f.clipPlanes = int(std::min(scene.clipPlanes.size(), kMaxClipPlanes));
     if (f.clipPlanes > 0) f.transparency = true;
@@ -110,6 +111,7 @@ std::vector<std::string> Features::names() const {
     if (instances) n.push_back("instances");
     if (atmosphere) n.push_back("atmosphere");
     if (interior) n.push_back("interior");
+    if (exterior) n.push_back("exterior");
     if (clipPlanes > 0) n.push_back("clipping_planes");
     if (oneSided) n.push_back("one_sided");
     if (invisible) n.push_back("visibility");
@@ -218,6 +220,7 @@ std::string buildOptions(const Features& f) {
     if (f.instances) o += " -DRT_HAS_INSTANCES";
     if (f.atmosphere) o += " -DRT_HAS_ATMOSPHERE";
     if (f.interior) o += " -DRT_HAS_INTERIOR";
+    if (f.exterior) o += " -DRT_HAS_EXTERIOR";
     if (f.clipPlanes > 0) o += " -DRT_CLIP_PLANES=" + std::to_string(f.clipPlanes);
     if (f.oneSided) o += " -DRT_HAS_ONE_SIDED";
     if (f.invisible) o += " -DRT_HAS_INVISIBLE";

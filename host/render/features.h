@@ -38,6 +38,7 @@ struct Features {
     bool instances = false;     // ObjectInstance records over shared prototypes
     bool atmosphere = false;    // Atmosphere (volume) shaders on some surfaces
     bool interior = false;      // Interior (volume) shaders on some surfaces
+    bool exterior = false;      // Exterior (volume) shaders on some surfaces
     int clipPlanes = 0;         // ClippingPlane requests honoured (camera rays)
     bool oneSided = false;      // Sides 1 surfaces: their backs pass rays on
     bool invisible = false;     // surfaces camera or traced rays go through (visibility)

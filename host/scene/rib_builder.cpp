@@ -76,6 +76,7 @@ void RibBuilder::worldBegin(L loc) {
     m_surfaceVariants.clear();
     m_atmosphereKeys.clear();
     m_interiorKeys.clear();
+    m_exteriorKeys.clear();
     m_displacementKeys.clear();
     m_degenerate = 0;
     m_solidNodes.clear();
@@ -95,7 +96,7 @@ void RibBuilder::worldEnd(L loc) {
     const glm::dmat4 toOrigin = glm::translate(glm::dmat4(1.0), -m_origin);
     for (ShaderRef& r : m_world.lights) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
     for (auto* refs : {&m_world.surfaceRefs, &m_world.displacements, &m_world.atmospheres,
-                       &m_world.interiors})
+                       &m_world.interiors, &m_world.exteriors})
         for (ShaderRef& r : *refs) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
     m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
                                              glm::translate(glm::dmat4(1.0), m_origin));
@@ -436,15 +437,17 @@ void RibBuilder::interior(L loc, S name, P params) {
     a.interiorKey = a.interior.name.empty() ? 0 : ++m_surfaceCalls;
 }
 
-// Exterior shaders would run on rays between objects, Deformation shaders were never
-// carried out by any renderer: both are warnings.
-void RibBuilder::exterior(L loc, S name, P) {
-    if (!name.empty() && name != "null")
-        m_diag.warning(loc,
-                       "Exterior \"" + name +
-                           "\": exterior volume shaders are not carried out (Atmosphere "
-                           "covers the space between objects); ignored");
+// Exterior "" (or "null") removes it. The volume shader runs on the segment a ray that
+// left this surface travels outside it (a reflection, a refraction out of it), in place
+// of the atmosphere.
+void RibBuilder::exterior(L loc, S name, P params) {
+    Attributes& a = m_attrStack.back();
+    a.exterior = (name.empty() || name == "null") ? ShaderRef()
+                                                  : ShaderRef{name, params, a.ctm, loc};
+    a.exteriorKey = a.exterior.name.empty() ? 0 : ++m_surfaceCalls;
 }
+
+// Deformation shaders were never carried out by any renderer: a warning.
 void RibBuilder::deformation(L loc, S name, P) {
     if (!name.empty() && name != "null")
         m_diag.warning(loc, "Deformation \"" + name +
@@ -593,6 +596,17 @@ uint32_t RibBuilder::currentMaterial() {
          RT_MATERIAL_ATMOSPHERE_SHIFT, "Atmosphere");
     bind(a.interiorKey, a.interior, m_interiorKeys, m_world.interiors,
          RT_MATERIAL_INTERIOR_SHIFT, "Interior");
+    uint32_t exterior = 0;  // (in a table of its own: the material's flag bits are taken)
+    if (a.exteriorKey != 0) {
+        const size_t index = size_t(
+            std::find(m_exteriorKeys.begin(), m_exteriorKeys.end(), a.exteriorKey) -
+            m_exteriorKeys.begin());
+        if (index == m_exteriorKeys.size()) {
+            m_exteriorKeys.push_back(a.exteriorKey);
+            m_world.exteriors.push_back(a.exterior);
+        }
+        exterior = uint32_t(index + 1);
+    }
     if (bind(a.displacementKey, a.displacement, m_displacementKeys, m_world.displacements,
              RT_MATERIAL_DISPLACEMENT_SHIFT, "Displacement") &&
         a.displacesTruly())
@@ -615,11 +629,13 @@ uint32_t RibBuilder::currentMaterial() {
     const float dicing =
         (m.flags & RT_MATERIAL_TRUE_DISPLACEMENT) ? std::sqrt(a.shadingRate) : 0.0f;
     key.append(reinterpret_cast<const char*>(&dicing), sizeof dicing);
+    key.append(reinterpret_cast<const char*>(&exterior), sizeof exterior);
     if (auto it = m_materialKeys.find(key); it != m_materialKeys.end()) return it->second;
     uint32_t index = static_cast<uint32_t>(m_world.materials.size());
     m_world.materials.push_back(m);
     m_world.materialAttributes.push_back(attributeSet);
     m_world.materialDicing.push_back(dicing);
+    m_world.materialExterior.push_back(exterior);
     if (colors.n > 3) {
         m_world.materialChannels.insert(m_world.materialChannels.end(), a.color,
                                         a.color + colors.n);

@@ -256,6 +256,8 @@ private:
         uint64_t atmosphereKey = 0;
         ShaderRef interior;  // the current Interior call (name empty: none)
         uint64_t interiorKey = 0;
+        ShaderRef exterior;  // the current Exterior call (name empty: none)
+        uint64_t exteriorKey = 0;
         ShaderRef displacement;  // the current Displacement call (name empty: none)
         int areaLight = -1;      // AreaLightSource in this block: the geometry emits
         uint64_t displacementKey = 0;
@@ -463,6 +465,7 @@ private:
     std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
     std::vector<uint64_t> m_atmosphereKeys;  // per atmospheres entry: its Atmosphere call
     std::vector<uint64_t> m_interiorKeys;    // per interiors entry: its Interior call
+    std::vector<uint64_t> m_exteriorKeys;    // per exteriors entry: its Exterior call
     std::vector<uint64_t> m_displacementKeys;  // per displacements entry: its call
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;

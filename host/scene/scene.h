@@ -190,6 +190,9 @@ struct Scene {
     std::map<uint32_t, std::vector<std::array<glm::vec3, 3>>> areaLightTriangles;
     std::vector<ShaderRef> atmospheres;  // one per distinct Atmosphere call in use
     std::vector<ShaderRef> interiors;    // one per distinct Interior call in use
+    std::vector<ShaderRef> exteriors;    // one per distinct Exterior call in use
+    // By material: 1 + its Exterior's index in exteriors, 0 for none (no flag bits left)
+    std::vector<uint32_t> materialExterior;
     // ClippingPlane: (a point, its normal) each; what lies on the normal's side is not
     // seen by camera rays. Camera space outside the world, world space inside (device
     // space after WorldEnd).

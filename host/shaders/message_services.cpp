@@ -51,15 +51,6 @@ void writeBlock(const MessageValues& set, const std::vector<Slot>& slots,
             }
 }
 
-// An int (an offset into the buffer, a shader's index) as a float's bits: exact however
-// large, read by as_int.
-float intBits(int64_t value) {
-    const int32_t i = int32_t(value);
-    float f;
-    std::memcpy(&f, &i, sizeof f);
-    return f;
-}
-
 // `switch (nameId)` over the slots: at = the slot's offset where n is its size.
 std::string findSlot(const std::vector<Slot>& slots, const std::string& extra) {
     std::ostringstream s;
@@ -81,6 +72,15 @@ const char* kCopy =
     "    return 1;\n}\n";
 
 }  // namespace
+
+// An int (an offset into the buffer, a shader's index) as a float's bits: exact however
+// large, read by as_int.
+float intBits(int64_t value) {
+    const int32_t i = int32_t(value);
+    float f;
+    std::memcpy(&f, &i, sizeof f);
+    return f;
+}
 
 std::string messageServices(const Scene& scene, bool attributesUsed,
                             const MessageSlots& slots, std::vector<float>& params,

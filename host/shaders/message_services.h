@@ -30,6 +30,10 @@ struct MessageSlots {
 // option block to `params`, writes their starts into the scene block's slots, and
 // returns rsl_attribute and rsl_option. `attributesUsed`: some shader calls attribute()
 // (else rsl_attribute finds nothing and no attribute data is laid out).
+// An int (an offset into the parameter buffer, an index) as a float's bits: exact however
+// large; the device reads it with as_int.
+float intBits(int64_t value);
+
 std::string messageServices(const Scene& scene, bool attributesUsed,
                             const MessageSlots& slots, std::vector<float>& params,
                             rib::Diagnostics& diag);

@@ -29,10 +29,11 @@ namespace {
 // Format (x, y resolution, pixel aspect) then Clipping (near, far); a multiple of four
 // floats, as light blocks after it load float4s.
 // Then the starts of attribute()'s table and option()'s block (message_services.h),
+// the start of the per-material Exterior table (1 + the shader's index, 0 for none),
 // then the clipping planes (normal, offset: clipped where n.P + offset > 0).
 constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20,
                  kSceneAttributes = 25, kSceneOptions = 26, kSceneShaderBlocks = 27,
-                 kSceneClipPlanes = 28,
+                 kSceneExteriors = 28, kSceneClipPlanes = 32,
                  kSceneFloats = kSceneClipPlanes + 4 * kMaxClipPlanes;
 
 // Moves a triple of a point/vector/normal parameter from a space to world space.
@@ -541,6 +542,28 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
                "-1;\n    ev.mode_trace = -1;\n"
                "    ev.trace_count = 0;\n    switch (a) {\n"
             << inter.str() << "    default: break;\n    }\n}\n";
+    // --- exteriors: volume shaders on what comes back from outside the surface a ray
+    // left; a table by material (its flag bits are taken)
+    std::ostringstream exter;
+    std::vector<std::pair<const rsl::EmittedShader*, int32_t>> exterBound;
+    out.exterior = bindCases(m_scene.exteriors, "volume", "&ev", out, exter, shaders,
+                             emitted, exterBound);
+    if (out.exterior) {
+        svc << "static void rd_exterior(int a, RslGlobals* g, __global const float* "
+               "params) {\n"
+               "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    ev.mode_light = "
+               "-1;\n    ev.mode_trace = -1;\n"
+               "    ev.trace_count = 0;\n    switch (a) {\n"
+            << exter.str() << "    default: break;\n    }\n}\n";
+        out.params[kSceneExteriors] = intBits(int64_t(out.params.size()));
+        for (size_t mi = 0; mi < m_scene.materials.size(); ++mi) {
+            const uint32_t e =
+                mi < m_scene.materialExterior.size() ? m_scene.materialExterior[mi] : 0;
+            out.params.push_back(
+                e > 0 && e <= exterBound.size() && exterBound[e - 1].first ? float(e)
+                                                                           : 0.0f);
+        }
+    }
     // --- displacements: bump shaders run before the surface (shade_common.clh)
     std::ostringstream disp;
     out.displacement = bindCases(m_scene.displacements, "displacement", "ev", out, disp,
@@ -639,11 +662,12 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).
     // the shadow lookups' world origin: the world row's translation, negated
     const std::string w = "(p)[" + std::to_string(kSceneWorld);
-    const std::string sceneDefines = "#define RD_SCENE_WORLD_ORIGIN(p) (float4)(-" + w +
-                                     "], -" + w + " + 1], -" + w +
-                                     " + 2], 0.0f)\n"
-                                     "#define RD_SCENE_CLIP_PLANES " +
-                                     std::to_string(kSceneClipPlanes) + "\n";
+    const std::string sceneDefines =
+        "#define RD_SCENE_WORLD_ORIGIN(p) (float4)(-" + w + "], -" + w + " + 1], -" + w +
+        " + 2], 0.0f)\n"
+        "#define RD_SCENE_CLIP_PLANES " +
+        std::to_string(kSceneClipPlanes) + "\n" + "#define RD_SCENE_EXTERIORS " +
+        std::to_string(kSceneExteriors) + "\n";
     // attribute() and option(), once every shader is known (attribute data only when
     // some shader asks)
     auto someShaderCalls = [&](const char* service) {

@@ -58,6 +58,7 @@ struct ShadingSetup {
     int traceSlots = 0;  // rays a hit may spawn with trace(): the surfaces' most a run
     bool atmosphere = false;                // some surface has an Atmosphere shader
     bool interior = false;                  // some surface has an Interior shader
+    bool exterior = false;                  // some surface has an Exterior shader
     bool displacement = false;              // some surface has a Displacement shader
     bool derivatives = false;               // some surface shader takes derivatives
     bool imager = false;                    // the kernel imager_apply runs the Imager

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # no_build_warnings.sh: renders good.rib (copied into the current directory) with each
 # standard surface shader (and bumpy as a true displacement with fog as the atmosphere and
-# the interior, and a clipping plane), two lights, partial opacity, cold (no PoCL kernel cache), and
+# the interior and the exterior, and a clipping plane), two lights, partial opacity, cold (no PoCL kernel cache), and
 # fails if the OpenCL compiler printed any warning: PoCL's compiler writes "N warning(s)
 # generated." to stderr, which a user would see with no context.
 # usage: no_build_warnings.sh RAYDRIVE [WRAPPER...]: WRAPPER, when given, runs each render
@@ -12,7 +12,7 @@ shift
 wrap=("$@")
 for s in ${ONLY:-matte plastic metal mirror paintedplastic glass shinymetal displaced}; do
     surface="Surface \"$s\""
-    [ "$s" = displaced ] && surface="Attribute \"render\" \"int truedisplacement\" [1]\nDisplacement \"bumpy\"\nAtmosphere \"fog\"\nInterior \"fog\"\nClippingPlane 0 0 100 0 0 1\nSurface \"plastic\""
+    [ "$s" = displaced ] && surface="Attribute \"render\" \"int truedisplacement\" [1]\nDisplacement \"bumpy\"\nAtmosphere \"fog\"\nInterior \"fog\"\nExterior \"fog\"\nClippingPlane 0 0 100 0 0 1\nSurface \"plastic\""
     sed -e "s/Surface \"constant\"/LightSource \"distantlight\" 1\nLightSource \"pointlight\" 2 \"from\" [0 2 0]\nOpacity [0.5 0.5 0.5]\n$surface/" \
         good.rib > "$s.rib"
     if ! POCL_KERNEL_CACHE=0 "${wrap[@]}" "$bin" -q -o "$s.exr" "$s.rib" 2> "$s.err"; then
