@@ -272,22 +272,19 @@ __kernel void shade_SURFACE(uint begin, uint count,
         RslGlobals g0 = base, g1 = base;
         g0.Ci = rsl_f2c(0.0f);
         g1.Ci = rsl_f2c(1.0f);
+        /* the volume at Ci = 0 and 1: its b and a + b */
+#define RD_VOLUME_AT_0_AND_1(run) (run((int)atmo - 1, &g0, params), run((int)atmo - 1, &g1, params))
 #ifdef RT_HAS_INTERIOR
-        if (inside) {
-            rd_interior((int)atmo - 1, &g0, params);
-            rd_interior((int)atmo - 1, &g1, params);
-        } else
+        if (inside) RD_VOLUME_AT_0_AND_1(rd_interior);
+        else
 #endif
 #ifdef RT_HAS_EXTERIOR
-        if (outside) {
-            rd_exterior((int)atmo - 1, &g0, params);
-            rd_exterior((int)atmo - 1, &g1, params);
-        } else
+        if (outside) RD_VOLUME_AT_0_AND_1(rd_exterior);
+        else
 #endif
         {
 #ifdef RT_HAS_ATMOSPHERE
-            rd_atmosphere((int)atmo - 1, &g0, params);
-            rd_atmosphere((int)atmo - 1, &g1, params);
+            RD_VOLUME_AT_0_AND_1(rd_atmosphere);
 #endif
         }
         atmo_a = g1.Ci - g0.Ci;

@@ -418,13 +418,20 @@ void RibBuilder::surface(L loc, const std::string& name, const rib::ParamList& p
     m_attrStack.back().surfaceKey = ++m_surfaceCalls;
 }
 
+// A shader call the attributes keep (Atmosphere, Interior, Exterior, Displacement), in
+// the space current at the call, with a number of its own; "" or "null" removes it.
+void RibBuilder::keepCall(L loc, S name, P params, ShaderRef& call, uint64_t& key) {
+    call = (name.empty() || name == "null")
+               ? ShaderRef()
+               : ShaderRef{name, params, m_attrStack.back().ctm, loc};
+    key = call.name.empty() ? 0 : ++m_surfaceCalls;
+}
+
 // Atmosphere "" (or "null") removes it; the volume shader runs on each surface's Ci and
 // Oi as seen from the ray's origin.
 void RibBuilder::atmosphere(L loc, S name, P params) {
     Attributes& a = m_attrStack.back();
-    a.atmosphere = (name.empty() || name == "null") ? ShaderRef()
-                                                     : ShaderRef{name, params, a.ctm, loc};
-    a.atmosphereKey = a.atmosphere.name.empty() ? 0 : ++m_surfaceCalls;
+    keepCall(loc, name, params, a.atmosphere, a.atmosphereKey);
 }
 
 // Interior "" (or "null") removes it. The volume shader runs on what a ray brings back
@@ -432,9 +439,7 @@ void RibBuilder::atmosphere(L loc, S name, P params) {
 // origin: absorption in coloured glass, fog inside an object.
 void RibBuilder::interior(L loc, S name, P params) {
     Attributes& a = m_attrStack.back();
-    a.interior = (name.empty() || name == "null") ? ShaderRef()
-                                                  : ShaderRef{name, params, a.ctm, loc};
-    a.interiorKey = a.interior.name.empty() ? 0 : ++m_surfaceCalls;
+    keepCall(loc, name, params, a.interior, a.interiorKey);
 }
 
 // Exterior "" (or "null") removes it. The volume shader runs on the segment a ray that
@@ -442,9 +447,7 @@ void RibBuilder::interior(L loc, S name, P params) {
 // of the atmosphere.
 void RibBuilder::exterior(L loc, S name, P params) {
     Attributes& a = m_attrStack.back();
-    a.exterior = (name.empty() || name == "null") ? ShaderRef()
-                                                  : ShaderRef{name, params, a.ctm, loc};
-    a.exteriorKey = a.exterior.name.empty() ? 0 : ++m_surfaceCalls;
+    keepCall(loc, name, params, a.exterior, a.exteriorKey);
 }
 
 // Deformation shaders were never carried out by any renderer: a warning.
@@ -458,9 +461,7 @@ void RibBuilder::deformation(L loc, S name, P) {
 // shader's N shades the surface, rays still leave from the undisplaced one.
 void RibBuilder::displacement(L loc, S name, P params) {
     Attributes& a = m_attrStack.back();
-    a.displacement = (name.empty() || name == "null") ? ShaderRef()
-                                                       : ShaderRef{name, params, a.ctm, loc};
-    a.displacementKey = a.displacement.name.empty() ? 0 : ++m_surfaceCalls;
+    keepCall(loc, name, params, a.displacement, a.displacementKey);
 }
 
 // Imager: an option, the shader run on every pixel of the finished image.

@@ -278,6 +278,7 @@ private:
     enum class Block { Frame, World, Attribute, Transform };
 
     uint32_t currentMaterial();
+    void keepCall(L loc, S name, P params, ShaderRef& call, uint64_t& key);
     // Attribute and Option values for attribute() and option()
     // (rib_builder_messages.cpp): params of `category` into `into` as "category:name",
     // replacing those of the same name; `ctm` (attributes) moves points, vectors and
