@@ -1,8 +1,9 @@
 // true_displacement.h: true displacement's second half: the displacement shaders run on
 // the device at the diced vertices (cl/kernels/displace_vertices.cl) and the diced
 // triangles moved to where they put them, before the BVH is built. Each diced triangle's
-// normals are then those of the moved surface (the area-weighted normals of the pieces
-// about each vertex), and its shader is not run again as a bump map when it is shaded.
+// normals are then the N the shader left at its vertices (else the area-weighted normals
+// of the moved pieces about each vertex), and its shader is not run again as a bump map
+// when it is shaded.
 // Vertices whose texture lookups met absent tiles are run again once the host has
 // served them, as the shade stage's points are (texture_reshade.h).
 #pragma once

@@ -1,6 +1,7 @@
 // dice_displaced.h: the first half of true displacement: the triangles of truly
 // displaced surfaces (RT_MATERIAL_TRUE_DISPLACEMENT) cut into micropolygons whose edges
-// are about sqrt(ShadingRate) pixels long, as REYES dices a grid. The second half
+// are about sqrt(ShadingRate) pixels long (four times that out of view), as REYES dices
+// a grid. The second half
 // (host/render/true_displacement.h) runs the displacement shaders on their vertices.
 //
 // An edge is halved when it is longer than its surface's limit, a decision that depends
