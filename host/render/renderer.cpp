@@ -88,8 +88,10 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     // built.
     std::optional<Scene> dicedScene;
     DicedSurfaces diced;
-    const DicingView dicingView = dicingViewOf(input.deviceCamera());
-    if (hasTrueDisplacement(input)) {
+    const bool dicing = hasTrueDisplacement(input);
+    const DicingView dicingView =
+        dicing ? dicingViewOf(input.deviceCamera()) : DicingView{};
+    if (dicing) {
         dicedScene.emplace(input);
         diced = diceDisplacedSurfaces(*dicedScene, dicingView,
                                       input.render.dicedTriangles > 0

@@ -166,9 +166,7 @@ void reportDicing(const DicedSurfaces& d, const Scene& scene, rib::Diagnostics& 
     if (d.coarsening > 1.0f)
         diag.warning(loc, "true displacement diced " + std::to_string(int(d.coarsening)) +
                               "x coarser than ShadingRate asks, to stay within " +
-                              std::to_string(scene.render.dicedTriangles > 0
-                                                 ? size_t(scene.render.dicedTriangles)
-                                                 : kMaxDicedTriangles) +
+                              std::to_string(d.budget) +
                               " triangles (Option \"limits\" \"dicedtriangles\")");
     if (d.truncated)
         diag.warning(loc,

@@ -258,6 +258,7 @@ private:
 DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
                                     size_t maxTriangles) {
     DicedSurfaces out;
+    out.budget = maxTriangles;
     const size_t n = s.triangles.size();
     std::vector<size_t> diced;
     for (size_t t = 0; t < n; ++t) {
@@ -285,10 +286,9 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
     // doubles the edge limit).
     size_t counted = 0;  // the pieces of the dicing that fits
     for (int tries = 0;; ++tries) {
-        size_t& count = counted;
-        count = 0;
+        counted = 0;
         auto counter = [&](const Corner&, const Corner&, const Corner&) {
-            return ++count <= maxTriangles;
+            return ++counted <= maxTriangles;
         };
         bool fits = true;
         for (size_t t : diced) {

@@ -51,6 +51,7 @@ struct DicedSurfaces {
     size_t diced = 0;    // triangles replaced
     size_t skipped = 0;  // truly displaced triangles left as they are (moving, instanced,
                          // in a solid: rendered undisplaced)
+    size_t budget = 0;   // the most pieces asked for
     float coarsening = 1.0f;  // the edge limit's factor that kept within the budget
     bool truncated = false;   // the budget ran out all the same: surfaces left with holes
 };

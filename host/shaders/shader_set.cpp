@@ -519,42 +519,31 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         noteTextures(out, *sh, call);
         out.params.insert(out.params.end(), block.begin(), block.end());
     }
-    // --- atmospheres: volume shaders on a surface's Ci and Oi, parameters in the buffer
     std::set<std::string> emitted;
-    std::ostringstream atmo;
-    std::vector<std::pair<const rsl::EmittedShader*, int32_t>> atmoBound, dispBound;
-    out.atmosphere = bindCases(m_scene.atmospheres, "volume", "&ev", out, atmo, shaders,
-                               emitted, atmoBound);
-    if (out.atmosphere)
-        svc << "static void rd_atmosphere(int a, RslGlobals* g, __global const float* params) {\n"
-               "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    ev.mode_light = -1;\n    ev.mode_trace = -1;\n"
-               "    ev.trace_count = 0;\n    switch (a) {\n" << atmo.str()
-            << "    default: break;\n    }\n}\n";
-    // --- interiors: volume shaders on what comes back from inside a surface
-    std::ostringstream inter;
-    std::vector<std::pair<const rsl::EmittedShader*, int32_t>> interBound;
-    out.interior = bindCases(m_scene.interiors, "volume", "&ev", out, inter, shaders,
-                             emitted, interBound);
-    if (out.interior)
-        svc << "static void rd_interior(int a, RslGlobals* g, __global const float* "
-               "params) {\n"
-               "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    ev.mode_light = "
-               "-1;\n    ev.mode_trace = -1;\n"
-               "    ev.trace_count = 0;\n    switch (a) {\n"
-            << inter.str() << "    default: break;\n    }\n}\n";
-    // --- exteriors: volume shaders on what comes back from outside the surface a ray
-    // left; a table by material (its flag bits are taken)
-    std::ostringstream exter;
-    std::vector<std::pair<const rsl::EmittedShader*, int32_t>> exterBound;
-    out.exterior = bindCases(m_scene.exteriors, "volume", "&ev", out, exter, shaders,
-                             emitted, exterBound);
+    std::vector<std::pair<const rsl::EmittedShader*, int32_t>> atmoBound, dispBound,
+        interBound, exterBound;
+    // A volume kind's calls bound, and its dispatcher rd_<kind>(index, globals, params)
+    // (its shaders run in base mode: no lights, no traces, no derivatives).
+    auto bindVolumes =
+        [&](const std::vector<ShaderRef>& calls, const char* kind,
+            std::vector<std::pair<const rsl::EmittedShader*, int32_t>>& bound) {
+            std::ostringstream cases;
+            if (!bindCases(calls, "volume", "&ev", out, cases, shaders, emitted, bound))
+                return false;
+            svc << "static void rd_" << kind
+                << "(int a, RslGlobals* g, __global const float* params) {\n"
+                   "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    "
+                   "ev.mode_light = -1;\n"
+                   "    ev.mode_trace = -1;\n    ev.trace_count = 0;\n    switch (a) {\n"
+                << cases.str() << "    default: break;\n    }\n}\n";
+            return true;
+        };
+    // --- atmospheres, interiors (what comes back from inside a surface), exteriors (from
+    // outside the surface a ray left; a table by material: its flag bits are taken)
+    out.atmosphere = bindVolumes(m_scene.atmospheres, "atmosphere", atmoBound);
+    out.interior = bindVolumes(m_scene.interiors, "interior", interBound);
+    out.exterior = bindVolumes(m_scene.exteriors, "exterior", exterBound);
     if (out.exterior) {
-        svc << "static void rd_exterior(int a, RslGlobals* g, __global const float* "
-               "params) {\n"
-               "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    ev.mode_light = "
-               "-1;\n    ev.mode_trace = -1;\n"
-               "    ev.trace_count = 0;\n    switch (a) {\n"
-            << exter.str() << "    default: break;\n    }\n}\n";
         out.params[kSceneExteriors] = intBits(int64_t(out.params.size()));
         for (size_t mi = 0; mi < m_scene.materials.size(); ++mi) {
             const uint32_t e =
