@@ -11,6 +11,7 @@
 
 #include "rib_builder_util.h"
 #include "shaders/shader_path.h"
+#include "shaders/shader_set.h"
 #include "tessellate.h"
 
 namespace rd {
@@ -72,12 +73,13 @@ void RibBuilder::worldBegin(L loc) {
     m_inWorld = true;
     m_materialKeys.clear();
     m_attributeSetIndex.clear();
-    m_surfaceKeys.clear();
     m_surfaceVariants.clear();
     m_atmosphereKeys.clear();
     m_interiorKeys.clear();
     m_exteriorKeys.clear();
     m_displacementKeys.clear();
+    m_readsObjectSpace.clear();
+    m_objectSpaces.clear();
     m_degenerate = 0;
     m_solidNodes.clear();
     m_solidStack.clear();
@@ -97,7 +99,11 @@ void RibBuilder::worldEnd(L loc) {
     for (ShaderRef& r : m_world.lights) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
     for (auto* refs : {&m_world.surfaceRefs, &m_world.displacements, &m_world.atmospheres,
                        &m_world.interiors, &m_world.exteriors})
-        for (ShaderRef& r : *refs) r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
+        for (ShaderRef& r : *refs) {
+            r.shaderToWorld = glm::mat4(toOrigin * glm::dmat4(r.shaderToWorld));
+            if (r.objectToWorld)
+                r.objectToWorld = glm::mat4(toOrigin * glm::dmat4(*r.objectToWorld));
+        }
     m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
                                              glm::translate(glm::dmat4(1.0), m_origin));
     m_world.camera.worldToCameraEnd = glm::mat4(glm::dmat4(m_world.camera.worldToCameraEnd) *
@@ -540,10 +546,14 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
     }
     for (const auto& [name, floats] : perPoint)
         signature += name + ":" + std::to_string(floats) + " per point;";
+    const uint32_t objectSpace = objectSpaceOf(a.surface.name);
+    if (objectSpace != 0)
+        signature += "object space " + std::to_string(objectSpace) + ";";
     auto [it, fresh] = m_surfaceVariants.emplace(std::make_pair(a.surfaceKey, signature),
                                                  uint32_t(m_world.surfaceRefs.size()));
     if (fresh) {
         ShaderRef ref = a.surface;
+        if (objectSpace != 0) ref.objectToWorld = a.ctm;
         for (const rib::Param& p : overrides.params) {
             auto same = std::find_if(ref.params.params.begin(), ref.params.params.end(),
                                      [&](const rib::Param& q) { return q.name == p.name; });
@@ -555,9 +565,47 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
         for (const auto& [name, floats] : perPoint) values += pointParamEntries(floats);
         m_world.maxPointParams = std::max(m_world.maxPointParams, values);
         m_world.surfaceRefs.push_back(ref);
-        m_surfaceKeys.push_back(a.surfaceKey);
     }
     return it->second;
+}
+
+uint32_t RibBuilder::objectSpaceOf(const std::string& name) {
+    if (name.empty()) return 0;
+    auto known = m_readsObjectSpace.find(name);
+    if (known == m_readsObjectSpace.end())
+        known =
+            m_readsObjectSpace.emplace(name, shaderReadsObjectSpace(m_world, name)).first;
+    if (!known->second) return 0;
+    const glm::mat4& ctm = m_attrStack.back().ctm;
+    const std::string bytes(reinterpret_cast<const char*>(&ctm[0][0]), sizeof ctm);
+    return m_objectSpaces.emplace(bytes, uint32_t(m_objectSpaces.size() + 1))
+        .first->second;
+}
+
+size_t RibBuilder::callIndex(uint64_t key, const ShaderRef& call, CallIndex& index,
+                             std::vector<ShaderRef>& calls, size_t limit,
+                             const char* request) {
+    uint32_t objectSpace = objectSpaceOf(call.name);
+    auto it = index.find({key, objectSpace});
+    if (it != index.end()) return it->second;
+    if (calls.size() >= limit && objectSpace != 0) {
+        // past the limit, the call's own space stands for the primitive's
+        if (m_warnedAt.insert({call.loc.file, call.loc.line}).second)
+            m_diag.warning(
+                call.loc, std::string("more than ") + std::to_string(limit) + " " +
+                              request + " instances (one per object space for shader \"" +
+                              call.name +
+                              "\", which reads \"object\" space); "
+                              "the rest take the call's space as object space");
+        objectSpace = 0;
+        it = index.find({key, objectSpace});
+        if (it != index.end()) return it->second;
+    }
+    ShaderRef ref = call;
+    if (objectSpace != 0) ref.objectToWorld = m_attrStack.back().ctm;
+    index.emplace(std::make_pair(key, objectSpace), calls.size());
+    calls.push_back(std::move(ref));
+    return calls.size() - 1;
 }
 
 uint32_t RibBuilder::currentMaterial() {
@@ -577,15 +625,10 @@ uint32_t RibBuilder::currentMaterial() {
     if (a.sides == 1) m.flags |= RT_MATERIAL_ONE_SIDED;
     // each volume or displacement call in use gets an index, 1 + it in the material's
     // bits
-    auto bind = [&](uint64_t callKey, const ShaderRef& call, std::vector<uint64_t>& keys,
+    auto bind = [&](uint64_t callKey, const ShaderRef& call, CallIndex& keys,
                     std::vector<ShaderRef>& calls, uint32_t shift, const char* request) {
         if (callKey == 0) return false;
-        const size_t index =
-            size_t(std::find(keys.begin(), keys.end(), callKey) - keys.begin());
-        if (index == keys.size()) {
-            keys.push_back(callKey);
-            calls.push_back(call);
-        }
+        const size_t index = callIndex(callKey, call, keys, calls, 255, request);
         if (index < 255)
             m.flags |= uint32_t(index + 1) << shift;
         else
@@ -598,16 +641,10 @@ uint32_t RibBuilder::currentMaterial() {
     bind(a.interiorKey, a.interior, m_interiorKeys, m_world.interiors,
          RT_MATERIAL_INTERIOR_SHIFT, "Interior");
     uint32_t exterior = 0;  // (in a table of its own: the material's flag bits are taken)
-    if (a.exteriorKey != 0) {
-        const size_t index = size_t(
-            std::find(m_exteriorKeys.begin(), m_exteriorKeys.end(), a.exteriorKey) -
-            m_exteriorKeys.begin());
-        if (index == m_exteriorKeys.size()) {
-            m_exteriorKeys.push_back(a.exteriorKey);
-            m_world.exteriors.push_back(a.exterior);
-        }
-        exterior = uint32_t(index + 1);
-    }
+    if (a.exteriorKey != 0)
+        exterior = uint32_t(callIndex(a.exteriorKey, a.exterior, m_exteriorKeys,
+                                      m_world.exteriors, SIZE_MAX, "Exterior") +
+                            1);
     if (bind(a.displacementKey, a.displacement, m_displacementKeys, m_world.displacements,
              RT_MATERIAL_DISPLACEMENT_SHIFT, "Displacement") &&
         a.displacesTruly())

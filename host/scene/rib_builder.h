@@ -463,11 +463,18 @@ private:
     std::vector<Scene> m_scenes;
     std::unordered_map<std::string, uint32_t> m_materialKeys;
     std::map<MessageValues, uint32_t> m_attributeSetIndex;
-    std::vector<uint64_t> m_surfaceKeys;  // per surfaceRefs entry: its Surface call
-    std::vector<uint64_t> m_atmosphereKeys;  // per atmospheres entry: its Atmosphere call
-    std::vector<uint64_t> m_interiorKeys;    // per interiors entry: its Interior call
-    std::vector<uint64_t> m_exteriorKeys;    // per exteriors entry: its Exterior call
-    std::vector<uint64_t> m_displacementKeys;  // per displacements entry: its call
+    // A volume or displacement call's index in its list, by (its call's number, its
+    // object space: objectSpaceOf)
+    using CallIndex = std::map<std::pair<uint64_t, uint32_t>, size_t>;
+    CallIndex m_atmosphereKeys, m_interiorKeys, m_exteriorKeys, m_displacementKeys;
+    size_t callIndex(uint64_t key, const ShaderRef& call, CallIndex& index,
+                     std::vector<ShaderRef>& calls, size_t limit, const char* request);
+    // 0 when shader NAME does not read "object" space (shaderReadsObjectSpace, asked once
+    // a world), else 1 + the index of the current transform among the object spaces
+    // the world's primitives gave such shaders.
+    uint32_t objectSpaceOf(const std::string& name);
+    std::map<std::string, bool> m_readsObjectSpace;
+    std::map<std::string, uint32_t> m_objectSpaces;  // by the transform's bytes
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
     bool m_specularSetInWorld = false;

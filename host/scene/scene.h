@@ -5,6 +5,7 @@
 #include <array>
 #include <glm/glm.hpp>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,9 @@ struct ShaderRef {
     // name, and floats per value (1 float, 3 point/vector/normal, a colour's channels),
     // each taking pointParamEntries(floats) values a point
     std::vector<std::pair<std::string, int>> pointParams = {};
+    // "object" space to world: the primitives' own, for a shader that reads "object"
+    // space (an instance per object space); none: the shader's space stands for it.
+    std::optional<glm::mat4> objectToWorld = std::nullopt;
 };
 
 // The float4 values a per-point parameter of `floats` floats takes: three floats each

@@ -112,15 +112,16 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
     }
     // After the parameters: the instance's "shader" and "object" spaces (rsl_abi.h,
     // SPACES), RSL row-vector matrices, which are glm's column-major arrays as they are.
-    // Object space is taken as the space the shader was declared in: per-primitive
-    // object spaces are not carried to the shade stage yet.
+    // Object space is the primitive's when the shader reads it (the builder made the
+    // instance for it: ShaderRef::objectToWorld), else the space it was declared in.
     const float* m = &call.shaderToWorld[0][0];
+    const float* o = call.objectToWorld ? &(*call.objectToWorld)[0][0] : m;
     block.resize(size_t(sh.spaceOffset) + 32);
     // then the slots its prepare function fills once per instance (rsl::HoistPlan)
     block.resize(size_t(sh.prepOffset) + size_t(sh.prepFloats), 0.0f);
     for (int i = 0; i < 16; ++i) {
         block[size_t(sh.spaceOffset + i)] = m[i];
-        block[size_t(sh.spaceOffset + 16 + i)] = m[i];
+        block[size_t(sh.spaceOffset + 16 + i)] = o[i];
     }
     return block;
 }
@@ -167,7 +168,35 @@ void noteTextures(ShadingSetup& out, const rsl::EmittedShader& sh, const ShaderR
             for (const std::string& s : p->strings) out.textureNames.push_back(s);
     }
 }
+
+// Compiles shader NAME of `file` (its one shader, or the one of that name); false, with
+// the reasons in `messages`, when it does not compile.
+bool compileShader(const std::string& file, const std::string& name,
+                   const std::vector<std::string>& includeDirs, int colorChannels,
+                   std::ostream& messages, rsl::EmittedShader& emitted) {
+    rsl::Diagnostics rd(&messages);
+    rsl::Program prog;
+    rsl::PreprocessOptions opts;
+    opts.includeDirs = includeDirs;
+    const rsl::ShaderDecl* decl = nullptr;
+    if (rsl::compileFile(file, opts, prog, rd))
+        for (const auto& sh : prog.shaders)
+            if (sh->name == name || prog.shaders.size() == 1) decl = sh.get();
+    if (decl) emitted = rsl::emitOpenCL(*decl, prog, rd, colorChannels);
+    return decl && emitted.ok && !rd.hasErrors();
+}
 }  // namespace
+
+bool shaderReadsObjectSpace(const Scene& options, const std::string& name) {
+    const std::vector<std::string> path = shaderSearchPath(
+        options.shaderSearchPath, fs::path(options.sourceFile).parent_path().string());
+    const std::string file = findShaderFile(path, name);
+    std::ostringstream quiet;  // (ShaderSet reports what is wrong with it)
+    rsl::EmittedShader emitted;
+    return !file.empty() &&
+           compileShader(file, name, path, options.colors.n, quiet, emitted) &&
+           emitted.usesObjectSpace;
+}
 
 ShaderSet::ShaderSet(const Scene& scene, rib::Diagnostics& diag)
     : m_scene(scene),
@@ -201,23 +230,16 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
         return nullptr;
     }
     std::ostringstream messages;
-    rsl::Diagnostics rd(&messages);
-    rsl::Program prog;
-    rsl::PreprocessOptions opts;
-    opts.includeDirs = m_path;
-    const rsl::ShaderDecl* decl = nullptr;
-    if (rsl::compileFile(file, opts, prog, rd))
-        for (const auto& sh : prog.shaders)
-            if (sh->name == name || prog.shaders.size() == 1) decl = sh.get();
     rsl::EmittedShader emitted;
-    if (decl) emitted = rsl::emitOpenCL(*decl, prog, rd, m_scene.colors.n);
+    const bool compiled =
+        compileShader(file, name, m_path, m_scene.colors.n, messages, emitted);
     // The compiler's own messages carry the shader file's line and column.
     std::istringstream lines(messages.str());
     for (std::string l; std::getline(lines, l);)
         if (l.find(": warning: ") == std::string::npos)
             m_diag.warning(loc, "in " + kind + " shader \"" + name + "\": " + l + " (" +
                                     leftOut(kind) + ")");
-    if (!decl || !emitted.ok || rd.hasErrors()) return nullptr;
+    if (!compiled) return nullptr;
     if (emitted.kind != kind) {
         m_diag.warning(loc, "shader \"" + name + "\" is a " + emitted.kind +
                                 " shader, not a " + kind + " shader; not used");

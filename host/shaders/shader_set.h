@@ -101,6 +101,11 @@ private:
     std::map<std::string, std::unique_ptr<rsl::EmittedShader>> m_cache;  // null: failed
 };
 
+// Whether shader NAME, found on the scene's search path as ShaderSet finds it, reads
+// "object" space: each primitive's own object space then needs an instance of its own
+// (ShaderRef::objectToWorld). Compiled quietly: ShaderSet reports what is wrong with it.
+bool shaderReadsObjectSpace(const Scene& options, const std::string& name);
+
 // Binds a shader call's parameters: defaults, then the RIB's values (by name, checked
 // against the declared type), points/vectors/normals moved to world space, RGB colour
 // defaults in the scene's colour channels; for an imager (which works on the film's RGB)

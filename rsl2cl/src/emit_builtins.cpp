@@ -13,8 +13,10 @@ std::string Emitter::spaceArg(const Expr& e) {
             error(e.loc, "unknown coordinate system \"" + e.text + "\"");
             return "RSL_SPACE_CURRENT";
         }
+        m_out.usesObjectSpace |= sp == kObjectSpaceId;
         return std::to_string(sp);
     }
+    m_out.usesObjectSpace = true;
     return "rsl_space_from_id(" + expr(e) + ")";
 }
 

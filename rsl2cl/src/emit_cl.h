@@ -46,6 +46,9 @@ struct EmittedShader {
     std::string prepFunction;
     std::vector<std::string> hoisted;  // the variables it computes, for --info
     bool usesTrace = false, usesDerivatives = false, usesTexture = false;
+    // Reads "object" space (or a space named at run time, which may be it): each
+    // primitive's own object space then needs an instance of its own (rsl_abi.h, SPACES).
+    bool usesObjectSpace = false;
     // The most trace() calls one evaluation can make: one per call site in the shader's
     // body outside loops; kMaxTrace (RSL_MAX_TRACE's default) when a call may repeat (in
     // a loop, an illuminance loop or a user function). The renderer sizes its spawned

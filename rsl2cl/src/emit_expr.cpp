@@ -245,6 +245,7 @@ std::string Emitter::expr(const Expr& e) {
             return a;
         }
         if (sp <= 1) return a;
+        m_out.usesObjectSpace |= sp == kObjectSpaceId;
         std::string spc = std::to_string(sp);
         m_usesSpaces = true;
         if (to.isMatrix()) return "rsl_mmul(" + a + ", rsl_space_to_space(sp, " + spc + ", RSL_SPACE_CURRENT))";

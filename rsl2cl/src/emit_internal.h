@@ -18,6 +18,7 @@ const char* clType(const TypeSpec& t);
 std::string clZero(const TypeSpec& t);          // zero of the element type
 std::string clNumber(double v);                 // 1.0f
 int spaceIdOf(const std::string& name);         // RSL_SPACE_* value or -1
+constexpr int kObjectSpaceId = 3;               // spaceIdOf("object")
 int colorIdOf(const std::string& name);         // RSL_COLOR_* value or -1
 int slotsOf(BaseType b, int colorSlots);        // float slots of one value in a block
 // Light coefficients (emit_coefs.cpp): whether e depends on some light's Cl, and whether

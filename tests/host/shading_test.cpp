@@ -457,40 +457,6 @@ TEST(Shading, VertexPrimitiveVariables) {
     EXPECT_NEAR(st.mean(1, 0, 4, 16, 5), 2 * (0.4375 + 1), 0.05);
 }
 
-// "shader" space is the coordinate system current at the Surface call: a shader that
-// prints transform("shader", P) sees world x shifted by the Translate before Surface.
-TEST(Shading, ShaderSpaceIsWhereTheSurfaceWasDeclared) {
-    std::string dir = shaderDir("raydrive_space");
-    std::ofstream(dir + "/showspace.sl") << "surface showspace() {\n    Oi = 1;\n"
-                                            "    Ci = color(xcomp(transform(\"shader\", P)) + 2, 0, 0);\n}\n";
-    Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
-                             "Format 16 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
-                             "WorldBegin\nAttributeBegin\nTranslate 0.5 0 0\n"
-                             "Surface \"showspace\"\nTranslate -0.5 0 0\n"
-                             "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1]\n"
-                             "AttributeEnd\nWorldEnd\n");
-    // world x at the centre of column 8 is 0.0625: shader x = 0.0625 - 0.5
-    EXPECT_NEAR(img.mean(0, 8, 0, 9, 16), 0.0625 - 0.5 + 2, 0.02);
-}
-
-// "world" space is the RIB's world even though the renderer keeps the scene relative to
-// the eye (for precision far from the origin): a camera at world (10, 0, -5) looking at
-// the point (10, 0, 0) sees transform("world", P) = (10, 0, 0) at the image centre.
-TEST(Shading, WorldSpaceIsTheRibWorld) {
-    std::string dir = shaderDir("raydrive_world");
-    std::ofstream(dir + "/showworld.sl")
-        << "surface showworld() {\n    Oi = 1;\n    point w = transform(\"world\", P);\n"
-           "    Ci = color(xcomp(w) / 10, ycomp(w) + 1, zcomp(w) + 1);\n}\n";
-    Rendered img = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n"
-                             "Format 16 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
-                             "ScreenWindow -0.5 0.5 -0.5 0.5\nTranslate -10 0 5\n"
-                             "WorldBegin\nSurface \"showworld\"\n"
-                             "Polygon \"P\" [9 -1 0  11 -1 0  11 1 0  9 1 0]\nWorldEnd\n");
-    EXPECT_NEAR(img.mean(0, 7, 7, 9, 9), 1.0, 0.01);
-    EXPECT_NEAR(img.mean(1, 7, 7, 9, 9), 1.0, 0.05);
-    EXPECT_NEAR(img.mean(2, 7, 7, 9, 9), 1.0, 0.01);
-}
-
 // Atmosphere "fog" (the standard volume shader) on constant white surfaces at distances
 // 1 and 3 from an orthographic eye: Ci = mix(Ci, background, 1 - exp(-d / distance)).
 TEST(Shading, FogAtmosphereFollowsItsClosedForm) {

@@ -176,6 +176,29 @@ TEST(Codegen, ParamLayoutAndMetadata) {
                                  "s.sl", &err)) << err;
     EXPECT_EQ(sh.shader.params[0].defaults[0], float(rsl::stringId("grid.tx")));
     EXPECT_FALSE(sh.shader.params[1].constantDefault);
+    EXPECT_FALSE(sh.shader.usesObjectSpace);
+    // "object" space read (an instance per primitive's object space, rsl_abi.h SPACES):
+    // by name, or by a space named at run time; a default written in it is computed where
+    // the shader runs, one in "shader" space is the host's to convert
+    ASSERT_TRUE(
+        sh.compileSource("surface s(point c = point \"object\" (1, 2, 3); point d = "
+                         "point \"shader\" (1, 2, 3)) { Ci = length(P - c - d); }",
+                         "s.sl", &err))
+        << err;
+    EXPECT_TRUE(sh.shader.usesObjectSpace);
+    EXPECT_FALSE(sh.shader.params[0].constantDefault);
+    EXPECT_TRUE(sh.shader.params[1].constantDefault);
+    EXPECT_EQ(sh.shader.params[1].space, "shader");
+    ASSERT_TRUE(
+        sh.compileSource("surface s(string sp = \"world\") { Ci = xcomp(transform(sp, "
+                         "P)); }",
+                         "s.sl", &err))
+        << err;
+    EXPECT_TRUE(sh.shader.usesObjectSpace);
+    ASSERT_TRUE(sh.compileSource("surface s() { Ci = xcomp(transform(\"camera\", P)); }",
+                                 "s.sl", &err))
+        << err;
+    EXPECT_FALSE(sh.shader.usesObjectSpace);
 }
 
 // The most trace() calls one evaluation makes (traceBound, what the renderer sizes its

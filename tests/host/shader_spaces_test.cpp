@@ -1,0 +1,108 @@
+// shader_spaces_test.cpp: the coordinate systems shaders name, rendered through the
+// whole pipeline: "shader" (where the shader was declared), "world" (the RIB's, though
+// the device keeps the scene relative to the eye) and "object" (each primitive's own,
+// where the shader reads it: an instance per object space).
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "render_harness.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+// "shader" space is the coordinate system current at the Surface call: a shader that
+// prints transform("shader", P) sees world x shifted by the Translate before Surface.
+TEST(Shading, ShaderSpaceIsWhereTheSurfaceWasDeclared) {
+    const std::string dir = rd::test::scratchDir("raydrive_space");
+    std::ofstream(dir + "/showspace.sl")
+        << "surface showspace() {\n    Oi = 1;\n"
+           "    Ci = color(xcomp(transform(\"shader\", P)) + 2, 0, 0);\n}\n";
+    Rendered img =
+        renderRib("Option \"searchpath\" \"shader\" [\"" + dir +
+                  ":&\"]\n"
+                  "Format 16 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
+                  "WorldBegin\nAttributeBegin\nTranslate 0.5 0 0\n"
+                  "Surface \"showspace\"\nTranslate -0.5 0 0\n"
+                  "Polygon \"P\" [-1 -1 1  1 -1 1  1 1 1  -1 1 1]\n"
+                  "AttributeEnd\nWorldEnd\n");
+    // world x at the centre of column 8 is 0.0625: shader x = 0.0625 - 0.5
+    EXPECT_NEAR(img.mean(0, 8, 0, 9, 16), 0.0625 - 0.5 + 2, 0.02);
+}
+
+// "world" space is the RIB's world even though the renderer keeps the scene relative to
+// the eye (for precision far from the origin): a camera at world (10, 0, -5) looking at
+// the point (10, 0, 0) sees transform("world", P) = (10, 0, 0) at the image centre.
+TEST(Shading, WorldSpaceIsTheRibWorld) {
+    const std::string dir = rd::test::scratchDir("raydrive_world");
+    std::ofstream(dir + "/showworld.sl")
+        << "surface showworld() {\n    Oi = 1;\n    point w = transform(\"world\", P);\n"
+           "    Ci = color(xcomp(w) / 10, ycomp(w) + 1, zcomp(w) + 1);\n}\n";
+    Rendered img =
+        renderRib("Option \"searchpath\" \"shader\" [\"" + dir +
+                  ":&\"]\n"
+                  "Format 16 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
+                  "ScreenWindow -0.5 0.5 -0.5 0.5\nTranslate -10 0 5\n"
+                  "WorldBegin\nSurface \"showworld\"\n"
+                  "Polygon \"P\" [9 -1 0  11 -1 0  11 1 0  9 1 0]\nWorldEnd\n");
+    EXPECT_NEAR(img.mean(0, 7, 7, 9, 9), 1.0, 0.01);
+    EXPECT_NEAR(img.mean(1, 7, 7, 9, 9), 1.0, 0.05);
+    EXPECT_NEAR(img.mean(2, 7, 7, 9, 9), 1.0, 0.01);
+}
+
+// "object" space is the coordinate system current at each primitive, not at the Surface
+// call (RI 3.2): one Surface declared at the world's top shades spheres translated to
+// x = -2 and x = 2 (the second turned 90 degrees about y) and a square pushed to z = 0.5.
+// transform("object", P) at the front of each sphere, head on, is the sphere's own
+// (0, 0, -1), turned to (1, 0, 0) on the second; the square's z is its own 0. A default
+// written in "object" space (point "object" (0, 0, 0)) is each sphere's centre, so
+// length(P - centre) is the radius (1, and 0.3 for a small one moved in front); a
+// displacement that reads "object" space gets the primitive's too. Before, all three saw
+// the declaration's space (the world's).
+TEST(Shading, ObjectSpaceIsEachPrimitivesOwn) {
+    const std::string dir = rd::test::scratchDir("raydrive_object_space");
+    std::ofstream(dir + "/showobject.sl")
+        << "surface showobject() {\n    Oi = 1;\n    point o = transform(\"object\", "
+           "P);\n"
+           "    Ci = color(xcomp(o) + 2, ycomp(o) + 2, zcomp(o) + 2);\n}\n";
+    std::ofstream(dir + "/objcentre.sl")
+        << "surface objcentre(point centre = point \"object\" (0, 0, 0)) {\n"
+           "    Oi = 1;\n    Ci = length(P - centre);\n}\n";
+    std::ofstream(dir + "/objnormal.sl")
+        << "displacement objnormal() {\n    point o = transform(\"object\", P);\n"
+           "    N = normal(xcomp(o), ycomp(o), zcomp(o));\n}\n";
+    std::ofstream(dir + "/shownormal.sl")
+        << "surface shownormal() {\n    Oi = 1;\n    normal n = normalize(N);\n"
+           "    Ci = color(xcomp(n), ycomp(n), zcomp(n)) + 2;\n}\n";
+    const std::string camera = "Option \"searchpath\" \"shader\" [\"" + dir +
+                               ":&\"]\nFormat 64 32 1\nPixelSamples 2 2\n"
+                               "Projection \"orthographic\"\nScreenWindow -4 4 -2 2\n"
+                               "Translate 0 0 5\nWorldBegin\n";
+    const Rendered img = renderRib(
+        camera +
+        "Surface \"showobject\"\n"
+        "AttributeBegin\nTranslate -2 0 0\nSphere 1 -1 1 360\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 2 0 0\nRotate 90 0 1 0\nSphere 1 -1 1 "
+        "360\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 0 0 0.5\n"
+        "Polygon \"P\" [-0.5 -0.5 0  0.5 -0.5 0  0.5 0.5 0  -0.5 0.5 0]\nAttributeEnd\n"
+        "WorldEnd\n");
+    // pixel 16 is world x = -2, 48 is x = 2 (8 units over 64 pixels); z is about -0.99
+    // over the 2 x 2 pixels at a sphere's front
+    EXPECT_NEAR(img.mean(0, 15, 15, 17, 17), 2.0, 0.02) << "the first sphere's own x";
+    EXPECT_NEAR(img.mean(2, 15, 15, 17, 17), 1.0, 0.02) << "the first sphere's own z";
+    EXPECT_NEAR(img.mean(0, 47, 15, 49, 17), 3.0, 0.02) << "the turned sphere's own x";
+    EXPECT_NEAR(img.mean(2, 47, 15, 49, 17), 2.0, 0.02) << "the turned sphere's own z";
+    EXPECT_NEAR(img.mean(2, 30, 14, 34, 18), 2.0, 1e-4) << "the square's own z";
+    const Rendered mixed = renderRib(
+        camera +
+        "AttributeBegin\nSurface \"shownormal\"\nDisplacement \"objnormal\"\n"
+        "Translate -2 0 0\nSphere 1 -1 1 360\nAttributeEnd\n"
+        "AttributeBegin\nSurface \"objcentre\"\nTranslate 2 0 0\nSphere 1 -1 1 360\n"
+        "Translate 0 0 -1.2\nSphere 0.3 -0.3 0.3 360\nAttributeEnd\nWorldEnd\n");
+    EXPECT_NEAR(mixed.mean(0, 15, 15, 17, 17), 2.0, 0.02) << "the displacement's own x";
+    EXPECT_NEAR(mixed.mean(2, 15, 15, 17, 17), 1.0, 0.02) << "the displacement's own z";
+    // (x 1.125 to 1.5 on the unit sphere, beside the small one in front of it)
+    EXPECT_NEAR(mixed.mean(0, 41, 14, 44, 18), 1.0, 1e-3) << "each sphere's own centre";
+    EXPECT_NEAR(mixed.mean(0, 47, 15, 49, 17), 0.3, 1e-3) << "the nearer sphere's centre";
+}
