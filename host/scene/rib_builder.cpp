@@ -104,6 +104,8 @@ void RibBuilder::worldEnd(L loc) {
             if (r.objectToWorld)
                 r.objectToWorld = glm::mat4(toOrigin * glm::dmat4(*r.objectToWorld));
         }
+    for (const auto& [name, toWorld] : m_coordSystems)
+        m_world.coordinateSystems[name] = glm::mat4(toOrigin * glm::dmat4(toWorld));
     m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
                                              glm::translate(glm::dmat4(1.0), m_origin));
     m_world.camera.worldToCameraEnd = glm::mat4(glm::dmat4(m_world.camera.worldToCameraEnd) *

@@ -202,6 +202,9 @@ struct Scene {
     // space after WorldEnd).
     std::vector<std::array<glm::vec3, 2>> clipPlanes;
     std::vector<ShaderRef> displacements;  // one per distinct Displacement call in use
+    // The coordinate systems CoordinateSystem and Camera named, to world (device space
+    // after WorldEnd), for shaders that name them
+    std::map<std::string, glm::mat4> coordinateSystems;
     ShaderRef imager;                    // the Imager option (name empty: none)
     std::vector<std::string> shaderSearchPath;  // Option "searchpath" "shader", split
     std::vector<std::string> textureSearchPath; // Option "searchpath" "texture", split

@@ -18,6 +18,7 @@
 #include "scene/dice_displaced.h"
 #include "shader_aovs.h"
 #include "shader_path.h"
+#include "space_services.h"
 
 namespace rd {
 namespace fs = std::filesystem;
@@ -30,10 +31,11 @@ namespace {
 // floats, as light blocks after it load float4s.
 // Then the starts of attribute()'s table and option()'s block (message_services.h),
 // the start of the per-material Exterior table (1 + the shader's index, 0 for none),
-// then the clipping planes (normal, offset: clipped where n.P + offset > 0).
+// the start of the table of spaces (space_services.h), then the clipping planes
+// (normal, offset: clipped where n.P + offset > 0).
 constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20,
                  kSceneAttributes = 25, kSceneOptions = 26, kSceneShaderBlocks = 27,
-                 kSceneExteriors = 28, kSceneClipPlanes = 32,
+                 kSceneExteriors = 28, kSceneSpaces = 29, kSceneClipPlanes = 32,
                  kSceneFloats = kSceneClipPlanes + 4 * kMaxClipPlanes;
 
 // Moves a triple of a point/vector/normal parameter from a space to world space.
@@ -245,6 +247,13 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
                                 " shader, not a " + kind + " shader; not used");
         return nullptr;
     }
+    for (const std::string& space : emitted.namedSpaces)
+        if (!m_scene.coordinateSystems.count(space))
+            m_diag.warning(loc,
+                           kind + " shader \"" + name + "\" names coordinate system \"" +
+                               space +
+                               "\", which the scene does not define "
+                               "(CoordinateSystem); \"current\" space stands for it");
     slot = std::make_unique<rsl::EmittedShader>(std::move(emitted));
     return slot.get();
 }
@@ -281,6 +290,7 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     // --- the scene block, at the front of the params buffer (RslGlobals::scene_params):
     // what the services read that moves with the camera (kScene* offsets)
     out.params.assign(kSceneFloats, 0.0f);
+    const SpaceSlots spaces{kSceneCamera, kSceneWorld, kSceneSpaces};
     {
         // RSL row-vector matrices are glm's column-major arrays as they are.
         const glm::mat4 camToWorld = glm::inverse(m_scene.camera.worldToCamera);
@@ -442,46 +452,46 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     // light several times: builtins, illuminance loops, coefficients, shadow rays), so
     // repeated reads of one light fold; running a light is a call.
     svc << "/* Runs light l at Ps: surface-side L, unshadowed Cl (RSL_CW 1: solar). */\n"
-           "static void rd_light_run(int l, const RslGlobals* g, float4 Ps, float4* L, rsl_color* Cl) {\n"
+           "static void rd_light_run(int l, const RslGlobals* g, float4 Ps, float4* L, "
+           "rsl_color* Cl) {\n"
            "    RslGlobals lg;\n    int solar = rd_run_light(l, g, Ps, &lg);\n"
            "    *L = (float4)(-lg.L.x, -lg.L.y, -lg.L.z, 0.0f);\n"
            "    *Cl = rsl_cw0(lg.Cl);\n    RSL_CW(*Cl) = solar ? 1.0f : 0.0f;\n}\n"
            "/* Light l at Ps: from the light cache when Ps is the shading point. */\n"
-           "static inline __attribute__((always_inline)) void rd_light_at(int l, const RslGlobals* g,\n"
-           "                                                              float4 Ps, float4* L, rsl_color* Cl) {\n"
+           "static inline __attribute__((always_inline)) void rd_light_at(int l, const "
+           "RslGlobals* g,\n"
+           "                                                              float4 Ps, "
+           "float4* L, rsl_color* Cl) {\n"
            "    if (l < 32 && ((g->lights_off >> l) & 1u)) {  /* Illuminate off */\n"
-           "        *L = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n        *Cl = (rsl_color)(0.0f);\n        return;\n    }\n"
-           "    if (l < g->light_cache_count && Ps.x == g->P.x && Ps.y == g->P.y && Ps.z == g->P.z) {\n"
-           "        *L = g->light_cache->L[l];\n        *Cl = g->light_cache->Cl[l];\n        return;\n    }\n"
+           "        *L = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n        *Cl = "
+           "(rsl_color)(0.0f);\n        return;\n    }\n"
+           "    if (l < g->light_cache_count && Ps.x == g->P.x && Ps.y == g->P.y && Ps.z "
+           "== g->P.z) {\n"
+           "        *L = g->light_cache->L[l];\n        *Cl = g->light_cache->Cl[l];\n   "
+           "     return;\n    }\n"
            "    rd_light_run(l, g, Ps, L, Cl);\n}\n"
            "static void rd_fill_light_cache(RslGlobals* g, RslLightCache* cache) {\n"
            "    g->light_cache_count = 0;\n"
            "    g->light_cache = cache;\n"
            "    int n = min(rsl_light_count(), RSL_LIGHT_CACHE);\n"
-           "    for (int l = 0; l < n; ++l) rd_light_at(l, g, g->P, &cache->L[l], &cache->Cl[l]);\n"
+           "    for (int l = 0; l < n; ++l) rd_light_at(l, g, g->P, &cache->L[l], "
+           "&cache->Cl[l]);\n"
            "    g->light_cache_count = n;\n}\n"
-           "inline __attribute__((always_inline)) int rsl_light(int l, const RslGlobals* g, float4 Ps,\n"
-           "                                                     float4* L, rsl_color* Cl) {\n"
+           "inline __attribute__((always_inline)) int rsl_light(int l, const RslGlobals* "
+           "g, float4 Ps,\n"
+           "                                                     float4* L, rsl_color* "
+           "Cl) {\n"
            "    if (rd_light_is_ambient(l)) return 0;\n"
            "    rd_light_at(l, g, Ps, L, Cl);\n    RSL_CW(*Cl) = 0.0f;\n"
            "    return rsl_cnonzero(*Cl);\n}\n"
-           "rsl_color rsl_ambient(const RslGlobals* g) {\n    rsl_color sum = rsl_f2c(0.0f);\n"
+           "rsl_color rsl_ambient(const RslGlobals* g) {\n    rsl_color sum = "
+           "rsl_f2c(0.0f);\n"
            "    for (int l = 0; l < rsl_light_count(); ++l) {\n"
-           "        if (!rd_light_is_ambient(l)) continue;\n        float4 L;\n        rsl_color Cl;\n"
+           "        if (!rd_light_is_ambient(l)) continue;\n        float4 L;\n        "
+           "rsl_color Cl;\n"
            "        rd_light_at(l, g, g->P, &L, &Cl);\n        sum += Cl;\n    }\n"
            "    return rsl_cw0(sum);\n}\n"
-           "/* Camera space (to world) and world space from the scene block; screen, raster\n"
-           " * and NDC are not provided: identity. */\n"
-           "RslMatrix rsl_space_matrix(const RslSpaces* sp, int space) {\n    RslMatrix m;\n"
-           "    m.r[0] = (float4)(1.0f, 0.0f, 0.0f, 0.0f);\n"
-           "    m.r[1] = (float4)(0.0f, 1.0f, 0.0f, 0.0f);\n"
-           "    m.r[2] = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n"
-           "    m.r[3] = (float4)(0.0f, 0.0f, 0.0f, 1.0f);\n"
-           "    if (space == RSL_SPACE_CAMERA)\n"
-           "        for (int r = 0; r < 4; ++r) m.r[r] = vload4(r, sp->scene + " << kSceneCamera
-        << ");\n"
-           "    if (space == RSL_SPACE_WORLD) m.r[3] = vload4(0, sp->scene + " << kSceneWorld
-        << ");\n    return m;\n}\n";
+        << spaceService(spaces);
     // --- surfaces: one compiled shader per name, one parameter block per call
     std::map<std::string, uint32_t> surfaceIndex;
     std::vector<const rsl::EmittedShader*> surfaceShaders;  // by surfaceIndex
@@ -688,6 +698,10 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         });
     };
     const bool attributesUsed = someShaderCalls("rsl_attribute(g");
+    if (std::any_of(m_cache.begin(), m_cache.end(), [](const auto& entry) {
+            return entry.second && entry.second->usesSpaceTable;
+        }))
+        appendSpaceTable(m_scene, spaces, out.params);
     // surface(), displacement(), atmosphere(): the material's shaders' blocks
     ShaderBlocks blocks;
     blocks.shaders[0] = surfaceShaders;

@@ -42,9 +42,12 @@
  * floats 12..14 of each). The host must always write them (identity when it has
  * nothing better). Generated code reads them (rsl_param16) for every use of "shader"
  * and "object" space: transform(), vtransform(), ntransform(), point "shader" (...)
- * casts, matrix casts. "camera", "screen", "raster" and "NDC" still go through the
- * service rsl_space_matrix(), which gets the RslSpaces (its `scene`: the globals'
- * scene_params); "current" and "world" are the identity.
+ * casts, matrix casts. "world", "camera", "screen", "raster", "NDC" and the scene's
+ * named coordinate systems (CoordinateSystem, Camera) go through the service
+ * rsl_space_matrix(), which gets the RslSpaces (its `scene`: the globals'
+ * scene_params); "current" is the identity. A named space is -(its string id): a name
+ * the scene does not define is the identity there (the host reports the literal ones,
+ * EmittedShader::namedSpaces).
  * PREPARE functions (hoist.h) are void rsl_prep_<kind>_<name>(__global float* params,
  * __global const float* scene), scene being what scene_params is in the shaders.
  *
@@ -156,11 +159,13 @@
  *          0 when light l contributes nothing (or is ambient), else L = vector from
  *          Ps toward the light (surface-side), Cl = unshadowed colour.
  *   rsl_color rsl_ambient(const RslGlobals* g);  sum of the ambient lights' Cl
- *   RslMatrix rsl_space_matrix(const RslSpaces* sp, int space);
- *          maps points of `space` (RSL_SPACE_*) to current space (p_current = (p,1) * M);
- * RSL_SPACE_CURRENT: identity; WORLD a translation when the renderer keeps the scene
- * relative to the eye. Only called for WORLD, CAMERA, SCREEN, RASTER and NDC: SHADER and
- * OBJECT come from the matrices after the parameter block (SPACES above). int
+ *   RslMatrix rsl_space_matrix(const RslSpaces* sp, int space, int inverse);
+ *          maps points of `space` (RSL_SPACE_*, or -id for a named one) to current
+ *          space (p_current = (p,1) * M), or with `inverse` current to `space` (exact
+ *          for the projective SCREEN, RASTER and NDC, which are singular far away);
+ * WORLD is a translation when the renderer keeps the scene relative to the eye. Not
+ * called for CURRENT, SHADER and OBJECT (the matrices after the parameter block,
+ * SPACES above). int
  * rsl_lightsource_param(const RslGlobals* g, int light, int nameId, float* out, int n);
  *          light `light`'s parameter named nameId (rsl::stringId of the name): nonzero
  *          and out[0..n) written when that light's shader has such a parameter of n

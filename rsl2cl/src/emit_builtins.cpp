@@ -8,16 +8,23 @@ namespace rsl {
 
 std::string Emitter::spaceArg(const Expr& e) {
     if (e.kind == ExprKind::String) {
-        int sp = spaceIdOf(e.text);
-        if (sp < 0) {
-            error(e.loc, "unknown coordinate system \"" + e.text + "\"");
-            return "RSL_SPACE_CURRENT";
-        }
-        m_out.usesObjectSpace |= sp == kObjectSpaceId;
-        return std::to_string(sp);
+        return spaceOfName(e.text);
     }
-    m_out.usesObjectSpace = true;
+    m_out.usesObjectSpace = m_out.usesSpaceTable = true;  // (it may name either)
     return "rsl_space_from_id(" + expr(e) + ")";
+}
+
+// A coordinate system's RSL_SPACE_* value, or a named one's -(string id) (rsl_abi.h,
+// SPACES), noting what the renderer must provide.
+std::string Emitter::spaceOfName(const std::string& name) {
+    const int sp = spaceIdOf(name);
+    m_out.usesObjectSpace |= sp == kObjectSpaceId;
+    m_out.usesSpaceTable |= sp < 0 || sp >= kScreenSpaceId;
+    if (sp >= 0) return std::to_string(sp);
+    if (std::find(m_out.namedSpaces.begin(), m_out.namedSpaces.end(), name) ==
+        m_out.namedSpaces.end())
+        m_out.namedSpaces.push_back(name);
+    return "(-" + std::to_string(stringId(name)) + ")";
 }
 
 std::string Emitter::colorSpaceArg(const Expr& e) {

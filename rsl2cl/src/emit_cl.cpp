@@ -98,10 +98,10 @@ void Emitter::layoutParams() {
         // A default written in a coordinate system other than "shader" (which the host
         // converts) is computed by the generated code: "object", "camera" and the like
         // are known only where the shader runs.
-        const int defaultSpace =
-            p.init && evalConst(*p.init, cv) ? spaceIdOf(cv.space) : -1;
-        const bool spacedDefault =
-            defaultSpace > 1 && cv.space != "shader" && p.type.base != BaseType::Color;
+        const bool spacedDefault = p.init && evalConst(*p.init, cv) &&
+                                   !cv.space.empty() && cv.space != "shader" &&
+                                   cv.space != "current" &&
+                                   p.type.base != BaseType::Color;
         if (p.init && !spacedDefault && evalConst(*p.init, cv)) {
             slot.space = cv.space;
             if (p.type.base == BaseType::String) {

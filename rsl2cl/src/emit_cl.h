@@ -49,6 +49,10 @@ struct EmittedShader {
     // Reads "object" space (or a space named at run time, which may be it): each
     // primitive's own object space then needs an instance of its own (rsl_abi.h, SPACES).
     bool usesObjectSpace = false;
+    // Reads "screen", "raster", "NDC", a named coordinate system or a space named at run
+    // time: the renderer's table of those spaces (rsl_abi.h, SPACES)
+    bool usesSpaceTable = false;
+    std::vector<std::string> namedSpaces;  // the names of the last kind it uses
     // The most trace() calls one evaluation can make: one per call site in the shader's
     // body outside loops; kMaxTrace (RSL_MAX_TRACE's default) when a call may repeat (in
     // a loop, an illuminance loop or a user function). The renderer sizes its spawned

@@ -239,14 +239,8 @@ std::string Emitter::expr(const Expr& e) {
                 a = "rsl_c3(" + tupleOf(in) + ")";
             return ctransformFn() + std::to_string(c) + ", RSL_COLOR_RGB, " + a + ")";
         }
-        int sp = spaceIdOf(e.text);
-        if (sp < 0) {
-            error(e.loc, "unknown coordinate system \"" + e.text + "\"");
-            return a;
-        }
-        if (sp <= 1) return a;
-        m_out.usesObjectSpace |= sp == kObjectSpaceId;
-        std::string spc = std::to_string(sp);
+        if (spaceIdOf(e.text) == 0) return a;  // "current"
+        std::string spc = spaceOfName(e.text);
         m_usesSpaces = true;
         if (to.isMatrix()) return "rsl_mmul(" + a + ", rsl_space_to_space(sp, " + spc + ", RSL_SPACE_CURRENT))";
         const char* fn = to.base == BaseType::Point    ? "rsl_transform_p"

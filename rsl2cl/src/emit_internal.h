@@ -19,6 +19,7 @@ std::string clZero(const TypeSpec& t);          // zero of the element type
 std::string clNumber(double v);                 // 1.0f
 int spaceIdOf(const std::string& name);         // RSL_SPACE_* value or -1
 constexpr int kObjectSpaceId = 3;               // spaceIdOf("object")
+constexpr int kScreenSpaceId = 5;  // spaceIdOf("screen"), then raster and NDC
 int colorIdOf(const std::string& name);         // RSL_COLOR_* value or -1
 int slotsOf(BaseType b, int colorSlots);        // float slots of one value in a block
 // Light coefficients (emit_coefs.cpp): whether e depends on some light's Cl, and whether
@@ -55,6 +56,7 @@ public:
     // ---- builtins (emit_builtins.cpp) ----
     std::string builtin(const Expr& e);
     std::string spaceArg(const Expr& e);
+    std::string spaceOfName(const std::string& name);
     std::string colorSpaceArg(const Expr& e);
     std::string message(const Expr& e);  // lightsource(), attribute(), option(), ...
     std::string textureCall(const Expr& e, bool vret);  // texture, environment, shadow, bump

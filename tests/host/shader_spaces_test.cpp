@@ -4,6 +4,8 @@
 // where the shader reads it: an instance per object space).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include "render_harness.h"
@@ -105,4 +107,86 @@ TEST(Shading, ObjectSpaceIsEachPrimitivesOwn) {
     // (x 1.125 to 1.5 on the unit sphere, beside the small one in front of it)
     EXPECT_NEAR(mixed.mean(0, 41, 14, 44, 18), 1.0, 1e-3) << "each sphere's own centre";
     EXPECT_NEAR(mixed.mean(0, 47, 15, 49, 17), 0.3, 1e-3) << "the nearer sphere's centre";
+}
+
+// "raster", "NDC" and "screen" (RI 3.2 section 4.1; identity before session 35): on a
+// plane seen in perspective (fov 40 over 16 of 32 x 16 pixels, the screen window
+// [-2, 2] x [-1, 1]), transform("raster", P) and transform("NDC", P) against the camera
+// point projected by hand in the shader, the screen z against PRMan's depth between the
+// clipping planes, f (z - n) / ((f - n) z) with n = 1, f = 10, and a point sent to raster
+// space and back against where it was: each residual at every sample, in the image.
+TEST(Shading, ProjectedSpacesArePixelsAndTheScreen) {
+    const std::string dir = rd::test::scratchDir("raydrive_projected_spaces");
+    std::ofstream(dir + "/showraster.sl")
+        << "surface showraster(float ndc = 0) {\n    Oi = 1;\n"
+           "    point c = transform(\"camera\", P);\n"
+           "    float t = tan(radians(20)), z = zcomp(c);\n"
+           "    float x = (xcomp(c) / (z * t) + 2) / 4, y = (1 - ycomp(c) / (z * t)) / "
+           "2;\n"
+           "    if (ndc == 0) { x *= 32; y *= 16; }\n"
+           "    point r = transform(ndc > 0 ? \"NDC\" : \"raster\", P);\n"
+           "    point back = transform(\"raster\", \"current\", transform(\"raster\", "
+           "P));\n"
+           "    Ci = color(abs(xcomp(r) - x) + abs(ycomp(r) - y),\n"
+           "               abs(zcomp(transform(\"screen\", P)) - 10 * (z - 1) / (9 * "
+           "z)),\n"
+           "               length(back - P));\n}\n";
+    for (const bool ndc : {false, true}) {
+        const Rendered img = renderRib(
+            "Option \"searchpath\" \"shader\" [\"" + dir +
+            ":&\"]\nFormat 32 16 1\nPixelSamples 2 2\nClipping 1 10\n"
+            "Projection \"perspective\" \"fov\" 40\nTranslate 0 0 5\nWorldBegin\n"
+            "Surface \"showraster\" \"float ndc\" [" +
+            (ndc ? "1" : "0") +
+            "]\nRotate 30 0 1 0\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 "
+            "0]\nWorldEnd\n");
+        float worst[3] = {0, 0, 0};
+        for (const rd::Rgba& p : img.pixels)
+            worst[0] = std::max(worst[0], p.r), worst[1] = std::max(worst[1], p.g),
+            worst[2] = std::max(worst[2], p.b);
+        EXPECT_LT(worst[0], ndc ? 1e-6 : 2e-5) << (ndc ? "NDC" : "raster");
+        EXPECT_LT(worst[1], 1e-6) << "screen z";
+        EXPECT_LT(worst[2], 1e-5) << "to raster space and back";
+    }
+}
+
+// Named coordinate systems (CoordinateSystem, Camera "name"), by a literal name and by
+// a string parameter's value: transform("proj", P) for a system placed at (1, 2, 3) and
+// turned 90 degrees about z gives P's coordinates in it, (y - 2, 1 - x, z - 3) of the
+// world's (residuals at every sample, in the image); a name the scene does not define is
+// a warning at the Surface's line (an error before session 35).
+TEST(Shading, NamedCoordinateSystemsAreTheScenes) {
+    const std::string dir = rd::test::scratchDir("raydrive_named_spaces");
+    std::ofstream(dir + "/shownamed.sl")
+        << "surface shownamed(string space = \"proj\") {\n    Oi = 1;\n"
+           "    point a = transform(space, P), b = transform(\"proj\", P);\n"
+           "    point w = transform(\"world\", P);\n"
+           "    Ci = color(abs(xcomp(a) - ycomp(w) + 2) + abs(ycomp(a) + xcomp(w) - 1) "
+           "+\n"
+           "               abs(zcomp(a) - zcomp(w) + 3), length(a - b), 1);\n}\n";
+    std::ofstream(dir + "/nowhere.sl") << "surface nowhere() {\n    Oi = 1;\n    Ci = "
+                                          "xcomp(transform(\"nowhere\", P));\n}\n";
+    const std::string out = rd::test::scratchDir("raydrive_named_spaces_out");
+    const std::string options = "Option \"searchpath\" \"shader\" [\"" + dir +
+                                ":&\"]\nFormat 16 16 1\nPixelSamples 2 2\n"
+                                "Projection \"orthographic\"\nTranslate 0 0 5\n";
+    const std::string world =
+        "WorldBegin\nAttributeBegin\nTranslate 1 2 3\nRotate 90 0 0 1\n"
+        "CoordinateSystem \"proj\"\nAttributeEnd\n";
+    const std::string square =
+        "Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\nWorldEnd\n";
+    const Rendered img = renderRib(options + world + "Surface \"shownamed\"\n" + square);
+    float worst[2] = {0, 0};
+    for (const rd::Rgba& p : img.pixels)
+        worst[0] = std::max(worst[0], p.r), worst[1] = std::max(worst[1], p.g);
+    EXPECT_LT(worst[0], 1e-5) << "P in proj";
+    EXPECT_EQ(worst[1], 0.0f) << "the name by value and as a literal";
+    EXPECT_NEAR(img.mean(2, 0, 0, 16, 16), 1.0, 1e-6) << "the square fills the image";
+    const std::string messages = rd::test::renderRibToFiles(
+        options + "Display \"" + out + "/nowhere.exr\" \"file\" \"rgba\"\n" + world +
+        "Surface \"nowhere\"\n" + square);
+    EXPECT_NE(messages.find("test.rib:13: warning: surface shader \"nowhere\" names "
+                            "coordinate system \"nowhere\""),
+              std::string::npos)
+        << messages;
 }

@@ -195,10 +195,22 @@ TEST(Codegen, ParamLayoutAndMetadata) {
                          "s.sl", &err))
         << err;
     EXPECT_TRUE(sh.shader.usesObjectSpace);
+    EXPECT_TRUE(sh.shader.usesSpaceTable);
     ASSERT_TRUE(sh.compileSource("surface s() { Ci = xcomp(transform(\"camera\", P)); }",
                                  "s.sl", &err))
         << err;
     EXPECT_FALSE(sh.shader.usesObjectSpace);
+    EXPECT_FALSE(sh.shader.usesSpaceTable);
+    // the projected spaces and named ones come from the renderer's table of spaces
+    ASSERT_TRUE(
+        sh.compileSource("surface s() { Ci = xcomp(transform(\"raster\", P)) + "
+                         "xcomp(point \"proj\" (1, 2, 3)) + xcomp(transform(\"proj\", "
+                         "\"NDC\", P)); }",
+                         "s.sl", &err))
+        << err;
+    EXPECT_TRUE(sh.shader.usesSpaceTable);
+    EXPECT_FALSE(sh.shader.usesObjectSpace);
+    EXPECT_EQ(sh.shader.namedSpaces, std::vector<std::string>{"proj"});
 }
 
 // The most trace() calls one evaluation makes (traceBound, what the renderer sizes its

@@ -206,11 +206,12 @@ bool Shade::buildOnDevice(const Scene& sc, std::string* log) {
         << fl(sc.ambient[0]) << ", " << fl(sc.ambient[1]) << ", " << fl(sc.ambient[2])
         << ", 0.0f)); }\n";
     // shader and object space come from the block; the service only knows camera
-    src << "RslMatrix rsl_space_matrix(const RslSpaces* sp, int space) {\n"
+    src << "RslMatrix rsl_space_matrix(const RslSpaces* sp, int space, int inverse) {\n"
            "  (void)sp; RslMatrix m = rsl_mscalar(1.0f);\n"
            "  if (space == RSL_SPACE_CAMERA) m.r[3] = (float4)("
-        << fl(sc.cameraOffset[0]) << ", " << fl(sc.cameraOffset[1]) << ", " << fl(sc.cameraOffset[2])
-        << ", 1.0f);\n  return m;\n}\n";
+        << fl(sc.cameraOffset[0]) << ", " << fl(sc.cameraOffset[1]) << ", "
+        << fl(sc.cameraOffset[2])
+        << ", 1.0f);\n  return inverse ? rsl_minverse(m) : m;\n}\n";
     src << messageService(
                "int rsl_lightsource_param(const RslGlobals* g, int light, int nameId, "
                "float* out, int n)",
