@@ -60,7 +60,14 @@ __kernel void generate_eye(__constant Camera* cam,
     /* PixelFilter by importance: the sample's place about the pixel's centre drawn from
      * the filter (Camera::filter_*), its weight the filter's sign times filter_weight */
     float jx, jy, filter_w = 1.0f;
-    if (cam->filter_table) {
+    if (cam->filter_table == 2u) {
+        /* a radial filter (disk, bessel): the distance from the table, the angle uniform,
+         * stretched along y as the filter is */
+        float r = rt_filter_place(cam, 0, j.x, &filter_w), c, sn = sincos(6.28318531f * j.y, &c);
+        jx = 0.5f + r * c;
+        jy = 0.5f + r * sn * (cam->filter_width[1] / cam->filter_width[0]);
+        filter_w *= cam->filter_weight;
+    } else if (cam->filter_table) {
         jx = 0.5f + rt_filter_place(cam, 0, j.x, &filter_w);
         jy = 0.5f + rt_filter_place(cam, 1, j.y, &filter_w);
         filter_w *= cam->filter_weight;

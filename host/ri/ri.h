@@ -108,6 +108,14 @@ RtFloat RiTriangleFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
 RtFloat RiCatmullRomFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
 RtFloat RiGaussianFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
 RtFloat RiSincFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
+/* PRMan's: a separable catmull-rom, Mitchell-Netravali (B = C = 1/3), Blackman-Harris,
+ * Lanczos, and the radial disk and bessel (jinc) within the ellipse of the widths */
+RtFloat RiSeparableCatmullRomFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
+RtFloat RiMitchellFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
+RtFloat RiBlackmanHarrisFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
+RtFloat RiLanczosFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
+RtFloat RiDiskFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
+RtFloat RiBesselFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
 
 /* Error handlers: print (the default), ignore, or print and exit(1). Any other function
  * is called with each error and warning instead of printing it. */

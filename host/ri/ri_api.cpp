@@ -11,6 +11,7 @@
 #include "ri.h"
 #include "ri_context.h"
 #include "ri_params.h"
+#include "scene/pixel_filter.h"
 
 using namespace rd::ri;
 
@@ -23,6 +24,12 @@ const char* filterName(RtFilterFunc f) {
     if (f == RiCatmullRomFilter) return "catmull-rom";
     if (f == RiGaussianFilter) return "gaussian";
     if (f == RiSincFilter) return "sinc";
+    if (f == RiSeparableCatmullRomFilter) return "separable-catmull-rom";
+    if (f == RiMitchellFilter) return "mitchell";
+    if (f == RiBlackmanHarrisFilter) return "blackman-harris";
+    if (f == RiLanczosFilter) return "lanczos";
+    if (f == RiDiskFilter) return "disk";
+    if (f == RiBesselFilter) return "bessel";
     return nullptr;
 }
 
@@ -33,7 +40,9 @@ rib::RequestValue filterValue(Context* c, const char* call, RtFilterFunc f) {
              std::string(call) +
                  ": only the standard filters (RiBoxFilter, "
                  "RiTriangleFilter, RiCatmullRomFilter, RiGaussianFilter, "
-                 "RiSincFilter) are supported; box used");
+                 "RiSincFilter) and PRMan's (RiSeparableCatmullRomFilter, "
+                 "RiMitchellFilter, RiBlackmanHarrisFilter, RiLanczosFilter, "
+                 "RiDiskFilter, RiBesselFilter) are supported; box used");
     return string("box");
 }
 
@@ -125,6 +134,26 @@ RtFloat RiSincFilter(RtFloat x, RtFloat y, RtFloat, RtFloat) {
         return t == 0 ? 1.0f : std::sin(t) / t;
     };
     return s(x) * s(y);
+}
+
+// PRMan's further filters, as the renderer defines them (scene/pixel_filter.h).
+RtFloat RiSeparableCatmullRomFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
+    return RtFloat(rd::pixelFilter2D("separable-catmull-rom", x, y, xw, yw));
+}
+RtFloat RiMitchellFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
+    return RtFloat(rd::pixelFilter2D("mitchell", x, y, xw, yw));
+}
+RtFloat RiBlackmanHarrisFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
+    return RtFloat(rd::pixelFilter2D("blackman-harris", x, y, xw, yw));
+}
+RtFloat RiLanczosFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
+    return RtFloat(rd::pixelFilter2D("lanczos", x, y, xw, yw));
+}
+RtFloat RiDiskFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
+    return RtFloat(rd::pixelFilter2D("disk", x, y, xw, yw));
+}
+RtFloat RiBesselFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
+    return RtFloat(rd::pixelFilter2D("bessel", x, y, xw, yw));
 }
 
 RtVoid RiProcDelayedReadArchive(RtPointer, RtFloat) {}

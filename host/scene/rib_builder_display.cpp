@@ -21,7 +21,7 @@ void RibBuilder::pixelFilter(L loc, const std::string& filter, float xwidth,
         m_diag.warning(loc, "PixelFilter \"" + filter +
                                 "\" is not known (box, triangle, gaussian, catmull-rom, "
                                 "separable-catmull-rom, sinc, mitchell, blackman-harris, "
-                                "lanczos); using gaussian");
+                                "lanczos, disk, bessel); using gaussian");
         name = "gaussian";
     }
     Camera probe{};

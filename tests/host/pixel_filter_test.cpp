@@ -25,6 +25,21 @@ double integral(const std::string& name, double width, double a, double b) {
     return s * (b - a) / n;
 }
 
+// Integral of a filter `width` wide in x and y over the part of its support right of x =
+// from (midpoint rule on a 600 x 600 grid).
+double integral2D(const std::string& name, double width, double from) {
+    const int n = 600;
+    const double h = width / n;
+    double s = 0;
+    for (int i = 0; i < n; ++i) {
+        const double x = -width / 2 + (i + 0.5) * h;
+        if (x < from) continue;
+        for (int j = 0; j < n; ++j)
+            s += rd::pixelFilter2D(name, x, -width / 2 + (j + 0.5) * h, width, width);
+    }
+    return s * h * h;
+}
+
 }  // namespace
 
 // Each axis's table is the inverse of the cumulative |g|: it starts and ends at the
@@ -96,6 +111,42 @@ TEST(PixelFilter, TablesAreTheInverseCumulativeFilter) {
         else
             EXPECT_NEAR(cam.filter_weight, 1.0f, 1e-5f);
     }
+    // Radial filters (disk, bessel): one table of the distance from the centre, over
+    // [0, xwidth / 2], the share of |f(r)| r below icdf(u) being u; bessel's negative
+    // lobe (jinc's first zero at r = 1.2197) is a flip and weighs samples above 1.
+    for (const char* name : {"disk", "bessel"}) {
+        SCOPED_TRACE(name);
+        Camera cam{};
+        ASSERT_TRUE(rd::setCameraFilter(cam, name, 4, 2));
+        EXPECT_EQ(cam.filter_table, 2u);
+        const float* icdf = cam.filter_icdf[0];
+        EXPECT_FLOAT_EQ(icdf[0], 0.0f);
+        EXPECT_FLOAT_EQ(icdf[RT_FILTER_TABLE], 2.0f);
+        auto share = [&](double r) {  // of |f(r)| r below r
+            double s = 0;
+            for (int i = 0; i < 4000; ++i) {
+                const double x = r * (i + 0.5) / 4000;
+                s += std::fabs(rd::pixelFilter2D(name, x, 0, 4, 2)) * x * r / 4000;
+            }
+            return s;
+        };
+        const double total = share(2.0);
+        for (int k = 0; k < RT_FILTER_TABLE; ++k) EXPECT_LE(icdf[k], icdf[k + 1]);
+        for (int k : {16, 40, 64, 100})
+            EXPECT_NEAR(share(icdf[k]) / total, double(k) / RT_FILTER_TABLE, 2e-3) << k;
+        const bool bessel = std::string(name) == "bessel";
+        EXPECT_EQ(cam.filter_flips[0][0] <= 1.0f, bessel);
+        if (bessel) {
+            EXPECT_NEAR(share(1.2197) / total, cam.filter_flips[0][0], 2e-3);
+            EXPECT_GT(cam.filter_weight, 1.0f);
+        } else {
+            EXPECT_NEAR(icdf[RT_FILTER_TABLE / 4], 1.0, 0.02) << "a quarter of the disc";
+            EXPECT_NEAR(cam.filter_weight, 1.0f, 1e-5f);
+        }
+        // stretched along y when the widths differ: half as tall here
+        EXPECT_EQ(rd::pixelFilter2D(name, 0, 0.99, 4, 2) != 0.0, true);
+        EXPECT_EQ(rd::pixelFilter2D(name, 0, 1.01, 4, 2), 0.0);
+    }
     // A box needs no table: its place is uniform over its widths.
     Camera box{};
     ASSERT_TRUE(rd::setCameraFilter(box, "box", 1, 2));
@@ -114,30 +165,36 @@ TEST(PixelFilter, EdgeProfileIsTheFilteredStep) {
         double tolerance;
     };
     for (const Case c : {Case{"box", 1, 1.0 / 1024}, Case{"gaussian", 2, 0.01},
-                         Case{"catmull-rom", 4, 0.03}}) {
+                         Case{"catmull-rom", 4, 0.03}, Case{"disk", 3, 0.005},
+                         Case{"bessel", 4, 0.01}}) {
         SCOPED_TRACE(c.filter);
         std::ostringstream rib;
         rib << "Format 16 4 1\nPixelSamples 32 32\nPixelFilter \"" << c.filter << "\" "
             << c.width << " " << c.width
             << "\nOption \"render\" \"float pixelerror\" [0.0001]\n"
+               "Hider \"raytrace\" \"int minsamples\" [1024]\n"
                "Projection \"orthographic\"\nScreenWindow -8 8 -2 2\nTranslate 0 0 5\n"
                "WorldBegin\nSurface \"constant\"\n"
                "Polygon \"P\" [0.3 -50 0  50 -50 0  50 50 0  0.3 50 0]\nWorldEnd\n";
         Rendered r = renderRib(rib.str());
-        const double all = integral(c.filter, c.width, -c.width / 2, c.width / 2);
+        const bool radial = rd::pixelFilterRadial(c.filter);
+        const double all = radial
+                               ? integral2D(c.filter, c.width, -c.width / 2)
+                               : integral(c.filter, c.width, -c.width / 2, c.width / 2);
         for (int px = 4; px < 13; ++px) {
             const double from = std::max(-c.width / 2, 8.3 - (px + 0.5));
             const double expected =
-                from >= c.width / 2
-                    ? 0.0
-                    : integral(c.filter, c.width, from, c.width / 2) / all;
+                from >= c.width / 2 ? 0.0
+                : radial            ? integral2D(c.filter, c.width, from) / all
+                         : integral(c.filter, c.width, from, c.width / 2) / all;
             EXPECT_NEAR(r.mean(0, px, 0, px + 1, 4), expected, c.tolerance)
                 << "column " << px << " samples " << r.count(px, 0) << " "
                 << r.count(px, 1);
             EXPECT_NEAR(r.mean(3, px, 0, px + 1, 4), expected, c.tolerance)
                 << "alpha " << px;
         }
-        EXPECT_EQ(r.stats.features.signedFilter, std::string(c.filter) == "catmull-rom");
+        EXPECT_EQ(r.stats.features.signedFilter, std::string(c.filter) == "catmull-rom" ||
+                                                     std::string(c.filter) == "bessel");
         if (std::string(c.filter) == "catmull-rom") {  // its negative lobes: ringing
             EXPECT_LT(r.mean(0, 7, 0, 8, 4), -0.01);
             EXPECT_GT(r.mean(0, 9, 0, 10, 4), 1.01);

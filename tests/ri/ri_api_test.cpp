@@ -615,3 +615,33 @@ TEST(RiApi, ArchiveRecordWritesLinesOfTheirOwn) {
     EXPECT_EQ(g_codes[0], RIE_UNIMPLEMENT);
     EXPECT_EQ(g_codes[1], RIE_BADTOKEN);
 }
+
+// PRMan's further pixel filters go to the RIB by name, and their values are the
+// renderer's: the disk is 1 within its radius, the bessel (jinc) 1 at the centre and 0 at
+// its first zero (r = 1.2197 pixels), both stretched along y to the ellipse of the
+// widths.
+TEST(RiApi, PrmanFiltersGoByName) {
+    const std::string path = scratch("filters.rib");
+    RiBegin(path.c_str());
+    RiPixelFilter(RiBesselFilter, 4, 4);
+    RiPixelFilter(RiDiskFilter, 3, 3);
+    RiPixelFilter(RiMitchellFilter, 4, 4);
+    RiPixelFilter(RiSeparableCatmullRomFilter, 4, 4);
+    RiPixelFilter(RiBlackmanHarrisFilter, 3, 3);
+    RiPixelFilter(RiLanczosFilter, 6, 6);
+    RiEnd();
+    EXPECT_EQ(slurp(path),
+              rewritten("PixelFilter \"bessel\" 4 4\nPixelFilter \"disk\" 3 3\n"
+                        "PixelFilter \"mitchell\" 4 4\n"
+                        "PixelFilter \"separable-catmull-rom\" 4 4\n"
+                        "PixelFilter \"blackman-harris\" 3 3\n"
+                        "PixelFilter \"lanczos\" 6 6\n"));
+    EXPECT_EQ(RiDiskFilter(1.4f, 0, 3, 3), 1.0f);
+    EXPECT_EQ(RiDiskFilter(1.6f, 0, 3, 3), 0.0f);
+    EXPECT_EQ(RiDiskFilter(0, 0.8f, 3, 1.5f), 0.0f) << "half as tall";
+    EXPECT_FLOAT_EQ(RiBesselFilter(0, 0, 4, 4), 1.0f);
+    EXPECT_NEAR(RiBesselFilter(0.6f, 1.0619f, 4, 4), 0.0f, 1e-4f) << "r = 1.2197";
+    EXPECT_LT(RiBesselFilter(1.5f, 0, 4, 4), 0.0f) << "the negative lobe";
+    EXPECT_FLOAT_EQ(RiMitchellFilter(0, 0, 4, 4),
+                    float((6 - 2.0 / 3) / 6 * (6 - 2.0 / 3) / 6));
+}
