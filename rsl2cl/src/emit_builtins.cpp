@@ -40,11 +40,28 @@ std::string Emitter::colorSpaceArg(const Expr& e) {
 }
 
 // lightsource() in an illuminance loop, attribute(), option(), rayinfo(), surface(),
-// displacement() and atmosphere() ask the renderer (rsl_abi.h, MESSAGE PASSING); the
-// other message calls (incident(), opposite(), rendererinfo()) are "not found" (0).
+// displacement() and atmosphere() ask the renderer (rsl_abi.h, MESSAGE PASSING);
+// rendererinfo() is answered here ("renderer", "version", "versionstring"); incident()
+// and opposite() are "not found" (0).
 std::string Emitter::message(const Expr& e) {
     const std::string& n = e.text;
     std::string svc;
+    // rendererinfo's answers: a string's id, or the version's four numbers
+    std::vector<std::string> known;
+    if (n == "rendererinfo" && e.args.size() == 2 &&
+        e.args[0]->kind == ExprKind::String) {
+        const std::string& what = e.args[0]->text;
+        const TypeSpec& t = e.args[1]->type;
+        if (t.isString() && !t.isArray() &&
+            (what == "renderer" || what == "versionstring"))
+            known = {stringLiteral(what == "renderer" ? "RayDrive" : kRendererVersion)};
+        else if (what == "version" && t.isArray() && t.arraySize == 4 &&
+                 t.element().base == BaseType::Float)
+            known = {kRendererVersionNumbers[0], kRendererVersionNumbers[1],
+                     kRendererVersionNumbers[2], "0"};
+        if (known.empty()) return "0.0f";
+        svc = "rendererinfo";
+    }
     if (n == "lightsource" && !m_func && !m_lightVars.empty())
         svc = "rsl_lightsource_param(g, " + m_lightVars.back() + ", ";
     else if (n == "attribute")
@@ -75,6 +92,11 @@ std::string Emitter::message(const Expr& e) {
     m_pre.push_back("float " + buf + "[" + std::to_string(slots) + "];");
     std::string found = svc + exprAs(*e.args[0], BaseType::String) + ", " + buf + ", " +
                         std::to_string(slots) + ")";
+    if (!known.empty()) {
+        for (size_t i = 0; i < known.size(); ++i)
+            m_pre.push_back(buf + "[" + std::to_string(i) + "] = " + known[i] + ";");
+        found = "1";
+    }
     std::string kc = el.isMatrix()   ? "m"
                      : el.isColor()  ? "c"
                      : el.isTriple() ? "v"
@@ -444,6 +466,14 @@ std::string Emitter::builtin(const Expr& e) {
         n == "reflect" || n == "refract" || n == "determinant" ||
         n == "translate" || n == "scale")
         return call("rsl_" + n);
+    // BMRT's and PRMan's: the ray's depth, and whether a shadow ray runs the shader
+    // (never: shadows take the surface's constant Os, rsl_abi.h TRACE)
+    if (n == "raylevel") return "((float)g->ray_depth)";
+    if (n == "isshadowray") return "0.0f";
+    if (n == "arraylength") {
+        const TypeSpec& t = e.args[0]->type;
+        return clNumber(t.isArray() ? t.arraySize : -1);
+    }
     if (n == "depth") {  // (camera space and clipping come through the spaces)
         m_usesSpaces = true;
         return "rsl_depth(sp, " + A(0) + ")";

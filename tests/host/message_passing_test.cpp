@@ -72,6 +72,22 @@ surface raydepth() {
     Ci = d + 0.25 + c;
     Oi = 1;
 }
+)"},
+                             {"raylevel", R"(
+surface raylevel() {
+    float v[4] = {9, 9, 9, 9}, arr[3] = {1, 2, 3};
+    color c = 0;
+    string r = "", vs = "";
+    if (raylevel() < 1)
+        c = trace(P, normalize(I)) * color(1, 0, 0);
+    float known = rendererinfo("renderer", r) + rendererinfo("version", v) +
+                  rendererinfo("versionstring", vs) + rendererinfo("colour", vs);
+    Ci = color(raylevel() + 0.25 + 100 * isshadowray(),
+               (r == "RayDrive" ? 1 : 0) + (vs == "0.1.0" ? 1 : 0) + v[0] + v[1] + v[2] +
+                   v[3] + arraylength(arr) + arraylength(known),
+               known) + c;
+    Oi = 1;
+}
 )"}};
 
 const char* kCamera =
@@ -139,6 +155,21 @@ TEST(MessagePassing, RayinfoGivesTheRaysDepth) {
     EXPECT_EQ(rsl::stringId("length"), 13645333);
     EXPECT_EQ(rsl::stringId("camera"), 12490830);
     EXPECT_EQ(rsl::stringId("trace"), 4027822);
+}
+
+// BMRT's and PRMan's raylevel() (as rayinfo("depth": the front square 0.25 plus 1.25 of
+// the one behind), isshadowray() (0: shadows run no shader), arraylength() (3 for a
+// float[3], -1 for a float), and rendererinfo(): "renderer" RayDrive, "versionstring"
+// 0.1.0, "version" 0 1 0 0, each found (1), an unknown name not (0). Before, raylevel,
+// isshadowray and arraylength were unknown functions and rendererinfo found nothing.
+TEST(MessagePassing, RaylevelAndRendererinfo) {
+    const std::string dir = rd::test::shaderFolder("message_passing", kShaders);
+    Rendered r = renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" +
+                           std::string(kCamera) + "WorldBegin\nSurface \"raylevel\"\n" +
+                           square(0, "") + square(0, "Translate 0 0 1") + "WorldEnd\n");
+    EXPECT_NEAR(r.mean(0, 22, 6, 26, 10), 1.5, 1e-5);
+    EXPECT_NEAR(r.mean(1, 22, 6, 26, 10), 1 + 1 + 1 + 3 - 1, 1e-6);
+    EXPECT_NEAR(r.mean(2, 22, 6, 26, 10), 3, 1e-6);
 }
 
 // surface(), displacement() and atmosphere(): a parameter of the shaded material's own

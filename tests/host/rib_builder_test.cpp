@@ -62,13 +62,13 @@ TEST(RibBuilder, PixelFilterAndItsErrors) {
     EXPECT_EQ(r.scenes[0].camera.filterWidth[1], 3.0f);
     Built bad =
         build(std::string("PixelFilter \"gaussian\" 0 2\nPixelFilter \"box\" 2 "
-                          "1e9\nPixelFilter \"bessel\" 2 2\nPixelFilter \"sinc\" 40 "
+                          "1e9\nPixelFilter \"airy\" 2 2\nPixelFilter \"sinc\" 40 "
                           "4\n") +
               kWorld);
     EXPECT_EQ(bad.errors, 2);
     EXPECT_NE(bad.messages.find("t.rib:1: error: PixelFilter widths"), std::string::npos)
         << bad.messages;
-    EXPECT_NE(bad.messages.find("t.rib:3: warning: PixelFilter \"bessel\" is not known"),
+    EXPECT_NE(bad.messages.find("t.rib:3: warning: PixelFilter \"airy\" is not known"),
               std::string::npos)
         << bad.messages;
     EXPECT_NE(bad.messages.find("t.rib:4: warning: PixelFilter \"sinc\" changes sign"),
