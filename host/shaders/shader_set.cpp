@@ -31,12 +31,13 @@ namespace {
 // floats, as light blocks after it load float4s.
 // Then the starts of attribute()'s table and option()'s block (message_services.h),
 // the start of the per-material Exterior table (1 + the shader's index, 0 for none),
-// the start of the table of spaces (space_services.h), then the clipping planes
-// (normal, offset: clipped where n.P + offset > 0).
+// the start of the table of spaces (space_services.h), the clipping planes
+// (normal, offset: clipped where n.P + offset > 0), then current to camera (16).
 constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20,
                  kSceneAttributes = 25, kSceneOptions = 26, kSceneShaderBlocks = 27,
                  kSceneExteriors = 28, kSceneSpaces = 29, kSceneClipPlanes = 32,
-                 kSceneFloats = kSceneClipPlanes + 4 * kMaxClipPlanes;
+                 kSceneCameraInverse = kSceneClipPlanes + 4 * kMaxClipPlanes,
+                 kSceneFloats = kSceneCameraInverse + 16;
 
 // Moves a triple of a point/vector/normal parameter from a space to world space.
 void toWorld(rsl::BaseType base, const glm::mat4& m, float* v) {
@@ -116,15 +117,17 @@ std::vector<float> bindParameters(const rsl::EmittedShader& sh, const ShaderRef&
     // SPACES), RSL row-vector matrices, which are glm's column-major arrays as they are.
     // Object space is the primitive's when the shader reads it (the builder made the
     // instance for it: ShaderRef::objectToWorld), else the space it was declared in.
-    const float* m = &call.shaderToWorld[0][0];
-    const float* o = call.objectToWorld ? &(*call.objectToWorld)[0][0] : m;
-    block.resize(size_t(sh.spaceOffset) + 32);
+    // Then their inverses (in double: exact where the device's 4x4 inverse at every
+    // point was not, and was half of a solid-texture shader's time).
+    const glm::dmat4 m(call.shaderToWorld),
+        o(call.objectToWorld.value_or(call.shaderToWorld));
+    block.resize(size_t(sh.spaceOffset) + rsl::kSpaceFloats);
     // then the slots its prepare function fills once per instance (rsl::HoistPlan)
     block.resize(size_t(sh.prepOffset) + size_t(sh.prepFloats), 0.0f);
-    for (int i = 0; i < 16; ++i) {
-        block[size_t(sh.spaceOffset + i)] = m[i];
-        block[size_t(sh.spaceOffset + 16 + i)] = o[i];
-    }
+    const glm::dmat4 spaces[4] = {m, o, glm::inverse(m), glm::inverse(o)};
+    for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < 16; ++i)
+            block[size_t(sh.spaceOffset + 16 * k + i)] = float((&spaces[k][0][0])[i]);
     return block;
 }
 
@@ -290,11 +293,13 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     // --- the scene block, at the front of the params buffer (RslGlobals::scene_params):
     // what the services read that moves with the camera (kScene* offsets)
     out.params.assign(kSceneFloats, 0.0f);
-    const SpaceSlots spaces{kSceneCamera, kSceneWorld, kSceneSpaces};
+    const SpaceSlots spaces{kSceneCamera, kSceneCameraInverse, kSceneWorld, kSceneSpaces};
     {
         // RSL row-vector matrices are glm's column-major arrays as they are.
         const glm::mat4 camToWorld = glm::inverse(m_scene.camera.worldToCamera);
         std::copy_n(&camToWorld[0][0], 16, out.params.begin() + kSceneCamera);
+        const glm::mat4& toCamera = m_scene.camera.worldToCamera;
+        std::copy_n(&toCamera[0][0], 16, out.params.begin() + kSceneCameraInverse);
         // "world": the renderer's current space is the world moved so the eye is at the
         // origin (precision far from it); world points are current + worldOrigin.
         const glm::dvec3& wo = m_scene.worldOrigin;

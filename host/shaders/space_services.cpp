@@ -20,10 +20,11 @@ std::string spaceService(const SpaceSlots& slots) {
          "RslMatrix rsl_space_matrix(const RslSpaces* sp, int space, int inverse) {\n"
          "    RslMatrix m = rsl_mscalar(1.0f);\n"
          "    if (space == RSL_SPACE_CAMERA) {\n"
-         "        for (int r = 0; r < 4; ++r) m.r[r] = vload4(r, sp->scene + "
-      << slots.camera
+         "        __global const float* c = sp->scene + (inverse ? "
+      << slots.cameraInverse << " : " << slots.camera
       << ");\n"
-         "        return inverse ? rsl_minverse(m) : m;\n    }\n"
+         "        for (int r = 0; r < 4; ++r) m.r[r] = vload4(r, c);\n"
+         "        return m;\n    }\n"
          "    if (space == RSL_SPACE_WORLD) {\n"
          "        m.r[3] = vload4(0, sp->scene + "
       << slots.world

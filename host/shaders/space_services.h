@@ -12,10 +12,10 @@
 namespace rd {
 
 // Where rsl_space_matrix finds its data in the scene block (RslGlobals::scene_params):
-// the camera-to-current matrix (16 floats), the world row (4), and the table's start
-// (an int's bits, message_services.h intBits; 0: no table).
+// the camera-to-current matrix and its inverse (16 floats each), the world row (4), and
+// the table's start (an int's bits, message_services.h intBits; 0: no table).
 struct SpaceSlots {
-    size_t camera = 0, world = 0, table = 0;
+    size_t camera = 0, cameraInverse = 0, world = 0, table = 0;
 };
 
 // rsl_space_matrix(sp, space, inverse), OpenCL C.

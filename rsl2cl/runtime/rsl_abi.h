@@ -36,8 +36,9 @@
  * false); the host writes a value there to override it.
  *
  * SPACES. Every parameter block (surface, light and the other kinds alike) is followed
- * by 32 floats at EmittedShader::spaceOffset (== paramFloats): the instance's
- * "shader"-to-current matrix, then its "object"-to-current matrix, 16 floats each,
+ * by RSL_SPACE_FLOATS (64) floats at EmittedShader::spaceOffset (== paramFloats): the
+ * instance's "shader"-to-current matrix, then its "object"-to-current matrix, then
+ * their inverses (current to "shader", current to "object"), 16 floats each,
  * row-major in the RSL row-vector convention (p_current = (p, 1) * M, translation in
  * floats 12..14 of each). The host must always write them (identity when it has
  * nothing better). Generated code reads them (rsl_param16) for every use of "shader"

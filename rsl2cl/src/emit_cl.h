@@ -31,12 +31,16 @@ struct ParamSlot {
     bool rgbDefault = false;
 };
 
+// The floats after each parameter block: four matrices (rsl_abi.h, RSL_SPACE_FLOATS).
+constexpr int kSpaceFloats = 64;
+
 struct EmittedShader {
     std::string name, kind, functionName, source;
     std::vector<ParamSlot> params;
     int paramFloats = 0;
-    // The 32 floats of the "shader" then "object" to current matrices follow the
-    // parameters at this offset (== paramFloats); the host writes them (rsl_abi.h).
+    // The kSpaceFloats floats of the "shader" then "object" to current matrices, then
+    // their inverses, follow the parameters at this offset (== paramFloats); the host
+    // writes them (rsl_abi.h, SPACES).
     int spaceOffset = 0;
     int outputFloats = 0;       // RslEval::outputs used by output parameters
     // Uniform work done once per instance (hoist.h): prepFunction (empty: none) fills

@@ -50,7 +50,8 @@ TEST(Abi, ShaderAndObjectSpacesFromTheBlock) {
     std::string err;
     ASSERT_TRUE(sh.compileSource(kSpaces, "spaces.sl", &err)) << err;
     EXPECT_EQ(sh.shader.spaceOffset, sh.shader.paramFloats);
-    EXPECT_NE(sh.shader.source.find("rsl_param16(params, 1)"), std::string::npos) << sh.shader.source;
+    EXPECT_NE(sh.shader.source.find("_sp.spaces = params + 1;"), std::string::npos)
+        << sh.shader.source;
     ts::Scene sc;
     // shader: scale 2 then translate (1, 2, 3); object: translate (5, 0, 0)
     float S[16] = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 1, 2, 3, 1};
@@ -82,7 +83,7 @@ TEST(Abi, SpacesAreNotReadWhenUnused) {
     std::string err;
     ASSERT_TRUE(sh.compileSource("surface flat(float Kd = 1;) { Ci = Kd * Cs; }", "flat.sl", &err)) << err;
     EXPECT_EQ(sh.shader.spaceOffset, 1);
-    EXPECT_EQ(sh.shader.source.find("rsl_param16"), std::string::npos) << sh.shader.source;
+    EXPECT_EQ(sh.shader.source.find("_sp.spaces"), std::string::npos) << sh.shader.source;
 }
 
 // ---- 2. output parameters -------------------------------------------------------------

@@ -46,7 +46,7 @@ TEST(Hoist, UniformWorkOnParametersIsDoneOncePerInstance) {
     EXPECT_FALSE(hoisted(sh, "e"));
     EXPECT_EQ(sh.prepFunction, "rsl_prep_surface_s");
     EXPECT_EQ(sh.prepFloats, 1 + 3 + 16);
-    EXPECT_EQ(sh.prepOffset, sh.spaceOffset + 32);
+    EXPECT_EQ(sh.prepOffset, sh.spaceOffset + rsl::kSpaceFloats);
     // the body reads the slot; the prepare function computes it
     EXPECT_NE(sh.source.find("float v_k = params[" + std::to_string(sh.prepOffset) + "]"),
               std::string::npos)

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <glm/glm.hpp>
 #include <sstream>
 
 #include "compiler.h"
@@ -56,6 +57,15 @@ const int kGlobalFloats = 68;
 const int kEvalFloats = 4 + 2 * 8 * 4 + 32 + 8 * 4;
 // field order of RslGlobals
 enum { fP, fN, fNg, fI, fE, fdPdu, fdPdv, fCs, fOs, fCi, fOi, fL, fCl, fOl, fPs };
+
+// The inverse of a 4x4 matrix of 16 floats (either order: the inverse of the transpose
+// is the transpose of the inverse), in double.
+void invertRowMajor4(const float* in, float* out) {
+    glm::dmat4 m;
+    for (int i = 0; i < 16; ++i) (&m[0][0])[i] = in[i];
+    const glm::dmat4 inv = glm::inverse(m);
+    for (int i = 0; i < 16; ++i) out[i] = float((&inv[0][0])[i]);
+}
 
 std::string fl(float x) {
     std::ostringstream s;
@@ -350,10 +360,14 @@ std::vector<Out> Shade::run(const std::vector<Point>& pts, const Scene& sc, int 
     // the block, then the shader and object matrices (rsl_abi.h, SPACES)
     std::vector<float> pv = params;
     pv.resize(size_t(shader.prepOffset) + size_t(shader.prepFloats), 0.0f);
+    // (and their inverses: the tests' matrices are affine, inverted here in double)
     for (int k = 0; k < 16; ++k) {
         pv[shader.spaceOffset + k] = sc.shaderMatrix[k] + (k >= 12 && k < 15 ? sc.shaderOffset[k - 12] : 0.0f);
         pv[shader.spaceOffset + 16 + k] = sc.objectMatrix[k];
     }
+    for (int m = 0; m < 2; ++m)
+        invertRowMajor4(&pv[size_t(shader.spaceOffset + 16 * m)],
+                        &pv[size_t(shader.spaceOffset + 32 + 16 * m)]);
     cl_mem bg = clCreateBuffer(cl().ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, gin.size() * 4, gin.data(), &err);
     cl_mem bp = clCreateBuffer(cl().ctx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, pv.size() * 4, pv.data(), &err);
     if (!shader.prepFunction.empty()) {
