@@ -209,7 +209,8 @@
 #define RSL_COEF_ARG(x)
 #endif
 #define RSL_MAX_OUTPUT_FLOATS 32  /* RslEval::outputs: output parameters' final values */
-#define RSL_SPACE_FLOATS 32       /* after each parameter block: shader, object matrices */
+#define RSL_SPACE_FLOATS \
+    64 /* after each parameter block: shader, object, their inverses */
 
 #ifndef RSL_LIGHT_PARAMS
 #define RSL_LIGHT_PARAMS __global const float*

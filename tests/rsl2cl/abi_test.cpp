@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 
+#include "emit_cl.h"
 #include "testshade.h"
 
 namespace {
@@ -50,6 +51,12 @@ TEST(Abi, ShaderAndObjectSpacesFromTheBlock) {
     std::string err;
     ASSERT_TRUE(sh.compileSource(kSpaces, "spaces.sl", &err)) << err;
     EXPECT_EQ(sh.shader.spaceOffset, sh.shader.paramFloats);
+    // the host's count of the floats after a block is the runtime's, defined once
+    const std::string runtime = rsl::runtimeSource();
+    const std::string define = "#define RSL_SPACE_FLOATS ";
+    ASSERT_NE(runtime.find(define + std::to_string(rsl::kSpaceFloats) + " "),
+              std::string::npos);
+    EXPECT_EQ(runtime.find(define, runtime.find(define) + 1), std::string::npos);
     EXPECT_NE(sh.shader.source.find("_sp.spaces = params + 1;"), std::string::npos)
         << sh.shader.source;
     ts::Scene sc;
