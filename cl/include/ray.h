@@ -62,6 +62,9 @@ typedef struct RayState {
 /* ... and one that asks how far it goes (gather()'s "ray:length"): its weight times the
  * distance to what it meets goes to its sample, nothing when it escapes; never shaded */
 #define RT_ALIVE_DISTANCE 5u
+/* ... and a traced ray of indirectdiffuse(): shaded like any, but it sees the surfaces
+ * visible to diffuse rays (RT_MATERIAL_NO_DIFFUSE), as occlusion()'s do */
+#define RT_ALIVE_DIFFUSE 7u
 
 /* Compaction works on groups of this many traced rays (close_round.cl, compact.cl); the
  * host sizes its per-group counts by it. */

@@ -54,6 +54,10 @@ typedef struct Material {
  * their continuations through transparent surfaces), or traced rays, go through it. */
 #define RT_MATERIAL_NO_CAMERA 4u
 #define RT_MATERIAL_NO_TRACE 8u
+/* "int diffuse" [0]: the rays of occlusion() and indirectdiffuse() go through it
+ * ("int specular" [0] is RT_MATERIAL_NO_TRACE: trace() and gather() rays; "int trace"
+ * [0] both). */
+#define RT_MATERIAL_NO_DIFFUSE 128u
 /* Attribute "visibility" "int transmission" [0]: shadow rays go through it (it casts no
  * shadow). */
 #define RT_MATERIAL_NO_TRANSMISSION 16u

@@ -130,8 +130,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #endif
 #ifdef RT_HAS_INVISIBLE
     /* not visible to this kind of ray: it goes on unchanged, as past a culled back */
-    culled = culled || (m.flags & (RT_TRACE_DEPTH(rs) == 0u ? RT_MATERIAL_NO_CAMERA
-                                                            : RT_MATERIAL_NO_TRACE));
+    culled = culled || (m.flags & (RT_TRACE_DEPTH(rs) == 0u          ? RT_MATERIAL_NO_CAMERA
+                                   : rs.alive == RT_ALIVE_DIFFUSE ? RT_MATERIAL_NO_DIFFUSE
+                                                                  : RT_MATERIAL_NO_TRACE));
 #ifdef RT_HAS_VISIBILITY_RAYS
     /* (classify sends only these here) */
     culled = culled || rs.alive == RT_ALIVE_VISIBILITY || rs.alive == RT_ALIVE_DISTANCE;
@@ -449,8 +450,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
         /* a zero direction (refract() under total internal reflection) traces nothing */
         if (!(rt_dot3(td, td) > 0.5f)) continue;
         float4 tp = ev.trace_org[i];
-        /* (rsl_abi.h TRACE: a visibility ray's flag, the ray's reach, 0 for no limit) */
-        const uint alive = tp.w > 1.5f   ? RT_ALIVE_DISTANCE
+        /* (rsl_abi.h TRACE: the ray's kind, its reach, 0 for no limit) */
+        const uint alive = tp.w > 2.5f   ? RT_ALIVE_DIFFUSE
+                           : tp.w > 1.5f ? RT_ALIVE_DISTANCE
                            : tp.w > 0.5f ? RT_ALIVE_VISIBILITY
                                          : 1u;
         const float reach = ev.trace_dir[i].w;

@@ -67,7 +67,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
         }
 #ifdef RT_HAS_VISIBILITY_RAYS
         /* an occlusion() ray: its weight counts when it escaped; it is never shaded, but
-         * a surface traced rays go through passes it on (its shade kernel) */
+         * a surface diffuse rays go through passes it on (its shade kernel) */
         if (state[r].alive == RT_ALIVE_VISIBILITY) {
             if (prim == RT_NO_HIT) {
                 rt_atomic_add_float4(&total[ray_sample[r]].value,
@@ -77,7 +77,7 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
 #endif
             }
 #ifdef RT_HAS_INVISIBLE
-            if (prim == RT_NO_HIT || !(materials[mat].flags & RT_MATERIAL_NO_TRACE))
+            if (prim == RT_NO_HIT || !(materials[mat].flags & RT_MATERIAL_NO_DIFFUSE))
 #endif
                 k = shader_count;
         }

@@ -16,7 +16,8 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
         if (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f) f.transparency = true;
         // a one-sided surface's back continues the ray, as a transparent surface does
         if (m.flags & RT_MATERIAL_ONE_SIDED) f.oneSided = f.transparency = true;
-        if (m.flags & (RT_MATERIAL_NO_CAMERA | RT_MATERIAL_NO_TRACE))
+        if (m.flags &
+            (RT_MATERIAL_NO_CAMERA | RT_MATERIAL_NO_TRACE | RT_MATERIAL_NO_DIFFUSE))
             f.invisible = f.transparency = true;
         // (os.w: the mean opacity, what a shadow through it keeps in other channels)
         if ((m.flags & RT_MATERIAL_NO_TRANSMISSION) ||

@@ -80,6 +80,7 @@ void RibBuilder::worldBegin(L loc) {
     m_displacementKeys.clear();
     m_readsObjectSpace.clear();
     m_objectSpaces.clear();
+    m_lastScopedSystems.clear();
     m_degenerate = 0;
     m_solidNodes.clear();
     m_solidStack.clear();
@@ -104,8 +105,9 @@ void RibBuilder::worldEnd(L loc) {
             if (r.objectToWorld)
                 r.objectToWorld = glm::mat4(toOrigin * glm::dmat4(*r.objectToWorld));
         }
-    for (const auto& [name, toWorld] : m_coordSystems)
-        m_world.coordinateSystems[name] = glm::mat4(toOrigin * glm::dmat4(toWorld));
+    for (const auto* systems : {&m_lastScopedSystems, &m_coordSystems})  // (global last)
+        for (const auto& [name, toWorld] : *systems)
+            m_world.coordinateSystems[name] = glm::mat4(toOrigin * glm::dmat4(toWorld));
     m_world.camera.worldToCamera = glm::mat4(glm::dmat4(m_world.camera.worldToCamera) *
                                              glm::translate(glm::dmat4(1.0), m_origin));
     m_world.camera.worldToCameraEnd = glm::mat4(glm::dmat4(m_world.camera.worldToCameraEnd) *
@@ -137,10 +139,11 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
                 v &= ~flag;
         };
         set(RT_MATERIAL_NO_CAMERA, params.getInt("camera", -1));
-        set(RT_MATERIAL_NO_TRACE, params.getInt("trace", -1));
-        const int diffuse = params.getInt("diffuse", -1),
-                  specular = params.getInt("specular", -1);
-        if (diffuse >= 0 && specular >= 0) set(RT_MATERIAL_NO_TRACE, diffuse + specular);
+        // "trace": both kinds of traced rays; "specular": trace() and gather()'s,
+        // "diffuse": occlusion()'s and indirectdiffuse()'s
+        set(RT_MATERIAL_NO_TRACE | RT_MATERIAL_NO_DIFFUSE, params.getInt("trace", -1));
+        set(RT_MATERIAL_NO_TRACE, params.getInt("specular", -1));
+        set(RT_MATERIAL_NO_DIFFUSE, params.getInt("diffuse", -1));
         // transmission: 0 or "transparent" cast no shadow; 1, "Os" or "shader" one by
         // their opacity Os; "opaque" a full one whatever their Os
         const std::string transmission = params.getString("transmission", "");
@@ -158,8 +161,11 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
                            "Attribute \"visibility\" \"string transmission\" \"" +
                                transmission +
                                "\": not transparent, opaque, Os or shader; taken as Os");
+        if (transmission == "shader") warnShaderTransmission(loc);
         return;
     }
+    if (name == "shade" && params.getString("transmissionhitmode", "") == "shader")
+        warnShaderTransmission(loc);
     if (name ==
         "displacementbound") {  // PRMan: "float sphere", "string coordinatesystem"
         const float r = params.getFloat("sphere", 0.0f);
@@ -191,6 +197,13 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
         }
         traceDepthOption(params);
     }
+}
+
+// Shadow rays run no shader: what they see of a surface is its constant Os.
+void RibBuilder::warnShaderTransmission(L loc) {
+    m_diag.warning(loc,
+                   "shadows through a surface take its constant Os (PRMan's "
+                   "\"primitive\" transmission), not its shader's Oi");
 }
 
 void RibBuilder::traceDepthOption(const rib::ParamList& params) {

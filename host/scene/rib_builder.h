@@ -278,6 +278,7 @@ private:
     enum class Block { Frame, World, Attribute, Transform };
 
     uint32_t currentMaterial();
+    void warnShaderTransmission(L loc);
     void keepCall(L loc, S name, P params, ShaderRef& call, uint64_t& key);
     // Attribute and Option values for attribute() and option()
     // (rib_builder_messages.cpp): params of `category` into `into` as "category:name",
@@ -493,6 +494,8 @@ private:
     // a named coordinate system's transform to world (rib_builder_transforms.cpp)
     std::optional<glm::mat4> namedSpace(const std::string& name) const;
     std::map<std::string, glm::mat4> m_coordSystems; // CoordinateSystem name -> object to world
+    std::map<std::string, glm::mat4>
+        m_lastScopedSystems;  // ScopedCoordinateSystem's last
     // ObjectInstance without copies: the object's meshes become a prototype (once per
     // world, in object space), each instance a record placing it; `pointParams` are the
     // per-point values all its meshes give (sharedPointParams).

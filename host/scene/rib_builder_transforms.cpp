@@ -130,10 +130,12 @@ void RibBuilder::camera(L, S name, P) {
 
 void RibBuilder::coordinateSystem(L, S name) { m_coordSystems[name] = m_attrStack.back().ctm; }
 
-// (kept in the attributes: the attribute block's end forgets it)
+// (kept in the attributes: the attribute block's end forgets it; shaders that name it
+// get its last placement, m_lastScopedSystems)
 void RibBuilder::scopedCoordinateSystem(L, S name) {
     Attributes& a = m_attrStack.back();
     a.scopedSystems.push_back({name, a.ctm});
+    m_lastScopedSystems[name] = a.ctm;
 }
 
 // A named coordinate system's transform to world: one ScopedCoordinateSystem named in the

@@ -118,10 +118,12 @@
  *     visibility ray (occlusion(): its weight counts when it escapes, and what it
  *     hits is not shaded), 2 for a distance ray (gather()'s "ray:length": its weight
  *     times the distance to what it hits counts, nothing when it escapes, and what it
- *     hits is not shaded), else 0. occlusion() and indirectdiffuse() are trace sites
- *     in a cosine-distributed direction about N, from two random sites.
- *   Each evaluation resets ev->trace_count to 0 first.
- *   LIGHT COEFFICIENTS. A renderer that defines RSL_LIGHT_COEFS (the number of lights,
+ *     hits is not shaded), 3 for a diffuse traced ray (indirectdiffuse(): it sees what
+ *     diffuse rays see, Attribute "visibility" "diffuse"), else 0 (trace(), gather()'s
+ *     "surface:Ci": what specular rays see). occlusion() and indirectdiffuse() are trace
+ * sites in a cosine-distributed direction about N, from two random sites. Each evaluation
+ * resets ev->trace_count to 0 first. LIGHT COEFFICIENTS. A renderer that defines
+ * RSL_LIGHT_COEFS (the number of lights,
  *   >= 1) may get every light mode's result from the base evaluation: with ev->coefs
  *   set (0 in every other evaluation), a surface compiled with
  *   EmittedShader::lightCoefs leaves ev->Ci_light[l] = Ci(light mode l) - E for each
@@ -209,8 +211,8 @@
 #define RSL_COEF_ARG(x)
 #endif
 #define RSL_MAX_OUTPUT_FLOATS 32  /* RslEval::outputs: output parameters' final values */
-#define RSL_SPACE_FLOATS \
-    64 /* after each parameter block: shader, object, their inverses */
+/* after each parameter block: shader, object and their inverses */
+#define RSL_SPACE_FLOATS 64
 
 #ifndef RSL_LIGHT_PARAMS
 #define RSL_LIGHT_PARAMS __global const float*

@@ -519,3 +519,41 @@ TEST(GraphicsState, DetailRangePicksOneRepresentation) {
     EXPECT_NEAR(large.mean(2, 24, 24, 40, 40), 1.0, 1e-6);
     EXPECT_NEAR(relative.mean(0, 24, 24, 40, 40), 1.0, 1e-6);
 }
+
+// Attribute "visibility" "int diffuse" and "int specular" apart (PRMan): the rays of
+// occlusion() and indirectdiffuse() see what is visible to diffuse rays, trace()'s what
+// is visible to specular ones, "int trace" sets both. A patch under a disk that covers
+// 0.2 of its cosine-weighted hemisphere (as in
+// Shading.OcclusionAndIndirectDiffuseAreTheirHemisphereFractions), its shader 1 -
+// occlusion(), indirectdiffuse() or trace() straight up, the disk's constant red 1.
+// Before, "diffuse" and "specular" did something only when both were given, together.
+TEST(GraphicsState, DiffuseAndSpecularVisibilityApart) {
+    const std::string dir = rd::test::scratchDir("raydrive_visibility_kinds");
+    std::ofstream(dir + "/rays.sl")
+        << "surface rays(float mode = 0) {\n"
+           "  normal Nz = normal(0, 0, 1);\n"
+           "  if (mode == 0) Ci = 1 - occlusion(P, Nz, 16);\n"
+           "  else if (mode == 1) Ci = indirectdiffuse(P, Nz, 16);\n"
+           "  else Ci = trace(P, vector(0, 0, 1));\n"
+           "  Oi = 1;\n}\n";
+    struct Case {
+        const char* visibility;
+        double open, indirect, traced;  // 1 - occlusion, indirectdiffuse, trace
+    };
+    for (const Case c :
+         {Case{"", 0.8, 0.2, 1.0}, Case{"\"int diffuse\" [0]", 1.0, 0.0, 1.0},
+          Case{"\"int specular\" [0]", 0.8, 0.2, 0.0},
+          Case{"\"int trace\" [0]", 1.0, 0.0, 0.0}}) {
+        const std::string above = (*c.visibility ? "Attribute \"visibility\" " +
+                                                       std::string(c.visibility) + "\n"
+                                                 : std::string()) +
+                                  "Translate 0 0 7\nDisk 0 1 360\n";
+        for (int mode = 0; mode < 3; ++mode) {
+            const Rendered r = renderRib(rd::test::patchUnder(
+                dir, 8, "\"rays\" \"float mode\" [" + std::to_string(mode) + "]", above));
+            const double want = mode == 0 ? c.open : mode == 1 ? c.indirect : c.traced;
+            EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), want, mode == 2 ? 1e-5 : 0.02)
+                << c.visibility << " mode " << mode;
+        }
+    }
+}

@@ -137,3 +137,27 @@ TEST(RibBuilder, CameraOptions) {
     Built bad = build(std::string("CropWindow 0.5 0.2 0 1\n") + kWorld);
     EXPECT_EQ(bad.errors, 1);
 }
+
+// Shadow rays run no shader: PRMan's "shader" transmission (by visibility or by
+// transmissionhitmode) is a warning at its line, and the surface casts the shadow of its
+// constant Os (GraphicsState.ShadowsThroughSurfacesTakeTheirTransmission). The other
+// visibility attributes are not.
+TEST(RibBuilder, ShaderTransmissionIsAWarning) {
+    Built b = build(
+        "WorldBegin\nAttribute \"visibility\" \"string transmission\" [\"shader\"]\n"
+        "Attribute \"shade\" \"string transmissionhitmode\" [\"shader\"]\n"
+        "Attribute \"shade\" \"string transmissionhitmode\" [\"primitive\"]\n"
+        "Attribute \"visibility\" \"string transmission\" [\"Os\"]\n"
+        "Attribute \"visibility\" \"int diffuse\" [0]\n"
+        "Attribute \"visibility\" \"int diffuse\" [0] \"int specular\" [0]\nWorldEnd\n");
+    EXPECT_EQ(b.errors, 0);
+    EXPECT_NE(b.messages.find("t.rib:2: warning: shadows through a surface take its "
+                              "constant Os"),
+              std::string::npos)
+        << b.messages;
+    EXPECT_NE(b.messages.find("t.rib:3: warning: shadows through"), std::string::npos);
+    EXPECT_EQ(b.messages.find("t.rib:4:"), std::string::npos);
+    EXPECT_EQ(b.messages.find("t.rib:5:"), std::string::npos);
+    EXPECT_EQ(b.messages.find("t.rib:6:"), std::string::npos);
+    EXPECT_EQ(b.messages.find("t.rib:7:"), std::string::npos);
+}

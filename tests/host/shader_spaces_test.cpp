@@ -107,6 +107,19 @@ TEST(Shading, ObjectSpaceIsEachPrimitivesOwn) {
     // (x 1.125 to 1.5 on the unit sphere, beside the small one in front of it)
     EXPECT_NEAR(mixed.mean(0, 41, 14, 44, 18), 1.0, 1e-3) << "each sphere's own centre";
     EXPECT_NEAR(mixed.mean(0, 47, 15, 49, 17), 0.3, 1e-3) << "the nearer sphere's centre";
+    // instances: each ObjectInstance's space is its primitives' object space
+    const Rendered instanced = renderRib(
+        camera +
+        "Surface \"showobject\"\nObjectBegin \"ball\"\nSphere 1 -1 1 360\nObjectEnd\n"
+        "AttributeBegin\nTranslate -2 0 0\nObjectInstance \"ball\"\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 2 0 0\nRotate 90 0 1 0\nObjectInstance \"ball\"\n"
+        "AttributeEnd\nWorldEnd\n");
+    EXPECT_NEAR(instanced.mean(0, 15, 15, 17, 17), 2.0, 0.02) << "the first instance's x";
+    EXPECT_NEAR(instanced.mean(2, 15, 15, 17, 17), 1.0, 0.02) << "the first instance's z";
+    EXPECT_NEAR(instanced.mean(0, 47, 15, 49, 17), 3.0, 0.02)
+        << "the turned instance's x";
+    EXPECT_NEAR(instanced.mean(2, 47, 15, 49, 17), 2.0, 0.02)
+        << "the turned instance's z";
 }
 
 // "raster", "NDC" and "screen" (RI 3.2 section 4.1; identity before session 35): on a
@@ -150,7 +163,8 @@ TEST(Shading, ProjectedSpacesArePixelsAndTheScreen) {
     }
 }
 
-// Named coordinate systems (CoordinateSystem, Camera "name"), by a literal name and by
+// Named coordinate systems (CoordinateSystem, Camera "name", a ScopedCoordinateSystem's
+// last placement), by a literal name and by
 // a string parameter's value: transform("proj", P) for a system placed at (1, 2, 3) and
 // turned 90 degrees about z gives P's coordinates in it, (y - 2, 1 - x, z - 3) of the
 // world's (residuals at every sample, in the image); a name the scene does not define is
@@ -173,15 +187,22 @@ TEST(Shading, NamedCoordinateSystemsAreTheScenes) {
     const std::string world =
         "WorldBegin\nAttributeBegin\nTranslate 1 2 3\nRotate 90 0 0 1\n"
         "CoordinateSystem \"proj\"\nAttributeEnd\n";
+    // (a ScopedCoordinateSystem's last placement serves the same)
+    const std::string scoped =
+        "WorldBegin\nAttributeBegin\nTranslate 1 2 3\nRotate 90 0 0 1\n"
+        "ScopedCoordinateSystem \"proj\"\nAttributeEnd\n";
     const std::string square =
         "Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\nWorldEnd\n";
-    const Rendered img = renderRib(options + world + "Surface \"shownamed\"\n" + square);
-    float worst[2] = {0, 0};
-    for (const rd::Rgba& p : img.pixels)
-        worst[0] = std::max(worst[0], p.r), worst[1] = std::max(worst[1], p.g);
-    EXPECT_LT(worst[0], 1e-5) << "P in proj";
-    EXPECT_EQ(worst[1], 0.0f) << "the name by value and as a literal";
-    EXPECT_NEAR(img.mean(2, 0, 0, 16, 16), 1.0, 1e-6) << "the square fills the image";
+    for (const std::string& placed : {world, scoped}) {
+        const Rendered img =
+            renderRib(options + placed + "Surface \"shownamed\"\n" + square);
+        float worst[2] = {0, 0};
+        for (const rd::Rgba& p : img.pixels)
+            worst[0] = std::max(worst[0], p.r), worst[1] = std::max(worst[1], p.g);
+        EXPECT_LT(worst[0], 1e-5) << "P in proj";
+        EXPECT_EQ(worst[1], 0.0f) << "the name by value and as a literal";
+        EXPECT_NEAR(img.mean(2, 0, 0, 16, 16), 1.0, 1e-6) << "the square fills the image";
+    }
     const std::string messages = rd::test::renderRibToFiles(
         options + "Display \"" + out + "/nowhere.exr\" \"file\" \"rgba\"\n" + world +
         "Surface \"nowhere\"\n" + square);
