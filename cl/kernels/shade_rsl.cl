@@ -391,9 +391,15 @@ __kernel void shade_SURFACE(uint begin, uint count,
     int traces = min(ev.trace_count, RSL_MAX_TRACE);
     if (ev.trace_count > RSL_MAX_TRACE) /* (their rays are not traced: say so) */
         atomic_add(&numerics[RT_NUM_TRACE_LIMIT], (uint)(ev.trace_count - RSL_MAX_TRACE));
-    if (traces > 0 && RT_TRACE_DEPTH(rs) >= RT_MAX_SPECULAR_DEPTH)
+    /* Attribute "trace" "maxspeculardepth": the object's own, where objects differ */
+#ifdef RT_MATERIAL_DEPTHS
+    const uint depth_limit = (uint)params[as_int(params[RD_SCENE_DEPTHS]) + g.material];
+#else
+    const uint depth_limit = RT_MAX_SPECULAR_DEPTH;
+#endif
+    if (traces > 0 && RT_TRACE_DEPTH(rs) >= depth_limit)
         atomic_add(&numerics[RT_NUM_SPECULAR_DEPTH], (uint)traces);
-    for (int i = 0; i < traces && RT_TRACE_DEPTH(rs) < RT_MAX_SPECULAR_DEPTH; ++i) {
+    for (int i = 0; i < traces && RT_TRACE_DEPTH(rs) < depth_limit; ++i) {
         RslEval te;
         rd_eval_init(&te, dsites, tc, -1, i);
         if (dsites) dsites->count = 0;

@@ -48,6 +48,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.sampledTrace = shading.sampledTrace;
     f.visibilityRays = shading.visibilityRays;
     f.maxSpecularDepth = scene.maxSpecularDepth;
+    f.materialDepths = shading.materialDepths;
     f.maxTransparentDepth = scene.maxTransparentDepth;
     f.rouletteDepth = scene.rouletteDepth;
     f.seed = uint32_t(std::max(0, scene.render.seed));
@@ -113,6 +114,7 @@ std::vector<std::string> Features::names() const {
     if (atmosphere) n.push_back("atmosphere");
     if (interior) n.push_back("interior");
     if (exterior) n.push_back("exterior");
+    if (materialDepths) n.push_back("object_specular_depths");
     if (clipPlanes > 0) n.push_back("clipping_planes");
     if (oneSided) n.push_back("one_sided");
     if (invisible) n.push_back("visibility");
@@ -222,6 +224,7 @@ std::string buildOptions(const Features& f) {
     if (f.atmosphere) o += " -DRT_HAS_ATMOSPHERE";
     if (f.interior) o += " -DRT_HAS_INTERIOR";
     if (f.exterior) o += " -DRT_HAS_EXTERIOR";
+    if (f.materialDepths) o += " -DRT_MATERIAL_DEPTHS";
     if (f.clipPlanes > 0) o += " -DRT_CLIP_PLANES=" + std::to_string(f.clipPlanes);
     if (f.oneSided) o += " -DRT_HAS_ONE_SIDED";
     if (f.invisible) o += " -DRT_HAS_INVISIBLE";

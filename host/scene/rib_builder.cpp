@@ -86,7 +86,6 @@ void RibBuilder::worldBegin(L loc) {
     m_solidStack.clear();
     m_prototypes.clear();
     m_lightHandles.clear();
-    m_specularSetInWorld = false;
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
     m_attrStack.back().moving = false;
@@ -105,6 +104,10 @@ void RibBuilder::worldEnd(L loc) {
             if (r.objectToWorld)
                 r.objectToWorld = glm::mat4(toOrigin * glm::dmat4(*r.objectToWorld));
         }
+    // the deepest limit any object has bounds the kernels' (RT_MAX_SPECULAR_DEPTH)
+    if (!m_world.materialSpecularDepth.empty())
+        m_world.maxSpecularDepth = *std::max_element(
+            m_world.materialSpecularDepth.begin(), m_world.materialSpecularDepth.end());
     for (const auto* systems : {&m_lastScopedSystems, &m_coordSystems})  // (global last)
         for (const auto& [name, toWorld] : *systems)
             m_world.coordinateSystems[name] = glm::mat4(toOrigin * glm::dmat4(toWorld));
@@ -182,18 +185,12 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
         if (on >= 0) m_attrStack.back().trueDisplacement = on > 0 ? 1 : 0;
     }
     if (name == "trace") {
-        // Outside the world it sets the default; inside, the deepest limit any object
-        // asks for holds for all (per-object limits are not carried yet).
+        // Each object's own limit on the trace() depth of the rays its shader sends
+        // (Scene::materialSpecularDepth); outside the world also the default.
         int depth = std::min(params.getInt("maxspeculardepth", -1), 4096);
         if (depth >= 0) {
-            // The default is no floor: the first limit given in the world replaces it.
-            if (m_inWorld)
-                m_world.maxSpecularDepth = m_specularSetInWorld
-                                               ? std::max(m_world.maxSpecularDepth, depth)
-                                               : depth;
-            if (m_inWorld) m_specularSetInWorld = true;
-            else
-                m_options.maxSpecularDepth = depth;
+            m_attrStack.back().maxSpecularDepth = depth;
+            if (!m_inWorld) m_options.maxSpecularDepth = depth;
         }
         traceDepthOption(params);
     }
@@ -561,7 +558,7 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
     }
     for (const auto& [name, floats] : perPoint)
         signature += name + ":" + std::to_string(floats) + " per point;";
-    const uint32_t objectSpace = objectSpaceOf(a.surface.name);
+    const uint32_t objectSpace = objectSpaceOf(a.surface);
     if (objectSpace != 0)
         signature += "object space " + std::to_string(objectSpace) + ";";
     auto [it, fresh] = m_surfaceVariants.emplace(std::make_pair(a.surfaceKey, signature),
@@ -584,7 +581,8 @@ uint32_t RibBuilder::surfaceFor(const Attributes& a) {
     return it->second;
 }
 
-uint32_t RibBuilder::objectSpaceOf(const std::string& name) {
+uint32_t RibBuilder::objectSpaceOf(const ShaderRef& call) {
+    const std::string& name = call.name;
     if (name.empty()) return 0;
     auto known = m_readsObjectSpace.find(name);
     if (known == m_readsObjectSpace.end())
@@ -593,6 +591,18 @@ uint32_t RibBuilder::objectSpaceOf(const std::string& name) {
     if (!known->second) return 0;
     const glm::mat4& ctm = m_attrStack.back().ctm;
     const std::string bytes(reinterpret_cast<const char*>(&ctm[0][0]), sizeof ctm);
+    if (auto it = m_objectSpaces.find(bytes); it != m_objectSpaces.end())
+        return it->second;
+    // (each one is an instance of its own: a bound on their blocks' memory)
+    if (m_objectSpaces.size() >= kMaxObjectSpaces) {
+        if (m_warnedAt.insert({call.loc.file, call.loc.line}).second)
+            m_diag.warning(call.loc,
+                           "more than " + std::to_string(kMaxObjectSpaces) +
+                               " object spaces for shaders that read \"object\" "
+                               "space; the rest take the call's space as object "
+                               "space");
+        return 0;
+    }
     return m_objectSpaces.emplace(bytes, uint32_t(m_objectSpaces.size() + 1))
         .first->second;
 }
@@ -600,7 +610,7 @@ uint32_t RibBuilder::objectSpaceOf(const std::string& name) {
 size_t RibBuilder::callIndex(uint64_t key, const ShaderRef& call, CallIndex& index,
                              std::vector<ShaderRef>& calls, size_t limit,
                              const char* request) {
-    uint32_t objectSpace = objectSpaceOf(call.name);
+    uint32_t objectSpace = objectSpaceOf(call);
     auto it = index.find({key, objectSpace});
     if (it != index.end()) return it->second;
     if (calls.size() >= limit && objectSpace != 0) {
@@ -683,12 +693,17 @@ uint32_t RibBuilder::currentMaterial() {
         (m.flags & RT_MATERIAL_TRUE_DISPLACEMENT) ? std::sqrt(a.shadingRate) : 0.0f;
     key.append(reinterpret_cast<const char*>(&dicing), sizeof dicing);
     key.append(reinterpret_cast<const char*>(&exterior), sizeof exterior);
+    // (the default is the world's: Option or attribute before WorldBegin)
+    const int specularDepth =
+        a.maxSpecularDepth >= 0 ? a.maxSpecularDepth : m_world.maxSpecularDepth;
+    key.append(reinterpret_cast<const char*>(&specularDepth), sizeof specularDepth);
     if (auto it = m_materialKeys.find(key); it != m_materialKeys.end()) return it->second;
     uint32_t index = static_cast<uint32_t>(m_world.materials.size());
     m_world.materials.push_back(m);
     m_world.materialAttributes.push_back(attributeSet);
     m_world.materialDicing.push_back(dicing);
     m_world.materialExterior.push_back(exterior);
+    m_world.materialSpecularDepth.push_back(specularDepth);
     if (colors.n > 3) {
         m_world.materialChannels.insert(m_world.materialChannels.end(), a.color,
                                         a.color + colors.n);

@@ -47,6 +47,9 @@ bool subdivPointParamsIn(const rib::ParamList& params, SubdivInput& in);
 
 class RibBuilder : public rib::Target {
 public:
+    // The most object spaces a world's shaders that read "object" space get an instance
+    // each for (objectSpaceOf).
+    static constexpr size_t kMaxObjectSpaces = 65536;
     RibBuilder(rib::Diagnostics& diag, const std::string& sourceFile);
 
     // Scenes completed so far, in WorldEnd order.
@@ -265,6 +268,8 @@ private:
         // Attribute "render" "truedisplacement" (BMRT; -1 not given), else a nonzero
         // Attribute "displacementbound" "sphere" (PRMan); ShadingRate sets the dicing.
         int trueDisplacement = -1;
+        int maxSpecularDepth =
+            -1;  // Attribute "trace" "maxspeculardepth" (-1: the default)
         float displacementBound = 0.0f;
         float shadingRate = 1.0f;
         bool displacesTruly() const {
@@ -470,15 +475,15 @@ private:
     CallIndex m_atmosphereKeys, m_interiorKeys, m_exteriorKeys, m_displacementKeys;
     size_t callIndex(uint64_t key, const ShaderRef& call, CallIndex& index,
                      std::vector<ShaderRef>& calls, size_t limit, const char* request);
-    // 0 when shader NAME does not read "object" space (shaderReadsObjectSpace, asked once
-    // a world), else 1 + the index of the current transform among the object spaces
-    // the world's primitives gave such shaders.
-    uint32_t objectSpaceOf(const std::string& name);
+    // 0 when the call's shader does not read "object" space (shaderReadsObjectSpace,
+    // asked once a world), else 1 + the index of the current transform among the object
+    // spaces the world's primitives gave such shaders (at most kMaxObjectSpaces; past
+    // them 0, with a warning).
+    uint32_t objectSpaceOf(const ShaderRef& call);
     std::map<std::string, bool> m_readsObjectSpace;
     std::map<std::string, uint32_t> m_objectSpaces;  // by the transform's bytes
     uint64_t m_surfaceCalls = 0;
     int m_degenerate = 0;
-    bool m_specularSetInWorld = false;
     glm::dvec3 m_origin{0.0};  // the eye in world space: the device's world origin
     std::set<std::pair<std::string, int>> m_warnedAt;  // requests already reported
     // Object definitions (ObjectBegin/End): tessellated pieces and exact quadrics in the

@@ -179,6 +179,9 @@ struct Scene {
     // By material: a truly displaced surface's micropolygon edge in pixels (sqrt of its
     // ShadingRate), 0 for every other (RT_MATERIAL_TRUE_DISPLACEMENT)
     std::vector<float> materialDicing;
+    // By material: Attribute "trace" "maxspeculardepth", the trace() depth past which
+    // its shader's rays are not sent (maxSpecularDepth: the deepest of them)
+    std::vector<int> materialSpecularDepth;
     MessageValues optionValues;          // option(): every Option's values
     std::vector<ShaderRef> surfaceRefs;  // one per distinct Surface call in use
     // DelayedReadArchive calls not loaded yet (RT_Q_PROCEDURAL boxes); key: where the

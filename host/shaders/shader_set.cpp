@@ -31,11 +31,13 @@ namespace {
 // floats, as light blocks after it load float4s.
 // Then the starts of attribute()'s table and option()'s block (message_services.h),
 // the start of the per-material Exterior table (1 + the shader's index, 0 for none),
-// the start of the table of spaces (space_services.h), the clipping planes
+// the start of the table of spaces (space_services.h), the start of the per-material
+// trace() depth limits (when they differ), the clipping planes
 // (normal, offset: clipped where n.P + offset > 0), then current to camera (16).
 constexpr size_t kSceneCamera = 0, kSceneWorld = 16, kSceneFormat = 20,
                  kSceneAttributes = 25, kSceneOptions = 26, kSceneShaderBlocks = 27,
-                 kSceneExteriors = 28, kSceneSpaces = 29, kSceneClipPlanes = 32,
+                 kSceneExteriors = 28, kSceneSpaces = 29, kSceneDepths = 30,
+                 kSceneClipPlanes = 32,
                  kSceneCameraInverse = kSceneClipPlanes + 4 * kMaxClipPlanes,
                  kSceneFloats = kSceneCameraInverse + 16;
 
@@ -590,6 +592,16 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
                                                                            : 0.0f);
         }
     }
+    // --- objects' own trace() depth limits, when they differ and some shader traces
+    const auto& depths = m_scene.materialSpecularDepth;
+    out.materialDepths = out.usesTrace && depths.size() == m_scene.materials.size() &&
+                         std::any_of(depths.begin(), depths.end(), [&](int d) {
+                             return d != m_scene.maxSpecularDepth;
+                         });
+    if (out.materialDepths) {
+        out.params[kSceneDepths] = intBits(int64_t(out.params.size()));
+        for (int d : depths) out.params.push_back(float(d));
+    }
     // --- displacements: bump shaders run before the surface (shade_common.clh)
     std::ostringstream disp;
     out.displacement = bindCases(m_scene.displacements, "displacement", "ev", out, disp,
@@ -693,7 +705,8 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         " + 2], 0.0f)\n"
         "#define RD_SCENE_CLIP_PLANES " +
         std::to_string(kSceneClipPlanes) + "\n" + "#define RD_SCENE_EXTERIORS " +
-        std::to_string(kSceneExteriors) + "\n";
+        std::to_string(kSceneExteriors) + "\n#define RD_SCENE_DEPTHS " +
+        std::to_string(kSceneDepths) + "\n";
     // attribute() and option(), once every shader is known (attribute data only when
     // some shader asks)
     auto someShaderCalls = [&](const char* service) {

@@ -59,6 +59,9 @@ struct ShadingSetup {
     bool atmosphere = false;                // some surface has an Atmosphere shader
     bool interior = false;                  // some surface has an Interior shader
     bool exterior = false;                  // some surface has an Exterior shader
+    // Objects' trace() depth limits differ (Scene::materialSpecularDepth): a table by
+    // material in the scene block
+    bool materialDepths = false;
     bool displacement = false;              // some surface has a Displacement shader
     bool derivatives = false;               // some surface shader takes derivatives
     bool imager = false;                    // the kernel imager_apply runs the Imager

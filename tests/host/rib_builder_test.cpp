@@ -1,11 +1,15 @@
 // rib_builder_test.cpp: the Ri state machine: options that reach the Scene (AOV
 // requests, render budgets, camera) and the errors it reports with their locations.
-#include <gtest/gtest.h>
+#include "scene/rib_builder.h"
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "rib/reader.h"
-#include "scene/rib_builder.h"
 
 using namespace rd;
 
@@ -160,4 +164,34 @@ TEST(RibBuilder, ShaderTransmissionIsAWarning) {
     EXPECT_EQ(b.messages.find("t.rib:5:"), std::string::npos);
     EXPECT_EQ(b.messages.find("t.rib:6:"), std::string::npos);
     EXPECT_EQ(b.messages.find("t.rib:7:"), std::string::npos);
+}
+
+// A shader that reads "object" space gets an instance per object space its primitives
+// have (Shading.ObjectSpaceIsEachPrimitivesOwn), each a parameter block of its own: at
+// most kMaxObjectSpaces of them, past which the call's space stands in, with a warning
+// at the Surface's line. One instance per placement below, 65536 + 10 spheres placed
+// apart; one instance for all when the shader does not read "object" space.
+TEST(RibBuilder, ObjectSpacesAreBounded) {
+    const std::string dir =
+        testing::TempDir() + "raydrive_object_spaces." + std::to_string(::getpid());
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/objx.sl")
+        << "surface objx() { Ci = xcomp(transform(\"object\", P)); }\n";
+    std::ofstream(dir + "/plainx.sl") << "surface plainx() { Ci = xcomp(P); }\n";
+    for (const char* shader : {"objx", "plainx"}) {
+        std::string rib = "Option \"searchpath\" \"shader\" [\"" + dir +
+                          ":&\"]\nWorldBegin\nSurface \"" + shader + "\"\n";
+        for (size_t i = 0; i < RibBuilder::kMaxObjectSpaces + 10; ++i)
+            rib += "Translate 1 0 0\nSphere 1 -1 1 360\n";
+        Built b = build(rib + "WorldEnd\n");
+        ASSERT_EQ(b.scenes.size(), 1u);
+        const bool reads = std::string(shader) == "objx";
+        EXPECT_EQ(b.scenes[0].surfaceRefs.size(),
+                  reads ? RibBuilder::kMaxObjectSpaces + 1 : 1u)
+            << shader;
+        EXPECT_EQ(b.messages.find("t.rib:3: warning: more than 65536 object spaces") !=
+                      std::string::npos,
+                  reads)
+            << b.messages.substr(0, 500);
+    }
 }

@@ -129,3 +129,38 @@ TEST(Numerics, RayTreesSpillAndTheImageDoesNotDependOnThePool) {
     EXPECT_GT(st.poolFill, 0.7) << "rounds " << st.iterations;
     EXPECT_EQ(st.retiredSamples, st.eyeRays);
 }
+
+// Attribute "trace" "maxspeculardepth" is each object's own (session 35; before, the
+// deepest any object asked for held for all): the front mirror (the eye's first hit, at
+// even depths) and the back one (odd depths) send a reflection only while the ray that
+// hit them is shallower than their own limit. Front 4, back 1: 1 + Kr; front 2, back 8:
+// 1 + Kr + Kr^2; front 3, back 3: as one limit of 3.
+TEST(Numerics, SpecularDepthIsEachObjectsOwn) {
+    const double kr = 0.5;
+    struct Case {
+        int front, back, bounces;
+    };
+    for (const Case c : {Case{4, 1, 1}, Case{2, 8, 2}, Case{3, 3, 3}}) {
+        char front[200], back[200];
+        std::snprintf(
+            front, sizeof front,
+            "AttributeBegin\nAttribute \"trace\" \"int maxspeculardepth\" [%d]\n",
+            c.front);
+        std::snprintf(back, sizeof back,
+                      "AttributeEnd\nAttributeBegin\n"
+                      "Attribute \"trace\" \"int maxspeculardepth\" [%d]\n",
+                      c.back);
+        Diagnosed d = renderWithDiagnostics(
+            camera(8, 4, 1) +
+            "WorldBegin\nLightSource \"ambientlight\" 1 \"intensity\" 1\n" +
+            "Surface \"mirror\" \"Ka\" 1 \"Kr\" 0.5\n" + front + squareAtZ(5.0) + back +
+            squareAtZ(-5.0) + "AttributeEnd\nWorldEnd\n");
+        const double expected = (1.0 - std::pow(kr, c.bounces + 1)) / (1.0 - kr);
+        double err = 0;
+        for (const rd::Rgba& p : d.image.pixels)
+            err = std::fmax(err, std::fabs(p.r / expected - 1.0));
+        EXPECT_LT(err, 2e-5) << c.front << " " << c.back << ": expected " << expected;
+        EXPECT_EQ(d.image.stats.features.maxSpecularDepth, std::max(c.front, c.back));
+        EXPECT_EQ(d.image.stats.features.materialDepths, c.front != c.back);
+    }
+}
