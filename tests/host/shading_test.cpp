@@ -67,6 +67,23 @@ TEST(Shading, MirrorTracesTheReflectedRay) {
         << img.stats.program.options;
 }
 
+// environment("raytrace", R) (PRMan) is the ray along R from P, as trace(P, R): the
+// same pixel, Kr times the plane's colour (before session 35: a map named "raytrace",
+// black, in silence).
+TEST(Shading, EnvironmentRaytraceIsATracedRay) {
+    std::string dir = shaderDir("raydrive_environment_raytrace");
+    std::ofstream(dir + "/envmirror.sl")
+        << "surface envmirror(float Kr = 0.8) {\n"
+           "  vector r = reflect(normalize(I), normalize(N));\n"
+           "  Ci = Kr * color environment(\"raytrace\", r);\n  Oi = 1;\n}\n";
+    Rendered img = renderRib(reflectorOverPlane(dir, "envmirror"));
+    const rd::Rgba& c = img.at(16, 16);
+    EXPECT_NEAR(c.r, 0.8 * 0.2, 1e-4);
+    EXPECT_NEAR(c.g, 0.8 * 0.4, 1e-4);
+    EXPECT_NEAR(c.b, 0.8 * 1.0, 1e-4);
+    EXPECT_GT(img.stats.continuationRays, 0u);
+}
+
 // A shader whose trace() runs in a loop (four rays a hit, each a quarter of the plane's
 // colour) gets the ABI's eight slots (RSL_MAX_TRACE), so no ray is dropped: the pixel is
 // Kr * (the colour) exactly; with fewer slots than calls it would come out darker. Past

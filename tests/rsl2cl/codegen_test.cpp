@@ -211,6 +211,16 @@ TEST(Codegen, ParamLayoutAndMetadata) {
     EXPECT_TRUE(sh.shader.usesSpaceTable);
     EXPECT_FALSE(sh.shader.usesObjectSpace);
     EXPECT_EQ(sh.shader.namedSpaces, std::vector<std::string>{"proj"});
+    // environment("raytrace", R) is trace(P, R) (PRMan); its other parameters a warning
+    ASSERT_TRUE(sh.compileSource(
+        "surface s() { Ci = environment(\"raytrace\", I, \"blur\", 0.1); }", "s.sl",
+        &err))
+        << err;
+    EXPECT_TRUE(sh.shader.usesTrace);
+    EXPECT_FALSE(sh.shader.usesTexture);
+    EXPECT_NE(err.find("s.sl:1:47: warning: environment(\"raytrace\", R): one ray"),
+              std::string::npos)
+        << err;
 }
 
 // The most trace() calls one evaluation makes (traceBound, what the renderer sizes its
