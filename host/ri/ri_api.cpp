@@ -137,24 +137,17 @@ RtFloat RiSincFilter(RtFloat x, RtFloat y, RtFloat, RtFloat) {
 }
 
 // PRMan's further filters, as the renderer defines them (scene/pixel_filter.h).
-RtFloat RiSeparableCatmullRomFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
-    return RtFloat(rd::pixelFilter2D("separable-catmull-rom", x, y, xw, yw));
-}
-RtFloat RiMitchellFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
-    return RtFloat(rd::pixelFilter2D("mitchell", x, y, xw, yw));
-}
-RtFloat RiBlackmanHarrisFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
-    return RtFloat(rd::pixelFilter2D("blackman-harris", x, y, xw, yw));
-}
-RtFloat RiLanczosFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
-    return RtFloat(rd::pixelFilter2D("lanczos", x, y, xw, yw));
-}
-RtFloat RiDiskFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
-    return RtFloat(rd::pixelFilter2D("disk", x, y, xw, yw));
-}
-RtFloat RiBesselFilter(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) {
-    return RtFloat(rd::pixelFilter2D("bessel", x, y, xw, yw));
-}
+#define RD_RI_FILTER(function, name)                                 \
+    RtFloat function(RtFloat x, RtFloat y, RtFloat xw, RtFloat yw) { \
+        return RtFloat(rd::pixelFilter2D(name, x, y, xw, yw));       \
+    }
+RD_RI_FILTER(RiSeparableCatmullRomFilter, "separable-catmull-rom")
+RD_RI_FILTER(RiMitchellFilter, "mitchell")
+RD_RI_FILTER(RiBlackmanHarrisFilter, "blackman-harris")
+RD_RI_FILTER(RiLanczosFilter, "lanczos")
+RD_RI_FILTER(RiDiskFilter, "disk")
+RD_RI_FILTER(RiBesselFilter, "bessel")
+#undef RD_RI_FILTER
 
 RtVoid RiProcDelayedReadArchive(RtPointer, RtFloat) {}
 RtVoid RiProcRunProgram(RtPointer, RtFloat) {}

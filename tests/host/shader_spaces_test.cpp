@@ -91,10 +91,17 @@ TEST(Shading, ObjectSpaceIsEachPrimitivesOwn) {
         "WorldEnd\n");
     // pixel 16 is world x = -2, 48 is x = 2 (8 units over 64 pixels); z is about -0.99
     // over the 2 x 2 pixels at a sphere's front
-    EXPECT_NEAR(img.mean(0, 15, 15, 17, 17), 2.0, 0.02) << "the first sphere's own x";
-    EXPECT_NEAR(img.mean(2, 15, 15, 17, 17), 1.0, 0.02) << "the first sphere's own z";
-    EXPECT_NEAR(img.mean(0, 47, 15, 49, 17), 3.0, 0.02) << "the turned sphere's own x";
-    EXPECT_NEAR(img.mean(2, 47, 15, 49, 17), 2.0, 0.02) << "the turned sphere's own z";
+    auto expectOwnSpaces = [](const Rendered& r, const char* what) {
+        EXPECT_NEAR(r.mean(0, 15, 15, 17, 17), 2.0, 0.02)
+            << "the first " << what << "'s x";
+        EXPECT_NEAR(r.mean(2, 15, 15, 17, 17), 1.0, 0.02)
+            << "the first " << what << "'s z";
+        EXPECT_NEAR(r.mean(0, 47, 15, 49, 17), 3.0, 0.02)
+            << "the turned " << what << "'s x";
+        EXPECT_NEAR(r.mean(2, 47, 15, 49, 17), 2.0, 0.02)
+            << "the turned " << what << "'s z";
+    };
+    expectOwnSpaces(img, "sphere");
     EXPECT_NEAR(img.mean(2, 30, 14, 34, 18), 2.0, 1e-4) << "the square's own z";
     const Rendered mixed = renderRib(
         camera +
@@ -114,12 +121,7 @@ TEST(Shading, ObjectSpaceIsEachPrimitivesOwn) {
         "AttributeBegin\nTranslate -2 0 0\nObjectInstance \"ball\"\nAttributeEnd\n"
         "AttributeBegin\nTranslate 2 0 0\nRotate 90 0 1 0\nObjectInstance \"ball\"\n"
         "AttributeEnd\nWorldEnd\n");
-    EXPECT_NEAR(instanced.mean(0, 15, 15, 17, 17), 2.0, 0.02) << "the first instance's x";
-    EXPECT_NEAR(instanced.mean(2, 15, 15, 17, 17), 1.0, 0.02) << "the first instance's z";
-    EXPECT_NEAR(instanced.mean(0, 47, 15, 49, 17), 3.0, 0.02)
-        << "the turned instance's x";
-    EXPECT_NEAR(instanced.mean(2, 47, 15, 49, 17), 2.0, 0.02)
-        << "the turned instance's z";
+    expectOwnSpaces(instanced, "instance");
 }
 
 // "raster", "NDC" and "screen" (RI 3.2 section 4.1; identity before session 35): on a
