@@ -135,7 +135,8 @@ int Emitter::traceRaysSoFar() const {
 // evaluation records (RSL_MAX_TRACE, with the other calls' rays), else one; the pixel's
 // samples add up to the hemisphere's average either way. indirectdiffuse is the mean
 // radiance they meet; occlusion is 1 - the fraction of them that escape within
-// "maxdist", its rays visibility rays.
+// "maxdist", its rays visibility rays. "coneangle" narrows the hemisphere to a cone about
+// N (cosine-distributed within it).
 std::string Emitter::hemisphereCall(const Expr& e) {
     const std::string& n = e.text;
     int rays = 1;
@@ -147,6 +148,7 @@ std::string Emitter::hemisphereCall(const Expr& e) {
     traceSite(e, rays);
     m_out.usesRandom = true;
     std::string maxdist = "0.0f";  // (0: no limit)
+    std::string cone = "1.0f";     // sin^2 of the cone's half-angle (1: the hemisphere)
     for (size_t i = 3; i + 1 < e.args.size(); i += 2) {
         const Expr& key = *e.args[i];
         if (key.kind != ExprKind::String) {
@@ -156,6 +158,8 @@ std::string Emitter::hemisphereCall(const Expr& e) {
         }
         if (key.text == "maxdist")
             maxdist = exprAs(*e.args[i + 1], BaseType::Float);
+        else if (key.text == "coneangle")
+            cone = "rsl_cone_sin2(" + exprAs(*e.args[i + 1], BaseType::Float) + ")";
         else if (key.text != "samples" && key.text != "bias" && key.text != "adaptive" &&
                  key.text != "maxvariation" && key.text != "hitmode" &&
                  key.text != "label" && key.text != "subset")
@@ -166,7 +170,7 @@ std::string Emitter::hemisphereCall(const Expr& e) {
     m_randomSite += 2;
     const std::string args = "(ev, g, " + exprAs(*e.args[0], BaseType::Point) + ", " +
                              exprAs(*e.args[1], BaseType::Normal) + ", " +
-                             std::to_string(site) + ", " + maxdist + ", " +
+                             std::to_string(site) + ", " + maxdist + ", " + cone + ", " +
                              std::to_string(rays) + ")";
     if (n == "indirectdiffuse") return "rsl_indirectdiffuse" + args;
     m_out.usesVisibility = true;

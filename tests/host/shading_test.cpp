@@ -149,15 +149,17 @@ TEST(Shading, SampledTraceWalksTheHitMasks) {
 // cosine-weighted fraction of the hemisphere it covers is sin^2 of its half-angle, 1 / (1
 // + 4) = 0.2 (1 - occlusion 0.8), none with "maxdist" 1.5 (it is out of reach) or with
 // the disk invisible to traced rays (Attribute "visibility" "int trace" [0]), and
-// indirectdiffuse sees the disk's constant colour over that fraction. Image means, to
-// 0.02 (the samples are stratified: measured within 0.005).
+// indirectdiffuse sees the disk's constant colour over that fraction; within a narrower
+// "coneangle" the disk covers (0.2 over the cone's sin^2) of it. Image means, to 0.02
+// (the samples are stratified: measured within 0.005).
 TEST(Shading, OcclusionAndIndirectDiffuseAreTheirHemisphereFractions) {
     std::string dir = shaderDir("raydrive_occlusion");
     std::ofstream(dir + "/hemi.sl")
-        << "surface hemi(float maxd = 0; float indirect = 0;) {\n"
+        << "surface hemi(float maxd = 0; float indirect = 0; float cone = 0;) {\n"
            "  normal Nz = normal(0, 0, 1);\n"
            "  if (indirect > 0) Ci = indirectdiffuse(P, Nz, 16);\n"
            "  else if (maxd > 0) Ci = 1 - occlusion(P, Nz, 16, \"maxdist\", maxd);\n"
+           "  else if (cone > 0) Ci = 1 - occlusion(P, Nz, 16, \"coneangle\", cone);\n"
            "  else Ci = 1 - occlusion(P, Nz, 16);\n"
            "  Oi = 1;\n}\n";
     auto render = [&](const std::string& hemi, const std::string& above) {
@@ -175,6 +177,15 @@ TEST(Shading, OcclusionAndIndirectDiffuseAreTheirHemisphereFractions) {
     EXPECT_NEAR(light.mean(0, 0, 0, 16, 16), 0.2, 0.02);
     EXPECT_NEAR(light.mean(1, 0, 0, 16, 16), 0.1, 0.01);
     EXPECT_NEAR(light.mean(2, 0, 0, 16, 16), 0.05, 0.005);
+    // "coneangle" (session 35; a warning before): a cone whose sin^2 is 0.4 is half
+    // covered by the disk (its sin^2 0.2 over 0.4); one whose sin^2 is 0.1 wholly
+    Rendered cone = render("\"cone\" " + std::to_string(std::asin(std::sqrt(0.4))), disk),
+             narrow =
+                 render("\"cone\" " + std::to_string(std::asin(std::sqrt(0.1))), disk);
+    EXPECT_NEAR(cone.mean(0, 0, 0, 16, 16), 0.5, 0.02);
+    EXPECT_NEAR(narrow.mean(0, 0, 0, 16, 16), 0.0, 1e-6);
+    std::printf("NUMERICS case=occlusion_cone tolerance=0.02 measured=%.4f\n",
+                cone.mean(0, 0, 0, 16, 16) - 0.5);
     std::printf("NUMERICS case=occlusion_half_sky tolerance=0.02 measured=%.4f\n",
                 half.mean(0, 0, 0, 16, 16) - 0.5);
     std::printf("NUMERICS case=occlusion_disk tolerance=0.02 measured=%.4f\n",
