@@ -35,13 +35,17 @@ typedef struct RayHit {
  * the scene's pixel angle RT_PIXEL_SPREAD; written only when shaders take derivatives). */
 typedef struct RayState {
     uint32_t alive;
-    uint32_t depth;     /* bits 0-13: trace() depth; 14, 15: RT_COMPOSITES_AOVS,
-                         * RT_CARRIES_AOVS; 16-31: transparent surfaces passed */
+    uint32_t depth;     /* bits 0-12: trace() depth; 13: RT_DIFFUSE_BOUNCED; 14, 15:
+                         * RT_COMPOSITES_AOVS, RT_CARRIES_AOVS; 16-31: transparent
+                         * surfaces passed */
     uint32_t from_prim; /* RT_NO_HIT for eye rays */
     float width;
 } RayState;
 
-#define RT_TRACE_DEPTH(s) ((s).depth & 0x3fffu)
+#define RT_TRACE_DEPTH(s) ((s).depth & 0x1fffu) /* (at most 4096) */
+/* The ray's path went through a diffuse bounce (an indirectdiffuse() ray): with
+ * RT_MAX_DIFFUSE_DEPTH 1 its hits send no more diffuse rays */
+#define RT_DIFFUSE_BOUNCED 0x2000u
 #define RT_TRANSPARENT_DEPTH(s) ((s).depth >> 16)
 #define RT_ONE_TRANSPARENT 0x10000u
 /* The ray brings back part of its sample's shader AOVs (ray_aovs.clh): its AOV weights

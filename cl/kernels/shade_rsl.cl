@@ -452,6 +452,14 @@ __kernel void shade_SURFACE(uint begin, uint count,
         }
 #endif
         if (rsl_cmax(fabs(tw)) < 1e-6f && !child_carries) continue;
+#ifdef RT_MAX_DIFFUSE_DEPTH
+        /* Attribute "trace" "maxdiffusedepth" 0 or 1: no diffuse ray past that many */
+        if (ev.trace_org[i].w > 2.5f &&
+            (RT_MAX_DIFFUSE_DEPTH == 0 || (rs.depth & RT_DIFFUSE_BOUNCED))) {
+            atomic_inc(&numerics[RT_NUM_SPECULAR_DEPTH]);
+            continue;
+        }
+#endif
         float4 td = rt_normalize3(ev.trace_dir[i]);
         /* a zero direction (refract() under total internal reflection) traces nothing */
         if (!(rt_dot3(td, td) > 0.5f)) continue;
@@ -470,7 +478,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
         next_origin[s] = to;
         next_direction[s] = td;
         next_weight[s] = rt_weight_of(tw);
-        RayState ts = {alive, rs.depth + 1u, h.prim, width_at_hit};
+        RayState ts = {alive, (rs.depth + 1u) | (alive == RT_ALIVE_DIFFUSE ? RT_DIFFUSE_BOUNCED : 0u),
+                       h.prim, width_at_hit};
 #ifdef RT_RAY_AOVS
         ts.depth = (ts.depth & ~RT_AOV_FLAGS) | (child_carries ? RT_CARRIES_AOVS : 0u);
         if (child_carries) rt_aov_store(next_aovw + (size_t)s * RT_AOV_PAYLOAD, achild);

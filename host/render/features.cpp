@@ -49,6 +49,8 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.visibilityRays = shading.visibilityRays;
     f.maxSpecularDepth = scene.maxSpecularDepth;
     f.materialDepths = shading.materialDepths;
+    if (scene.maxDiffuseDepth == 0 || scene.maxDiffuseDepth == 1)
+        f.maxDiffuseDepth = scene.maxDiffuseDepth;
     f.maxTransparentDepth = scene.maxTransparentDepth;
     f.rouletteDepth = scene.rouletteDepth;
     f.seed = uint32_t(std::max(0, scene.render.seed));
@@ -225,6 +227,8 @@ std::string buildOptions(const Features& f) {
     if (f.interior) o += " -DRT_HAS_INTERIOR";
     if (f.exterior) o += " -DRT_HAS_EXTERIOR";
     if (f.materialDepths) o += " -DRT_MATERIAL_DEPTHS";
+    if (f.maxDiffuseDepth >= 0)
+        o += " -DRT_MAX_DIFFUSE_DEPTH=" + std::to_string(f.maxDiffuseDepth);
     if (f.clipPlanes > 0) o += " -DRT_CLIP_PLANES=" + std::to_string(f.clipPlanes);
     if (f.oneSided) o += " -DRT_HAS_ONE_SIDED";
     if (f.invisible) o += " -DRT_HAS_INVISIBLE";

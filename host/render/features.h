@@ -27,6 +27,7 @@ struct Features {
     bool visibilityRays = false;  // ... occlusion(): traced rays that ask if they escape
     int maxSpecularDepth = 2;   // trace() recursion limit
     bool materialDepths = false;  // objects' limits differ: a table by material
+    int maxDiffuseDepth = -1;     // maxdiffusedepth given 0 or 1 (RT_MAX_DIFFUSE_DEPTH)
     bool aovs = false;          // AOVs asked for: geometric (z, N) or shaders'
     int shaderAovFloats = 0;    // floats a sample of the shaders' AOVs (shader_aovs.h)
     uint32_t primvars = 0;      // RT_PRIMVAR_* some triangle carries per vertex

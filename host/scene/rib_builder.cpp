@@ -192,6 +192,12 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
             m_attrStack.back().maxSpecularDepth = depth;
             if (!m_inWorld) m_options.maxSpecularDepth = depth;
         }
+        // diffuse bounces along a path: the largest any object gives holds for all
+        const int diffuse = std::min(params.getInt("maxdiffusedepth", -1), 4096);
+        if (diffuse >= 0) {
+            Scene& s = m_inWorld ? m_world : m_options;
+            s.maxDiffuseDepth = std::max(s.maxDiffuseDepth, diffuse);
+        }
         traceDepthOption(params);
     }
 }

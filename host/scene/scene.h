@@ -212,6 +212,9 @@ struct Scene {
     std::vector<std::string> shaderSearchPath;  // Option "searchpath" "shader", split
     std::vector<std::string> textureSearchPath; // Option "searchpath" "texture", split
     int maxSpecularDepth = 2;  // Attribute "trace" "maxspeculardepth" (the largest given)
+    // Attribute "trace" "maxdiffusedepth" (the largest given; -1: none, the diffuse rays
+    // of indirectdiffuse() bounded by maxspeculardepth alone); 0 and 1 are kept exactly
+    int maxDiffuseDepth = -1;
     // Attribute/Option "trace" "maxtransparentdepth": surfaces of Opacity < 1 a ray goes
     // through; rays cut there are counted (--stats) and reported, never silently lost.
     int maxTransparentDepth = 256;

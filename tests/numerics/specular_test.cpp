@@ -164,3 +164,33 @@ TEST(Numerics, SpecularDepthIsEachObjectsOwn) {
         EXPECT_EQ(d.image.stats.features.materialDepths, c.front != c.back);
     }
 }
+
+// Attribute "trace" "maxdiffusedepth" (session 35; ignored before): two facing planes
+// 2e4 across, each 1 + 0.5 indirectdiffuse() (four rays a hit, all meeting the other
+// plane but one in 10^6). A path ends its diffuse bounces at the limit: 0 gives 1, 1
+// gives 1 + 0.5; none given, the default maxspeculardepth 2 bounds them (1 + 0.5 +
+// 0.25), and a maxspeculardepth of 8 with maxdiffusedepth 1 still 1.5.
+TEST(Numerics, DiffuseDepthBoundsIndirectDiffuse) {
+    const std::string dir = rd::test::scratchDir("raydrive_numerics_bounce");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/bounce.sl")
+        << "surface bounce() {\n    normal Nf = faceforward(normalize(N), I);\n"
+           "    Oi = 1;\n    Ci = 1 + 0.5 * indirectdiffuse(P, Nf, 4);\n}\n";
+    struct Case {
+        const char* attributes;
+        double expected;
+    };
+    for (const Case c :
+         {Case{"", 1.75}, Case{"\"int maxdiffusedepth\" [0]", 1.0},
+          Case{"\"int maxdiffusedepth\" [1]", 1.5},
+          Case{"\"int maxdiffusedepth\" [1] \"int maxspeculardepth\" [8]", 1.5}}) {
+        const std::string trace =
+            *c.attributes ? "Attribute \"trace\" " + std::string(c.attributes) + "\n"
+                          : "";
+        Diagnosed d = renderWithDiagnostics(
+            "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" + camera(8, 4, 1) +
+            "WorldBegin\n" + trace + "Surface \"bounce\"\n" + squareAtZ(5.0, 1e4) +
+            squareAtZ(-5.0, 1e4) + "WorldEnd\n");
+        EXPECT_NEAR(d.image.mean(0, 0, 0, 8, 8), c.expected, 1e-4) << c.attributes;
+    }
+}
