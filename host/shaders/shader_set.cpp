@@ -718,8 +718,24 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     const bool attributesUsed = someShaderCalls("rsl_attribute(g");
     if (std::any_of(m_cache.begin(), m_cache.end(), [](const auto& entry) {
             return entry.second && entry.second->usesSpaceTable;
-        }))
-        appendSpaceTable(m_scene, spaces, out.params);
+        })) {
+        // the names a shader may ask for: its literals, and the strings its calls and
+        // defaults give (a space named by a parameter)
+        std::set<std::string> names;
+        for (const auto& [name, sh] : m_cache) {
+            if (!sh || !sh->usesSpaceTable) continue;
+            names.insert(sh->namedSpaces.begin(), sh->namedSpaces.end());
+            for (const rsl::ParamSlot& slot : sh->params)
+                names.insert(slot.stringDefaults.begin(), slot.stringDefaults.end());
+        }
+        for (const auto* calls :
+             {&m_scene.surfaceRefs, &m_scene.lights, &m_scene.displacements,
+              &m_scene.atmospheres, &m_scene.interiors, &m_scene.exteriors})
+            for (const ShaderRef& call : *calls)
+                for (const rib::Param& p : call.params.params)
+                    names.insert(p.strings.begin(), p.strings.end());
+        appendSpaceTable(m_scene, spaces, names, out.params);
+    }
     // surface(), displacement(), atmosphere(): the material's shaders' blocks
     ShaderBlocks blocks;
     blocks.shaders[0] = surfaceShaders;

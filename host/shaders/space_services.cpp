@@ -51,7 +51,8 @@ std::string spaceService(const SpaceSlots& slots) {
     return s.str();
 }
 
-std::vector<std::pair<std::string, glm::dmat4>> tableSpaces(const Scene& scene) {
+std::vector<std::pair<std::string, glm::dmat4>> tableSpaces(
+    const Scene& scene, const std::set<std::string>& names) {
     const Camera dc = scene.deviceCamera();
     const CameraSpec& c = scene.camera;
     // current -> camera -> screen -> NDC -> raster (glm's column vectors)
@@ -78,13 +79,13 @@ std::vector<std::pair<std::string, glm::dmat4>> tableSpaces(const Scene& scene) 
         {"NDC", glm::inverse(toNdc)},
         {"raster", glm::inverse(toRaster)}};
     for (const auto& [name, toWorld] : scene.coordinateSystems)
-        out.emplace_back(name, glm::dmat4(toWorld));
+        if (names.count(name)) out.emplace_back(name, glm::dmat4(toWorld));
     return out;
 }
 
 void appendSpaceTable(const Scene& scene, const SpaceSlots& slots,
-                      std::vector<float>& params) {
-    const auto spaces = tableSpaces(scene);
+                      const std::set<std::string>& names, std::vector<float>& params) {
+    const auto spaces = tableSpaces(scene, names);
     params[slots.table] = intBits(int64_t(params.size()));
     params.push_back(float(spaces.size()));
     for (const auto& [name, toCurrent] : spaces) {

@@ -4,6 +4,7 @@
 // "raster" and the scene's named coordinate systems (CoordinateSystem, Camera), each
 // with its exact inverse, laid out only when some shader reads one of them.
 #pragma once
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,10 +28,14 @@ std::string spaceService(const SpaceSlots& slots);
 // through the screen window's scale, its z PRMan's depth (0 at the near clipping plane,
 // 1 at the far one) in perspective and the camera's z in an orthographic view; NDC maps
 // the screen window to [0, 1] (y down), raster to the Format's pixels.
+// `names`: the named systems shaders may ask for (their literals, the string values
+// their calls and defaults give); the scene's others are left out, so that the table and
+// its search stay as small as the shaders make them.
 void appendSpaceTable(const Scene& scene, const SpaceSlots& slots,
-                      std::vector<float>& params);
+                      const std::set<std::string>& names, std::vector<float>& params);
 
 // The spaces' matrices to current, by name (tests read the table's contents here).
-std::vector<std::pair<std::string, glm::dmat4>> tableSpaces(const Scene& scene);
+std::vector<std::pair<std::string, glm::dmat4>> tableSpaces(
+    const Scene& scene, const std::set<std::string>& names);
 
 }  // namespace rd

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "render_harness.h"
+#include "shaders/space_services.h"
 
 using rd::test::Rendered;
 using rd::test::renderRib;
@@ -195,9 +196,15 @@ TEST(Shading, NamedCoordinateSystemsAreTheScenes) {
         "ScopedCoordinateSystem \"proj\"\nAttributeEnd\n";
     const std::string square =
         "Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\nWorldEnd\n";
-    for (const std::string& placed : {world, scoped}) {
-        const Rendered img =
-            renderRib(options + placed + "Surface \"shownamed\"\n" + square);
+    // (and a name only the call gives: "proj2", placed alike, reaches the table too)
+    const std::string byCall =
+        world.substr(0, world.size() - 13) + "CoordinateSystem \"proj2\"\nAttributeEnd\n";
+    for (int k = 0; k < 3; ++k) {
+        const std::string& placed = k == 0 ? world : k == 1 ? scoped : byCall;
+        const std::string surface =
+            k == 2 ? "Surface \"shownamed\" \"string space\" [\"proj2\"]\n"
+                   : "Surface \"shownamed\"\n";
+        const Rendered img = renderRib(options + placed + surface + square);
         float worst[2] = {0, 0};
         for (const rd::Rgba& p : img.pixels)
             worst[0] = std::max(worst[0], p.r), worst[1] = std::max(worst[1], p.g);
@@ -212,4 +219,18 @@ TEST(Shading, NamedCoordinateSystemsAreTheScenes) {
                             "coordinate system \"nowhere\""),
               std::string::npos)
         << messages;
+}
+
+// The table of spaces holds the projected ones and the named systems shaders may ask for
+// (their literals, the strings their calls and defaults give), not every system the
+// scene names: its size and search stay as the shaders make them.
+TEST(Shading, TableOfSpacesHoldsWhatShadersName) {
+    rd::Scene scene;
+    scene.coordinateSystems["asked"] = glm::mat4(2.0f);
+    scene.coordinateSystems["other"] = glm::mat4(3.0f);
+    const auto spaces = rd::tableSpaces(scene, {"asked", "unknown"});
+    std::vector<std::string> names;
+    for (const auto& [name, m] : spaces) names.push_back(name);
+    EXPECT_EQ(names, (std::vector<std::string>{"screen", "NDC", "raster", "asked"}));
+    EXPECT_EQ(spaces[3].second[0][0], 2.0);
 }
