@@ -9,8 +9,9 @@
 #define RT_NUM_HUGE 2              /* a channel above RT_MAX_RADIANCE */
 #define RT_NUM_DENORMAL 3          /* a denormal channel (flushed to zero) */
 #define RT_NUM_TRANSPARENT_DEPTH 4 /* continuations cut by maxtransparentdepth */
-#define RT_NUM_SPECULAR_DEPTH 5 /* traced rays cut by maxspeculardepth, maxdiffusedepth \
-                                 */
+#define RT_NUM_SPECULAR_DEPTH                                 \
+    5 /* traced rays cut by a depth limit (specular, diffuse) \
+       */
 #define RT_NUM_ROULETTE 6          /* trace() rays ended by Russian roulette */
 #define RT_NUM_TRACE_LIMIT 7       /* trace() calls past the RSL_MAX_TRACE a run records */
 #define RT_NUM_LOOP_CUT 8          /* shading points where a shader loop was cut (rsl_abi.h) */

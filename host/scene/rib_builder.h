@@ -268,8 +268,8 @@ private:
         // Attribute "render" "truedisplacement" (BMRT; -1 not given), else a nonzero
         // Attribute "displacementbound" "sphere" (PRMan); ShadingRate sets the dicing.
         int trueDisplacement = -1;
-        int maxSpecularDepth =
-            -1;  // Attribute "trace" "maxspeculardepth" (-1: the default)
+        // Attribute "trace" "maxspeculardepth" (-1: the default)
+        int maxSpecularDepth = -1;
         float displacementBound = 0.0f;
         float shadingRate = 1.0f;
         bool displacesTruly() const {
@@ -499,8 +499,8 @@ private:
     // a named coordinate system's transform to world (rib_builder_transforms.cpp)
     std::optional<glm::mat4> namedSpace(const std::string& name) const;
     std::map<std::string, glm::mat4> m_coordSystems; // CoordinateSystem name -> object to world
-    std::map<std::string, glm::mat4>
-        m_lastScopedSystems;  // ScopedCoordinateSystem's last
+    // ScopedCoordinateSystem name -> its last placement (for shaders that name it)
+    std::map<std::string, glm::mat4> m_lastScopedSystems;
     // ObjectInstance without copies: the object's meshes become a prototype (once per
     // world, in object space), each instance a record placing it; `pointParams` are the
     // per-point values all its meshes give (sharedPointParams).

@@ -12,42 +12,39 @@ namespace rd {
 
 std::string spaceService(const SpaceSlots& slots) {
     std::ostringstream s;
-    s << "/* Space to current (inverse: current to space): camera and world from the "
-         "scene\n"
-         " * block, the rest from its table of spaces (space_services.h); the identity "
-         "for\n"
+    // clang-format off
+    s << "/* Space to current (inverse: current to space): camera and world from the scene\n"
+         " * block, the rest from its table of spaces (space_services.h); the identity for\n"
          " * a name the scene does not define. */\n"
          "RslMatrix rsl_space_matrix(const RslSpaces* sp, int space, int inverse) {\n"
          "    RslMatrix m = rsl_mscalar(1.0f);\n"
          "    if (space == RSL_SPACE_CAMERA) {\n"
-         "        __global const float* c = sp->scene + (inverse ? "
-      << slots.cameraInverse << " : " << slots.camera
-      << ");\n"
+         "        __global const float* c = sp->scene + (inverse ? " << slots.cameraInverse
+      << " : " << slots.camera << ");\n"
          "        for (int r = 0; r < 4; ++r) m.r[r] = vload4(r, c);\n"
-         "        return m;\n    }\n"
+         "        return m;\n"
+         "    }\n"
          "    if (space == RSL_SPACE_WORLD) {\n"
-         "        m.r[3] = vload4(0, sp->scene + "
-      << slots.world
-      << ");\n"
+         "        m.r[3] = vload4(0, sp->scene + " << slots.world << ");\n"
          "        if (inverse) m.r[3] = (float4)(-m.r[3].xyz, 1.0f);\n"
-         "        return m;\n    }\n"
-         "    int id = space == RSL_SPACE_SCREEN   ? "
-      << rsl::stringId("screen") << "\n           : space == RSL_SPACE_NDC    ? "
-      << rsl::stringId("NDC") << "\n           : space == RSL_SPACE_RASTER ? "
-      << rsl::stringId("raster")
-      << "\n                                        : -space;\n"
-         "    int table = as_int(sp->scene["
-      << slots.table
-      << "]);\n"
+         "        return m;\n"
+         "    }\n"
+         "    int id = space == RSL_SPACE_SCREEN ? " << rsl::stringId("screen")
+      << " : space == RSL_SPACE_NDC ? " << rsl::stringId("NDC")
+      << " : space == RSL_SPACE_RASTER ? " << rsl::stringId("raster") << " : -space;\n"
+         "    int table = as_int(sp->scene[" << slots.table << "]);\n"
          "    if (table <= 0) return m;\n"
          "    __global const float* t = sp->scene + table;\n"
          "    int count = (int)t[0];\n"
          "    for (int i = 0; i < count; ++i) {\n"
          "        __global const float* e = t + 1 + 33 * i;\n"
          "        if ((int)e[0] != id) continue;\n"
-         "        for (int r = 0; r < 4; ++r) m.r[r] = vload4(r, e + 1 + (inverse ? 16 : "
-         "0));\n"
-         "        break;\n    }\n    return m;\n}\n";
+         "        for (int r = 0; r < 4; ++r) m.r[r] = vload4(r, e + 1 + (inverse ? 16 : 0));\n"
+         "        break;\n"
+         "    }\n"
+         "    return m;\n"
+         "}\n";
+    // clang-format on
     return s.str();
 }
 

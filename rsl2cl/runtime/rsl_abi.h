@@ -120,10 +120,10 @@
  *     times the distance to what it hits counts, nothing when it escapes, and what it
  *     hits is not shaded), 3 for a diffuse traced ray (indirectdiffuse(): it sees what
  *     diffuse rays see, Attribute "visibility" "diffuse"), else 0 (trace(), gather()'s
- *     "surface:Ci": what specular rays see). occlusion() and indirectdiffuse() are trace
- * sites in a cosine-distributed direction about N, from two random sites. Each evaluation
- * resets ev->trace_count to 0 first. LIGHT COEFFICIENTS. A renderer that defines
- * RSL_LIGHT_COEFS (the number of lights,
+ *     "surface:Ci": what specular rays see). occlusion() and indirectdiffuse() are
+ *     trace sites in a cosine-distributed direction about N, from two random sites.
+ *   Each evaluation resets ev->trace_count to 0 first.
+ *   LIGHT COEFFICIENTS. A renderer that defines RSL_LIGHT_COEFS (the number of lights,
  *   >= 1) may get every light mode's result from the base evaluation: with ev->coefs
  *   set (0 in every other evaluation), a surface compiled with
  *   EmittedShader::lightCoefs leaves ev->Ci_light[l] = Ci(light mode l) - E for each

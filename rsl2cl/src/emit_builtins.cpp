@@ -1,6 +1,7 @@
 // emit_builtins.cpp: OpenCL C for calls of RSL builtins (runtime/rsl_stdlib.clh).
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "emit_internal.h"
 
@@ -54,11 +55,15 @@ std::string Emitter::message(const Expr& e) {
         const TypeSpec& t = e.args[1]->type;
         if (t.isString() && !t.isArray() &&
             (what == "renderer" || what == "versionstring"))
-            known = {stringLiteral(what == "renderer" ? "RayDrive" : kRendererVersion)};
+            known = {
+                stringLiteral(what == "renderer" ? "RayDrive" : RSL2CL_RENDERER_VERSION)};
         else if (what == "version" && t.isArray() && t.arraySize == 4 &&
-                 t.element().base == BaseType::Float)
-            known = {kRendererVersionNumbers[0], kRendererVersionNumbers[1],
-                     kRendererVersionNumbers[2], "0"};
+                 t.element().base == BaseType::Float) {
+            // (the project's major, minor and patch numbers, CMakeLists.txt, then 0)
+            std::istringstream numbers(RSL2CL_RENDERER_VERSION_NUMBERS);
+            for (std::string v; std::getline(numbers, v, ',');) known.push_back(v);
+            known.push_back("0.0f");
+        }
         if (known.empty()) return "0.0f";
         svc = "rendererinfo";
     }

@@ -18,9 +18,6 @@ const char* clType(const TypeSpec& t);
 std::string clZero(const TypeSpec& t);          // zero of the element type
 std::string clNumber(double v);                 // 1.0f
 int spaceIdOf(const std::string& name);         // RSL_SPACE_* value or -1
-// What rendererinfo() answers: "versionstring" and "version" (RayDrive's project version)
-constexpr const char* kRendererVersion = "0.1.0";
-constexpr const char* kRendererVersionNumbers[3] = {"0.0f", "1.0f", "0.0f"};
 constexpr int kObjectSpaceId = 3;               // spaceIdOf("object")
 constexpr int kScreenSpaceId = 5;  // spaceIdOf("screen"), then raster and NDC
 int colorIdOf(const std::string& name);         // RSL_COLOR_* value or -1
