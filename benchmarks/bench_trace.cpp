@@ -470,7 +470,7 @@ int benchMain(int argc, char** argv) {
                                   cl_uint(n), nodeBuf, blockBuf, org, dir, state, weight,
                                   noQuadrics, noCsg, noTris, noMotion, noTris, noSample,
                                   noTime, cl_uint(1), noNumerics, noNumerics, noNumerics,
-                                  noNumerics, noNumerics);  // (opaque shadows)
+                                  noNumerics, noNumerics, noNumerics);  // (opaque shadows)
                         ctx.finish();
                         return std::chrono::duration<double>(Clock::now() - t0).count();
                     }
@@ -501,7 +501,7 @@ int benchMain(int argc, char** argv) {
                                 nodes8, blocks8, org, dir, state8, weight8, noQuadrics,
                                 noCsg, noTris, noMotion, noTris, noSample, noTime,
                                 cl_uint(1), noNumerics, noNumerics, noNumerics,
-                                noNumerics, noNumerics);  // (opaque shadows)
+                                noNumerics, noNumerics, noNumerics);  // (opaque shadows)
                 else
                     kc8->launch(items(n, options8, "RT_CLOSEST_PACKETS"), cl_uint(n), nodes8,
                                 blocks8, org, dir, state8, hits8,

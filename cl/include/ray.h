@@ -69,6 +69,14 @@ typedef struct RayState {
 /* ... and a traced ray of indirectdiffuse(): shaded like any, but it sees the surfaces
  * visible to diffuse rays (RT_MATERIAL_NO_DIFFUSE), as occlusion()'s do */
 #define RT_ALIVE_DIFFUSE 7u
+/* ... and a shadow ray that met a surface whose shader says what it lets through
+ * (RT_MATERIAL_SHADER_SHADOW, RT_SHADER_SHADOWS): the surface's shade kernel takes its
+ * Oi and sends the rest of the way on as a shadow ray again; its weight goes to its
+ * sample when it meets nothing short of its light */
+#define RT_ALIVE_SHADOW 9u
+/* A shadow ray's RayState::alive as intersect_shadow hands it over to the pool as such
+ * a ray (its sample in `width`'s bits); the compaction moves it there. */
+#define RT_SHADOW_HANDOFF 2u
 
 /* Compaction works on groups of this many traced rays (close_round.cl, compact.cl); the
  * host sizes its per-group counts by it. */

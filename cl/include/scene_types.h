@@ -58,11 +58,17 @@ typedef struct Material {
  * ("int specular" [0] is RT_MATERIAL_NO_TRACE: trace() and gather() rays; "int trace"
  * [0] both). */
 #define RT_MATERIAL_NO_DIFFUSE 128u
+/* What a shadow ray sees of it, a two-bit field (RT_MATERIAL_SHADOW_MASK): none of the
+ * bits, its constant opacity Os (PRMan's "primitive" transmission); */
+#define RT_MATERIAL_SHADOW_MASK 48u
 /* Attribute "visibility" "int transmission" [0]: shadow rays go through it (it casts no
- * shadow). */
+ * shadow); */
 #define RT_MATERIAL_NO_TRANSMISSION 16u
-/* "string transmission" "opaque": a full shadow whatever its opacity Os. */
+/* "string transmission" "opaque": a full shadow whatever its opacity Os; */
 #define RT_MATERIAL_OPAQUE_SHADOW 32u
+/* both, "string transmission" "shader" (or "shade" "transmissionhitmode" "shader"): its
+ * surface shader's Oi, the shader run where a shadow ray meets it (RT_SHADER_SHADOWS). */
+#define RT_MATERIAL_SHADER_SHADOW 48u
 /* Displaced truly (host/scene/dice_displaced.h): diced and moved before rendering, so
  * the shade stage leaves its displacement shader alone. */
 #define RT_MATERIAL_TRUE_DISPLACEMENT 64u

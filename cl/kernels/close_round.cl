@@ -26,6 +26,7 @@ void close_round(uint count, /* traced rays */
     __local uint live[RT_COMPACT_GROUP];
     uint i = get_global_id(0), lid = get_local_id(0);
     RT_COUNT_RANGE(active_counter, count);
+    uint handed = 0u; /* shadow rays handed to the pool (RT_SHADER_SHADOWS): spawned rays */
 #ifdef RT_HAS_SHADOW_RAYS
     /* the lights in order and one atomic per ray, so a sample's total does not depend
      * on which light's ray a work-item happened to add first */
@@ -33,6 +34,12 @@ void close_round(uint count, /* traced rays */
         rsl_color sum = (rsl_color)(0.0f);
         for (uint l = 0; l < light_count; ++l) {
             uint j = i * light_count + l;
+#ifdef RT_SHADER_SHADOWS
+            if (shadow_state[j].alive == RT_SHADOW_HANDOFF) { /* (compact_scatter moves it) */
+                ++handed;
+                continue;
+            }
+#endif
             if (shadow_state[j].alive) {
                 rsl_color w = rt_weight_color(shadow_weight[j]);
                 shadow_state[j].alive = 0u;
@@ -58,7 +65,7 @@ void close_round(uint count, /* traced rays */
         rt_atomic_add_float4(&total[ray_sample[i]].value, rt_total_of(sum));
     }
 #endif
-    live[lid] = i < count && count_spawns ? popcount(spawn_mask[i]) : 0u;
+    live[lid] = i < count && count_spawns ? popcount(spawn_mask[i]) + handed : 0u;
     barrier(CLK_LOCAL_MEM_FENCE);
     if (lid == 0 && count_spawns) {
         uint sum = 0;

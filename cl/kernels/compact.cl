@@ -56,6 +56,13 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
                      __global float* spill_aovw,
                      __global uint* slot_rays,
                      __global uint* slot_abort,
+                     /* RT_SHADER_SHADOWS only: the shadow rays intersect_shadow handed to
+                      * the pool (ray.h RT_SHADOW_HANDOFF), ray i's at i * light_count + l */
+                     uint light_count,
+                     __global const float4* shadow_origin,
+                     __global const float4* shadow_direction,
+                     __global const rt_weight* shadow_weight,
+                     __global const RayState* shadow_state,
                      __global uint* active_counter) {
     __local uint live[RT_COMPACT_GROUP];
     uint i = get_global_id(0), lid = get_local_id(0);
@@ -66,42 +73,62 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
     groups_before[lid] = sum;
     const uint mask = i < count ? spawn_mask[i] : 0u;
     RT_COUNT_GROUP(active_counter, j, j < count && spawn_mask[j] != 0u);
-    live[lid] = popcount(mask);
+    uint handed = 0u; /* (as close_round counted them) */
+#ifdef RT_SHADER_SHADOWS
+    for (uint l = 0; i < count && l < light_count; ++l)
+        handed += shadow_state[i * light_count + l].alive == RT_SHADOW_HANDOFF;
+#endif
+    live[lid] = popcount(mask) + handed;
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (!mask) return;
+    if (!mask && !handed) return;
     /* the group's offset and the position among its live rays: fixed-length loops PoCL
      * can vectorise */
     uint before = base == ~0u ? fit[1] : base;
     for (uint k = 0; k < RT_COMPACT_GROUP; ++k)
         before += groups_before[k] + ((k < lid) ? live[k] : 0u);
     uint j = before;
+    /* live ray j goes to pool position j, past the pool's capacity onto the spill stack;
+     * past the stack's it is dropped: no longer in flight, and its sample goes again */
+#define RT_PUT_RAY(o, d, w, st, sample, aov_from)                                             \
+    {                                                                                     \
+        const int spill = j >= capacity;                                                  \
+        const uint to = spill ? spill_top + (j - capacity) : j;                           \
+        if (!spill || to < spill_capacity) {                                              \
+            (spill ? spill_origin : dst_origin)[to] = (o);                                \
+            (spill ? spill_direction : dst_direction)[to] = (d);                          \
+            (spill ? spill_weight : dst_weight)[to] = (w);                                \
+            (spill ? spill_state : dst_state)[to] = (st);                                 \
+            (spill ? spill_sample : dst_sample)[to] = (sample);                           \
+            RT_MOVE_AOVW(spill ? spill_aovw : dst_aovw, to, aov_from, st);                \
+        } else {                                                                          \
+            slot_abort[sample] = 1u;                                                      \
+            atomic_dec(&slot_rays[sample]);                                               \
+        }                                                                                 \
+        ++j;                                                                              \
+    }
+#ifdef RT_RAY_AOVS
+#define RT_MOVE_AOVW(dst, to, from, st) \
+    if ((from) != ~0u) rt_move_aovw(dst, to, src_aovw, from, st)
+#else
+#define RT_MOVE_AOVW(dst, to, from, st)
+#endif
     for (uint k = 0; k < RT_SPAWN_SLOTS; ++k) {
         if (!(mask & (1u << k))) continue;
         const uint from = i * RT_SPAWN_SLOTS + k;
-        const uint sample = src_sample[from];
-        if (j < capacity) {
-            dst_origin[j] = src_origin[from];
-            dst_direction[j] = src_direction[from];
-            dst_weight[j] = src_weight[from];
-            dst_state[j] = src_state[from];
-            dst_sample[j] = sample;
-#ifdef RT_RAY_AOVS
-            rt_move_aovw(dst_aovw, j, src_aovw, from, src_state[from]);
-#endif
-        } else if (spill_top + (j - capacity) < spill_capacity) {
-            const uint to = spill_top + (j - capacity);
-            spill_origin[to] = src_origin[from];
-            spill_direction[to] = src_direction[from];
-            spill_weight[to] = src_weight[from];
-            spill_state[to] = src_state[from];
-            spill_sample[to] = sample;
-#ifdef RT_RAY_AOVS
-            rt_move_aovw(spill_aovw, to, src_aovw, from, src_state[from]);
-#endif
-        } else { /* dropped: no longer in flight, and its sample goes again */
-            slot_abort[sample] = 1u;
-            atomic_dec(&slot_rays[sample]);
-        }
-        ++j;
+        RT_PUT_RAY(src_origin[from], src_direction[from], src_weight[from], src_state[from],
+                   src_sample[from], from);
     }
+#ifdef RT_SHADER_SHADOWS
+    /* the handed shadow rays, in light order: pool rays of their own kind, no AOVs */
+    for (uint l = 0; handed && l < light_count; ++l) {
+        const uint from = i * light_count + l;
+        RayState hs = shadow_state[from];
+        if (hs.alive != RT_SHADOW_HANDOFF) continue;
+        const uint sample = as_uint(hs.width);
+        hs.alive = RT_ALIVE_SHADOW;
+        hs.width = 0.0f;
+        RT_PUT_RAY(shadow_origin[from], shadow_direction[from], shadow_weight[from], hs,
+                   sample, ~0u);
+    }
+#endif
 }

@@ -141,8 +141,8 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
 /* intersect_shadow's arguments, the same in its one-ray and packet forms. */
 #define RT_INTERSECT_SHADOW_PARAMS                                                         \
     uint count, __global const RT_BVH_NODE* nodes, /* RT_BVH8: Bvh8Node */                \
-        __global const Triangle4* blocks, __global const float4* origin,                  \
-        __global const float4* direction, __global const RayState* state,                \
+        __global const Triangle4* blocks, /* origin, state: written by a hand-off */      \
+        __global float4* origin, __global const float4* direction, __global RayState* state, \
         __global rt_weight* weight, /* zeroed when occluded */                                \
         __global const Quadric* quadrics, __global const uint* csg,                       \
         __global const Triangle* tris, __global const float4* quadric_motion,             \
@@ -154,6 +154,7 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
         __global const Material* materials,                                               \
         __global const float* material_channels, /* and more than three channels */      \
         __global float* shadow_aov, /* RT_SHADER_AOVS, transparent shadows: parts it carries */ \
+        __global uint* slot_rays, /* RT_SHADER_SHADOWS: rays in flight a sample */          \
         __global uint* active_counter
 
 #ifndef RT_SHADOW_PACKETS
@@ -174,7 +175,9 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     float tmin = o.w;
     uint skip = state[i].from_prim;
     int occluded = 1;
-    for (uint layer = 0; layer <= RT_MAX_TRANSPARENT_DEPTH; ++layer) {
+    /* (a ray a transmission shader sent on has passed some layers already) */
+    for (uint layer = RT_TRANSPARENT_DEPTH(state[i]); layer <= RT_MAX_TRANSPARENT_DEPTH;
+         ++layer) {
         inst = RT_NO_HIT;
         if (!rt_traverse(nodes, blocks, o, d, tmin, d.w, skip, 0, 1,
                          &h RT_OBJECT_SCENE_ARG RT_INSTANCE_ARG)) {
@@ -184,9 +187,26 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
 #ifdef RT_HAS_PROCEDURALS
         if (rt_flag_procedural(h.prim, quadrics, numerics)) break;
 #endif
+        const uint mat = rt_shadow_material(h.prim, inst, attrs, quadrics);
+#ifdef RT_SHADER_SHADOWS
+        if ((materials[mat].flags & RT_MATERIAL_SHADOW_MASK) == RT_MATERIAL_SHADER_SHADOW) {
+            /* its shader says what gets through: from here the ray goes on in the pool,
+             * to be shaded there (ray.h RT_ALIVE_SHADOW; the compaction moves it, its
+             * sample counts it in flight). Its AOV parts stay behind. */
+            rsl_color w = rt_weight_color(weight[i] * through);
+            RSL_CW(w) = 0.0f;
+            weight[i] = rt_weight_of(w);
+            origin[i].w = tmin;
+            const uint sample = ray_sample[i / light_count];
+            RayState hs = {RT_SHADOW_HANDOFF, layer * RT_ONE_TRANSPARENT, skip,
+                           as_float(sample)};
+            state[i] = hs;
+            atomic_inc(&slot_rays[sample]);
+            return;
+        }
+#endif
         float most;
-        through *= rt_transmittance(h.prim, inst, attrs, materials, material_channels,
-                                    quadrics, &most);
+        through *= rt_transmittance(mat, materials, material_channels, &most);
         if (!(most > 0.0f)) break; /* (opaque: nothing gets through) */
         tmin = h.t;
         skip = h.prim;

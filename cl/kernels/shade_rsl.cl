@@ -79,6 +79,13 @@ __kernel void shade_SURFACE(uint begin, uint count,
     rsl_color w = rt_weight_color(weight[r]); /* alpha in RSL_CW */
     RayState rs = state[r];
     uint sample = ray_sample[r];
+#ifdef RT_SHADER_SHADOWS
+    /* a shadow ray handed over at a surface whose shader says what it lets through (ray.h
+     * RT_ALIVE_SHADOW): the shader runs for its Oi alone */
+    const int shadow_ray = rs.alive == RT_ALIVE_SHADOW;
+#else
+    int shadow_ray = 0; /* (not const: a constant operand of && makes the compiler warn) */
+#endif
 #ifdef RT_HAS_MOTION
     const float time = sample_time[sample];
 #else
@@ -114,13 +121,14 @@ __kernel void shade_SURFACE(uint begin, uint count,
     const float width_at_hit = 0.0f;
 #endif
 #ifdef RT_HAS_AOVS
-    if (!aov[sample].hit) {
+    if (!shadow_ray && !aov[sample].hit) {
         aov[sample].z *= h.t;
         aov[sample].normal = rt_dot3(dir, g.N) < 0.0f ? g.N : -g.N;
         aov[sample].hit = 1u;
     }
 #endif
-    if (m.flags & RT_MATERIAL_MATTE) return; /* holdout: opaque, black, no alpha */
+    /* holdout: opaque, black, no alpha (its shadow as any surface's) */
+    if ((m.flags & RT_MATERIAL_MATTE) && !shadow_ray) return;
     __global const float* p = params + m.params;
     /* Sides 1: the back of a one-sided surface is not there; the ray goes on unchanged */
 #ifdef RT_HAS_ONE_SIDED
@@ -146,6 +154,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
             culled = culled || rt_dot3(c, g.P) + c.w > 0.0f;
         }
 #endif
+    culled = culled && !shadow_ray; /* (shadow rays see what casts a shadow) */
     RslEval ev;
     RslDeriv* dsites = 0; /* the surface shader's derivatives, when it takes any */
 #ifdef RT_HAS_TEXTURES
@@ -195,6 +204,30 @@ __kernel void shade_SURFACE(uint begin, uint count,
     rd_tex_context_done(&texc);
     if (texc.miss) { /* a tile was not there: commit nothing, shade this point again */
         retry_sorted[begin + atomic_inc(&retry_count[shader_index])] = r;
+        return;
+    }
+#endif
+#ifdef RT_SHADER_SHADOWS
+    if (shadow_ray) {
+        /* what gets through goes on toward the light as a shadow ray again (intersect_shadow's
+         * walk, the next layer), from this ray's first shadow slot; a surface whose shader
+         * is not asked (a tie in t found it first) lets through what the walk's would */
+        float most;
+        rsl_color through =
+            (m.flags & RT_MATERIAL_SHADOW_MASK) == RT_MATERIAL_SHADER_SHADOW
+                ? clamp(rsl_f2c(1.0f) - base.Oi, 0.0f, 1.0f)
+                : rt_weight_color(rt_transmittance((uint)g.material, materials,
+                                                   material_channels, &most));
+        rsl_color sw = rt_sanitize_c(w * through, numerics);
+        RSL_CW(sw) = 0.0f;
+        if (!rsl_cnonzero(sw)) return;
+        const uint s = r * light_count;
+        org.w = h.t;
+        shadow_origin[s] = org;
+        shadow_direction[s] = dir;
+        shadow_weight[s] = rt_weight_of(sw);
+        RayState ss = {1u, rs.depth + RT_ONE_TRANSPARENT, h.prim, 0.0f};
+        shadow_state[s] = ss;
         return;
     }
 #endif

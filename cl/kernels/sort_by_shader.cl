@@ -32,7 +32,8 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
                             __global RayState* shadow_state,
                             __global const uint* ray_sample,
                             __global uint* slot_rays,
-                            /* RT_HAS_VISIBILITY_RAYS only: occlusion() rays */
+                            /* RT_HAS_VISIBILITY_RAYS, RT_SHADER_SHADOWS only: rays whose
+                             * weight counts when they escape */
                             __global const RayState* state,
                             __global const rt_weight* weight,
                             __global SampleTotal* total,
@@ -100,6 +101,13 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
             }
             if (!passes) k = shader_count;
         }
+#endif
+#ifdef RT_SHADER_SHADOWS
+        /* a shadow ray sent on by a transmission shader: its weight counts when it meets
+         * nothing short of its light; what it meets is shaded for what gets through */
+        if (state[r].alive == RT_ALIVE_SHADOW && prim == RT_NO_HIT)
+            rt_atomic_add_float4(&total[ray_sample[r]].value,
+                                 rt_total_of(rt_weight_color(weight[r])));
 #endif
         key[r] = k;
         if (shader_count > 1) atomic_inc(&hist[k]); /* one shader: no sort, no counts */

@@ -198,8 +198,8 @@ __kernel void treelet_shadow_walk_step(uint count, uint last, __global const Ray
     int ends = 1, occluded = 0;
     if (h.prim != RT_NO_HIT) {
         float most;
-        th *= rt_transmittance(h.prim, RT_NO_HIT, attrs, materials, material_channels,
-                               quadrics, &most);
+        th *= rt_transmittance(rt_shadow_material(h.prim, RT_NO_HIT, attrs, quadrics),
+                               materials, material_channels, &most);
         occluded = !(most > 0.0f) || last;
         ends = occluded;
     }

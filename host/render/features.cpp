@@ -20,10 +20,12 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
             (RT_MATERIAL_NO_CAMERA | RT_MATERIAL_NO_TRACE | RT_MATERIAL_NO_DIFFUSE))
             f.invisible = f.transparency = true;
         // (os.w: the mean opacity, what a shadow through it keeps in other channels)
-        if ((m.flags & RT_MATERIAL_NO_TRANSMISSION) ||
-            (!(m.flags & RT_MATERIAL_OPAQUE_SHADOW) &&
+        const uint32_t shadow = m.flags & RT_MATERIAL_SHADOW_MASK;
+        if (shadow == RT_MATERIAL_NO_TRANSMISSION || shadow == RT_MATERIAL_SHADER_SHADOW ||
+            (shadow == 0 &&
              (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f || m.os.w < 1.0f)))
             f.transparentShadows = true;
+        if (shadow == RT_MATERIAL_SHADER_SHADOW) f.shaderShadows = true;
     }
     const size_t n = size_t(scene.colors.n);  // (more than three: the channels' opacity)
     for (size_t i = 0; n > 3 && i < scene.materialChannels.size(); ++i)
@@ -42,6 +44,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.specialisedLights = f.lightCount > 0;  // (shader_set.cpp: rd_run_light)
     f.shadowRays = shading.shadowRays;
     f.transparentShadows = f.transparentShadows && f.shadowRays;
+    f.shaderShadows = f.shaderShadows && f.shadowRays;
     f.lightCoefficients = shading.lightCoefs;
     f.trace = shading.usesTrace;
     f.traceSlots = shading.usesTrace ? std::max(1, shading.traceSlots) : 0;
@@ -129,6 +132,7 @@ std::vector<std::string> Features::names() const {
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
     if (transparentShadows) n.push_back("transparent_shadows");
+    if (shaderShadows) n.push_back("shader_shadows");
     if (shadowRays) n.push_back("shadow_rays");
     if (specialisedLights) n.push_back("specialised_lights");
     if (lightCoefficients) n.push_back("light_coefficients");
@@ -191,6 +195,7 @@ std::string buildOptions(const Features& f) {
     if (f.smoothNormals) o += " -DRT_HAS_SMOOTH_NORMALS";
     if (f.transparency) o += " -DRT_HAS_TRANSPARENCY";
     if (f.transparentShadows) o += " -DRT_HAS_TRANSPARENT_SHADOWS";
+    if (f.shaderShadows) o += " -DRT_SHADER_SHADOWS";
     if (f.transparency || f.transparentShadows)
         o += " -DRT_MAX_TRANSPARENT_DEPTH=" + std::to_string(f.maxTransparentDepth) + "u";
     if (f.shadowRays) o += " -DRT_HAS_SHADOW_RAYS";

@@ -21,6 +21,9 @@ struct Features {
     // shadow rays through surfaces that let light through (Os < 1, or Attribute
     // "visibility" "transmission" 0): a closest-hit walk attenuating at each
     bool transparentShadows = false;
+    // ... and surfaces whose shader's Oi says what a shadow ray keeps (transmission
+    // "shader"): the ray goes on in the pool where it meets one (RT_SHADER_SHADOWS)
+    bool shaderShadows = false;
     bool shadowRays = false;    // some light other than ambient
     bool trace = false;         // some surface shader calls trace()
     bool sampledTrace = false;  // ... and random(): traced rays in sampled directions
@@ -89,6 +92,8 @@ struct Features {
     int traceSlots = 0;         // the most trace() rays a surface's evaluation spawns
     // Rays a shaded hit may spawn: its continuation, plus its traced rays.
     int spawnSlots() const { return trace ? 1 + traceSlots : 1; }
+    // A round may leave rays for the next: traced, continued or handed-over shadow rays.
+    bool spawns() const { return trace || transparency || shaderShadows; }
     // Floats of a ray's AOV payload (ray_aovs.clh): shader AOVs that rays below trace()
     // calls bring parts back to, or that surfaces behind transparent ones add to, one
     // weight an AOV float and colour channel; 0 otherwise.

@@ -21,7 +21,8 @@ namespace rd {
 struct RayPool {
     RayPool(const ClContext& ctx, size_t capacity, size_t spawn, uint32_t shadowLights,
             size_t slots, bool aovs, bool motion, bool instances, size_t shaderKeys,
-            size_t weightFloats, size_t shaderAovFloats = 0, size_t rayAovFloats = 0)
+            size_t weightFloats, size_t shaderAovFloats = 0, size_t rayAovFloats = 0,
+            bool shadowHandoffs = false)
         : weightFloats(weightFloats),
           rayAovFloats(rayAovFloats),
           origin(ctx, capacity),
@@ -42,11 +43,11 @@ struct RayPool {
           nextSample(ctx, capacity * spawn),
           spawnMask(ctx, capacity),
           groupLive(ctx, capacity / RT_COMPACT_GROUP + 1),
-          spillOrigin(ctx, spillCapacity(capacity, spawn)),
-          spillDirection(ctx, spillCapacity(capacity, spawn)),
-          spillWeight(ctx, spillCapacity(capacity, spawn) * weightFloats),
-          spillState(ctx, spillCapacity(capacity, spawn)),
-          spillSample(ctx, spillCapacity(capacity, spawn)),
+          spillOrigin(ctx, spillCapacity(capacity, spawn, shadowHandoffs)),
+          spillDirection(ctx, spillCapacity(capacity, spawn, shadowHandoffs)),
+          spillWeight(ctx, spillCapacity(capacity, spawn, shadowHandoffs) * weightFloats),
+          spillState(ctx, spillCapacity(capacity, spawn, shadowHandoffs)),
+          spillSample(ctx, spillCapacity(capacity, spawn, shadowHandoffs)),
           shOrigin(ctx, capacity * shadowLights),
           shDirection(ctx, capacity * shadowLights),
           shWeight(ctx, capacity * shadowLights * weightFloats),
@@ -63,7 +64,7 @@ struct RayPool {
           shAov(ctx, capacity * shadowLights * shaderAovFloats),
           aovw(ctx, capacity * rayAovFloats),
           nextAovw(ctx, capacity * spawn * rayAovFloats),
-          spillAovw(ctx, spillCapacity(capacity, spawn) * rayAovFloats),
+          spillAovw(ctx, spillCapacity(capacity, spawn, shadowHandoffs) * rayAovFloats),
           slotRays(ctx, slots),
           slotAbort(ctx, slots),
           jobs(ctx, slots),
@@ -84,20 +85,22 @@ struct RayPool {
     // Device bytes per ray of capacity, for sizing the pool to a memory budget.
     static size_t bytesPerRay(size_t spawn, uint32_t shadowLights,
                               size_t weightFloats = 4, size_t shaderAovFloats = 0,
-                              size_t rayAovFloats = 0) {
-        const size_t weights = 1 + spawn + spillCapacity(1, spawn) + shadowLights;
-        return 144 + 2 * 100 + spawn * 72 + spillCapacity(1, spawn) * 68 +
+                              size_t rayAovFloats = 0, bool shadowHandoffs = false) {
+        const size_t spill = spillCapacity(1, spawn, shadowHandoffs);
+        const size_t weights = 1 + spawn + spill + shadowLights;
+        return 144 + 2 * 100 + spawn * 72 + spill * 68 +
                size_t(shadowLights) * 64 + kSlotsPerRay * 56 +
                weights * weightFloats * 4 -
                weights * 16 +  // (the figures above count four floats a weight)
                (kSlotsPerRay + shadowLights) * shaderAovFloats * 4 +
-               (1 + spawn + spillCapacity(1, spawn)) * rayAovFloats * 4;
+               (1 + spawn + spill) * rayAovFloats * 4;
     }
     // Rays of one round: `wanted`, or (0) enough to keep every compute unit busy (16k rays
     // each), within a memory budget of an eighth of the device's memory (64-512 MiB).
     static size_t capacityFor(size_t wanted, const DeviceInfo& device, size_t spawn,
                               uint32_t shadowLights, size_t weightFloats,
-                              size_t shaderAovFloats = 0, size_t rayAovFloats = 0) {
+                              size_t shaderAovFloats = 0, size_t rayAovFloats = 0,
+                              bool shadowHandoffs = false) {
         if (wanted == 0)
             wanted = std::clamp<size_t>(size_t(device.computeUnits) << 14, size_t(1) << 14,
                                         size_t(1) << 20);
@@ -105,7 +108,8 @@ struct RayPool {
                                                        size_t(64) << 20, size_t(512) << 20);
         return std::clamp<size_t>(
             std::min(wanted, memoryBudget / bytesPerRay(spawn, shadowLights, weightFloats,
-                                                        shaderAovFloats, rayAovFloats)),
+                                                        shaderAovFloats, rayAovFloats,
+                                                        shadowHandoffs)),
             64, std::max<size_t>(64, wanted));
     }
     // Floats of a ray's weight (cl/include/ray.h rt_weight): 2 under ColorSamples 1, 4 up
@@ -118,15 +122,16 @@ struct RayPool {
     }
     const size_t weightFloats;
     const size_t rayAovFloats;  // a ray's AOV weights (ray_aovs.clh), 0 when none
-    // Only a scene whose shaders trace can spawn more rays than it traced: the rest
+    // Only a scene whose shaders trace, or whose shadow rays are handed over to the pool
+    // (RT_SHADER_SHADOWS: one a light), can spawn more rays than it traced: the rest
     // (continuations through Opacity < 1 at most one a ray) never need the stack. Ray
     // trees outgrow the pool over rounds, not in one, so the stack is as deep as a pool
     // of hits spawning the ABI's most (1 + RSL_MAX_TRACE, 9) whatever the scene's own
     // slots (sized by its shaders' trace() bound, it lost the rays of 127-ray trees
     // through a pool of 64: Numerics.RayTreesSpillAndTheImageDoesNotDependOnThePool).
     static constexpr size_t kSpillPerRay = 9;
-    static size_t spillCapacity(size_t capacity, size_t spawn) {
-        return spawn > 1 ? capacity * kSpillPerRay : 0;
+    static size_t spillCapacity(size_t capacity, size_t spawn, bool shadowHandoffs) {
+        return spawn > 1 || shadowHandoffs ? capacity * kSpillPerRay : 0;
     }
     // the round's rays
     DeviceBuffer<rt_float4> origin, direction;

@@ -160,10 +160,11 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     const size_t aovFloats = size_t(f.shaderAovFloats);
     const size_t rayAovFloats = size_t(f.rayAovFloats());
     const size_t pool = RayPool::capacityFor(m_settings.poolCapacity, m_ctx.info(), spawn,
-                                             nl, weightFloats, aovFloats, rayAovFloats);
+                                             nl, weightFloats, aovFloats, rayAovFloats,
+                                             f.shaderShadows);
     st.poolCapacity = pool;
     st.poolBytesPerRay =
-        RayPool::bytesPerRay(spawn, nl, weightFloats, aovFloats, rayAovFloats);
+        RayPool::bytesPerRay(spawn, nl, weightFloats, aovFloats, rayAovFloats, f.shaderShadows);
     SampleRing ring(RayPool::kSlotsPerRay * pool);
     const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
     // Sampling: the first pass needs no film, so it is planned on another thread while
@@ -258,7 +259,7 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     // two is 60-70 ms on PoCL, most of it its preprocessor)
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
     RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
-               shaderCount + 1, weightFloats, aovFloats, rayAovFloats);
+               shaderCount + 1, weightFloats, aovFloats, rayAovFloats, f.shaderShadows);
     if (shaderCount == 1) {  // the one shader's run: every ray in pool order
         std::vector<uint32_t> order(pool);
         for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
@@ -367,8 +368,8 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     size_t roundCap = pool;
     double raysPerSec = 0;
     size_t spillTop = 0;
-    const size_t spillCapacity = RayPool::spillCapacity(pool, spawn);
-    const bool spawns = f.trace || f.transparency;  // else a round leaves no ray behind
+    const size_t spillCapacity = RayPool::spillCapacity(pool, spawn, f.shaderShadows);
+    const bool spawns = f.spawns();  // else a round leaves no ray behind
     std::vector<uint32_t> keyOffsets;
     Refill refill(ring, rp, k.generateEye, k.fitRefill, ds.cameraBuf);
     // Near the end of a time budget, a round takes only what the device traces before it.
@@ -422,7 +423,8 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
                                          rp.shState, rp.shWeight, ds.quadrics, ds.csg,
                                          ds.triangles, ds.quadricMotion, ds.trianglesEnd,
                                          rp.sample, rp.sampleTime, nl, numerics, ds.attrs,
-                                         ds.materials, ds.materialChannels, rp.shAov);
+                                         ds.materials, ds.materialChannels, rp.shAov,
+                                         rp.slotRays);
         }
     };
     // The end of a round: add the shadow rays that reached their light and count the rays
@@ -485,7 +487,8 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
                 rp.nextDirection, rp.nextWeight, rp.nextState, rp.nextSample, rp.origin,
                 rp.direction, rp.weight, rp.state, rp.sample, rp.spillOrigin,
                 rp.spillDirection, rp.spillWeight, rp.spillState, rp.spillSample,
-                rp.nextAovw, rp.aovw, rp.spillAovw, rp.slotRays, rp.slotAbort);
+                rp.nextAovw, rp.aovw, rp.spillAovw, rp.slotRays, rp.slotAbort, nl,
+                rp.shOrigin, rp.shDirection, rp.shWeight, rp.shState);
         };
         if (refilled) refill.commitFitted(pending);  // eye rays at the pool's front
         if (pipelined && compact) compactBehind(refilled ? ~0u : 0u);  // spawned rays behind

@@ -62,6 +62,9 @@ void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
     if (f.instances || f.procedurals)
         stats.why = "the scene has instances or deferred archives (the treelet cut does not "
                     "cover their trees): resident traversal";
+    else if (f.shaderShadows)
+        stats.why = "shadows through transmission shaders leave the treelet walk for the "
+                    "pool: resident traversal";
     else if (ext.find("cl_khr_int64_base_atomics") == std::string::npos)
         stats.why = "the device lacks cl_khr_int64_base_atomics: resident traversal";
     if (!stats.why.empty()) return;

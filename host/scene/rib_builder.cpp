@@ -147,28 +147,38 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
         set(RT_MATERIAL_NO_TRACE | RT_MATERIAL_NO_DIFFUSE, params.getInt("trace", -1));
         set(RT_MATERIAL_NO_TRACE, params.getInt("specular", -1));
         set(RT_MATERIAL_NO_DIFFUSE, params.getInt("diffuse", -1));
-        // transmission: 0 or "transparent" cast no shadow; 1, "Os" or "shader" one by
-        // their opacity Os; "opaque" a full one whatever their Os
+        // transmission: 0 or "transparent" cast no shadow; 1 or "Os" one by their
+        // opacity Os (their shader's Oi under "shade" "transmissionhitmode" "shader");
+        // "opaque" a full one whatever their Os; "shader" one by their shader's Oi
         const std::string transmission = params.getString("transmission", "");
-        set(RT_MATERIAL_NO_TRANSMISSION, transmission == "transparent" ? 0
-                                         : transmission.empty()
-                                             ? params.getInt("transmission", -1)
-                                             : 1);
-        if (transmission == "opaque")
-            v |= RT_MATERIAL_OPAQUE_SHADOW;
-        else if (!transmission.empty() || params.getInt("transmission", -1) >= 0)
-            v &= ~RT_MATERIAL_OPAQUE_SHADOW;
+        const int on = transmission.empty() ? params.getInt("transmission", -1) : -1;
+        if (transmission == "transparent" || on == 0)
+            setShadowMode(RT_MATERIAL_NO_TRANSMISSION);
+        else if (transmission == "opaque")
+            setShadowMode(RT_MATERIAL_OPAQUE_SHADOW);
+        else if (transmission == "shader")
+            setShadowMode(RT_MATERIAL_SHADER_SHADOW);
+        else if (!transmission.empty() || on > 0)
+            setShadowMode(m_attrStack.back().shadowHitShader ? RT_MATERIAL_SHADER_SHADOW : 0u);
         if (!transmission.empty() && transmission != "transparent" &&
             transmission != "opaque" && transmission != "Os" && transmission != "shader")
             m_diag.warning(loc,
                            "Attribute \"visibility\" \"string transmission\" \"" +
                                transmission +
                                "\": not transparent, opaque, Os or shader; taken as Os");
-        if (transmission == "shader") warnShaderTransmission(loc);
         return;
     }
-    if (name == "shade" && params.getString("transmissionhitmode", "") == "shader")
-        warnShaderTransmission(loc);
+    if (name == "shade") {  // PRMan: what a shadow ray's hit sees, the shader or Os
+        const std::string mode = params.getString("transmissionhitmode", "");
+        const uint32_t now = m_attrStack.back().visibility & RT_MATERIAL_SHADOW_MASK;
+        if (mode == "shader" || mode == "primitive") {
+            m_attrStack.back().shadowHitShader = mode == "shader";
+            if (now == 0u || now == RT_MATERIAL_SHADER_SHADOW)
+                setShadowMode(mode == "shader" ? RT_MATERIAL_SHADER_SHADOW : 0u);
+        } else if (!mode.empty())
+            m_diag.warning(loc, "Attribute \"shade\" \"transmissionhitmode\" \"" + mode +
+                                    "\": not shader or primitive; ignored");
+    }
     if (name ==
         "displacementbound") {  // PRMan: "float sphere", "string coordinatesystem"
         const float r = params.getFloat("sphere", 0.0f);
@@ -180,9 +190,19 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
             m_attrStack.back().displacementBound = r;
         return;
     }
-    if (name == "render") {  // BMRT: "int truedisplacement" 1 moves the surface
+    if (name == "render") {
+        // BMRT: "int truedisplacement" 1 moves the surface; "string casts_shadows" is
+        // what shadow rays see of it
         const int on = params.getInt("truedisplacement", -1);
         if (on >= 0) m_attrStack.back().trueDisplacement = on > 0 ? 1 : 0;
+        const std::string casts = params.getString("casts_shadows", "");
+        if (casts == "none") setShadowMode(RT_MATERIAL_NO_TRANSMISSION);
+        else if (casts == "opaque") setShadowMode(RT_MATERIAL_OPAQUE_SHADOW);
+        else if (casts == "Os") setShadowMode(0u);
+        else if (casts == "shade") setShadowMode(RT_MATERIAL_SHADER_SHADOW);
+        else if (!casts.empty())
+            m_diag.warning(loc, "Attribute \"render\" \"casts_shadows\" \"" + casts +
+                                    "\": not none, opaque, Os or shade; ignored");
     }
     if (name == "trace") {
         // Each object's own limit on the trace() depth of the rays its shader sends
@@ -202,11 +222,10 @@ void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList&
     }
 }
 
-// Shadow rays run no shader: what they see of a surface is its constant Os.
-void RibBuilder::warnShaderTransmission(L loc) {
-    m_diag.warning(loc,
-                   "shadows through a surface take its constant Os (PRMan's "
-                   "\"primitive\" transmission), not its shader's Oi");
+// What a shadow ray sees of the surfaces from here on (RT_MATERIAL_SHADOW_MASK).
+void RibBuilder::setShadowMode(uint32_t mode) {
+    uint32_t& v = m_attrStack.back().visibility;
+    v = (v & ~uint32_t(RT_MATERIAL_SHADOW_MASK)) | mode;
 }
 
 void RibBuilder::traceDepthOption(const rib::ParamList& params) {

@@ -247,7 +247,9 @@ private:
         ShaderRef surface;    // the current Surface call
         uint64_t surfaceKey = 0;  // which Surface call it was (0: the default surface)
         bool matte = false;
-        uint32_t visibility = 0;  // RT_MATERIAL_NO_CAMERA, RT_MATERIAL_NO_TRACE
+        uint32_t visibility = 0;  // RT_MATERIAL_NO_CAMERA, RT_MATERIAL_NO_TRACE, ...
+        // "shade" "transmissionhitmode" "shader": transmission 1 or "Os" is the shader's
+        bool shadowHitShader = false;
         uint32_t lightsOff = 0;  // bit l: light l turned off (Illuminate handle 0)
         // Orientation relative to the current coordinate system's handedness: true when
         // primitives are inside out (their normals flipped); Sides 1 or 2.
@@ -283,7 +285,7 @@ private:
     enum class Block { Frame, World, Attribute, Transform };
 
     uint32_t currentMaterial();
-    void warnShaderTransmission(L loc);
+    void setShadowMode(uint32_t mode);
     void keepCall(L loc, S name, P params, ShaderRef& call, uint64_t& key);
     // Attribute and Option values for attribute() and option()
     // (rib_builder_messages.cpp): params of `category` into `into` as "category:name",

@@ -121,7 +121,7 @@ std::vector<rt_float4> traceShadows(const std::string& options, const Bvh8& b8,
     shadow.launch(items, cl_uint(n), nodes, blocks, ob, db, state, weight, noQuadrics,
                   noCsg, noTris, noMotion, noTris, noSample, noTime, cl_uint(lights),
                   noNumerics, noNumerics, noNumerics, noNumerics,
-                  noNumerics);  // (no attrs, materials, AOVs: opaque shadows)
+                  noNumerics, noNumerics);  // (no attrs, materials, AOVs: opaque shadows)
     *active = shadow.peekActive();
     *after = state.download();
     return weight.download();

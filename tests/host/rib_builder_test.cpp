@@ -142,28 +142,55 @@ TEST(RibBuilder, CameraOptions) {
     EXPECT_EQ(bad.errors, 1);
 }
 
-// Shadow rays run no shader: PRMan's "shader" transmission (by visibility or by
-// transmissionhitmode) is a warning at its line, and the surface casts the shadow of its
-// constant Os (GraphicsState.ShadowsThroughSurfacesTakeTheirTransmission). The other
-// visibility attributes are not.
-TEST(RibBuilder, ShaderTransmissionIsAWarning) {
-    Built b = build(
-        "WorldBegin\nAttribute \"visibility\" \"string transmission\" [\"shader\"]\n"
-        "Attribute \"shade\" \"string transmissionhitmode\" [\"shader\"]\n"
-        "Attribute \"shade\" \"string transmissionhitmode\" [\"primitive\"]\n"
-        "Attribute \"visibility\" \"string transmission\" [\"Os\"]\n"
-        "Attribute \"visibility\" \"int diffuse\" [0]\n"
-        "Attribute \"visibility\" \"int diffuse\" [0] \"int specular\" [0]\nWorldEnd\n");
-    EXPECT_EQ(b.errors, 0);
-    EXPECT_NE(b.messages.find("t.rib:2: warning: shadows through a surface take its "
-                              "constant Os"),
+// What shadow rays see of a surface (RT_MATERIAL_SHADOW_MASK), by PRMan's "string
+// transmission", "int transmission" and "shade" "transmissionhitmode", and BMRT's "render"
+// "casts_shadows": each polygon's material's mode, the last word holding.
+TEST(RibBuilder, ShadowModesByEveryName) {
+    const char* poly = "Polygon \"P\" [0 0 0  1 0 0  1 1 0]\n";
+    const std::pair<const char*, uint32_t> cases[] = {
+        {"", 0u},
+        {"Attribute \"visibility\" \"string transmission\" [\"shader\"]", RT_MATERIAL_SHADER_SHADOW},
+        {"Attribute \"visibility\" \"string transmission\" [\"opaque\"]", RT_MATERIAL_OPAQUE_SHADOW},
+        {"Attribute \"visibility\" \"string transmission\" [\"transparent\"]",
+         RT_MATERIAL_NO_TRANSMISSION},
+        {"Attribute \"visibility\" \"int transmission\" [0]", RT_MATERIAL_NO_TRANSMISSION},
+        {"Attribute \"shade\" \"string transmissionhitmode\" [\"shader\"]", RT_MATERIAL_SHADER_SHADOW},
+        {"Attribute \"shade\" \"string transmissionhitmode\" [\"shader\"]\n"
+         "Attribute \"visibility\" \"int transmission\" [0]\n"
+         "Attribute \"visibility\" \"int transmission\" [1]",
+         RT_MATERIAL_SHADER_SHADOW},
+        {"Attribute \"visibility\" \"string transmission\" [\"shader\"]\n"
+         "Attribute \"shade\" \"string transmissionhitmode\" [\"primitive\"]",
+         0u},
+        {"Attribute \"visibility\" \"string transmission\" [\"opaque\"]\n"
+         "Attribute \"shade\" \"string transmissionhitmode\" [\"shader\"]",
+         RT_MATERIAL_OPAQUE_SHADOW},
+        {"Attribute \"render\" \"string casts_shadows\" [\"shade\"]", RT_MATERIAL_SHADER_SHADOW},
+        {"Attribute \"render\" \"string casts_shadows\" [\"none\"]", RT_MATERIAL_NO_TRANSMISSION},
+        {"Attribute \"render\" \"string casts_shadows\" [\"opaque\"]", RT_MATERIAL_OPAQUE_SHADOW},
+        {"Attribute \"render\" \"string casts_shadows\" [\"shade\"]\n"
+         "Attribute \"render\" \"string casts_shadows\" [\"Os\"]",
+         0u},
+    };
+    for (const auto& [attributes, mode] : cases) {
+        SCOPED_TRACE(attributes);
+        Built b = build(std::string("WorldBegin\n") + attributes + "\n" + poly + "WorldEnd\n");
+        EXPECT_EQ(b.errors, 0);
+        EXPECT_EQ(b.messages.find("warning"), std::string::npos) << b.messages;
+        ASSERT_EQ(b.scenes.size(), 1u);
+        ASSERT_FALSE(b.scenes[0].triangles.empty());
+        const uint32_t m = b.scenes[0].attrs[0].material;
+        EXPECT_EQ(b.scenes[0].materials[m].flags & RT_MATERIAL_SHADOW_MASK, mode);
+    }
+    Built bad = build(
+        "WorldBegin\nAttribute \"shade\" \"string transmissionhitmode\" [\"bogus\"]\n"
+        "Attribute \"render\" \"string casts_shadows\" [\"maybe\"]\nWorldEnd\n");
+    EXPECT_NE(bad.messages.find("t.rib:2: warning: Attribute \"shade\" \"transmissionhitmode\" "
+                                "\"bogus\""),
               std::string::npos)
-        << b.messages;
-    EXPECT_NE(b.messages.find("t.rib:3: warning: shadows through"), std::string::npos);
-    EXPECT_EQ(b.messages.find("t.rib:4:"), std::string::npos);
-    EXPECT_EQ(b.messages.find("t.rib:5:"), std::string::npos);
-    EXPECT_EQ(b.messages.find("t.rib:6:"), std::string::npos);
-    EXPECT_EQ(b.messages.find("t.rib:7:"), std::string::npos);
+        << bad.messages;
+    EXPECT_NE(bad.messages.find("t.rib:3: warning: Attribute \"render\" \"casts_shadows\""),
+              std::string::npos);
 }
 
 // A shader that reads "object" space gets an instance per object space its primitives

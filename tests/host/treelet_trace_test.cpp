@@ -119,7 +119,7 @@ Traced trace(size_t budget, size_t sceneMemory, bool int64Min, size_t rays) {
                                          CL_MEM_READ_WRITE);
         ks.launch(n, n, nodes, blocks, org, dir, state, weight, noQ, noU, tris, noM, tris,
                   noU, noT, cl_uint(1), noU, noU, noU, noU,
-                  noU);  // (no attrs, materials)
+                  noU, noU);  // (no attrs, materials)
         for (const rt_float4& w : weight.download()) out.occluded.push_back(w.x == 0);
     } else {
         TreeletTracer tracer(ctx, program.get(), prof, f.bvh, budget, sceneMemory, rays,

@@ -183,7 +183,7 @@ static void expectEightWideHitsMatchBruteForce(uint32_t depth) {
     shadow.launch(n, cl_uint(n), nodes, blocks, ob, sdb, state, weight, noQuadrics, noCsg,
                   noTris, noMotion, noTris, noSample, noTime, cl_uint(1), noNumerics,
                   noNumerics, noNumerics, noNumerics,
-                  noNumerics);  // (no attrs, materials, AOVs: opaque shadows)
+                  noNumerics, noNumerics);  // (no attrs, materials, AOVs: opaque shadows)
     std::vector<RayState> after = state.download();
     std::vector<rt_float4> wAfter = weight.download();
     int wrongShadow = 0, stateChanged = 0;

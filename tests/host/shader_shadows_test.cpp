@@ -1,0 +1,122 @@
+// shader_shadows_test.cpp: shadows through surfaces whose shader says what they let through
+// (PRMan's "string transmission" "shader", "shade" "transmissionhitmode" "shader", BMRT's
+// "casts_shadows" "shade"): the shadow ray goes on in the pool from such a surface, its
+// shader runs for Oi alone, and the rest of the way is a shadow ray again (ray.h
+// RT_ALIVE_SHADOW).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "render_harness.h"
+
+using rd::test::Rendered;
+using rd::test::renderRib;
+
+namespace {
+
+// Oi by where the point lies: opaque left of x = edge (world space), (0.25, 0.5, 0.75)
+// to the right. Never seen by the camera.
+const char* const kShaders[][2] = {
+    {"halfop",
+     "surface halfop(float edge = 0) {\n"
+     "  point Pw = transform(\"world\", P);\n"
+     "  Oi = xcomp(Pw) < edge ? color(1) : color(0.25, 0.5, 0.75);\n"
+     "  Ci = 0;\n}\n"},
+};
+
+// 48 x 16 pixels over x in [-3, 3]: column c is x = (c - 24) / 8.
+const char* kCamera =
+    "Format 48 16 1\nPixelSamples 2 2\nProjection \"orthographic\"\nScreenWindow -3 3 -1 1\n"
+    "Translate 0 0 5\n";
+
+// A square of side 1.2 at (x, 0, z), facing the camera, which does not see it.
+std::string square(double x, double z, const std::string& attributes) {
+    std::ostringstream s;
+    s << "AttributeBegin\nAttribute \"visibility\" \"int camera\" [0]\n"
+      << attributes << "\nPolygon \"P\" [" << x - 0.6 << " -0.6 " << z << "  " << x + 0.6
+      << " -0.6 " << z << "  " << x + 0.6 << " 0.6 " << z << "  " << x - 0.6 << " 0.6 "
+      << z << "]\nAttributeEnd\n";
+    return s.str();
+}
+
+}  // namespace
+
+// A white matte floor under two distant lights straight on, of intensity 1 and 0.5 (lit,
+// it is 1.5; the second light's shadow rays are handed over from its slots); squares between
+// at x = -2.25, -0.75, 0.75 and 2.25. The first's shader is opaque over its left half:
+// under it the floor is black, under the right half it keeps 1 - Oi. The second is three
+// layers: a shader's square, one of constant Opacity 0.5, the shader's again; the third
+// runs the same shader but takes its Os (transmission "Os"); the fourth asks for its
+// shader by transmissionhitmode.
+TEST(ShaderShadows, ShadowsTakeTheShadersOi) {
+    const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
+    const std::string shader = "Attribute \"visibility\" \"string transmission\" [\"shader\"]\n";
+    const std::string world =
+        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
+        ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+        "LightSource \"distantlight\" 2 \"intensity\" 0.5 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+        "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n" +
+        square(-2.25, -1, shader + "Surface \"halfop\" \"edge\" -2.25") +
+        square(-0.75, -1, shader + "Surface \"halfop\" \"edge\" -9") +
+        square(-0.75, -2, "Opacity [0.5 0.5 0.5]") +
+        square(-0.75, -3, shader + "Surface \"halfop\" \"edge\" -9") +
+        square(0.75, -1,
+               "Attribute \"visibility\" \"string transmission\" [\"Os\"]\n"
+               "Opacity [0.5 0.5 0.5]\nSurface \"halfop\" \"edge\" -9") +
+        square(2.25, -1,
+               "Attribute \"shade\" \"string transmissionhitmode\" [\"shader\"]\n"
+               "Attribute \"visibility\" \"int transmission\" [1]\n"
+               "Surface \"halfop\" \"edge\" -9") +
+        "WorldEnd\n";
+    Rendered r = renderRib(world);
+    ASSERT_EQ(r.width, 48);
+    auto at = [&](int channel, int column) { return r.mean(channel, column, 6, column + 2, 10); };
+    const double through[3] = {1.5 * 0.75, 1.5 * 0.5, 1.5 * 0.25};
+    for (int c = 0; c < 3; ++c) {
+        SCOPED_TRACE(c);
+        EXPECT_NEAR(at(c, 3), 0.0, 1e-6);                  // the opaque half
+        EXPECT_NEAR(at(c, 7), through[c], 1e-5);           // 1 - Oi
+        EXPECT_NEAR(at(c, 17), through[c] * through[c] / 1.5 * 0.5, 1e-5);  // three layers
+        EXPECT_NEAR(at(c, 29), 1.5 * 0.5, 1e-5);           // Os, not the shader's
+        EXPECT_NEAR(at(c, 41), through[c], 1e-5);          // transmissionhitmode
+        EXPECT_NEAR(at(c, 23), 1.5, 1e-5);                 // between the squares
+    }
+    EXPECT_TRUE(r.stats.features.shaderShadows);
+    EXPECT_TRUE(r.stats.features.transparentShadows);
+
+    // The same image whatever the pool's capacity (64 rays: the handed-over rays wait for
+    // room behind the others).
+    rd::RenderSettings small;
+    small.poolCapacity = 64;
+    Rendered s = renderRib(world, small);
+    double worst = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 48; ++x)
+            worst = std::max(worst, double(std::fabs(s.at(x, y).r - r.at(x, y).r) +
+                                           std::fabs(s.at(x, y).b - r.at(x, y).b)));
+    EXPECT_LT(worst, 1e-6);
+
+    // A treelet budget gives way to the resident traversal, which hands rays over.
+    rd::RenderSettings treelets;
+    treelets.treeletBytes = 4096;
+    Rendered t = renderRib(world, treelets);
+    EXPECT_FALSE(t.stats.features.treelets);
+    EXPECT_NE(t.stats.treelets.why.find("transmission shaders"), std::string::npos);
+    EXPECT_NEAR(t.mean(0, 7, 6, 9, 10), through[0], 1e-5);
+}
+
+// Without a shader's transmission asked for, the same scene's shadows are the squares' Os
+// (1, the default): the feature is not built, and no shadow ray goes to the pool.
+TEST(ShaderShadows, OnlyAskedForIsTheShaderRun) {
+    const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
+    Rendered r = renderRib(
+        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
+        ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+        "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n" +
+        square(0, -1, "Surface \"halfop\" \"edge\" -9") + "WorldEnd\n");
+    EXPECT_FALSE(r.stats.features.shaderShadows);
+    EXPECT_NEAR(r.mean(0, 22, 6, 26, 10), 0.0, 1e-6);
+    EXPECT_NEAR(r.mean(0, 2, 6, 6, 10), 1.0, 1e-5);
+}
