@@ -50,6 +50,7 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.traceSlots = shading.usesTrace ? std::max(1, shading.traceSlots) : 0;
     f.sampledTrace = shading.sampledTrace;
     f.visibilityRays = shading.visibilityRays;
+    f.transparency |= shading.shaderOpacity;  // (a cut-out leaf: its shader's Oi)
     f.maxSpecularDepth = scene.maxSpecularDepth;
     f.materialDepths = shading.materialDepths;
     if (scene.maxDiffuseDepth == 0 || scene.maxDiffuseDepth == 1)

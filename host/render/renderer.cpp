@@ -138,6 +138,10 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     const size_t treeletBudget = m_settings.treeletBytes > 0 ? m_settings.treeletBytes
                                                              : size_t(scene.render.treeletBytes);
     configureTreelets(f, m_ctx, treeletBudget, st.treelets);
+    if (f.shaderShadows && f.shaderAovFloats > 0)
+        diag.warning(rib::SourceLoc{scene.sourceFile, 0},
+                     "shader AOVs leave out the lights' parts that reach a surface through "
+                     "a transmission shader's surface");
     if (treeletBudget > 0 && !f.treelets)
         diag.warning(rib::SourceLoc{scene.sourceFile, 0},
                      "treelet budget not used: " + st.treelets.why);

@@ -539,6 +539,7 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
             out.lightCoefs |= lightCoefs && sh->lightCoefs;
             out.sampledTrace |= sh->usesTrace && sh->usesRandom;
             out.visibilityRays |= sh->usesVisibility;
+            out.shaderOpacity |= sh->writesOpacity;
             out.derivatives |= sh->usesDerivatives;
         }
         refShader[r] = it->second;

@@ -56,6 +56,9 @@ struct ShadingSetup {
     bool visibilityRays =
         false;           // some surface calls occlusion(): rays that ask if they escape
     int traceSlots = 0;  // rays a hit may spawn with trace(): the surfaces' most a run
+    // Some surface's shader sets Oi below Os (EmittedShader::writesOpacity): rays go on
+    // through it even where every Os is 1 (RT_HAS_TRANSPARENCY).
+    bool shaderOpacity = false;
     bool atmosphere = false;                // some surface has an Atmosphere shader
     bool interior = false;                  // some surface has an Interior shader
     bool exterior = false;                  // some surface has an Exterior shader

@@ -53,6 +53,8 @@ struct EmittedShader {
     // Reads "object" space (or a space named at run time, which may be it): each
     // primitive's own object space then needs an instance of its own (rsl_abi.h, SPACES).
     bool usesObjectSpace = false;
+    // assigns Oi something other than Os or 1: it may let rays through where Os is 1
+    bool writesOpacity = false;
     // Reads "screen", "raster", "NDC", a named coordinate system or a space named at run
     // time: the renderer's table of those spaces (rsl_abi.h, SPACES)
     bool usesSpaceTable = false;

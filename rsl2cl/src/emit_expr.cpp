@@ -210,6 +210,12 @@ std::string Emitter::expr(const Expr& e) {
                   "a whole array is assigned only as a statement of its own (b = a;)");
             return "0";
         }
+        // Oi below Os: a surface the ray sees through, where Os alone says it is opaque
+        if (l.kind == ExprKind::Ident && l.symbol && l.symbol->kind == SymbolKind::Global &&
+            l.text == "Oi" &&
+            !(e.text == "=" && ((r.kind == ExprKind::Ident && r.text == "Os") ||
+                                (r.kind == ExprKind::Number && r.number >= 1.0))))
+            m_out.writesOpacity = true;
         std::string lv = lvalue(l);
         if (e.text == "=") return "(" + lv + " = " + exprAs(r, l.type) + ")";
         std::string op = e.text.substr(0, 1);

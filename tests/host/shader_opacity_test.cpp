@@ -1,4 +1,5 @@
-// shader_shadows_test.cpp: shadows through surfaces whose shader says what they let through
+// shader_opacity_test.cpp: what a surface shader's Oi lets through: camera rays where it
+// sets Oi below Os, and shadows through surfaces whose shader says what they let through
 // (PRMan's "string transmission" "shader", "shade" "transmissionhitmode" "shader", BMRT's
 // "casts_shadows" "shade"): the shadow ray goes on in the pool from such a surface, its
 // shader runs for Oi alone, and the rest of the way is a shadow ray again (ray.h
@@ -24,6 +25,7 @@ const char* const kShaders[][2] = {
      "  point Pw = transform(\"world\", P);\n"
      "  Oi = xcomp(Pw) < edge ? color(1) : color(0.25, 0.5, 0.75);\n"
      "  Ci = 0;\n}\n"},
+    {"hole", "surface hole(float o = 0.25) {\n  Oi = o;\n  Ci = Oi * color(1, 0, 0);\n}\n"},
 };
 
 // 48 x 16 pixels over x in [-3, 3]: column c is x = (c - 24) / 8.
@@ -50,7 +52,7 @@ std::string square(double x, double z, const std::string& attributes) {
 // layers: a shader's square, one of constant Opacity 0.5, the shader's again; the third
 // runs the same shader but takes its Os (transmission "Os"); the fourth asks for its
 // shader by transmissionhitmode.
-TEST(ShaderShadows, ShadowsTakeTheShadersOi) {
+TEST(ShaderOpacity, ShadowsTakeTheShadersOi) {
     const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
     const std::string shader = "Attribute \"visibility\" \"string transmission\" [\"shader\"]\n";
     const std::string world =
@@ -109,7 +111,7 @@ TEST(ShaderShadows, ShadowsTakeTheShadersOi) {
 
 // Without a shader's transmission asked for, the same scene's shadows are the squares' Os
 // (1, the default): the feature is not built, and no shadow ray goes to the pool.
-TEST(ShaderShadows, OnlyAskedForIsTheShaderRun) {
+TEST(ShaderOpacity, OnlyAskedForIsTheShaderRun) {
     const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
     Rendered r = renderRib(
         std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
@@ -119,4 +121,27 @@ TEST(ShaderShadows, OnlyAskedForIsTheShaderRun) {
     EXPECT_FALSE(r.stats.features.shaderShadows);
     EXPECT_NEAR(r.mean(0, 22, 6, 26, 10), 0.0, 1e-6);
     EXPECT_NEAR(r.mean(0, 2, 6, 6, 10), 1.0, 1e-5);
+}
+
+// A shader that sets Oi below Os lets camera rays through though every Os is 1 (a leaf
+// cut out by its alpha): red at Oi 0.25 over a green plane is (0.25, 0.75, 0), alpha 1.
+// `constant` (Oi = Os) builds no transparency and hides the plane.
+TEST(ShaderOpacity, CameraRaysGoThroughTheShadersOi) {
+    const std::string dir = rd::test::shaderFolder("shader_opacity", kShaders);
+    auto scene = [&](const std::string& front) {
+        return std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
+               ":&\"]\nWorldBegin\nSurface \"constant\"\nColor [0 1 0]\n"
+               "Polygon \"P\" [-9 -9 2  9 -9 2  9 9 2  -9 9 2]\nColor [1 0 0]\n" +
+               front + "\nPolygon \"P\" [-9 -9 0  0 -9 0  0 9 0  -9 9 0]\nWorldEnd\n";
+    };
+    Rendered r = renderRib(scene("Surface \"hole\""));
+    EXPECT_TRUE(r.stats.features.transparency);
+    EXPECT_NEAR(r.mean(0, 0, 0, 24, 16), 0.25, 1e-6);
+    EXPECT_NEAR(r.mean(1, 0, 0, 24, 16), 0.75, 1e-6);
+    EXPECT_NEAR(r.mean(3, 0, 0, 24, 16), 1.0, 1e-6);
+    EXPECT_NEAR(r.mean(1, 24, 0, 48, 16), 1.0, 1e-6);
+    Rendered c = renderRib(scene("Surface \"constant\""));
+    EXPECT_FALSE(c.stats.features.transparency);
+    EXPECT_NEAR(c.mean(0, 0, 0, 24, 16), 1.0, 1e-6);
+    EXPECT_NEAR(c.mean(1, 0, 0, 24, 16), 0.0, 1e-6);
 }
