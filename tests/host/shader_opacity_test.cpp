@@ -145,3 +145,27 @@ TEST(ShaderOpacity, CameraRaysGoThroughTheShadersOi) {
     EXPECT_NEAR(c.mean(0, 0, 0, 24, 16), 1.0, 1e-6);
     EXPECT_NEAR(c.mean(1, 0, 0, 24, 16), 0.0, 1e-6);
 }
+
+// The same on exact quadrics and instances: a sphere (two surfaces on the way, (1 - Oi)^2)
+// at x = -1.5 and an ObjectInstance of a square at x = 1.5, both of "shader" transmission.
+TEST(ShaderOpacity, ShadowsThroughQuadricsAndInstances) {
+    const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
+    Rendered r = renderRib(
+        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
+        ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+        "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n"
+        "ObjectBegin 1\nPolygon \"P\" [-0.6 -0.6 0  0.6 -0.6 0  0.6 0.6 0  -0.6 0.6 0]\n"
+        "ObjectEnd\nAttribute \"visibility\" \"int camera\" [0]\n"
+        "Attribute \"visibility\" \"string transmission\" [\"shader\"]\n"
+        "Surface \"halfop\" \"edge\" -9\n"
+        "AttributeBegin\nTranslate -1.5 0 -2\nSphere 0.5 -0.5 0.5 360\nAttributeEnd\n"
+        "AttributeBegin\nTranslate 1.5 0 -1\nObjectInstance 1\nAttributeEnd\nWorldEnd\n");
+    const double through[3] = {0.75, 0.5, 0.25};
+    for (int c = 0; c < 3; ++c) {
+        SCOPED_TRACE(c);
+        EXPECT_NEAR(r.mean(c, 11, 7, 13, 9), through[c] * through[c], 1e-5);  // the sphere
+        EXPECT_NEAR(r.mean(c, 35, 7, 37, 9), through[c], 1e-5);  // the instance
+    }
+    EXPECT_TRUE(r.stats.features.quadrics);
+    EXPECT_TRUE(r.stats.features.instances);
+}

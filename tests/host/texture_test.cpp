@@ -36,6 +36,9 @@ std::string dir() {
             << "surface texcheck(string map = \"\"; float rep = 1; float width = 1;) {\n"
                "    Ci = color texture(map, s * rep, t * rep, \"width\", width);\n"
                "    Oi = 1;\n}\n";
+        std::ofstream(p + "/texop.sl")
+            << "surface texop(string map = \"\";) {\n"
+               "    Oi = float texture(map, s, t);\n    Ci = 0;\n}\n";
         std::ofstream(p + "/envlook.sl")
             << "surface envlook(string map = \"\"; vector dir = (0, 0, -1);) {\n"
                "    Ci = color environment(map, dir);\n    Oi = 1;\n}\n";
@@ -170,6 +173,43 @@ TEST(Textures, CacheOverflowEqualsResident) {
         for (int x = 0; x < 96; ++x)
             for (int c = 0; c < 4; ++c)
                 differ += (&resident.at(x, y).r)[c] != (&streamed.at(x, y).r)[c];
+    EXPECT_EQ(differ, 0u);
+}
+
+// Shadows through a surface whose shader takes its opacity from a texture (transmission
+// "shader": a leaf's alpha map). A square of 2 x 2 black and white texels the camera does
+// not see, over a floor lit straight on: under its white (opaque) quarters the floor is 0,
+// under the black ones 1. With a cache of 4 tiles the shadow rays' lookups miss, are shaded
+// again once their tiles are there, and give the same image.
+TEST(Textures, ShadowsThroughATexturesOpacity) {
+    std::string tex = texture("opacity", 256, 2, false, "clamp");
+    auto scene = searchPath() +
+                 "Format 32 32 1\nPixelSamples 2 2\nProjection \"orthographic\"\n"
+                 "ScreenWindow -1 1 -1 1\nTranslate 0 0 5\nWorldBegin\n"
+                 "LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+                 "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n"
+                 "Attribute \"visibility\" \"int camera\" [0]\n"
+                 "Attribute \"visibility\" \"string transmission\" [\"shader\"]\n"
+                 "Surface \"texop\" \"map\" \"" + tex + "\"\n"
+                 "Polygon \"P\" [-2 -2 -1  2 -2 -1  2 2 -1  -2 2 -1] \"st\" [0 0  1 0  1 1  0 1]\n"
+                 "WorldEnd\n";
+    Rendered resident = renderRib(scene);
+    rd::RenderSettings small;
+    small.textureCacheTiles = 4;
+    Rendered streamed = renderRib(scene, small);
+    EXPECT_TRUE(resident.stats.features.shaderShadows);
+    EXPECT_GT(streamed.stats.textures.retryPasses, 0u);
+    EXPECT_EQ(streamed.stats.textures.unresolved, 0u);
+    // (the square spans the frame twice over: each quarter of the frame is one texel)
+    const double quarter[2][2] = {{resident.mean(0, 2, 2, 14, 14), resident.mean(0, 18, 2, 30, 14)},
+                                  {resident.mean(0, 2, 18, 14, 30), resident.mean(0, 18, 18, 30, 30)}};
+    EXPECT_NEAR(quarter[0][0] + quarter[0][1], 1.0, 1e-5);  // one white, one black
+    EXPECT_NEAR(quarter[0][0] * quarter[0][1], 0.0, 1e-5);
+    EXPECT_NEAR(quarter[0][0], quarter[1][1], 1e-5);  // a checker
+    EXPECT_NEAR(quarter[0][1], quarter[1][0], 1e-5);
+    size_t differ = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) differ += resident.at(x, y).r != streamed.at(x, y).r;
     EXPECT_EQ(differ, 0u);
 }
 
