@@ -111,7 +111,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     g.rng_pixel = sample_pixel[sample]; /* area lights pick their points by the sample */
     g.rng_sample = sample_index[sample];
     g.rng_depth = RT_TRACE_DEPTH(rs) + RT_TRANSPARENT_DEPTH(rs);
-    g.ray_depth = RT_TRACE_DEPTH(rs);
+    g.ray_depth = RT_TRACE_DEPTH(rs) | (shadow_ray ? RSL_SHADOW_RAY : 0u);
     g.texctx = 0; /* set below when the scene has textures */
     g.scene_params = params; /* the scene block and the lights' lead the buffer */
     float4 Ngf = rt_dot3(dir, g.Ng) < 0.0f ? g.Ng : -g.Ng; /* facing the ray */

@@ -253,6 +253,9 @@ typedef struct RslLightCache {
     rsl_color Cl[RSL_LIGHT_CACHE]; /* (RSL_CW: 1 for a solar light) */
 } RslLightCache;
 
+/* RslGlobals::ray_depth's top bit: the shader runs for a shadow ray's Oi alone (a surface
+ * of "shader" transmission) */
+#define RSL_SHADOW_RAY 0x80000000u
 typedef struct RslGlobals {
     float4 P, N, Ng, I, E, dPdu, dPdv;
     rsl_color Cs, Os, Ci, Oi;
@@ -273,7 +276,8 @@ typedef struct RslGlobals {
      * changes with the camera or a light is data, so the program stays the same */
     __global const float* scene_params;
     /* the material being shaded, whose attributes attribute() reads (-1: none), and the
-     * trace depth of the ray that reached it (rayinfo("depth"): 0 for camera rays) */
+     * trace depth of the ray that reached it (rayinfo("depth"): 0 for camera rays), with
+     * RSL_SHADOW_RAY set while the shader runs for a shadow ray's Oi (isshadowray()) */
     int material;
     unsigned int ray_depth;
     /* (s(u+du) - s, t(u+du) - t, s(v+dv) - s, t(v+dv) - t): the footprint of the global

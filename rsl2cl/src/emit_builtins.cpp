@@ -477,8 +477,8 @@ std::string Emitter::builtin(const Expr& e) {
         return call("rsl_" + n);
     // BMRT's and PRMan's: the ray's depth, and whether a shadow ray runs the shader
     // (never: shadows take the surface's constant Os, rsl_abi.h TRACE)
-    if (n == "raylevel") return "((float)g->ray_depth)";
-    if (n == "isshadowray") return "0.0f";
+    if (n == "raylevel") return "((float)(g->ray_depth & ~RSL_SHADOW_RAY))";
+    if (n == "isshadowray") return "((float)(g->ray_depth >> 31))";
     if (n == "arraylength") {
         const TypeSpec& t = e.args[0]->type;
         return clNumber(t.isArray() ? t.arraySize : -1);

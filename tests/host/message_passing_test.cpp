@@ -158,7 +158,7 @@ TEST(MessagePassing, RayinfoGivesTheRaysDepth) {
 }
 
 // BMRT's and PRMan's raylevel() (as rayinfo("depth": the front square 0.25 plus 1.25 of
-// the one behind), isshadowray() (0: shadows run no shader), arraylength() (3 for a
+// the one behind), isshadowray() (0 for camera and traced rays), arraylength() (3 for a
 // float[3], -1 for a float), and rendererinfo(): "renderer" RayDrive, "versionstring"
 // 0.1.0, "version" 0 1 0 0, each found (1), an unknown name not (0). Before, raylevel,
 // isshadowray and arraylength were unknown functions and rendererinfo found nothing.

@@ -25,6 +25,10 @@ const char* const kShaders[][2] = {
      "  point Pw = transform(\"world\", P);\n"
      "  Oi = xcomp(Pw) < edge ? color(1) : color(0.25, 0.5, 0.75);\n"
      "  Ci = 0;\n}\n"},
+    {"shy",
+     "surface shy() {\n  string kind = \"\";\n  rayinfo(\"type\", kind);\n"
+     "  Oi = isshadowray() > 0 ? 0.5 : 1;\n  if (kind == \"transmission\") Oi *= 0.5;\n"
+     "  Ci = 0.3 * Oi;\n}\n"},
     {"hole", "surface hole(float o = 0.25) {\n  Oi = o;\n  Ci = Oi * color(1, 0, 0);\n}\n"},
 };
 
@@ -168,4 +172,22 @@ TEST(ShaderOpacity, ShadowsThroughQuadricsAndInstances) {
     }
     EXPECT_TRUE(r.stats.features.quadrics);
     EXPECT_TRUE(r.stats.features.instances);
+}
+
+// A shader knows when it runs for a shadow ray's Oi: isshadowray() is 1 and rayinfo("type")
+// "transmission". Its Oi is 0.5 * 0.5 for shadow rays, 1 for camera rays: the floor under
+// a square the camera does not see keeps 0.75, and a square the camera sees is opaque
+// (0.3, alpha 1).
+TEST(ShaderOpacity, ShadersKnowAShadowRay) {
+    const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
+    Rendered r = renderRib(
+        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
+        ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+        "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n"
+        "Attribute \"visibility\" \"string transmission\" [\"shader\"]\nSurface \"shy\"\n" +
+        square(-1.5, -1, "") + square(1.5, -1, "Attribute \"visibility\" \"int camera\" [1]") +
+        "WorldEnd\n");
+    EXPECT_NEAR(r.mean(0, 11, 7, 13, 9), 0.75, 1e-5);  // the shadow
+    EXPECT_NEAR(r.mean(0, 35, 7, 37, 9), 0.3, 1e-5);   // the square itself
+    EXPECT_NEAR(r.mean(3, 35, 7, 37, 9), 1.0, 1e-6);
 }
