@@ -63,6 +63,7 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
                      __global const float4* shadow_direction,
                      __global const rt_weight* shadow_weight,
                      __global const RayState* shadow_state,
+                     __global const float* shadow_aov, /* and RT_RAY_AOVS: their parts */
                      __global uint* active_counter) {
     __local uint live[RT_COMPACT_GROUP];
     uint i = get_global_id(0), lid = get_local_id(0);
@@ -89,7 +90,7 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
     uint j = before;
     /* live ray j goes to pool position j, past the pool's capacity onto the spill stack;
      * past the stack's it is dropped: no longer in flight, and its sample goes again */
-#define RT_PUT_RAY(o, d, w, st, sample, aov_from)                                             \
+#define RT_PUT_RAY(o, d, w, st, sample, put_aovw)                                             \
     {                                                                                     \
         const int spill = j >= capacity;                                                  \
         const uint to = spill ? spill_top + (j - capacity) : j;                           \
@@ -99,27 +100,33 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
             (spill ? spill_weight : dst_weight)[to] = (w);                                \
             (spill ? spill_state : dst_state)[to] = (st);                                 \
             (spill ? spill_sample : dst_sample)[to] = (sample);                           \
-            RT_MOVE_AOVW(spill ? spill_aovw : dst_aovw, to, aov_from, st);                \
+            put_aovw(spill ? spill_aovw : dst_aovw, to);                                  \
         } else {                                                                          \
             slot_abort[sample] = 1u;                                                      \
             atomic_dec(&slot_rays[sample]);                                               \
         }                                                                                 \
         ++j;                                                                              \
     }
+    /* (a spawned ray's AOV weights go with it; a handed shadow ray's parts become some) */
 #ifdef RT_RAY_AOVS
-#define RT_MOVE_AOVW(dst, to, from, st) \
-    if ((from) != ~0u) rt_move_aovw(dst, to, src_aovw, from, st)
+#define RT_SPAWNED_AOVW(dst, to) rt_move_aovw(dst, to, src_aovw, from, src_state[from])
 #else
-#define RT_MOVE_AOVW(dst, to, from, st)
+#define RT_SPAWNED_AOVW(dst, to)
+#endif
+#if defined(RT_RAY_AOVS) && defined(RD_AOV_CHANNELS)
+#define RT_HANDED_AOVW(dst, to) \
+    if (hs.depth & RT_CARRIES_AOVS) rt_aov_store((dst) + (size_t)(to) * RT_AOV_PAYLOAD, aw)
+#else
+#define RT_HANDED_AOVW(dst, to)
 #endif
     for (uint k = 0; k < RT_SPAWN_SLOTS; ++k) {
         if (!(mask & (1u << k))) continue;
         const uint from = i * RT_SPAWN_SLOTS + k;
         RT_PUT_RAY(src_origin[from], src_direction[from], src_weight[from], src_state[from],
-                   src_sample[from], from);
+                   src_sample[from], RT_SPAWNED_AOVW);
     }
 #ifdef RT_SHADER_SHADOWS
-    /* the handed shadow rays, in light order: pool rays of their own kind, no AOVs */
+    /* the handed shadow rays, in light order: pool rays of their own kind */
     for (uint l = 0; handed && l < light_count; ++l) {
         const uint from = i * light_count + l;
         RayState hs = shadow_state[from];
@@ -127,8 +134,16 @@ void compact_scatter(uint count, /* traced rays; ray i's spawn slots are i * RT_
         const uint sample = as_uint(hs.width);
         hs.alive = RT_ALIVE_SHADOW;
         hs.width = 0.0f;
+#if defined(RT_RAY_AOVS) && defined(RD_AOV_CHANNELS)
+        float aw[RT_AOV_PAYLOAD], parts[RT_SHADER_AOVS];
+        if (hs.depth & RT_CARRIES_AOVS) {
+            for (int c = 0; c < RT_SHADER_AOVS; ++c)
+                parts[c] = shadow_aov[(size_t)from * RT_SHADER_AOVS + c];
+            rt_aov_weights_of_parts(aw, parts);
+        }
+#endif
         RT_PUT_RAY(shadow_origin[from], shadow_direction[from], shadow_weight[from], hs,
-                   sample, ~0u);
+                   sample, RT_HANDED_AOVW);
     }
 #endif
 }

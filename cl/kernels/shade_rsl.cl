@@ -220,13 +220,24 @@ __kernel void shade_SURFACE(uint begin, uint count,
                                                    material_channels, &most));
         rsl_color sw = rt_sanitize_c(w * through, numerics);
         RSL_CW(sw) = 0.0f;
-        if (!rsl_cnonzero(sw)) return;
         const uint s = r * light_count;
+#if defined(RT_RAY_AOVS) && defined(RT_SHADER_AOVS)
+        /* the lights' parts of the sample's AOVs it brings, on as a shadow ray's parts
+         * (its alpha lane marks them) */
+        if (rs.depth & RT_CARRIES_AOVS) {
+            float a[RT_AOV_PAYLOAD], parts[RT_SHADER_AOVS];
+            rt_aov_load(a, ray_aovw + (size_t)r * RT_AOV_PAYLOAD);
+            if (rt_aov_parts(parts, a, through)) RSL_CW(sw) = 1.0f;
+            for (int c = 0; c < RT_SHADER_AOVS; ++c)
+                shadow_aov[(size_t)s * RT_SHADER_AOVS + c] = parts[c];
+        }
+#endif
+        if (!rsl_cnonzero(sw) && RSL_CW(sw) == 0.0f) return;
         org.w = h.t;
         shadow_origin[s] = org;
         shadow_direction[s] = dir;
         shadow_weight[s] = rt_weight_of(sw);
-        RayState ss = {1u, rs.depth + RT_ONE_TRANSPARENT, h.prim, 0.0f};
+        RayState ss = {1u, (rs.depth & ~RT_AOV_FLAGS) + RT_ONE_TRANSPARENT, h.prim, 0.0f};
         shadow_state[s] = ss;
         return;
     }

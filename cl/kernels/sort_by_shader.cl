@@ -105,9 +105,13 @@ __kernel void classify_hits(uint count, uint shader_count, uint light_count, uin
 #ifdef RT_SHADER_SHADOWS
         /* a shadow ray sent on by a transmission shader: its weight counts when it meets
          * nothing short of its light; what it meets is shaded for what gets through */
-        if (state[r].alive == RT_ALIVE_SHADOW && prim == RT_NO_HIT)
+        if (state[r].alive == RT_ALIVE_SHADOW && prim == RT_NO_HIT) {
             rt_atomic_add_float4(&total[ray_sample[r]].value,
                                  rt_total_of(rt_weight_color(weight[r])));
+#ifdef RT_RAY_AOVS
+            rt_aov_add_ray(aov_values, ray_aovw, r, state[r], ray_sample[r], (rsl_color)(1.0f));
+#endif
+        }
 #endif
         key[r] = k;
         if (shader_count > 1) atomic_inc(&hist[k]); /* one shader: no sort, no counts */

@@ -95,11 +95,13 @@ struct Features {
     // A round may leave rays for the next: traced, continued or handed-over shadow rays.
     bool spawns() const { return trace || transparency || shaderShadows; }
     // Floats of a ray's AOV payload (ray_aovs.clh): shader AOVs that rays below trace()
-    // calls bring parts back to, or that surfaces behind transparent ones add to, one
-    // weight an AOV float and colour channel; 0 otherwise.
+    // calls bring parts back to, or that surfaces behind transparent ones add to, or the
+    // lights' parts shadow rays carry on through the pool, one weight an AOV float and
+    // colour channel; 0 otherwise.
     int rayAovFloats() const {
-        return (trace || transparency) && shaderAovFloats > 0 ? shaderAovFloats * colors.n
-                                                              : 0;
+        return (trace || transparency || shaderShadows) && shaderAovFloats > 0
+                   ? shaderAovFloats * colors.n
+                   : 0;
     }
     std::string
         aovChannels;  // each AOV float's channel (shaderAovChannels), when it has any

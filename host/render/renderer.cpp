@@ -138,10 +138,6 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     const size_t treeletBudget = m_settings.treeletBytes > 0 ? m_settings.treeletBytes
                                                              : size_t(scene.render.treeletBytes);
     configureTreelets(f, m_ctx, treeletBudget, st.treelets);
-    if (f.shaderShadows && f.shaderAovFloats > 0)
-        diag.warning(rib::SourceLoc{scene.sourceFile, 0},
-                     "shader AOVs leave out the lights' parts that reach a surface through "
-                     "a transmission shader's surface");
     if (treeletBudget > 0 && !f.treelets)
         diag.warning(rib::SourceLoc{scene.sourceFile, 0},
                      "treelet budget not used: " + st.treelets.why);
@@ -492,7 +488,7 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
                 rp.direction, rp.weight, rp.state, rp.sample, rp.spillOrigin,
                 rp.spillDirection, rp.spillWeight, rp.spillState, rp.spillSample,
                 rp.nextAovw, rp.aovw, rp.spillAovw, rp.slotRays, rp.slotAbort, nl,
-                rp.shOrigin, rp.shDirection, rp.shWeight, rp.shState);
+                rp.shOrigin, rp.shDirection, rp.shWeight, rp.shState, rp.shAov);
         };
         if (refilled) refill.commitFitted(pending);  // eye rays at the pool's front
         if (pipelined && compact) compactBehind(refilled ? ~0u : 0u);  // spawned rays behind

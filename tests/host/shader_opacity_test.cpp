@@ -10,6 +10,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "film/film.h"
 #include "render_harness.h"
 
 using rd::test::Rendered;
@@ -29,6 +30,12 @@ const char* const kShaders[][2] = {
      "surface shy() {\n  string kind = \"\";\n  rayinfo(\"type\", kind);\n"
      "  Oi = isshadowray() > 0 ? 0.5 : 1;\n  if (kind == \"transmission\") Oi *= 0.5;\n"
      "  Ci = 0.3 * Oi;\n}\n"},
+    {"aovlit",
+     "surface aovlit(output varying color lit = 0;) {\n"
+     "  normal Nf = faceforward(normalize(N), I);\n"
+     "  illuminance(P, Nf, PI / 2) {\n"
+     "    lit += Cl * (Nf . normalize(L));\n  }\n"
+     "  Ci = lit;\n  Oi = 1;\n}\n"},
     {"hole", "surface hole(float o = 0.25) {\n  Oi = o;\n  Ci = Oi * color(1, 0, 0);\n}\n"},
 };
 
@@ -190,4 +197,43 @@ TEST(ShaderOpacity, ShadersKnowAShadowRay) {
     EXPECT_NEAR(r.mean(0, 11, 7, 13, 9), 0.75, 1e-5);  // the shadow
     EXPECT_NEAR(r.mean(0, 35, 7, 37, 9), 0.3, 1e-5);   // the square itself
     EXPECT_NEAR(r.mean(3, 35, 7, 37, 9), 1.0, 1e-6);
+}
+
+// The lights' parts of shader AOVs go with the shadow rays through the pool: a floor whose
+// output `lit` is its Ci, under the squares of
+// ShadowsTakeTheShadersOi (the three layers, "shader" transmission): each AOV shows the
+// same shadow as the image, channel by channel.
+TEST(ShaderOpacity, AovsTakeTheShadowsTheImageDoes) {
+    const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
+    const std::string shader = "Attribute \"visibility\" \"string transmission\" [\"shader\"]\n";
+    rd::RenderSettings settings;
+    settings.extraAovs = {"lit"};
+    Rendered r = renderRib(
+        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
+            ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+            "Surface \"aovlit\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n" +
+            square(-0.75, -1, shader + "Surface \"halfop\" \"edge\" -9") +
+            square(-0.75, -2, "Opacity [0.5 0.5 0.5]") +
+            square(-0.75, -3, shader + "Surface \"halfop\" \"edge\" -9") + "WorldEnd\n",
+        settings);
+    EXPECT_TRUE(r.stats.features.shaderShadows);
+    auto aov = [&](const std::string& name, int x0, int x1) {
+        for (const rd::Channel& c : r.film.aovChannels(name.substr(0, name.find('.'))))
+            if (c.name == name) {
+                double sum = 0;
+                for (int y = 6; y < 10; ++y)
+                    for (int x = x0; x < x1; ++x) sum += c.values[size_t(y) * 48 + size_t(x)];
+                return sum / (4.0 * (x1 - x0));
+            }
+        ADD_FAILURE() << "no channel " << name;
+        return -1.0;
+    };
+    const double through[3] = {0.75 * 0.75 * 0.5, 0.5 * 0.5 * 0.5, 0.25 * 0.25 * 0.5};
+    const char* channel[3] = {"lit.R", "lit.G", "lit.B"};
+    for (int c = 0; c < 3; ++c) {
+        SCOPED_TRACE(c);
+        EXPECT_NEAR(r.mean(c, 17, 6, 19, 10), through[c], 1e-5);
+        EXPECT_NEAR(aov(channel[c], 17, 19), through[c], 1e-5);
+        EXPECT_NEAR(aov(channel[c], 26, 30), 1.0, 1e-5);  // out of the shadow
+    }
 }
