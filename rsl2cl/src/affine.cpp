@@ -4,7 +4,11 @@
 // affine and channel-wise: + - negation, * and / by untainted values, assignment,
 // casts, ?: with an untainted condition, mix() with an untainted weight. Anything else
 // touching a tainted value is an error naming file:line:col and the expression.
-// Taint is flow-insensitive per variable and iterated to a fixed point.
+// Taint follows the flow of the code: an assignment of an untainted value cleans the
+// variable for what follows (a classic shader's `Ci = texture(...); Ci = Ci * diffuse(Nf)`),
+// branches join, and loops (light loops too) and user functions only add taint, iterated
+// to a fixed point. What a variable ever holds (flow-insensitive) is what Oi's check and
+// the light coefficients (emit_coefs.cpp) see.
 #include <algorithm>
 #include <map>
 #include <set>
@@ -40,7 +44,7 @@ public:
         }
         m_report = true;
         walk();
-        for (const auto& kv : m_taint) {
+        for (const auto& kv : m_ever) {
             if (kv.first->kind == SymbolKind::Global && kv.first->name == "Oi" && kv.second) {
                 report(m_oiLoc, "Oi must not depend on " + unknowns(kv.second) +
                                     " (opacity is needed before any ray is cast)");
@@ -61,7 +65,7 @@ public:
     void lightTaint(LightTaint* out) const {
         out->symbols.clear();
         out->functions.clear();
-        for (const auto& kv : m_taint)
+        for (const auto& kv : m_ever)
             if (kv.second & T_LIGHT) out->symbols.insert(kv.first);
         for (const auto& kv : m_fnRet)
             if (kv.second & T_LIGHT) out->functions.insert(kv.first);
@@ -71,7 +75,21 @@ private:
     void walk() {
         m_visited.clear();
         m_fn = nullptr;
+        m_state.clear();
         stmt(*m_sh.body);
+    }
+
+    // A loop's body (and step) run again with what they left, until nothing more is
+    // tainted; inside, assignments only add taint.
+    template <class Body>
+    void loop(Body body) {
+        ++m_weak;
+        for (int pass = 0; pass < 64; ++pass) {
+            const std::map<const Symbol*, unsigned> before = m_state;
+            body();
+            if (m_state == before) break;
+        }
+        --m_weak;
     }
 
     void report(const SourceLoc& loc, const std::string& msg) {
@@ -84,9 +102,18 @@ private:
                           exprToString(e) + "'");
     }
 
-    void taintSym(const Symbol* s, unsigned m, const SourceLoc& loc) {
-        if (!s || !m) return;
-        unsigned& t = m_taint[s];
+    // s takes a value of taint m: all of it (`whole`, outside loops and functions: what it
+    // held before is gone), or beside what it held (an array element, a loop).
+    void taintSym(const Symbol* s, unsigned m, const SourceLoc& loc, bool whole) {
+        if (!s) return;
+        if (whole && m_weak == 0) {
+            if (m) m_state[s] = m;
+            else m_state.erase(s);
+        } else if (m) {
+            m_state[s] |= m;
+        }
+        if (!m) return;
+        unsigned& t = m_ever[s];
         if ((t | m) != t) {
             t |= m;
             m_changed = true;
@@ -189,7 +216,9 @@ private:
             m_visited.insert(&f);
             const FunctionDecl* saved = m_fn;
             m_fn = &f;
+            ++m_weak;  // (walked once, for every call: what it assigns only adds)
             stmt(*f.body);
+            --m_weak;
             m_fn = saved;
         }
         return m_fnRet[&f];
@@ -202,8 +231,8 @@ private:
         case ExprKind::Ident: {
             if (!e.symbol) return 0;
             if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") return T_LIGHT;
-            auto it = m_taint.find(e.symbol);
-            return it == m_taint.end() ? 0 : it->second;
+            auto it = m_state.find(e.symbol);
+            return it == m_state.end() ? 0 : it->second;
         }
         case ExprKind::Unary: {
             unsigned a = expr(*e.args[0]);
@@ -221,7 +250,7 @@ private:
             unsigned r = expr(*e.args[1]);
             unsigned v = e.text == "=" ? r : binary(e, e.text.substr(0, 1), l, r);
             if (m_gather > 0) v |= gatherAssign(e);
-            taintSym(target(*e.args[0]), v, e.loc);
+            taintSym(target(*e.args[0]), v, e.loc, e.args[0]->kind == ExprKind::Ident);
             return v;
         }
         case ExprKind::Call: return call(e);
@@ -252,7 +281,7 @@ private:
         case StmtKind::Decl:
             for (const VarDecl& d : s.decls) {
                 if (m_gather > 0) m_gatherLocals.insert(d.symbol);
-                if (d.init) taintSym(d.symbol, expr(*d.init), d.loc);
+                if (d.init) taintSym(d.symbol, expr(*d.init), d.loc, true);
             }
             break;
         case StmtKind::Block:
@@ -262,24 +291,26 @@ private:
             if (isGatherBranch(*s.expr)) {  // gather(): which of its rays escape
                 expr(*s.expr);
                 ++m_gather;
-                stmt(*s.body);
-                if (s.elseBody) stmt(*s.elseBody);
+                branches(*s.body, s.elseBody.get());
                 --m_gather;
                 break;
             }
             condition(*s.expr, "if");
-            stmt(*s.body);
-            if (s.elseBody) stmt(*s.elseBody);
+            branches(*s.body, s.elseBody.get());
             break;
         case StmtKind::While:
-            condition(*s.expr, "while");
-            stmt(*s.body);
+            loop([&] {
+                condition(*s.expr, "while");
+                stmt(*s.body);
+            });
             break;
         case StmtKind::For:
             if (s.init) stmt(*s.init);
-            if (s.expr) condition(*s.expr, "for");
-            if (s.step) expr(*s.step);
-            stmt(*s.body);
+            loop([&] {
+                if (s.expr) condition(*s.expr, "for");
+                stmt(*s.body);
+                if (s.step) expr(*s.step);
+            });
             break;
         case StmtKind::Return:
             if (s.expr) {
@@ -300,15 +331,28 @@ private:
                 unsigned m = expr(*a);
                 if (m) fail(*a, m, describe(m) + " used as an argument of a light loop");
             }
-            stmt(*s.body);
+            loop([&] { stmt(*s.body); });  // (once per light)
             break;
         default: break;
         }
     }
 
+    // if / else: each branch from the state before it, then what either may leave
+    void branches(const Stmt& then, const Stmt* otherwise) {
+        const std::map<const Symbol*, unsigned> before = m_state;
+        stmt(then);
+        std::map<const Symbol*, unsigned> joined = m_state;
+        m_state = before;
+        if (otherwise) stmt(*otherwise);
+        for (const auto& kv : m_state) joined[kv.first] |= kv.second;
+        m_state = std::move(joined);
+    }
+
     const ShaderDecl& m_sh;
     Diagnostics& m_diag;
-    std::map<const Symbol*, unsigned> m_taint;
+    std::map<const Symbol*, unsigned> m_state;  // what each variable holds here
+    std::map<const Symbol*, unsigned> m_ever;   // ... and anywhere
+    int m_weak = 0;                             // loops and functions around
     std::map<const FunctionDecl*, unsigned> m_fnRet;
     std::set<const FunctionDecl*> m_visited;
     std::set<std::string> m_reported;

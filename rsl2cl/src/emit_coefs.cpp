@@ -161,6 +161,10 @@ private:
                 linear(*e.args[0]);
                 linear(*e.args[1]);
             } else if (e.text == "*") {  // one side depends on the lights (affine.cpp)
+                // (both may here: a variable light-dependent elsewhere, which affine.cpp
+                // follows through the code and this check does not)
+                if (dep(*e.args[0]) && dep(*e.args[1]))
+                    fail(e.loc, "a product of two values that depend on the lights somewhere");
                 for (const ExprPtr& a : e.args)
                     if (dep(*a)) linear(*a);
                     else reevaluated(*a);

@@ -176,3 +176,34 @@ TEST(Affine, AllowedOperationsEvaluatePerMode) {
 }
 
 }  // namespace
+
+// Taint follows the code: a variable assigned an untainted value is clean from there on
+// (the RenderMan Companion's txtplastic: Ci holds the texture colour, then is multiplied by
+// diffuse()), while branches join and loops (light loops too) carry it round. Before,
+// taint was per variable: Ci's final value made its first use a product of two Cl values.
+TEST(Affine, TaintFollowsTheCode) {
+    auto diags = [](const std::string& body) {
+        return codegenDiags("surface f(float Ka = 1, Kd = 0.5;)\n{\n"
+                            "    normal Nf = faceforward(normalize(N), I);\n" +
+                                body + "}\n",
+                            "f.sl");
+    };
+    EXPECT_EQ(diags("    Ci = Cs;\n"
+                    "    Ci = Os * (Ci * (Ka * ambient() + Kd * diffuse(Nf)));\n"),
+              "");
+    EXPECT_EQ(diags("    Ci = Cs;\n    Ci *= Ka * ambient() + Kd * diffuse(Nf);\n"), "");
+    EXPECT_EQ(diags("    color x = diffuse(Nf);\n    Ci = x;\n    x = Cs;\n"
+                    "    Ci += x * diffuse(Nf);\n"),
+              "");
+    // one branch may leave x tainted: the product after the if is refused
+    EXPECT_EQ(diags("    color x = diffuse(Nf);\n    if (u > 0.5) x = Cs;\n"
+                    "    Ci = x * diffuse(Nf);\n"),
+              "f.sl:6:12: error: Ci is not affine in Cl: product of two Cl values in "
+              "'(x * diffuse(Nf))'\n");
+    // a light loop's next light sees what the last one left
+    EXPECT_EQ(diags("    color x = Cs, c = 0;\n"
+                    "    illuminance(P) {\n        c += x * Cl;\n        x = Cl;\n    }\n"
+                    "    Ci = c;\n"),
+              "f.sl:6:16: error: Ci is not affine in Cl: product of two Cl values in "
+              "'(x * Cl)'\n");
+}

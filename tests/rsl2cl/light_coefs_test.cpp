@@ -250,6 +250,41 @@ TEST(LightCoefs, MutantsMatchTheirLightModes) {
 
 // Shaders whose light-dependent values go where the coefficients are not carried are
 // compiled without them (the renderer evaluates them per light); their code has none.
+// Ci as a temporary for the base colour (the RenderMan Companion's txtplastic): affine
+// where it is used (affine.cpp follows the code), evaluated per light (the coefficients
+// see Ci depend on the lights somewhere, and do not carry it), and each light's mode gives
+// what the same shader written without the temporary gives.
+TEST(LightCoefs, CiAsATemporaryMatchesTheDirectForm) {
+    ts::Shade temp, direct;
+    std::string err;
+    ASSERT_TRUE(temp.compileSource(
+        "surface temp(float Ka = 1, Kd = 0.5, Ks = 0.5;) {\n"
+        "  normal Nf = faceforward(normalize(N), I);\n  Ci = Cs * 0.5;\n"
+        "  Ci = Os * (Ci * (Ka * ambient() + Kd * diffuse(Nf)) + Ks * specular(Nf, -normalize(I), 0.1));\n}\n",
+        "temp.sl", &err))
+        << err;
+    ASSERT_TRUE(direct.compileSource(
+        "surface direct(float Ka = 1, Kd = 0.5, Ks = 0.5;) {\n"
+        "  normal Nf = faceforward(normalize(N), I);\n"
+        "  Ci = Os * (Cs * 0.5 * (Ka * ambient() + Kd * diffuse(Nf)) + Ks * specular(Nf, -normalize(I), 0.1));\n}\n",
+        "direct.sl", &err))
+        << err;
+    EXPECT_FALSE(temp.shader.lightCoefs);
+    EXPECT_TRUE(direct.shader.lightCoefs);
+    ts::Scene sc = threeLights();
+    std::vector<ts::Point> pts = ts::grid(4);
+    for (int l = -1; l < int(sc.lights.size()); ++l) {
+        std::vector<ts::Out> a = l < 0 ? temp.run(pts, sc) : temp.run(pts, sc, l);
+        std::vector<ts::Out> b = l < 0 ? direct.run(pts, sc) : direct.run(pts, sc, l);
+        ASSERT_EQ(a.size(), pts.size()) << temp.diagnostics;
+        ASSERT_EQ(b.size(), pts.size());
+        for (size_t i = 0; i < pts.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(a[i].Ci[c], b[i].Ci[c], 1e-6f + 1e-6f * std::fabs(b[i].Ci[c]))
+                    << "mode " << l << " point " << i << " channel " << c;
+    }
+}
+
 TEST(LightCoefs, UnsupportedShadersCompileWithout) {
     const char* cases[][2] = {
         {"surface out() { void f(output color c) { c = diffuse(N); } color x = 0; f(x); Ci = x; }",
