@@ -14,13 +14,16 @@ struct GlobalDef {
     const char* writers;  // kinds that may write it
 };
 
+// P and N are written by displacement shaders, and by surface shaders that bump in
+// their own body (PRMan accepts it: the RenderMan Companion's eroded.sl sets N, its
+// slideprojector.sl light L), for what the rest of the shader reads.
 const GlobalDef kGlobals[] = {
     {"Cs", BaseType::Color, true, "s", ""},
     {"Os", BaseType::Color, true, "s", ""},
-    {"P", BaseType::Point, true, "sldvi", "d"},
+    {"P", BaseType::Point, true, "sldvi", "sd"},
     {"dPdu", BaseType::Vector, true, "sld", ""},
     {"dPdv", BaseType::Vector, true, "sld", ""},
-    {"N", BaseType::Normal, true, "sld", "d"},
+    {"N", BaseType::Normal, true, "sld", "sd"},
     {"Ng", BaseType::Normal, true, "sld", ""},
     {"u", BaseType::Float, true, "sld", ""},
     {"v", BaseType::Float, true, "sld", ""},
@@ -28,7 +31,7 @@ const GlobalDef kGlobals[] = {
     {"dv", BaseType::Float, true, "sld", ""},
     {"s", BaseType::Float, true, "sld", ""},
     {"t", BaseType::Float, true, "sld", ""},
-    {"L", BaseType::Vector, true, "sl", ""},
+    {"L", BaseType::Vector, true, "sl", "l"},
     {"Cl", BaseType::Color, true, "sl", "l"},
     {"Ol", BaseType::Color, true, "sl", "l"},
     {"Ps", BaseType::Point, true, "l", ""},

@@ -27,9 +27,9 @@ const ErrorCase kCases[] = {
      "test.sl:2:13: error: wrong number of arguments to 'sin': 2 given\n"},
     {"no_overload", "surface s() {\n  float x = length(\"abc\");\n}\n",
      "test.sl:2:13: error: no matching function for call to 'length(string)'\n"},
-    {"readonly_global", "surface s() {\n  P = P + N;\n  N = Ng;\n  Ci = Cs;\n}\n",
-     "test.sl:2:3: error: cannot assign to 'P': it is read-only in surface shaders\n"
-     "test.sl:3:3: error: cannot assign to 'N': it is read-only in surface shaders\n"},
+    {"readonly_global", "surface s() {\n  Ng = N;\n  Cs = 1;\n  Ci = Cs;\n}\n",
+     "test.sl:2:3: error: cannot assign to 'Ng': it is read-only in surface shaders\n"
+     "test.sl:3:3: error: cannot assign to 'Cs': it is read-only in surface shaders\n"},
     {"light_writes_ci", "light l() {\n  Ci = 1;\n}\n",
      "test.sl:2:3: error: unknown identifier 'Ci'\n"},
     {"uniform_gets_varying", "surface s(float Kd = 1) {\n  uniform float k = s;\n"
