@@ -76,12 +76,13 @@ private:
             }
         return false;
     }
+    // (the shader kinds are keywords only where a shader begins, at the top level: old
+    // shaders name variables `light`, as the RenderMan Repository's IDscartissue.sl does)
     static bool isKeyword(const std::string& s) {
         static const char* const kw[] = {
-            "if",       "else",    "while",        "for",    "break",
-            "continue", "return",  "illuminance",  "gather", "illuminate",
-            "solar",    "uniform", "varying",      "output", "extern",
-            "surface",  "light",   "displacement", "volume", "imager"};
+            "if",       "else",    "while",       "for",    "break",
+            "continue", "return",  "illuminance", "gather", "illuminate",
+            "solar",    "uniform", "varying",     "output", "extern"};
         for (const char* k : kw)
             if (s == k) return true;
         return isTypeName(s);

@@ -19,6 +19,10 @@ public:
             sweep(false);
             if (!m_changed) break;
         }
+        for (const auto& [at, name] : m_promoted)
+            m_diag.warning(at, "uniform variable '" + name +
+                                   "' is assigned a varying value (or under a varying "
+                                   "condition): it is made varying");
         sweep(true);
     }
 
@@ -60,6 +64,14 @@ private:
             s->varying = true;
             target->varying = true;
             m_changed = true;
+        } else if (s->kind == SymbolKind::Local) {
+            // Each point runs its own copy of the shader here, so a local declared uniform
+            // (BMRT's glass.sl: a loop counter under a varying if) simply becomes varying,
+            // with a warning; a uniform parameter's value is the instance's and stays so.
+            s->varying = true;
+            target->varying = true;
+            m_changed = true;
+            m_promoted.push_back({at, s->name});
         } else if (m_report && s->kind != SymbolKind::Global) {
             m_diag.error(at, "cannot assign a varying value to uniform variable '" + s->name + "'");
         }
@@ -177,6 +189,7 @@ private:
     FunctionDecl* m_fn = nullptr;
     bool m_changed = false;
     bool m_report = false;
+    std::vector<std::pair<SourceLoc, std::string>> m_promoted;  // locals made varying
 };
 
 }  // namespace

@@ -34,7 +34,8 @@ const ErrorCase kCases[] = {
      "test.sl:2:3: error: unknown identifier 'Ci'\n"},
     {"uniform_gets_varying", "surface s(float Kd = 1) {\n  uniform float k = s;\n"
                              "  Kd = t;\n}\n",
-     "test.sl:2:21: error: cannot assign a varying value to uniform variable 'k'\n"
+     "test.sl:2:21: warning: uniform variable 'k' is assigned a varying value (or under a "
+     "varying condition): it is made varying\n"
      "test.sl:3:6: error: cannot assign a varying value to uniform variable 'Kd'\n"},
     {"syntax_missing_semicolon", "surface s() {\n  float a = 1\n  Ci = a;\n  Oi = ;\n}\n",
      "test.sl:3:3: error: expected ';' but found 'Ci'\n"

@@ -211,3 +211,28 @@ TEST(Builtins, TableDecodes) {
 }
 
 }  // namespace
+
+namespace {
+// What old shaders write and RayDrive now takes (session 36): a variable named after a
+// shader kind (`color light`), a local declared uniform assigned under a varying if (a
+// warning: it is made varying), setzcomp() of a vector, N and P set in a surface, L in a
+// light's illuminate.
+TEST(Frontend, OldShadersIdioms) {
+    Result r;
+    rsltest::compile("surface s() {\n  color light = 1;\n  float volume = 2;\n"
+                     "  uniform float i;\n  vector v = 0;\n"
+                     "  if (u > 0.5) for (i = 0; i < 2; i += 1) setzcomp(v, i);\n"
+                     "  N = N + Ng;\n  P += v;\n  Ci = light * volume + zcomp(v);\n}\n",
+                     r);
+    EXPECT_TRUE(r.ok) << r.diags;
+    EXPECT_EQ(r.diags,
+              "test.sl:6:23: warning: uniform variable 'i' is assigned a varying value (or "
+              "under a varying condition): it is made varying\n");
+    Result l;
+    rsltest::compile("light l(point from = 0) {\n  illuminate(from) {\n"
+                     "    L = Ps - from;\n    Cl = 1;\n  }\n}\n",
+                     l);
+    EXPECT_TRUE(l.ok) << l.diags;
+    EXPECT_EQ(l.diags, "");
+}
+}  // namespace
