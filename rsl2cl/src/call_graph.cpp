@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <string>
 
 namespace rsl {
@@ -104,6 +105,65 @@ bool checkCallGraph(const Program& prog, Diagnostics& diag) {
     for (const auto& f : prog.functions) checker.follow(f.get(), f->body.get());
     for (const auto& sh : prog.shaders) checker.follow(nullptr, sh->body.get());
     return !checker.found();
+}
+
+}  // namespace rsl
+
+namespace rsl {
+namespace {
+
+void declaredIn(const Stmt* s, std::set<const Symbol*>& out) {
+    if (!s || s->kind == StmtKind::Function) return;
+    for (const VarDecl& d : s->decls)
+        if (!d.isExtern && d.symbol) out.insert(d.symbol);
+    for (const StmtPtr& c : s->stmts) declaredIn(c.get(), out);
+    declaredIn(s->init.get(), out);
+    declaredIn(s->body.get(), out);
+    declaredIn(s->elseBody.get(), out);
+}
+
+void usedIn(const Expr* e, std::vector<const Symbol*>& out) {
+    if (!e) return;
+    if (e->kind == ExprKind::Ident && e->symbol &&
+        (e->symbol->kind == SymbolKind::Local || e->symbol->kind == SymbolKind::Param))
+        out.push_back(e->symbol);
+    for (const ExprPtr& a : e->args) usedIn(a.get(), out);
+    usedIn(e->channel.get(), out);
+}
+
+void usedIn(const Stmt* s, std::vector<const Symbol*>& out) {
+    if (!s || s->kind == StmtKind::Function) return;
+    usedIn(s->expr.get(), out);
+    for (const VarDecl& d : s->decls) usedIn(d.init.get(), out);
+    for (const StmtPtr& c : s->stmts) usedIn(c.get(), out);
+    usedIn(s->body.get(), out);
+    usedIn(s->elseBody.get(), out);
+    usedIn(s->init.get(), out);
+    usedIn(s->step.get(), out);
+    for (const ExprPtr& a : s->args) usedIn(a.get(), out);
+}
+
+}  // namespace
+
+FunctionCaptures functionCaptures(const std::vector<const FunctionDecl*>& functions) {
+    FunctionCaptures out;
+    for (const FunctionDecl* f : functions) {
+        std::set<const Symbol*> own;
+        for (const VarDecl& p : f->params) own.insert(p.symbol);
+        declaredIn(f->body.get(), own);
+        std::vector<const Symbol*> used;
+        usedIn(f->body.get(), used);
+        std::vector<const Expr*> calls;
+        collectCalls(f->body.get(), calls);
+        for (const Expr* c : calls)
+            if (auto it = out.find(c->function); it != out.end())
+                used.insert(used.end(), it->second.begin(), it->second.end());
+        std::vector<const Symbol*>& caps = out[f];
+        for (const Symbol* s : used)
+            if (!own.count(s) && std::find(caps.begin(), caps.end(), s) == caps.end())
+                caps.push_back(s);
+    }
+    return out;
 }
 
 }  // namespace rsl

@@ -197,6 +197,11 @@ void Emitter::emitFunction(const FunctionDecl& f, bool prototypeOnly) {
         sig += std::string(", ") + clType(p.type) + (ptr ? "* v_" : " v_") + p.name;
         if (p.output && !p.type.isArray()) m_pointerParams.insert(p.symbol);
     }
+    // the variables of enclosing scopes it reaches (extern), by address
+    const std::vector<const Symbol*>& caps = m_captures[&f];
+    for (size_t k = 0; k < caps.size(); ++k)
+        sig += std::string(", ") + clType(caps[k]->type) + "* c" + std::to_string(k) + "_" +
+               caps[k]->name;
     if (coefFunction(&f))  // where its result's parts per light go (emit_coefs.cpp)
         sig += std::string(" RSL_COEF_ARG(") + clType(f.returnType) + "* _ret_light)";
     sig += ")";
@@ -645,6 +650,7 @@ void Emitter::run() {
     for (const VarDecl& p : m_sh.params)
         if (p.init) collectCalls(*p.init);
     collectCallsStmt(*m_sh.body);
+    m_captures = functionCaptures(m_fnOrder);
     for (const FunctionDecl* f : m_fnOrder) emitFunction(*f, true);
     if (!m_fnOrder.empty()) m_body << "\n";
     for (const FunctionDecl* f : m_fnOrder) emitFunction(*f, false);

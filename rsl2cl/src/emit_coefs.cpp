@@ -72,6 +72,15 @@ bool pure(const Expr& e) {
     return !e.channel || pure(*e.channel);
 }
 
+bool declaresExtern(const Stmt& s) {
+    for (const VarDecl& d : s.decls)
+        if (d.isExtern) return true;
+    for (const StmtPtr& c : s.stmts)
+        if (declaresExtern(*c)) return true;
+    return (s.init && declaresExtern(*s.init)) || (s.body && declaresExtern(*s.body)) ||
+           (s.elseBody && declaresExtern(*s.elseBody));
+}
+
 // Whether the shader body keeps to what lin() and the statement rules handle.
 class CoefCheck {
 public:
@@ -107,8 +116,11 @@ public:
 private:
     bool dep(const Expr& e) const { return lightDependent(e, m_t); }
     void calls(const Expr& e) {
-        if (e.kind == ExprKind::Call && e.function && m_seen.insert(e.function).second)
+        if (e.kind == ExprKind::Call && e.function && m_seen.insert(e.function).second) {
             m_pending.push_back(e.function);
+            if (declaresExtern(*e.function->body))  // (its writes are not carried)
+                fail(e.loc, "function '" + e.text + "' uses a variable of an enclosing scope");
+        }
         for (const ExprPtr& a : e.args) calls(*a);
         if (e.channel) calls(*e.channel);
     }

@@ -103,9 +103,11 @@ std::string Emitter::varName(const Symbol* s) {
         return "_g_" + s->name;  // alpha, dtime, dPdtime: locals of every function
     }
     if (s->kind == SymbolKind::Param && !m_func) return "p_" + s->name;
-    if (m_func && !m_fnLocals.count(s)) {
+    if (m_func && !m_fnLocals.count(s)) {  // a variable of an enclosing scope (extern)
+        const std::string c = captureName(s);
+        if (!c.empty()) return s->type.isArray() ? c : "(*" + c + ")";
         error(s->loc, "'" + s->name + "' of an enclosing scope used (extern) in function '" +
-                          m_func->name + "': not supported by the code generator yet");
+                          m_func->name + "': not reached");
         return "0";
     }
     if (m_pointerParams.count(s)) return "(*v_" + s->name + ")";
@@ -113,6 +115,21 @@ std::string Emitter::varName(const Symbol* s) {
 }
 
 std::string Emitter::lvalue(const Expr& e) { return expr(e); }
+
+std::string Emitter::captureName(const Symbol* s) {
+    if (!m_func) return "";
+    const std::vector<const Symbol*>& caps = m_captures[m_func];
+    for (size_t k = 0; k < caps.size(); ++k)
+        if (caps[k] == s) return "c" + std::to_string(k) + "_" + s->name;
+    return "";
+}
+
+std::string Emitter::addressOf(const Symbol* s) {
+    const std::string c = captureName(s);  // (passed on from the caller's own captures)
+    if (!c.empty()) return c;
+    const std::string v = varName(s);
+    return s->type.isArray() ? v : "&" + v;
+}
 
 static bool isRel(const std::string& op) {
     return op == "<" || op == ">" || op == "<=" || op == ">=" || op == "==" || op == "!=" ||
@@ -180,6 +197,8 @@ std::string Emitter::userCall(const Expr& e) {
         if (p.output && !p.type.isArray()) s += ", &" + lvalue(*e.args[i]);
         else s += ", " + exprAs(*e.args[i], p.type);
     }
+    if (auto c = m_captures.find(f); c != m_captures.end())
+        for (const Symbol* v : c->second) s += ", " + addressOf(v);
     return s + coefCallArg(e) + ")";
 }
 

@@ -9,6 +9,7 @@
 
 #include "builtins.h"
 #include "emit_cl.h"
+#include "call_graph.h"
 #include "hoist.h"
 
 namespace rsl {
@@ -131,6 +132,9 @@ public:
     std::vector<const FunctionDecl*> m_fnOrder;
     std::set<const Symbol*> m_pointerParams;                 // output params: (*v_x)
     std::set<const Symbol*> m_fnLocals;  // symbols declared in the function being emitted
+    FunctionCaptures m_captures;  // each function's variables of enclosing scopes (extern)
+    std::string captureName(const Symbol* s);  // in the function being emitted, or ""
+    std::string addressOf(const Symbol* s);    // what a call passes for a captured variable
     std::vector<std::string> m_pre;  // temporaries declared before the current line
     std::vector<std::string> m_lightVars;  // light index of each enclosing illuminance
     std::vector<std::string> m_lightRaw;   // ... and its light's unshadowed Cl

@@ -92,6 +92,8 @@ private:
             for (size_t i = 0; i < e.args.size(); ++i)
                 if (i >= e.function->params.size() || e.function->params[i].output)
                     target(*e.args[i]);
+            // ... and what its body assigns: variables of the caller's it declares extern
+            if (m_walked.insert(e.function).second) written(*e.function->body);
         } else if (e.kind == ExprKind::Call &&
                    (!e.sig || e.sig->code.find('&') != std::string::npos ||
                     (e.builtin && (e.builtin->flags & BF_MESSAGE)))) {
@@ -134,6 +136,7 @@ private:
     const ShaderDecl& m_sh;
     const int m_colorSlots;
     std::set<const Symbol*> m_uniformParams, m_hoisted, m_written;
+    std::set<const FunctionDecl*> m_walked;  // user functions whose writes are in m_written
 };
 
 }  // namespace

@@ -132,6 +132,10 @@ private:
         auto fn = std::make_unique<FunctionDecl>();
         fn->loc = cur().loc;
         fn->returnType = TypeSpec(BaseType::Void);
+        // (PRMan takes a storage class before the result's type: `uniform float f()`)
+        if ((cur().isIdent("uniform") || cur().isIdent("varying")) &&
+            isTypeName(peek(1).text))
+            next();
         if (atTypeName()) {
             fn->returnType = TypeSpec(baseTypeFromName(cur().text));
             next();
@@ -333,8 +337,10 @@ private:
                 return s;
             }
             if (atDeclStart()) {
-                // nested function: type name (
-                if ((atTypeName() && peek(1).kind == TokKind::Ident && peek(2).is("(")) ||
+                // nested function: [uniform | varying] type name (
+                const int at = cur().isIdent("uniform") || cur().isIdent("varying") ? 1 : 0;
+                if ((isTypeName(peek(at).text) && peek(at + 1).kind == TokKind::Ident &&
+                     peek(at + 2).is("(")) ||
                     (cur().isIdent("void"))) {
                     auto s = std::make_unique<Stmt>(StmtKind::Function, loc);
                     s->function = functionDef();

@@ -215,14 +215,16 @@ TEST(Builtins, TableDecodes) {
 namespace {
 // What old shaders write and RayDrive now takes (session 36): a variable named after a
 // shader kind (`color light`), a local declared uniform assigned under a varying if (a
-// warning: it is made varying), setzcomp() of a vector, N and P set in a surface, L in a
-// light's illuminate.
+// warning: it is made varying), setzcomp() of a vector, N and P set in a surface, a
+// nested function with a storage class (`uniform float two()`), L in a light's
+// illuminate.
 TEST(Frontend, OldShadersIdioms) {
     Result r;
     rsltest::compile("surface s() {\n  color light = 1;\n  float volume = 2;\n"
                      "  uniform float i;\n  vector v = 0;\n"
                      "  if (u > 0.5) for (i = 0; i < 2; i += 1) setzcomp(v, i);\n"
-                     "  N = N + Ng;\n  P += v;\n  Ci = light * volume + zcomp(v);\n}\n",
+                     "  N = N + Ng;\n  P += v;\n  uniform float two() { return 2; }\n"
+                     "  Ci = light * volume + zcomp(v) + two();\n}\n",
                      r);
     EXPECT_TRUE(r.ok) << r.diags;
     EXPECT_EQ(r.diags,
