@@ -187,9 +187,26 @@ private:
         std::vector<unsigned> a;
         for (const ExprPtr& x : e.args) a.push_back(expr(*x));
         if (e.function) {
-            for (size_t i = 0; i < a.size(); ++i)
-                if (a[i]) fail(e, a[i], describe(a[i]) + " passed to function '" + e.text + "'");
-            return function(*e.function);
+            bool tainted = false;
+            for (unsigned m : a) tainted |= m != 0;
+            if (!tainted) return function(*e.function);
+            // a tainted argument: the body is walked again with its parameters as passed
+            // (Ci stays affine when the function is affine in them, as an illumination
+            // model taking Cl is), and an output parameter hands its taint back
+            const FunctionDecl& f = *e.function;
+            const FunctionDecl* saved = m_fn;
+            m_fn = &f;
+            ++m_weak;
+            for (size_t i = 0; i < a.size() && i < f.params.size(); ++i)
+                taintSym(f.params[i].symbol, a[i], e.loc, false);
+            stmt(*f.body);
+            for (size_t i = 0; i < e.args.size() && i < f.params.size(); ++i)
+                if (f.params[i].output)
+                    if (auto it = m_state.find(f.params[i].symbol); it != m_state.end())
+                        taintSym(target(*e.args[i]), it->second, e.loc, false);
+            --m_weak;
+            m_fn = saved;
+            return m_fnRet[&f];
         }
         const std::string& n = e.text;
         // a point's or vector's component is linear in it; such a triple depends on the

@@ -110,14 +110,14 @@ TEST(Affine, TaintFlowsThroughVariablesAndFunctions) {
 }
 
 TEST(Affine, BuiltinsUserFunctionsMixWeightAndOi) {
-    EXPECT_EQ(codegenDiags("color refl(color x) { return x * 2; }\n"
+    EXPECT_EQ(codegenDiags("color refl(color x) { return x * x; }\n"
                            "surface a4()\n{\n    color t = trace(P, N);\n"
                            "    Ci = refl(t) + mix(Cs, Os, comp(diffuse(N), 1));\n"
                            "    Ci += mix(Cs, t, 0.5) + clamp(t, color 0, color 1);\n"
                            "    Oi = t;\n}\n",
                            "a4.sl"),
-              "a4.sl:5:10: error: Ci is not affine in trace(): a trace() result passed to "
-              "function 'refl' in 'refl(t)'\n"
+              "a4.sl:1:32: error: Ci is not affine in trace(): product of two trace() "
+              "results in '(x * x)'\n"
               "a4.sl:5:32: error: Ci is not affine in Cl: a light's Cl passed to comp() in "
               "'comp(diffuse(N), 1)'\n"
               "a4.sl:6:29: error: Ci is not affine in trace(): a trace() result passed to clamp() "

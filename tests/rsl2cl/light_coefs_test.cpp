@@ -285,6 +285,42 @@ TEST(LightCoefs, CiAsATemporaryMatchesTheDirectForm) {
     }
 }
 
+// Cl passed to a user function affine in it (SIGGRAPH 2000's fur shader: its own diffuse
+// of (Cl, L, N)): the affine check walks the function with the argument's taint, and each
+// light's mode gives what the same model written inline gives.
+TEST(LightCoefs, ClPassedToAnAffineFunction) {
+    ts::Shade fn, inl;
+    std::string err;
+    ASSERT_TRUE(fn.compileSource(
+        "color mydiffuse(color cl; vector l; normal n) {\n"
+        "  return cl * max(0, normalize(l) . n);\n}\n"
+        "surface fn() {\n  normal Nf = faceforward(normalize(N), I);\n  Ci = 0;\n"
+        "  illuminance(P, Nf, PI / 2) { Ci += Cs * mydiffuse(Cl, L, Nf); }\n}\n",
+        "fn.sl", &err))
+        << err;
+    ASSERT_TRUE(inl.compileSource(
+        "surface inl() {\n  normal Nf = faceforward(normalize(N), I);\n  Ci = 0;\n"
+        "  illuminance(P, Nf, PI / 2) { Ci += Cs * Cl * max(0, normalize(L) . Nf); }\n}\n",
+        "inl.sl", &err))
+        << err;
+    ts::Scene sc = threeLights();
+    std::vector<ts::Point> pts = ts::grid(4);
+    float largest = 0.0f;
+    for (int l = -1; l < int(sc.lights.size()); ++l) {
+        std::vector<ts::Out> a = l < 0 ? fn.run(pts, sc) : fn.run(pts, sc, l);
+        std::vector<ts::Out> b = l < 0 ? inl.run(pts, sc) : inl.run(pts, sc, l);
+        ASSERT_EQ(a.size(), pts.size()) << fn.diagnostics;
+        ASSERT_EQ(b.size(), pts.size());
+        for (size_t i = 0; i < pts.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                largest = std::max(largest, std::fabs(b[i].Ci[c]));
+                EXPECT_NEAR(a[i].Ci[c], b[i].Ci[c], 1e-6f + 1e-6f * std::fabs(b[i].Ci[c]))
+                    << "mode " << l << " point " << i << " channel " << c;
+            }
+    }
+    EXPECT_GT(largest, 0.01f);  // (the lights reach the points)
+}
+
 TEST(LightCoefs, UnsupportedShadersCompileWithout) {
     const char* cases[][2] = {
         {"surface out() { void f(output color c) { c = diffuse(N); } color x = 0; f(x); Ci = x; }",
