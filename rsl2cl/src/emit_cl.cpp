@@ -531,7 +531,15 @@ void Emitter::stmt(const Stmt& s) {
             break;
         }
         if (coefTarget(*s.expr)) hoistAssign(*s.expr);
-        line(expr(*s.expr) + ";");
+        {
+            // a builtin the renderer answers at compile time (an unknown lightsource() or
+            // textureinfo() name is 0) leaves a bare constant: the OpenCL compiler would
+            // warn "expression result unused" to the user
+            const std::string code = expr(*s.expr);
+            const bool constant = !code.empty() && code.find_first_not_of("0123456789.f-") ==
+                                                       std::string::npos;
+            line((constant ? "(void)" : "") + code + ";");
+        }
         if (coefTarget(*s.expr)) coefAssign(*s.expr);
         m_exprTemps.clear();
         break;

@@ -255,6 +255,21 @@ TEST(Codegen, TraceBoundCountsCallsOnceEach) {
     EXPECT_EQ(sh.shader.traceBound, 2) << "a reflected and a refracted ray";
 }
 
+// A builtin the renderer answers at compile time as a statement of its own (an unknown
+// lightsource() parameter, textureinfo()'s "viewingmatrix": 0) is cast to void: a bare
+// `0.0f;` made PoCL print "1 warning generated." for shaders of the RenderMan Repository.
+TEST(Codegen, ConstantStatementsAreVoid) {
+    ts::Shade sh;
+    std::string err;
+    ASSERT_TRUE(sh.compileSource("surface s() {\n  float x = 0;\n  matrix m = 0;\n"
+                                 "  illuminance(P) { lightsource(\"__nonspecular\", x); }\n"
+                                 "  textureinfo(\"\", \"viewingmatrix\", m);\n  Ci = x;\n}\n",
+                                 "s.sl", &err))
+        << err;
+    EXPECT_NE(sh.shader.source.find("(void)0.0f;"), std::string::npos) << sh.shader.source;
+    EXPECT_EQ(sh.shader.source.find("\n  0.0f;"), std::string::npos) << sh.shader.source;
+}
+
 // random() call sites are numbered in the shader; a colour or point takes three (its
 // components' sites), so no float call shares a site, and so a number, with one of them
 // (rsl_abi.h RANDOM: under the Sobol sampler sites k and k + 1 are a stratified pair).
