@@ -54,6 +54,15 @@ std::string square(double x, double z, const std::string& attributes) {
     return s.str();
 }
 
+// The scene of every test here: the camera, the shaders' folder, a distant light of
+// intensity 1 straight on (and `lights`), and a floor at z = 0 of `floor`.
+std::string floorScene(const std::string& dir, const std::string& floor = "matte",
+                       const std::string& lights = "") {
+    return std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
+           ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n" +
+           lights + "Surface \"" + floor + "\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n";
+}
+
 }  // namespace
 
 // A white matte floor under two distant lights straight on, of intensity 1 and 0.5 (lit,
@@ -67,10 +76,9 @@ TEST(ShaderOpacity, ShadowsTakeTheShadersOi) {
     const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
     const std::string shader = "Attribute \"visibility\" \"string transmission\" [\"shader\"]\n";
     const std::string world =
-        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
-        ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
-        "LightSource \"distantlight\" 2 \"intensity\" 0.5 \"from\" [0 0 0] \"to\" [0 0 1]\n"
-        "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n" +
+        floorScene(dir, "matte",
+                   "LightSource \"distantlight\" 2 \"intensity\" 0.5 \"from\" [0 0 0] "
+                   "\"to\" [0 0 1]\n") +
         square(-2.25, -1, shader + "Surface \"halfop\" \"edge\" -2.25") +
         square(-0.75, -1, shader + "Surface \"halfop\" \"edge\" -9") +
         square(-0.75, -2, "Opacity [0.5 0.5 0.5]") +
@@ -124,11 +132,8 @@ TEST(ShaderOpacity, ShadowsTakeTheShadersOi) {
 // (1, the default): the feature is not built, and no shadow ray goes to the pool.
 TEST(ShaderOpacity, OnlyAskedForIsTheShaderRun) {
     const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
-    Rendered r = renderRib(
-        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
-        ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
-        "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n" +
-        square(0, -1, "Surface \"halfop\" \"edge\" -9") + "WorldEnd\n");
+    Rendered r = renderRib(floorScene(dir) + square(0, -1, "Surface \"halfop\" \"edge\" -9") +
+                           "WorldEnd\n");
     EXPECT_FALSE(r.stats.features.shaderShadows);
     EXPECT_NEAR(r.mean(0, 22, 6, 26, 10), 0.0, 1e-6);
     EXPECT_NEAR(r.mean(0, 2, 6, 6, 10), 1.0, 1e-5);
@@ -162,9 +167,7 @@ TEST(ShaderOpacity, CameraRaysGoThroughTheShadersOi) {
 TEST(ShaderOpacity, ShadowsThroughQuadricsAndInstances) {
     const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
     Rendered r = renderRib(
-        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
-        ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
-        "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n"
+        floorScene(dir) +
         "ObjectBegin 1\nPolygon \"P\" [-0.6 -0.6 0  0.6 -0.6 0  0.6 0.6 0  -0.6 0.6 0]\n"
         "ObjectEnd\nAttribute \"visibility\" \"int camera\" [0]\n"
         "Attribute \"visibility\" \"string transmission\" [\"shader\"]\n"
@@ -188,9 +191,7 @@ TEST(ShaderOpacity, ShadowsThroughQuadricsAndInstances) {
 TEST(ShaderOpacity, ShadersKnowAShadowRay) {
     const std::string dir = rd::test::shaderFolder("shader_shadows", kShaders);
     Rendered r = renderRib(
-        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
-        ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
-        "Surface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n"
+        floorScene(dir) +
         "Attribute \"visibility\" \"string transmission\" [\"shader\"]\nSurface \"shy\"\n" +
         square(-1.5, -1, "") + square(1.5, -1, "Attribute \"visibility\" \"int camera\" [1]") +
         "WorldEnd\n");
@@ -209,10 +210,7 @@ TEST(ShaderOpacity, AovsTakeTheShadowsTheImageDoes) {
     rd::RenderSettings settings;
     settings.extraAovs = {"lit"};
     Rendered r = renderRib(
-        std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"" + dir +
-            ":&\"]\nWorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
-            "Surface \"aovlit\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n" +
-            square(-0.75, -1, shader + "Surface \"halfop\" \"edge\" -9") +
+        floorScene(dir, "aovlit") + square(-0.75, -1, shader + "Surface \"halfop\" \"edge\" -9") +
             square(-0.75, -2, "Opacity [0.5 0.5 0.5]") +
             square(-0.75, -3, shader + "Surface \"halfop\" \"edge\" -9") + "WorldEnd\n",
         settings);
