@@ -564,7 +564,7 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
             svc << "static void rd_" << kind
                 << "(int a, RslGlobals* g, __global const float* params) {\n"
                    "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    "
-                   "ev.mode_light = -1;\n"
+                   "ev.mode_light = RSL_EVERY_LIGHT;\n"
                    "    ev.mode_trace = -1;\n    ev.trace_count = 0;\n    switch (a) {\n"
                 << cases.str() << "    default: break;\n    }\n}\n";
             return true;

@@ -253,6 +253,10 @@ typedef struct RslLightCache {
     rsl_color Cl[RSL_LIGHT_CACHE]; /* (RSL_CW: 1 for a solar light) */
 } RslLightCache;
 
+/* RslEval::mode_light of a volume shader's evaluation: its illuminance loops see every
+ * light's unshadowed Cl (no shadow ray is deferred from a volume; a light's shadow map
+ * still shadows its Cl) */
+#define RSL_EVERY_LIGHT (-2)
 /* RslGlobals::ray_depth's top bit: the shader runs for a shadow ray's Oi alone (a surface
  * of "shader" transmission) */
 #define RSL_SHADOW_RAY 0x80000000u
@@ -314,7 +318,7 @@ typedef struct RslDeriv {
 typedef struct RslEval {
     RslDeriv* deriv;  /* 0: no derivatives (lights, atmospheres, imagers) */
     struct RslTexContext* tex; /* 0: textures give their defaults */
-    int mode_light;   /* -1: no light's Cl is used */
+    int mode_light;   /* -1: no light's Cl is used; RSL_EVERY_LIGHT: all are */
     int mode_trace;   /* -1: every trace() returns 0 */
     int trace_count;  /* trace() calls made in this evaluation */
     float4 trace_org[RSL_MAX_TRACE];  /* base mode: the rays trace() asked for */

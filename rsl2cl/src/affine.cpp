@@ -224,7 +224,8 @@ private:
             if (a[i]) fail(e, a[i], describe(a[i]) + " passed to " + n + "()");
         if (n == "trace" || n == "__gather_trace" || n == "__gather_length")
             return T_TRACE;
-        if (n == "diffuse" || n == "specular" || n == "phong") return T_LIGHT;
+        if (n == "diffuse" || n == "specular" || n == "phong")
+            return m_sh.kind == ShaderKind::Surface ? T_LIGHT : 0u;
         return 0;
     }
 
@@ -247,7 +248,9 @@ private:
         case ExprKind::String: return 0;
         case ExprKind::Ident: {
             if (!e.symbol) return 0;
-            if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl") return T_LIGHT;
+            // (a volume shader sees every light's Cl as it is: nothing is deferred)
+            if (e.symbol->kind == SymbolKind::Global && e.symbol->name == "Cl")
+                return m_sh.kind == ShaderKind::Surface ? T_LIGHT : 0u;
             auto it = m_state.find(e.symbol);
             return it == m_state.end() ? 0 : it->second;
         }

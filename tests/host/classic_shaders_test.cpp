@@ -1,7 +1,8 @@
 // classic_shaders_test.cpp: shaders written the way the RenderMan Companion and BMRT's
 // examples write them, which RayDrive refused before session 36 (a compile error, and the
 // surface fell back to defaultsurface): Ci used as a temporary for the base colour, N and
-// P set in a surface shader's body, L set in a light's illuminate, setzcomp() of a vector.
+// P set in a surface shader's body, L set in a light's illuminate, setzcomp() of a vector,
+// illuminance in a volume shader.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,6 +35,10 @@ const char* const kShaders[][2] = {
     {"aiml",
      "light aiml(float intensity = 1; point from = point \"shader\" (0, 0, 0);) {\n"
      "  illuminate(from) {\n    L = Ps - from;\n    Cl = intensity / (L . L);\n  }\n}\n"},
+    // a volume shader that scatters the lights it sees (ARMan's smoke, BMRT's noisysmoke)
+    {"glowfog",
+     "volume glowfog(float k = 0.5) {\n  color sc = 0;\n"
+     "  illuminance(P) { sc += Cl; }\n  Ci = Ci + k * sc;\n}\n"},
     {"aim",
      "light aim(float intensity = 1; point from = point \"shader\" (0, 0, 0);) {\n"
      "  illuminate(from) {\n    Cl = intensity / (L . L);\n  }\n}\n"},
@@ -85,4 +90,19 @@ TEST(ClassicShaders, LightSetsL) {
         for (int x = 0; x < 16; ++x)
             worst = std::max(worst, double(std::fabs(a.at(x, y).r - b.at(x, y).r)));
     EXPECT_LT(worst, 1e-6);
+}
+
+// An Atmosphere whose illuminance loop adds k times every light's Cl (unshadowed: no shadow
+// ray is deferred from a volume) to what reaches the eye: over a black constant plane
+// under two distant lights of intensity 1 and 0.5, 0.5 x 1.5 = 0.75. Before, Cl was an
+// unknown identifier in a volume shader and the atmosphere was left out (0).
+TEST(ClassicShaders, VolumeShaderSeesTheLights) {
+    const std::string dir = rd::test::shaderFolder("classic_shaders", kShaders);
+    Rendered r = renderRib(plane(dir,
+                                 "LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+                                 "LightSource \"distantlight\" 2 \"intensity\" 0.5\n"
+                                 "Atmosphere \"glowfog\"\nColor [0 0 0]\n",
+                                 "constant"));
+    EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), 0.75, 1e-5);
+    EXPECT_TRUE(r.stats.features.atmosphere);
 }
