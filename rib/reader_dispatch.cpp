@@ -76,12 +76,13 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
     switch (info.req) {
         // Options
         case Req::Format:
+            // (a pixel aspect of -1 is the default, 1: RI 3.2, the RenderMan Companion)
             if (n(0) < 1 || n(1) < 1 || n(0) > m_opts.maxResolution ||
-                n(1) > m_opts.maxResolution || !(f(2) > 0)) {
+                n(1) > m_opts.maxResolution || !(f(2) > 0 || f(2) == -1.0f)) {
                 error(loc, "Format " + std::to_string(n(0)) + "x" + std::to_string(n(1)) +
                                " is out of range (1.." +
                                std::to_string(m_opts.maxResolution) +
-                               " pixels, positive pixel aspect)");
+                               " pixels, positive pixel aspect or -1)");
                 break;
             }
             t.format(loc, n(0), n(1), f(2));

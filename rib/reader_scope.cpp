@@ -92,10 +92,8 @@ bool Reader::checkScope(const RequestInfo& info, const SourceLoc& loc) {
             }
             break;
         case Kind::Light:
-            if (!world) {
-                error(loc, req + " outside WorldBegin/WorldEnd");
-                return false;
-            }
+            // (before WorldBegin a light is placed in camera space and lights the world:
+            // PRMan 3's RIB, the RenderMan Companion's listings)
             if (object) {
                 error(loc, req + " is not allowed inside ObjectBegin/ObjectEnd");
                 return false;

@@ -60,9 +60,11 @@ void RibBuilder::worldBegin(L loc) {
     m_options.camera.motionTimes[0] = camera.t0;
     m_options.camera.motionTimes[1] = camera.t1;
     m_world = m_options;
-    // clipping planes given before the world: from camera space to the world
+    // clipping planes and lights given before the world: from camera space to the world
     for (auto& plane : m_world.clipPlanes)
         plane = transformPlane(glm::inverse(camera.ctm), plane);
+    for (ShaderRef& light : m_world.lights)
+        light.shaderToWorld = glm::inverse(camera.ctm) * light.shaderToWorld;
     // Camera-relative world: what reaches the device is world space moved so the eye is
     // at the origin (in double here), so a scene far from the origin keeps the float
     // precision it has near the eye. Applied to triangles as they come, to the camera,
@@ -85,7 +87,7 @@ void RibBuilder::worldBegin(L loc) {
     m_solidNodes.clear();
     m_solidStack.clear();
     m_prototypes.clear();
-    m_lightHandles.clear();
+    m_lightHandles = m_optionLightHandles;  // (the lights given before the world)
     m_attrStack.push_back(m_attrStack.back());
     m_attrStack.back().ctm = glm::mat4(1.0f);
     m_attrStack.back().moving = false;
@@ -516,10 +518,16 @@ void RibBuilder::imager(L loc, S name, P params) {
 
 void RibBuilder::lightSource(L loc, const std::string& name, const std::string& handle,
                              const rib::ParamList& params) {
-    if (!inWorld(loc, "LightSource")) return;
-    const uint32_t index = uint32_t(m_world.lights.size());
-    if (!handle.empty()) m_lightHandles[handle] = index;
-    m_world.lights.push_back({name, params, m_attrStack.back().ctm, loc});
+    // Before WorldBegin a light is an option of the frame, placed in camera space
+    // (worldBegin() moves it into the world); in an ObjectBegin block it is refused.
+    if (!m_inWorld && m_defining) {
+        m_diag.error(loc, "LightSource is not allowed inside ObjectBegin/ObjectEnd");
+        return;
+    }
+    Scene& s = m_inWorld ? m_world : m_options;
+    const uint32_t index = uint32_t(s.lights.size());
+    if (!handle.empty()) (m_inWorld ? m_lightHandles : m_optionLightHandles)[handle] = index;
+    s.lights.push_back({name, params, m_attrStack.back().ctm, loc});
 }
 
 // An area light: its light shader (e.g. arealight) runs at points on the geometry that

@@ -498,6 +498,7 @@ private:
     std::map<std::string, ObjectDef> m_objects;
     std::map<std::string, uint32_t> m_prototypes;  // per world: handle -> Scene::prototypes
     std::map<std::string, uint32_t> m_lightHandles;  // per world: handle -> light index
+    std::map<std::string, uint32_t> m_optionLightHandles;  // ... of lights before WorldBegin
     // a named coordinate system's transform to world (rib_builder_transforms.cpp)
     std::optional<glm::mat4> namedSpace(const std::string& name) const;
     std::map<std::string, glm::mat4> m_coordSystems; // CoordinateSystem name -> object to world

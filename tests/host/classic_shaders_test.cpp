@@ -106,3 +106,18 @@ TEST(ClassicShaders, VolumeShaderSeesTheLights) {
     EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), 0.75, 1e-5);
     EXPECT_TRUE(r.stats.features.atmosphere);
 }
+
+// The RenderMan Companion's listings declare a light before WorldBegin (and `Format 256 192
+// -1`, -1 the default pixel aspect): the light is placed in camera space. A distant light
+// toward camera +z, with the camera turned 30 degrees about y from a matte plane's normal,
+// meets the plane at 30 degrees: cos 30. (In world space it would meet it head on: 1.)
+// Before, both requests were errors and the light was left out.
+TEST(ClassicShaders, LightBeforeWorldBeginIsInCameraSpace) {
+    Rendered r = renderRib(
+        "Format 16 16 -1\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n"
+        "PixelSamples 2 2\nProjection \"orthographic\"\nRotate 30 0 1 0\nTranslate 0 0 5\n"
+        "WorldBegin\nSurface \"matte\"\nPolygon \"P\" [-9 -9 0  9 -9 0  9 9 0  -9 9 0]\n"
+        "WorldEnd\n");
+    EXPECT_EQ(r.width, 16);
+    EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), std::cos(30.0 * M_PI / 180.0), 1e-4);
+}

@@ -42,7 +42,8 @@ TEST(RibNewRequests, OptionForms) {
     r = ribtest::readRib("Format 1000000 1000000 1\nFormat 0 10 1");
     EXPECT_EQ(r.msgs.size(), 2u);
     EXPECT_EQ(r.msgs[0], "t.rib:1: error: Format 1000000x1000000 is out of range (1..65536 "
-                         "pixels, positive pixel aspect)");
+                         "pixels, positive pixel aspect or -1)");
+    EXPECT_TRUE(ribtest::readRib("Format 256 192 -1").msgs.empty());  // (-1: the default)
 }
 
 TEST(RibNewRequests, BasisByNameOrMatrix) {

@@ -40,8 +40,9 @@ TEST(RibScope, OptionsBeforeWorld) {
                      "t.rib:4: error: MakeShadow is not allowed inside WorldBegin/WorldEnd",
                      "t.rib:6: error: Hider is an option: not allowed inside "
                      "ObjectBegin/ObjectEnd",
-                     "t.rib:7: error: LightSource is not allowed inside ObjectBegin/ObjectEnd",
-                     "t.rib:10: error: LightSource outside WorldBegin/WorldEnd"}));
+                     "t.rib:7: error: LightSource is not allowed inside ObjectBegin/ObjectEnd"}));
+    // (a light after the world, before the next, is the next world's, in camera space:
+    // no error; Render.LightBeforeWorldBeginIsInCameraSpace renders one)
 }
 
 // Deep nesting is read in linear time: which blocks are open is counted, not looked up
