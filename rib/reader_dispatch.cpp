@@ -243,6 +243,9 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
         case Req::Matte:
             t.matte(loc, n(0) != 0);
             break;
+        case Req::GeometricRepresentation:
+            t.geometricRepresentation(loc, s(0));
+            break;
         case Req::Bound:
         case Req::Detail:
             for (size_t i = 0; i < 6; ++i) m[i] = f(i);

@@ -121,6 +121,8 @@ public:
     // Attributes and shaders
     virtual void matte(L, bool) {}
     virtual void shadingInterpolation(L, S /*"constant" | "smooth"*/) {}
+    // "primitive" (surfaces), or "lines" / "points" ... (RI 3.2 4.2.4)
+    virtual void geometricRepresentation(L, S) {}
     virtual void textureCoordinates(L, float /*s1*/, float /*t1*/, float /*s2*/,
                                     float /*t2*/, float /*s3*/, float /*t3*/,
                                     float /*s4*/, float /*t4*/) {}

@@ -360,6 +360,11 @@ void RibWriter::shadingInterpolation(L, S a1) {
     m_e->string(a1);
 }
 
+void RibWriter::geometricRepresentation(L, S a1) {
+    req("GeometricRepresentation");
+    m_e->string(a1);
+}
+
 void RibWriter::textureCoordinates(L, float a1, float a2, float a3, float a4, float a5, float a6, float a7, float a8) {
     req("TextureCoordinates");
     m_e->number(a1);

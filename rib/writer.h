@@ -78,6 +78,7 @@ public:
     void errorHandler(L, S) override;
     void matte(L, bool) override;
     void shadingInterpolation(L, S) override;
+    void geometricRepresentation(L, S) override;
     void textureCoordinates(L, float, float, float, float, float, float, float, float) override;
     void bound(L, const float [6]) override;
     void detail(L, const float [6]) override;

@@ -203,6 +203,7 @@ RtVoid RiExterior(RtToken name, ...);
 RtVoid RiExteriorV(RtToken name, RtInt n, RtToken tokens[], RtPointer values[]);
 RtVoid RiShadingRate(RtFloat size);
 RtVoid RiShadingInterpolation(RtToken type);
+RtVoid RiGeometricRepresentation(RtToken type);
 RtVoid RiMatte(RtBoolean onoff);
 RtVoid RiBound(RtBound bound);
 RtVoid RiDetail(RtBound bound);

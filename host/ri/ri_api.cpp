@@ -227,6 +227,7 @@ RI_NAMED(Deformation)
         if (Context* c = Context::current("Ri" #Fn)) c->send(#Fn, {string(s)}); \
     }
 RI_STRING(ShadingInterpolation)
+RI_STRING(GeometricRepresentation)
 RI_STRING(Orientation)
 RI_STRING(CoordinateSystem)
 RI_STRING(ScopedCoordinateSystem)

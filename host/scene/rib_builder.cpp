@@ -432,6 +432,14 @@ void RibBuilder::depthOfField(L loc, float fstop, float focalLength, float focal
 
 void RibBuilder::matte(L, bool on) { m_attrStack.back().matte = on; }
 
+// Surfaces are rendered as surfaces: "lines" and "points" (wire frames, point clouds of
+// a surface's vertices) are a warning.
+void RibBuilder::geometricRepresentation(L loc, S type) {
+    if (type != "primitive")
+        m_diag.warning(loc, "GeometricRepresentation \"" + type +
+                                "\": surfaces are rendered as \"primitive\"");
+}
+
 void RibBuilder::procedural(L loc, const std::string& name, const std::vector<std::string>&,
                             const float*) {
     m_diag.warning(loc, "Procedural \"" + name + "\" is not supported; skipped");

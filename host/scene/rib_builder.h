@@ -98,6 +98,7 @@ public:
     void cropWindow(L, float, float, float, float) override;
     void depthOfField(L, float fstop, float focalLength, float focalDistance) override;
     void matte(L, bool) override;
+    void geometricRepresentation(L, S) override;
     void procedural(L, const std::string& name, const std::vector<std::string>& args,
                     const float bound[6]) override;
     void color(L, const std::vector<float>&) override;

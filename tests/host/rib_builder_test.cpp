@@ -193,6 +193,21 @@ TEST(RibBuilder, ShadowModesByEveryName) {
               std::string::npos);
 }
 
+// GeometricRepresentation (RI 3.2; BMRT's and the RenderMan Repository's scenes give
+// "primitive"): read, and a warning at its line for a wire frame or points, which are
+// rendered as surfaces. Before, it was an unknown request (an error).
+TEST(RibBuilder, GeometricRepresentationIsReadAndOnlyPrimitiveRendered) {
+    Built b = build("WorldBegin\nGeometricRepresentation \"primitive\"\n"
+                    "GeometricRepresentation \"lines\"\nSphere 1 -1 1 360\nWorldEnd\n");
+    EXPECT_EQ(b.errors, 0) << b.messages;
+    EXPECT_EQ(b.messages.find("t.rib:2:"), std::string::npos) << b.messages;
+    EXPECT_NE(b.messages.find("t.rib:3: warning: GeometricRepresentation \"lines\": surfaces are "
+                              "rendered as \"primitive\""),
+              std::string::npos)
+        << b.messages;
+    ASSERT_EQ(b.scenes.size(), 1u);
+}
+
 // A shader that reads "object" space gets an instance per object space its primitives
 // have (Shading.ObjectSpaceIsEachPrimitivesOwn), each a parameter block of its own: at
 // most kMaxObjectSpaces of them, past which the call's space stands in, with a warning
