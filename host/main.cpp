@@ -274,6 +274,7 @@ int main(int argc, char** argv) {
         rd::installStopSignals();
         nlohmann::json allStats = nlohmann::json::array(), traceEvents = nlohmann::json::array();
         for (size_t i = 0; i < scenes.size() && !rd::stopSignal(); ++i) {
+            builder.makeTexturesBefore(i);  // (a MakeShadow of the last frame's depth map)
             rd::RenderSettings settings;
             settings.timeBudget = timeBudget;
             settings.errorTarget = errorTarget;

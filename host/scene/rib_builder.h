@@ -54,6 +54,10 @@ public:
 
     // Scenes completed so far, in WorldEnd order.
     std::vector<Scene>& scenes() { return m_scenes; }
+    // Carries out the texture-making requests that came after frame `scene - 1` and
+    // before frame `scene` (they may read what that frame writes: a depth map for
+    // MakeShadow); the caller renders the frames in order and calls this before each.
+    void makeTexturesBefore(size_t scene);
 
     void frameBegin(L, int) override;
     void frameEnd(L) override;
@@ -470,6 +474,8 @@ private:
     void addMovingTriangle(const Triangle& first, const std::vector<Triangle>& keys,
                            const std::vector<float>& times);
     std::vector<Scene> m_scenes;
+    // Make* requests read after a frame was built: run before the next frame renders
+    std::vector<std::pair<size_t, std::function<void()>>> m_deferredMakes;
     std::unordered_map<std::string, uint32_t> m_materialKeys;
     std::map<MessageValues, uint32_t> m_attributeSetIndex;
     // A volume or displacement call's index in its list, by (its call's number, its

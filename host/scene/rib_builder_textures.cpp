@@ -2,7 +2,9 @@
 // MakeLatLongEnvironment, MakeCubeFaceEnvironment, MakeShadow), carried out when read,
 // as PRMan does. Relative file names are taken from the RIB's folder, where the render
 // also looks for textures.
+#include <array>
 #include <filesystem>
+#include <utility>
 
 #include "rib_builder.h"
 #include "texture/texture_maker.h"
@@ -31,13 +33,25 @@ MakeTextureOptions options(const std::string& swrap, const std::string& twrap,
 
 }  // namespace
 
+// After a frame of this RIB was built, the request may read what that frame renders (a
+// depth map for MakeShadow, PRMan's two-pass shadows): it waits until then
+// (makeTexturesBefore); before any frame it is carried out at once.
 template <typename F>
 void RibBuilder::makeTextureFile(L loc, const char* request, const std::string& output, F&& make) {
-    try {
-        make();
-    } catch (const std::exception& e) {
-        m_diag.error(loc, std::string(request) + ": " + e.what() + " (\"" + output + "\" not made)");
-    }
+    auto run = [this, loc, request = std::string(request), output, make] {
+        try {
+            make();
+        } catch (const std::exception& e) {
+            m_diag.error(loc, request + ": " + e.what() + " (\"" + output + "\" not made)");
+        }
+    };
+    if (m_scenes.empty()) run();
+    else m_deferredMakes.emplace_back(m_scenes.size(), run);
+}
+
+void RibBuilder::makeTexturesBefore(size_t scene) {
+    for (auto& [before, make] : m_deferredMakes)
+        if (before == scene && make) std::exchange(make, nullptr)();
 }
 
 void RibBuilder::makeTexture(L loc, S picture, S texture, S swrap, S twrap, S filter,
@@ -48,8 +62,9 @@ void RibBuilder::makeTexture(L loc, S picture, S texture, S swrap, S twrap, S fi
 
 void RibBuilder::make2dTexture(L loc, const char* request, S picture, S texture,
                                const MakeTextureOptions& o) {
-    const std::string& rib = m_options.sourceFile;
-    makeTextureFile(loc, request, texture, [&] {
+    const std::string rib = m_options.sourceFile;
+    makeTextureFile(loc, request, texture, [rib, picture = std::string(picture),
+                                            texture = std::string(texture), o] {
         rd::makeTexture(besideRib(rib, picture), besideRib(rib, texture), o);
     });
 }
@@ -64,30 +79,35 @@ void RibBuilder::makeBump(L loc, S picture, S texture, S swrap, S twrap, S filte
 
 void RibBuilder::makeLatLongEnvironment(L loc, S picture, S texture, S filter, float swidth,
                                         float twidth, P) {
-    const std::string& rib = m_options.sourceFile;
-    makeTextureFile(loc, "MakeLatLongEnvironment", texture, [&] {
-        rd::makeLatLongEnvironment(besideRib(rib, picture), besideRib(rib, texture),
-                                   options("periodic", "clamp", filter, swidth, twidth));
-    });
+    const std::string rib = m_options.sourceFile;
+    const MakeTextureOptions o = options("periodic", "clamp", filter, swidth, twidth);
+    makeTextureFile(loc, "MakeLatLongEnvironment", texture,
+                    [rib, picture = std::string(picture), texture = std::string(texture), o] {
+                        rd::makeLatLongEnvironment(besideRib(rib, picture),
+                                                   besideRib(rib, texture), o);
+                    });
 }
 
 void RibBuilder::makeCubeFaceEnvironment(L loc, rib::Target::Strings faces, S texture,
                                          float fov, S filter, float swidth, float twidth, P) {
-    const std::string& rib = m_options.sourceFile;
-    makeTextureFile(loc, "MakeCubeFaceEnvironment", texture, [&] {
-        if (faces.size() != 6) throw std::runtime_error("needs six faces");
-        std::array<std::string, 6> f;
-        for (size_t i = 0; i < 6; ++i) f[i] = besideRib(rib, faces[i]);
-        rd::makeCubeFaceEnvironment(f, besideRib(rib, texture), fov,
-                                    options("periodic", "clamp", filter, swidth, twidth));
-    });
+    const std::string rib = m_options.sourceFile;
+    const MakeTextureOptions o = options("periodic", "clamp", filter, swidth, twidth);
+    makeTextureFile(loc, "MakeCubeFaceEnvironment", texture,
+                    [rib, faces = std::vector<std::string>(faces),
+                     texture = std::string(texture), fov, o] {
+                        if (faces.size() != 6) throw std::runtime_error("needs six faces");
+                        std::array<std::string, 6> f;
+                        for (size_t i = 0; i < 6; ++i) f[i] = besideRib(rib, faces[i]);
+                        rd::makeCubeFaceEnvironment(f, besideRib(rib, texture), fov, o);
+                    });
 }
 
 void RibBuilder::makeShadow(L loc, S picture, S texture, P) {
-    const std::string& rib = m_options.sourceFile;
-    makeTextureFile(loc, "MakeShadow", texture, [&] {
-        rd::makeShadow(besideRib(rib, picture), besideRib(rib, texture));
-    });
+    const std::string rib = m_options.sourceFile;
+    makeTextureFile(loc, "MakeShadow", texture,
+                    [rib, picture = std::string(picture), texture = std::string(texture)] {
+                        rd::makeShadow(besideRib(rib, picture), besideRib(rib, texture));
+                    });
 }
 
 }  // namespace rd
