@@ -217,7 +217,7 @@ namespace {
 // shader kind (`color light`), a local declared uniform assigned under a varying if (a
 // warning: it is made varying), setzcomp() of a vector, N and P set in a surface, a
 // nested function with a storage class (`uniform float two()`), L in a light's
-// illuminate.
+// illuminate, du and dv in a volume shader's helper.
 TEST(Frontend, OldShadersIdioms) {
     Result r;
     rsltest::compile("surface s() {\n  color light = 1;\n  float volume = 2;\n"
@@ -236,5 +236,11 @@ TEST(Frontend, OldShadersIdioms) {
                      l);
     EXPECT_TRUE(l.ok) << l.diags;
     EXPECT_EQ(l.diags, "");
+    // a volume shader's helpers (Advanced RenderMan's noises.h) declare du and dv extern
+    Result v;
+    rsltest::compile("float fw() { extern float du, dv; return du + dv; }\n"
+                     "volume v() {\n  Ci = Ci * (1 + 0 * fw());\n}\n",
+                     v);
+    EXPECT_TRUE(v.ok) << v.diags;
 }
 }  // namespace
