@@ -195,6 +195,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
     rd_eval_init(&ev, dsites, tc, -1, -1);
 #if RD_LIGHT_COEFS_SURFACE
     ev.coefs = 1; /* the base evaluation gives every light's coefficient too */
+#ifdef RT_SHADER_SHADOWS
+    ev.coefs = !shadow_ray; /* (a shadow ray's evaluation is for Oi alone) */
+#endif
 #endif
     RslLightCache light_cache;
     if (!culled) rd_fill_light_cache(&g, &light_cache);

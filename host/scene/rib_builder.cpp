@@ -527,11 +527,8 @@ void RibBuilder::imager(L loc, S name, P params) {
 void RibBuilder::lightSource(L loc, const std::string& name, const std::string& handle,
                              const rib::ParamList& params) {
     // Before WorldBegin a light is an option of the frame, placed in camera space
-    // (worldBegin() moves it into the world); in an ObjectBegin block it is refused.
-    if (!m_inWorld && m_defining) {
-        m_diag.error(loc, "LightSource is not allowed inside ObjectBegin/ObjectEnd");
-        return;
-    }
+    // (worldBegin() moves it into the world); the reader refuses one in an ObjectBegin
+    // block.
     Scene& s = m_inWorld ? m_world : m_options;
     const uint32_t index = uint32_t(s.lights.size());
     if (!handle.empty()) (m_inWorld ? m_lightHandles : m_optionLightHandles)[handle] = index;
