@@ -231,6 +231,10 @@ int main(int argc, char** argv) {
     app.add_flag("--no-jump-small-passes", noJumpSmallPasses,
                  "double the samples of a small adaptive pass's pixels, as any pass's, rather "
                  "than quadruple them (for comparison)");
+    bool hostPixelTests = false;
+    app.add_flag("--host-pixel-tests", hostPixelTests,
+                 "test every pixel of an adaptive pass and sum the film's error estimate on "
+                 "the host, not the device (the same passes; for comparison)");
     app.add_option("--treelet-budget", treeletBytes,
                    "trace through treelets of at most BYTES of BVH (default: Option \"limits\" "
                    "\"treeletbytes\", else the resident BVH; triangle scenes only)");
@@ -289,6 +293,7 @@ int main(int argc, char** argv) {
             settings.overlapPasses = !noOverlapPasses;
             settings.pipelineRounds = !noPipelineRounds;
             settings.jumpSmallPasses = !noJumpSmallPasses;
+            settings.devicePixelTests = !hostPixelTests;
             settings.sceneMemoryBytes = sceneMemory;
             settings.timeline = !timelinePath.empty();
             settings.extraAovs = aovs;  // (the scene's own AOVs: the renderer reads them)

@@ -27,6 +27,10 @@ FilmError estimateFilmErrors(const FilmPixels& film, size_t batchStride) {
                                         part[i]);
                    }
                });
+    return filmErrorOfBatches(part);
+}
+
+FilmError filmErrorOfBatches(const std::vector<FilmErrorSums>& part) {
     FilmErrorSums sum;
     for (const FilmErrorSums& s : part) {
         sum.var += s.var, sum.mean += s.mean, sum.replicateVar += s.replicateVar;

@@ -91,6 +91,10 @@ struct FilmError {
 // Over every pixel; or over one batch of kPixelBatch pixels in every `batchStride` (a
 // film-wide ratio such as spreadOverstates, from a spread-out share of the work).
 FilmError estimateFilmErrors(const FilmPixels& film, size_t batchStride = 1);
+// The same from each batch's sums (film_error_batch.h), added in batch order: the device's
+// (cl/kernels/film_sums.cl) give the same value.
+struct FilmErrorSums;
+FilmError filmErrorOfBatches(const std::vector<FilmErrorSums>& batches);
 
 // x rounded down to a grid of `steps` points an octave (2^(k / steps)): a threshold that
 // moves only when x does by a step (the brightness floor; the planner's Sobol ratio).

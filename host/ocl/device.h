@@ -18,6 +18,7 @@ struct DeviceInfo {
     cl_uint computeUnits = 0;
     cl_ulong globalMemBytes = 0, maxAllocBytes = 0;
     size_t maxWorkGroupSize = 0;
+    bool fp64 = false;  // double precision (cl_khr_fp64, or OpenCL 1.2's optional doubles)
     bool isPocl() const;
     // Mesa's rusticl (22.3) rejects the unmap of a mapping not made yet (CL_INVALID_VALUE),
     // so a buffer's sync to the host maps it blocking there (Buffer::syncToHost).

@@ -10,7 +10,7 @@ namespace rd {
 
 const std::vector<std::string> kTraceSources = {
     "generate_eye.cl", "intersect.cl", "sort_by_shader.cl", "close_round.cl", "compact.cl",
-    "retire.cl",       "treelet.cl"};
+    "retire.cl",       "treelet.cl",   "pixel_tests.cl", "film_sums.cl"};
 
 namespace {
 bool isWordChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }

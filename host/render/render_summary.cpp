@@ -54,15 +54,16 @@ void summariseRays(RenderStats& st, const std::vector<uint32_t>& num, int maxTra
                                 "\"maxtransparentdepth\"");
 }
 
-void summariseFilm(RenderStats& st, Film& film, bool sobol, bool twoSamplesAPixel) {
+void summariseFilm(RenderStats& st, Film& film, bool sobol, bool twoSamplesAPixel,
+                   const FilmSummary* onDevice) {
     if (twoSamplesAPixel) {
-        const FilmError e = estimateFilmErrors(film.pixels);
+        const FilmError e = onDevice ? onDevice->error : estimateFilmErrors(film.pixels);
         st.estimatedError = e.of(sobol);
         film.errorScale = 1.0 / e.spreadOverstates(sobol);
     } else {
         st.estimatedError = -1.0;
     }
-    const Film::Tally tally = film.tally();
+    const Film::Tally tally = onDevice ? onDevice->tally : film.tally();
     st.nonfiniteSamples = tally.nonfinite;
     st.unsampledPixels = tally.unsampled;
     st.filmSamples = tally.samples;

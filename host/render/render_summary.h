@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "device_film_sums.h"
 #include "film/film.h"
 #include "renderer.h"
 #include "rib/diagnostics.h"
@@ -19,7 +20,10 @@ void summariseRays(RenderStats& st, const std::vector<uint32_t>& numerics,
 // The finished film's estimated error (none without two samples a pixel: -1, with no
 // pass over the film), its error channel's scale under the Sobol sampler, and its
 // tally: whole samples, pixels left out, samples left out as NaN/Inf.
-void summariseFilm(RenderStats& st, Film& film, bool sobol, bool twoSamplesAPixel);
+// `onDevice`: the film's error and tally as the device summed them (device_film_sums.h);
+// null: taken here.
+void summariseFilm(RenderStats& st, Film& film, bool sobol, bool twoSamplesAPixel,
+                   const FilmSummary* onDevice = nullptr);
 
 // Pool fill (rays traced a round over the capacity), device busy (kernel time over the
 // sampling loop's wall time), host overhead (the rest, over the frame) and, of that, the

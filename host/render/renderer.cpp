@@ -24,6 +24,8 @@
 
 #include "cl/include/numerics_slots.h"
 #include "cl/include/ray.h"
+#include "device_film_sums.h"
+#include "device_pixel_tests.h"
 #include "device_scene.h"
 #include "imager_stage.h"
 #include "pass_planning.h"
@@ -189,9 +191,12 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     std::optional<SamplePlanner> planner;
     double firstPlanMs = 0;
     // (and its first refill staged: the ring is empty and the round cap the pool until then)
+    // (and the memory the device's tests of every pixel answer in: devicePixelTests)
+    const bool testsOnDevice = m_settings.devicePixelTests && m_ctx.info().fp64;
     struct FirstPass {
         std::deque<PlannedJob> jobs;
         RefillStage refill;
+        std::optional<PixelTestMemory> testMemory;
     };
     std::future<FirstPass> firstPass = std::async(std::launch::async, [&] {
         const auto tp = Clock::now();
@@ -205,8 +210,11 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
             maxJob, size_t(cam0.width) * size_t(cam0.height));
         RefillStage stage;
         stageRefill(ring, jobs, pool, stage);
+        std::optional<PixelTestMemory> testMemory;
+        if (testsOnDevice)
+            testMemory.emplace(*planner, cam0.width, cam0.height);
         firstPlanMs = secondsSince(tp) * 1e3;
-        return FirstPass{std::move(jobs), std::move(stage)};
+        return FirstPass{std::move(jobs), std::move(stage), std::move(testMemory)};
     });
 
     // Scene -> BVH -> specialised programs (trace, shading) -> device arrays. The programs
@@ -319,6 +327,15 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     // numerics.clh RT_NUM_* counters, then a flag per archive not loaded yet
     DeviceBuffer<uint32_t> numerics(m_ctx, kProceduralFlags + scene.procedurals.size());
     numerics.fillZero();
+    std::optional<FirstPass> first = firstPass.get();
+    std::optional<DevicePixelTests> pixelTests;  // where the device has double precision
+    if (first->testMemory) {
+        pixelTests.emplace(m_ctx, programs.trace->get(), prof, filmBuf, cam.width, cam.height,
+                           *planner, std::move(*first->testMemory));
+        planner->setTester(&*pixelTests);
+    }
+    std::optional<DeviceFilmSums> filmSums;  // the end of frame's, likewise
+    if (testsOnDevice) filmSums.emplace(m_ctx, programs.trace->get(), prof, filmBuf, film);
     st.sceneSetupMs = secondsSince(t0) * 1e3;
 
     Progress progress(m_settings.progress);
@@ -665,11 +682,11 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     prof.markHostWait();  // the set-up: the device had nothing to do before the loop
     for (;;) {
         std::deque<PlannedJob> jobs;
-        if (firstPass.valid()) {
-            FirstPass first = firstPass.get();
-            jobs = std::move(first.jobs);
-            refill.adopt(std::move(first.refill));
+        if (first) {
+            jobs = std::move(first->jobs);
+            refill.adopt(std::move(first->refill));
             st.planMs += firstPlanMs;
+            first.reset();
         } else {
             jobs = planPass({});
         }
@@ -697,13 +714,19 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     } else {  // the film's sync overlaps the profiler's reads; collectActive waits for it
         filmBuf.syncToHost(/*blocking=*/false);
     }
+    if (filmSums) filmSums->launch();
     aovBuf.syncToHost(/*blocking=*/false);
     shaderAovBuf.syncToHost(/*blocking=*/false);
     std::vector<uint32_t> num, texCounts;
     numerics.downloadInto(num, /*blocking=*/false);
     if (f.textures) textures.counterBuf.downloadInto(texCounts, /*blocking=*/false);
     prof.collect();
-    Kernel::collectActive(k.all());
+    std::vector<Kernel*> kernels = k.all();
+    if (pixelTests) {
+        for (Kernel* t : pixelTests->kernels()) kernels.push_back(t);
+    }
+    if (filmSums) kernels.push_back(&filmSums->kernel());
+    Kernel::collectActive(kernels);
     if (treelets) treelets->collectActive();
     m_ctx.finish();  // the copies above
     st.kernels = prof.stats();
@@ -714,7 +737,9 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
         st.textures = textures.stats();
     }
     summariseRays(st, num, f.maxTransparentDepth, diag, rib::SourceLoc{scene.sourceFile, 0});
-    summariseFilm(st, film, f.sobol, ss.maxSamples >= 2);
+    const std::optional<FilmSummary> filmSummary =
+        filmSums ? std::optional<FilmSummary>(filmSums->summary()) : std::nullopt;
+    summariseFilm(st, film, f.sobol, ss.maxSamples >= 2, filmSummary ? &*filmSummary : nullptr);
     st.passes = planner->passes();
     st.elapsedSec = secondsSince(t0);
     summariseOccupancy(st, treelets != nullptr, prof.launchGapsMs());

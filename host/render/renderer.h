@@ -39,6 +39,9 @@ struct RenderSettings {
     // A pass asking for fewer samples than a 64th of the frame's pixels gives its pixels
     // two more doublings at once (SamplingSettings::smallPass); false: every pass doubles.
     bool jumpSmallPasses = true;
+    // The adaptive passes that test every pixel (the first) do so on the device where it
+    // has double precision (device_pixel_tests.h); false: on the host. The same passes.
+    bool devicePixelTests = true;
     double timeBudget = 0;    // seconds; 0 = none (also from Option "render" "time")
     double errorTarget = 0;   // relative film error; 0 = none ("render" "error")
     int firstPassBlock = 0;   // 0 = the scene's option (default 2: 1/4 ray per pixel)

@@ -52,6 +52,35 @@ struct PixelRequest {
     uint32_t pixel, first, count;
 };
 
+// Pixels whose means the brightness floor's sum adds up a group at a time (in pixel
+// order), the groups then added in order: the same sum wherever the groups are taken.
+constexpr size_t kMeanGroup = 64;
+
+// The test of every pixel, done elsewhere: on the device (device_pixel_tests.h,
+// cl/kernels/pixel_tests.cl), where the first adaptive pass's test of a 512x512 frame's
+// pixels had left the device idle for 3.5 ms of SPD tetra's 110 ms. Its answers are the
+// planner's own, bit for bit.
+class PixelTester {
+public:
+    virtual ~PixelTester() = default;
+    // Every pixel's pixelMean into meanOf (-1 without samples), and each group of
+    // kMeanGroup pixels' sum of the means >= 0 and their number (groupSums, groupCounts:
+    // one each a group), summed in double in pixel order.
+    virtual void means(float* meanOf, double* groupSums, double* groupCounts) = 0;
+    // The test of every pixel of the planner's tile order, the film as the last call to
+    // means() found it when `meansTaken` (else as it is now): for its k-th pixel,
+    // request[2k] the samples its request asks for (0: none; kBusy: marked in `busy`,
+    // empty: none) and request[2k + 1] their first index; relErr[pixel] the error the
+    // planner keeps (-inf: never again; NaN: its own). Valid until the next call.
+    static constexpr uint32_t kBusy = ~0u;
+    struct Answers {
+        const uint32_t* request;
+        const float* relErr;
+    };
+    virtual Answers test(bool meansTaken, float floor, float pixelError,
+                         const std::vector<uint8_t>& busy) = 0;
+};
+
 class SamplePlanner {
 public:
     // Only the pixels in [x0, x1) x [y0, y1) (the crop window) are sampled.
@@ -79,6 +108,12 @@ public:
         return m_pass > 0 && m_settings.minSamples >= m_settings.maxSamples;
     }
     const SamplingSettings& settings() const { return m_settings; }
+    // Passes that test every pixel do so through `tester` (null: here); it must outlive
+    // the planner's use.
+    void setTester(PixelTester* tester) { m_tester = tester; }
+    const std::vector<uint32_t>& pixelOrder() const { return m_tileOrder; }
+    // Each pixel's place in pixelOrder(); ~0u off the crop window.
+    const std::vector<uint32_t>& pixelRank() const { return m_tileRank; }
 
 private:
     // For each of `count` pixels: its relative error (pixelRelativeError against `floor`)
@@ -114,6 +149,12 @@ private:
         return mq >= 0.0f &&
                std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq));
     }
+    // The pass the tester's test of every pixel gives.
+    std::vector<PixelRequest> passFromTester(const FilmPixels& film, float floor,
+                                             float pixelError, const std::vector<uint8_t>& busy);
+    // A pass's requests, as the smallPass rule leaves them; the pass counted.
+    std::vector<PixelRequest> endPass(const FilmPixels& film, float floor, float pixelError,
+                                      std::vector<PixelRequest> out);
     // The smallPass rule on a pass's requests.
     void jumpSmallPass(const FilmPixels& film, std::vector<PixelRequest>& out) const;
     // Threads for a visit of this many pixels.
@@ -129,6 +170,7 @@ private:
     std::vector<uint32_t> m_tileRank;   // each pixel's place in m_tileOrder
     int m_pass = 0;
     bool m_tested = false;  // an adaptive pass has tested every pixel (m_relErr, m_meanOf)
+    bool m_meansByTester = false;  // m_meanOf as m_tester's means() gave them
     std::vector<uint32_t> m_lastPass;  // the pixels the last pass sampled or left busy
     // Those of them whose mean this pass's brightnessFloor found changed (a pixel left busy
     // pass after pass keeps its mean while its samples are in flight: its neighbours need
@@ -140,6 +182,7 @@ private:
     float m_lastPixelError = 0;
     std::vector<float> m_meanOf;  // each pixel's mean in the floor's sum (< 0: not in it)
     double m_meanSum = 0, m_meanCount = 0;
+    PixelTester* m_tester = nullptr;
 };
 
 }  // namespace rd

@@ -13,6 +13,9 @@
 
 #include "film/film_error.h"
 #include "film/film_error_batch.h"
+#include "ocl/program.h"
+#include "render/device_film_sums.h"
+#include "render/device_pixel_tests.h"
 #include "render/sampling.h"
 #include "render/stop.h"
 #include "render_harness.h"
@@ -117,6 +120,9 @@ size_t pixelsDiffering(const Rendered& a, const Rendered& b) {
 // crop window of it) where each requested sample adds a value drawn per pixel and sample
 // index. Also with a pixel error that tightens pass by pass (a time
 // budget's), where every pixel is re-tested.
+// The planners that test every pixel on the device (device_pixel_tests.h: the first
+// adaptive pass of one incremental, every pass of one that is not) must plan the same
+// passes, bit for bit.
 // With `overlap`, a third of each pass's pixels are still in flight when the next pass is
 // planned (the renderer plans while a pass's tail drains): both planners get them as busy,
 // must not sample them, and see their samples only after that plan; a quarter of those
@@ -137,6 +143,18 @@ TEST(Sampling, IncrementalPlanIsExact) {
         full.planThreads = 3;
         rd::SamplePlanner inc(w, h, 3, 90, 2, 58, s), ref(w, h, 3, 90, 2, 58, full);
         rd::FilmPixels film(size_t(w) * size_t(h));
+        const rd::ClContext& ctx = rd::test::testContext();
+        ASSERT_TRUE(ctx.info().fp64);
+        rd::Program program(ctx, rd::assembleClSource({"pixel_tests.cl"}), "-cl-std=CL1.2");
+        rd::Profiler prof(ctx);
+        rd::DeviceBuffer<PixelAccum> filmBuf(ctx, film.size(), CL_MEM_READ_ONLY);
+        rd::SamplePlanner dev(w, h, 3, 90, 2, 58, s), devAll(w, h, 3, 90, 2, 58, full);
+        rd::DevicePixelTests devTests(ctx, program.get(), prof, filmBuf, w, h, dev,
+                                      rd::PixelTestMemory(dev, w, h)),
+            devAllTests(ctx, program.get(), prof, filmBuf, w, h, devAll,
+                        rd::PixelTestMemory(devAll, w, h));
+        dev.setTester(&devTests);
+        devAll.setTester(&devAllTests);
         auto sample = [&](uint32_t pixel, uint32_t index) {
             const int x = int(pixel) % w, y = int(pixel) / w;
             std::mt19937 rng(pixel * 7919u + index);
@@ -169,6 +187,16 @@ TEST(Sampling, IncrementalPlanIsExact) {
             for (const auto& [r, plans] : inFlight) busy[r.pixel] = 1;
             std::vector<rd::PixelRequest> a = inc.nextPass(film, err, busy),
                                           b = ref.nextPass(film, err, busy);
+            filmBuf.uploadRange(0, film.data(), film.size());
+            for (rd::SamplePlanner* onDevice : {&dev, &devAll}) {
+                const std::vector<rd::PixelRequest> c = onDevice->nextPass(film, err, busy);
+                ASSERT_EQ(c.size(), a.size()) << "pass " << passes;
+                for (size_t i = 0; i < c.size(); ++i)
+                    ASSERT_TRUE(c[i].pixel == a[i].pixel && c[i].first == a[i].first &&
+                                c[i].count == a[i].count)
+                        << "pass " << passes << ", request " << i;
+                ASSERT_EQ(onDevice->lastFloor(), inc.lastFloor());
+            }
             ASSERT_EQ(a.size(), b.size()) << "pass " << passes;
             if (passes > 0) {  // the floor and the means kept up to date pass by pass
                 const float floor = rd::relativeErrorFloor(film);
@@ -653,6 +681,56 @@ TEST(Film, ErrorEstimateInBatchesIsThePixelByPixelOne) {
     EXPECT_NE(definition(1), definition(8));
     f.resize(1000);  // one thread
     EXPECT_GT(rd::estimateFilmErrors(f).spread, 0.0);
+}
+
+// At the end of a frame the device sums the film's estimate and tally
+// (device_film_sums.h): the host's values bit for bit, over a 300x301 film (a short last
+// batch) of empty, one-sample, black and stiff pixels, samples in both replicates or one,
+// samples dropped as NaN, and a crop window.
+TEST(Film, DeviceSumsAreTheHostsBitForBit) {
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    rd::Film film;
+    film.width = 300, film.height = 301;
+    film.cropX0 = 7, film.cropX1 = 290, film.cropY0 = 3, film.cropY1 = 300;
+    film.pixels.assign(size_t(film.width) * size_t(film.height), PixelAccum{});
+    for (size_t i = 0; i < film.pixels.size(); ++i) {
+        PixelAccum& p = film.pixels[i];
+        const uint32_t n = i % 11 == 0 ? 0 : i % 11 == 1 ? 1 : 2 + uint32_t(i % 9);
+        const float level = i % 7 == 0 ? 1e6f : i % 7 == 1 ? 0.0f : 0.2f + u(rng);
+        for (uint32_t k = 0; k < n; ++k) {
+            PixelAccum one{};
+            addSamples(one, 1, level, i % 7 == 0 ? 1e-3f : 0.3f * level, rng);
+            p.sum.x += one.sum.x, p.sum.y += one.sum.y, p.sum.z += one.sum.z;
+            p.sum_sq.x += one.sum_sq.x, p.sum_sq.y += one.sum_sq.y, p.sum_sq.z += one.sum_sq.z;
+            if (k % 2 == 1 && i % 5 != 0) {  // (every fifth pixel: one replicate only)
+                p.sum_odd.x += one.sum.x, p.sum_odd.y += one.sum.y, p.sum_odd.z += one.sum.z;
+                p.sum_odd.w += 1.0f;
+            }
+        }
+        p.count = n;
+        p.nonfinite = i % 13 == 0 ? 2 : 0;
+    }
+    const rd::ClContext& ctx = rd::test::testContext();
+    ASSERT_TRUE(ctx.info().fp64);
+    rd::Program program(ctx, rd::assembleClSource({"film_sums.cl"}), "-cl-std=CL1.2");
+    rd::Profiler prof(ctx);
+    rd::DeviceBuffer<PixelAccum> filmBuf(ctx, film.pixels);
+    rd::DeviceFilmSums sums(ctx, program.get(), prof, filmBuf, film);
+    sums.launch();
+    ctx.finish();
+    const rd::FilmSummary s = sums.summary();
+    const rd::FilmError want = rd::estimateFilmErrors(film.pixels);
+    const rd::Film::Tally tally = film.tally();
+    ASSERT_GT(want.spread, 0.0);
+    ASSERT_GT(want.replicates, 0.0);
+    EXPECT_EQ(s.error.spread, want.spread);
+    EXPECT_EQ(s.error.replicates, want.replicates);
+    EXPECT_EQ(s.tally.samples, tally.samples);
+    EXPECT_EQ(s.tally.nonfinite, tally.nonfinite);
+    EXPECT_EQ(s.tally.unsampled, tally.unsampled);
+    EXPECT_GT(tally.unsampled, 0u);
+    EXPECT_LT(tally.unsampled, film.pixels.size() / 11);  // (those off the window not counted)
 }
 
 // The Sobol sampler's estimate from two replicates (film.h sum_odd): a pixel's squared
