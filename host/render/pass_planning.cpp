@@ -87,7 +87,7 @@ std::deque<PlannedJob> PassPlanning::planPass(const std::deque<PlannedJob>& pend
     std::deque<PlannedJob> jobs =
         planJobs(m_planner->nextPass(m_film.pixels,
                                      float(pixelError * m_spreadOverstates), m_busy),
-                 m_targets.maxJob, pixels);
+                 m_targets.maxJob, pixels, /*eachPixelOnce=*/true);
     m_st.planMs += secondsSince(tPlan) * 1e3;
     return jobs;
 }

@@ -632,7 +632,8 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
                 // nothing to add beside the tail: drain it, then plan with every pixel known
                 overlap = !next.empty();
                 st.overlappedPasses += overlap;
-                pending.insert(pending.end(), next.begin(), next.end());
+                if (pending.empty()) pending = std::move(next);
+                else pending.insert(pending.end(), next.begin(), next.end());
             }
             const size_t inFlightBefore = ring.inFlight();
             finishRound(pending, traced);  // its read waits for the round: time it here

@@ -6,9 +6,19 @@
 namespace rd {
 
 std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t maxJob,
-                                size_t pixelCount) {
+                                size_t pixelCount, bool eachPixelOnce) {
     std::deque<PlannedJob> jobs;
     maxJob = std::max(1u, maxJob);
+    if (eachPixelOnce) {
+        for (const PixelRequest& r : pass)
+            for (uint32_t done = 0; done < r.count;) {
+                const uint32_t take = std::min(maxJob, r.count - done);
+                jobs.push_back({r.pixel, r.first + done, take, false,
+                                r.pixel < pixelCount && r.count <= maxJob});
+                done += take;
+            }
+        return jobs;
+    }
     std::vector<uint8_t> jobsOfPixel(pixelCount, 0);  // saturating at 2
     for (const PixelRequest& r : pass)
         if (r.pixel < pixelCount) {

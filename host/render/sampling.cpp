@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <memory>
 
 namespace rd {
 
@@ -48,6 +47,8 @@ SamplePlanner::SamplePlanner(int width, int height, int x0, int x1, int y0, int 
     // program builds: the first adaptive pass, with the device idle, took 1-1.5 ms more)
     m_relErr.assign(size_t(width) * size_t(height), INFINITY);
     m_meanOf.assign(size_t(width) * size_t(height), -1.0f);
+    m_lastPass.assign(m_tileOrder.size(), 0);  // (its memory touched; the first pass sets none)
+    m_lastPass.clear();
 }
 
 inline std::array<uint32_t, 5> SamplePlanner::neighbourhood(uint32_t pixel) const {
@@ -96,9 +97,10 @@ bool SamplePlanner::needsMore(uint32_t n, float relErr, bool edge, float pixelEr
     return relErr > pixelError || edge;
 }
 
-std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float pixelError,
-                                                  const std::vector<uint8_t>& busy) {
-    std::vector<PixelRequest> out;
+const std::vector<PixelRequest>& SamplePlanner::nextPass(const FilmPixels& film,
+                                                         float pixelError,
+                                                         const std::vector<uint8_t>& busy) {
+    std::vector<PixelRequest>& out = m_out;
     const int b = m_settings.firstPassBlock;
     if (m_pass == 0 && b > 1) {
         // One sample per block, at a pixel chosen by a hash so blocks show no pattern.
@@ -219,6 +221,7 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
     size_t requests = 0, lastPass = 0;
     for (const Part& part : parts)
         requests += part.out.size(), lastPass += part.sampled.size() + part.deferred.size();
+    out.clear();  // (m_out: its memory kept from pass to pass)
     out.reserve(requests);
     m_lastPass.reserve(lastPass);
     for (Part& part : parts) {
@@ -226,47 +229,48 @@ std::vector<PixelRequest> SamplePlanner::nextPass(const FilmPixels& film, float 
         m_lastPass.insert(m_lastPass.end(), part.sampled.begin(), part.sampled.end());
     }
     for (Part& part : parts) m_lastPass.insert(m_lastPass.end(), part.deferred.begin(), part.deferred.end());
-    return endPass(film, floor, pixelError, std::move(out));
+    return endPass(film, floor, pixelError);
 }
 
-std::vector<PixelRequest> SamplePlanner::endPass(const FilmPixels& film, float floor,
-                                                 float pixelError,
-                                                 std::vector<PixelRequest> out) {
-    jumpSmallPass(film, out);
+const std::vector<PixelRequest>& SamplePlanner::endPass(const FilmPixels& film, float floor,
+                                                        float pixelError) {
+    jumpSmallPass(film, m_out);
     m_lastFloor = floor;
     m_lastPixelError = pixelError;
     m_tested = true;
     ++m_pass;
-    return out;
+    return m_out;
 }
 
-std::vector<PixelRequest> SamplePlanner::passFromTester(const FilmPixels& film, float floor,
-                                                        float pixelError,
-                                                        const std::vector<uint8_t>& busy) {
+const std::vector<PixelRequest>& SamplePlanner::passFromTester(
+    const FilmPixels& film, float floor, float pixelError, const std::vector<uint8_t>& busy) {
     const PixelTester::Answers a = m_tester->test(m_meansByTester, floor, pixelError, busy);
     m_meansByTester = false;
-    // The requests in tile order, most of them empty: each written where the next would
-    // go and kept by its count, without a branch a pixel (0.7 ms for 262k pixels with one)
+    // The requests in tile order, most of them empty: each written where the next one
+    // goes and kept by its count, without a branch a pixel (one that mispredicted took
+    // 0.7 ms over 262k pixels), into m_out at its size from the first pass (one or two
+    // requests a pixel): neither cleared nor faulted in here.
     const size_t n = m_tileOrder.size();
-    std::unique_ptr<PixelRequest[]> taken(new PixelRequest[n]);
+    std::vector<PixelRequest>& out = m_out;
+    if (out.size() < n) out.resize(n);
     std::vector<uint32_t> deferred;
-    size_t count = 0;
+    size_t at = 0;
     for (size_t k = 0; k < n; ++k) {
         const uint32_t samples = a.request[2 * k];
-        if (samples == PixelTester::kBusy) {
+        if (samples == PixelTester::kBusy) {  // (rare)
             deferred.push_back(m_tileOrder[k]);
             continue;
         }
-        taken[count] = {m_tileOrder[k], a.request[2 * k + 1], samples};
-        count += samples != 0;
+        out[at] = {m_tileOrder[k], a.request[2 * k + 1], samples};
+        at += samples != 0;
     }
-    std::vector<PixelRequest> out(taken.get(), taken.get() + count);
-    m_lastPass.resize(count + deferred.size());
-    for (size_t i = 0; i < count; ++i) m_lastPass[i] = out[i].pixel;
-    std::copy(deferred.begin(), deferred.end(), m_lastPass.begin() + ptrdiff_t(count));
+    out.resize(at);
+    m_lastPass.resize(at + deferred.size());
+    for (size_t i = 0; i < at; ++i) m_lastPass[i] = out[i].pixel;
+    std::copy(deferred.begin(), deferred.end(), m_lastPass.begin() + ptrdiff_t(at));
     for (size_t pixel = 0; pixel < m_relErr.size(); ++pixel)  // (NaN: its own kept)
         m_relErr[pixel] = std::isnan(a.relErr[pixel]) ? m_relErr[pixel] : a.relErr[pixel];
-    return endPass(film, floor, pixelError, std::move(out));
+    return endPass(film, floor, pixelError);
 }
 
 void SamplePlanner::jumpSmallPass(const FilmPixels& film, std::vector<PixelRequest>& out) const {

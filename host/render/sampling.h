@@ -92,8 +92,9 @@ public:
     // Pixels marked in `busy` (samples of theirs still in flight, when a pass is planned
     // while the last one's tail drains) are neither tested nor sampled: their film entries
     // are partial. The next pass tests them and their neighbours.
-    std::vector<PixelRequest> nextPass(const FilmPixels& film, float pixelError,
-                                       const std::vector<uint8_t>& busy = {});
+    // (The requests are valid until the next call.)
+    const std::vector<PixelRequest>& nextPass(const FilmPixels& film, float pixelError,
+                                              const std::vector<uint8_t>& busy = {});
     int passes() const { return m_pass; }
     // The last pass's brightness floor of the relative error: a tenth of the mean pixel
     // value (relativeErrorFloor), kept up to date from the pixels each pass changed.
@@ -150,11 +151,12 @@ private:
                std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq));
     }
     // The pass the tester's test of every pixel gives.
-    std::vector<PixelRequest> passFromTester(const FilmPixels& film, float floor,
-                                             float pixelError, const std::vector<uint8_t>& busy);
-    // A pass's requests, as the smallPass rule leaves them; the pass counted.
-    std::vector<PixelRequest> endPass(const FilmPixels& film, float floor, float pixelError,
-                                      std::vector<PixelRequest> out);
+    const std::vector<PixelRequest>& passFromTester(const FilmPixels& film, float floor,
+                                                    float pixelError,
+                                                    const std::vector<uint8_t>& busy);
+    // The pass's requests (m_out), as the smallPass rule leaves them; the pass counted.
+    const std::vector<PixelRequest>& endPass(const FilmPixels& film, float floor,
+                                             float pixelError);
     // The smallPass rule on a pass's requests.
     void jumpSmallPass(const FilmPixels& film, std::vector<PixelRequest>& out) const;
     // Threads for a visit of this many pixels.
@@ -183,6 +185,10 @@ private:
     std::vector<float> m_meanOf;  // each pixel's mean in the floor's sum (< 0: not in it)
     double m_meanSum = 0, m_meanCount = 0;
     PixelTester* m_tester = nullptr;
+    // The last pass's requests: their memory, first taken by the first pass (one or two
+    // requests a pixel, while the scene is built), serves every later pass without a page
+    // fault in the render loop.
+    std::vector<PixelRequest> m_out;
 };
 
 }  // namespace rd

@@ -154,6 +154,26 @@ TEST(SampleRing, OnlyAPixelsSoleJobIsExclusive) {
     EXPECT_EQ(ring.push(again).state, RT_JOB_LAST_TRY | RT_JOB_EXCLUSIVE);
 }
 
+// An adaptive pass lists each pixel once: cut without the table of each pixel's jobs, its
+// jobs are the same, exclusive marks included.
+TEST(SampleRing, APassOfEachPixelOnceCutsTheSameWithoutTheTable) {
+    std::vector<rd::PixelRequest> pass = {{1, 0, 1}, {3, 2, 9}, {4, 0, 4}, {9, 5, 5}, {7, 1, 2}};
+    const auto a = rd::planJobs(pass, 4, 8), b = rd::planJobs(pass, 4, 8, true);
+    ASSERT_EQ(a.size(), 8u);  // 1 | 4 + 4 + 1 | 4 | 4 + 1 | 2
+    ASSERT_EQ(b.size(), a.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(b[i].pixel, a[i].pixel);
+        EXPECT_EQ(b[i].firstSample, a[i].firstSample);
+        EXPECT_EQ(b[i].count, a[i].count);
+        EXPECT_EQ(b[i].exclusive, a[i].exclusive) << i;  // (pixel 9 is past pixelCount)
+    }
+    EXPECT_TRUE(b[0].exclusive);
+    EXPECT_FALSE(b[1].exclusive);
+    EXPECT_TRUE(b[4].exclusive);
+    EXPECT_FALSE(b[5].exclusive);
+    EXPECT_TRUE(b[7].exclusive);
+}
+
 // A pipelined refill books every staged job before the device says how many fit, then
 // takes the rest back (popBack): the ring is as if only those had been pushed, across the
 // slot ring's wrap.
