@@ -192,7 +192,9 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     double firstPlanMs = 0;
     // (and its first refill staged: the ring is empty and the round cap the pool until then)
     // (and the memory the device's tests of every pixel answer in: devicePixelTests)
-    const bool testsOnDevice = m_settings.devicePixelTests && m_ctx.info().fp64;
+    const bool testsOnDevice =
+        m_settings.devicePixelTests && m_ctx.info().fp64 &&
+        size_t(cam0.width) * size_t(cam0.height) >= m_settings.devicePixelTestsFrom;
     struct FirstPass {
         std::deque<PlannedJob> jobs;
         RefillStage refill;

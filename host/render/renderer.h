@@ -40,8 +40,13 @@ struct RenderSettings {
     // two more doublings at once (SamplingSettings::smallPass); false: every pass doubles.
     bool jumpSmallPasses = true;
     // The adaptive passes that test every pixel (the first) do so on the device where it
-    // has double precision (device_pixel_tests.h); false: on the host. The same passes.
+    // has double precision (device_pixel_tests.h), and the film's error estimate at the
+    // end of the frame is summed there (device_film_sums.h), for frames of at least
+    // devicePixelTestsFrom pixels; false: on the host. The same passes and estimates.
+    // (A smaller frame's test takes the host under a millisecond, less than a cold
+    // compile of the four kernels, 0.3 s, or their launches and waits.)
     bool devicePixelTests = true;
+    size_t devicePixelTestsFrom = 65536;
     double timeBudget = 0;    // seconds; 0 = none (also from Option "render" "time")
     double errorTarget = 0;   // relative film error; 0 = none ("render" "error")
     int firstPassBlock = 0;   // 0 = the scene's option (default 2: 1/4 ray per pixel)

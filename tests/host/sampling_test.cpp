@@ -260,6 +260,39 @@ TEST(Sampling, EdgePixelsGetMoreSamplesThanFlatOnes) {
     EXPECT_NEAR(img.mean(3, edgeColumn, 0, edgeColumn + 1, 32), 0.37, 0.045);
 }
 
+// A frame of 256x256 pixels (the device's size for it: RenderSettings::devicePixelTestsFrom)
+// has its first adaptive pass's tests and its error estimate on the device: the image,
+// every pixel's samples, the passes and the estimate are those of the host's tests, bit
+// for bit. Also with a crop window (pixels off it never sampled, nor counted unsampled).
+TEST(Sampling, DeviceTestsRenderTheHostsImage) {
+    for (const std::string crop : {"", "CropWindow 0.1 0.8 0.25 1\n"}) {
+        // stripes on the left (every pixel noisy), a flat half on the right (pixels done at
+        // the least samples), and an edge between
+        std::string world = "WorldBegin\nSurface \"constant\"\n" + rect(0.37, 200, -200, 200);
+        for (double x = -128; x < 0; x += 0.713) world += rect(x, x + 0.3, -200, 200);
+        const std::string rib = orthoCamera(256, 3, crop) + world + "WorldEnd\n";
+        rd::RenderSettings onDevice, onHost;
+        onHost.devicePixelTests = false;
+        Rendered a = renderRib(rib, onDevice), b = renderRib(rib, onHost);
+        auto launches = [](const Rendered& r, const char* kernel) {
+            const auto it = r.stats.kernels.find(kernel);
+            return it == r.stats.kernels.end() ? uint64_t(0) : it->second.launches;
+        };
+        EXPECT_EQ(launches(a, "film_tests"), 1u);
+        EXPECT_EQ(launches(a, "film_sums"), 1u);
+        EXPECT_EQ(launches(b, "film_tests") + launches(b, "film_sums"), 0u);
+        EXPECT_GE(a.stats.passes, 3);
+        EXPECT_EQ(a.stats.passes, b.stats.passes);
+        EXPECT_EQ(a.stats.filmSamples, b.stats.filmSamples);
+        EXPECT_EQ(a.stats.unsampledPixels, b.stats.unsampledPixels);
+        EXPECT_EQ(a.stats.estimatedError, b.stats.estimatedError);
+        EXPECT_EQ(pixelsDiffering(a, b), 0u);
+        std::printf("%s: %d passes, %llu samples, error %.4f\n", crop.empty() ? "frame" : "crop",
+                    a.stats.passes, (unsigned long long)a.stats.filmSamples,
+                    a.stats.estimatedError);
+    }
+}
+
 // A small pool (many rounds a pass): each pass after the first is planned while the last
 // one's tail is in flight, around its pixels. A pixel planned while its samples were in
 // flight would reuse their sample indices and end with a count off the planner's doubling
