@@ -173,12 +173,17 @@ __kernel void treelet_shadow_walk_begin(uint count, __global const float4* origi
     through[i] = (rt_weight)(1.0f);
 }
 
-/* A layer of the walk, after the closest-hit trace of the rays still walking: a ray that
- * met nothing reaches its light with what got through; an opaque surface, or a
- * transparent one at the last layer (`last`: the transparent depth, as intersect_shadow's
- * loop ends), occludes it; past any other it goes on from there (its origin's t and
- * fromSurface moved to the hit), counted in *walking. */
-__kernel void treelet_shadow_walk_step(uint count, uint last, __global const RayHit* hits,
+/* Layer `layer` of the walk (the first 0), after the closest-hit trace of the rays still
+ * walking: a ray that met nothing reaches its light with what got through; an opaque
+ * surface, or a transparent one at the ray's last layer (as intersect_shadow's loop ends,
+ * at the transparent depth `max_depth` counted from the layers the ray passed before:
+ * RT_TRANSPARENT_DEPTH), occludes it; past any other it goes on from there (its origin's
+ * t and fromSurface moved to the hit), counted in *walking. With RT_SHADER_SHADOWS, a
+ * surface whose shader says what gets through takes the ray from the walk as
+ * intersect_shadow does: handed to the pool (ray.h RT_SHADOW_HANDOFF) from this layer,
+ * with its state, origin's t and weight so far. */
+__kernel void treelet_shadow_walk_step(uint count, uint layer, uint max_depth,
+                                       __global const RayHit* hits,
                                        __global float4* walk_origin,
                                        __global RayState* walk_state,
                                        __global rt_weight* through, __global rt_weight* weight,
@@ -188,6 +193,13 @@ __kernel void treelet_shadow_walk_step(uint count, uint last, __global const Ray
                                        __global const float* material_channels,
                                        __global const Quadric* quadrics,
                                        __global uint* walking,
+                                       /* RT_SHADER_SHADOWS only: the shadow rays' own
+                                        * origins and states, the shaded rays' samples
+                                        * (shadow ray i: i / light_count), their rays in
+                                        * flight */
+                                       __global float4* origin, __global RayState* state,
+                                       __global const uint* ray_sample, uint light_count,
+                                       __global uint* slot_rays,
                                        __global uint* active_counter) {
     uint i = get_global_id(0);
     int active = i < count && walk_state[i].alive;
@@ -195,12 +207,38 @@ __kernel void treelet_shadow_walk_step(uint count, uint last, __global const Ray
     if (!active) return;
     const RayHit h = hits[i];
     rt_weight th = through[i];
+    const uint depth = RT_TRANSPARENT_DEPTH(walk_state[i]) + layer;
     int ends = 1, occluded = 0;
     if (h.prim != RT_NO_HIT) {
+        const uint mat = rt_shadow_material(h.prim, RT_NO_HIT, attrs, quadrics);
+#ifdef RT_SHADER_SHADOWS
+        if ((materials[mat].flags & RT_MATERIAL_SHADOW_MASK) == RT_MATERIAL_SHADER_SHADOW) {
+            rsl_color w = rt_weight_color(weight[i] * th);
+            uint carries = 0u;
+#if defined(RT_RAY_AOVS) && defined(RD_AOV_CHANNELS)
+            if (RSL_CW(w) != 0.0f) {
+                float parts[RT_SHADER_AOVS];
+                __global float* at = shadow_aov + (size_t)i * RT_SHADER_AOVS;
+                for (int c = 0; c < RT_SHADER_AOVS; ++c) parts[c] = at[c];
+                if (rt_aov_composite(parts, parts, rt_weight_color(th))) carries = RT_CARRIES_AOVS;
+                for (int c = 0; c < RT_SHADER_AOVS; ++c) at[c] = parts[c];
+            }
+#endif
+            RSL_CW(w) = 0.0f;
+            weight[i] = rt_weight_of(w);
+            origin[i].w = walk_origin[i].w;
+            const uint sample = ray_sample[i / light_count];
+            RayState hs = {RT_SHADOW_HANDOFF, depth * RT_ONE_TRANSPARENT | carries,
+                           walk_state[i].from_prim, as_float(sample)};
+            state[i] = hs;
+            atomic_inc(&slot_rays[sample]);
+            walk_state[i].alive = 0u;
+            return;
+        }
+#endif
         float most;
-        th *= rt_transmittance(rt_shadow_material(h.prim, RT_NO_HIT, attrs, quadrics),
-                               materials, material_channels, &most);
-        occluded = !(most > 0.0f) || last;
+        th *= rt_transmittance(mat, materials, material_channels, &most);
+        occluded = !(most > 0.0f) || depth >= max_depth;
         ends = occluded;
     }
     if (ends) {

@@ -305,8 +305,8 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     }
     const TraceScene traceScene{ds.quadrics,      ds.csg,    ds.triangles, ds.quadricMotion,
                                 ds.trianglesEnd, rp.sample, rp.sampleTime};
-    const ShadowSurfaces shadowSurfaces{ds.attrs, ds.materials, ds.materialChannels,
-                                        rp.shAov, f.maxTransparentDepth};
+    const ShadowSurfaces shadowSurfaces{ds.attrs,  ds.materials,          ds.materialChannels,
+                                        rp.shAov,  f.maxTransparentDepth, rp.slotRays};
     // The lists of points to shade again once the tiles they missed are there.
     TextureReshade reshade(m_ctx, textures, pool, shaderCount, f.textures);
     const size_t npix = size_t(cam.width) * size_t(cam.height);

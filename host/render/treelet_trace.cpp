@@ -62,9 +62,6 @@ void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
     if (f.instances || f.procedurals)
         stats.why = "the scene has instances or deferred archives (the treelet cut does not "
                     "cover their trees): resident traversal";
-    else if (f.shaderShadows)
-        stats.why = "shadows through transmission shaders leave the treelet walk for the "
-                    "pool: resident traversal";
     else if (ext.find("cl_khr_int64_base_atomics") == std::string::npos)
         stats.why = "the device lacks cl_khr_int64_base_atomics: resident traversal";
     if (!stats.why.empty()) return;
@@ -346,11 +343,11 @@ void TreeletTracer::closest(cl_uint n, const DeviceBuffer<rt_float4>& origin,
     m->closest(m->closestRoot, m->closestPairs, n, origin, direction, state, hits, sc, 1);
 }
 
-void TreeletTracer::shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
+void TreeletTracer::shadow(cl_uint n, DeviceBuffer<rt_float4>& origin,
                            const DeviceBuffer<rt_float4>& direction,
-                           const DeviceBuffer<RayState>& state,
-                           DeviceBuffer<float>& weight, const TraceScene& sc,
-                           cl_uint lights, const ShadowSurfaces* surfaces) {
+                           DeviceBuffer<RayState>& state, DeviceBuffer<float>& weight,
+                           const TraceScene& sc, cl_uint lights,
+                           const ShadowSurfaces* surfaces) {
     Impl& s = *m;
     lights = std::max<cl_uint>(lights, 1);
     if (surfaces) {
@@ -370,10 +367,11 @@ void TreeletTracer::shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
             s.closest(w.root, w.pairs, n, w.origin, direction, w.state, w.hits, sc,
                       lights);
             w.walking.fillZero();
-            w.step.launch(n, n, cl_uint(layer == surfaces->maxTransparentDepth), w.hits,
+            w.step.launch(n, n, cl_uint(layer), cl_uint(surfaces->maxTransparentDepth), w.hits,
                           w.origin, w.state, w.through, weight, surfaces->shadowAov,
                           surfaces->attrs, surfaces->materials,
-                          surfaces->materialChannels, sc.quadrics, w.walking);
+                          surfaces->materialChannels, sc.quadrics, w.walking, origin, state,
+                          sc.raySample, lights, surfaces->slotRays);
             if (w.walking.download()[0] == 0) break;
         }
         return;

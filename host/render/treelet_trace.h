@@ -60,6 +60,8 @@ struct ShadowSurfaces {
     const DeviceBuffer<float>& materialChannels;
     DeviceBuffer<float>& shadowAov;  // RT_SHADER_AOVS: the parts each shadow ray carries
     int maxTransparentDepth;         // layers after the first
+    // RT_SHADER_SHADOWS: each sample's rays in flight (a ray handed to the pool counts)
+    DeviceBuffer<uint32_t>& slotRays;
 };
 
 // Decides whether the scene traces through treelets with this budget (0: no) and sets
@@ -86,11 +88,12 @@ public:
                  DeviceBuffer<RayHit>& hits, const TraceScene& scene);
     // intersect_shadow's work: weight[i] zeroed for the occluded ones (their states left
     // as they were), or dimmed by the surfaces passed when `surfaces` is given; `lights`
-    // shadow rays per shaded ray (for their time).
-    void shadow(cl_uint n, const DeviceBuffer<rt_float4>& origin,
-                const DeviceBuffer<rt_float4>& direction,
-                const DeviceBuffer<RayState>& state, DeviceBuffer<float>& weight,
-                const TraceScene& scene, cl_uint lights,
+    // shadow rays per shaded ray (for their time). With RT_SHADER_SHADOWS a ray that meets
+    // a surface whose shader says what gets through is handed to the pool there, as
+    // intersect_shadow hands it (its state, origin's t and weight rewritten).
+    void shadow(cl_uint n, DeviceBuffer<rt_float4>& origin,
+                const DeviceBuffer<rt_float4>& direction, DeviceBuffer<RayState>& state,
+                DeviceBuffer<float>& weight, const TraceScene& scene, cl_uint lights,
                 const ShadowSurfaces* surfaces = nullptr);
 
     // Rays traced so far (the first rounds' active counters, read without resetting), and

@@ -119,13 +119,37 @@ TEST(ShaderOpacity, ShadowsTakeTheShadersOi) {
                                            std::fabs(s.at(x, y).b - r.at(x, y).b)));
     EXPECT_LT(worst, 1e-6);
 
-    // A treelet budget gives way to the resident traversal, which hands rays over.
-    rd::RenderSettings treelets;
-    treelets.treeletBytes = 4096;
-    Rendered t = renderRib(world, treelets);
-    EXPECT_FALSE(t.stats.features.treelets);
-    EXPECT_NE(t.stats.treelets.why.find("transmission shaders"), std::string::npos);
-    EXPECT_NEAR(t.mean(0, 7, 6, 9, 10), through[0], 1e-5);
+    // Through treelets, whose shadow walk hands the rays over as intersect_shadow does
+    // (session 36 gave way to the resident traversal): the same image, also with a pool of
+    // 64 rays. (80 more squares of the shader, out of sight above y = 3, for a tree that
+    // a budget of 1024 bytes cuts into several treelets.)
+    std::string more;
+    for (int k = 0; k < 80; ++k)
+        more += "AttributeBegin\nTranslate " + std::to_string(-4 + (k % 10)) + " " +
+                std::to_string(3 + k / 10) + " 0\nScale 0.3 0.3 1\n" +
+                square(0, 1, "Surface \"halfop\" \"edge\" 0\n"
+                             "Attribute \"visibility\" \"string transmission\" [\"shader\"]") +
+                "AttributeEnd\n";
+    const std::string busy = world.substr(0, world.rfind("WorldEnd")) + more + "WorldEnd\n";
+    const Rendered resident = renderRib(busy);
+    for (size_t pool : {size_t(0), size_t(64)}) {
+        rd::RenderSettings treelets;
+        treelets.treeletBytes = 1024;
+        treelets.poolCapacity = pool;
+        Rendered t = renderRib(busy, treelets);
+        EXPECT_TRUE(t.stats.features.treelets) << t.stats.treelets.why;
+        EXPECT_GT(t.stats.treelets.treelets, 3u);
+        double off = 0;
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 48; ++x)
+                for (int c = 0; c < 3; ++c)
+                    off = std::max(off, double(std::fabs((&t.at(x, y).r)[c] -
+                                                         (&resident.at(x, y).r)[c])));
+        EXPECT_LT(off, 1e-6) << "pool " << pool;
+        std::printf("pool %zu: %zu treelets, largest difference %.2g\n", pool,
+                    t.stats.treelets.treelets, off);
+    }
+    EXPECT_NEAR(resident.mean(0, 7, 6, 9, 10), through[0], 1e-5);
 }
 
 // Without a shader's transmission asked for, the same scene's shadows are the squares' Os
