@@ -190,29 +190,8 @@ __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
         const uint mat = rt_shadow_material(h.prim, inst, attrs, quadrics);
 #ifdef RT_SHADER_SHADOWS
         if ((materials[mat].flags & RT_MATERIAL_SHADOW_MASK) == RT_MATERIAL_SHADER_SHADOW) {
-            /* its shader says what gets through: from here the ray goes on in the pool,
-             * to be shaded there (ray.h RT_ALIVE_SHADOW; the compaction moves it, its
-             * sample counts it in flight), with its AOV parts as far as here */
-            rsl_color w = rt_weight_color(weight[i] * through);
-            uint carries = 0u;
-#if defined(RT_RAY_AOVS) && defined(RD_AOV_CHANNELS)
-            if (RSL_CW(w) != 0.0f) { /* (the alpha lane marks the parts: shade_rsl.cl) */
-                float parts[RT_SHADER_AOVS];
-                __global float* at = shadow_aov + (size_t)i * RT_SHADER_AOVS;
-                for (int c = 0; c < RT_SHADER_AOVS; ++c) parts[c] = at[c];
-                if (rt_aov_composite(parts, parts, rt_weight_color(through)))
-                    carries = RT_CARRIES_AOVS;
-                for (int c = 0; c < RT_SHADER_AOVS; ++c) at[c] = parts[c];
-            }
-#endif
-            RSL_CW(w) = 0.0f;
-            weight[i] = rt_weight_of(w);
-            origin[i].w = tmin;
-            const uint sample = ray_sample[i / light_count];
-            RayState hs = {RT_SHADOW_HANDOFF, layer * RT_ONE_TRANSPARENT | carries, skip,
-                           as_float(sample)};
-            state[i] = hs;
-            atomic_inc(&slot_rays[sample]);
+            rt_hand_shadow_over(i, through, tmin, skip, layer, weight, origin, state,
+                                shadow_aov, ray_sample, light_count, slot_rays);
             return;
         }
 #endif

@@ -213,25 +213,9 @@ __kernel void treelet_shadow_walk_step(uint count, uint layer, uint max_depth,
         const uint mat = rt_shadow_material(h.prim, RT_NO_HIT, attrs, quadrics);
 #ifdef RT_SHADER_SHADOWS
         if ((materials[mat].flags & RT_MATERIAL_SHADOW_MASK) == RT_MATERIAL_SHADER_SHADOW) {
-            rsl_color w = rt_weight_color(weight[i] * th);
-            uint carries = 0u;
-#if defined(RT_RAY_AOVS) && defined(RD_AOV_CHANNELS)
-            if (RSL_CW(w) != 0.0f) {
-                float parts[RT_SHADER_AOVS];
-                __global float* at = shadow_aov + (size_t)i * RT_SHADER_AOVS;
-                for (int c = 0; c < RT_SHADER_AOVS; ++c) parts[c] = at[c];
-                if (rt_aov_composite(parts, parts, rt_weight_color(th))) carries = RT_CARRIES_AOVS;
-                for (int c = 0; c < RT_SHADER_AOVS; ++c) at[c] = parts[c];
-            }
-#endif
-            RSL_CW(w) = 0.0f;
-            weight[i] = rt_weight_of(w);
-            origin[i].w = walk_origin[i].w;
-            const uint sample = ray_sample[i / light_count];
-            RayState hs = {RT_SHADOW_HANDOFF, depth * RT_ONE_TRANSPARENT | carries,
-                           walk_state[i].from_prim, as_float(sample)};
-            state[i] = hs;
-            atomic_inc(&slot_rays[sample]);
+            rt_hand_shadow_over(i, th, walk_origin[i].w, walk_state[i].from_prim, depth,
+                                weight, origin, state, shadow_aov, ray_sample, light_count,
+                                slot_rays);
             walk_state[i].alive = 0u;
             return;
         }
