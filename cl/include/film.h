@@ -9,6 +9,12 @@ typedef struct SampleTotal {
     rt_float4 value;
 } SampleTotal;
 
+/* The film's sums (the brightness floor's, the error estimate's) are taken a batch of
+ * this many pixels at a time in pixel order, and the batches added in order, on the host
+ * and on the device alike (film_error_batch.h, pixel_tests.cl, film_sums.cl): the same
+ * bits wherever they are taken. */
+#define RT_FILM_BATCH 64
+
 typedef struct PixelAccum {
     rt_float4 sum;    /* rgb + alpha */
     rt_float4 sum_sq; /* per channel squares, for the variance */

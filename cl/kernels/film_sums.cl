@@ -11,8 +11,6 @@
 #pragma OPENCL FP_CONTRACT OFF
 #include "film_stats.clh"
 
-#define RT_FILM_BATCH 64 /* kPixelBatch (film_error_batch.h) */
-
 /* Batch b: sums[3b ..] the squared standard errors (pixels of two samples or more), the
  * means (pixels with samples) and the replicate variances (pixels with samples of both
  * replicates); counts[4b ..] those three numbers of pixels and the unsampled pixels inside

@@ -15,9 +15,6 @@
 #pragma OPENCL FP_CONTRACT OFF
 #include "film_stats.clh"
 
-/* Pixels whose means the floor's sum adds up a group at a time (kMeanGroup). */
-#define RT_MEAN_GROUP 64
-
 /* Each pixel's pixelMean (film_error.h), -1 without samples, as the planner keeps it; what
  * its test starts from: -inf at the most samples (never tested again), NaN under the
  * least (sampled without a test), else its pixelStdError (0 under two samples); and the
@@ -63,7 +60,7 @@ inline int rt_contrasts(float m, float mq, float contrast) {
     return (mq >= 0.0f) & (fabs(m - mq) > contrast * (0.1f < mid ? mid : 0.1f));
 }
 
-/* For group g of RT_MEAN_GROUP pixels (in pixel order): the sum of the means of its pixels
+/* For group g of RT_FILM_BATCH pixels (in pixel order): the sum of the means of its pixels
  * with samples, in order, and their number (the host adds the groups in order:
  * SamplePlanner::brightnessFloor); and each pixel's edge[p]: whether its mean contrasts
  * with one of its four neighbours' (a neighbour off the image is the pixel itself: no
@@ -72,10 +69,10 @@ __kernel void film_mean_sums(uint width, uint height, __global const float* mean
                              __global double* group_sum, __global double* group_count,
                              __global uchar* edge, float contrast, __global uint* active) {
     const uint g = (uint)get_global_id(0), count = width * height;
-    const uint groups = (count + RT_MEAN_GROUP - 1) / RT_MEAN_GROUP;
+    const uint groups = (count + RT_FILM_BATCH - 1) / RT_FILM_BATCH;
     if (g < groups) {
         double s = 0.0, c = 0.0;
-        const uint first = g * RT_MEAN_GROUP, end = min(count, first + RT_MEAN_GROUP);
+        const uint first = g * RT_FILM_BATCH, end = min(count, first + RT_FILM_BATCH);
         uint y = first / width, x = first - y * width;
         for (uint p = first; p < end; ++p) {
             const float m = mean_of[p];

@@ -8,7 +8,7 @@
 
 namespace rd {
 
-constexpr size_t kPixelBatch = 64;
+constexpr size_t kPixelBatch = RT_FILM_BATCH;
 
 // A batch's pixels' film sums laid out by channel (n: the sample count, s: the sums, q:
 // the sums of squares, mean: pixelMean), as the film holds them: the vector loops widen

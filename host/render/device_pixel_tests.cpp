@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "film/film_error_batch.h"
+
 namespace rd {
 
 PixelTestMemory::PixelTestMemory(const SamplePlanner& planner, int width, int height)
@@ -35,7 +37,7 @@ DevicePixelTests::DevicePixelTests(const ClContext& ctx, cl_program program, Pro
       m_edge(ctx, m_mem.edge),
       m_more(ctx, m_mem.more),
       m_request(ctx, m_mem.request),
-      m_groupSums(ctx, (size_t(width) * size_t(height) + kMeanGroup - 1) / kMeanGroup),
+      m_groupSums(ctx, (size_t(width) * size_t(height) + kPixelBatch - 1) / kPixelBatch),
       m_groupCounts(ctx, m_groupSums.size()),
       m_busy(ctx, size_t(width) * size_t(height), CL_MEM_READ_ONLY) {
     m_busy.fillZero();  // (read whether or not a test has busy pixels)

@@ -9,29 +9,23 @@ std::deque<PlannedJob> planJobs(const std::vector<PixelRequest>& pass, uint32_t 
                                 size_t pixelCount, bool eachPixelOnce) {
     std::deque<PlannedJob> jobs;
     maxJob = std::max(1u, maxJob);
-    if (eachPixelOnce) {
+    std::vector<uint8_t> jobsOfPixel(eachPixelOnce ? 0 : pixelCount, 0);  // saturating at 2
+    if (!eachPixelOnce)
         for (const PixelRequest& r : pass)
-            for (uint32_t done = 0; done < r.count;) {
-                const uint32_t take = std::min(maxJob, r.count - done);
-                jobs.push_back({r.pixel, r.first + done, take, false,
-                                r.pixel < pixelCount && r.count <= maxJob});
-                done += take;
+            if (r.pixel < pixelCount) {
+                const uint32_t n = (r.count + maxJob - 1) / maxJob;
+                jobsOfPixel[r.pixel] = uint8_t(std::min<uint32_t>(2, jobsOfPixel[r.pixel] + n));
             }
-        return jobs;
-    }
-    std::vector<uint8_t> jobsOfPixel(pixelCount, 0);  // saturating at 2
-    for (const PixelRequest& r : pass)
-        if (r.pixel < pixelCount) {
-            const uint32_t n = (r.count + maxJob - 1) / maxJob;
-            jobsOfPixel[r.pixel] = uint8_t(std::min<uint32_t>(2, jobsOfPixel[r.pixel] + n));
-        }
-    for (const PixelRequest& r : pass)
+    for (const PixelRequest& r : pass) {
+        // (each pixel once: a request of at most maxJob samples is its pixel's one job)
+        const bool alone = r.pixel < pixelCount &&
+                           (eachPixelOnce ? r.count <= maxJob : jobsOfPixel[r.pixel] == 1);
         for (uint32_t done = 0; done < r.count;) {
-            uint32_t take = std::min(maxJob, r.count - done);
-            const bool alone = r.pixel < pixelCount && jobsOfPixel[r.pixel] == 1;
+            const uint32_t take = std::min(maxJob, r.count - done);
             jobs.push_back({r.pixel, r.first + done, take, false, alone});
             done += take;
         }
+    }
     return jobs;
 }
 

@@ -300,8 +300,8 @@ float SamplePlanner::brightnessFloor(const FilmPixels& film) {
     auto account = [&](uint32_t pixel, float sign) {
         if (m_meanOf[pixel] >= 0.0f) m_meanSum += sign * double(m_meanOf[pixel]), m_meanCount += sign;
     };
-    if (!m_tested) {  // after the first pass: every pixel, a group of kMeanGroup at a time
-        const size_t groups = (film.size() + kMeanGroup - 1) / kMeanGroup;
+    if (!m_tested) {  // after the first pass: every pixel, a group of kPixelBatch at a time
+        const size_t groups = (film.size() + kPixelBatch - 1) / kPixelBatch;
         std::vector<double> sums(groups), counts(groups);
         if (m_tester) {
             m_tester->means(m_meanOf.data(), sums.data(), counts.data());
@@ -310,8 +310,8 @@ float SamplePlanner::brightnessFloor(const FilmPixels& film) {
             runInParts(groups, threadsFor(film.size()), [&](size_t begin, size_t end, size_t) {
                 for (size_t g = begin; g < end; ++g) {
                     double sum = 0, count = 0;
-                    for (size_t pixel = g * kMeanGroup;
-                         pixel < std::min(film.size(), (g + 1) * kMeanGroup); ++pixel) {
+                    for (size_t pixel = g * kPixelBatch;
+                         pixel < std::min(film.size(), (g + 1) * kPixelBatch); ++pixel) {
                         const float m = film[pixel].count ? pixelMean(film[pixel]) : -1.0f;
                         m_meanOf[pixel] = m;
                         if (m >= 0.0f) sum += double(m), count += 1.0;

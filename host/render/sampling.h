@@ -52,10 +52,6 @@ struct PixelRequest {
     uint32_t pixel, first, count;
 };
 
-// Pixels whose means the brightness floor's sum adds up a group at a time (in pixel
-// order), the groups then added in order: the same sum wherever the groups are taken.
-constexpr size_t kMeanGroup = 64;
-
 // The test of every pixel, done elsewhere: on the device (device_pixel_tests.h,
 // cl/kernels/pixel_tests.cl), where the first adaptive pass's test of a 512x512 frame's
 // pixels had left the device idle for 3.5 ms of SPD tetra's 110 ms. Its answers are the
@@ -63,9 +59,9 @@ constexpr size_t kMeanGroup = 64;
 class PixelTester {
 public:
     virtual ~PixelTester() = default;
-    // Every pixel's pixelMean into meanOf (-1 without samples), and each group of
-    // kMeanGroup pixels' sum of the means >= 0 and their number (groupSums, groupCounts:
-    // one each a group), summed in double in pixel order.
+    // Every pixel's pixelMean into meanOf (-1 without samples), and each batch of
+    // RT_FILM_BATCH pixels' sum of the means >= 0 and their number (groupSums,
+    // groupCounts: one each a batch), summed in double in pixel order.
     virtual void means(float* meanOf, double* groupSums, double* groupCounts) = 0;
     // The test of every pixel of the planner's tile order, the film as the last call to
     // means() found it when `meansTaken` (else as it is now): for its k-th pixel,
