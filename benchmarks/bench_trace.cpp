@@ -294,6 +294,10 @@ int benchMain(int argc, char** argv) {
                  "the four-wide one)");
     std::string wide8Options;
     app.add_option("--wide8-options", wide8Options, "build options of the eight-wide kernels");
+    bool wide16 = false;
+    app.add_flag("--wide16", wide16,
+                 "also time the sixteen-wide BVH with the renderer's packets (float16 node "
+                 "tests: the renderer's tree on a device with AVX-512), a bvh16 line");
     app.add_option("--sah-block", sahBlock, "SAH block size (default: the renderer's)");
     app.add_option("--sah-bins", sahBins, "SAH bins per axis (default: the renderer's)");
     app.add_option("--sah-leaf", sahLeaf, "largest node always made a leaf (default: the renderer's)");
@@ -338,6 +342,11 @@ int benchMain(int argc, char** argv) {
     // The kernels as a scene whose shaders trace in sampled directions builds them
     // (RT_INCOHERENT_TRACE): the diffuse rays, bounces, walk their nodes' hit masks.
     const std::string base = "-cl-std=CL1.2 -DRT_INCOHERENT_TRACE ";
+    // --wide16 is the variant of the sixteen-wide tree with the eight-wide line's packets
+    const std::string wide16Variant =
+        std::string("-DRT_BVH16 ") + (noShadowPackets ? "" : "-DRT_SHADOW_PACKETS ") +
+        (noClosestPackets ? "" : "-DRT_CLOSEST_PACKETS ") + wide8Options;
+    if (wide16) variants.insert(variants.begin(), wide16Variant);
     std::vector<std::unique_ptr<Program>> programs;
     programs.push_back(std::make_unique<Program>(ctx, assembleClSource({"intersect.cl"}), base));
     for (const std::string& v : variants)
@@ -402,6 +411,21 @@ int benchMain(int argc, char** argv) {
         DeviceBuffer<Bvh8Node> nodes8(ctx, bvh8.nodes.size());
         DeviceBuffer<Triangle4> blocks8(ctx, bvh8.blocks.size());
         if (need8) nodes8.upload(bvh8.nodes), blocks8.upload(bvh8.blocks);
+        const bool need16 = std::any_of(variants.begin(), variants.end(), [](auto& v) {
+            return v.find("RT_BVH16") != std::string::npos;
+        });
+        const auto tCollapse16 = Clock::now();
+        Bvh16 bvh16 = need16 ? collapseToBvh16(bvh, mesh.tris) : Bvh16{};
+        const double collapse16Ms =
+            std::chrono::duration<double>(Clock::now() - tCollapse16).count() * 1e3;
+        DeviceBuffer<Bvh16Node> nodes16(ctx, std::max<size_t>(1, bvh16.nodes.size()));
+        DeviceBuffer<Triangle4> blocks16(ctx, std::max<size_t>(1, bvh16.blocks.size()));
+        if (need16) {
+            nodes16.upload(bvh16.nodes), blocks16.upload(bvh16.blocks);
+            std::printf("%s: %zu sixteen-wide nodes (%.0f%% of slots used), collapse %.0f ms\n",
+                        mesh.name.c_str(), bvh16.nodes.size(), 100 * usedSlots(bvh16),
+                        collapse16Ms);
+        }
         std::printf(
             "%s: SAH cost %.2f, %zu four-wide nodes (%.0f%% of slots used), %zu "
             "eight-wide nodes (%.0f%%), %zu blocks\n",
@@ -458,6 +482,9 @@ int benchMain(int argc, char** argv) {
             auto eightWide = [&](size_t p) {
                 return p > 0 && variants[p - 1].find("RT_BVH8") != std::string::npos;
             };
+            auto sixteenWide = [&](size_t p) {
+                return p > 0 && variants[p - 1].find("RT_BVH16") != std::string::npos;
+            };
             auto runDevice = [&](size_t p) {
                 auto run = [&](auto& nodeBuf, auto& blockBuf) {
                     Kernel& kc = *kcs[p];
@@ -483,6 +510,7 @@ int benchMain(int argc, char** argv) {
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
                 };
+                if (sixteenWide(p)) return run(nodes16, blocks16);
                 return eightWide(p) ? run(nodes8, blocks8) : run(nodes, blocks);
             };
             std::unique_ptr<Kernel> kc8, ks8;
@@ -574,10 +602,16 @@ int benchMain(int argc, char** argv) {
                             median(te) / median(t8), 100.0 * double(same8) / double(n),
                             median(tes) / median(t8), median(ter) / median(t8));
             }
-            for (size_t p = 1; p < programs.size(); ++p)
-                std::printf("  variant %-30s %10.2f Mrays/s, %.3f of default, %.3f of Embree\n",
-                            variants[p - 1].c_str(), n / median(tv[p]) * 1e-6,
-                            median(td) / median(tv[p]), median(te) / median(tv[p]));
+            for (size_t p = 1; p < programs.size(); ++p) {
+                const bool is16 = wide16 && p == 1;
+                const std::string label = is16 ? "bvh16" : "variant " + variants[p - 1];
+                std::printf("  %-38s %10.2f Mrays/s, %.3f of default, %.3f of Embree",
+                            label.c_str(), n / median(tv[p]) * 1e-6, median(td) / median(tv[p]),
+                            median(te) / median(tv[p]));
+                if (wide8) std::printf(", %.3f of bvh8", median(t8) / median(tv[p]));
+                std::printf("; %.3f of Embree stream, %.3f of Embree robust\n",
+                            median(tes) / median(tv[p]), median(ter) / median(tv[p]));
+            }
             std::fflush(stdout);
             // The treelet path on the same rays; "agree" is bit-for-bit agreement with the
             // resident kernels (hit, t, u, v; occlusion).

@@ -213,8 +213,9 @@ int main(int argc, char** argv) {
     size_t treeletBytes = 0, sceneMemory = 0;
     int bvhWidth = 0;
     app.add_option("--bvh-width", bvhWidth,
-                   "resident BVH node width, 4 or 8 (default: 8 on a CPU device, else 4)")
-        ->check(CLI::IsMember({4, 8}));
+                   "resident BVH node width, 4, 8 or 16 (default on a CPU device: 16 with "
+                   "AVX-512, else 8; 4 on other devices)")
+        ->check(CLI::IsMember({4, 8, 16}));
     bool noShadowPackets = false, noClosestPackets = false;
     app.add_flag("--no-shadow-packets", noShadowPackets,
                  "trace shadow rays one a work-item, not in packets of eight (for comparison)");

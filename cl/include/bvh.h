@@ -35,7 +35,18 @@ typedef struct Bvh8Node {
     int32_t count[8]; /* 0 interior, > 0 leaf block count, -1 unused */
 } Bvh8Node;
 
+/* Sixteen-wide node (RT_BVH16): the same for sixteen children, one float16 operation per
+ * plane (AVX-512 on a CPU device, where the renderer takes it: bench_trace 1.01-1.07x the
+ * eight-wide rate on every ray kind, benchmarks/README session 38). 512 bytes, eight
+ * cache lines. */
+typedef struct Bvh16Node {
+    float planes[96];
+    int32_t child[16];
+    int32_t count[16];
+} Bvh16Node;
+
 #ifndef __OPENCL_C_VERSION__
+RT_ASSERT_SIZE(Bvh16Node, 512);
 RT_ASSERT_SIZE(Bvh8Node, 256);
 RT_ASSERT_SIZE(BvhNode, 32);
 RT_ASSERT_SIZE(Bvh4Node, 128);

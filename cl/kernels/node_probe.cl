@@ -1,7 +1,7 @@
 /* node_probe.cl: the node step's helpers (cl/lib/node_test.clh) on given inputs, for
  * tests/host/node_step_test.cpp: the lane mask of every compare pattern, the lowest lane,
  * the distance order of lanes, and the box test of chosen rays against one node. Built
- * four-wide, or eight-wide with RT_BVH8. Not part of a render. */
+ * four-wide, eight-wide with RT_BVH8 or sixteen-wide with RT_BVH16. Not part of a render. */
 #include "node_test.clh"
 
 /* Pattern i (i < 2^W) sets lane k's compare result when bit k of i is set. Out: the

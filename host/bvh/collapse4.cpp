@@ -1,4 +1,4 @@
-// collapse4.cpp: binary to four- or eight-wide BVH by the SAH-optimal collapse, leaves
+// collapse4.cpp: binary to four-, eight- or sixteen-wide BVH by the SAH-optimal collapse, leaves
 // packed into blocks of four triangles or four objects.
 #include "collapse4.h"
 
@@ -105,7 +105,8 @@ namespace {
 
 // The collapse's costs, relative to one block's intersection. A wide node's box test
 // costs 1.5 blocks: bench_trace --wide8, alternated runs, 1.0 / 1.5 / 2.0 within the
-// noise of one another, all above the greedy collapse. A leaf made of a binary subtree
+// noise of one another, all above the greedy collapse; sixteen-wide, 1.0 / 1.5 / 2.0 /
+// 3.0 likewise (diffuse rays). A leaf made of a binary subtree
 // holds at most two blocks (three: no faster); a binary leaf stays whole, however many it
 // has.
 constexpr double kNodeCost = 1.5, kBlockCost = 1.0;
@@ -261,6 +262,11 @@ Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
 Bvh8 collapseToBvh8(const Bvh& bvh, const std::vector<Triangle>& tris,
                     const BvhPrimitives* prims) {
     return collapseWide<Bvh8Node, 8>(bvh, tris, prims);
+}
+
+Bvh16 collapseToBvh16(const Bvh& bvh, const std::vector<Triangle>& tris,
+                      const BvhPrimitives* prims) {
+    return collapseWide<Bvh16Node, 16>(bvh, tris, prims);
 }
 
 }  // namespace rd

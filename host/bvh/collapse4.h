@@ -1,5 +1,5 @@
 // collapse4.h: turns the binary SAH BVH into the four-wide layout the kernels traverse
-// (cl/include/bvh.h, Bvh4Node), or the eight-wide one (Bvh8Node). Which binary nodes
+// (cl/include/bvh.h, Bvh4Node), or the eight- or sixteen-wide one (Bvh8Node, Bvh16Node). Which binary nodes
 // become wide nodes, which are opened into their parent's slots and which small subtrees
 // become one leaf is chosen for the least SAH cost of the wide tree (Ylitie et al. 2017);
 // primitive order is the binary tree's, and a leaf's primitives are a binary subtree's.
@@ -22,6 +22,7 @@ struct BvhWide {
 };
 using Bvh4 = BvhWide<Bvh4Node>;
 using Bvh8 = BvhWide<Bvh8Node>;
+using Bvh16 = BvhWide<Bvh16Node>;
 
 // What the binary tree was built over when it is not just `tris`: ids[i] is primitive
 // i's triangle index, or RT_OBJECT_BIT | its quadric index (cl/include/quadric.h), and
@@ -37,6 +38,9 @@ Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
 // The same collapse to eight children per node (Bvh8Node).
 Bvh8 collapseToBvh8(const Bvh& bvh, const std::vector<Triangle>& tris,
                     const BvhPrimitives* prims = nullptr);
+// And to sixteen (Bvh16Node).
+Bvh16 collapseToBvh16(const Bvh& bvh, const std::vector<Triangle>& tris,
+                      const BvhPrimitives* prims = nullptr);
 
 // The share of a wide tree's child slots in use (a node of two children in eight uses a
 // quarter of what its load and box test cost).

@@ -19,6 +19,7 @@ struct DeviceInfo {
     cl_ulong globalMemBytes = 0, maxAllocBytes = 0;
     size_t maxWorkGroupSize = 0;
     bool fp64 = false;  // double precision (cl_khr_fp64, or OpenCL 1.2's optional doubles)
+    cl_uint floatLanes = 0;  // CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT (16: AVX-512 on PoCL)
     bool isPocl() const;
     // Mesa's rusticl (22.3) rejects the unmap of a mapping not made yet (CL_INVALID_VALUE),
     // so a buffer's sync to the host maps it blocking there (Buffer::syncToHost).

@@ -146,6 +146,7 @@ std::vector<std::string> Features::names() const {
     if (sobol) n.push_back("sobol_sampler");
     if (treelets) n.push_back("treelets");
     if (bvhWidth == 8) n.push_back("bvh8");
+    if (bvhWidth == 16) n.push_back("bvh16");
     if (shadowPackets) n.push_back("shadow_packets");
     if (closestPackets) n.push_back("closest_packets");
     if (depthOfField) n.push_back("depth_of_field");
@@ -169,18 +170,24 @@ size_t Features::shadowItems(size_t rays, size_t lights) const {
 size_t Features::closestItems(size_t rays) const { return items(rays, closestPackets); }
 
 void chooseTraversal(Features& f, int bvhWidth, bool shadowPackets, bool closestPackets,
-                     bool cpuDevice) {
-    // Node width by measurement (bench_trace --wide8): eight on a CPU device, where PoCL
-    // tests a node's boxes with AVX; four elsewhere, where no figures say otherwise. The
-    // treelets are cut from the same tree (eight-wide treelets: 1.08-1.37x the four-wide
-    // ones' rate at budgets of 4 KiB to the whole tree).
-    f.bvhWidth = bvhWidth == 4 || bvhWidth == 8 ? bvhWidth : cpuDevice ? 8 : 4;
+                     bool cpuDevice, unsigned floatLanes) {
+    // Node width by measurement (bench_trace --wide8 --wide16): on a CPU device eight,
+    // where PoCL tests a node's boxes with AVX, and sixteen where its vectors are sixteen
+    // floats wide (AVX-512: 1.01-1.07x the eight-wide rate on every ray kind, session 38);
+    // four elsewhere, where no figures say otherwise. The treelets are cut from the same
+    // tree (eight-wide treelets: 1.08-1.37x the four-wide ones' rate at budgets of 4 KiB to
+    // the whole tree), four or eight wide.
+    f.bvhWidth = bvhWidth == 4 || bvhWidth == 8 || bvhWidth == 16 ? bvhWidth
+                 : !cpuDevice                                     ? 4
+                 : floatLanes >= 16                               ? 16
+                                                                  : 8;
+    if (f.treelets && f.bvhWidth == 16) f.bvhWidth = 8;
     // Packets of eight rays a work-item in triangle scenes (bench_trace: primary rays
     // 1.3-1.4x, shadow rays 1.3-1.4x the one-ray kernels' rate; benchmarks/packets.sh:
     // intersect_closest 0.54-0.91 of its time, intersect_shadow 0.75 on the bunny, 0.92-1.06
     // on the small SPD scenes). With quadrics, tested a lane at a time, shadow packets cost
     // balls 1.1-1.2x: none there.
-    const bool packetsFit = f.bvhWidth == 8 && !f.treelets && !f.quadrics && !f.instances &&
+    const bool packetsFit = f.bvhWidth >= 8 && !f.treelets && !f.quadrics && !f.instances &&
                             !f.motion && !f.procedurals;
     f.shadowPackets =
         shadowPackets && f.shadowRays && packetsFit && !f.transparentShadows;
@@ -250,6 +257,7 @@ std::string buildOptions(const Features& f) {
     if (f.pointParams > 0) o += " -DRSL_MAX_PARAM_PRIMVARS=" + std::to_string(f.pointParams);
     if (f.treelets) o += f.int64Min ? " -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN" : " -DRT_HAS_TREELETS";
     if (f.bvhWidth == 8) o += " -DRT_BVH8";
+    if (f.bvhWidth == 16) o += " -DRT_BVH16";
     if (f.shadowPackets) o += " -DRT_SHADOW_PACKETS";
     if (f.closestPackets) o += " -DRT_CLOSEST_PACKETS";
     if (f.sampledTrace) o += " -DRT_INCOHERENT_TRACE";

@@ -55,9 +55,10 @@ struct Features {
     float pixelSpread = 0.0f;   // footprint growth per unit of ray length (perspective)
     bool treelets = false;      // treelet-streamed traversal (render/treelet_trace.h)
     bool int64Min = false;      // the device has 64-bit atomic min (its closest hits)
-    int bvhWidth = 4;           // the resident BVH's node width: 4, or 8 (RT_BVH8)
+    int bvhWidth = 4;           // the resident BVH's node width: 4, 8 (RT_BVH8) or 16 (RT_BVH16)
     // intersect_shadow traces packets of RT_PACKET_RAYS rays a work-item
-    // (RT_SHADOW_PACKETS): eight-wide resident BVH, no instances, motion or procedurals.
+    // (RT_SHADOW_PACKETS): eight- or sixteen-wide resident BVH, no instances, motion or
+    // procedurals.
     bool shadowPackets = false;
     // intersect_closest takes RT_PACKET_RAYS consecutive rays a work-item, traced as
     // a packet where they are coherent (RT_CLOSEST_PACKETS); the same conditions.
@@ -108,10 +109,11 @@ struct Features {
 };
 
 Features analyse(const Scene& scene, const ShadingSetup& shading);
-// The traversal the device gets: node width (bvhWidth 4 or 8 as asked, else by device)
-// and packets (when asked and the scene allows them). After f.treelets is settled.
+// The traversal the device gets: node width (bvhWidth 4, 8 or 16 as asked, else by
+// device: `floatLanes`, its native float vector width) and packets (when asked and the
+// scene allows them). After f.treelets is settled.
 void chooseTraversal(Features& f, int bvhWidth, bool shadowPackets, bool closestPackets,
-                     bool cpuDevice);
+                     bool cpuDevice, unsigned floatLanes);
 
 std::string buildOptions(const Features& f);
 

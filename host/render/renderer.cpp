@@ -144,7 +144,8 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
         diag.warning(rib::SourceLoc{scene.sourceFile, 0},
                      "treelet budget not used: " + st.treelets.why);
     chooseTraversal(f, m_settings.bvhWidth, m_settings.shadowPackets,
-                    m_settings.closestPackets, m_ctx.info().type & CL_DEVICE_TYPE_CPU);
+                    m_settings.closestPackets, m_ctx.info().type & CL_DEVICE_TYPE_CPU,
+                    m_ctx.info().floatLanes);
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
@@ -257,13 +258,11 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
         else if (q.kind == RT_Q_INSTANCE) ++st.instances;
         else if (q.kind != RT_Q_MOVING_TRIANGLE) ++st.quadrics;
     }
-    const size_t nodeBytes = sceneBvh.width == 8 ? sceneBvh.bvh8.nodes.size() * sizeof(Bvh8Node)
-                                                 : bvh4.nodes.size() * sizeof(Bvh4Node);
-    st.sceneBytes = nodeBytes + deviceBlocks(sceneBvh).size() * sizeof(Triangle4) +
+    st.sceneBytes = nodeBytes(sceneBvh) + deviceBlocks(sceneBvh).size() * sizeof(Triangle4) +
                     scene.triangles.size() * (sizeof(Triangle) + sizeof(TriangleAttr)) +
                     scene.normals.size() * sizeof(rt_float4) +
                     scene.quadrics.size() * sizeof(Quadric) + scene.csg.size() * 4;
-    st.bvhNodes = sceneBvh.width == 8 ? sceneBvh.bvh8.nodes.size() : bvh4.nodes.size();
+    st.bvhNodes = nodeCount(sceneBvh);
     st.droppedPrims = sceneBvh.droppedPrims;
     // The device's arrays and the ray pool while the programs build (a warm build of the
     // two is 60-70 ms on PoCL, most of it its preprocessor)

@@ -21,7 +21,7 @@
 namespace rd {
 
 struct RenderSettings {
-    int bvhWidth = 0;         // resident BVH nodes: 4 or 8 wide; 0: 8 on a CPU device, else 4
+    int bvhWidth = 0;         // resident BVH nodes: 4, 8 or 16 wide; 0: by device (features.h)
     bool shadowPackets = true;   // shadow rays in packets where the scene allows (features.h)
     bool closestPackets = true;  // coherent closest-hit rays in packets, likewise
     size_t poolCapacity = 0;  // rays per round; 0: 16k per compute unit within a memory budget
@@ -106,7 +106,7 @@ struct RenderStats {
     uint64_t spilledRays = 0;   // spawned rays that waited on the spill stack
     uint64_t reissuedSamples = 0;  // samples aborted (a ray dropped) and traced again
     uint64_t retiredSamples = 0;   // samples that reached the film
-    int bvhWidth = 0;         // resident BVH nodes: 4 or 8 wide; 0: 8 on a CPU device, else 4
+    int bvhWidth = 0;         // resident BVH nodes: 4, 8 or 16 wide; 0: by device (features.h)
     size_t poolCapacity = 0;
     size_t poolBytesPerRay = 0;  // device bytes a ray of capacity takes (RayPool::bytesPerRay)
     double poolFill = 0;    // mean rays per round / pool capacity

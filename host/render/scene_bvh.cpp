@@ -62,32 +62,60 @@ BvhBuildSettings sceneBvhSettings() {
 
 SceneBvh buildSceneBvh(const Scene& scene, int width) {
     SceneBvh out;
-    out.width = width == 8 ? 8 : 4;
+    out.width = width == 8 || width == 16 ? width : 4;
     BvhPrimitives top = bvhPrimitives(scene);
     Bvh bvh = buildBvh(top.bounds, sceneBvhSettings());
     out.droppedPrims = bvh.droppedPrims;
     std::vector<int> roots;
-    if (out.width == 8)
+    if (out.width == 16)
+        out.bvh16 = buildWide<Bvh16Node, 16>(scene, top, bvh, collapseToBvh16, roots);
+    else if (out.width == 8)
         out.bvh8 = buildWide<Bvh8Node, 8>(scene, top, bvh, collapseToBvh8, roots);
     else
         out.bvh4 = buildWide<Bvh4Node, 4>(scene, top, bvh, collapseToBvh4, roots);
     out.objects = scene.quadrics;
     for (Quadric& q : out.objects)
         if (q.kind == RT_Q_INSTANCE) q.first_member = uint32_t(roots.at(q.first_member));
-    appendQuadricBlocks(out.width == 8 ? out.bvh8.blocks : out.bvh4.blocks, out.objects);
+    appendQuadricBlocks(out.width == 16  ? out.bvh16.blocks
+                        : out.width == 8 ? out.bvh8.blocks
+                                         : out.bvh4.blocks,
+                        out.objects);
     return out;
 }
 
-std::vector<Bvh4Node> deviceNodes(const SceneBvh& bvh) {
-    if (bvh.width != 8) return bvh.bvh4.nodes;
-    static_assert(sizeof(Bvh8Node) == 2 * sizeof(Bvh4Node), "node units");
-    std::vector<Bvh4Node> out(2 * bvh.bvh8.nodes.size());
-    if (!out.empty()) std::memcpy(out.data(), bvh.bvh8.nodes.data(), out.size() * sizeof(Bvh4Node));
+namespace {
+
+// The nodes of one width in 128-byte units.
+template <class Node>
+std::vector<Bvh4Node> inNodeUnits(const std::vector<Node>& nodes) {
+    static_assert(sizeof(Node) % sizeof(Bvh4Node) == 0, "node units");
+    std::vector<Bvh4Node> out(nodes.size() * (sizeof(Node) / sizeof(Bvh4Node)));
+    if (!out.empty()) std::memcpy(out.data(), nodes.data(), out.size() * sizeof(Bvh4Node));
     return out;
+}
+
+}  // namespace
+
+std::vector<Bvh4Node> deviceNodes(const SceneBvh& bvh) {
+    if (bvh.width == 16) return inNodeUnits(bvh.bvh16.nodes);
+    if (bvh.width == 8) return inNodeUnits(bvh.bvh8.nodes);
+    return bvh.bvh4.nodes;
 }
 
 const std::vector<Triangle4>& deviceBlocks(const SceneBvh& bvh) {
-    return bvh.width == 8 ? bvh.bvh8.blocks : bvh.bvh4.blocks;
+    return bvh.width == 16 ? bvh.bvh16.blocks : bvh.width == 8 ? bvh.bvh8.blocks : bvh.bvh4.blocks;
+}
+
+size_t nodeCount(const SceneBvh& bvh) {
+    return bvh.width == 16 ? bvh.bvh16.nodes.size()
+           : bvh.width == 8 ? bvh.bvh8.nodes.size()
+                            : bvh.bvh4.nodes.size();
+}
+
+size_t nodeBytes(const SceneBvh& bvh) {
+    return nodeCount(bvh) * (bvh.width == 16 ? sizeof(Bvh16Node)
+                             : bvh.width == 8 ? sizeof(Bvh8Node)
+                                              : sizeof(Bvh4Node));
 }
 
 }  // namespace rd

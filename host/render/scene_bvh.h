@@ -11,9 +11,10 @@
 namespace rd {
 
 struct SceneBvh {
-    int width = 4;  // the layout built: bvh4 (four-wide) or bvh8 (eight-wide)
+    int width = 4;  // the layout built: bvh4, bvh8 or bvh16 (four, eight or sixteen wide)
     Bvh4 bvh4;
     Bvh8 bvh8;
+    Bvh16 bvh16;
     std::vector<Quadric> objects;  // scene.quadrics, instances pointing at their roots
     uint32_t droppedPrims = 0;     // primitives with unusable bounds (non-finite)
 };
@@ -22,12 +23,16 @@ struct SceneBvh {
 // primitives in the kernels' blocks of four.
 BvhBuildSettings sceneBvhSettings();
 
-// width 4 or 8: the layout the resident traversal reads (RT_BVH8 for eight).
+// width 4, 8 or 16: the layout the resident traversal reads (RT_BVH8, RT_BVH16).
 SceneBvh buildSceneBvh(const Scene& scene, int width = 4);
 
 // The nodes as the device buffer holds them: raw node bytes in 128-byte units (an
-// eight-wide node takes two), so one buffer type serves both widths.
+// eight-wide node takes two, a sixteen-wide one four), so one buffer type serves every
+// width.
 std::vector<Bvh4Node> deviceNodes(const SceneBvh& bvh);
+// The built layout's node count and node bytes.
+size_t nodeCount(const SceneBvh& bvh);
+size_t nodeBytes(const SceneBvh& bvh);
 const std::vector<Triangle4>& deviceBlocks(const SceneBvh& bvh);
 
 }  // namespace rd

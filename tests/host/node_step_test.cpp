@@ -1,5 +1,5 @@
 // node_step_test.cpp: the wide node step's helpers on the device (cl/lib/node_test.clh
-// through node_probe.cl), four- and eight-wide: the lane mask (movmskps on x86, one
+// through node_probe.cl), four-, eight- and sixteen-wide: the lane mask (movmskps on x86, one
 // multiply elsewhere: both built here) is exact for every compare pattern, the lowest lane and the distance order are right,
 // and the box test (compare-and-select min/max, far planes padded through the inverse)
 // keeps a ray that lies in a box's face plane, where 0 * inf is NaN, and never passes an
@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "cl/include/bvh.h"
@@ -25,17 +27,17 @@ namespace {
 const Program& probeProgram(int width, bool portable = false) {
     const ClContext& ctx = test::testContext();
     // never destroyed, as the test context (render_harness.cpp: Oclgrind crashed at exit)
-    static Program& four =
-        *new Program(ctx, assembleClSource({"node_probe.cl"}), "-cl-std=CL1.2");
-    static Program& eight =
-        *new Program(ctx, assembleClSource({"node_probe.cl"}), "-cl-std=CL1.2 -DRT_BVH8");
-    static Program& fourPortable = *new Program(ctx, assembleClSource({"node_probe.cl"}),
-                                                "-cl-std=CL1.2 -DRT_PORTABLE_MASKS");
-    static Program& eightPortable =
-        *new Program(ctx, assembleClSource({"node_probe.cl"}),
-                     "-cl-std=CL1.2 -DRT_BVH8 -DRT_PORTABLE_MASKS");
-    if (portable) return width == 8 ? eightPortable : fourPortable;
-    return width == 8 ? eight : four;
+    static std::map<std::pair<int, bool>, Program*>& built =
+        *new std::map<std::pair<int, bool>, Program*>;
+    Program*& p = built[{width, portable}];
+    if (!p) {
+        std::string options = "-cl-std=CL1.2";
+        if (width == 8) options += " -DRT_BVH8";
+        if (width == 16) options += " -DRT_BVH16";
+        if (portable) options += " -DRT_PORTABLE_MASKS";
+        p = new Program(ctx, assembleClSource({"node_probe.cl"}), options);
+    }
+    return *p;
 }
 
 void expectLaneMasks(int width, bool portable) {
@@ -109,8 +111,9 @@ void expectBoxTest(int width) {
                                {0.0f, 0.0f, 1.0f, inf},  {0.0f, 0.0f, 1.0f, inf},
                                {0.0f, 0.0f, 1.0f, 0.5f}};
     std::vector<uint32_t> want{1, 1, 1, 1, 0, 0, 0};
-    std::vector<uint32_t> got = width == 8 ? boxMasks<Bvh8Node>(8, org, dir)
-                                           : boxMasks<Bvh4Node>(4, org, dir);
+    std::vector<uint32_t> got = width == 16  ? boxMasks<Bvh16Node>(16, org, dir)
+                                : width == 8 ? boxMasks<Bvh8Node>(8, org, dir)
+                                             : boxMasks<Bvh4Node>(4, org, dir);
     for (size_t i = 0; i < want.size(); ++i)
         EXPECT_EQ(got[i], want[i]) << "ray " << i << ", " << width << " lanes";
 }
@@ -121,10 +124,12 @@ TEST(NodeStep, LaneMaskIsExactForEveryPattern) {
     for (bool portable : {false, true}) {
         expectLaneMasks(4, portable);
         expectLaneMasks(8, portable);
+        expectLaneMasks(16, portable);
     }
 }
 
 TEST(NodeStep, BoxTestKeepsRaysInAFacePlaneAndSkipsUnusedSlots) {
     expectBoxTest(4);
     expectBoxTest(8);
+    expectBoxTest(16);
 }
