@@ -91,7 +91,8 @@ __kernel void intersect_closest(RT_INTERSECT_CLOSEST_PARAMS) {
 }
 #else
 /* intersect_closest with a work-item for RT_PACKET consecutive rays (packet_traverse.clh;
- * triangle scenes, eight-wide BVH; the host launches ceil(count / RT_PACKET) work-items).
+ * triangle scenes, eight- or sixteen-wide BVH; the host launches ceil(count / RT_PACKET)
+ * work-items).
  * When at least RT_PACKET_MIN_LIVE of them are live, coherent (RT_COHERENT) and share
  * their direction signs they are traced as a packet, otherwise one at a time; every ray's
  * hit is the one-ray kernel's. */
@@ -224,9 +225,9 @@ inline uint rt_shadow_packet_slot(uint w, uint j, uint count, uint lights) {
 }
 
 /* intersect_shadow with a packet of RT_PACKET shadow rays a work-item (packet_traverse.clh;
- * triangle scenes, eight-wide BVH). The host launches ceil(shaded rays / RT_PACKET) *
- * lights work-items; results equal the one-ray kernel's. A packet with fewer than
- * RT_PACKET_MIN_LIVE live rays traces them one at a time. */
+ * triangle scenes, eight- or sixteen-wide BVH). The host launches ceil(shaded rays /
+ * RT_PACKET) * lights work-items; results equal the one-ray kernel's. A packet with fewer
+ * than RT_PACKET_MIN_LIVE live rays traces them one at a time. */
 __kernel void intersect_shadow(RT_INTERSECT_SHADOW_PARAMS) {
     uint w = get_global_id(0);
     RT_COUNT_PACKET_GROUP(active_counter, RT_PACKET, g, l,

@@ -146,6 +146,10 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     chooseTraversal(f, m_settings.bvhWidth, m_settings.shadowPackets,
                     m_settings.closestPackets, m_ctx.info().type & CL_DEVICE_TYPE_CPU,
                     m_ctx.info().floatLanes);
+    if (m_settings.bvhWidth > 0 && f.bvhWidth != m_settings.bvhWidth)
+        diag.warning(rib::SourceLoc{scene.sourceFile, 0},
+                     "--bvh-width " + std::to_string(m_settings.bvhWidth) +
+                         " not used: treelets are cut from the eight-wide tree");
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
