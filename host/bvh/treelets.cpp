@@ -128,9 +128,12 @@ TreeletsOf<Node> cutTreelets(const BvhWide<Node>& bvh, size_t budgetBytes) {
 
 template struct TreeletsOf<Bvh4Node>;
 template struct TreeletsOf<Bvh8Node>;
+template struct TreeletsOf<Bvh16Node>;
 template size_t treeletNodeBytes(const Bvh4&, size_t);
 template size_t treeletNodeBytes(const Bvh8&, size_t);
+template size_t treeletNodeBytes(const Bvh16&, size_t);
 template Treelets cutTreelets(const Bvh4&, size_t);
 template Treelets8 cutTreelets(const Bvh8&, size_t);
+template Treelets16 cutTreelets(const Bvh16&, size_t);
 
 }  // namespace rd

@@ -1,4 +1,4 @@
-// treelets.h: cuts the four- or eight-wide BVH (collapse4.h) into treelets under a byte budget, the
+// treelets.h: cuts the four-, eight- or sixteen-wide BVH (collapse4.h) into treelets under a byte budget, the
 // unit the treelet-streamed traversal queues rays into and uploads (DESIGN.md sections 1
 // and 3; cl/include/treelet.h for the device layout). A treelet's bytes are its nodes
 // plus the leaf blocks they reference. The cut works bottom up, cutting off the largest
@@ -23,7 +23,7 @@ struct TreeletRange {
     }
 };
 
-// A cut of a four-wide (Bvh4Node) or eight-wide (Bvh8Node) tree.
+// A cut of a four-, eight- or sixteen-wide (Bvh4Node, Bvh8Node, Bvh16Node) tree.
 template <class Node>
 struct TreeletsOf {
     // Every treelet's nodes, then the next's; child indices local to the treelet (a
@@ -42,6 +42,7 @@ struct TreeletsOf {
 };
 using Treelets = TreeletsOf<Bvh4Node>;
 using Treelets8 = TreeletsOf<Bvh8Node>;
+using Treelets16 = TreeletsOf<Bvh16Node>;
 
 // Bytes of node i of `bvh` with the blocks its leaf children reference.
 template <class Node>

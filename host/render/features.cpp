@@ -176,12 +176,11 @@ void chooseTraversal(Features& f, int bvhWidth, bool shadowPackets, bool closest
     // floats wide (AVX-512: 1.01-1.07x the eight-wide rate on every ray kind, session 38);
     // four elsewhere, where no figures say otherwise. The treelets are cut from the same
     // tree (eight-wide treelets: 1.08-1.37x the four-wide ones' rate at budgets of 4 KiB to
-    // the whole tree), four or eight wide.
+    // the whole tree).
     f.bvhWidth = bvhWidth == 4 || bvhWidth == 8 || bvhWidth == 16 ? bvhWidth
                  : !cpuDevice                                     ? 4
                  : floatLanes >= 16                               ? 16
                                                                   : 8;
-    if (f.treelets && f.bvhWidth == 16) f.bvhWidth = 8;
     // Packets of eight rays a work-item in triangle scenes (bench_trace: primary rays
     // 1.3-1.4x, shadow rays 1.3-1.4x the one-ray kernels' rate; benchmarks/packets.sh:
     // intersect_closest 0.54-0.91 of its time, intersect_shadow 0.75 on the bunny, 0.92-1.06

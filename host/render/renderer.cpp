@@ -146,10 +146,6 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     chooseTraversal(f, m_settings.bvhWidth, m_settings.shadowPackets,
                     m_settings.closestPackets, m_ctx.info().type & CL_DEVICE_TYPE_CPU,
                     m_ctx.info().floatLanes);
-    if (m_settings.bvhWidth > 0 && f.bvhWidth != m_settings.bvhWidth)
-        diag.warning(rib::SourceLoc{scene.sourceFile, 0},
-                     "--bvh-width " + std::to_string(m_settings.bvhWidth) +
-                         " not used: treelets are cut from the eight-wide tree");
     st.features = f;
 
     // Budgets: the command line wins over Option "render".
@@ -298,13 +294,13 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
         const size_t sceneMemory = m_settings.sceneMemoryBytes > 0
                                        ? m_settings.sceneMemoryBytes
                                        : size_t(scene.render.sceneMemoryKB) << 10;
-        treelets = sceneBvh.width == 8
-                       ? std::make_unique<TreeletTracer>(m_ctx, programs.trace->get(), prof,
-                                                         sceneBvh.bvh8, treeletBudget,
-                                                         sceneMemory, pool, st.treelets)
-                       : std::make_unique<TreeletTracer>(m_ctx, programs.trace->get(), prof, bvh4,
-                                                         treeletBudget, sceneMemory, pool,
-                                                         st.treelets);
+        auto cut = [&](const auto& tree) {
+            return std::make_unique<TreeletTracer>(m_ctx, programs.trace->get(), prof, tree,
+                                                   treeletBudget, sceneMemory, pool, st.treelets);
+        };
+        treelets = sceneBvh.width == 16  ? cut(sceneBvh.bvh16)
+                   : sceneBvh.width == 8 ? cut(sceneBvh.bvh8)
+                                         : cut(bvh4);
     }
     const TraceScene traceScene{ds.quadrics,      ds.csg,    ds.triangles, ds.quadricMotion,
                                 ds.trianglesEnd, rp.sample, rp.sampleTime};

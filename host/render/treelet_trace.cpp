@@ -332,6 +332,8 @@ template TreeletTracer::TreeletTracer(const ClContext&, cl_program, Profiler&, c
                                       size_t, size_t, size_t, TreeletStats&);
 template TreeletTracer::TreeletTracer(const ClContext&, cl_program, Profiler&, const Bvh8&,
                                       size_t, size_t, size_t, TreeletStats&);
+template TreeletTracer::TreeletTracer(const ClContext&, cl_program, Profiler&, const Bvh16&,
+                                      size_t, size_t, size_t, TreeletStats&);
 
 // Uploads may still be queued: they read from the cut and pendingRefs.
 TreeletTracer::~TreeletTracer() { m->ctx.finish(); }

@@ -74,7 +74,8 @@ void configureTreelets(Features& f, const ClContext& ctx, size_t budgetBytes,
 
 class TreeletTracer {
 public:
-    // `bvh`: the four- or eight-wide tree, as the program was built (RT_BVH8);
+    // `bvh`: the four-, eight- or sixteen-wide tree, as the program was built (RT_BVH8,
+    // RT_BVH16);
     // `sceneMemoryBytes`: device bytes the BVH may take (0 or at least the whole cut:
     // every treelet resident); `rays`: the most rays closest() is given at once.
     template <class Node>

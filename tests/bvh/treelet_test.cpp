@@ -164,18 +164,27 @@ TEST(Treelets, EmptyAndSingleLeafTrees) {
 
 // The eight-wide tree's cut (what the renderer takes on a CPU device): the same rules,
 // its ranges sized by the eight-wide node.
-TEST(Treelets, EightWideTreeCutsTheSameWay) {
-    const std::vector<Triangle> tris = soup(3000, 5);
-    Bvh8 bvh = build8(tris);
-    ASSERT_GT(bvh.nodes.size(), 50u);
+template <class Node>
+void expectWideTreeCutsTheSameWay(const BvhWide<Node>& bvh, size_t minNodes) {
+    ASSERT_GT(bvh.nodes.size(), minNodes);
     size_t prev = 0;
     for (size_t budget : {size_t(1) << 40, size_t(64) << 10, size_t(4) << 10, size_t(1)}) {
         SCOPED_TRACE(budget);
-        Treelets8 tl = cutTreelets(bvh, budget);
+        TreeletsOf<Node> tl = cutTreelets(bvh, budget);
         checkCut(bvh, tl, budget);
-        for (const TreeletRange& r : tl.ranges) EXPECT_EQ(r.nodeBytes, sizeof(Bvh8Node));
+        for (const TreeletRange& r : tl.ranges) EXPECT_EQ(r.nodeBytes, sizeof(Node));
         EXPECT_GE(tl.count(), prev);
         prev = tl.count();
     }
     EXPECT_EQ(cutTreelets(bvh, 1).count(), bvh.nodes.size());
+}
+
+TEST(Treelets, EightWideTreeCutsTheSameWay) {
+    const std::vector<Triangle> tris = soup(3000, 5);
+    expectWideTreeCutsTheSameWay(build8(tris), 50u);
+}
+
+TEST(Treelets, SixteenWideTreeCutsTheSameWay) {
+    const std::vector<Triangle> tris = soup(3000, 5);
+    expectWideTreeCutsTheSameWay(collapseToBvh16(buildBinary(tris), tris), 20u);
 }

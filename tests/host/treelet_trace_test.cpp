@@ -296,7 +296,7 @@ TEST(TreeletTrace, ImageIndependentOfTreeletBudget) {
     struct Case {
         size_t budget, memory;
     } cases[] = {{size_t(1) << 30, 0}, {64 << 10, 0}, {4 << 10, 0}, {1, 0}, {4 << 10, 40 << 10}};
-    for (int width : {4, 8})
+    for (int width : {4, 8, 16})
     for (const Case& c : cases) {
         Rendered t = renderThroughTreelets(rib, c.budget, c.memory, width);
         EXPECT_EQ(t.stats.features.bvhWidth, width);
@@ -353,7 +353,7 @@ TEST(TreeletTrace, CoplanarFacesPickTheResidentTriangle) {
         }
     }
     rib << "WorldEnd\n";
-    for (int width : {4, 8}) {
+    for (int width : {4, 8, 16}) {
         RenderSettings rs;
         rs.bvhWidth = width;
         Rendered resident = renderRib(rib.str(), rs);
@@ -410,9 +410,9 @@ TEST(TreeletTrace, ClosedMeshFromInsideLeaksNothing) {
 
 // Object blocks work inside treelets: exact quadrics, a CSG difference, a moving sphere
 // and a moving triangle mesh, with shadows, give the resident image bit for bit at every
-// budget, streamed too, at both node widths (a node a treelet: more than 4 treelets
-// four-wide, more than 2 eight-wide; the SAH collapse packs the 96 spheres' 24 blocks
-// into 5-6 nodes four-wide).
+// budget, streamed too, at every node width (a node a treelet: more than 4 treelets
+// four-wide, more than 2 eight-wide, 2 sixteen-wide; the SAH collapse packs the 96
+// spheres' 24 blocks into 5-6 nodes four-wide).
 TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
     // a wall of 12 x 8 small spheres behind, so the tree has something to cut
     std::ostringstream spheres;
@@ -445,11 +445,13 @@ TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
     struct Case {
         size_t budget, memory;
     } cases[] = {{size_t(1) << 30, 0}, {1, 0}, {1024, 2048}};
-    for (int width : {4, 8})
+    for (int width : {4, 8, 16})
     for (const Case& c : cases) {
+        // (the sixteen-wide tree is two nodes: cut at 1 KiB it fits 2 KiB, not streamed)
+        if (width == 16 && c.memory > 0) continue;
         Rendered t = renderThroughTreelets(rib, c.budget, c.memory, width);
         if (c.budget < 4096) {
-            EXPECT_GT(t.stats.treelets.treelets, width == 4 ? 4u : 2u);
+            EXPECT_GT(t.stats.treelets.treelets, width == 4 ? 4u : width == 8 ? 2u : 1u);
         }
         EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
         expectSameImage(resident, t);
@@ -458,7 +460,7 @@ TEST(TreeletTrace, QuadricsCsgAndMotionInsideTreelets) {
 
 // Shadows through surfaces that let light through walk them through the treelets a layer
 // a trace, as the resident intersect_shadow does a layer a traversal: the image is the
-// resident one bit for bit at every budget, streamed too, at both node widths, with
+// resident one bit for bit at every budget, streamed too, at every node width, with
 // triangles and exact quadrics, and with a transparent depth of 1 (a shadow ray that
 // meets a third surface is occluded). Before, treelet shadow rays stopped at the first
 // surface (a full shadow) with a warning.
@@ -493,7 +495,7 @@ TEST(TreeletTrace, TransparentShadowsWalkTheSurfacesTheyPass) {
                 {1, 0},
                 {1024, quadrics[0] == '0' ? size_t(2048)
                                           : 0}};  // (five objects: too few to stream)
-            for (int width : {4, 8})
+            for (int width : {4, 8, 16})
                 for (const Case& c : cases) {
                     Rendered t = renderThroughTreelets(rib, c.budget, c.memory, width);
                     EXPECT_EQ(t.stats.shadowRays, resident.stats.shadowRays);
