@@ -250,7 +250,6 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     st.dicedTriangles = diced.cornerVertex.size() / 3;
     auto tb = Clock::now();
     SceneBvh sceneBvh = buildSceneBvh(scene, f.bvhWidth);
-    const Bvh4& bvh4 = sceneBvh.bvh4;  // (empty when the tree is eight-wide)
     st.bvhBuildMs = secondsSince(tb) * 1e3;
     st.triangles = scene.triangles.size();
     for (const Quadric& q : scene.quadrics) {
@@ -294,13 +293,10 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
         const size_t sceneMemory = m_settings.sceneMemoryBytes > 0
                                        ? m_settings.sceneMemoryBytes
                                        : size_t(scene.render.sceneMemoryKB) << 10;
-        auto cut = [&](const auto& tree) {
+        treelets = withTree(sceneBvh, [&](const auto& tree) {
             return std::make_unique<TreeletTracer>(m_ctx, programs.trace->get(), prof, tree,
                                                    treeletBudget, sceneMemory, pool, st.treelets);
-        };
-        treelets = sceneBvh.width == 16  ? cut(sceneBvh.bvh16)
-                   : sceneBvh.width == 8 ? cut(sceneBvh.bvh8)
-                                         : cut(bvh4);
+        });
     }
     const TraceScene traceScene{ds.quadrics,      ds.csg,    ds.triangles, ds.quadricMotion,
                                 ds.trianglesEnd, rp.sample, rp.sampleTime};

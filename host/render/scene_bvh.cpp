@@ -76,46 +76,35 @@ SceneBvh buildSceneBvh(const Scene& scene, int width) {
     out.objects = scene.quadrics;
     for (Quadric& q : out.objects)
         if (q.kind == RT_Q_INSTANCE) q.first_member = uint32_t(roots.at(q.first_member));
-    appendQuadricBlocks(out.width == 16  ? out.bvh16.blocks
-                        : out.width == 8 ? out.bvh8.blocks
-                                         : out.bvh4.blocks,
-                        out.objects);
+    withTree(out, [&](auto& tree) { appendQuadricBlocks(tree.blocks, out.objects); });
     return out;
 }
-
-namespace {
-
-// The nodes of one width in 128-byte units.
-template <class Node>
-std::vector<Bvh4Node> inNodeUnits(const std::vector<Node>& nodes) {
-    static_assert(sizeof(Node) % sizeof(Bvh4Node) == 0, "node units");
-    std::vector<Bvh4Node> out(nodes.size() * (sizeof(Node) / sizeof(Bvh4Node)));
-    if (!out.empty()) std::memcpy(out.data(), nodes.data(), out.size() * sizeof(Bvh4Node));
-    return out;
-}
-
-}  // namespace
 
 std::vector<Bvh4Node> deviceNodes(const SceneBvh& bvh) {
-    if (bvh.width == 16) return inNodeUnits(bvh.bvh16.nodes);
-    if (bvh.width == 8) return inNodeUnits(bvh.bvh8.nodes);
-    return bvh.bvh4.nodes;
+    return withTree(bvh, [](const auto& tree) {
+        using Node = typename std::decay_t<decltype(tree.nodes)>::value_type;
+        static_assert(sizeof(Node) % sizeof(Bvh4Node) == 0, "node units");
+        std::vector<Bvh4Node> out(tree.nodes.size() * (sizeof(Node) / sizeof(Bvh4Node)));
+        if (!out.empty())
+            std::memcpy(out.data(), tree.nodes.data(), out.size() * sizeof(Bvh4Node));
+        return out;
+    });
 }
 
 const std::vector<Triangle4>& deviceBlocks(const SceneBvh& bvh) {
-    return bvh.width == 16 ? bvh.bvh16.blocks : bvh.width == 8 ? bvh.bvh8.blocks : bvh.bvh4.blocks;
+    return withTree(bvh, [](const auto& tree) -> const std::vector<Triangle4>& {
+        return tree.blocks;
+    });
 }
 
 size_t nodeCount(const SceneBvh& bvh) {
-    return bvh.width == 16 ? bvh.bvh16.nodes.size()
-           : bvh.width == 8 ? bvh.bvh8.nodes.size()
-                            : bvh.bvh4.nodes.size();
+    return withTree(bvh, [](const auto& tree) { return tree.nodes.size(); });
 }
 
 size_t nodeBytes(const SceneBvh& bvh) {
-    return nodeCount(bvh) * (bvh.width == 16 ? sizeof(Bvh16Node)
-                             : bvh.width == 8 ? sizeof(Bvh8Node)
-                                              : sizeof(Bvh4Node));
+    return withTree(bvh, [](const auto& tree) {
+        return tree.nodes.size() * sizeof(tree.nodes[0]);
+    });
 }
 
 }  // namespace rd

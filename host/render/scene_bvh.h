@@ -3,6 +3,7 @@
 // prototype in its own object space, all in one node and block array; each instance
 // record is given the root node of its prototype's tree.
 #pragma once
+#include <type_traits>
 #include <vector>
 
 #include "bvh/collapse4.h"
@@ -18,6 +19,14 @@ struct SceneBvh {
     std::vector<Quadric> objects;  // scene.quadrics, instances pointing at their roots
     uint32_t droppedPrims = 0;     // primitives with unusable bounds (non-finite)
 };
+
+// Calls f with the tree of the width built (bvh4, bvh8 or bvh16).
+template <class S, class F>
+decltype(auto) withTree(S& bvh, F&& f) {
+    if (bvh.width == 16) return f(bvh.bvh16);
+    if (bvh.width == 8) return f(bvh.bvh8);
+    return f(bvh.bvh4);
+}
 
 // How the renderer builds its trees (the benchmarks build with the same): SAH counting
 // primitives in the kernels' blocks of four.
