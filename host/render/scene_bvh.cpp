@@ -1,7 +1,6 @@
 // scene_bvh.cpp: top-level and prototype BVHs merged into one device layout.
 #include "scene_bvh.h"
 
-#include <cstring>
 
 #include "bvh/quadric_blocks.h"
 #include "device_scene.h"
@@ -81,14 +80,7 @@ SceneBvh buildSceneBvh(const Scene& scene, int width) {
 }
 
 std::vector<Bvh4Node> deviceNodes(const SceneBvh& bvh) {
-    return withTree(bvh, [](const auto& tree) {
-        using Node = typename std::decay_t<decltype(tree.nodes)>::value_type;
-        static_assert(sizeof(Node) % sizeof(Bvh4Node) == 0, "node units");
-        std::vector<Bvh4Node> out(tree.nodes.size() * (sizeof(Node) / sizeof(Bvh4Node)));
-        if (!out.empty())
-            std::memcpy(out.data(), tree.nodes.data(), out.size() * sizeof(Bvh4Node));
-        return out;
-    });
+    return withTree(bvh, [](const auto& tree) { return inNodeUnits(tree.nodes); });
 }
 
 const std::vector<Triangle4>& deviceBlocks(const SceneBvh& bvh) {

@@ -3,7 +3,7 @@
 // prototype in its own object space, all in one node and block array; each instance
 // record is given the root node of its prototype's tree.
 #pragma once
-#include <type_traits>
+#include <cstring>
 #include <vector>
 
 #include "bvh/collapse4.h"
@@ -39,6 +39,14 @@ SceneBvh buildSceneBvh(const Scene& scene, int width = 4);
 // eight-wide node takes two, a sixteen-wide one four), so one buffer type serves every
 // width.
 std::vector<Bvh4Node> deviceNodes(const SceneBvh& bvh);
+// The same for a tree of any width.
+template <class Node>
+std::vector<Bvh4Node> inNodeUnits(const std::vector<Node>& nodes) {
+    static_assert(sizeof(Node) % sizeof(Bvh4Node) == 0, "node units");
+    std::vector<Bvh4Node> out(nodes.size() * (sizeof(Node) / sizeof(Bvh4Node)));
+    if (!out.empty()) std::memcpy(out.data(), nodes.data(), out.size() * sizeof(Bvh4Node));
+    return out;
+}
 // The built layout's node count and node bytes.
 size_t nodeCount(const SceneBvh& bvh);
 size_t nodeBytes(const SceneBvh& bvh);

@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 
 #include "bvh/collapse4.h"
@@ -105,19 +104,14 @@ struct WideTree {
     std::vector<Bvh4Node> nodes;
     std::vector<Triangle4> blocks;
 };
-template <class Node>
-WideTree wideTree(const char* option, const BvhWide<Node>& t) {
-    WideTree w{option, std::vector<Bvh4Node>(t.nodes.size() * sizeof(Node) / sizeof(Bvh4Node)),
-               t.blocks};
-    std::memcpy(w.nodes.data(), t.nodes.data(), t.nodes.size() * sizeof(Node));
-    return w;
-}
 std::vector<WideTree> wideTrees(const std::vector<Triangle>& tris) {
     Scene s;
     s.triangles = tris;
     const Bvh bvh = buildBvh(triangleBounds(s), sceneBvhSettings());
-    return {wideTree("-DRT_BVH8 ", collapseToBvh8(bvh, tris)),
-            wideTree("-DRT_BVH16 ", collapseToBvh16(bvh, tris))};
+    const Bvh8 b8 = collapseToBvh8(bvh, tris);
+    const Bvh16 b16 = collapseToBvh16(bvh, tris);
+    return {{"-DRT_BVH8 ", inNodeUnits(b8.nodes), b8.blocks},
+            {"-DRT_BVH16 ", inNodeUnits(b16.nodes), b16.blocks}};
 }
 
 // The weights after intersect_shadow built with `options`, and its active count.
