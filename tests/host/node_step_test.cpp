@@ -22,28 +22,32 @@ using namespace rd;
 
 namespace {
 
-// portable: the lane masks by the multiply that non-x86 devices use, where x86 ones
-// (PoCL here) take movmskps (math.clh)
-const Program& probeProgram(int width, bool portable = false) {
+// How the lane masks are gathered (math.clh): the device's own form (PoCL here: AVX-512's
+// mask registers on a CPU that has them), movmskps (an AVX CPU), or the multiply that
+// non-x86 devices use.
+enum class MaskForm { Native, Movmsk, Portable };
+
+const Program& probeProgram(int width, MaskForm form = MaskForm::Native) {
     const ClContext& ctx = test::testContext();
     // never destroyed, as the test context (render_harness.cpp: Oclgrind crashed at exit)
-    static std::map<std::pair<int, bool>, Program*>& built =
-        *new std::map<std::pair<int, bool>, Program*>;
-    Program*& p = built[{width, portable}];
+    static std::map<std::pair<int, MaskForm>, Program*>& built =
+        *new std::map<std::pair<int, MaskForm>, Program*>;
+    Program*& p = built[{width, form}];
     if (!p) {
         std::string options = "-cl-std=CL1.2";
         if (width == 8) options += " -DRT_BVH8";
         if (width == 16) options += " -DRT_BVH16";
-        if (portable) options += " -DRT_PORTABLE_MASKS";
+        if (form == MaskForm::Movmsk) options += " -DRT_MOVMSK_MASKS";
+        if (form == MaskForm::Portable) options += " -DRT_PORTABLE_MASKS";
         p = new Program(ctx, assembleClSource({"node_probe.cl"}), options);
     }
     return *p;
 }
 
-void expectLaneMasks(int width, bool portable) {
+void expectLaneMasks(int width, MaskForm form) {
     const ClContext& ctx = test::testContext();
     Profiler prof(ctx);
-    Kernel k(ctx, probeProgram(width, portable).get(), "lane_mask_probe", prof);
+    Kernel k(ctx, probeProgram(width, form).get(), "lane_mask_probe", prof);
     const size_t n = size_t(1) << width;
     DeviceBuffer<uint32_t> mask(ctx, n);
     DeviceBuffer<int32_t> lowest(ctx, n), order(ctx, n * width);
@@ -121,10 +125,10 @@ void expectBoxTest(int width) {
 }  // namespace
 
 TEST(NodeStep, LaneMaskIsExactForEveryPattern) {
-    for (bool portable : {false, true}) {
-        expectLaneMasks(4, portable);
-        expectLaneMasks(8, portable);
-        expectLaneMasks(16, portable);
+    for (MaskForm form : {MaskForm::Native, MaskForm::Movmsk, MaskForm::Portable}) {
+        expectLaneMasks(4, form);
+        expectLaneMasks(8, form);
+        expectLaneMasks(16, form);
     }
 }
 
