@@ -33,5 +33,6 @@ __kernel void node_boxes_probe(uint count, __global const RT_BVH_NODE* node,
     float4 o = origin[i], d = direction[i];
     RtBoxRay r = rt_box_ray(o, d);
     float dist[RT_BVH_W];
-    mask_out[i] = rt_node_boxes(node, &r, o.w, d.w, dist);
+    rt_floatw entry;
+    mask_out[i] = rt_node_boxes(node, &r, o.w, d.w, dist, &entry);
 }
