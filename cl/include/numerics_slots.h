@@ -5,7 +5,7 @@
 #define RT_NUMERICS_SLOTS_H
 
 #define RT_NUM_NONFINITE 0         /* a NaN or Inf channel */
-#define RT_NUM_NEGATIVE 1          /* a negative channel */
+#define RT_NUM_NEGATIVE 1          /* a negative alpha (a colour may be negative) */
 #define RT_NUM_HUGE 2              /* a channel above RT_MAX_RADIANCE */
 #define RT_NUM_DENORMAL 3          /* a denormal channel (flushed to zero) */
 #define RT_NUM_TRANSPARENT_DEPTH 4 /* continuations cut by maxtransparentdepth */

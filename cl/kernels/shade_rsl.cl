@@ -542,7 +542,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
     rsl_color wt = w * (rsl_f2c(1.0f) - Oi);
     RSL_CW(wt) = RSL_CW(w) * (1.0f - RSL_CHANNEL_MEAN(Oi));
     wt = rt_sanitize_c(wt, numerics);
-    int goes_on = rsl_cmax(wt) > 1e-6f;
+    int goes_on = rsl_cmax(fabs(wt)) > 1e-6f; /* (a weight may be negative) */
 #ifdef RT_RAY_AOVS
     /* behind the surface, the weights brought here times what it lets through, or the
      * AOV scales of the surfaces behind an AOV surface */

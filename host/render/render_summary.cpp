@@ -35,7 +35,7 @@ void summariseRays(RenderStats& st, const std::vector<uint32_t>& num, int maxTra
     if (st.shadeNonfinite + st.shadeNegative + st.shadeHuge > 0)
         diag.warning(where, "shaders produced " + std::to_string(st.shadeNonfinite) +
                                 " NaN/Inf, " + std::to_string(st.shadeNegative) +
-                                " negative and " + std::to_string(st.shadeHuge) +
+                                " negative opacity and " + std::to_string(st.shadeHuge) +
                                 " huge (> 1e10) results; left out of the image");
     if (st.overflowRays > 0)
         diag.warning(where, std::to_string(st.overflowRays) +

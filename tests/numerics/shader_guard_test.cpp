@@ -1,6 +1,7 @@
-// shader_guard_test.cpp: case 5, shaders that produce NaN, Inf, negative, huge (1e30) or
-// denormal radiance, or such weights for traced rays, shadow rays and continuations:
-// none of it reaches the film (which stays finite), and every fault is counted (--stats).
+// shader_guard_test.cpp: case 5, shaders that produce NaN, Inf, huge (1e30) or denormal
+// radiance, or such weights for traced rays, shadow rays and continuations, or a
+// negative opacity: none of it reaches the film (which stays finite), and every fault is
+// counted (--stats). A negative colour is no fault: it reaches the film as it is.
 #include <gtest/gtest.h>
 
 #include <cfloat>
@@ -43,7 +44,9 @@ std::string shaderDir() {
 // The bad shader on the left half of a plane at z = 5, constant 0.5 grey on the right;
 // behind the eye a small white constant square that trace() reaches, and a distant
 // light at 60 degrees from the normal whose shadow rays pass beside that square.
-std::string scene(double a, double b, int where) {
+// veiled: that square lets half through (Opacity 0.5) to a second one behind it, so a
+// traced ray goes on through it with half its weight.
+std::string scene(double a, double b, int where, bool veiled = false) {
     char buf[200];
     std::snprintf(buf, sizeof buf, "Surface \"bad\" \"a\" %.9g \"b\" %.9g \"where\" %d\n", a,
                   b, where);
@@ -53,8 +56,12 @@ std::string scene(double a, double b, int where) {
            "Polygon \"P\" [-50 -50 5  0 -50 5  0 50 5  -50 50 5]\nAttributeEnd\n"
            "AttributeBegin\nSurface \"constant\"\nColor [0.5 0.5 0.5]\n"
            "Polygon \"P\" [0 -50 5  50 -50 5  50 50 5  0 50 5]\nAttributeEnd\n"
-           "AttributeBegin\nSurface \"constant\"\n" + squareAtZ(-5.0, 5.0) +
-           "AttributeEnd\nWorldEnd\n";
+           "AttributeBegin\nSurface \"constant\"\n" + (veiled ? "Opacity [0.5 0.5 0.5]\n" : "") +
+           squareAtZ(-5.0, 5.0) + "AttributeEnd\n" +
+           (veiled ? "AttributeBegin\nSurface \"constant\"\n" + squareAtZ(-6.0, 6.0) +
+                         "AttributeEnd\n"
+                   : "") +
+           "WorldEnd\n";
 }
 
 struct Fault {
@@ -76,6 +83,8 @@ TEST(Numerics, BadShaderResultsNeverReachTheFilm) {
     const char* whereName[] = {"emission", "trace_weight", "light_weight", "opacity"};
     for (const Fault& f : faults)
         for (int where = 0; where < 4; ++where) {
+            // a negative colour is no fault (NegativeColoursReachTheFilm); an opacity is
+            if (f.counter == &rd::RenderStats::shadeNegative && where != 3) continue;
             Diagnosed d = renderWithDiagnostics(scene(f.a, f.b, where));
             const rd::test::Rendered& img = d.image;
             ASSERT_EQ(img.pixels.size(), 64u);
@@ -96,6 +105,36 @@ TEST(Numerics, BadShaderResultsNeverReachTheFilm) {
                 EXPECT_EQ(countOf(d.messages, "left out of the image"), 1) << d.messages;
             }
         }
+}
+
+// A negative emission, trace() weight or light coefficient is the positive one's image
+// negated, as PRMan writes it (a shader showing a coordinate, a light that takes light
+// away): nothing counted, no warning. Tolerance 1e-6 (the same arithmetic, one sign).
+// The veiled case: the traced ray's weight, negative, goes on through a surface that
+// lets half through (a continuation once dropped as "nothing left" by its largest channel).
+TEST(Numerics, NegativeColoursReachTheFilm) {
+    const char* whereName[] = {"emission", "trace_weight", "light_weight", "veiled_trace_weight"};
+    for (int c = 0; c < 4; ++c) {
+        const int where = c == 3 ? 1 : c;
+        Diagnosed pos = renderWithDiagnostics(scene(1, 1, where, c == 3));
+        Diagnosed neg = renderWithDiagnostics(scene(-1, 1, where, c == 3));
+        ASSERT_EQ(neg.image.pixels.size(), 64u);
+        double err = allFinite(neg.image) ? 0.0 : INFINITY, largest = 0;
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 8; ++x) {
+                const rd::Rgba &p = pos.image.at(x, y), &n = neg.image.at(x, y);
+                const double want = x < 4 ? -p.r : 0.5;
+                err = std::fmax(err, std::fmax(std::fabs(n.r - want), std::fabs(n.a - 1.0)));
+                if (x < 4) largest = std::fmax(largest, p.r);
+            }
+        char name[64];
+        std::snprintf(name, sizeof name, "negative_%s", whereName[c]);
+        EXPECT_TRUE(report(name, 1e-6, err));
+        EXPECT_GT(largest, 0.2) << name << ": the positive image shows the left half";
+        const auto& st = neg.image.stats;
+        EXPECT_EQ(st.shadeNonfinite + st.shadeNegative + st.shadeHuge, 0u) << name;
+        EXPECT_EQ(countOf(neg.messages, "left out of the image"), 0) << neg.messages;
+    }
 }
 
 // A well-behaved scene counts nothing and warns about nothing.
@@ -165,7 +204,10 @@ TEST(Numerics, SanitizeKeepsGoodValuesAndCountsEachFault) {
         {{0.5f, 1.0f, 0.0f, -0.0f}, {0.5f, 1.0f, 0.0f, -0.0f}, -1},
         {{fmin, 1e10f, 0.0f, 1.0f}, {fmin, 1e10f, 0.0f, 1.0f}, -1},
         {{1e-40f, 1.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 1.0f, 0.0f}, RT_NUM_DENORMAL},
-        {{-1.0f, 1.0f, 1.0f, 1.0f}, {0.0f, 0.0f, 0.0f, 1.0f}, RT_NUM_NEGATIVE},
+        {{-1.0f, 1.0f, -0.5f, 1.0f}, {-1.0f, 1.0f, -0.5f, 1.0f}, -1},  // a colour may be < 0
+        {{0.5f, 0.5f, 0.5f, -1.0f}, {0.5f, 0.5f, 0.5f, 0.0f}, RT_NUM_NEGATIVE},  // alpha not
+        {{-2e10f, 0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f, 1.0f}, RT_NUM_HUGE},
+        {{-1e-40f, -1.0f, 1.0f, 1.0f}, {0.0f, -1.0f, 1.0f, 1.0f}, RT_NUM_DENORMAL},
         {{1.0f, 1.0f, 1.0f, nan}, {1.0f, 1.0f, 1.0f, 0.0f}, RT_NUM_NONFINITE},
         {{2e10f, 0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f, 1.0f}, RT_NUM_HUGE},
         {{0.0f, inf, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f, 1.0f}, RT_NUM_NONFINITE},
