@@ -272,6 +272,15 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
+// The median of the runs' own ratios num[r] / den[r]: each run times both within a few
+// milliseconds, so a slow spell of the shared machine moves both sides of a ratio, where
+// it moves one of two separate medians.
+double pairedRatio(const std::vector<double>& num, const std::vector<double>& den) {
+    std::vector<double> r(num.size());
+    for (size_t i = 0; i < num.size(); ++i) r[i] = num[i] / den[i];
+    return median(r);
+}
+
 }  // namespace
 
 int benchMain(int argc, char** argv) {
@@ -619,9 +628,9 @@ int benchMain(int argc, char** argv) {
             for (size_t p = 1; p < programs.size(); ++p) {
                 const bool is16 = wide16 && p == 1;
                 const std::string label = is16 ? "bvh16" : "variant " + variants[p - 1];
-                std::printf("  %-38s %10.2f Mrays/s, %.3f of default, %.3f of Embree",
+                std::printf("  %-38s %10.2f Mrays/s, %.3f of default, %.3f of Embree (paired %.3f)",
                             label.c_str(), n / median(tv[p]) * 1e-6, median(td) / median(tv[p]),
-                            median(te) / median(tv[p]));
+                            median(te) / median(tv[p]), pairedRatio(te, tv[p]));
                 if (wide8) std::printf(", %.3f of bvh8", median(t8) / median(tv[p]));
                 std::printf("; %.3f of Embree stream, %.3f of Embree robust\n",
                             median(tes) / median(tv[p]), median(ter) / median(tv[p]));
