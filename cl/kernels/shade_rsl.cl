@@ -454,13 +454,10 @@ __kernel void shade_SURFACE(uint begin, uint count,
         rsl_surface_SURFACE(&tg, p, &te);
         rsl_color tw = w * atmo_a * (tg.Ci - base.Ci);
         RSL_CW(tw) = 0.0f;
-        /* an occlusion() or distance ray may weigh less than zero and be no fault: Ci =
-         * occlusion() is 1 from the base evaluation less a part for each ray that
-         * escapes */
-        if (ev.trace_org[i].w > 0.5f)
-            tw = copysign(rt_sanitize_c(fabs(tw), numerics), tw);
-        else
-            tw = rt_sanitize_c(tw, numerics);
+        /* (a weight below zero is no fault: Ci = occlusion() is 1 from the base
+         * evaluation less a part for each ray that escapes; rt_sanitize judges a colour
+         * by its magnitude) */
+        tw = rt_sanitize_c(tw, numerics);
         int child_carries = 0; /* the ray brings back part of the AOVs */
 #ifdef RT_RAY_AOVS
         /* the AOVs' part in this call: an AOV surface's outputs' own (their value when
