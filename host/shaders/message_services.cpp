@@ -1,6 +1,7 @@
-// message_services.cpp: rsl_attribute, rsl_option and rsl_shader_param, and what they
-// read from the parameter buffer (Attribute and Option values, the materials' shader
-// blocks). A value is data: editing it keeps the program; only the set of names and sizes
+// message_services.cpp: rsl_attribute, rsl_option and rsl_shader_param (surface(),
+// displacement(), atmosphere(), incident(), opposite()), and what they read from the
+// parameter buffer (Attribute and Option values, the materials' shader blocks).
+// A value is data: editing it keeps the program; only the set of names and sizes
 // is in the code.
 #include "message_services.h"
 
@@ -162,15 +163,27 @@ std::string shaderParamService(const ShaderBlocks& blocks, bool used, size_t tab
     params[tableSlot] = intBits(int64_t(params.size()));
     for (const auto& m : blocks.materials)
         for (int32_t v : m) params.push_back(intBits(v));
-    src << "    if (g->material < 0 || kind < 0 || kind > 2) return 0;\n"
+    // incident() (kind 5) and opposite() (6): the interior (3) on the side a ray hitting
+    // the back came from (I . Ng > 0, the renderer's test for entering the Interior
+    // shader, shade_rsl.cl), else the exterior (4), or where none is bound the atmosphere
+    // (2), the volume an eye ray crosses to reach the surface
+    constexpr int kStride = 2 * ShaderBlocks::kKinds;
+    src << "    if (g->material < 0 || kind < 0 || kind > 6) return 0;\n"
            "    __global const float* s = g->scene_params;\n"
-           "    const int at = as_int(s["
-        << tableSlot
-        << "]) + 6 * g->material + 2 * kind;\n"
+           "    const int row = as_int(s["
+        << tableSlot << "]) + " << kStride
+        << " * g->material;\n"
+           "    if (kind >= 5) {\n"
+           "        const int back =\n"
+           "            g->I.x * g->Ng.x + g->I.y * g->Ng.y + g->I.z * g->Ng.z > 0.0f;\n"
+           "        kind = (kind == 5) == back ? 3 : 4;\n"
+           "        if (kind == 4 && as_int(s[row + 8]) < 0) kind = 2;\n"
+           "    }\n"
+           "    const int at = row + 2 * kind;\n"
            "    const int shader = as_int(s[at]), block = as_int(s[at + 1]);\n"
            "    if (shader < 0) return 0;\n    int off = -1;\n    switch (kind * 4096 + "
            "shader) {\n";
-    for (int kind = 0; kind < 3; ++kind)
+    for (int kind = 0; kind < ShaderBlocks::kKinds; ++kind)
         for (size_t i = 0; i < blocks.shaders[kind].size(); ++i) {
             src << "    case " << kind * 4096 + int(i) << ":";
             // (parameters: an output variable's current value is not in the block)

@@ -38,14 +38,17 @@ std::string messageServices(const Scene& scene, bool attributesUsed,
                             const MessageSlots& slots, std::vector<float>& params,
                             rib::Diagnostics& diag);
 
-// surface(), displacement() and atmosphere() (rsl_abi.h, MESSAGE PASSING): a parameter of
-// the shaded material's surface, displacement or atmosphere shader, from its bound block.
+// surface(), displacement(), atmosphere(), incident() and opposite() (rsl_abi.h, MESSAGE
+// PASSING): a parameter of the shaded material's surface, displacement, atmosphere,
+// interior or exterior shader, from its bound block.
 struct ShaderBlocks {
-    // per kind (0 surface, 1 displacement, 2 atmosphere): the shaders, each once
-    std::vector<const rsl::EmittedShader*> shaders[3];
+    // surface, displacement, atmosphere, interior, exterior
+    static constexpr int kKinds = 5;
+    // per kind: the shaders, each once
+    std::vector<const rsl::EmittedShader*> shaders[kKinds];
     // per material and kind: (index into shaders[kind], or -1 for none; its block's
     // start)
-    std::vector<std::array<int32_t, 6>> materials;
+    std::vector<std::array<int32_t, 2 * kKinds>> materials;
 };
 // Appends the per-material table to `params` (its start into params[tableSlot]) and
 // returns rsl_shader_param; when `used` is false (no shader calls it) the function finds

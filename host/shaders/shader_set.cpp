@@ -728,7 +728,8 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
                     names.insert(p.strings.begin(), p.strings.end());
         appendSpaceTable(m_scene, spaces, names, out.params);
     }
-    // surface(), displacement(), atmosphere(): the material's shaders' blocks
+    // surface(), displacement(), atmosphere(), incident(), opposite(): the material's
+    // shaders' blocks
     ShaderBlocks blocks;
     blocks.shaders[0] = surfaceShaders;
     auto kindIndex = [&](int kind, const rsl::EmittedShader* sh) {
@@ -742,17 +743,28 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     for (size_t mi = 0; shaderParamsUsed && mi < out.materials.size(); ++mi) {
         const Material& m = out.materials[mi];
         const uint32_t r = m_scene.materials[mi].shader;
-        std::array<int32_t, 6> e = {-1, 0, -1, 0, -1, 0};
+        std::array<int32_t, 2 * ShaderBlocks::kKinds> e{};
+        for (int kind = 0; kind < ShaderBlocks::kKinds; ++kind) e[2 * kind] = -1;
         if (r < refShader.size() && !surfaceShaders.empty())
             e[0] = int32_t(m.shader), e[1] = int32_t(m.params);
-        const uint32_t d =
-            (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT;
-        if (d > 0 && d <= dispBound.size() && dispBound[d - 1].first)
-            e[2] = kindIndex(1, dispBound[d - 1].first), e[3] = dispBound[d - 1].second;
-        const uint32_t a =
-            (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT;
-        if (a > 0 && a <= atmoBound.size() && atmoBound[a - 1].first)
-            e[4] = kindIndex(2, atmoBound[a - 1].first), e[5] = atmoBound[a - 1].second;
+        // a kind's shader by its index among the kind's bound calls (1-based, 0: none)
+        auto boundAs = [&](int kind, uint32_t index, const auto& bound) {
+            if (index == 0 || index > bound.size() || !bound[index - 1].first) return;
+            e[2 * kind] = kindIndex(kind, bound[index - 1].first);
+            e[2 * kind + 1] = bound[index - 1].second;
+        };
+        boundAs(
+            1,
+            (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT,
+            dispBound);
+        boundAs(2,
+                (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT,
+                atmoBound);
+        boundAs(3, (m.flags & RT_MATERIAL_INTERIOR_MASK) >> RT_MATERIAL_INTERIOR_SHIFT,
+                interBound);
+        boundAs(4,
+                mi < m_scene.materialExterior.size() ? m_scene.materialExterior[mi] : 0,
+                exterBound);
         blocks.materials.push_back(e);
     }
     svc << shaderParamService(blocks, shaderParamsUsed, kSceneShaderBlocks, out.params);

@@ -69,9 +69,12 @@
  * returns 0 and var is left unchanged; the RSL call returns 1.0 / 0.0 accordingly.
  * `surface("name", var)`, `displacement(...)` and `atmosphere(...)` call
  * rsl_shader_param(g, kind 0, 1 or 2, ...): a parameter (not an output variable) of the
- * shaded material's surface, displacement or atmosphere shader, as bound.
- * lightsource() outside an illuminance loop (including inside user functions),
- * incident(), opposite() and rendererinfo() return 0 without calling anything.
+ * shaded material's surface, displacement or atmosphere shader, as bound; kinds 3 and 4
+ * are its Interior and Exterior volume shaders, and `incident(...)` and `opposite(...)`
+ * call it with kind 5 and 6: the volume on the side I comes from and the other (the
+ * renderer picks Interior or Exterior by the sign of I . Ng).
+ * lightsource() outside an illuminance loop (including inside user functions) returns 0
+ * without calling anything; rendererinfo() is answered by the compiler.
  *
  * PER-POINT PARAMETERS. A renderer that defines RSL_MAX_PARAM_PRIMVARS (> 0) gives
  * surface shaders parameter values per shading point (RI primitive variables of class

@@ -41,9 +41,9 @@ std::string Emitter::colorSpaceArg(const Expr& e) {
 }
 
 // lightsource() in an illuminance loop, attribute(), option(), rayinfo(), surface(),
-// displacement() and atmosphere() ask the renderer (rsl_abi.h, MESSAGE PASSING);
-// rendererinfo() is answered here ("renderer", "version", "versionstring"); incident()
-// and opposite() are "not found" (0).
+// displacement(), atmosphere(), incident() and opposite() ask the renderer (rsl_abi.h,
+// MESSAGE PASSING); rendererinfo() is answered here ("renderer", "version",
+// "versionstring").
 std::string Emitter::message(const Expr& e) {
     const std::string& n = e.text;
     std::string svc;
@@ -79,6 +79,10 @@ std::string Emitter::message(const Expr& e) {
         svc = "rsl_shader_param(g, 1, ";
     else if (n == "atmosphere")
         svc = "rsl_shader_param(g, 2, ";
+    else if (n == "incident")
+        svc = "rsl_shader_param(g, 5, ";
+    else if (n == "opposite")
+        svc = "rsl_shader_param(g, 6, ";
     else if (n == "option") {  // (the service reads the scene through the spaces)
         svc = "rsl_option(sp, ";
         m_usesSpaces = true;

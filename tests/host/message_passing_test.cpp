@@ -1,6 +1,8 @@
 // message_passing_test.cpp: what shaders ask the renderer by name (rsl_abi.h, MESSAGE
 // PASSING): attribute() of the object shaded (Attribute values, "category:name"),
-// option() (Option values) and rayinfo() of the ray that reached the point.
+// option() (Option values), rayinfo() of the ray that reached the point, and the
+// material's other shaders' parameters (surface(), displacement(), atmosphere(),
+// incident(), opposite()).
 #include <gtest/gtest.h>
 
 #include "emit_cl.h"
@@ -42,6 +44,20 @@ surface showkd(float Kd = 0.25;) {
 )"},
                              {"noop", R"(
 volume noop(float dens = 7;) {
+}
+)"},
+                             {"half", R"(
+volume half(float dens = 7;) {
+    Ci *= 0.5;
+}
+)"},
+                             {"sides", R"(
+surface sides() {
+    float in = 0, out = 0;
+    incident("dens", in);
+    opposite("dens", out);
+    Ci = color(in / 10, out / 10, 1);
+    Oi = 1;
 }
 )"},
                              {"sumcl", R"(
@@ -202,4 +218,54 @@ TEST(MessagePassing, ShadersReadTheMaterialsOtherShaders) {
                   square(2, "Surface \"sumcl\"") + "WorldEnd\n");
     EXPECT_NEAR(at(lit, 0, 8), 0.6, 1e-6);
     EXPECT_NEAR(at(lit, 0, 40), 0.3, 1e-6);
+}
+
+// incident() and opposite(): the volume on the side the ray comes from and the other. Two
+// squares with an Interior ("half": it halves what comes back through the inside, so
+// the blue channel tells which square the renderer entered from its inside) of dens 3
+// and an Exterior of dens 5, one wound each way: seen from the outside incident() is the
+// exterior's 5 and opposite() the interior's 3; seen from the inside the two swap. A
+// third, wound as the outward one, has an Atmosphere (dens 8) and no Exterior: the eye
+// ray crossed the atmosphere, so incident() reads 8.
+TEST(MessagePassing, IncidentAndOppositeReadTheVolumesEitherSide) {
+    const std::string dir = rd::test::shaderFolder("message_passing", kShaders);
+    const std::string search = "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n";
+    const std::string volumes = "Surface \"sides\"\nInterior \"half\" \"dens\" [3]\n";
+    auto reversed = [](double x, const std::string& attributes) {
+        return "AttributeBegin\n" + attributes + "\nPolygon \"P\" [" +
+               std::to_string(x - 0.6) + " -0.6 0  " + std::to_string(x - 0.6) +
+               " 0.6 0  " + std::to_string(x + 0.6) + " 0.6 0  " +
+               std::to_string(x + 0.6) + " -0.6 0]\nAttributeEnd\n";
+    };
+    auto at = [](const Rendered& img, int channel, int column) {
+        return img.mean(channel, column - 2, 6, column + 2, 10);
+    };
+    for (int outwardFirst = 0; outwardFirst < 2; ++outwardFirst) {
+        // which of the two windings faces the camera is the renderer's (RI's) rule; the
+        // interior's halving says which one the ray met from inside
+        Rendered r = renderRib(
+            search + kCamera + "WorldBegin\n" +
+            square(-2, volumes + "Exterior \"noop\" \"dens\" [5]") +
+            reversed(0, volumes + "Exterior \"noop\" \"dens\" [5]") +
+            (outwardFirst ? square(2, volumes + "Atmosphere \"noop\" \"dens\" [8]")
+                          : reversed(2, volumes + "Atmosphere \"noop\" \"dens\" [8]")) +
+            "WorldEnd\n");
+        const bool squareFromInside = at(r, 2, 8) < 0.75;
+        const int inside = squareFromInside ? 8 : 24, outside = squareFromInside ? 24 : 8;
+        EXPECT_NEAR(at(r, 2, inside), 0.5, 1e-6);
+        EXPECT_NEAR(at(r, 2, outside), 1.0, 1e-6);
+        EXPECT_NEAR(at(r, 0, outside), 0.5, 1e-6);  // incident: the exterior's 5
+        EXPECT_NEAR(at(r, 1, outside), 0.3, 1e-6);  // opposite: the interior's 3
+        EXPECT_NEAR(at(r, 0, inside), 0.15, 1e-6);  // incident: the interior's 3, halved
+        EXPECT_NEAR(at(r, 1, inside), 0.25, 1e-6);  // opposite: the exterior's 5, halved
+        // the third square, wound as the square at -2 when outwardFirst
+        const bool thirdOutside = bool(outwardFirst) != squareFromInside;
+        if (thirdOutside) {
+            EXPECT_NEAR(at(r, 0, 40), 0.8, 1e-6);  // no Exterior: the atmosphere's 8
+            EXPECT_NEAR(at(r, 1, 40), 0.3, 1e-6);
+        } else {  // seen from inside: the interior, and no exterior behind
+            EXPECT_NEAR(at(r, 0, 40), 0.15, 1e-6);
+            EXPECT_NEAR(at(r, 1, 40), 0.4, 1e-6);  // the atmosphere's 8, halved
+        }
+    }
 }
