@@ -175,7 +175,9 @@ void chooseTraversal(Features& f, int bvhWidth, bool shadowPackets, bool closest
     // where PoCL tests a node's boxes with AVX, and sixteen where its vectors are sixteen
     // floats wide (AVX-512: 1.01-1.07x the eight-wide rate on every ray kind on a Zen 5,
     // session 38; a Zen 4, which splits 512-bit operations, measured 0.94-0.99 in session
-    // 18, before the SAH collapse: `--bvh-width 8` there until measured again);
+    // 18, before the SAH collapse: `--bvh-width 8` there until measured again; on a Zen 3
+    // with AVX2, session 40, sixteen took 1.06-1.09x the SPD scenes' intersect_closest
+    // time and 0.89x the bunny's bounces': eight there);
     // four elsewhere, where no figures say otherwise. The treelets are cut from the same
     // tree (eight-wide treelets: 1.08-1.37x the four-wide ones' rate at budgets of 4 KiB to
     // the whole tree).
