@@ -174,10 +174,11 @@ std::string shaderParamService(const ShaderBlocks& blocks, bool used, size_t tab
         << tableSlot << "]) + " << kStride
         << " * g->material;\n"
            "    if (kind >= 5) {\n"
-           "        const int back =\n"
-           "            g->I.x * g->Ng.x + g->I.y * g->Ng.y + g->I.z * g->Ng.z > 0.0f;\n"
+           "        const int back = dot(g->I.xyz, g->Ng.xyz) > 0.0f;\n"
            "        kind = (kind == 5) == back ? 3 : 4;\n"
-           "        if (kind == 4 && as_int(s[row + 8]) < 0) kind = 2;\n"
+           "        if (kind == 4 && as_int(s[row + "
+        << 2 * 4
+        << "]) < 0) kind = 2;\n"
            "    }\n"
            "    const int at = row + 2 * kind;\n"
            "    const int shader = as_int(s[at]), block = as_int(s[at + 1]);\n"

@@ -225,8 +225,8 @@ TEST(MessagePassing, ShadersReadTheMaterialsOtherShaders) {
 // the blue channel tells which square the renderer entered from its inside) of dens 3
 // and an Exterior of dens 5, one wound each way: seen from the outside incident() is the
 // exterior's 5 and opposite() the interior's 3; seen from the inside the two swap. A
-// third, wound as the outward one, has an Atmosphere (dens 8) and no Exterior: the eye
-// ray crossed the atmosphere, so incident() reads 8.
+// third, wound one way and then the other, has an Atmosphere (dens 8) and no Exterior:
+// from outside the eye ray crossed the atmosphere, so incident() reads 8.
 TEST(MessagePassing, IncidentAndOppositeReadTheVolumesEitherSide) {
     const std::string dir = rd::test::shaderFolder("message_passing", kShaders);
     const std::string search = "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n";
