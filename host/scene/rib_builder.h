@@ -193,6 +193,7 @@ public:
                int vstep) override;
     void patch(L, S type, P) override;
     void patchMesh(L, S type, int nu, S uwrap, int nv, S vwrap, P) override;
+    void geometry(L, S type, P) override;  // "teapot"
     void trimCurve(L, Ints ncurves, Ints order, Floats knot, Floats min, Floats max, Ints n,
                    Floats u, Floats v, Floats w) override;
     void nuPatch(L, int nu, int uorder, Floats uknot, float umin, float umax, int nv,

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "rib_builder.h"
+#include "teapot.h"
 #include "tessellate_blobby.h"
 #include "tessellate_curves_points.h"
 #include "tessellate_polygons.h"
@@ -411,6 +412,33 @@ void RibBuilder::patchMesh(L loc, S type, int nu, S uwrap, int nv, S vwrap, P pa
     addSurface(loc, "PatchMesh", ok, m, err, [&](VertexData& mesh) {
         patchPointParams(params, grid, m.st, m.faceIndex, mesh);
     });
+}
+
+// Newell's teapot as PRMan draws it: 32 Bezier patches whatever the current Basis, with
+// the request's parameters (constant ones; each patch checks the rest as a Patch would).
+void RibBuilder::geometry(L loc, S type, P params) {
+    if (type != "teapot")
+        return m_diag.warning(
+            loc, "Geometry \"" + type +
+                     "\": unknown type (RayDrive draws \"teapot\"), skipped");
+    Attributes& a = m_attrStack.back();
+    const CubicBasis ubasis = a.ubasis, vbasis = a.vbasis;
+    a.ubasis = a.vbasis = bezierBasis();
+    rib::ParamList patchParams = params;
+    patchParams.params.erase(
+        std::remove_if(patchParams.params.begin(), patchParams.params.end(),
+                       [](const rib::Param& p) {
+                           return p.name == "P" || p.name == "Pw" || p.name == "Pz";
+                       }),
+        patchParams.params.end());
+    rib::Param P;
+    P.name = "P", P.type = rib::ParamType::Point, P.storage = rib::StorageClass::Vertex;
+    patchParams.params.push_back(P);
+    for (int k = 0; k < kTeapotPatches; ++k) {
+        patchParams.params.back().floats = teapotPatch(k);
+        patch(loc, "bicubic", patchParams);
+    }
+    a.ubasis = ubasis, a.vbasis = vbasis;
 }
 
 void RibBuilder::trimCurve(L loc, Ints ncurves, Ints order, Floats knot, Floats min, Floats max,

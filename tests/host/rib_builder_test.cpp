@@ -237,3 +237,19 @@ TEST(RibBuilder, ObjectSpacesAreBounded) {
             << b.messages.substr(0, 500);
     }
 }
+
+// Geometry names an implementation's own primitive: "teapot" is drawn (teapot_test.cpp);
+// another name is skipped with a warning at its line, as PRMan does, and the render goes
+// on.
+TEST(RibBuilder, UnknownGeometryTypeIsAWarningAtItsLine) {
+    Built b = build("WorldBegin\nGeometry \"bunny\"\nGeometry \"teapot\"\nWorldEnd\n");
+    EXPECT_EQ(b.errors, 0) << b.messages;
+    EXPECT_NE(
+        b.messages.find("t.rib:2: warning: Geometry \"bunny\": unknown type (RayDrive "
+                        "draws \"teapot\"), skipped"),
+        std::string::npos)
+        << b.messages;
+    EXPECT_EQ(b.messages.find("t.rib:3:"), std::string::npos) << b.messages;
+    ASSERT_EQ(b.scenes.size(), 1u);
+    EXPECT_GT(b.scenes[0].triangles.size(), 32u * 8u);  // the teapot's 32 patches, diced
+}
