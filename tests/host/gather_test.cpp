@@ -76,12 +76,12 @@ const std::string kDisk =
 // A patch under a disk that covers 0.2 of its cosine-weighted hemisphere (see
 // Shading.OcclusionAndIndirectDiffuseAreTheirHemisphereFractions): 0.8 of the passes
 // escape, as occlusion() finds; under half a sky sphere 0.5; none are stopped with the
-// disk beyond "maxdist". Eight by eight samples a pixel, 16 passes each (four traced
+// disk beyond "maxdist". Four by four samples a pixel, 16 passes each (four traced
 // directions, cycled); image means.
 TEST(Gather, PassesAreTheHemisphereFractions) {
     const std::string dir = shaderDir("gather_ao");
     auto render = [&](const std::string& call, const std::string& above) {
-        return renderRib(rd::test::patchUnder(dir, 8, call, above));
+        return renderRib(rd::test::patchUnder(dir, 4, call, above));
     };
     Rendered under = render("\"gao\"", kDisk),
              half = render("\"gao\"", "Sphere 100 -100 100 180\n"),
@@ -102,7 +102,7 @@ TEST(Gather, PassesAreTheHemisphereFractions) {
 TEST(Gather, TheHitBranchGetsWhatTheRayMetTheElseBranchTheRest) {
     const std::string dir = shaderDir("gather_ci");
     for (const char* call : {"\"gathered\"", "\"gathered\" \"samples\" 3"}) {
-        Rendered r = renderRib(rd::test::patchUnder(dir, 8, call, kDisk));
+        Rendered r = renderRib(rd::test::patchUnder(dir, 4, call, kDisk));
         EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), 0.2, 0.02) << call;
         EXPECT_NEAR(r.mean(1, 0, 0, 16, 16), 0.1, 0.01) << call;
         EXPECT_NEAR(r.mean(2, 0, 0, 16, 16), 0.45, 0.02) << call;
@@ -116,7 +116,7 @@ TEST(Gather, TheHitBranchGetsWhatTheRayMetTheElseBranchTheRest) {
 // 4 (1 - 2 / sqrt 5) = 0.4223.
 TEST(Gather, RayLengthIsTheDistanceToWhatTheRayMet) {
     Rendered r = renderRib(
-        rd::test::patchUnder(shaderDir("gather_length"), 8, "\"gatherlen\"", kDisk));
+        rd::test::patchUnder(shaderDir("gather_length"), 4, "\"gatherlen\"", kDisk));
     const double expected = 4 * (1 - 2 / std::sqrt(5.0));
     EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), expected, 0.02);
     std::printf("NUMERICS case=gather_ray_length tolerance=0.02 measured=%.4f\n",
@@ -124,7 +124,7 @@ TEST(Gather, RayLengthIsTheDistanceToWhatTheRayMet) {
     // A wider disk halfway up that traced rays do not see: the rays go through it and
     // measure from where they started, to the same mean (before, they stopped at it).
     Rendered through = renderRib(rd::test::patchUnder(
-        shaderDir("gather_length"), 8, "\"gatherlen\"",
+        shaderDir("gather_length"), 4, "\"gatherlen\"",
         "AttributeBegin\nAttribute \"visibility\" \"int trace\" [0]\nTranslate 0 0 6\n"
         "Disk 0 1.5 360\nAttributeEnd\n" +
             kDisk));
@@ -137,7 +137,7 @@ TEST(Gather, RayLengthIsTheDistanceToWhatTheRayMet) {
 // mean of (hit ? zcomp(P) : 0) is 0.2 x 7 = 1.4.
 TEST(Gather, PrimitivePIsWhereTheRayMetTheSurface) {
     Rendered r = renderRib(
-        rd::test::patchUnder(shaderDir("gather_hitp"), 8, "\"gatherhitp\"", kDisk));
+        rd::test::patchUnder(shaderDir("gather_hitp"), 4, "\"gatherhitp\"", kDisk));
     EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), 1.4, 0.05);
     std::printf("NUMERICS case=gather_primitive_p tolerance=0.05 measured=%.4f\n",
                 r.mean(0, 0, 0, 16, 16) - 1.4);
