@@ -49,7 +49,12 @@ __kernel void displace_vertices(uint count,
     dir.w = 0.0f;
     h.t = sqrt(rt_dot3(dir, dir));
     dir = h.t > 0.0f ? dir / h.t : (float4)(0.0f, 0.0f, 1.0f, 0.0f);
-    const float time = 0.0f;
+    /* a moving piece is displaced on its first key, from where its offset is carried to
+     * the others (host/render/true_displacement.cpp) */
+    float time = 0.0f;
+#ifdef RT_HAS_MOTION
+    if (attrs[tri].flags & RT_QF_MOVING) time = tris_end[tri].v0.w;
+#endif
     const uint inst = RT_NO_HIT;
     float4 org = eye;
 #undef RD_HIT_BUFFERS

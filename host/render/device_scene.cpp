@@ -29,7 +29,8 @@ BvhPrimitives bvhPrimitives(const Scene& scene) {
         p.bounds.push_back(tb[i]);
     }
     for (size_t i = 0; i < scene.quadrics.size(); ++i) {
-        if (scene.quadrics[i].flags & RT_QF_CSG_MEMBER) continue;
+        // (a diced moving triangle's record too: its pieces' records stand for it)
+        if (scene.quadrics[i].flags & (RT_QF_CSG_MEMBER | RT_QF_DICED)) continue;
         p.ids.push_back(RT_OBJECT_BIT | uint32_t(i));
         p.bounds.push_back(scene.quadricBounds[i]);
     }

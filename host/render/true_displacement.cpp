@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "device_scene.h"
+#include "host/scene/triangle_motion.h"
 
 namespace rd {
 
@@ -43,6 +45,91 @@ void remakeNormals(Scene& s, const DicedSurfaces& d, const std::vector<rt_float4
             if (glm::dot(n, glm::dvec3(v3(stored))) < 0.0) n = -n;
             stored = {float(n.x), float(n.y), float(n.z), 0.0f};
         }
+}
+
+// The linear map that takes a triangle's first key to another: its edges to the key's
+// edges and its normal (as long as an edge) to the key's. Exact for rigid motion and
+// uniform scaling, which is what transform motion blur gives; the identity for a
+// degenerate key.
+glm::mat3 keyMap(const Triangle& from, const Triangle& to) {
+    const glm::vec3 e1 = v3(from.v1) - v3(from.v0), e2 = v3(from.v2) - v3(from.v0);
+    const glm::vec3 f1 = v3(to.v1) - v3(to.v0), f2 = v3(to.v2) - v3(to.v0);
+    const glm::vec3 n = glm::cross(e1, e2), m = glm::cross(f1, f2);
+    const float ln = glm::length(n), lm = glm::length(m);
+    if (!(ln > 0.0f) || !(lm > 0.0f) || !std::isfinite(ln) || !std::isfinite(lm))
+        return glm::mat3(1.0f);
+    const glm::mat3 a(e1, e2, n / std::sqrt(ln)), b(f1, f2, m / std::sqrt(lm));
+    const float det = glm::determinant(a);
+    if (!(std::fabs(det) > 0.0f)) return glm::mat3(1.0f);
+    const glm::mat3 map = b * glm::inverse(a);
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+            if (!std::isfinite(map[c][r])) return glm::mat3(1.0f);
+    return map;
+}
+
+// The diced pieces of moving surfaces. The shader ran on their first key
+// (displace_vertices.cl); each vertex's offset is carried to the later keys by the
+// motion from the first key to each (keyMap of the piece's original triangle), as a
+// REYES renderer moves a grid it displaced at shutter open. A vertex's places on the keys
+// are computed once, from its first corner, and given to every piece that shares it, so
+// the surface stays closed at every key. Called before the pieces' first keys move (the
+// offsets are taken from them).
+void moveKeys(Scene& s, const DicedSurfaces& d, const std::vector<rt_float4>& moved,
+              const std::vector<uint8_t>& left) {
+    const size_t pieces = d.cornerVertex.size() / 3;
+    auto isMoving = [&](size_t piece) {
+        return (s.attrs[piece].flags & RT_QF_MOVING) && piece < s.trianglesEnd.size();
+    };
+    auto cornerOf = [](const Triangle& t, uint32_t c) {
+        return v3(c == 0 ? t.v0 : c == 1 ? t.v1 : t.v2);
+    };
+    std::map<uint32_t, std::vector<glm::mat3>> maps;  // by original triangle, every key
+    auto mapsOf = [&](uint32_t source) -> const std::vector<glm::mat3>& {
+        auto [it, fresh] = maps.try_emplace(source);
+        if (fresh)
+            for (const Triangle& key : triangleKeys(s, source).keys)
+                it->second.push_back(keyMap(s.triangles[source], key));
+        return it->second;
+    };
+    // each vertex's places on the keys after the first
+    std::vector<std::vector<glm::vec3>> places(moved.size());
+    for (size_t v = 0; v < moved.size(); ++v) {
+        const uint32_t piece = d.vertexCorner[v][0], corner = d.vertexCorner[v][1];
+        if (!isMoving(piece)) continue;
+        const std::vector<glm::mat3>& m = mapsOf(d.pieceSource[piece - d.firstTriangle]);
+        const std::vector<Triangle> keys = triangleKeys(s, piece).keys;
+        if (keys.size() != m.size()) continue;
+        const glm::vec3 offset =
+            left[v] ? glm::vec3(0.0f)
+                    : v3(moved[v]) - cornerOf(s.triangles[piece], corner);
+        for (size_t j = 0; j < keys.size(); ++j)
+            places[v].push_back(cornerOf(keys[j], corner) + m[j] * offset);
+    }
+    for (size_t i = 0; i < pieces; ++i) {
+        const size_t piece = d.firstTriangle + i;
+        if (!isMoving(piece)) continue;
+        std::vector<Triangle> keys = triangleKeys(s, piece).keys;
+        for (int c = 0; c < 3; ++c) {
+            const std::vector<glm::vec3>& at = places[d.cornerVertex[3 * i + size_t(c)]];
+            if (at.size() != keys.size()) continue;  // (welded to a still vertex)
+            for (size_t j = 0; j < keys.size(); ++j) {
+                rt_float4& p = c == 0 ? keys[j].v0 : c == 1 ? keys[j].v1 : keys[j].v2;
+                p.x = at[j].x, p.y = at[j].y, p.z = at[j].z;
+            }
+        }
+        setTriangleKeys(s, piece, keys);
+    }
+}
+
+// The moving pieces' boxes over their displaced keys.
+void refitMotionBounds(Scene& s, const DicedSurfaces& d) {
+    const size_t pieces = d.cornerVertex.size() / 3;
+    for (size_t q = 0; q < s.quadrics.size(); ++q)
+        if (s.quadrics[q].kind == RT_Q_MOVING_TRIANGLE &&
+            s.quadrics[q].first_member >= d.firstTriangle &&
+            s.quadrics[q].first_member - d.firstTriangle < pieces)
+            s.quadricBounds[q] = triangleMotionBounds(s, s.quadrics[q].first_member);
 }
 
 }  // namespace
@@ -139,6 +226,7 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
         if (left[i]) moved[i] = {p.x, p.y, p.z, 0.0f}, shaderN[i] = {0, 0, 0, 0};
     }
     r.vertices = nv - size_t(std::count(left.begin(), left.end(), uint8_t(1)));
+    moveKeys(scene, diced, moved, left);
     for (size_t i = 0; i < diced.cornerVertex.size() / 3; ++i) {
         Triangle& t = scene.triangles[diced.firstTriangle + i];
         t.v0 = moved[diced.cornerVertex[3 * i]];
@@ -146,6 +234,7 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
         t.v2 = moved[diced.cornerVertex[3 * i + 2]];
     }
     remakeNormals(scene, diced, moved, shaderN);
+    refitMotionBounds(scene, diced);
     return r;
 }
 
@@ -159,10 +248,9 @@ rib::SourceLoc displacementLoc(const Scene& scene) {
 void reportDicing(const DicedSurfaces& d, const Scene& scene, rib::Diagnostics& diag) {
     const rib::SourceLoc loc = displacementLoc(scene);
     if (d.skipped > 0)
-        diag.warning(loc,
-                     std::to_string(d.skipped) +
-                         " truly displaced triangle(s) moving, instanced or in a solid: "
-                         "bump mapped instead");
+        diag.warning(loc, std::to_string(d.skipped) +
+                              " truly displaced triangle(s) instanced or in a solid: "
+                              "bump mapped instead");
     if (d.coarsening > 1.0f)
         diag.warning(loc, "true displacement diced " + std::to_string(int(d.coarsening)) +
                               "x coarser than ShadingRate asks, to stay within " +

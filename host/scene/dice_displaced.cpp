@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "triangle_motion.h"
+
 namespace rd {
 
 bool DicingView::inView(const glm::vec3& p) const {
@@ -110,14 +112,15 @@ bool dice(const DicingView& view, float limit, const Corner& a, const Corner& b,
     return next(mxy, *y, *z) && next(mxy, *z, mzx);
 }
 
-// Whether a triangle is diced: truly displaced, neither moving, instanced nor in a solid.
+// Whether a triangle is diced: truly displaced, neither instanced nor in a solid. (A
+// moving one is diced at its first key, and its pieces move as it does.)
 bool isDiced(const Scene& s, size_t t) {
     const TriangleAttr& a = s.attrs[t];
     if (a.material >= s.materials.size()) return false;
     const Material& m = s.materials[a.material];
     return (m.flags & RT_MATERIAL_TRUE_DISPLACEMENT) &&
            (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) &&
-           !(a.flags & (RT_QF_CSG_MEMBER | RT_QF_MOVING | RT_QF_PROTOTYPE | RT_QF_DICED));
+           !(a.flags & (RT_QF_CSG_MEMBER | RT_QF_PROTOTYPE | RT_QF_DICED));
 }
 
 glm::vec3 v3(const rt_float4& f) {
@@ -133,6 +136,17 @@ rt_float4 blend(const rt_float4* corners, const glm::vec2& b) {
             w0 * corners[0].y + b.x * corners[1].y + b.y * corners[2].y,
             w0 * corners[0].z + b.x * corners[1].z + b.y * corners[2].z,
             w0 * corners[0].w + b.x * corners[1].w + b.y * corners[2].w};
+}
+
+// A corner's place on each of a moving triangle's keys after the first.
+std::vector<Triangle> keysAt(const std::vector<Triangle>& keys, const glm::vec2& a,
+                             const glm::vec2& b, const glm::vec2& c) {
+    std::vector<Triangle> out;
+    for (const Triangle& k : keys) {
+        const rt_float4 corners[3] = {k.v0, k.v1, k.v2};
+        out.push_back({blend(corners, a), blend(corners, b), blend(corners, c)});
+    }
+    return out;
 }
 
 // The vertices met so far, found by place: a corner is an earlier vertex when it is of
@@ -282,17 +296,25 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
         return std::array<Corner, 3>{Corner{v3(tr.v0), {0, 0}}, Corner{v3(tr.v1), {1, 0}},
                                      Corner{v3(tr.v2), {0, 1}}};
     };
+    // A moving piece counts three against the budget: its motion record, box and last
+    // key cost twice a still piece's arrays again.
+    auto weightOf = [&](size_t t) -> size_t {
+        return s.attrs[t].flags & RT_QF_MOVING ? 3 : 1;
+    };
     // Count first, coarser while over the budget (a bounded number of tries: each
     // doubles the edge limit).
-    size_t counted = 0;  // the pieces of the dicing that fits
+    size_t counted = 0, weighed = 0;  // the pieces of the dicing that fits, and weighted
     for (int tries = 0;; ++tries) {
-        counted = 0;
+        counted = weighed = 0;
+        size_t weight = 1;
         auto counter = [&](const Corner&, const Corner&, const Corner&) {
-            return ++counted <= maxTriangles;
+            ++counted;
+            return (weighed += weight) <= maxTriangles;
         };
         bool fits = true;
         for (size_t t : diced) {
             const auto c = cornersOf(t);
+            weight = weightOf(t);
             if (!dice(view, limitOf(t), c[0], c[1], c[2], counter)) {
                 fits = false;
                 break;
@@ -325,9 +347,18 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
              {&s.triangles[t].v0, &s.triangles[t].v1, &s.triangles[t].v2})
             lo = glm::min(lo, v3(*v)), hi = glm::max(hi, v3(*v));
     VertexWeld weld(glm::length(hi - lo) * 1e-6f, counted / 2 + 16);
+    // the motion records of moving triangles, which their pieces' records replace
+    std::vector<uint32_t> motionRecord(n, ~0u);
+    for (size_t q = 0; q < s.quadrics.size(); ++q)
+        if (s.quadrics[q].kind == RT_Q_MOVING_TRIANGLE && s.quadrics[q].first_member < n)
+            motionRecord[s.quadrics[q].first_member] = uint32_t(q);
+    size_t used = 0;  // weighted, as counted
     for (size_t t : diced) {
+        const size_t weight = weightOf(t);
         const TriangleAttr attr = s.attrs[t];
         const Triangle tr = s.triangles[t];
+        const bool moving = (attr.flags & RT_QF_MOVING) && t < s.trianglesEnd.size();
+        const TriangleKeys motion = moving ? triangleKeys(s, t) : TriangleKeys{};
         rt_float4 nrm[3], st[3];
         const glm::vec3 face =
             glm::normalize(glm::cross(v3(tr.v1) - v3(tr.v0), v3(tr.v2) - v3(tr.v0)));
@@ -355,6 +386,9 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
             s.triangles.push_back({f4(a.p), f4(b.p), f4(c.p)});
             s.attrs.push_back({attr.material, 1u, attr.primvars | RT_PRIMVAR_ST,
                                attr.flags | RT_QF_DISPLACED});
+            out.pieceSource.push_back(uint32_t(t));
+            if (moving)
+                addTriangleMotion(s, keysAt(motion.keys, a.b, b.b, c.b), motion.times);
             int k = 0;
             for (const Corner* q : {&a, &b, &c}) {
                 rt_float4 nq = blend(nrm, q->b);
@@ -394,11 +428,13 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
                         }
                 }
             }
-            return s.triangles.size() - n < maxTriangles;
+            return (used += weight) < maxTriangles;
         };
         const auto c = cornersOf(t);
         const bool whole = dice(view, limitOf(t), c[0], c[1], c[2], emit);
         s.attrs[t].flags |= RT_QF_DICED;
+        if (moving && motionRecord[t] != ~0u)
+            s.quadrics[motionRecord[t]].flags |= RT_QF_DICED;
         ++out.diced;
         if (!whole) {  // (only where even the coarsest limit could not fit)
             out.truncated = true;

@@ -470,10 +470,6 @@ private:
     // them move), reporting degenerate ones once per request.
     void appendTriangles(L, const VertexData& mesh, const std::vector<glm::vec3>& wp,
                          const MeshMotion* motion, uint32_t extraFlags = 0);
-    // Makes the triangle just appended (at its first key) move through `keys` (those
-    // after the first, the last one last) at `times` (all keys').
-    void addMovingTriangle(const Triangle& first, const std::vector<Triangle>& keys,
-                           const std::vector<float>& times);
     std::vector<Scene> m_scenes;
     // Make* requests read after a frame was built: run before the next frame renders
     std::vector<std::pair<size_t, std::function<void()>>> m_deferredMakes;

@@ -2,12 +2,13 @@
 // (eye-relative) world, degenerate triangles reported at their request, per-vertex
 // normals and primitive variables, and triangles that move during the shutter.
 #include <algorithm>
-#include <cfloat>
 #include <array>
+#include <cfloat>
 #include <cstring>
 
 #include "rib_builder.h"
 #include "rib_builder_util.h"
+#include "triangle_motion.h"
 
 namespace rd {
 
@@ -244,7 +245,7 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh,
             for (const std::vector<glm::vec3>& key : motion->keys)
                 keys.push_back(
                     {f4(key[size_t(i0)]), f4(key[size_t(i1)]), f4(key[size_t(i2)])});
-            addMovingTriangle(m_world.triangles.back(), keys, motion->times);
+            addTriangleMotion(m_world, keys, motion->times);
         }
         // A zero or non-finite vertex normal: all three stored as zero, the device uses Ng.
         bool normalsOk = true;
@@ -279,49 +280,6 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh,
     add(duplicate, " coincident (duplicate) triangle(s) left out");
     add(badNormal, " triangle(s) with a zero or non-finite normal shaded with the geometric normal");
     m_diag.warning(loc, "degenerate geometry: " + what);
-}
-
-void RibBuilder::addMovingTriangle(const Triangle& first,
-                                   const std::vector<Triangle>& keys,
-                                   const std::vector<float>& times) {
-    // The last key by triangle index, the key times in its v0.w and v1.w; the keys
-    // between in the motion buffer, v2.w 1 + where they start (cl/lib/motion.clh). (A
-    // float holds the index exactly up to 2^24 float4s: past that they are left out, and
-    // the triangle moves from its first key to its last.)
-    const uint32_t index = uint32_t(m_world.triangles.size() - 1);
-    if (m_world.trianglesEnd.size() < index) m_world.trianglesEnd.resize(index);
-    Triangle last = keys.back();
-    last.v0.w = times.front(), last.v1.w = times.back(), last.v2.w = 0.0f;
-    const size_t at = m_world.quadricMotion.size();
-    if (keys.size() > 1 && at + 3 * keys.size() < (size_t(1) << 24)) {
-        last.v2.w = float(at + 1);
-        for (size_t k = 0; k + 1 < keys.size(); ++k) {
-            Triangle key = keys[k];
-            key.v0.w = times[k + 1];
-            key.v1.w = k == 0 ? float(keys.size() - 1) : 0.0f;
-            for (const rt_float4& v : {key.v0, key.v1, key.v2})
-                m_world.quadricMotion.push_back(v);
-        }
-    }
-    m_world.trianglesEnd.push_back(last);
-    m_world.attrs.back().flags |= RT_QF_MOVING;
-    Quadric q{};
-    q.kind = RT_Q_MOVING_TRIANGLE;
-    q.first_member = index;
-    q.flags = RT_QF_MOVING;
-    q.primvars = RT_NO_QUADRIC_PRIMVARS;
-    q.point_params = RT_NO_POINT_PARAMS;
-    Aabb box;
-    auto grow = [&](const Triangle& t) {
-        for (const rt_float4* v : {&t.v0, &t.v1, &t.v2}) {
-            const float p[3] = {v->x, v->y, v->z};
-            box.grow(p);
-        }
-    };
-    grow(first);
-    for (const Triangle& key : keys) grow(key);
-    m_world.quadrics.push_back(q);
-    m_world.quadricBounds.push_back(box);
 }
 
 std::optional<std::vector<std::pair<std::string, int>>> RibBuilder::sharedPointParams(

@@ -228,6 +228,80 @@ TEST(TrueDisplacement, DicedSphereIsClosed) {
     EXPECT_EQ(open, 0u);
 }
 
+// A moving surface is diced and displaced on its first key, and each vertex's offset is
+// carried to the later keys by the motion: a rippled cube (object-space ripples) turned
+// about the view axis from 0 to 90 degrees, seen at the shutter's end (Shutter 1 1), has
+// the outline of the cube placed at 90 degrees, pixel for pixel (orthographic, so the
+// dicing does not depend on the turn): also through three keys (0, 30, 90) and from a
+// 45-degree first key, and moved along x with keys at times -1 and 1. Bump mapped (as
+// moving surfaces were before) the outline differs. Open for the whole motion
+// (Shutter 0 1) a sphere pushed out by 0.5 along x covers its radius-1.5 disc at every
+// instant: 2.25 pi, where bump mapped it is pi.
+TEST(TrueDisplacement, MovingSurfacesAreDisplacedAtEveryKey) {
+    const std::string cube =
+        "Rotate 35 1 0 0\nRotate 25 0 1 0\n"
+        "PointsPolygons [4 4 4 4 4 4] [0 1 3 2  4 6 7 5  0 4 5 1  2 3 7 6  0 2 6 4  1 5 "
+        "7 "
+        "3] \"P\" [-0.8 -0.8 -0.8  0.8 -0.8 -0.8  -0.8 0.8 -0.8  0.8 0.8 -0.8  -0.8 -0.8 "
+        "0.8  0.8 -0.8 0.8  -0.8 0.8 0.8  0.8 0.8 0.8]\n";
+    auto render = [&](const std::string& shutter, const std::string& placement,
+                      int truly) {
+        return renderRib(
+            shaderPath() + "Format 64 64 1\nPixelSamples 4 4\nShutter " + shutter +
+            "\nProjection \"orthographic\"\nScreenWindow -2 2 -2 2\n"
+            "Translate 0 0 5\nWorldBegin\nSurface \"constant\"\n"
+            "Attribute \"render\" \"int truedisplacement\" [" +
+            std::to_string(truly) + "]\nDisplacement \"ripple\" \"float amp\" [0.25]\n" +
+            placement + cube + "WorldEnd\n");
+    };
+    auto alphaDiff = [](const Rendered& a, const Rendered& b) {
+        double worst = 0;
+        for (size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i)
+            worst = std::max(worst, double(std::fabs(a.pixels[i].a - b.pixels[i].a)));
+        return worst;
+    };
+    const Rendered turned = render("0 1", "Rotate 90 0 0 1\n", 1);
+    struct Case {
+        const char* name;
+        std::string placement;
+    } cases[] = {
+        {"two keys", "MotionBegin [0 1]\nRotate 0 0 0 1\nRotate 90 0 0 1\nMotionEnd\n"},
+        {"three keys",
+         "MotionBegin [0 0.5 1]\nRotate 0 0 0 1\nRotate 30 0 0 1\nRotate 90 0 0 1\n"
+         "MotionEnd\n"},
+        {"from 45", "MotionBegin [0 1]\nRotate 45 0 0 1\nRotate 90 0 0 1\nMotionEnd\n"},
+    };
+    for (const Case& c : cases) {
+        const Rendered moving = render("1 1", c.placement, 1);
+        EXPECT_LT(alphaDiff(turned, moving), 1e-6) << c.name;
+        EXPECT_GT(moving.stats.dicedTriangles, 1000u) << c.name;
+    }
+    EXPECT_LT(alphaDiff(render("0 1", "Translate 0.5 0 0\n", 1),
+                        render("1 1",
+                               "MotionBegin [-1 1]\nTranslate 0 0 0\nTranslate 0.5 0 0\n"
+                               "MotionEnd\n",
+                               1)),
+              1e-6);
+    EXPECT_GT(alphaDiff(turned, render("1 1", cases[0].placement, 0)), 0.5)
+        << "bump mapped";
+    // motion blur over the whole motion
+    const std::string sweep =
+        "MotionBegin [0 1]\nTranslate -0.4 0 0\nTranslate 0.4 0 0\nMotionEnd\n";
+    auto blurred = [&](int truly) {
+        Rendered r = renderRib(
+            shaderPath() +
+            "Format 64 64 1\nPixelSamples 6 6\nShutter 0 1\n"
+            "Projection \"orthographic\"\nScreenWindow -2.5 2.5 -2.5 2.5\n"
+            "Translate 0 0 5\nWorldBegin\nSurface \"constant\"\n"
+            "Attribute \"render\" \"int truedisplacement\" [" +
+            std::to_string(truly) + "]\nDisplacement \"push\" \"float amount\" [0.5]\n" +
+            sweep + "Sphere 1 -1 1 360\nWorldEnd\n");
+        return r.mean(3, 0, 0, r.width, r.height) * 25.0;
+    };
+    EXPECT_NEAR(blurred(1), 2.25 * kPi, 0.15);
+    EXPECT_NEAR(blurred(0), kPi, 0.15);
+}
+
 // A displacement that moves its vertices to NaN is reported at its own request's line,
 // the vertices left in place; a negative displacement bound is a warning; a coarser
 // dicing than asked (a plane to the horizon at a tiny ShadingRate) is a warning and stays
