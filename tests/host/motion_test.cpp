@@ -234,3 +234,42 @@ TEST(Motion, CameraKeysBetweenTheFirstAndTheLast) {
         },
         "camera_three_keys");
 }
+
+// A mesh's vertex normals turn with it: a square whose normals lean (0.6, 0, -0.8),
+// turned about the view axis from 0 to 90 degrees, is shaded at the shutter's end with
+// them turned to (0, 0.6, -0.8), and halfway (its vertices midway between the keys: the
+// square turned 45 degrees and shrunk by cos 45, a similarity) with (0.42, 0.42, -0.8).
+// The shader shows N as a colour, 0.5 + 0.5 N. Before, the normals stayed the first
+// key's: (0.8, 0.5, 0.1) at every time.
+TEST(Motion, VertexNormalsTurnWithTheMesh) {
+    static const char* const kShaders[][2] = {
+        {"shownormal",
+         "surface shownormal() {\n    normal n = normalize(N);\n"
+         "    Ci = color(0.5 + 0.5 * xcomp(n), 0.5 + 0.5 * ycomp(n), 0.5 + 0.5 * "
+         "zcomp(n));\n"
+         "    Oi = 1;\n}\n"}};
+    const std::string dir = rd::test::shaderFolder("raydrive_motion_normals", kShaders);
+    auto at = [&](const char* time) {
+        return renderRib("Option \"searchpath\" \"shader\" [\"" + dir +
+                         ":&\"]\nFormat 16 16 1\nPixelSamples 2 2\nShutter " + time +
+                         " " + time +
+                         "\nProjection \"orthographic\"\nScreenWindow -1 1 -1 1\n"
+                         "Translate 0 0 5\nWorldBegin\nSurface \"shownormal\"\n"
+                         "MotionBegin [0 1]\nRotate 0 0 0 1\nRotate 90 0 0 1\nMotionEnd\n"
+                         "Polygon \"P\" [-0.6 -0.6 0  0.6 -0.6 0  0.6 0.6 0  -0.6 0.6 0] "
+                         "\"N\" [0.6 0 -0.8  0.6 0 -0.8  0.6 0 -0.8  0.6 0 -0.8]\n"
+                         "WorldEnd\n");
+    };
+    const double h = 0.5 + 0.5 * 0.6 * std::sqrt(0.5);
+    const struct {
+        const char* time;
+        double r, g;
+    } cases[] = {{"0", 0.8, 0.5}, {"1", 0.5, 0.8}, {"0.5", h, h}};
+    for (const auto& c : cases) {
+        const Rendered r = at(c.time);
+        // the middle 4 x 4 pixels: inside the square at every turn
+        EXPECT_NEAR(r.mean(0, 6, 6, 10, 10), c.r, 1e-4) << "time " << c.time;
+        EXPECT_NEAR(r.mean(1, 6, 6, 10, 10), c.g, 1e-4) << "time " << c.time;
+        EXPECT_NEAR(r.mean(2, 6, 6, 10, 10), 0.1, 1e-4) << "time " << c.time;
+    }
+}
