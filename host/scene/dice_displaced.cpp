@@ -385,7 +385,7 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
             const uint32_t index = uint32_t(s.triangles.size());
             s.triangles.push_back({f4(a.p), f4(b.p), f4(c.p)});
             s.attrs.push_back({attr.material, 1u, attr.primvars | RT_PRIMVAR_ST,
-                               attr.flags | RT_QF_DISPLACED});
+                               (attr.flags & ~uint32_t(RT_QF_MOVING)) | RT_QF_DISPLACED});
             out.pieceSource.push_back(uint32_t(t));
             if (moving)
                 addTriangleMotion(s, keysAt(motion.keys, a.b, b.b, c.b), motion.times);
