@@ -60,6 +60,14 @@ void RibBuilder::display(L loc, const std::string& name, const std::string& type
             entries.insert(entries.begin(), "z");
         }
     }
+    // The file's format follows its name (OpenEXR, or a picture: .tif, .png, .jpg ...),
+    // a secondary display's too.
+    static const char* known[] = {"file", "openexr", "exr",  "zfile", "shadow",
+                                  "tiff", "png",     "jpeg", "targa"};
+    if (std::none_of(std::begin(known), std::end(known),
+                     [&](const char* k) { return type == k; }))
+        m_diag.warning(loc, "display type \"" + type +
+                                "\" is written as a file, in the format its name says");
     if (!name.empty() && name[0] == '+') {
         // A secondary display: a file of its own with the AOVs its mode names.
         if (name.size() == 1) {
@@ -72,13 +80,6 @@ void RibBuilder::display(L loc, const std::string& name, const std::string& type
     // "zfile" and "shadow" are depth maps (mode "z"): one channel Z and the camera's
     // matrices, for MakeShadow
     const bool depth = mode == "z" || type == "zfile" || type == "shadow";
-    // The file's format follows its name (OpenEXR, or a picture: .tif, .png, .jpg ...).
-    static const char* known[] = {"file", "openexr", "exr",  "zfile", "shadow",
-                                  "tiff", "png",     "jpeg", "targa"};
-    if (std::none_of(std::begin(known), std::end(known),
-                     [&](const char* k) { return type == k; }))
-        m_diag.warning(loc, "display type \"" + type +
-                                "\" is written as a file, in the format its name says");
     if (!depth && colour.empty() && !(mode.empty() && entries.empty()))
         m_diag.warning(loc, "display mode \"" + mode +
                                 "\" has no rgb or rgba: written as rgba" +

@@ -30,17 +30,19 @@ const char* kWorld = "WorldBegin\nWorldEnd\n";
 }  // namespace
 
 TEST(RibBuilder, AovsFromDisplayChannelAndSecondaryDisplays) {
-    Built r = build(std::string("DisplayChannel \"float z\"\nDisplay \"+n.exr\" \"file\" \"N\"\n"
-                                "Display \"+x.exr\" \"file\" \"rgba,varying color diffuse, "
-                                "mask\"\nDisplay \"main.exr\" \"file\" \"rgbz\"\n"
-                                "Display \"+y.exr\" \"file\" \"bogus mask\"\n") +
-                    kWorld);
+    Built r = build(
+        std::string("DisplayChannel \"float z\"\nDisplay \"+n.exr\" \"file\" \"N\"\n"
+                    "Display \"+x.exr\" \"file\" \"rgba,varying color diffuse, "
+                    "mask\"\nDisplay \"main.exr\" \"file\" \"rgbz\"\n"
+                    "Display \"+y.exr\" \"file\" \"bogus mask\"\n"
+                    "Display \"+fb\" \"framebuffer\" \"rgb\"\n") +
+        kWorld);
     ASSERT_EQ(r.scenes.size(), 1u);
     const rd::Scene& s = r.scenes[0];
     // the image's: DisplayChannel's and its Display's mode (rgbz: the colour and z)
     EXPECT_EQ(s.aovs, (std::vector<std::string>{"z"}));
     EXPECT_EQ(s.display.mode, "rgb");
-    ASSERT_EQ(s.aovDisplays.size(), 3u);  // files of their own
+    ASSERT_EQ(s.aovDisplays.size(), 4u);  // files of their own
     EXPECT_EQ(s.aovDisplays[0].name, "n.exr");
     EXPECT_EQ(s.aovDisplays[0].aovs, (std::vector<std::string>{"N"}));
     EXPECT_EQ(s.aovDisplays[1].colour, "rgba");
@@ -50,6 +52,13 @@ TEST(RibBuilder, AovsFromDisplayChannelAndSecondaryDisplays) {
     EXPECT_EQ(s.aovNames(), (std::vector<std::string>{"z", "N", "diffuse", "mask"}));
     EXPECT_NE(r.messages.find("t.rib:5: warning: AOV \"mask\": type \"bogus\""),
               std::string::npos)
+        << r.messages;
+    // a secondary display with no window to show it in is a file, as the image's is, with
+    // the same warning (before, the secondary one was written silently)
+    EXPECT_NE(
+        r.messages.find("t.rib:6: warning: display type \"framebuffer\" is written as "
+                        "a file"),
+        std::string::npos)
         << r.messages;
 }
 
