@@ -1,7 +1,6 @@
 // triangle_motion.cpp: moving triangles' keys in the Scene (triangle_motion.h).
 #include "host/scene/triangle_motion.h"
 
-
 namespace rd {
 
 namespace {
