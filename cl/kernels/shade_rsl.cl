@@ -45,7 +45,9 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             __global uint* next_sample,
                             __global uint* spawn_mask, /* bit k: slot k filled */
                             __global uint* slot_rays,  /* + one per ray spawned */
-                            __global float4* shadow_origin, /* slot r * light_count + l */
+                            /* slot r * light_count + l (with volume shadows light_count
+                             * is twice the lights: volume.clh) */
+                            __global float4* shadow_origin,
                             __global float4* shadow_direction,
                             __global rt_weight* shadow_weight,
                             __global RayState* shadow_state,
@@ -68,6 +70,12 @@ __kernel void shade_SURFACE(uint begin, uint count,
                             uint shader_index,
                             __global uint* active_counter) {
     uint j = get_global_id(0);
+#ifdef RT_VOLUME_SHADOWS
+    const uint lights = light_count / 2u; /* a ray's second shadow slots: its volume's */
+#else
+    const uint lights = light_count;
+#endif
+    (void)lights;
     /* a scene with one shader skips the sort: its run is every ray, with misses and hits
      * on surfaces with no shader among them (their key is not this shader's) */
     RT_COUNT_GROUP(active_counter, q, q < count && ray_key[sorted[begin + q]] == shader_index);
@@ -317,28 +325,26 @@ __kernel void shade_SURFACE(uint begin, uint count,
     }
 #endif
     if (atmo && !culled) {
+        const uint vkind = inside    ? RD_VOLUME_INTERIOR
+                           : outside ? RD_VOLUME_EXTERIOR
+                                     : RD_VOLUME_ATMOSPHERE;
         RslGlobals g0 = base, g1 = base;
         g0.Ci = rsl_f2c(0.0f);
         g1.Ci = rsl_f2c(1.0f);
-        /* the volume at Ci = 0 and 1: its b and a + b */
-#define RD_VOLUME_AT_0_AND_1(run) (run((int)atmo - 1, &g0, params), run((int)atmo - 1, &g1, params))
-#ifdef RT_HAS_INTERIOR
-        if (inside) RD_VOLUME_AT_0_AND_1(rd_interior);
-        else
-#endif
-#ifdef RT_HAS_EXTERIOR
-        if (outside) RD_VOLUME_AT_0_AND_1(rd_exterior);
-        else
-#endif
-        {
-#ifdef RT_HAS_ATMOSPHERE
-            RD_VOLUME_AT_0_AND_1(rd_atmosphere);
-#endif
-        }
+        /* the volume at Ci = 0 and 1: its b and a + b; with volume shadows without the
+         * lights, whose parts come from their shadow rays */
+        RslEval ve;
+        rd_volume(vkind, (int)atmo - 1, &g0, params, RD_VOLUME_LIGHTS, -1, &ve);
+        rd_volume(vkind, (int)atmo - 1, &g1, params, RD_VOLUME_LIGHTS, -1, &ve);
         atmo_a = g1.Ci - g0.Ci;
         RSL_CW(atmo_a) = 1.0f;
         E = rsl_cw0(atmo_a * E + g0.Ci);
         Oi = g0.Oi;
+#ifdef RT_VOLUME_SHADOWS
+        E += rd_volume_light_rays(vkind, (int)atmo - 1, &base, rsl_cw0(g0.Ci), params, w,
+                                  lights, r * light_count + lights, Ngf, shadow_origin,
+                                  shadow_direction, shadow_weight, shadow_state, numerics);
+#endif
     }
 #endif
     rsl_color add = culled ? (rsl_color)(0.0f) : w * E;
@@ -349,8 +355,7 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #endif
 
 #ifdef RT_HAS_SHADOW_RAYS
-    float4 Pl = rt_offset_ray(g.P, Ngf);
-    for (uint l = 0; l < (culled ? 0u : light_count); ++l) {
+    for (uint l = 0; l < (culled ? 0u : lights); ++l) {
         float4 toward;
         rsl_color lcl;
         rd_light_at((int)l, &g, g.P, &toward, &lcl);
@@ -397,24 +402,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
 #endif
             continue;
         }
-        float dist = sqrt(rt_dot3(toward, toward));
-        if (!(dist > 0.0f)) continue;
-        float4 sd = toward / dist;
-        /* leave from the side of the surface the light is on; a light at a point ends
-         * the ray just short of it, measured from where the ray starts (the offset
-         * origin), so a light on a surface (an area light's own geometry) is not hidden
-         * by that surface */
-        float4 so = rt_dot3(sd, Ngf) >= 0.0f ? Pl : rt_offset_ray(g.P, -Ngf);
-        so.w = 0.0f;
-        if (!solar) {
-            float4 lp = g.P + toward - so;
-            lp.w = 0.0f;
-            float d2 = sqrt(rt_dot3(lp, lp));
-            if (!(d2 > 0.0f)) continue;
-            sd = lp / d2;
-            dist = d2;
-        }
-        sd.w = solar ? INFINITY : dist * (1.0f - 1e-5f);
+        float4 so, sd;
+        if (!rd_shadow_ray_to(g.P, Ngf, toward, solar, &so, &sd)) continue;
         uint s = r * light_count + l;
         shadow_origin[s] = so;
         shadow_direction[s] = sd;

@@ -90,6 +90,8 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.atmosphere = shading.atmosphere;
     f.interior = shading.interior;
     f.exterior = shading.exterior;
+    f.volumeShadows = f.shadowRays && shading.volumeLights &&
+                      (f.atmosphere || f.interior || f.exterior);
     // clipped camera rays go on past what they meet, as through a transparent surface
     f.clipPlanes = int(std::min(scene.clipPlanes.size(), kMaxClipPlanes));
     if (f.clipPlanes > 0) f.transparency = true;
@@ -135,6 +137,7 @@ std::vector<std::string> Features::names() const {
     if (transparentShadows) n.push_back("transparent_shadows");
     if (shaderShadows) n.push_back("shader_shadows");
     if (shadowRays) n.push_back("shadow_rays");
+    if (volumeShadows) n.push_back("volume_shadows");
     if (specialisedLights) n.push_back("specialised_lights");
     if (lightCoefficients) n.push_back("light_coefficients");
     if (trace) n.push_back("trace");
@@ -242,6 +245,7 @@ std::string buildOptions(const Features& f) {
     if (f.atmosphere) o += " -DRT_HAS_ATMOSPHERE";
     if (f.interior) o += " -DRT_HAS_INTERIOR";
     if (f.exterior) o += " -DRT_HAS_EXTERIOR";
+    if (f.volumeShadows) o += " -DRT_VOLUME_SHADOWS -DRSL_VOLUME_SHADOWS";
     if (f.materialDepths) o += " -DRT_MATERIAL_DEPTHS";
     if (f.maxDiffuseDepth >= 0)
         o += " -DRT_MAX_DIFFUSE_DEPTH=" + std::to_string(f.maxDiffuseDepth);

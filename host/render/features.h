@@ -68,6 +68,15 @@ struct Features {
     size_t shadowItems(size_t rays, size_t lights) const;
     size_t closestItems(size_t rays) const;
     uint32_t lightCount = 0;
+    // Volume shaders loop over the lights and shadow rays are traced: a shaded ray may
+    // send one more shadow ray a light, from a point inside the volume it crossed
+    // (RT_VOLUME_SHADOWS, shade_rsl.cl).
+    bool volumeShadows = false;
+    // Shadow ray slots a shaded ray has (the pool's second part, ray.h): one a light, two
+    // with volume shadows; 0 without shadow rays.
+    uint32_t shadowSlots() const {
+        return shadowRays ? lightCount * (volumeShadows ? 2u : 1u) : 0u;
+    }
     // Light shaders inlined at their one call site each (every instance of a shader
     // goes through it, told apart by where its data is: shader_set.cpp).
     bool specialisedLights = false;

@@ -154,7 +154,7 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     const double errorTarget = m_settings.errorTarget > 0 ? m_settings.errorTarget
                                                           : scene.render.error;
 
-    const uint32_t nl = f.shadowRays ? f.lightCount : 0;
+    const uint32_t nl = f.shadowSlots();
     const size_t spawn = size_t(f.spawnSlots());
     const cl_uint shaderCount = cl_uint(shading.shadeKernels.size());
     // The pool (RayPool::capacityFor); the sample slots kSlotsPerRay times it, pixel jobs

@@ -553,20 +553,21 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     std::set<std::string> emitted;
     std::vector<std::pair<const rsl::EmittedShader*, int32_t>> atmoBound, dispBound,
         interBound, exterBound;
-    // A volume kind's calls bound, and its dispatcher rd_<kind>(index, globals, params)
-    // (its shaders run in base mode: no lights, no traces, no derivatives).
+    // A volume kind's calls bound, and its dispatcher rd_<kind>(index, globals, params,
+    // evaluation) (the kernel's evaluation: every light, or under RT_VOLUME_SHADOWS one
+    // light's evaluations counted or picked; no traces, no derivatives).
     auto bindVolumes =
         [&](const std::vector<ShaderRef>& calls, const char* kind,
             std::vector<std::pair<const rsl::EmittedShader*, int32_t>>& bound) {
             std::ostringstream cases;
-            if (!bindCases(calls, "volume", "&ev", out, cases, shaders, emitted, bound))
+            if (!bindCases(calls, "volume", "ev", out, cases, shaders, emitted, bound))
                 return false;
             svc << "static void rd_" << kind
-                << "(int a, RslGlobals* g, __global const float* params) {\n"
-                   "    RslEval ev;\n    ev.deriv = 0;\n    ev.tex = 0;\n    "
-                   "ev.mode_light = RSL_EVERY_LIGHT;\n"
-                   "    ev.mode_trace = -1;\n    ev.trace_count = 0;\n    switch (a) {\n"
+                << "(int a, RslGlobals* g, __global const float* params, RslEval* ev) {\n"
+                   "    switch (a) {\n"
                 << cases.str() << "    default: break;\n    }\n}\n";
+            for (const auto& b : bound)
+                out.volumeLights |= b.first && b.first->usesLighting;
             return true;
         };
     // --- atmospheres, interiors (what comes back from inside a surface), exteriors (from
@@ -780,7 +781,9 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
                                      "#include \"area_light.clh\"\n" +
                                      shaders.str() + svc.str();
     out.generated["rd_shade_kernels.cl"] =
-        "#include \"counters.clh\"\n#include \"shade_common.clh\"\n" + kernels.str() + imagerKernel + prep.str();
+        "#include \"counters.clh\"\n#include \"shade_common.clh\"\n#include "
+        "\"volume.clh\"\n" +
+        kernels.str() + imagerKernel + prep.str();
     out.sourceOrder = {"rd_shading.cl", "rd_textures.cl", "rd_shade_kernels.cl"};
     if (out.displacement && hasTrueDisplacement(m_scene))  // (true_displacement.h)
         out.sourceOrder.push_back("displace_vertices.cl");

@@ -62,6 +62,7 @@ struct ShadingSetup {
     bool atmosphere = false;                // some surface has an Atmosphere shader
     bool interior = false;                  // some surface has an Interior shader
     bool exterior = false;                  // some surface has an Exterior shader
+    bool volumeLights = false;              // some volume shader loops over the lights
     // Objects' trace() depth limits differ (Scene::materialSpecularDepth): a table by
     // material in the scene block
     bool materialDepths = false;

@@ -257,8 +257,11 @@ typedef struct RslLightCache {
 } RslLightCache;
 
 /* RslEval::mode_light of a volume shader's evaluation: its illuminance loops see every
- * light's unshadowed Cl (no shadow ray is deferred from a volume; a light's shadow map
- * still shadows its Cl) */
+ * light's unshadowed Cl (a light's shadow map still shadows its Cl). Under
+ * RSL_VOLUME_SHADOWS the renderer also evaluates a volume in light l's mode, counting
+ * the illuminance loops' evaluations of light l (RslEval::pick_count), and in that mode
+ * with one of them picked (RslEval::pick >= 0): only that one sees Cl, and where it was
+ * made is kept (pick_P), the point the renderer traces the light's shadow ray from. */
 #define RSL_EVERY_LIGHT (-2)
 /* RslGlobals::ray_depth's top bit: the shader runs for a shadow ray's Oi alone (a surface
  * of "shader" transmission) */
@@ -327,6 +330,11 @@ typedef struct RslEval {
     float4 trace_org[RSL_MAX_TRACE];  /* base mode: the rays trace() asked for */
     float4 trace_dir[RSL_MAX_TRACE];
     float outputs[RSL_MAX_OUTPUT_FLOATS];  /* output parameters at ParamSlot::outputOffset */
+#ifdef RSL_VOLUME_SHADOWS
+    int pick;       /* light mode: the one evaluation of its light that sees Cl; -1 all */
+    int pick_count; /* light mode: its light's evaluations so far */
+    float4 pick_P;  /* where the picked evaluation was made */
+#endif
 #ifdef RSL_LIGHT_COEFS
     int coefs;                          /* LIGHT COEFFICIENTS: 1 to fill Ci_light */
     rsl_color Ci_light[RSL_LIGHT_COEFS]; /* Ci's part of each light (times its Cl) */

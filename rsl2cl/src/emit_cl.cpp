@@ -454,6 +454,7 @@ void Emitter::lightLoop(const Stmt& s) {
     int id = m_tmp++;
     std::string k = std::to_string(id);
     if (s.kind == StmtKind::Illuminance) {
+        m_out.usesLighting = true;
         size_t first = (!s.args.empty() && s.args[0]->type.isString()) ? 1 : 0;
         line("{");
         ++m_indent;
@@ -469,7 +470,8 @@ void Emitter::lightLoop(const Stmt& s) {
         line("float4 _L" + k + "; rsl_color _Clr" + k + ";");
         line("if (!rsl_light_raw(_l" + k + ", g, _ilP" + k + ", _ilA" + k + ", _ilC" + k +
              ", &_L" + k + ", &_Clr" + k + ")) continue;");
-        line("rsl_color _Cl" + k + " = rsl_light_mode(ev, _l" + k + ", _Clr" + k + ");");
+        line("rsl_color _Cl" + k + " = rsl_light_mode(ev, _l" + k + ", _Clr" + k +
+             ", _ilP" + k + ");");
         line("g->L = _L" + k + "; g->Cl = _Cl" + k + ";");
         m_lightVars.push_back("_l" + k);
         m_lightRaw.push_back("_Clr" + k);

@@ -92,10 +92,11 @@ TEST(ClassicShaders, LightSetsL) {
     EXPECT_LT(worst, 1e-6);
 }
 
-// An Atmosphere whose illuminance loop adds k times every light's Cl (unshadowed: no shadow
-// ray is deferred from a volume) to what reaches the eye: over a black constant plane
-// under two distant lights of intensity 1 and 0.5, 0.5 x 1.5 = 0.75. Before, Cl was an
-// unknown identifier in a volume shader and the atmosphere was left out (0).
+// An Atmosphere whose illuminance loop adds k times every light's Cl (each light's shadow
+// ray from P reaching it: volume_shadows_test.cpp) to what reaches the eye: over a black
+// constant plane under two distant lights of intensity 1 and 0.5, 0.5 x 1.5 = 0.75.
+// Before, Cl was an unknown identifier in a volume shader and the atmosphere was left out
+// (0).
 TEST(ClassicShaders, VolumeShaderSeesTheLights) {
     const std::string dir = rd::test::shaderFolder("classic_shaders", kShaders);
     Rendered r = renderRib(plane(dir,
