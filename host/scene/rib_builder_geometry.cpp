@@ -54,8 +54,8 @@ float RibBuilder::screenRadius(const std::vector<glm::vec3>& pts) const {
 void RibBuilder::addSurface(L loc, const char* what, bool ok, const SurfaceMesh& m,
                             const std::string& err,
                             const std::function<void(VertexData&)>& perPoint) {
-    if (!ok) {
-        m_diag.error(loc, std::string(what) + ": " + err);
+    if (!ok) {  // (the tessellators' messages may name the request themselves)
+        m_diag.error(loc, err.rfind(what, 0) == 0 ? err : std::string(what) + ": " + err);
         return;
     }
     VertexData mesh;

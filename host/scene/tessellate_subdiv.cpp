@@ -31,11 +31,17 @@ struct Vtx {
 }  // namespace
 
 bool validateSubdiv(const SubdivInput& in, std::string* err) {
-    if (in.scheme != "catmull-clark")
-        return fail(err, "SubdivisionMesh: only \"catmull-clark\" is supported");
+    if (in.scheme != "catmull-clark" && in.scheme != "loop" && in.scheme != "bilinear")
+        return fail(err, "SubdivisionMesh: scheme \"" + in.scheme +
+                             "\" is not known (catmull-clark, loop, bilinear)");
     size_t total = 0;
-    for (int n : in.nvertices) {
+    for (size_t f = 0; f < in.nvertices.size(); ++f) {
+        const int n = in.nvertices[f];
         if (n < 3) return fail(err, "SubdivisionMesh: a face needs at least 3 vertices");
+        if (n != 3 && in.scheme == "loop")
+            return fail(err, "SubdivisionMesh \"loop\": face " + std::to_string(f) +
+                                 " has " + std::to_string(n) +
+                                 " vertices (Loop subdivides triangles)");
         total += size_t(n);
     }
     if (in.nvertices.empty()) return fail(err, "SubdivisionMesh: no faces");
@@ -173,8 +179,11 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     desc.numFVarChannels = channels;
     desc.fvarChannels = channels > 0 ? channel.data() : nullptr;
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    Far::TopologyRefiner* refiner =
-        Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, opts));
+    const bool loop = in.scheme == "loop", bilinear = in.scheme == "bilinear";
+    const Sdc::SchemeType type = loop       ? Sdc::SCHEME_LOOP
+                                 : bilinear ? Sdc::SCHEME_BILINEAR
+                                            : Sdc::SCHEME_CATMARK;
+    Far::TopologyRefiner* refiner = Factory::Create(desc, Factory::Options(type, opts));
     if (!refiner) return fail(err, "SubdivisionMesh: OpenSubdiv rejected the topology");
     // Level 0 has no limit projection for n-gons: always refine at least once.
     level = std::max(level, 1);
@@ -241,11 +250,12 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         primvar.LimitFaceVarying(s, fvarLimit[size_t(ch)], ch);
     }
 
-    // Parent base face of each refined face: uniform Catmull-Clark refinement emits a
-    // face's children consecutively (n for an n-gon at level 1, then 4 per quad).
+    // Parent base face of each refined face: uniform refinement emits a face's children
+    // consecutively (Catmull-Clark and bilinear: n for an n-gon at level 1, then 4 per
+    // quad; Loop: 4 per triangle).
     std::vector<int> parent;
     for (size_t f = 0; f < in.nvertices.size(); ++f)
-        parent.insert(parent.end(), size_t(in.nvertices[f]), int(f));
+        parent.insert(parent.end(), loop ? 4 : size_t(in.nvertices[f]), int(f));
     for (int l = 2; l <= level; ++l) {
         std::vector<int> next(parent.size() * 4);
         for (size_t f = 0; f < parent.size(); ++f)
@@ -261,7 +271,9 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
     // of its vertices' combinations of values (a vertex on a seam has one a side);
     // vertexOf: each one's vertex, fvarOf: its value in each channel.
     const int base = int(out.mesh.p.size());
-    const bool wantN = out.mesh.n.size() == out.mesh.p.size();
+    // (a bilinear surface is its patches, shaded with their own normals: the limit
+    // tangents at a vertex are one face's, which its other faces do not share)
+    const bool wantN = out.mesh.n.size() == out.mesh.p.size() && !bilinear;
     std::vector<int> vertexOf;
     std::vector<std::vector<int>> fvarOf(static_cast<size_t>(channels));
     auto emit = [&](int v) {

@@ -1,4 +1,5 @@
-// tessellate_subdiv.h: RI 3.2 SubdivisionMesh "catmull-clark" with the tags "crease",
+// tessellate_subdiv.h: RI 3.2 SubdivisionMesh "catmull-clark", "loop" (triangles only)
+// and "bilinear" (its patches, faceted: no vertex normals) with the tags "crease",
 // "corner", "hole" and "interpolateboundary", through OpenSubdiv (Far): the control cage
 // is refined uniformly to `level`, every refined vertex is projected to the limit
 // surface (Far::PrimvarRefiner::Limit) with limit tangents, and the refined quads are

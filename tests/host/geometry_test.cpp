@@ -10,8 +10,11 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
 
 #include "render_harness.h"
+#include "rib/reader.h"
+#include "scene/rib_builder.h"
 
 using rd::test::Rendered;
 using rd::test::renderRib;
@@ -82,6 +85,35 @@ TEST(Geometry, SubdivisionCubeShrinksInsideItsCage) {
         "1 1 1]\n");
     EXPECT_GT(area, 2.0);
     EXPECT_LT(area, 4.0);
+}
+
+// The other schemes from RIB: "bilinear" keeps the cube's cage (a 2 x 2 square face on),
+// "loop" rounds the octahedron on the unit axes inside its square silhouette (area 2),
+// around the square its vertices' limits (0.436 out on the axes,
+// Subdiv.LoopOctahedronMeetsTheAxesAtItsLimitMask) span (area 0.38). Loop on
+// quads is an error at its line, and the mesh is left out.
+TEST(Geometry, SubdivisionBilinearAndLoopSchemes) {
+    const std::string cubeCage =
+        "[4 4 4 4 4 4] [0 1 3 2  2 3 7 6  6 7 5 4  4 5 1 0  1 5 7 3  4 0 2 6] [] [] [] "
+        "[] "
+        "\"P\" [-1 -1 -1  1 -1 -1  -1 1 -1  1 1 -1  -1 -1 1  1 -1 1  -1 1 1  1 1 1]\n";
+    EXPECT_NEAR(coverage("SubdivisionMesh \"bilinear\" " + cubeCage), 4.0, 0.05);
+    const double loop = coverage(
+        "SubdivisionMesh \"loop\" [3 3 3 3 3 3 3 3] "
+        "[0 2 4  0 5 2  0 4 3  0 3 5  1 4 2  1 2 5  1 3 4  1 5 3] [] [] [] [] "
+        "\"P\" [1 0 0  -1 0 0  0 1 0  0 -1 0  0 0 1  0 0 -1]\n");
+    EXPECT_GT(loop, 2 * 0.436 * 0.436);
+    EXPECT_LT(loop, 2.0);
+    std::ostringstream messages;
+    rib::Diagnostics diag(&messages);
+    rd::RibBuilder builder(diag, "test.rib");
+    rib::readString("WorldBegin\nSubdivisionMesh \"loop\" " + cubeCage + "WorldEnd\n",
+                    "test.rib", builder, diag);
+    EXPECT_NE(
+        messages.str().find("test.rib:2: error: SubdivisionMesh \"loop\": face 0 has 4 "
+                            "vertices"),
+        std::string::npos)
+        << messages.str();
 }
 
 // A SubdivisionMesh's texture coordinates as given, per face-vertex: a flat 2x2 grid over

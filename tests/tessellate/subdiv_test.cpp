@@ -1,6 +1,6 @@
-// subdiv_test.cpp: Catmull-Clark SubdivisionMesh through OpenSubdiv: cube limit surface
+// subdiv_test.cpp: SubdivisionMesh through OpenSubdiv: Catmull-Clark cube limit surface
 // (inside the cage, symmetric, outward normals), holes, sharp creases, facevarying
-// values and their seams, bad input.
+// values and their seams; Loop's limit on an octahedron, the bilinear cube; bad input.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -204,6 +204,65 @@ TEST(Subdiv, FacevaryingValuesSplitVerticesAtSeams) {
     EXPECT_GT(onSeam[1], 0);
 }
 
+// Loop's scheme on the octahedron with vertices on the unit axes (every vertex of
+// valence 4): a control vertex's limit is (1 - n g) v + g (its neighbours' sum) with
+// g = 1 / (3 / (8 b) + n), b = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n (Loop 1987), and
+// its neighbours sum to 0: at n = 4 the surface meets the axes at 1 - 4 g = 0.43636
+// (Catmull-Clark's treatment of the same cage would need quads). Each triangle is split
+// in 4 a level, every point lies inside the cage, and the normals point out.
+TEST(Subdiv, LoopOctahedronMeetsTheAxesAtItsLimitMask) {
+    SubdivInput in;
+    in.scheme = "loop";
+    in.P = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    in.nvertices.assign(8, 3);
+    for (int a : {0, 1})
+        for (int b : {2, 3})
+            for (int c : {4, 5}) {
+                // wound counter-clockwise seen from outside: (x, y, z) signs' parity
+                const bool flip = ((a == 1) + (b == 3) + (c == 5)) % 2 == 1;
+                in.vertices.insert(in.vertices.end(), {a, flip ? c : b, flip ? b : c});
+            }
+    SurfaceMesh m;
+    ASSERT_TRUE(tessellateSubdivisionMesh(in, 3, m));
+    test::expectWellFormed(m);
+    EXPECT_EQ(m.mesh.tris.size() / 3, size_t(8 * 64));
+    const double n = 4,
+                 beta = (5.0 / 8 - std::pow(3.0 / 8 + std::cos(2 * M_PI / n) / 4, 2)) / n;
+    const double limit = 1 - n / (3 / (8 * beta) + n);
+    double atAxis = 0;
+    for (size_t i = 0; i < m.mesh.p.size(); ++i) {
+        const glm::vec3 p = m.mesh.p[i];
+        EXPECT_LT(std::fabs(p.x) + std::fabs(p.y) + std::fabs(p.z), 1.0f + 1e-5f);
+        EXPECT_GT(glm::dot(m.mesh.n[i], p), 0.0f);
+        atAxis = std::max(atAxis, double(p.x));
+    }
+    EXPECT_NEAR(limit, 0.43636, 1e-5);
+    EXPECT_NEAR(atAxis, limit, 1e-5);
+    for (int f : m.faceIndex) EXPECT_TRUE(f >= 0 && f < 8);
+}
+
+// The bilinear scheme keeps the cage's faces: the cube refined stays the cube (every
+// point on a face, every corner kept) and is shaded faceted (no vertex normals); each
+// quad splits into 4 a level, 8 triangles a face at level 1.
+TEST(Subdiv, BilinearCubeStaysTheCube) {
+    SubdivInput in = cube();
+    in.scheme = "bilinear";
+    SurfaceMesh m;
+    ASSERT_TRUE(tessellateSubdivisionMesh(in, 2, m));
+    EXPECT_EQ(m.mesh.tris.size() / 3, size_t(6 * 16 * 2));
+    EXPECT_TRUE(m.mesh.n.empty());
+    int corners = 0;
+    for (const glm::vec3& p : m.mesh.p) {
+        const glm::vec3 a = glm::abs(p);
+        EXPECT_NEAR(std::max(a.x, std::max(a.y, a.z)), 1.0f, 1e-6f);
+        corners += a.x > 0.999999f && a.y > 0.999999f && a.z > 0.999999f;
+    }
+    EXPECT_EQ(corners, 8);
+    ASSERT_EQ(m.faceIndex.size(), size_t(6 * 16 * 2));
+    EXPECT_EQ(m.faceIndex.front(), 0);
+    EXPECT_EQ(m.faceIndex.back(), 5);
+}
+
 #endif  // RD_HAVE_OPENSUBDIV
 
 TEST(Subdiv, RejectsBadInput) {
@@ -222,8 +281,12 @@ TEST(Subdiv, RejectsBadInput) {
     in.intargs = {0};
     EXPECT_FALSE(tessellateSubdivisionMesh(in, 2, m, &err));
     in = cube();
-    in.scheme = "loop";
+    in.scheme = "loop";  // (Loop subdivides triangles, and the cube's faces are quads)
     EXPECT_FALSE(tessellateSubdivisionMesh(in, 2, m, &err));
+    EXPECT_NE(err.find("face 0 has 4 vertices"), std::string::npos) << err;
+    in.scheme = "doo-sabin";
+    EXPECT_FALSE(tessellateSubdivisionMesh(in, 2, m, &err));
+    EXPECT_NE(err.find("\"doo-sabin\" is not known"), std::string::npos) << err;
     in = cube();
     in.tags = {"hole"};
     in.nargs = {1, 0};
