@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "../scratch_folder.h"
 #include "ocl/device.h"
 #include "render/frame_output.h"
 #include "render/render_with_archives.h"
@@ -18,9 +19,7 @@
 namespace rd::test {
 
 std::string scratchDir(const std::string& name) {
-    std::string dir = ::testing::TempDir() + "/" + name + "." + std::to_string(getpid());
-    std::filesystem::create_directories(dir);
-    return dir;
+    return scratchFolder(name);
 }
 
 double Rendered::mean(int channel, int x0, int y0, int x1, int y1) const {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "../scratch_folder.h"
 #include "rib/reader.h"
 
 using namespace rd;
@@ -223,9 +224,7 @@ TEST(RibBuilder, GeometricRepresentationIsReadAndOnlyPrimitiveRendered) {
 // at the Surface's line. One instance per placement below, 65536 + 10 spheres placed
 // apart; one instance for all when the shader does not read "object" space.
 TEST(RibBuilder, ObjectSpacesAreBounded) {
-    const std::string dir =
-        testing::TempDir() + "raydrive_object_spaces." + std::to_string(::getpid());
-    std::filesystem::create_directories(dir);
+    const std::string dir = rd::test::scratchFolder("raydrive_object_spaces");
     std::ofstream(dir + "/objx.sl")
         << "surface objx() { Ci = xcomp(transform(\"object\", P)); }\n";
     std::ofstream(dir + "/plainx.sl") << "surface plainx() { Ci = xcomp(P); }\n";

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../scratch_folder.h"
 #include "film/exr_output.h"
 #include "ri.h"
 #include "rib/reader.h"
@@ -20,10 +21,7 @@
 namespace {
 
 std::string scratch(const std::string& name) {
-    const auto dir = std::filesystem::path(testing::TempDir()) /
-                     ("ri_api." + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    return (dir / name).string();
+    return (std::filesystem::path(rd::test::scratchFolder("ri_api")) / name).string();
 }
 
 std::string slurp(const std::string& path) {

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+#include "../scratch_folder.h"
 #include "film/exr_output.h"
 #include "ocl/device.h"
 #include "render/frame_output.h"
@@ -21,10 +22,7 @@
 namespace {
 
 std::string scratchDir() {
-    const auto dir = std::filesystem::path(testing::TempDir()) /
-                     ("ri_render." + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    return dir.string();
+    return rd::test::scratchFolder("ri_render");
 }
 
 // A lit plastic sphere and a constant square behind it, 48x32.

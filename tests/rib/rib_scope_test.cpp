@@ -4,13 +4,14 @@
 // relative to the reading file and along the search path, inline archives, the nesting
 // limit).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
 #include <sstream>
-#include <sys/stat.h>
-#include <unistd.h>
 
+#include "../scratch_folder.h"
 #include "rib_corpus.h"
 
 namespace {
@@ -140,8 +141,7 @@ TEST(RibErrorHandler, ErrorHandlerRequest) {
 
 std::string tempDir() {
     // (one per test process: CTest runs two at a time)
-    std::string d = ::testing::TempDir() + "/rib_scope_test." + std::to_string(getpid());
-    mkdir(d.c_str(), 0755);
+    std::string d = rd::test::scratchFolder("rib_scope_test");
     mkdir((d + "/sub").c_str(), 0755);
     mkdir((d + "/lib").c_str(), 0755);
     return d;
