@@ -3,12 +3,14 @@
 // from Cl (and diffuse/specular/phong) are tainted; the allowed operations keep a value
 // affine and channel-wise: + - negation, * and / by untainted values, assignment,
 // casts, ?: with an untainted condition, mix() with an untainted weight. Anything else
-// touching a tainted value is an error naming file:line:col and the expression.
+// touching a tainted value is an error naming file:line:col and the expression; where
+// only Cl is involved, a warning (the first place): the shader is then evaluated one
+// light at a time (LightTaint::nonAffine), exact for a single light.
 // Taint follows the flow of the code: an assignment of an untainted value cleans the
-// variable for what follows (a classic shader's `Ci = texture(...); Ci = Ci * diffuse(Nf)`),
-// branches join, and loops (light loops too) and user functions only add taint, iterated
-// to a fixed point. What a variable ever holds (flow-insensitive) is what Oi's check and
-// the light coefficients (emit_coefs.cpp) see.
+// variable for what follows (a classic shader's `Ci = texture(...); Ci = Ci *
+// diffuse(Nf)`), branches join, and loops (light loops too) and user functions only add
+// taint, iterated to a fixed point. What a variable ever holds (flow-insensitive) is what
+// Oi's check and the light coefficients (emit_coefs.cpp) see.
 #include <algorithm>
 #include <map>
 #include <set>
@@ -57,6 +59,12 @@ public:
             return a.first.col < b.first.col;
         });
         for (const auto& e : m_errors) m_diag.error(e.first, e.second);
+        if (m_nonAffine && !m_failed)
+            m_diag.warning(
+                m_nonAffineAt.first,
+                m_nonAffineAt.second +
+                    "; each light is shaded on its own and its shadow scales its "
+                    "part (exact for one light or lights whose parts add)");
         return !m_failed;
     }
 
@@ -65,6 +73,7 @@ public:
     void lightTaint(LightTaint* out) const {
         out->symbols.clear();
         out->functions.clear();
+        out->nonAffine = m_nonAffine;
         for (const auto& kv : m_ever)
             if (kv.second & T_LIGHT) out->symbols.insert(kv.first);
         for (const auto& kv : m_fnRet)
@@ -98,8 +107,14 @@ private:
         if (m_reported.insert(loc.str() + msg).second) m_errors.push_back({loc, msg});
     }
     void fail(const Expr& e, unsigned m, const std::string& what) {
-        report(e.loc, "Ci is not affine in " + unknowns(m) + ": " + what + " in '" +
-                          exprToString(e) + "'");
+        const std::string msg = "Ci is not affine in " + unknowns(m) + ": " + what +
+                                " in '" + exprToString(e) + "'";
+        if (m != T_LIGHT) return report(e.loc, msg);
+        // Cl alone: each light is shaded on its own instead (the first place is said)
+        if (m_report && !m_nonAffine) {
+            m_nonAffine = true;
+            m_nonAffineAt = {e.loc, msg};
+        }
     }
 
     // s takes a value of taint m: all of it (`whole`, outside loops and functions: what it
@@ -381,7 +396,8 @@ private:
     int m_gather = 0;                        // gather() branches around
     std::set<const Symbol*> m_gatherLocals;  // variables declared inside them
     SourceLoc m_oiLoc;
-    bool m_changed = false, m_report = false, m_failed = false;
+    bool m_changed = false, m_report = false, m_failed = false, m_nonAffine = false;
+    std::pair<SourceLoc, std::string> m_nonAffineAt;  // where Cl is first used so
 };
 
 }  // namespace

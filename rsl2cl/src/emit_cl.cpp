@@ -676,7 +676,7 @@ EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnost
     bool affine = shader.kind == ShaderKind::Light || checkAffine(shader, prog, diag, &taint);
     Emitter em(shader, prog, diag, out);
     em.m_colorSlots = std::max(3, colorChannels);
-    if (affine && coefsSupported(shader, taint)) em.m_coefs = &taint;
+    if (affine && !taint.nonAffine && coefsSupported(shader, taint)) em.m_coefs = &taint;
     em.run();
     out.lightCoefs = em.m_coefs != nullptr;
     if (out.usesTrace)

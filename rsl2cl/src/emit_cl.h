@@ -92,11 +92,16 @@ EmittedShader emitOpenCL(const ShaderDecl& shader, const Program& prog, Diagnost
 struct LightTaint {
     std::set<const Symbol*> symbols;  // variables (and Ci) whose value depends on some Cl
     std::set<const FunctionDecl*> functions;  // user functions returning such values
+    // Ci depends on some Cl otherwise than affinely (a light's luminance, one channel
+    // of it, a test on it): no light coefficients; each light is evaluated on its own
+    // (its light mode), and its shadow ray scales that light's whole part (a warning)
+    bool nonAffine = false;
 };
 
 // Static affinity check of Ci in trace() results and light Cl (affine.cpp); reports
-// errors to diag and returns false when the shader is not affine. *taint (optional):
-// what depends on the lights.
+// errors to diag and returns false when the shader is not affine in trace() results (or
+// Oi depends on either). Not affine in Cl alone is a warning (LightTaint::nonAffine).
+// *taint (optional): what depends on the lights.
 bool checkAffine(const ShaderDecl& shader, const Program& prog, Diagnostics& diag,
                  LightTaint* taint = nullptr);
 

@@ -308,7 +308,7 @@ bool coefsSupported(const ShaderDecl& sh, const LightTaint& t, std::string* why)
 bool lightCoefsSupported(const ShaderDecl& shader, std::string* why) {
     Diagnostics quiet;
     LightTaint taint;
-    if (!checkAffine(shader, Program(), quiet, &taint)) {
+    if (!checkAffine(shader, Program(), quiet, &taint) || taint.nonAffine) {
         if (why) *why = "Ci is not affine in the lights";
         return false;
     }

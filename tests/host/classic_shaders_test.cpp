@@ -39,6 +39,15 @@ const char* const kShaders[][2] = {
     {"glowfog",
      "volume glowfog(float k = 0.5) {\n  color sc = 0;\n"
      "  illuminance(P) { sc += Cl; }\n  Ci = Ci + k * sc;\n}\n"},
+    // not affine in Cl (a test on a light's luminance, channels swapped): shaded light
+    // by light (a warning), each light's part scaled by its shadow
+    {"toon",
+     "surface toon() {\n  normal Nf = faceforward(normalize(N), I);\n"
+     "  color d = diffuse(Nf);\n  Ci = Cs * (0.3 * comp(d, 0) + 0.6 * comp(d, 1) + 0.1 * "
+     "comp(d, 2) > 0.5 ? 1 : 0.25);\n}\n"},
+    {"swap",
+     "surface swap() {\n  color c = 0;\n  illuminance(P) { c += Cl; }\n"
+     "  Ci = color(comp(c, 1), comp(c, 2), comp(c, 0));\n}\n"},
     {"aim",
      "light aim(float intensity = 1; point from = point \"shader\" (0, 0, 0);) {\n"
      "  illuminate(from) {\n    Cl = intensity / (L . L);\n  }\n}\n"},
@@ -121,4 +130,32 @@ TEST(ClassicShaders, LightBeforeWorldBeginIsInCameraSpace) {
         "WorldEnd\n");
     EXPECT_EQ(r.width, 16);
     EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), std::cos(30.0 * M_PI / 180.0), 1e-4);
+}
+
+// Shaders not affine in Cl (Advanced RenderMan's toon shaders, a light's luminance or one
+// channel of it), refused before session 42 (a compile error, and defaultsurface): each
+// light is evaluated on its own and its shadow ray scales its part, exact for one light.
+// A distant light straight on, a square the camera does not see shading the left half:
+// the toon shader's 1 lit and 0.25 (its unlit base) in the shadow; channels swapped under
+// a light of colour (1, 0.5, 0.25): (0.5, 0.25, 1) lit, 0 in the shadow.
+TEST(ClassicShaders, ShadersNotAffineInClAreShadedLightByLight) {
+    const std::string dir = rd::test::shaderFolder("classic_shaders", kShaders);
+    const std::string shade =
+        "AttributeBegin\nAttribute \"visibility\" \"int camera\" [0]\n"
+        "Polygon \"P\" [-3 -3 -1  0 -3 -1  0 3 -1  -3 3 -1]\nAttributeEnd\n";
+    Rendered toon = renderRib(plane(
+        dir, "LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\n" + shade,
+        "toon"));
+    EXPECT_NEAR(toon.mean(0, 0, 0, 7, 16), 0.25, 1e-5) << "in the shadow";
+    EXPECT_NEAR(toon.mean(0, 9, 0, 16, 16), 1.0, 1e-5) << "lit";
+    Rendered swap =
+        renderRib(plane(dir,
+                        "LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" "
+                        "[0 0 1] \"lightcolor\" [1 0.5 0.25]\n" +
+                            shade,
+                        "swap"));
+    EXPECT_NEAR(swap.mean(0, 9, 0, 16, 16), 0.5, 1e-5);
+    EXPECT_NEAR(swap.mean(1, 9, 0, 16, 16), 0.25, 1e-5);
+    EXPECT_NEAR(swap.mean(2, 9, 0, 16, 16), 1.0, 1e-5);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(swap.mean(c, 0, 0, 7, 16), 0.0, 1e-6);
 }
