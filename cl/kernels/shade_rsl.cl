@@ -334,8 +334,8 @@ __kernel void shade_SURFACE(uint begin, uint count,
         /* the volume at Ci = 0 and 1: its b and a + b; with volume shadows without the
          * lights, whose parts come from their shadow rays */
         RslEval ve;
-        rd_volume(vkind, (int)atmo - 1, &g0, params, RD_VOLUME_LIGHTS, -1, &ve);
-        rd_volume(vkind, (int)atmo - 1, &g1, params, RD_VOLUME_LIGHTS, -1, &ve);
+        rd_volume(vkind, (int)atmo - 1, &g0, params, RD_VOLUME_LIGHTS, -1.0f, &ve);
+        rd_volume(vkind, (int)atmo - 1, &g1, params, RD_VOLUME_LIGHTS, -1.0f, &ve);
         atmo_a = g1.Ci - g0.Ci;
         RSL_CW(atmo_a) = 1.0f;
         E = rsl_cw0(atmo_a * E + g0.Ci);

@@ -259,9 +259,11 @@ typedef struct RslLightCache {
 /* RslEval::mode_light of a volume shader's evaluation: its illuminance loops see every
  * light's unshadowed Cl (a light's shadow map still shadows its Cl). Under
  * RSL_VOLUME_SHADOWS the renderer also evaluates a volume in light l's mode, counting
- * the illuminance loops' evaluations of light l (RslEval::pick_count), and in that mode
- * with one of them picked (RslEval::pick >= 0): only that one sees Cl, and where it was
- * made is kept (pick_P), the point the renderer traces the light's shadow ray from. */
+ * the illuminance loops' evaluations of light l (RslEval::pick_count) and summing their
+ * weights (pick_sum: an evaluation's mean |Cl|, 1 for a builtin's), and in that mode with
+ * one of them picked (pick_at >= 0, a point of [0, pick_sum)): only the evaluation whose
+ * span of the running sum holds it sees Cl, and where it was made and its weight are
+ * kept (pick_P, pick_w), the point the renderer traces the light's shadow ray from. */
 #define RSL_EVERY_LIGHT (-2)
 /* RslGlobals::ray_depth's top bit: the shader runs for a shadow ray's Oi alone (a surface
  * of "shader" transmission) */
@@ -331,9 +333,12 @@ typedef struct RslEval {
     float4 trace_dir[RSL_MAX_TRACE];
     float outputs[RSL_MAX_OUTPUT_FLOATS];  /* output parameters at ParamSlot::outputOffset */
 #ifdef RSL_VOLUME_SHADOWS
-    int pick;       /* light mode: the one evaluation of its light that sees Cl; -1 all */
+    float pick_at;  /* light mode: where in the weights' sum the one that sees Cl is; -1
+                       all */
     int pick_count; /* light mode: its light's evaluations so far */
-    float4 pick_P;  /* where the picked evaluation was made */
+    float pick_sum; /* ... and their weights' sum */
+    float pick_w;   /* the picked evaluation's weight */
+    float4 pick_P;  /* and where it was made */
 #endif
 #ifdef RSL_LIGHT_COEFS
     int coefs;                          /* LIGHT COEFFICIENTS: 1 to fill Ci_light */

@@ -106,15 +106,22 @@ TEST(VolumeShadows, PointLightStepsWeighByTheirOwnLight) {
     const std::string dir = rd::test::shaderFolder("raydrive_volume_shadows", kShaders);
     const std::string lamp =
         "LightSource \"pointlight\" 1 \"from\" [0 10 5] \"intensity\" 100\n";
+    // the march's sum at (x, y), averaged over the pixel (8 x 8 points: its box filter)
     auto expect = [](int px, int py, bool roof) {
-        const double x = (px + 0.5) / 8 - 1, y = 1 - (py + 0.5) / 8;
-        double sum = 0;
-        for (int k = 0; k < 40; ++k) {
-            const double z = 10 * (k + 0.5) / 40;
-            if (roof && z < 5) continue;
-            sum += 100 / (x * x + (10 - y) * (10 - y) + (5 - z) * (5 - z));
-        }
-        return 0.1 * 10 / 40 * sum;
+        double mean = 0;
+        for (int j = 0; j < 8; ++j)
+            for (int i = 0; i < 8; ++i) {
+                const double x = (px + (i + 0.5) / 8) / 8 - 1,
+                             y = 1 - (py + (j + 0.5) / 8) / 8;
+                double sum = 0;
+                for (int k = 0; k < 40; ++k) {
+                    const double z = 10 * (k + 0.5) / 40;
+                    if (roof && z < 5) continue;
+                    sum += 100 / (x * x + (10 - y) * (10 - y) + (5 - z) * (5 - z));
+                }
+                mean += 0.1 * 10 / 40 * sum / 64;
+            }
+        return mean;
     };
     for (bool roof : {false, true}) {
         const Rendered r =
