@@ -25,18 +25,28 @@ const char* const kShaders[][2] = {
      "    point Pk = P0 + I * ((k + 0.5) / steps);\n"
      "    illuminance(Pk) { sum += Cl; }\n  }\n"
      "  Ci = Ci + sigma * len / steps * sum;\n}\n"},
+    // the lights seen at P alone: one evaluation a light
+    {"atp", "volume atp() {\n  illuminance(P) { Ci += 0.5 * Cl; }\n}\n"},
+    // a shader's NaN points: where the lights are seen, and where a ray is traced from
+    {"nanv",
+     "volume nanv(float big = 1e30) {\n  point Pk = P * (big * big - big * big);\n"
+     "  illuminance(Pk) { Ci += 0.5 * Cl; }\n}\n"},
+    {"nantrace",
+     "surface nantrace(float big = 1e30) {\n"
+     "  Ci = 0.5 * trace(P * (big * big - big * big), vector(0, 0, -1));\n}\n"},
 };
 
 // Orthographic eye rays along +z from z = 0 over [-1, 1]^2 to a wall at z = 10 (its
 // surface call `wall`), through the atmosphere "scatter"; `above`: lights and occluders.
 std::string shaftScene(const std::string& dir, const std::string& above,
                        const std::string& wall = "Surface \"constant\"\nColor [0 0 0]\n",
-                       const std::string& options = "") {
+                       const std::string& options = "",
+                       const std::string& volume = "scatter") {
     return "Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\n" + options +
            "Format 16 16 1\nPixelSamples 4 4\nOption \"render\" \"float pixelerror\" "
            "[1e-9]\n"
            "Projection \"orthographic\"\nScreenWindow -1 1 -1 1\nWorldBegin\n" +
-           above + "Atmosphere \"scatter\"\nAttributeBegin\n" + wall +
+           above + "Atmosphere \"" + volume + "\"\nAttributeBegin\n" + wall +
            "Polygon \"P\" [-100 -100 10  100 -100 10  100 100 10  -100 100 10]\n"
            "AttributeEnd\nWorldEnd\n";
 }
@@ -159,4 +169,35 @@ TEST(VolumeShadows, SurfaceAndVolumeShadowRaysTogether) {
         "WorldEnd\n");
     EXPECT_TRUE(hasFeature(fog, "atmosphere"));
     EXPECT_FALSE(hasFeature(fog, "volume_shadows"));
+}
+
+// A volume that sees the lights at P alone (one evaluation a light: no pick) traces its
+// shadow ray from P: the wall at z = 10 under a roof reaching z = 50 is in its shadow
+// (0), under one reaching z = 5 it is lit (0.5).
+TEST(VolumeShadows, OneEvaluationTracesFromWhereItWasMade) {
+    const std::string dir = rd::test::shaderFolder("raydrive_volume_shadows", kShaders);
+    const std::string wall = "Surface \"constant\"\nColor [0 0 0]\n";
+    const std::string sun = kSun;
+    EXPECT_LT(
+        worstAgainst(renderRib(shaftScene(dir, sun + roofTo(50), wall, "", "atp")), 0.0),
+        1e-6);
+    EXPECT_LT(
+        worstAgainst(renderRib(shaftScene(dir, sun + roofTo(5), wall, "", "atp")), 0.5),
+        1e-6);
+}
+
+// A shader's NaN point is a fault of its own, not a hang: a volume seeing the lights
+// there sends no shadow ray (counted among the shaders' NaN/Inf), and a ray traced from
+// there meets nothing. Before, the eight-ray packet walk (shadow and closest-hit packets)
+// never ended on a lane whose origin was NaN: the render hung.
+TEST(VolumeShadows, NanPointsSendNoRay) {
+    const std::string dir = rd::test::shaderFolder("raydrive_volume_shadows", kShaders);
+    const Rendered v = renderRib(
+        shaftScene(dir, kSun, "Surface \"constant\"\nColor [0 0 0]\n", "", "nanv"));
+    EXPECT_TRUE(hasFeature(v, "shadow_packets"));
+    EXPECT_LT(worstAgainst(v, 0.0), 1e-6);
+    EXPECT_GT(v.stats.shadeNonfinite, 0u);
+    const Rendered t = renderRib(shaftScene(dir, kSun, "Surface \"nantrace\"\n"));
+    EXPECT_TRUE(hasFeature(t, "closest_packets"));
+    EXPECT_NEAR(t.mean(3, 0, 0, 16, 16), 1.0, 1e-6);
 }
