@@ -2,7 +2,7 @@
  * the device: the first adaptive pass tests all of a frame's pixels, which on the host
  * left the device idle for 3.5 ms of SPD tetra's 110 ms frame, and on a GPU needs none of
  * the film on the host. The arithmetic is the host's, operation for operation, so that
- * the planner's answers are the same bits whichever tests (Sampling.IncrementalPlanIsExact):
+ * the planner's answers are the same bits whichever tests (Sampling/IncrementalPlan.IsExact):
  * means and standard errors in double, float divisions taken in double and rounded once
  * (a correctly rounded quotient, where OpenCL allows float division 2.5 ulp), and no
  * contraction into fused multiply-adds. Only with cl_khr_fp64: without it

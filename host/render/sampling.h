@@ -26,7 +26,7 @@ struct SamplingSettings {
     // Each pass re-tests only the pixels whose answer can have changed (sampled in the
     // last pass or next to one, an error above this pass's pixel error, or near the
     // moving brightness floor); false re-tests every pixel. The passes are the same
-    // either way (Sampling.IncrementalPlanIsExact).
+    // either way (Sampling/IncrementalPlan.IsExact).
     bool incremental = true;
     // A visit of at least this many pixels (a full test) is split across planThreads
     // threads (0: the host's cores, at most 8); the pass is the same for any count.

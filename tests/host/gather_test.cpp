@@ -121,8 +121,12 @@ TEST(Gather, RayLengthIsTheDistanceToWhatTheRayMet) {
     EXPECT_NEAR(r.mean(0, 0, 0, 16, 16), expected, 0.02);
     std::printf("NUMERICS case=gather_ray_length tolerance=0.02 measured=%.4f\n",
                 r.mean(0, 0, 0, 16, 16) - expected);
-    // A wider disk halfway up that traced rays do not see: the rays go through it and
-    // measure from where they started, to the same mean (before, they stopped at it).
+}
+
+// The same under a wider disk halfway up that traced rays do not see: the rays go through
+// it and measure from where they started, to the same mean (before, they stopped at it).
+TEST(Gather, RayLengthGoesThroughWhatTracedRaysDoNotSee) {
+    const double expected = 4 * (1 - 2 / std::sqrt(5.0));
     Rendered through = renderRib(rd::test::patchUnder(
         shaderDir("gather_length"), 4, "\"gatherlen\"",
         "AttributeBegin\nAttribute \"visibility\" \"int trace\" [0]\nTranslate 0 0 6\n"

@@ -124,14 +124,19 @@ size_t pixelsDiffering(const Rendered& a, const Rendered& b) {
 // adaptive pass of one incremental, every pass of one that is not) must plan the same
 // passes, bit for bit.
 // With `overlap`, a third of each pass's pixels are still in flight when the next pass is
-// planned (the renderer plans while a pass's tail drains): both planners get them as busy,
-// must not sample them, and see their samples only after that plan; a quarter of those
-// stay in flight through three plans (a busy pixel's mean does not move: its neighbours
-// need no new test until it does).
-TEST(Sampling, IncrementalPlanIsExact) {
-    for (uint32_t smallPass : {0u, 1000u})
-    for (bool overlap : {false, true})
-    for (bool tightening : {false, true}) {
+// planned (the renderer plans while a pass's tail drains): both planners get them as
+// busy, must not sample them, and see their samples only after that plan; a quarter of
+// those stay in flight through three plans (a busy pixel's mean does not move: its
+// neighbours need no new test until it does). One case each of (small passes quadrupled,
+// overlapped, tightening), so that a run can take a few of them (the Oclgrind subset
+// takes two: the interpreter needs 8 s a case).
+class IncrementalPlan : public ::testing::TestWithParam<std::tuple<bool, bool, bool>> {};
+
+TEST_P(IncrementalPlan, IsExact) {
+    {
+        const uint32_t smallPass = std::get<0>(GetParam()) ? 1000u : 0u;
+        const bool overlap = std::get<1>(GetParam()),
+                   tightening = std::get<2>(GetParam());
         const int w = 97, h = 61;
         rd::SamplingSettings s;
         s.maxSamples = 64;
@@ -238,6 +243,14 @@ TEST(Sampling, IncrementalPlanIsExact) {
         }
     }
 }
+INSTANTIATE_TEST_SUITE_P(
+    Sampling, IncrementalPlan,
+    ::testing::Combine(::testing::Bool(), ::testing::Bool(), ::testing::Bool()),
+    [](const ::testing::TestParamInfo<std::tuple<bool, bool, bool>>& info) {
+        return std::string(std::get<0>(info.param) ? "SmallPasses" : "Passes") +
+               (std::get<1>(info.param) ? "Overlapped" : "") +
+               (std::get<2>(info.param) ? "Tightening" : "Fixed");
+    });
 
 // An edge gets more samples than a flat region: left half covered, right half empty, the
 // edge at x = 0.37 inside a pixel column. PixelSamples 8x8 caps pixels at 64.
