@@ -249,7 +249,7 @@ void reportDicing(const DicedSurfaces& d, const Scene& scene, rib::Diagnostics& 
     const rib::SourceLoc loc = displacementLoc(scene);
     if (d.skipped > 0)
         diag.warning(loc, std::to_string(d.skipped) +
-                              " truly displaced triangle(s) instanced or in a solid: "
+                              " truly displaced triangle(s) in a solid: "
                               "bump mapped instead");
     if (d.coarsening > 1.0f)
         diag.warning(loc, "true displacement diced " + std::to_string(int(d.coarsening)) +

@@ -112,7 +112,8 @@ bool dice(const DicingView& view, float limit, const Corner& a, const Corner& b,
     return next(mxy, *y, *z) && next(mxy, *z, mzx);
 }
 
-// Whether a triangle is diced: truly displaced, neither instanced nor in a solid. (A
+// Whether a triangle is diced: truly displaced and not in a solid (a truly displaced
+// instance is a copy of its object, rib_builder.cpp objectInstance). (A
 // moving one is diced at its first key, and its pieces move as it does.)
 bool isDiced(const Scene& s, size_t t) {
     const TriangleAttr& a = s.attrs[t];

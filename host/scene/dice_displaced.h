@@ -51,8 +51,8 @@ struct DicedSurfaces {
     size_t diced = 0;    // triangles replaced
     // Each diced triangle's original (its moving keys are the original's, blended).
     std::vector<uint32_t> pieceSource;
-    size_t skipped = 0;  // truly displaced triangles left as they are (instanced, in a
-                         // solid: rendered undisplaced)
+    size_t skipped = 0;  // truly displaced triangles left as they are (in a solid:
+                         // rendered undisplaced)
     size_t budget = 0;   // the most pieces asked for
     float coarsening = 1.0f;  // the edge limit's factor that kept within the budget
     bool truncated = false;   // the budget ran out all the same: surfaces left with holes

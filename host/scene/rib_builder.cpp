@@ -779,11 +779,15 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
     }
     // Each instance is placed by the current transform with the current shading
     // attributes. Meshes are shared (a prototype under its own BVH, reached through
-    // the instance's record), except inside a solid or with per-point values that each
-    // instance moves, where they are copied; quadrics are one record each anyway.
+    // the instance's record), except inside a solid, with per-point values that each
+    // instance moves, or truly displaced, where they are copied; quadrics are one record
+    // each anyway. (A displaced instance's copy is diced and displaced where it is, with
+    // its own object space, as a shader that reads P or "object" space needs: a shared
+    // prototype would be displaced once for every instance.)
     if (m_attrStack.back().lodHidden) return;  // (DetailRange)
     const ObjectDef& def = it->second;
-    if (const auto shared = sharedPointParams(def); m_solidStack.empty() && shared) {
+    if (const auto shared = sharedPointParams(def);
+        m_solidStack.empty() && shared && !m_attrStack.back().displacesTruly()) {
         addInstance(loc, handle, def, *shared);
     } else {
         for (const VertexData& piece : def.meshes) addMesh(loc, piece);

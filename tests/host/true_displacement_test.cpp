@@ -302,6 +302,46 @@ TEST(TrueDisplacement, MovingSurfacesAreDisplacedAtEveryKey) {
     EXPECT_NEAR(blurred(0), kPi, 0.15);
 }
 
+// A truly displaced instance is diced and displaced where it stands, in its own object
+// space (the ripple reads P there): two instances of a cube, one turned, give the image
+// of the cube written out twice at the same places, alpha for alpha; bump mapped, their
+// outline is the undisplaced cube's. (Before, instances were bump mapped with a warning.)
+TEST(TrueDisplacement, InstancesAreDisplacedEachInItsOwnSpace) {
+    const std::string cube =
+        "PointsPolygons [4 4 4 4 4 4] [0 1 3 2  4 6 7 5  0 4 5 1  2 3 7 6  0 2 6 4  1 5 "
+        "7 3] \"P\" [-0.8 -0.8 -0.8  0.8 -0.8 -0.8  -0.8 0.8 -0.8  0.8 0.8 -0.8  -0.8 "
+        "-0.8 0.8  0.8 -0.8 0.8  -0.8 0.8 0.8  0.8 0.8 0.8]\n";
+    const char* const places[] = {
+        "Translate -1.6 0 0\nRotate 35 1 0 0\nRotate 25 0 1 0\n",
+        "Translate 1.6 0 0\nRotate 80 0 0 1\nRotate 35 1 0 0\n"};
+    auto render = [&](bool instanced, int truly) {
+        std::string world = "Attribute \"render\" \"int truedisplacement\" [" +
+                            std::to_string(truly) +
+                            "]\nDisplacement \"ripple\" \"float amp\" [0.25]\n";
+        for (const char* place : places)
+            world += std::string("AttributeBegin\n") + place +
+                     (instanced ? "ObjectInstance \"cube\"\n" : cube) + "AttributeEnd\n";
+        return renderRib(
+            shaderPath() +
+            "Format 112 64 1\nPixelSamples 4 4\n"
+            "Projection \"orthographic\"\nScreenWindow -3.5 3.5 -2 2\n"
+            "Translate 0 0 5\nWorldBegin\nSurface \"constant\"\nShadingRate 4\n"
+            "ObjectBegin \"cube\"\n" +
+            cube + "ObjectEnd\n" + world + "WorldEnd\n");
+    };
+    auto alphaDiff = [](const Rendered& a, const Rendered& b) {
+        double worst = 0;
+        for (size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i)
+            worst = std::max(worst, double(std::fabs(a.pixels[i].a - b.pixels[i].a)));
+        return worst;
+    };
+    const Rendered written = render(false, 1), instanced = render(true, 1);
+    EXPECT_LT(alphaDiff(written, instanced), 1e-6);
+    EXPECT_GT(instanced.stats.dicedTriangles, 1000u);
+    EXPECT_EQ(instanced.stats.dicedTriangles, written.stats.dicedTriangles);
+    EXPECT_GT(alphaDiff(instanced, render(true, 0)), 0.5) << "bump mapped";
+}
+
 // A displacement that moves its vertices to NaN is reported at its own request's line,
 // the vertices left in place; a negative displacement bound is a warning; a coarser
 // dicing than asked (a plane to the horizon at a tiny ShadingRate) is a warning and stays
