@@ -1,6 +1,7 @@
 // rib_builder_mesh.cpp: meshes into the scene: object-space vertices placed in the
 // (eye-relative) world, degenerate triangles reported at their request, per-vertex
-// normals and primitive variables, and triangles that move during the shutter.
+// normals and primitive variables, triangles that move during the shutter, and objects
+// (ObjectBegin/ObjectInstance): a prototype shared by its instances, or copies.
 #include <algorithm>
 #include <array>
 #include <cfloat>
@@ -344,6 +345,54 @@ void RibBuilder::readVertexNormals(const rib::ParamList& params, size_t np,
     mesh.n.resize(np);
     for (size_t i = 0; i < np; ++i)
         mesh.n[i] = {q->floats[3 * i], q->floats[3 * i + 1], q->floats[3 * i + 2]};
+}
+
+// Like every begin-end pair but TransformBegin and MotionBegin, an object block saves
+// and restores the attributes, the transform with them (RI 3.2, section 4).
+void RibBuilder::objectBegin(L loc, const std::string& handle) {
+    m_attrStack.push_back(m_attrStack.back());
+    if (m_defining) {
+        m_diag.error(loc, "ObjectBegin inside ObjectBegin");
+        return;
+    }
+    m_defining = &m_objects[handle];
+    *m_defining = ObjectDef();
+    m_definingCtm = m_attrStack.back().ctm;
+}
+
+void RibBuilder::objectEnd(L) {
+    m_defining = nullptr;
+    if (m_attrStack.size() > 1) m_attrStack.pop_back();
+}
+
+void RibBuilder::objectInstance(L loc, const std::string& handle) {
+    auto it = m_objects.find(handle);
+    if (it == m_objects.end() || m_defining) {
+        m_diag.error(loc, m_defining
+                              ? "ObjectInstance inside ObjectBegin"
+                              : "ObjectInstance of undefined object \"" + handle + "\"");
+        return;
+    }
+    // Each instance is placed by the current transform with the current shading
+    // attributes. Meshes are shared (a prototype under its own BVH, reached through
+    // the instance's record), except inside a solid, with per-point values that each
+    // instance moves, or truly displaced, where they are copied; quadrics are one record
+    // each anyway. (A displaced instance's copy is diced and displaced where it is, with
+    // its own object space, as a shader that reads P or "object" space needs: a shared
+    // prototype would be displaced once for every instance.)
+    if (m_attrStack.back().lodHidden) return;  // (DetailRange)
+    const ObjectDef& def = it->second;
+    if (const auto shared = sharedPointParams(def);
+        m_solidStack.empty() && shared && !m_attrStack.back().displacesTruly()) {
+        addInstance(loc, handle, def, *shared);
+    } else {
+        for (const VertexData& piece : def.meshes) addMesh(loc, piece);
+    }
+    for (size_t i = 0; i < def.quadrics.size(); ++i) {
+        const QuadricShape& q = def.quadrics[i];
+        addQuadric(loc, quadricKindName(q.q.kind), q, def.quadricParams[i],
+                   quadricPlacement(q.q));
+    }
 }
 
 }  // namespace rd
