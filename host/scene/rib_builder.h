@@ -498,7 +498,14 @@ private:
         std::vector<VertexData> meshes;  // in the object's space, per-point values too
         std::vector<QuadricShape> quadrics;
         std::vector<rib::ParamList> quadricParams;  // each quadric's primitive variables
+        // Each quadric's request again, with its place in the object's space: a truly
+        // displaced instance makes it once more where it stands, to be diced (exact
+        // quadrics are not displaced)
+        std::vector<std::pair<glm::mat4, std::function<void()>>> quadricCalls;
     };
+    // Inside ObjectBegin, keeps a quadric request that makes an exact quadric for the
+    // instances that dice it (ObjectDef::quadricCalls); false outside.
+    void keepQuadricCall(std::function<void()> call);
     std::map<std::string, ObjectDef> m_objects;
     std::map<std::string, uint32_t> m_prototypes;  // per world: handle -> Scene::prototypes
     std::map<std::string, uint32_t> m_lightHandles;  // per world: handle -> light index

@@ -388,11 +388,33 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
     } else {
         for (const VertexData& piece : def.meshes) addMesh(loc, piece);
     }
+    if (m_attrStack.back().displacesTruly()) {
+        // its quadrics made again where the instance stands: diced, then displaced
+        Attributes& a = m_attrStack.back();
+        const Placement saved = a;
+        for (const auto& [toObject, call] : def.quadricCalls) {
+            a.ctm = saved.ctm * toObject;
+            a.ctmEnd = saved.ctmEnd * toObject;
+            for (size_t k = 0; k < a.between.size(); ++k)
+                a.between[k].second = saved.between[k].second * toObject;
+            call();
+        }
+        static_cast<Placement&>(a) = saved;
+        return;
+    }
     for (size_t i = 0; i < def.quadrics.size(); ++i) {
         const QuadricShape& q = def.quadrics[i];
         addQuadric(loc, quadricKindName(q.q.kind), q, def.quadricParams[i],
                    quadricPlacement(q.q));
     }
+}
+
+void RibBuilder::keepQuadricCall(std::function<void()> call) {
+    // (under MotionBegin only the first key makes the quadric: addQuadric)
+    if (!m_defining || !exactQuadrics() || (m_motion.active && m_motion.count > 0))
+        return;
+    m_defining->quadricCalls.push_back(
+        {glm::inverse(m_definingCtm) * m_attrStack.back().ctm, std::move(call)});
 }
 
 }  // namespace rd

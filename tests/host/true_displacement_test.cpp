@@ -342,6 +342,24 @@ TEST(TrueDisplacement, InstancesAreDisplacedEachInItsOwnSpace) {
     EXPECT_GT(alphaDiff(instanced, render(true, 0)), 0.5) << "bump mapped";
 }
 
+// An instanced quadric is made again where a truly displaced instance stands, and diced:
+// a unit sphere pushed out by 0.5 covers a disc of radius 1.5 (as in
+// SilhouetteMovesWithTheSurface), also inside a transform of the object's own; bump
+// mapped, the unit disc. (Before, it stayed an exact sphere, with a warning that spoke of
+// solids.)
+TEST(TrueDisplacement, InstancedQuadricsAreDicedWhereTheInstanceStands) {
+    const std::string object =
+        "ObjectBegin \"ball\"\nAttributeBegin\nScale 0.5 0.5 0.5\nSphere 2 -2 2 360\n"
+        "AttributeEnd\nObjectEnd\n";
+    const std::string push = "Displacement \"push\" \"float amount\" [0.5]\n";
+    EXPECT_NEAR(
+        coverage(object + "Attribute \"render\" \"int truedisplacement\" [1]\n" + push,
+                 "ObjectInstance \"ball\"\n"),
+        2.25 * kPi, 0.1);
+    EXPECT_NEAR(coverage(object + push, "ObjectInstance \"ball\"\n"), kPi, 0.1)
+        << "bump mapped";
+}
+
 // A displacement that moves its vertices to NaN is reported at its own request's line,
 // the vertices left in place; a negative displacement bound is a warning; a coarser
 // dicing than asked (a plane to the horizon at a tiny ShadingRate) is a warning and stays
