@@ -506,9 +506,10 @@ float RibBuilder::pixelsPerUnit(float depth) const {
 void RibBuilder::sphere(L loc, float radius, float zmin, float zmax, float thetamax,
                         const rib::ParamList& params) {
     if (!shown(loc, "Sphere")) return;
-    keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
-        sphere(loc, radius, zmin, zmax, thetamax, params);
-    });
+    if (m_defining)  // (no copy of the request outside ObjectBegin)
+        keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
+            sphere(loc, radius, zmin, zmax, thetamax, params);
+        });
     if (exactQuadrics()) {
         addQuadric(loc, "Sphere", makeSphere(radius, zmin, zmax, thetamax), params);
         return;

@@ -504,7 +504,7 @@ private:
         std::vector<std::pair<glm::mat4, std::function<void()>>> quadricCalls;
     };
     // Inside ObjectBegin, keeps a quadric request that makes an exact quadric for the
-    // instances that dice it (ObjectDef::quadricCalls); false outside.
+    // instances that dice it (ObjectDef::quadricCalls).
     void keepQuadricCall(std::function<void()> call);
     std::map<std::string, ObjectDef> m_objects;
     std::map<std::string, uint32_t> m_prototypes;  // per world: handle -> Scene::prototypes

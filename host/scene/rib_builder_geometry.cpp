@@ -228,9 +228,10 @@ void RibBuilder::addObjectRecord(L loc, const char* what, Quadric q, glm::vec3 l
 
 void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float thetamax, P params) {
     if (!shown(loc, "Cylinder")) return;
-    keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
-        cylinder(loc, radius, zmin, zmax, thetamax, params);
-    });
+    if (m_defining)  // (no copy of the request outside ObjectBegin)
+        keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
+            cylinder(loc, radius, zmin, zmax, thetamax, params);
+        });
     if (exactQuadrics())
         return addQuadric(loc, "Cylinder", makeCylinder(radius, zmin, zmax, thetamax), params);
     SurfaceMesh m;
@@ -244,9 +245,10 @@ void RibBuilder::cylinder(L loc, float radius, float zmin, float zmax, float the
 
 void RibBuilder::cone(L loc, float height, float radius, float thetamax, P params) {
     if (!shown(loc, "Cone")) return;
-    keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
-        cone(loc, height, radius, thetamax, params);
-    });
+    if (m_defining)  // (no copy of the request outside ObjectBegin)
+        keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
+            cone(loc, height, radius, thetamax, params);
+        });
     if (exactQuadrics())
         return addQuadric(loc, "Cone", makeCone(height, radius, thetamax), params);
     SurfaceMesh m;
@@ -260,9 +262,10 @@ void RibBuilder::cone(L loc, float height, float radius, float thetamax, P param
 
 void RibBuilder::disk(L loc, float height, float radius, float thetamax, P params) {
     if (!shown(loc, "Disk")) return;
-    keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
-        disk(loc, height, radius, thetamax, params);
-    });
+    if (m_defining)  // (no copy of the request outside ObjectBegin)
+        keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
+            disk(loc, height, radius, thetamax, params);
+        });
     if (exactQuadrics())
         return addQuadric(loc, "Disk", makeDisk(height, radius, thetamax), params);
     SurfaceMesh m;
@@ -276,9 +279,10 @@ void RibBuilder::disk(L loc, float height, float radius, float thetamax, P param
 void RibBuilder::torus(L loc, float majorRadius, float minorRadius, float phiMin, float phiMax,
                        float thetamax, P params) {
     if (!shown(loc, "Torus")) return;
-    keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
-        torus(loc, majorRadius, minorRadius, phiMin, phiMax, thetamax, params);
-    });
+    if (m_defining)  // (no copy of the request outside ObjectBegin)
+        keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
+            torus(loc, majorRadius, minorRadius, phiMin, phiMax, thetamax, params);
+        });
     if (exactQuadrics())
         return addQuadric(loc, "Torus",
                           makeTorus(majorRadius, minorRadius, phiMin, phiMax, thetamax), params);
@@ -296,9 +300,10 @@ void RibBuilder::torus(L loc, float majorRadius, float minorRadius, float phiMin
 void RibBuilder::paraboloid(L loc, float rmax, float zmin, float zmax, float thetamax,
                             P params) {
     if (!shown(loc, "Paraboloid")) return;
-    keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
-        paraboloid(loc, rmax, zmin, zmax, thetamax, params);
-    });
+    if (m_defining)  // (no copy of the request outside ObjectBegin)
+        keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params)] {
+            paraboloid(loc, rmax, zmin, zmax, thetamax, params);
+        });
     if (exactQuadrics())
         return addQuadric(loc, "Paraboloid", makeParaboloid(rmax, zmin, zmax, thetamax), params);
     SurfaceMesh m;
@@ -313,10 +318,12 @@ void RibBuilder::paraboloid(L loc, float rmax, float zmin, float zmax, float the
 void RibBuilder::hyperboloid(L loc, const float p1[3], const float p2[3], float thetamax,
                              P params) {
     if (!shown(loc, "Hyperboloid")) return;
-    keepQuadricCall([=, loc = rib::SourceLoc(loc), params = rib::ParamList(params),
-                     a = std::array<float, 6>{p1[0], p1[1], p1[2], p2[0], p2[1], p2[2]}] {
-        hyperboloid(loc, a.data(), a.data() + 3, thetamax, params);
-    });
+    if (m_defining)  // (no copy of the request outside ObjectBegin)
+        keepQuadricCall(
+            [=, loc = rib::SourceLoc(loc), params = rib::ParamList(params),
+             a = std::array<float, 6>{p1[0], p1[1], p1[2], p2[0], p2[1], p2[2]}] {
+                hyperboloid(loc, a.data(), a.data() + 3, thetamax, params);
+            });
     if (exactQuadrics())
         return addQuadric(loc, "Hyperboloid",
                           makeHyperboloid({p1[0], p1[1], p1[2]}, {p2[0], p2[1], p2[2]}, thetamax),

@@ -410,9 +410,9 @@ void RibBuilder::objectInstance(L loc, const std::string& handle) {
 }
 
 void RibBuilder::keepQuadricCall(std::function<void()> call) {
-    // (under MotionBegin only the first key makes the quadric: addQuadric)
-    if (!m_defining || !exactQuadrics() || (m_motion.active && m_motion.count > 0))
-        return;
+    // (a quadric that is not exact here, under MotionBegin for one, is a mesh of the
+    // object already)
+    if (!m_defining || !exactQuadrics()) return;
     m_defining->quadricCalls.push_back(
         {glm::inverse(m_definingCtm) * m_attrStack.back().ctm, std::move(call)});
 }
