@@ -1,6 +1,6 @@
 /* numerics_slots.h: the slots of the render's numerics buffer, shared by the kernels
  * (cl/lib/numerics.clh and the stages that count) and the host (render_summary.cpp,
- * renderer.cpp), so that both read the same slot for the same count. */
+ * renderer.cpp, render_loop.cpp), so that both read the same slot for the same count. */
 #ifndef RT_NUMERICS_SLOTS_H
 #define RT_NUMERICS_SLOTS_H
 
