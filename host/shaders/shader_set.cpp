@@ -13,6 +13,7 @@
 
 #include "compiler.h"
 #include "emit_cl.h"
+#include "light_services.h"
 #include "message_services.h"
 #include "ocl/program.h"
 #include "scene/dice_displaced.h"
@@ -150,11 +151,10 @@ const rsl::EmittedShader* ShaderSet::find(const std::string& name, const std::st
 // Binds each call of a list of shaders run by index (atmospheres, displacements): its
 // parameter block goes into out.params, its case into `cases`, its code into `shaders`
 // once. A shader that cannot be used is reported by find() and skipped.
-bool ShaderSet::bindCases(
-    const std::vector<ShaderRef>& refs, const std::string& kind, const std::string& evArg,
-    ShadingSetup& out, std::ostream& cases, std::ostream& shaders,
-    std::set<std::string>& emitted,
-    std::vector<std::pair<const rsl::EmittedShader*, int32_t>>& bound) {
+bool ShaderSet::bindCases(const std::vector<ShaderRef>& refs, const std::string& kind,
+                          const std::string& evArg, ShadingSetup& out,
+                          std::ostream& cases, std::ostream& shaders,
+                          std::set<std::string>& emitted, BoundCalls& bound) {
     bool any = false;
     bound.assign(refs.size(), {nullptr, -1});
     for (size_t i = 0; i < refs.size(); ++i) {
@@ -173,44 +173,119 @@ bool ShaderSet::bindCases(
     return any;
 }
 
-ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
-    ShadingSetup out;
-    std::ostringstream shaders;
-    // --- the scene block, at the front of the params buffer (RslGlobals::scene_params):
-    // what the services read that moves with the camera (kScene* offsets)
-    out.params.assign(kSceneFloats, 0.0f);
-    const SpaceSlots spaces{kSceneCamera, kSceneCameraInverse, kSceneWorld, kSceneSpaces};
-    {
-        // RSL row-vector matrices are glm's column-major arrays as they are.
-        const glm::mat4 camToWorld = glm::inverse(m_scene.camera.worldToCamera);
-        std::copy_n(&camToWorld[0][0], 16, out.params.begin() + kSceneCamera);
-        const glm::mat4& toCamera = m_scene.camera.worldToCamera;
-        std::copy_n(&toCamera[0][0], 16, out.params.begin() + kSceneCameraInverse);
-        // "world": the renderer's current space is the world moved so the eye is at the
-        // origin (precision far from it); world points are current + worldOrigin.
-        const glm::dvec3& wo = m_scene.worldOrigin;
-        float* w = &out.params[kSceneWorld];
-        w[0] = float(-wo.x), w[1] = float(-wo.y), w[2] = float(-wo.z), w[3] = 1.0f;
-        for (size_t k = 0; k < std::min(m_scene.clipPlanes.size(), kMaxClipPlanes); ++k) {
-            const auto& [p, n] = m_scene.clipPlanes[k];
-            float* c = &out.params[kSceneClipPlanes + 4 * k];
-            c[0] = n.x, c[1] = n.y, c[2] = n.z, c[3] = -glm::dot(n, p);
-        }
-        float* f = &out.params[kSceneFormat];
-        f[0] = float(m_scene.camera.width), f[1] = float(m_scene.camera.height);
-        f[2] = m_scene.camera.pixelAspect;
-        f[3] = m_scene.camera.clipNear, f[4] = std::min(m_scene.camera.clipFar, 1e30f);
+namespace {
+// The scene block (kScene* offsets): what the services read that moves with the camera.
+std::vector<float> sceneBlock(const Scene& scene) {
+    std::vector<float> params(kSceneFloats, 0.0f);
+    // RSL row-vector matrices are glm's column-major arrays as they are.
+    const glm::mat4 camToWorld = glm::inverse(scene.camera.worldToCamera);
+    std::copy_n(&camToWorld[0][0], 16, params.begin() + kSceneCamera);
+    const glm::mat4& toCamera = scene.camera.worldToCamera;
+    std::copy_n(&toCamera[0][0], 16, params.begin() + kSceneCameraInverse);
+    // "world": the renderer's current space is the world moved so the eye is at the
+    // origin (precision far from it); world points are current + worldOrigin.
+    const glm::dvec3& wo = scene.worldOrigin;
+    float* w = &params[kSceneWorld];
+    w[0] = float(-wo.x), w[1] = float(-wo.y), w[2] = float(-wo.z), w[3] = 1.0f;
+    for (size_t k = 0; k < std::min(scene.clipPlanes.size(), kMaxClipPlanes); ++k) {
+        const auto& [p, n] = scene.clipPlanes[k];
+        float* c = &params[kSceneClipPlanes + 4 * k];
+        c[0] = n.x, c[1] = n.y, c[2] = n.z, c[3] = -glm::dot(n, p);
     }
-    // --- light instances: their parameters in the params buffer (with their uniform work
-    // prepared, as a surface's), followed by the light's place (P, N) and an area light's
-    // triangles: a light edited between renders changes data, not the program, which
-    // would cost a build and every kernel's first compile again (2.85 s for SPD teapot).
-    // Per instance: its shader's index in lightShaders, the offsets of its block, its
-    // place and its area triangles (0 of them: a point light's place).
-    std::vector<int> lightShaderOf;
-    std::vector<size_t> lightBlock, lightPlace, lightAreaAt, lightAreaCount;
-    std::vector<const rsl::EmittedShader*> lightShaders;  // each light shader, once
-    std::vector<bool> lightAmbient, lightMapShadowed;
+    float* f = &params[kSceneFormat];
+    f[0] = float(scene.camera.width), f[1] = float(scene.camera.height);
+    f[2] = scene.camera.pixelAspect;
+    f[3] = scene.camera.clipNear, f[4] = std::min(scene.camera.clipFar, 1e30f);
+    return params;
+}
+
+// The defines the shading source starts with: the light cache's size and the light
+// coefficients (rsl_abi.h), and where the scene block keeps what the kernels read.
+std::string shadingDefines(uint32_t lightCount, bool lightCoefs) {
+    // the shadow lookups' world origin: the world row's translation, negated
+    const std::string w = "(p)[" + std::to_string(kSceneWorld);
+    return "#define RSL_LIGHT_CACHE " +
+           std::to_string(std::clamp<uint32_t>(lightCount, 1, kLightCoefLimit)) + "\n" +
+           (lightCoefs ? "#define RSL_LIGHT_COEFS " + std::to_string(lightCount) + "\n"
+                       : "") +
+           "#define RD_SCENE_WORLD_ORIGIN(p) (float4)(-" + w + "], -" + w + " + 1], -" +
+           w + " + 2], 0.0f)\n#define RD_SCENE_CLIP_PLANES " +
+           std::to_string(kSceneClipPlanes) + "\n#define RD_SCENE_EXTERIORS " +
+           std::to_string(kSceneExteriors) + "\n#define RD_SCENE_DEPTHS " +
+           std::to_string(kSceneDepths) + "\n";
+}
+
+// imager_apply: the Imager shader `function` (its block at `offset`) over the resolved
+// pixels (host/render/imager_stage).
+std::string imagerKernel(const std::string& function, size_t offset) {
+    return "__kernel void imager_apply(uint width, uint count, __global float4* pixels,\n"
+           "                           __global const float* params,\n"
+           "                           __global uint* active_counter) {\n"
+           "    uint i = get_global_id(0);\n"
+           "    RT_COUNT_RANGE(active_counter, count);\n"
+           "    if (i >= count) return;\n"
+           "    float4 c = pixels[i];\n"
+           "    RslGlobals g;\n"
+           "    g.P = (float4)((float)(i % width) + 0.5f, (float)(i / width) + 0.5f, "
+           "0.0f, "
+           "0.0f);\n"
+           "    g.N = g.Ng = g.I = g.E = g.dPdu = g.dPdv = g.L = g.Ps = (float4)(0.0f);\n"
+           "    g.Cl = rsl_f2c(0.0f);\n"
+           "    g.Cs = g.Os = rsl_f2c(1.0f);\n"
+           "    g.Ci = rsl_c3(c); /* the film's RGB (rsl_abi.h, COLOURS) */\n"
+           "    g.Oi = rsl_f2c(c.w);\n"
+           "    g.Ol = rsl_f2c(0.0f);\n"
+           "    RSL_CW(g.Ol) = c.w; /* alpha (rsl_abi.h, IMAGER) */\n"
+           "    g.u = g.v = g.s = g.t = g.du = g.dv = g.time = 0.0f;\n"
+           "    g.ncomps = (float)RSL_CHANNELS;\n"
+           "    g.light_cache_count = 0;\n"
+           "    g.light_cache = 0;\n"
+           "    g.loops_cut = 0;\n"
+           "    g.lights_off = 0u;\n"
+           "    g.rng_pixel = i;\n    g.rng_sample = 0u;\n    g.rng_depth = 0u;\n"
+           "    g.texctx = 0;\n"
+           "    g.scene_params = params;\n"
+           "    g.material = -1;\n    g.ray_depth = 0u;\n"
+           "    RslEval ev;\n"
+           "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
+           "    " +
+           function + "(&g, params + " + std::to_string(offset) +
+           ", &ev);\n"
+           "    float4 rgb = rsl_c2v(g.Ci);\n"
+           "    pixels[i] = (float4)(rgb.x, rgb.y, rgb.z, RSL_CW(g.Ol));\n"
+           "}\n";
+}
+
+// rd_prepare_uniforms: uniform work, once per bound instance, one work-item each.
+std::string prepareKernel(const std::vector<std::pair<std::string, uint32_t>>& prepares) {
+    if (prepares.empty()) return {};
+    std::ostringstream prep;
+    prep << "__kernel void rd_prepare_uniforms(uint count, __global float* params,\n"
+            "                                  __global uint* active_counter) {\n"
+            "    uint i = get_global_id(0);\n"
+            "    RT_COUNT_RANGE(active_counter, count);\n    switch (i) {\n";
+    for (size_t i = 0; i < prepares.size(); ++i)
+        prep << "    case " << i << ": " << prepares[i].first << "(params + "
+             << prepares[i].second << ", params); break;\n";
+    prep << "    default: break;\n    }\n}\n";
+    return prep.str();
+}
+
+// A volume kind's dispatcher rd_<kind>(index, globals, params, evaluation) over its
+// bound calls' `cases`.
+std::string volumeDispatcher(const char* kind, const std::string& cases) {
+    return std::string("static void rd_") + kind +
+           "(int a, RslGlobals* g, __global const float* params, RslEval* ev) {\n"
+           "    switch (a) {\n" +
+           cases + "    default: break;\n    }\n}\n";
+}
+}  // namespace
+
+// Light instances: their parameters in the params buffer (with their uniform work
+// prepared, as a surface's), followed by the light's place (P, N) and an area light's
+// triangles (light_services.h).
+BoundLights ShaderSet::bindLights(ShadingSetup& out, std::ostream& shaders) {
+    BoundLights lights;
     for (size_t sceneLight = 0; sceneLight < m_scene.lights.size(); ++sceneLight) {
         const ShaderRef& l = m_scene.lights[sceneLight];
         const rsl::EmittedShader* sh = find(l.name, "light", l.loc);
@@ -224,17 +299,18 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         if (glm::dot(n, n) > 0.0f) n = glm::normalize(n);
         addPrepare(out, *sh);
         const size_t at = out.params.size(), placeAt = at + block.size();
-        lightBlock.push_back(at);
+        lights.block.push_back(at);
         out.params.insert(out.params.end(), block.begin(), block.end());
         out.params.insert(out.params.end(), {o.x, o.y, o.z, 0.0f, n.x, n.y, n.z, 0.0f});
-        lightPlace.push_back(placeAt);
-        lightAreaAt.push_back(0);
-        lightAreaCount.push_back(0);
-        const auto known = std::find_if(lightShaders.begin(), lightShaders.end(),
-                                        [&](const auto* s) { return s->name == sh->name; });
-        lightShaderOf.push_back(int(known - lightShaders.begin()));
-        if (known == lightShaders.end()) {
-            lightShaders.push_back(sh);
+        lights.place.push_back(placeAt);
+        lights.areaAt.push_back(0);
+        lights.areaCount.push_back(0);
+        const auto known =
+            std::find_if(lights.shaders.begin(), lights.shaders.end(),
+                         [&](const auto* s) { return s->name == sh->name; });
+        lights.shaderOf.push_back(int(known - lights.shaders.begin()));
+        if (known == lights.shaders.end()) {
+            lights.shaders.push_back(sh);
             shaders << sh->source << "\n";
         }
         // an area light: a point on its geometry instead, weighted by area
@@ -245,151 +321,35 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
             if (count < tris.size())
                 m_diag.warning(l.loc, "area light geometry of " + std::to_string(tris.size()) +
                                           " triangles: the first 4096 emit");
-            std::vector<double> cdf(count);
-            double total = 0;
-            for (size_t t = 0; t < count; ++t) {
-                const auto& v = tris[t];
-                total += 0.5 * double(glm::length(glm::cross(v[1] - v[0], v[2] - v[0])));
-                cdf[t] = total;
-            }
-            // (data too, at a float4 boundary: a camera move shifts them, eye-relative)
-            out.params.resize((out.params.size() + 3) / 4 * 4, 0.0f);
-            const size_t trisAt = out.params.size();
-            for (size_t t = 0; t < count; ++t) {
-                const auto& v = tris[t];
-                float w = total > 0 ? float(cdf[t] / total) : float(t + 1) / float(count);
-                for (int k = 0; k < 3; ++k)
-                    out.params.insert(out.params.end(),
-                                      {v[k].x, v[k].y, v[k].z,
-                                       k == 0 ? (t + 1 == count ? 1.0f : w) : 0.0f});
-            }
-            lightAreaAt.back() = trisAt, lightAreaCount.back() = count;
+            lights.areaAt.back() = appendAreaTriangles(tris, count, out.params);
+            lights.areaCount.back() = count;
         }
-        lightAmbient.push_back(sh->ambientLight);
+        lights.ambient.push_back(sh->ambientLight);
         // a light whose "shadowname" names a shadow map is shadowed by that map (its
         // shader's shadow() call) instead of by a traced shadow ray
         const rib::Param* sn = l.params.find("shadowname");
         const std::string map = sn && !sn->strings.empty() ? sn->strings[0] : "";
-        lightMapShadowed.push_back(!map.empty() && map != "raytrace");
+        lights.mapShadowed.push_back(!map.empty() && map != "raytrace");
         out.shadowRays |= !sh->ambientLight;
     }
-    out.lightCount = uint32_t(lightShaderOf.size());
-    // --- services the generated code calls (rsl_abi.h)
-    std::ostringstream svc;
-    svc << "int rsl_light_count(void) { return " << out.lightCount << "; }\n";
-    // Each light shader is called from one place (and its parameters read by name in
-    // one), its instances told apart by where their data is (tables of offsets: the
-    // layout, not the values)
-    auto table = [&](const char* name, auto values) {
-        svc << "__constant int " << name << "[] = {";
-        for (size_t i = 0; i < values.size(); ++i) svc << (i ? ", " : "") << values[i];
-        if (values.empty()) svc << "0";
-        svc << "};\n";
-    };
-    const bool areas = std::any_of(lightAreaCount.begin(), lightAreaCount.end(),
-                                   [](size_t n) { return n > 0; });
-    table("rd_light_shader", lightShaderOf);
-    table("rd_light_block", lightBlock);
-    table("rd_light_place", lightPlace);
-    if (areas) {
-        table("rd_light_area_at", lightAreaAt);
-        table("rd_light_area_count", lightAreaCount);
-    }
-    // lightsource("name", var): the light instance's parameter, matched by name id and size.
-    svc << "int rsl_lightsource_param(const RslGlobals* g, int light, int nameId, float* out, "
-           "int n) {\n"
-           "    if (light < 0 || light >= " << out.lightCount << ") return 0;\n"
-           "    __global const float* b = g->scene_params + rd_light_block[light];\n"
-           "    switch (rd_light_shader[light]) {\n";
-    for (size_t i = 0; i < lightShaders.size(); ++i) {
-        svc << "    case " << i << ":\n";
-        for (const rsl::ParamSlot& slot : lightShaders[i]->params)
-            svc << "        if (nameId == " << rsl::stringId(slot.name) << " && n == " << slot.size
-                << ") { for (int k = 0; k < n; ++k) out[k] = b[" << slot.offset
-                << " + k]; return 1; }\n";
-        svc << "        return 0;\n";
-    }
-    svc << "    default: return 0;\n    }\n}\n";
-    svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar light */\n"
-           "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* out) {\n"
-           "    RslGlobals lg = *g;\n    lg.Ps = Ps;\n    lg.L = (float4)(0.0f);\n"
-           "    lg.Cl = rsl_f2c(0.0f);\n    lg.Ol = rsl_f2c(0.0f);\n"
-           "    if (l < 0 || l >= " << out.lightCount << ") { *out = lg; return 0; }\n"
-           "    __global const float* d = lg.scene_params;\n"
-           "    lg.P = vload4(0, d + rd_light_place[l]);\n"
-           "    lg.N = lg.Ng = vload4(1, d + rd_light_place[l]);\n";
-    if (areas)  // an area light: a point on its geometry instead, weighted by area
-        svc << "    if (rd_light_area_count[l] > 0) {\n"
-               "        float4 ap_, an_;\n"
-               "        rd_area_point((__global const float4*)(d + rd_light_area_at[l]),\n"
-               "                      rd_light_area_count[l], g, l, &ap_, &an_);\n"
-               "        lg.P = ap_;\n        lg.N = lg.Ng = an_;\n    }\n";
-    svc << "    switch (rd_light_shader[l]) {\n";
-    for (size_t i = 0; i < lightShaders.size(); ++i)
-        svc << "    case " << i << ": " << lightShaders[i]->functionName
-            << "(&lg, d + rd_light_block[l]); break;\n";
-    svc << "    default: break;\n    }\n    *out = lg;\n    return RSL_CW(lg.Ol) == 1.0f;\n}\n";
-    svc << "static int rd_light_traces_shadows(int l) {\n    switch (l) {\n";
-    for (size_t i = 0; i < lightMapShadowed.size(); ++i)
-        if (lightMapShadowed[i]) svc << "    case " << i << ": return 0;\n";
-    svc << "    default: return 1;\n    }\n}\n";
-    svc << "static int rd_light_is_ambient(int l) {\n    switch (l) {\n";
-    for (size_t i = 0; i < lightAmbient.size(); ++i)
-        if (lightAmbient[i]) svc << "    case " << i << ": return 1;\n";
-    svc << "    default: return 0;\n    }\n}\n";
-    // The light cache (rsl_abi.h): each light runs once per shading point, not once per
-    // evaluation mode and illuminance loop.
-    // The cache lookup is inlined where lights are read (each shading point reads every
-    // light several times: builtins, illuminance loops, coefficients, shadow rays), so
-    // repeated reads of one light fold; running a light is a call.
-    // clang-format off
-    svc << "/* Runs light l at Ps: surface-side L, unshadowed Cl (RSL_CW 1: solar). */\n"
-           "static void rd_light_run(int l, const RslGlobals* g, float4 Ps, float4* L, rsl_color* Cl) {\n"
-           "    RslGlobals lg;\n    int solar = rd_run_light(l, g, Ps, &lg);\n"
-           "    *L = (float4)(-lg.L.x, -lg.L.y, -lg.L.z, 0.0f);\n"
-           "    *Cl = rsl_cw0(lg.Cl);\n    RSL_CW(*Cl) = solar ? 1.0f : 0.0f;\n}\n"
-           "/* Light l at Ps: from the light cache when Ps is the shading point. */\n"
-           "static inline __attribute__((always_inline)) void rd_light_at(int l, const RslGlobals* g,\n"
-           "                                                              float4 Ps, float4* L, rsl_color* Cl) {\n"
-           "    if (l < 32 && ((g->lights_off >> l) & 1u)) {  /* Illuminate off */\n"
-           "        *L = (float4)(0.0f, 0.0f, 1.0f, 0.0f);\n        *Cl = (rsl_color)(0.0f);\n        return;\n    }\n"
-           "    if (l < g->light_cache_count && Ps.x == g->P.x && Ps.y == g->P.y && Ps.z == g->P.z) {\n"
-           "        *L = g->light_cache->L[l];\n        *Cl = g->light_cache->Cl[l];\n        return;\n    }\n"
-           "    rd_light_run(l, g, Ps, L, Cl);\n}\n"
-           "static void rd_fill_light_cache(RslGlobals* g, RslLightCache* cache) {\n"
-           "    g->light_cache_count = 0;\n"
-           "    g->light_cache = cache;\n"
-           "    int n = min(rsl_light_count(), RSL_LIGHT_CACHE);\n"
-           "    for (int l = 0; l < n; ++l) rd_light_at(l, g, g->P, &cache->L[l], &cache->Cl[l]);\n"
-           "    g->light_cache_count = n;\n}\n"
-           "inline __attribute__((always_inline)) int rsl_light(int l, const RslGlobals* g, float4 Ps,\n"
-           "                                                     float4* L, rsl_color* Cl) {\n"
-           "    if (rd_light_is_ambient(l)) return 0;\n"
-           "    rd_light_at(l, g, Ps, L, Cl);\n    RSL_CW(*Cl) = 0.0f;\n"
-           "    return rsl_cnonzero(*Cl);\n}\n"
-           "rsl_color rsl_ambient(const RslGlobals* g) {\n    rsl_color sum = rsl_f2c(0.0f);\n"
-           "    for (int l = 0; l < rsl_light_count(); ++l) {\n"
-           "        if (!rd_light_is_ambient(l)) continue;\n        float4 L;\n        rsl_color Cl;\n"
-           "        rd_light_at(l, g, g->P, &L, &Cl);\n        sum += Cl;\n    }\n"
-           "    return rsl_cw0(sum);\n}\n"
-        << spaceService(spaces);
-    // clang-format on
-    // --- surfaces: one compiled shader per name, one parameter block per call
+    out.lightCount = lights.count();
+    return lights;
+}
+
+// Surfaces: one compiled shader per name, each with its shade kernel (shade_rsl.cl made
+// its own), and one parameter block per call; a shader that cannot be used gives way to
+// defaultsurface. `aovs`: those the render writes (shader_aovs.h).
+ShaderSet::BoundSurfaces ShaderSet::bindSurfaces(ShadingSetup& out,
+                                                 const std::vector<std::string>& aovs,
+                                                 bool lightCoefs, std::ostream& shaders,
+                                                 std::ostream& kernels) {
+    BoundSurfaces bound;
+    const size_t refs = m_scene.surfaceRefs.size();
+    bound.block.resize(refs);
+    bound.shader.resize(refs);
+    bound.pointParams.resize(refs);
     std::map<std::string, uint32_t> surfaceIndex;
-    std::vector<const rsl::EmittedShader*> surfaceShaders;  // by surfaceIndex
-    std::vector<uint32_t> refBlock(m_scene.surfaceRefs.size());
-    std::vector<uint32_t> refShader(m_scene.surfaceRefs.size());
-    std::vector<std::vector<int32_t>> refPointParams(m_scene.surfaceRefs.size());
-    std::ostringstream kernels;
     const std::string& kernelTemplate = embeddedClSources().at("shade_rsl.cl");
-    // Light coefficients (rsl_abi.h): the base evaluation of a surface gives each light's
-    // coefficient, where the kernel otherwise evaluated the surface once more per light.
-    const bool lightCoefs = out.lightCount >= 1 && out.lightCount <= kLightCoefLimit;
-    // The light cache holds every light up to the same limit (rsl_abi.h RslLightCache).
-    const std::string lightDefines =
-        "#define RSL_LIGHT_CACHE " +
-        std::to_string(std::clamp<uint32_t>(out.lightCount, 1, kLightCoefLimit)) + "\n" +
-        (lightCoefs ? "#define RSL_LIGHT_COEFS " + std::to_string(out.lightCount) + "\n" : "");
     // The AOVs the surface shaders write: laid out over every shader the scene uses
     std::vector<const rsl::EmittedShader*> surfaces;
     for (const ShaderRef& ref : m_scene.surfaceRefs)
@@ -405,7 +365,7 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         if (!sh) continue;
         auto [it, fresh] = surfaceIndex.emplace(sh->name, uint32_t(out.surfaceNames.size()));
         if (fresh) {
-            surfaceShaders.push_back(sh);
+            bound.shaders.push_back(sh);
             out.surfaceNames.push_back(sh->name);
             out.shadeKernels.push_back("shade_" + sh->name);
             shaders << sh->source << "\n";
@@ -426,47 +386,151 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
             out.shaderOpacity |= sh->writesOpacity;
             out.derivatives |= sh->usesDerivatives;
         }
-        refShader[r] = it->second;
-        refBlock[r] = uint32_t(out.params.size());
-        refPointParams[r] = pointParamOffsets(*sh, call, m_diag);
+        bound.shader[r] = it->second;
+        bound.block[r] = uint32_t(out.params.size());
+        bound.pointParams[r] = pointParamOffsets(*sh, call, m_diag);
         std::vector<float> block = bindParameters(*sh, call, m_diag, m_scene.colors);
         addPrepare(out, *sh);
         noteTextures(out, *sh, call);
         out.params.insert(out.params.end(), block.begin(), block.end());
     }
-    std::set<std::string> emitted;
-    std::vector<std::pair<const rsl::EmittedShader*, int32_t>> atmoBound, dispBound,
-        interBound, exterBound;
-    // A volume kind's calls bound, and its dispatcher rd_<kind>(index, globals, params,
-    // evaluation) (the kernel's evaluation: every light, or under RT_VOLUME_SHADOWS one
-    // light's evaluations counted or picked; no traces, no derivatives).
-    auto bindVolumes =
-        [&](const std::vector<ShaderRef>& calls, const char* kind,
-            std::vector<std::pair<const rsl::EmittedShader*, int32_t>>& bound) {
-            std::ostringstream cases;
-            if (!bindCases(calls, "volume", "ev", out, cases, shaders, emitted, bound))
-                return false;
-            svc << "static void rd_" << kind
-                << "(int a, RslGlobals* g, __global const float* params, RslEval* ev) {\n"
-                   "    switch (a) {\n"
-                << cases.str() << "    default: break;\n    }\n}\n";
-            for (const auto& b : bound)
-                out.volumeLights |= b.first && b.first->usesLighting;
-            return true;
+    return bound;
+}
+
+// The names of spaces a shader with the space table may ask for: its literals, and the
+// strings its calls and defaults give (a space named by a parameter).
+std::set<std::string> ShaderSet::spaceNames() const {
+    std::set<std::string> names;
+    for (const auto& [name, sh] : m_cache) {
+        if (!sh || !sh->usesSpaceTable) continue;
+        names.insert(sh->namedSpaces.begin(), sh->namedSpaces.end());
+        for (const rsl::ParamSlot& slot : sh->params)
+            names.insert(slot.stringDefaults.begin(), slot.stringDefaults.end());
+    }
+    for (const auto* calls :
+         {&m_scene.surfaceRefs, &m_scene.lights, &m_scene.displacements,
+          &m_scene.atmospheres, &m_scene.interiors, &m_scene.exteriors})
+        for (const ShaderRef& call : *calls)
+            for (const rib::Param& p : call.params.params)
+                names.insert(p.strings.begin(), p.strings.end());
+    return names;
+}
+
+// Whether some compiled shader's code calls `service` (its name and first argument).
+bool ShaderSet::someShaderCalls(const char* service) const {
+    return std::any_of(m_cache.begin(), m_cache.end(), [&](const auto& entry) {
+        return entry.second && entry.second->source.find(service) != std::string::npos;
+    });
+}
+
+// surface(), displacement(), atmosphere(), incident(), opposite(): per material, each
+// kind's shader and block (message_services.h ShaderBlocks), when `used`.
+ShaderBlocks ShaderSet::shaderBlocks(const ShadingSetup& out,
+                                     const BoundSurfaces& surfaces,
+                                     const BoundVolumes& volumes, bool used) const {
+    ShaderBlocks blocks;
+    blocks.shaders[0] = surfaces.shaders;
+    auto kindIndex = [&](int kind, const rsl::EmittedShader* sh) {
+        auto& list = blocks.shaders[kind];
+        auto it = std::find(list.begin(), list.end(), sh);
+        if (it != list.end()) return int32_t(it - list.begin());
+        list.push_back(sh);
+        return int32_t(list.size() - 1);
+    };
+    for (size_t mi = 0; used && mi < out.materials.size(); ++mi) {
+        const Material& m = out.materials[mi];
+        const uint32_t r = m_scene.materials[mi].shader;
+        std::array<int32_t, 2 * ShaderBlocks::kKinds> e{};
+        for (int kind = 0; kind < ShaderBlocks::kKinds; ++kind) e[2 * kind] = -1;
+        if (r < surfaces.shader.size() && !surfaces.shaders.empty())
+            e[0] = int32_t(m.shader), e[1] = int32_t(m.params);
+        // a kind's shader by its index among the kind's bound calls (1-based, 0: none)
+        auto boundAs = [&](int kind, uint32_t index, const auto& bound) {
+            if (index == 0 || index > bound.size() || !bound[index - 1].first) return;
+            e[2 * kind] = kindIndex(kind, bound[index - 1].first);
+            e[2 * kind + 1] = bound[index - 1].second;
         };
+        boundAs(
+            1,
+            (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT,
+            volumes.displacements);
+        boundAs(2,
+                (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT,
+                volumes.atmospheres);
+        boundAs(3, (m.flags & RT_MATERIAL_INTERIOR_MASK) >> RT_MATERIAL_INTERIOR_SHIFT,
+                volumes.interiors);
+        boundAs(4,
+                mi < m_scene.materialExterior.size() ? m_scene.materialExterior[mi] : 0,
+                volumes.exteriors);
+        blocks.materials.push_back(e);
+    }
+    return blocks;
+}
+
+// The scene's materials with their surface shader's index and block, and where each
+// one's per-point parameters go (ShadingSetup::pointParamLayout).
+void ShaderSet::bindMaterials(ShadingSetup& out, const BoundSurfaces& surfaces) const {
+    out.materials = m_scene.materials;
+    out.maxPointParams = m_scene.maxPointParams;
+    for (Material& m : out.materials) {
+        uint32_t r = m.shader;
+        m.shader = r < surfaces.shader.size() ? surfaces.shader[r] : 0;
+        m.params = r < surfaces.block.size() ? surfaces.block[r] : 0;
+        if (out.maxPointParams > 0) {
+            std::vector<int32_t> lay(size_t(1 + out.maxPointParams), -1);
+            const std::vector<int32_t> none;
+            const std::vector<int32_t>& given =
+                r < surfaces.pointParams.size() ? surfaces.pointParams[r] : none;
+            lay[0] = int32_t(given.size());
+            std::copy(given.begin(), given.end(), lay.begin() + 1);
+            out.pointParamLayout.insert(out.pointParamLayout.end(), lay.begin(),
+                                        lay.end());
+        }
+    }
+}
+
+ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
+    ShadingSetup out;
+    std::ostringstream shaders, svc, kernels;
+    // --- the scene block, at the front of the params buffer (RslGlobals::scene_params)
+    out.params = sceneBlock(m_scene);
+    const SpaceSlots spaces{kSceneCamera, kSceneCameraInverse, kSceneWorld, kSceneSpaces};
+    // --- light instances and the services that run them (light_services.h)
+    const BoundLights lights = bindLights(out, shaders);
+    svc << lightServices(lights) << spaceService(spaces);
+    // Light coefficients (rsl_abi.h): the base evaluation of a surface gives each light's
+    // coefficient, where the kernel otherwise evaluated the surface once more per light.
+    // The light cache holds every light up to the same limit (rsl_abi.h RslLightCache).
+    const bool lightCoefs = out.lightCount >= 1 && out.lightCount <= kLightCoefLimit;
+    // --- surfaces: one compiled shader per name, one parameter block per call
+    const BoundSurfaces surfaces = bindSurfaces(out, aovs, lightCoefs, shaders, kernels);
+    std::set<std::string> emitted;
+    BoundVolumes volumes;
+    // A volume kind's calls bound, and its dispatcher (the kernel's evaluation: every
+    // light, or under RT_VOLUME_SHADOWS one light's evaluations counted or picked; no
+    // traces, no derivatives).
+    auto bindVolumes = [&](const std::vector<ShaderRef>& calls, const char* kind,
+                           BoundCalls& bound) {
+        std::ostringstream cases;
+        if (!bindCases(calls, "volume", "ev", out, cases, shaders, emitted, bound))
+            return false;
+        svc << volumeDispatcher(kind, cases.str());
+        for (const auto& b : bound) out.volumeLights |= b.first && b.first->usesLighting;
+        return true;
+    };
     // --- atmospheres, interiors (what comes back from inside a surface), exteriors (from
     // outside the surface a ray left; a table by material: its flag bits are taken)
-    out.atmosphere = bindVolumes(m_scene.atmospheres, "atmosphere", atmoBound);
-    out.interior = bindVolumes(m_scene.interiors, "interior", interBound);
-    out.exterior = bindVolumes(m_scene.exteriors, "exterior", exterBound);
+    out.atmosphere = bindVolumes(m_scene.atmospheres, "atmosphere", volumes.atmospheres);
+    out.interior = bindVolumes(m_scene.interiors, "interior", volumes.interiors);
+    out.exterior = bindVolumes(m_scene.exteriors, "exterior", volumes.exteriors);
     if (out.exterior) {
         out.params[kSceneExteriors] = intBits(int64_t(out.params.size()));
         for (size_t mi = 0; mi < m_scene.materials.size(); ++mi) {
             const uint32_t e =
                 mi < m_scene.materialExterior.size() ? m_scene.materialExterior[mi] : 0;
-            out.params.push_back(
-                e > 0 && e <= exterBound.size() && exterBound[e - 1].first ? float(e)
-                                                                           : 0.0f);
+            const bool bound =
+                e > 0 && e <= volumes.exteriors.size() && volumes.exteriors[e - 1].first;
+            out.params.push_back(bound ? float(e) : 0.0f);
         }
     }
     // --- objects' own trace() depth limits, when they differ and some shader traces
@@ -482,90 +546,26 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     // --- displacements: bump shaders run before the surface (shade_common.clh)
     std::ostringstream disp;
     out.displacement = bindCases(m_scene.displacements, "displacement", "ev", out, disp,
-                                 shaders, emitted, dispBound);
+                                 shaders, emitted, volumes.displacements);
     if (out.displacement)
         svc << "static void rd_displace(int d, RslGlobals* g, __global const float* params, "
                "RslEval* ev) {\n    switch (d) {\n" << disp.str()
             << "    default: break;\n    }\n}\n";
     // --- the imager: a kernel over the resolved pixels (host/render/imager_stage)
-    std::string imagerKernel;
+    std::string imager;
     if (!m_scene.imager.name.empty()) {
         const ShaderRef& ref = m_scene.imager;
         if (const rsl::EmittedShader* sh = find(ref.name, "imager", ref.loc)) {
             std::vector<float> block = bindParameters(*sh, ref, m_diag, m_scene.colors);
             addPrepare(out, *sh);
             noteTextures(out, *sh, ref);
-            const size_t offset = out.params.size();
+            imager = imagerKernel(sh->functionName, out.params.size());
             out.params.insert(out.params.end(), block.begin(), block.end());
             shaders << sh->source << "\n";
             out.imager = true;
-            imagerKernel =
-                "__kernel void imager_apply(uint width, uint count, __global float4* "
-                "pixels,\n"
-                "                           __global const float* params,\n"
-                "                           __global uint* active_counter) {\n"
-                "    uint i = get_global_id(0);\n"
-                "    RT_COUNT_RANGE(active_counter, count);\n"
-                "    if (i >= count) return;\n"
-                "    float4 c = pixels[i];\n"
-                "    RslGlobals g;\n"
-                "    g.P = (float4)((float)(i % width) + 0.5f, (float)(i / width) + "
-                "0.5f, 0.0f, 0.0f);\n"
-                "    g.N = g.Ng = g.I = g.E = g.dPdu = g.dPdv = g.L = g.Ps = "
-                "(float4)(0.0f);\n"
-                "    g.Cl = rsl_f2c(0.0f);\n"
-                "    g.Cs = g.Os = rsl_f2c(1.0f);\n"
-                "    g.Ci = rsl_c3(c); /* the film's RGB (rsl_abi.h, COLOURS) */\n"
-                "    g.Oi = rsl_f2c(c.w);\n"
-                "    g.Ol = rsl_f2c(0.0f);\n"
-                "    RSL_CW(g.Ol) = c.w; /* alpha (rsl_abi.h, IMAGER) */\n"
-                "    g.u = g.v = g.s = g.t = g.du = g.dv = g.time = 0.0f;\n"
-                "    g.ncomps = (float)RSL_CHANNELS;\n"
-                "    g.light_cache_count = 0;\n"
-                "    g.light_cache = 0;\n"
-                "    g.loops_cut = 0;\n"
-                "    g.lights_off = 0u;\n"
-                "    g.rng_pixel = i;\n    g.rng_sample = 0u;\n    g.rng_depth = 0u;\n"
-                "    g.texctx = 0;\n"
-                "    g.scene_params = params;\n"
-                "    g.material = -1;\n    g.ray_depth = 0u;\n"
-                "    RslEval ev;\n"
-                "    rd_eval_init(&ev, 0, 0, -1, -1);\n"
-                "    " +
-                sh->functionName + "(&g, params + " + std::to_string(offset) +
-                ", &ev);\n"
-                "    float4 rgb = rsl_c2v(g.Ci);\n"
-                "    pixels[i] = (float4)(rgb.x, rgb.y, rgb.z, RSL_CW(g.Ol));\n"
-                "}\n";
         }
     }
-    // --- uniform work, once per bound instance: one work-item each
-    std::ostringstream prep;
-    if (!out.prepares.empty()) {
-        prep << "__kernel void rd_prepare_uniforms(uint count, __global float* params,\n"
-                "                                  __global uint* active_counter) {\n"
-                "    uint i = get_global_id(0);\n"
-                "    RT_COUNT_RANGE(active_counter, count);\n    switch (i) {\n";
-        for (size_t i = 0; i < out.prepares.size(); ++i)
-            prep << "    case " << i << ": " << out.prepares[i].first << "(params + "
-                 << out.prepares[i].second << ", params); break;\n";
-        prep << "    default: break;\n    }\n}\n";
-    }
-    out.materials = m_scene.materials;
-    out.maxPointParams = m_scene.maxPointParams;
-    for (Material& m : out.materials) {
-        uint32_t r = m.shader;
-        m.shader = r < refShader.size() ? refShader[r] : 0;
-        m.params = r < refBlock.size() ? refBlock[r] : 0;
-        if (out.maxPointParams > 0) {
-            std::vector<int32_t> lay(size_t(1 + out.maxPointParams), -1);
-            const std::vector<int32_t> none;
-            const std::vector<int32_t>& given = r < refPointParams.size() ? refPointParams[r] : none;
-            lay[0] = int32_t(given.size());
-            std::copy(given.begin(), given.end(), lay.begin() + 1);
-            out.pointParamLayout.insert(out.pointParamLayout.end(), lay.begin(), lay.end());
-        }
-    }
+    bindMaterials(out, surfaces);
     // Each light shader is inlined at its one call site (RD_SPECIALISED_LIGHTS). Light
     // parameters were compiled-in constants, each of the first 32 instances inlined with
     // its own, until the light's uniform work (a cone's cosine, its axis) was prepared
@@ -575,99 +575,32 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     // Surface shaders are inlined into their shade kernel's few call sites (base, light
     // and trace modes): the work a mode does not change is hoisted out of the light loop
     // (shade_spd a further 0.9x; a cold test suite 2-3% longer to build).
-    // the shadow lookups' world origin: the world row's translation, negated
-    const std::string w = "(p)[" + std::to_string(kSceneWorld);
-    const std::string sceneDefines =
-        "#define RD_SCENE_WORLD_ORIGIN(p) (float4)(-" + w + "], -" + w + " + 1], -" + w +
-        " + 2], 0.0f)\n"
-        "#define RD_SCENE_CLIP_PLANES " +
-        std::to_string(kSceneClipPlanes) + "\n" + "#define RD_SCENE_EXTERIORS " +
-        std::to_string(kSceneExteriors) + "\n#define RD_SCENE_DEPTHS " +
-        std::to_string(kSceneDepths) + "\n";
     // attribute() and option(), once every shader is known (attribute data only when
-    // some shader asks)
-    auto someShaderCalls = [&](const char* service) {
-        return std::any_of(m_cache.begin(), m_cache.end(), [&](const auto& entry) {
-            return entry.second &&
-                   entry.second->source.find(service) != std::string::npos;
-        });
-    };
-    const bool attributesUsed = someShaderCalls("rsl_attribute(g");
+    // some shader asks); the table of spaces, when some shader reads it
     if (std::any_of(m_cache.begin(), m_cache.end(), [](const auto& entry) {
             return entry.second && entry.second->usesSpaceTable;
-        })) {
-        // the names a shader may ask for: its literals, and the strings its calls and
-        // defaults give (a space named by a parameter)
-        std::set<std::string> names;
-        for (const auto& [name, sh] : m_cache) {
-            if (!sh || !sh->usesSpaceTable) continue;
-            names.insert(sh->namedSpaces.begin(), sh->namedSpaces.end());
-            for (const rsl::ParamSlot& slot : sh->params)
-                names.insert(slot.stringDefaults.begin(), slot.stringDefaults.end());
-        }
-        for (const auto* calls :
-             {&m_scene.surfaceRefs, &m_scene.lights, &m_scene.displacements,
-              &m_scene.atmospheres, &m_scene.interiors, &m_scene.exteriors})
-            for (const ShaderRef& call : *calls)
-                for (const rib::Param& p : call.params.params)
-                    names.insert(p.strings.begin(), p.strings.end());
-        appendSpaceTable(m_scene, spaces, names, out.params);
-    }
-    // surface(), displacement(), atmosphere(), incident(), opposite(): the material's
-    // shaders' blocks
-    ShaderBlocks blocks;
-    blocks.shaders[0] = surfaceShaders;
-    auto kindIndex = [&](int kind, const rsl::EmittedShader* sh) {
-        auto& list = blocks.shaders[kind];
-        auto it = std::find(list.begin(), list.end(), sh);
-        if (it != list.end()) return int32_t(it - list.begin());
-        list.push_back(sh);
-        return int32_t(list.size() - 1);
-    };
+        }))
+        appendSpaceTable(m_scene, spaces, spaceNames(), out.params);
     const bool shaderParamsUsed = someShaderCalls("rsl_shader_param(g");
-    for (size_t mi = 0; shaderParamsUsed && mi < out.materials.size(); ++mi) {
-        const Material& m = out.materials[mi];
-        const uint32_t r = m_scene.materials[mi].shader;
-        std::array<int32_t, 2 * ShaderBlocks::kKinds> e{};
-        for (int kind = 0; kind < ShaderBlocks::kKinds; ++kind) e[2 * kind] = -1;
-        if (r < refShader.size() && !surfaceShaders.empty())
-            e[0] = int32_t(m.shader), e[1] = int32_t(m.params);
-        // a kind's shader by its index among the kind's bound calls (1-based, 0: none)
-        auto boundAs = [&](int kind, uint32_t index, const auto& bound) {
-            if (index == 0 || index > bound.size() || !bound[index - 1].first) return;
-            e[2 * kind] = kindIndex(kind, bound[index - 1].first);
-            e[2 * kind + 1] = bound[index - 1].second;
-        };
-        boundAs(
-            1,
-            (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT,
-            dispBound);
-        boundAs(2,
-                (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT,
-                atmoBound);
-        boundAs(3, (m.flags & RT_MATERIAL_INTERIOR_MASK) >> RT_MATERIAL_INTERIOR_SHIFT,
-                interBound);
-        boundAs(4,
-                mi < m_scene.materialExterior.size() ? m_scene.materialExterior[mi] : 0,
-                exterBound);
-        blocks.materials.push_back(e);
-    }
-    svc << shaderParamService(blocks, shaderParamsUsed, kSceneShaderBlocks, out.params);
+    svc << shaderParamService(shaderBlocks(out, surfaces, volumes, shaderParamsUsed),
+                              shaderParamsUsed, kSceneShaderBlocks, out.params);
     svc << messageServices(
-        m_scene, attributesUsed,
+        m_scene, someShaderCalls("rsl_attribute(g"),
         MessageSlots{kSceneFormat, kSceneFormat + 3, kSceneAttributes, kSceneOptions},
         out.params, m_diag);
-    out.generated["rd_shading.cl"] = lightDefines + sceneDefines + "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
-                                     "inline __attribute__((always_inline))\n#endif\n"
-                                     "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"
-                                     "#include \"sample_random.clh\"\n"
-                                     "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n"
-                                     "#include \"area_light.clh\"\n" +
-                                     shaders.str() + svc.str();
+    out.generated["rd_shading.cl"] =
+        shadingDefines(out.lightCount, lightCoefs) +
+        "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
+        "inline __attribute__((always_inline))\n#endif\n"
+        "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"
+        "#include \"sample_random.clh\"\n"
+        "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n"
+        "#include \"area_light.clh\"\n" +
+        shaders.str() + svc.str();
     out.generated["rd_shade_kernels.cl"] =
         "#include \"counters.clh\"\n#include \"shade_common.clh\"\n#include "
         "\"volume.clh\"\n" +
-        kernels.str() + imagerKernel + prep.str();
+        kernels.str() + imager + prepareKernel(out.prepares);
     out.sourceOrder = {"rd_shading.cl", "rd_textures.cl", "rd_shade_kernels.cl"};
     if (out.displacement && hasTrueDisplacement(m_scene))  // (true_displacement.h)
         out.sourceOrder.push_back("displace_vertices.cl");

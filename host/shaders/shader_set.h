@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "film/film.h"
+#include "light_services.h"
+#include "message_services.h"
 #include "rib/diagnostics.h"
 #include "scene/scene.h"
 
@@ -95,13 +97,34 @@ public:
     const std::vector<std::string>& searchPath() const { return m_path; }
 
 private:
+    // Per call of a kind, its shader and its block's start; nullptr, -1 when skipped.
+    using BoundCalls = std::vector<std::pair<const rsl::EmittedShader*, int32_t>>;
+    struct BoundVolumes {
+        BoundCalls atmospheres, interiors, exteriors, displacements;
+    };
+    // Per surface call (Scene::surfaceRefs): its shader's index among the compiled
+    // surfaces, its block's start, where its per-point parameters go.
+    struct BoundSurfaces {
+        std::vector<const rsl::EmittedShader*> shaders;  // each compiled surface, once
+        std::vector<uint32_t> shader, block;
+        std::vector<std::vector<int32_t>> pointParams;
+    };
+
     const rsl::EmittedShader* find(const std::string& name, const std::string& kind,
                                    const rib::SourceLoc& loc);
-    // (`bound`: per call, its shader and its block's start; nullptr, -1 when skipped)
     bool bindCases(const std::vector<ShaderRef>& refs, const std::string& kind,
                    const std::string& evArg, ShadingSetup& out, std::ostream& cases,
                    std::ostream& shaders, std::set<std::string>& emitted,
-                   std::vector<std::pair<const rsl::EmittedShader*, int32_t>>& bound);
+                   BoundCalls& bound);
+    BoundLights bindLights(ShadingSetup& out, std::ostream& shaders);
+    BoundSurfaces bindSurfaces(ShadingSetup& out, const std::vector<std::string>& aovs,
+                               bool lightCoefs, std::ostream& shaders,
+                               std::ostream& kernels);
+    void bindMaterials(ShadingSetup& out, const BoundSurfaces& surfaces) const;
+    ShaderBlocks shaderBlocks(const ShadingSetup& out, const BoundSurfaces& surfaces,
+                              const BoundVolumes& volumes, bool used) const;
+    std::set<std::string> spaceNames() const;
+    bool someShaderCalls(const char* service) const;
     const Scene& m_scene;
     rib::Diagnostics& m_diag;
     std::vector<std::string> m_path;
