@@ -394,7 +394,9 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
             for (const Corner* q : {&a, &b, &c}) {
                 rt_float4 nq = blend(nrm, q->b);
                 const float len = std::sqrt(nq.x * nq.x + nq.y * nq.y + nq.z * nq.z);
-                if (len > 0.0f) nq = {nq.x / len, nq.y / len, nq.z / len, 0.0f};
+                // (w: 0, not the source's blended key-normal index, shade_common.clh)
+                nq = len > 0.0f ? rt_float4{nq.x / len, nq.y / len, nq.z / len, 0.0f}
+                                : rt_float4{nq.x, nq.y, nq.z, 0.0f};
                 s.normals.push_back(nq);
                 const rt_float4 sq = blend(st, q->b);
                 s.vertexSt.push_back(sq);

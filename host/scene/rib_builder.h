@@ -3,6 +3,7 @@
 // attribute and transform stacks, binds shaders and lights, and hands geometry to the
 // tessellator in world space.
 #pragma once
+#include <array>
 #include <functional>
 #include <glm/glm.hpp>
 #include <map>
@@ -465,11 +466,15 @@ private:
     struct MeshMotion {
         std::vector<std::vector<glm::vec3>> keys;
         std::vector<float> times;
+        // A deformation whose keys each give N: the vertex normals of the keys after the
+        // first, in world space (the first key's are the mesh's own); else empty.
+        std::vector<std::vector<glm::vec3>> normals;
     };
     // Appends a mesh's triangles at world points wp (its first key, when `motion` makes
     // them move), reporting degenerate ones once per request.
     void appendTriangles(L, const VertexData& mesh, const std::vector<glm::vec3>& wp,
                          const MeshMotion* motion, uint32_t extraFlags = 0);
+    void addKeyNormals(const MeshMotion& motion, const std::array<int, 3>& corners);
     std::vector<Scene> m_scenes;
     // Make* requests read after a frame was built: run before the next frame renders
     std::vector<std::pair<size_t, std::function<void()>>> m_deferredMakes;

@@ -125,8 +125,43 @@ void RibBuilder::addMovingMesh(L loc, const std::vector<VertexData>& keys,
         motion.times = times;
         for (size_t k = 1; k < keys.size(); ++k)
             motion.keys.push_back(worldPoints(ctmAt(at, times[k]), keys[k].p));
+        // each key's own normals, where every key gives them: a bending surface's
+        // normals turn with its neighbours, which its triangles' motion does not tell
+        const size_t np = keys[0].p.size();
+        if (std::all_of(keys.begin(), keys.end(),
+                        [&](const VertexData& k) { return k.n.size() == np; }))
+            for (size_t k = 1; k < keys.size(); ++k) {
+                const glm::mat3 nm =
+                    glm::transpose(glm::inverse(glm::mat3(ctmAt(at, times[k]))));
+                std::vector<glm::vec3>& n = motion.normals.emplace_back(keys[k].n);
+                for (glm::vec3& v : n) v = nm * v;
+            }
     }
     appendTriangles(loc, keys[0], first, &motion);
+}
+
+// The last triangle's vertex normals at its keys after the first (MeshMotion::normals),
+// in the motion buffer, three a key, where its first corner's normal's w finds them
+// (1 + their start; cl/lib/shade_common.clh rd_key_normal). Only the keys its vertices
+// keep (addTriangleMotion leaves the middle ones out past 2^24 float4s); none where a
+// key's normal is zero or not finite: the first key's then turn with the triangle.
+void RibBuilder::addKeyNormals(const MeshMotion& motion,
+                               const std::array<int, 3>& corners) {
+    const bool middles = m_world.trianglesEnd.back().v2.w > 0.0f;
+    const size_t first = middles ? 0 : motion.normals.size() - 1;
+    const size_t at = m_world.quadricMotion.size();
+    if (at + 3 * (motion.normals.size() - first) >= (size_t(1) << 24)) return;
+    std::vector<rt_float4> keyNormals;
+    for (size_t k = first; k < motion.normals.size(); ++k)
+        for (int c : corners) {
+            const glm::vec3 n = motion.normals[k][size_t(c)];
+            const float len2 = glm::dot(n, n);
+            if (!finite3(n) || !(len2 > 0.0f) || !std::isfinite(len2)) return;
+            keyNormals.push_back(f4(glm::normalize(n)));
+        }
+    m_world.quadricMotion.insert(m_world.quadricMotion.end(), keyNormals.begin(),
+                                 keyNormals.end());
+    m_world.normals[m_world.normals.size() - 3].w = float(at + 1);
 }
 
 void RibBuilder::appendTriangles(L loc, const VertexData& mesh,
@@ -268,6 +303,8 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh,
                 pushColor(m_world.vertexOs, os, mesh.os, mesh.osN, k);
         }
         if (!normalsOk) ++badNormal;
+        if (motion && smooth && normalsOk && !motion->normals.empty())
+            addKeyNormals(*motion, {i0, i1, i2});
     }
     if (nonfinite + zeroArea + duplicate + badNormal == 0 ||
         !m_warnedAt.insert({loc.file, loc.line}).second)

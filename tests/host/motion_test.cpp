@@ -273,3 +273,53 @@ TEST(Motion, VertexNormalsTurnWithTheMesh) {
         EXPECT_NEAR(r.mean(2, 6, 6, 10, 10), 0.1, 1e-4) << "time " << c.time;
     }
 }
+
+// A deforming mesh whose keys each give N: its normals at a time are the keys' own,
+// between the two keys around it (before, the first key's, carried by the triangles'
+// motion: here the keys' points are the same, so always the first key's).
+TEST(Motion, DeformingMeshNormalsAreTheKeys) {
+    static const char* const kShaders[][2] = {
+        {"shownormal",
+         "surface shownormal() {\n    normal n = normalize(N);\n"
+         "    Ci = color(0.5 + 0.5 * xcomp(n), 0.5 + 0.5 * ycomp(n), 0.5 + 0.5 * "
+         "zcomp(n));\n"
+         "    Oi = 1;\n}\n"}};
+    const std::string dir = rd::test::shaderFolder("raydrive_key_normals", kShaders);
+    const std::string square =
+        "Polygon \"P\" [-0.6 -0.6 0  0.6 -0.6 0  0.6 0.6 0  -0.6 0.6 0] ";
+    auto key = [&](const char* n) {
+        return square + "\"N\" [" + n + " " + n + " " + n + " " + n + "]\n";
+    };
+    auto at = [&](const std::string& motion, const char* time) {
+        return renderRib("Option \"searchpath\" \"shader\" [\"" + dir +
+                         ":&\"]\nFormat 16 16 1\nPixelSamples 2 2\nShutter " + time +
+                         " " + time +
+                         "\nProjection \"orthographic\"\nScreenWindow -1 1 -1 1\n"
+                         "Translate 0 0 5\nWorldBegin\nSurface \"shownormal\"\n" +
+                         motion + "WorldEnd\n");
+    };
+    const std::string two =
+        "MotionBegin [0 1]\n" + key("0.6 0 -0.8") + key("0 0.6 -0.8") + "MotionEnd\n";
+    const std::string three = "MotionBegin [0 0.5 1]\n" + key("0.6 0 -0.8") +
+                              key("0 0.6 -0.8") + key("-0.6 0 -0.8") + "MotionEnd\n";
+    // halfway between (0.6, 0, -0.8) and (0, 0.6, -0.8): (0.3, 0.3, -0.8), normalised
+    const double len = std::sqrt(0.82), mid = 0.5 + 0.5 * 0.3 / len,
+                 low = 0.5 - 0.5 * 0.3 / len, blue = 0.5 - 0.5 * 0.8 / len;
+    const struct {
+        const std::string* motion;
+        const char* time;
+        double r, g, b;
+    } cases[] = {{&two, "0", 0.8, 0.5, 0.1},     {&two, "1", 0.5, 0.8, 0.1},
+                 {&two, "0.5", mid, mid, blue},  {&three, "0.25", mid, mid, blue},
+                 {&three, "0.5", 0.5, 0.8, 0.1}, {&three, "0.75", low, mid, blue},
+                 {&three, "1", 0.2, 0.5, 0.1}};
+    for (const auto& c : cases) {
+        const Rendered r = at(*c.motion, c.time);
+        const std::string what =
+            (c.motion == &two ? "two keys, time " : "three keys, time ") +
+            std::string(c.time);
+        EXPECT_NEAR(r.mean(0, 4, 4, 12, 12), c.r, 1e-4) << what;
+        EXPECT_NEAR(r.mean(1, 4, 4, 12, 12), c.g, 1e-4) << what;
+        EXPECT_NEAR(r.mean(2, 4, 4, 12, 12), c.b, 1e-4) << what;
+    }
+}
