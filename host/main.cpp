@@ -159,192 +159,219 @@ void keepFreedMemory() {
 #endif
 }
 
+// The render command's options: what to render where, and the renderer's settings.
+struct RenderCommand {
+    std::string scenePath, output, deviceSpec, statsPath, timelinePath, sampler;
+    bool quiet = false, halfFloat = false, tessellateQuadrics = false;
+    std::vector<std::string> aovs;
+    rd::RenderSettings settings;
+    // the switches that turn a default off (for comparison)
+    bool noShadowPackets = false, noClosestPackets = false, noOverlapPasses = false,
+         noPipelineRounds = false, noJumpSmallPasses = false, hostPixelTests = false;
+    // The settings for a frame: the options with the switches applied.
+    rd::RenderSettings frameSettings() const {
+        rd::RenderSettings s = settings;
+        if (!sampler.empty()) s.sobol = sampler == "sobol";
+        s.progress = !quiet;
+        s.shadowPackets = !noShadowPackets;
+        s.closestPackets = !noClosestPackets;
+        s.overlapPasses = !noOverlapPasses;
+        s.pipelineRounds = !noPipelineRounds;
+        s.jumpSmallPasses = !noJumpSmallPasses;
+        s.devicePixelTests = !hostPixelTests;
+        s.timeline = !timelinePath.empty();
+        s.extraAovs = aovs;  // (the scene's own AOVs: the renderer reads them)
+        return s;
+    }
+};
+
+void addRenderOptions(CLI::App& app, RenderCommand& c) {
+    rd::RenderSettings& s = c.settings;
+    app.add_option(
+           "scene", c.scenePath,
+           "RIB file to render (`-`: the standard input, e.g. a program's RIB through a "
+           "pipe), `devices` to list devices (or `raydrive txmake --help`, "
+           "`raydrive catrib --help`)")
+        ->required();
+    app.add_option("-o,--output", c.output, "output file (overrides the RIB's Display)");
+    app.add_option("--device", c.deviceSpec,
+                   "OpenCL device: index or name substring (default: RAYDRIVE_DEVICE, "
+                   "else PoCL CPU)");
+    app.add_option("--stats", c.statsPath,
+                   "write statistics as JSON to FILE, or a table to -");
+    app.add_option(
+        "--timeline", c.timelinePath,
+        "write every kernel run and the device's idle gaps to FILE, a Chrome trace "
+        "(open in ui.perfetto.dev or chrome://tracing)");
+    app.add_option("--time", s.timeBudget, "stop after SECONDS and write what is done")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--error", s.errorTarget, "stop at this relative error (e.g. 0.01)")
+        ->check(CLI::PositiveNumber);
+    app.add_option(
+           "--sampler", c.sampler,
+           "sobol (default): Owen-scrambled Sobol samples, the error estimated from "
+           "two independent scrambles; or independent: less stratified, more noise "
+           "(default: Option \"render\" \"string sampler\")")
+        ->check(CLI::IsMember({"independent", "sobol"}));
+    app.add_option(
+           "--seed", s.seed,
+           "which random numbers: another seed renders an independent image of the "
+           "same scene (default: Option \"render\" \"int seed\", else 0)")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--aov", c.aovs,
+                   "extra EXR channels: z, N, samples, error, filled, a shader output "
+                   "variable or a global (Cs, Os, Oi, P, Ng, s, t, u, v)");
+    app.add_flag("--half", c.halfFloat, "write 16-bit half-float channels");
+    app.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
+    app.add_option("--texture-cache", s.textureCacheTiles,
+                   "device texture cache in tiles of 32x32 (default: Option \"limits\" "
+                   "\"texturememory\", else every tile up to 256 MiB)");
+    app.add_option(
+           "--bvh-width", s.bvhWidth,
+           "resident BVH node width, 4, 8 or 16 (default on a CPU device: 16 with "
+           "AVX-512, else 8; 4 on other devices)")
+        ->check(CLI::IsMember({4, 8, 16}));
+    app.add_flag(
+        "--no-shadow-packets", c.noShadowPackets,
+        "trace shadow rays one a work-item, not in packets of eight (for comparison)");
+    app.add_flag(
+        "--no-closest-packets", c.noClosestPackets,
+        "trace eye and other coherent rays one a work-item, not in packets of eight");
+    app.add_flag(
+        "--no-overlap-passes", c.noOverlapPasses,
+        "let each adaptive pass drain before the next is planned (for comparison)");
+    app.add_flag("--no-pipeline-rounds", c.noPipelineRounds,
+                 "queue each round's eye rays after the last round's wait, not before it "
+                 "(for comparison)");
+    app.add_flag(
+        "--no-jump-small-passes", c.noJumpSmallPasses,
+        "double the samples of a small adaptive pass's pixels, as any pass's, rather "
+        "than quadruple them (for comparison)");
+    app.add_flag(
+        "--host-pixel-tests", c.hostPixelTests,
+        "test every pixel of an adaptive pass and sum the film's error estimate on "
+        "the host, not the device (the same passes; for comparison)");
+    app.add_option(
+        "--treelet-budget", s.treeletBytes,
+        "trace through treelets of at most BYTES of BVH (default: Option \"limits\" "
+        "\"treeletbytes\", else the resident BVH; triangle scenes only)");
+    app.add_option(
+        "--scene-memory", s.sceneMemoryBytes,
+        "device BYTES for the treelets; less than the BVH streams them through a "
+        "cache (default: Option \"limits\" \"scenememory\" in KiB, else all)");
+    app.add_flag("--tessellate-quadrics", c.tessellateQuadrics,
+                 "dice quadrics into triangles instead of intersecting them exactly");
+}
+
+// Renders each world block of the RIB `c.scenePath` was read into and writes its image,
+// the --stats and --timeline files; returns the exit code. OpenCL and other failures
+// throw.
+int renderFrames(const RenderCommand& c, rd::RibBuilder& builder, rib::Diagnostics& diag,
+                 const std::string& sceneName) {
+    auto& scenes = builder.scenes();
+    rd::DeviceInfo device = rd::selectDevice(c.deviceSpec);
+    rd::ClContext ctx(device);
+    rd::installStopSignals();
+    nlohmann::json allStats = nlohmann::json::array(),
+                   traceEvents = nlohmann::json::array();
+    for (size_t i = 0; i < scenes.size() && !rd::stopSignal(); ++i) {
+        builder.makeTexturesBefore(i);  // (a MakeShadow of the last frame's depth map)
+        rd::Renderer renderer(ctx, c.frameSettings());
+        rd::Film film;
+        // DelayedReadArchive: read when a ray reaches its bound (the RIB read again)
+        auto readAgain = [&](const std::set<std::string>& loaded, rib::Diagnostics& d) {
+            rd::RibBuilder b(d, c.scenePath);
+            b.setTessellateQuadrics(c.tessellateQuadrics);
+            b.setLoadedProcedurals(loaded);
+            rib::readFile(c.scenePath, b, d);
+            return std::move(b.scenes());
+        };
+        rd::RenderStats st =
+            rd::renderWithArchives(renderer, readAgain, scenes[i], i, film, diag);
+        std::string out = rd::frameOutputName(scenes[i], c.output, i, scenes.size());
+        try {
+            rd::writeFrameImage(out, scenes[i], film, st, c.aovs, c.halfFloat, sceneName);
+        } catch (const std::exception& e) {
+            std::cerr << "raydrive: error: " << e.what() << "\n";
+            return 4;
+        }
+        if (!c.quiet) {
+            std::cerr << "raydrive: wrote " << out << " (" << film.width << "x"
+                      << film.height << ", " << st.elapsedSec << " s on " << st.device
+                      << ", stopped by " << st.stopReason << ", estimated error ";
+            if (st.estimatedError >= 0)
+                std::cerr << st.estimatedError << ")\n";
+            else  // film_error.cpp: no pixel sampled twice, or a black image
+                std::cerr << "none: nothing to measure it on)\n";
+        }
+        if (st.nonfiniteSamples > 0 && !c.quiet)
+            std::cerr << "raydrive: warning: " << st.nonfiniteSamples
+                      << " sample(s) with NaN or Inf were left out of the image\n";
+        allStats.push_back(rd::statsToJson(st, sceneName, out));
+        for (nlohmann::json& e :
+             rd::timelineTraceEvents(st.timeline, int(i) + 1,
+                                     "frame " + std::to_string(i + 1) + " (" + out + ")"))
+            traceEvents.push_back(std::move(e));
+    }
+    if (c.statsPath == "-") {
+        for (const auto& s : allStats) rd::printStatsTable(std::cout, s);
+    } else if (!c.statsPath.empty() &&
+               !writeJson(c.statsPath, allStats.size() == 1 ? allStats[0] : allStats,
+                          2)) {
+        std::cerr << "raydrive: error: cannot write stats to " << c.statsPath << "\n";
+        return 4;
+    }
+    if (!c.timelinePath.empty() &&
+        !writeJson(c.timelinePath,
+                   {{"traceEvents", traceEvents}, {"displayTimeUnit", "ms"}})) {
+        std::cerr << "raydrive: error: cannot write the timeline to " << c.timelinePath
+                  << "\n";
+        return 4;
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     keepFreedMemory();
     rd::ri::enableDynamicLoad();  // (DynamicLoad procedurals in the RIB it reads)
-    if (argc > 1 && std::string(argv[1]) == "txmake") return txmakeCommand(argc - 1, argv + 1);
-    if (argc > 1 && std::string(argv[1]) == "catrib") return catribCommand(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "txmake")
+        return txmakeCommand(argc - 1, argv + 1);
+    if (argc > 1 && std::string(argv[1]) == "catrib")
+        return catribCommand(argc - 1, argv + 1);
     CLI::App app{"RayDrive: a RenderMan renderer on OpenCL, after ART's RenderDrive"};
-    std::string scenePath, output, deviceSpec, statsPath, timelinePath;
-    bool quiet = false, halfFloat = false, tessellateQuadrics = false;
-    double timeBudget = 0, errorTarget = 0;
-    std::vector<std::string> aovs;
-    app.add_option(
-           "scene", scenePath,
-           "RIB file to render (`-`: the standard input, e.g. a program's RIB through a "
-           "pipe), `devices` to list devices (or `raydrive txmake --help`, "
-           "`raydrive catrib --help`)")
-        ->required();
-    app.add_option("-o,--output", output, "output file (overrides the RIB's Display)");
-    app.add_option("--device", deviceSpec,
-                   "OpenCL device: index or name substring (default: RAYDRIVE_DEVICE, "
-                   "else PoCL CPU)");
-    app.add_option("--stats", statsPath, "write statistics as JSON to FILE, or a table to -");
-    app.add_option("--timeline", timelinePath,
-                   "write every kernel run and the device's idle gaps to FILE, a Chrome trace "
-                   "(open in ui.perfetto.dev or chrome://tracing)");
-    app.add_option("--time", timeBudget, "stop after SECONDS and write what is done")
-        ->check(CLI::PositiveNumber);
-    app.add_option("--error", errorTarget, "stop at this relative error (e.g. 0.01)")
-        ->check(CLI::PositiveNumber);
-    std::string sampler;
-    app.add_option(
-           "--sampler", sampler,
-           "sobol (default): Owen-scrambled Sobol samples, the error estimated from "
-           "two independent scrambles; or independent: less stratified, more noise "
-           "(default: Option \"render\" \"string sampler\")")
-        ->check(CLI::IsMember({"independent", "sobol"}));
-    int seed = -1;
-    app.add_option("--seed", seed,
-                   "which random numbers: another seed renders an independent image of the "
-                   "same scene (default: Option \"render\" \"int seed\", else 0)")
-        ->check(CLI::NonNegativeNumber);
-    app.add_option("--aov", aovs,
-                   "extra EXR channels: z, N, samples, error, filled, a shader output "
-                   "variable or a global (Cs, Os, Oi, P, Ng, s, t, u, v)");
-    app.add_flag("--half", halfFloat, "write 16-bit half-float channels");
-    app.add_flag("-q,--quiet", quiet, "print nothing but errors");
-    size_t textureTiles = 0;
-    app.add_option("--texture-cache", textureTiles,
-                   "device texture cache in tiles of 32x32 (default: Option \"limits\" "
-                   "\"texturememory\", else every tile up to 256 MiB)");
-    size_t treeletBytes = 0, sceneMemory = 0;
-    int bvhWidth = 0;
-    app.add_option("--bvh-width", bvhWidth,
-                   "resident BVH node width, 4, 8 or 16 (default on a CPU device: 16 with "
-                   "AVX-512, else 8; 4 on other devices)")
-        ->check(CLI::IsMember({4, 8, 16}));
-    bool noShadowPackets = false, noClosestPackets = false;
-    app.add_flag("--no-shadow-packets", noShadowPackets,
-                 "trace shadow rays one a work-item, not in packets of eight (for comparison)");
-    app.add_flag("--no-closest-packets", noClosestPackets,
-                 "trace eye and other coherent rays one a work-item, not in packets of eight");
-    bool noOverlapPasses = false;
-    app.add_flag("--no-overlap-passes", noOverlapPasses,
-                 "let each adaptive pass drain before the next is planned (for comparison)");
-    bool noPipelineRounds = false;
-    app.add_flag("--no-pipeline-rounds", noPipelineRounds,
-                 "queue each round's eye rays after the last round's wait, not before it "
-                 "(for comparison)");
-    bool noJumpSmallPasses = false;
-    app.add_flag("--no-jump-small-passes", noJumpSmallPasses,
-                 "double the samples of a small adaptive pass's pixels, as any pass's, rather "
-                 "than quadruple them (for comparison)");
-    bool hostPixelTests = false;
-    app.add_flag("--host-pixel-tests", hostPixelTests,
-                 "test every pixel of an adaptive pass and sum the film's error estimate on "
-                 "the host, not the device (the same passes; for comparison)");
-    app.add_option("--treelet-budget", treeletBytes,
-                   "trace through treelets of at most BYTES of BVH (default: Option \"limits\" "
-                   "\"treeletbytes\", else the resident BVH; triangle scenes only)");
-    app.add_option("--scene-memory", sceneMemory,
-                   "device BYTES for the treelets; less than the BVH streams them through a "
-                   "cache (default: Option \"limits\" \"scenememory\" in KiB, else all)");
-    app.add_flag("--tessellate-quadrics", tessellateQuadrics,
-                 "dice quadrics into triangles instead of intersecting them exactly");
+    RenderCommand c;
+    addRenderOptions(app, c);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         int rc = app.exit(e);
         return rc == 0 ? 0 : 2;
     }
-    if (scenePath == "devices") return listDevicesCommand();
+    if (c.scenePath == "devices") return listDevicesCommand();
 
     rib::Diagnostics diag(&std::cerr);
     // ("-": the standard input, read once, so its archives are read at once)
-    const bool standardInput = scenePath == "-";
-    const std::string sceneName = standardInput ? rib::kStandardInputName : scenePath;
+    const bool standardInput = c.scenePath == "-";
+    const std::string sceneName = standardInput ? rib::kStandardInputName : c.scenePath;
     rd::RibBuilder builder(diag, sceneName);
-    builder.setTessellateQuadrics(tessellateQuadrics);
+    builder.setTessellateQuadrics(c.tessellateQuadrics);
     builder.setDeferProcedurals(!standardInput);
-    rib::readFile(scenePath, builder, diag);
+    rib::readFile(c.scenePath, builder, diag);
     diag.printSuppressed();
     if (diag.errorCount() > 0) {
         std::cerr << "raydrive: " << diag.errorCount() << " error(s) in " << sceneName
                   << "; nothing rendered\n";
         return 1;
     }
-    auto& scenes = builder.scenes();
-    if (scenes.empty()) {
+    if (builder.scenes().empty()) {
         std::cerr << sceneName
                   << ": error: no WorldBegin/WorldEnd block: nothing to render\n";
         return 1;
     }
-
     try {
-        rd::DeviceInfo device = rd::selectDevice(deviceSpec);
-        rd::ClContext ctx(device);
-        rd::installStopSignals();
-        nlohmann::json allStats = nlohmann::json::array(), traceEvents = nlohmann::json::array();
-        for (size_t i = 0; i < scenes.size() && !rd::stopSignal(); ++i) {
-            builder.makeTexturesBefore(i);  // (a MakeShadow of the last frame's depth map)
-            rd::RenderSettings settings;
-            settings.timeBudget = timeBudget;
-            settings.errorTarget = errorTarget;
-            settings.seed = seed;
-            if (!sampler.empty()) settings.sobol = sampler == "sobol";
-            settings.progress = !quiet;
-            settings.textureCacheTiles = textureTiles;
-            settings.treeletBytes = treeletBytes;
-            settings.bvhWidth = bvhWidth;
-            settings.shadowPackets = !noShadowPackets;
-            settings.closestPackets = !noClosestPackets;
-            settings.overlapPasses = !noOverlapPasses;
-            settings.pipelineRounds = !noPipelineRounds;
-            settings.jumpSmallPasses = !noJumpSmallPasses;
-            settings.devicePixelTests = !hostPixelTests;
-            settings.sceneMemoryBytes = sceneMemory;
-            settings.timeline = !timelinePath.empty();
-            settings.extraAovs = aovs;  // (the scene's own AOVs: the renderer reads them)
-            rd::Renderer renderer(ctx, settings);
-            rd::Film film;
-            // DelayedReadArchive: read when a ray reaches its bound (the RIB read again)
-            auto readAgain = [&](const std::set<std::string>& loaded, rib::Diagnostics& d) {
-                rd::RibBuilder b(d, scenePath);
-                b.setTessellateQuadrics(tessellateQuadrics);
-                b.setLoadedProcedurals(loaded);
-                rib::readFile(scenePath, b, d);
-                return std::move(b.scenes());
-            };
-            rd::RenderStats st = rd::renderWithArchives(renderer, readAgain, scenes[i], i, film, diag);
-            std::string out = rd::frameOutputName(scenes[i], output, i, scenes.size());
-            try {
-                rd::writeFrameImage(out, scenes[i], film, st, aovs, halfFloat, sceneName);
-            } catch (const std::exception& e) {
-                std::cerr << "raydrive: error: " << e.what() << "\n";
-                return 4;
-            }
-            if (!quiet) {
-                std::cerr << "raydrive: wrote " << out << " (" << film.width << "x"
-                          << film.height << ", " << st.elapsedSec << " s on " << st.device
-                          << ", stopped by " << st.stopReason << ", estimated error ";
-                if (st.estimatedError >= 0)
-                    std::cerr << st.estimatedError << ")\n";
-                else  // film_error.cpp: no pixel sampled twice, or a black image
-                    std::cerr << "none: nothing to measure it on)\n";
-            }
-            if (st.nonfiniteSamples > 0 && !quiet)
-                std::cerr << "raydrive: warning: " << st.nonfiniteSamples
-                          << " sample(s) with NaN or Inf were left out of the image\n";
-            allStats.push_back(rd::statsToJson(st, sceneName, out));
-            for (nlohmann::json& e : rd::timelineTraceEvents(
-                     st.timeline, int(i) + 1, "frame " + std::to_string(i + 1) + " (" + out + ")"))
-                traceEvents.push_back(std::move(e));
-        }
-        if (statsPath == "-") {
-            for (const auto& s : allStats) rd::printStatsTable(std::cout, s);
-        } else if (!statsPath.empty() &&
-                   !writeJson(statsPath, allStats.size() == 1 ? allStats[0] : allStats, 2)) {
-            std::cerr << "raydrive: error: cannot write stats to " << statsPath << "\n";
-            return 4;
-        }
-        if (!timelinePath.empty() &&
-            !writeJson(timelinePath, {{"traceEvents", traceEvents}, {"displayTimeUnit", "ms"}})) {
-            std::cerr << "raydrive: error: cannot write the timeline to " << timelinePath << "\n";
-            return 4;
-        }
+        if (int rc = renderFrames(c, builder, diag, sceneName); rc != 0) return rc;
     } catch (const rd::ClError& e) {
         std::cerr << "raydrive: error: " << e.what() << "\n";
         return 3;
