@@ -543,6 +543,9 @@ private:
         std::vector<std::string> memberWhat;  // "Cylinder at file:line"
     };
     std::vector<SolidNode> m_solidNodes;
+    // Per node (children follow their parents), whether it holds no surface at all.
+    static std::vector<char> emptySolidNodes(const std::vector<SolidNode>& nodes);
+    std::string whyNotClosed(const SolidNode& n, float tol) const;
     std::vector<int> m_solidStack;
     glm::mat4 m_definingCtm{1.0f};
 };

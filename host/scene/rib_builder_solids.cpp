@@ -78,25 +78,91 @@ int RibBuilder::solidLeafForSurface(L loc) {
     return node;
 }
 
+// Per node (children follow their parents), whether it holds no surface at all.
+std::vector<char> RibBuilder::emptySolidNodes(const std::vector<SolidNode>& nodes) {
+    std::vector<char> empty(nodes.size(), 1);
+    for (int i = int(nodes.size()) - 1; i >= 0; --i) {
+        const SolidNode& n = nodes[size_t(i)];
+        if (n.op == "primitive") {
+            empty[size_t(i)] = n.members.empty();
+        } else if (n.op == "intersection") {
+            empty[size_t(i)] = n.children.empty();
+            for (int c : n.children) empty[size_t(i)] |= empty[size_t(c)];
+        } else if (n.op == "difference") {
+            empty[size_t(i)] = n.children.empty() || empty[size_t(n.children[0])];
+        } else {
+            empty[size_t(i)] = 1;
+            for (int c : n.children) empty[size_t(i)] &= empty[size_t(c)];
+        }
+    }
+    return empty;
+}
+
+// Why a primitive solid's members do not close it ("" when they do): an edge of its
+// mesh with no other triangle on it, a quadric that sweeps less than a turn or whose
+// boundary circle no other member shares (within `tol`).
+std::string RibBuilder::whyNotClosed(const SolidNode& n, float tol) const {
+    std::string open;
+    std::map<std::pair<std::array<float, 3>, std::array<float, 3>>, int> edges;
+    for (size_t m = 0; m < n.members.size() && open.empty(); ++m) {
+        uint32_t prim = n.members[m];
+        if (!(prim & RT_OBJECT_BIT)) {
+            const Triangle& t = m_world.triangles[prim];
+            std::array<float, 3> v[3] = {{t.v0.x, t.v0.y, t.v0.z},
+                                         {t.v1.x, t.v1.y, t.v1.z},
+                                         {t.v2.x, t.v2.y, t.v2.z}};
+            for (int e = 0; e < 3; ++e) {
+                auto a = v[e], b = v[(e + 1) % 3];
+                ++edges[std::minmax(a, b)];
+            }
+            continue;
+        }
+        const Quadric& q = m_world.quadrics[prim & RT_OBJECT_MASK];
+        auto circles = quadricBoundary(q);
+        if (!circles) {
+            open = n.memberWhat[m] + " sweeps less than 360 degrees";
+            break;
+        }
+        for (const BoundaryCircle& c : *circles) {
+            bool matched = false;
+            for (size_t o = 0; o < n.members.size() && !matched; ++o) {
+                uint32_t other = n.members[o];
+                if (o == m || !(other & RT_OBJECT_BIT)) continue;
+                const Quadric& q2 = m_world.quadrics[other & RT_OBJECT_MASK];
+                auto circles2 = quadricBoundary(q2);
+                if (!circles2) continue;
+                for (const BoundaryCircle& c2 : *circles2) {
+                    bool all = true;
+                    for (int k = 0; k < 8 && all; ++k) {
+                        float a = float(k) * 0.785398163f;
+                        glm::vec3 p = quadricToWorld(
+                            q, {c.rho * std::cos(a), c.rho * std::sin(a), c.z});
+                        all = distanceToCircle(q2, c2, p) <= tol;
+                    }
+                    if (all) matched = true;
+                }
+            }
+            if (!matched) {
+                std::ostringstream s;
+                s << n.memberWhat[m] << " has an open edge (the circle z = " << c.z
+                  << ", radius " << c.rho << " in its object space)";
+                open = s.str();
+                break;
+            }
+        }
+    }
+    int boundaryEdges = 0;
+    for (const auto& [e, count] : edges) boundaryEdges += count == 1;
+    if (open.empty() && boundaryEdges > 0)
+        open = "its mesh has " + std::to_string(boundaryEdges) + " boundary edge(s)";
+    return open;
+}
+
 void RibBuilder::finishSolid(int root) {
     std::vector<SolidNode>& nodes = m_solidNodes;
     // Which nodes hold any surface at all: empty operands drop out of unions and
     // differences, and empty an intersection.
-    std::vector<char> empty(nodes.size(), 1);
-    for (int i = int(nodes.size()) - 1; i >= 0; --i) {  // children follow their parents
-        const SolidNode& n = nodes[i];
-        if (n.op == "primitive") {
-            empty[i] = n.members.empty();
-        } else if (n.op == "intersection") {
-            empty[i] = n.children.empty();
-            for (int c : n.children) empty[i] |= empty[c];
-        } else if (n.op == "difference") {
-            empty[i] = n.children.empty() || empty[n.children[0]];
-        } else {
-            empty[i] = 1;
-            for (int c : n.children) empty[i] &= empty[c];
-        }
-    }
+    const std::vector<char> empty = emptySolidNodes(nodes);
     auto memberBounds = [&](uint32_t prim) {
         if (prim & RT_OBJECT_BIT) return m_world.quadricBounds[prim & RT_OBJECT_MASK];
         Aabb b;
@@ -169,58 +235,7 @@ void RibBuilder::finishSolid(int root) {
     for (size_t i = 0; i < nodes.size() && ok; ++i) {
         const SolidNode& n = nodes[i];
         if (n.op != "primitive" || n.members.empty()) continue;
-        std::string open;
-        std::map<std::pair<std::array<float, 3>, std::array<float, 3>>, int> edges;
-        for (size_t m = 0; m < n.members.size() && open.empty(); ++m) {
-            uint32_t prim = n.members[m];
-            if (!(prim & RT_OBJECT_BIT)) {
-                const Triangle& t = m_world.triangles[prim];
-                std::array<float, 3> v[3] = {{t.v0.x, t.v0.y, t.v0.z},
-                                             {t.v1.x, t.v1.y, t.v1.z},
-                                             {t.v2.x, t.v2.y, t.v2.z}};
-                for (int e = 0; e < 3; ++e) {
-                    auto a = v[e], b = v[(e + 1) % 3];
-                    ++edges[std::minmax(a, b)];
-                }
-                continue;
-            }
-            const Quadric& q = m_world.quadrics[prim & RT_OBJECT_MASK];
-            auto circles = quadricBoundary(q);
-            if (!circles) {
-                open = n.memberWhat[m] + " sweeps less than 360 degrees";
-                break;
-            }
-            for (const BoundaryCircle& c : *circles) {
-                bool matched = false;
-                for (size_t o = 0; o < n.members.size() && !matched; ++o) {
-                    uint32_t other = n.members[o];
-                    if (o == m || !(other & RT_OBJECT_BIT)) continue;
-                    const Quadric& q2 = m_world.quadrics[other & RT_OBJECT_MASK];
-                    auto circles2 = quadricBoundary(q2);
-                    if (!circles2) continue;
-                    for (const BoundaryCircle& c2 : *circles2) {
-                        bool all = true;
-                        for (int k = 0; k < 8 && all; ++k) {
-                            float a = float(k) * 0.785398163f;
-                            glm::vec3 p = quadricToWorld(q, {c.rho * std::cos(a), c.rho * std::sin(a), c.z});
-                            all = distanceToCircle(q2, c2, p) <= tol;
-                        }
-                        if (all) matched = true;
-                    }
-                }
-                if (!matched) {
-                    std::ostringstream s;
-                    s << n.memberWhat[m] << " has an open edge (the circle z = " << c.z
-                      << ", radius " << c.rho << " in its object space)";
-                    open = s.str();
-                    break;
-                }
-            }
-        }
-        int boundaryEdges = 0;
-        for (const auto& [e, count] : edges) boundaryEdges += count == 1;
-        if (open.empty() && boundaryEdges > 0)
-            open = "its mesh has " + std::to_string(boundaryEdges) + " boundary edge(s)";
+        const std::string open = whyNotClosed(n, tol);
         if (!open.empty()) {
             m_diag.error(n.loc, "SolidBegin \"primitive\" is not closed, so its inside is "
                                 "undefined: " + open);
