@@ -235,6 +235,13 @@ TEST(Motion, CameraKeysBetweenTheFirstAndTheLast) {
         "camera_three_keys");
 }
 
+// A surface that shows its shading normal as a colour, 0.5 + 0.5 N.
+static const char* const kShowNormal[][2] = {
+    {"shownormal",
+     "surface shownormal() {\n    normal n = normalize(N);\n"
+     "    Ci = color(0.5 + 0.5 * xcomp(n), 0.5 + 0.5 * ycomp(n), 0.5 + 0.5 * zcomp(n));\n"
+     "    Oi = 1;\n}\n"}};
+
 // A mesh's vertex normals turn with it: a square whose normals lean (0.6, 0, -0.8),
 // turned about the view axis from 0 to 90 degrees, is shaded at the shutter's end with
 // them turned to (0, 0.6, -0.8), and halfway (its vertices midway between the keys: the
@@ -242,13 +249,8 @@ TEST(Motion, CameraKeysBetweenTheFirstAndTheLast) {
 // The shader shows N as a colour, 0.5 + 0.5 N. Before, the normals stayed the first
 // key's: (0.8, 0.5, 0.1) at every time.
 TEST(Motion, VertexNormalsTurnWithTheMesh) {
-    static const char* const kShaders[][2] = {
-        {"shownormal",
-         "surface shownormal() {\n    normal n = normalize(N);\n"
-         "    Ci = color(0.5 + 0.5 * xcomp(n), 0.5 + 0.5 * ycomp(n), 0.5 + 0.5 * "
-         "zcomp(n));\n"
-         "    Oi = 1;\n}\n"}};
-    const std::string dir = rd::test::shaderFolder("raydrive_motion_normals", kShaders);
+    const std::string dir =
+        rd::test::shaderFolder("raydrive_motion_normals", kShowNormal);
     auto at = [&](const char* time) {
         return renderRib("Option \"searchpath\" \"shader\" [\"" + dir +
                          ":&\"]\nFormat 16 16 1\nPixelSamples 2 2\nShutter " + time +
@@ -278,13 +280,7 @@ TEST(Motion, VertexNormalsTurnWithTheMesh) {
 // between the two keys around it (before, the first key's, carried by the triangles'
 // motion: here the keys' points are the same, so always the first key's).
 TEST(Motion, DeformingMeshNormalsAreTheKeys) {
-    static const char* const kShaders[][2] = {
-        {"shownormal",
-         "surface shownormal() {\n    normal n = normalize(N);\n"
-         "    Ci = color(0.5 + 0.5 * xcomp(n), 0.5 + 0.5 * ycomp(n), 0.5 + 0.5 * "
-         "zcomp(n));\n"
-         "    Oi = 1;\n}\n"}};
-    const std::string dir = rd::test::shaderFolder("raydrive_key_normals", kShaders);
+    const std::string dir = rd::test::shaderFolder("raydrive_key_normals", kShowNormal);
     const std::string square =
         "Polygon \"P\" [-0.6 -0.6 0  0.6 -0.6 0  0.6 0.6 0  -0.6 0.6 0] ";
     auto key = [&](const char* n) {
