@@ -97,34 +97,54 @@ bool SamplePlanner::needsMore(uint32_t n, float relErr, bool edge, float pixelEr
     return relErr > pixelError || edge;
 }
 
+// The first pass with blocks: one sample a block of firstPassBlock pixels, then every
+// pixel up to the minimum.
+const std::vector<PixelRequest>& SamplePlanner::firstBlockPass() {
+    std::vector<PixelRequest>& out = m_out;
+    const int b = m_settings.firstPassBlock;
+    // One sample per block, at a pixel chosen by a hash so blocks show no pattern.
+    for (uint32_t pixel : m_tileOrder) {
+        int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
+        int bx = x / b, by = y / b;
+        uint32_t h = uint32_t(bx) * 73856093u ^ uint32_t(by) * 19349663u;
+        int w = std::min(b, m_width - bx * b), hgt = std::min(b, m_height - by * b);
+        int px = bx * b + int(h % uint32_t(w)),
+            py = by * b + int((h / 7) % uint32_t(hgt));
+        if (px == x && py == y) out.push_back({pixel, 0, 1});
+    }
+    // Then every pixel up to the minimum, which needs no film to decide, in the same
+    // pass: the ray pool streams on instead of draining between the two.
+    const size_t blockSamples = out.size();
+    std::vector<uint8_t> sampled(size_t(m_width) * size_t(m_height), 0);
+    for (size_t k = 0; k < blockSamples; ++k) sampled[out[k].pixel] = 1;
+    for (uint32_t pixel : m_tileOrder) {
+        uint32_t have = sampled[pixel];
+        if (m_settings.minSamples > have)
+            out.push_back({pixel, have, m_settings.minSamples - have});
+    }
+    ++m_pass;
+    return out;
+}
+
+// The test set (forEachToTest) in tile order, each pixel once: as bits by tile rank.
+std::vector<uint32_t> SamplePlanner::testSetInTileOrder() const {
+    std::vector<uint64_t> bits((m_tileOrder.size() + 63) / 64, 0);
+    forEachToTest([&](uint32_t q) {
+        if (const uint32_t r = m_tileRank[q]; r != kOutside)
+            bits[r >> 6] |= 1ull << (r & 63);
+    });
+    std::vector<uint32_t> visit;
+    for (size_t i = 0; i < bits.size(); ++i)
+        for (uint64_t w = bits[i]; w; w &= w - 1)
+            visit.push_back(m_tileOrder[i * 64 + size_t(__builtin_ctzll(w))]);
+    return visit;
+}
+
 const std::vector<PixelRequest>& SamplePlanner::nextPass(const FilmPixels& film,
                                                          float pixelError,
                                                          const std::vector<uint8_t>& busy) {
     std::vector<PixelRequest>& out = m_out;
-    const int b = m_settings.firstPassBlock;
-    if (m_pass == 0 && b > 1) {
-        // One sample per block, at a pixel chosen by a hash so blocks show no pattern.
-        for (uint32_t pixel : m_tileOrder) {
-            int x = int(pixel % uint32_t(m_width)), y = int(pixel / uint32_t(m_width));
-            int bx = x / b, by = y / b;
-            uint32_t h = uint32_t(bx) * 73856093u ^ uint32_t(by) * 19349663u;
-            int w = std::min(b, m_width - bx * b), hgt = std::min(b, m_height - by * b);
-            int px = bx * b + int(h % uint32_t(w)), py = by * b + int((h / 7) % uint32_t(hgt));
-            if (px == x && py == y) out.push_back({pixel, 0, 1});
-        }
-        // Then every pixel up to the minimum, which needs no film to decide, in the same
-        // pass: the ray pool streams on instead of draining between the two.
-        const size_t blockSamples = out.size();
-        std::vector<uint8_t> sampled(size_t(m_width) * size_t(m_height), 0);
-        for (size_t k = 0; k < blockSamples; ++k) sampled[out[k].pixel] = 1;
-        for (uint32_t pixel : m_tileOrder) {
-            uint32_t have = sampled[pixel];
-            if (m_settings.minSamples > have)
-                out.push_back({pixel, have, m_settings.minSamples - have});
-        }
-        ++m_pass;
-        return out;
-    }
+    if (m_pass == 0 && m_settings.firstPassBlock > 1) return firstBlockPass();
     // A pixel's answer depends on its own samples, its neighbours' means and its relative
     // error against the pass's pixel error. A pixel that answered "no" when last tested (a
     // "yes" would have sampled it), whose samples have not changed since and whose
@@ -139,16 +159,8 @@ const std::vector<PixelRequest>& SamplePlanner::nextPass(const FilmPixels& film,
     // pixel, so that a pass costs what it samples (a 512x512 frame took 0.7 ms a pass
     // just to walk its pixels).
     const bool testedOnly = !all && !floorFell && pixelError >= m_lastPixelError;
-    std::vector<uint32_t> visit;
-    if (testedOnly) {  // the test set as bits by tile rank: sorted, each pixel once
-        std::vector<uint64_t> bits((m_tileOrder.size() + 63) / 64, 0);
-        forEachToTest([&](uint32_t q) {
-            if (const uint32_t r = m_tileRank[q]; r != kOutside) bits[r >> 6] |= 1ull << (r & 63);
-        });
-        for (size_t i = 0; i < bits.size(); ++i)
-            for (uint64_t w = bits[i]; w; w &= w - 1)
-                visit.push_back(m_tileOrder[i * 64 + size_t(__builtin_ctzll(w))]);
-    }
+    const std::vector<uint32_t> visit =
+        testedOnly ? testSetInTileOrder() : std::vector<uint32_t>{};
     // (visiting the test set alone, every pixel visited is in it)
     const std::vector<uint8_t> test = pixelsToTest(all || testedOnly);
     if (all && m_tester) return passFromTester(film, floor, pixelError, busy);

@@ -146,6 +146,8 @@ private:
         return mq >= 0.0f &&
                std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq));
     }
+    const std::vector<PixelRequest>& firstBlockPass();
+    std::vector<uint32_t> testSetInTileOrder() const;
     // The pass the tester's test of every pixel gives.
     const std::vector<PixelRequest>& passFromTester(const FilmPixels& film, float floor,
                                                     float pixelError,
