@@ -319,3 +319,59 @@ TEST(Motion, DeformingMeshNormalsAreTheKeys) {
         EXPECT_NEAR(r.mean(2, 4, 4, 12, 12), c.b, 1e-4) << what;
     }
 }
+
+// A subdivision surface bending through its keys: each key's limit normals come from its
+// own shape, so the surface at a key's time shades as that key standing still does
+// (before, the first key's normals, carried by each triangle's motion, missed the bend:
+// at time 1 the flat key's normals tilted with each facet).
+TEST(Motion, BendingSubdivisionSurfaceShadesAsItsKeys) {
+    const std::string dir =
+        rd::test::shaderFolder("raydrive_bending_normals", kShowNormal);
+    auto grid = [](bool bent) {
+        std::string faces, points;
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) {
+                const int a = 4 * j + i;
+                faces += std::to_string(a) + " " + std::to_string(a + 1) + " " +
+                         std::to_string(a + 5) + " " + std::to_string(a + 4) + " ";
+            }
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                const double x = -0.9 + 0.6 * i, y = -0.9 + 0.6 * j;
+                points += std::to_string(x) + " " + std::to_string(y) + " " +
+                          std::to_string(bent ? -0.6 * (1.0 - x * x) : 0.0) + " ";
+            }
+        return "SubdivisionMesh \"catmull-clark\" [4 4 4 4 4 4 4 4 4] [" + faces +
+               "] [] [] [] [] \"P\" [" + points + "]\n";
+    };
+    auto render = [&](const std::string& geometry, const char* time) {
+        return renderRib("Option \"searchpath\" \"shader\" [\"" + dir +
+                         ":&\"]\nFormat 32 32 1\nPixelSamples 2 2\nShutter " + time +
+                         " " + time +
+                         "\nProjection \"orthographic\"\nScreenWindow -1 1 -1 1\n"
+                         "Translate 0 0 5\nWorldBegin\nSurface \"shownormal\"\n" +
+                         geometry + "WorldEnd\n");
+    };
+    const std::string bending =
+        "MotionBegin [0 1]\n" + grid(false) + grid(true) + "MotionEnd\n";
+    for (const auto& [time, bent] :
+         {std::pair<const char*, bool>{"0", false}, {"1", true}}) {
+        const Rendered moving = render(bending, time), still = render(grid(bent), time);
+        double largest = 0;
+        for (size_t p = 0; p < moving.pixels.size(); ++p) {
+            const rd::Rgba &a = moving.pixels[p], &b = still.pixels[p];
+            largest =
+                std::max({largest, double(std::fabs(a.r - b.r)),
+                          double(std::fabs(a.g - b.g)), double(std::fabs(a.b - b.b))});
+        }
+        EXPECT_LT(largest, 1e-5) << "time " << time;
+        // the bend shows: the red channel (x of N) spans more than 0.3 at time 1
+        double lo = 1, hi = 0;
+        for (const rd::Rgba& c : moving.pixels)
+            if (c.a > 0.5f)
+                lo = std::min(lo, double(c.r)), hi = std::max(hi, double(c.r));
+        if (bent) {
+            EXPECT_GT(hi - lo, 0.3);
+        }
+    }
+}
