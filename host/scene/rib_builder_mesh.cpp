@@ -151,16 +151,16 @@ void RibBuilder::addKeyNormals(const MeshMotion& motion,
     const size_t first = middles ? 0 : motion.normals.size() - 1;
     const size_t at = m_world.quadricMotion.size();
     if (at + 3 * (motion.normals.size() - first) >= (size_t(1) << 24)) return;
-    std::vector<rt_float4> keyNormals;
     for (size_t k = first; k < motion.normals.size(); ++k)
         for (int c : corners) {
-            const glm::vec3 n = motion.normals[k][size_t(c)];
+            const glm::vec3& n = motion.normals[k][size_t(c)];
             const float len2 = glm::dot(n, n);
             if (!finite3(n) || !(len2 > 0.0f) || !std::isfinite(len2)) return;
-            keyNormals.push_back(f4(glm::normalize(n)));
         }
-    m_world.quadricMotion.insert(m_world.quadricMotion.end(), keyNormals.begin(),
-                                 keyNormals.end());
+    for (size_t k = first; k < motion.normals.size(); ++k)
+        for (int c : corners)
+            m_world.quadricMotion.push_back(
+                f4(glm::normalize(motion.normals[k][size_t(c)])));
     m_world.normals[m_world.normals.size() - 3].w = float(at + 1);
 }
 

@@ -242,6 +242,19 @@ static const char* const kShowNormal[][2] = {
      "    Ci = color(0.5 + 0.5 * xcomp(n), 0.5 + 0.5 * ycomp(n), 0.5 + 0.5 * zcomp(n));\n"
      "    Oi = 1;\n}\n"}};
 
+// `world` in a size x size orthographic view of [-1, 1]^2 from z = -5, at one shutter
+// time, shaded by kShowNormal from the shader folder `dir`.
+static Rendered showNormalsAt(const std::string& dir, int size, const char* time,
+                              const std::string& world) {
+    const std::string format = std::to_string(size);
+    return renderRib("Option \"searchpath\" \"shader\" [\"" + dir + ":&\"]\nFormat " +
+                     format + " " + format + " 1\nPixelSamples 2 2\nShutter " + time +
+                     " " + time +
+                     "\nProjection \"orthographic\"\nScreenWindow -1 1 -1 1\n"
+                     "Translate 0 0 5\nWorldBegin\nSurface \"shownormal\"\n" +
+                     world + "WorldEnd\n");
+}
+
 // A mesh's vertex normals turn with it: a square whose normals lean (0.6, 0, -0.8),
 // turned about the view axis from 0 to 90 degrees, is shaded at the shutter's end with
 // them turned to (0, 0.6, -0.8), and halfway (its vertices midway between the keys: the
@@ -252,15 +265,11 @@ TEST(Motion, VertexNormalsTurnWithTheMesh) {
     const std::string dir =
         rd::test::shaderFolder("raydrive_motion_normals", kShowNormal);
     auto at = [&](const char* time) {
-        return renderRib("Option \"searchpath\" \"shader\" [\"" + dir +
-                         ":&\"]\nFormat 16 16 1\nPixelSamples 2 2\nShutter " + time +
-                         " " + time +
-                         "\nProjection \"orthographic\"\nScreenWindow -1 1 -1 1\n"
-                         "Translate 0 0 5\nWorldBegin\nSurface \"shownormal\"\n"
-                         "MotionBegin [0 1]\nRotate 0 0 0 1\nRotate 90 0 0 1\nMotionEnd\n"
-                         "Polygon \"P\" [-0.6 -0.6 0  0.6 -0.6 0  0.6 0.6 0  -0.6 0.6 0] "
-                         "\"N\" [0.6 0 -0.8  0.6 0 -0.8  0.6 0 -0.8  0.6 0 -0.8]\n"
-                         "WorldEnd\n");
+        return showNormalsAt(
+            dir, 16, time,
+            "MotionBegin [0 1]\nRotate 0 0 0 1\nRotate 90 0 0 1\nMotionEnd\n"
+            "Polygon \"P\" [-0.6 -0.6 0  0.6 -0.6 0  0.6 0.6 0  -0.6 0.6 0] "
+            "\"N\" [0.6 0 -0.8  0.6 0 -0.8  0.6 0 -0.8  0.6 0 -0.8]\n");
     };
     const double h = 0.5 + 0.5 * 0.6 * std::sqrt(0.5);
     const struct {
@@ -287,12 +296,7 @@ TEST(Motion, DeformingMeshNormalsAreTheKeys) {
         return square + "\"N\" [" + n + " " + n + " " + n + " " + n + "]\n";
     };
     auto at = [&](const std::string& motion, const char* time) {
-        return renderRib("Option \"searchpath\" \"shader\" [\"" + dir +
-                         ":&\"]\nFormat 16 16 1\nPixelSamples 2 2\nShutter " + time +
-                         " " + time +
-                         "\nProjection \"orthographic\"\nScreenWindow -1 1 -1 1\n"
-                         "Translate 0 0 5\nWorldBegin\nSurface \"shownormal\"\n" +
-                         motion + "WorldEnd\n");
+        return showNormalsAt(dir, 16, time, motion);
     };
     const std::string two =
         "MotionBegin [0 1]\n" + key("0.6 0 -0.8") + key("0 0.6 -0.8") + "MotionEnd\n";
@@ -345,12 +349,7 @@ TEST(Motion, BendingSubdivisionSurfaceShadesAsItsKeys) {
                "] [] [] [] [] \"P\" [" + points + "]\n";
     };
     auto render = [&](const std::string& geometry, const char* time) {
-        return renderRib("Option \"searchpath\" \"shader\" [\"" + dir +
-                         ":&\"]\nFormat 32 32 1\nPixelSamples 2 2\nShutter " + time +
-                         " " + time +
-                         "\nProjection \"orthographic\"\nScreenWindow -1 1 -1 1\n"
-                         "Translate 0 0 5\nWorldBegin\nSurface \"shownormal\"\n" +
-                         geometry + "WorldEnd\n");
+        return showNormalsAt(dir, 32, time, geometry);
     };
     const std::string bending =
         "MotionBegin [0 1]\n" + grid(false) + grid(true) + "MotionEnd\n";
