@@ -83,10 +83,16 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.procedurals = !scene.procedurals.empty();
     // primitive variables that feed shader parameters per point (the scene's data is
     // only used when some shader has such a parameter)
-    for (int32_t k = 0; k + shading.maxPointParams < int32_t(shading.pointParamLayout.size());
-         k += shading.maxPointParams + 1)
-        for (int32_t i = 1; i <= shading.pointParamLayout[size_t(k)]; ++i)
-            if (shading.pointParamLayout[size_t(k + i)] >= 0) f.pointParams = shading.maxPointParams;
+    const std::vector<int32_t>& layout = shading.pointParamLayout;
+    const size_t most = size_t(shading.maxPointParams),
+                 stride = pointParamLayoutStride(most);
+    for (size_t k = 0; k + stride <= layout.size(); k += stride)
+        for (size_t i = 1; i <= size_t(layout[k]) && i <= most; ++i) {
+            const bool surface = layout[k + i] >= 0,
+                       displacement = layout[k + most + i] >= 0;
+            if (surface || displacement) f.pointParams = shading.maxPointParams;
+            f.displacementPointParams |= displacement;
+        }
     f.atmosphere = shading.atmosphere;
     f.interior = shading.interior;
     f.exterior = shading.exterior;
@@ -131,6 +137,8 @@ std::vector<std::string> Features::names() const {
     if (textures) n.push_back("textures");
     if (procedurals) n.push_back("deferred_procedurals");
     if (pointParams > 0) n.push_back("point_params");
+    if (pointParams > 0 && displacementPointParams)
+        n.push_back("displacement_point_params");
     if (trace && rouletteDepth > 0) n.push_back("roulette");
     if (smoothNormals) n.push_back("smooth_normals");
     if (transparency) n.push_back("transparency");
@@ -262,6 +270,8 @@ std::string buildOptions(const Features& f) {
     if (f.textures) o += " -DRT_HAS_TEXTURES";
     if (f.procedurals) o += " -DRT_HAS_PROCEDURALS";
     if (f.pointParams > 0) o += " -DRSL_MAX_PARAM_PRIMVARS=" + std::to_string(f.pointParams);
+    if (f.pointParams > 0 && f.displacementPointParams)
+        o += " -DRSL_DISPLACEMENT_PRIMVARS";
     if (f.treelets) o += f.int64Min ? " -DRT_HAS_TREELETS -DRT_HAS_INT64_MIN" : " -DRT_HAS_TREELETS";
     if (f.bvhWidth == 8) o += " -DRT_BVH8";
     if (f.bvhWidth == 16) o += " -DRT_BVH16";

@@ -52,6 +52,7 @@ struct Features {
     bool textures = false;      // some shader looks up a texture the scene has
     bool procedurals = false;   // DelayedReadArchive bounds not loaded yet
     int pointParams = 0;        // shader parameters given per point: the most on a surface
+    bool displacementPointParams = false;  // ... and some reach a displacement shader
     float pixelSpread = 0.0f;   // footprint growth per unit of ray length (perspective)
     bool treelets = false;      // treelet-streamed traversal (render/treelet_trace.h)
     bool int64Min = false;      // the device has 64-bit atomic min (its closest hits)

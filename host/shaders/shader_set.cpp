@@ -468,24 +468,44 @@ ShaderBlocks ShaderSet::shaderBlocks(const ShadingSetup& out,
 }
 
 // The scene's materials with their surface shader's index and block, and where each
-// one's per-point parameters go (ShadingSetup::pointParamLayout).
-void ShaderSet::bindMaterials(ShadingSetup& out, const BoundSurfaces& surfaces) const {
+// one's per-point parameters go in its surface's and its displacement's blocks
+// (ShadingSetup::pointParamLayout). The values are those its primitives carry
+// (ShaderRef::pointParams of its surface call), whichever shader takes them.
+void ShaderSet::bindMaterials(ShadingSetup& out, const BoundSurfaces& surfaces,
+                              const BoundVolumes& volumes) {
     out.materials = m_scene.materials;
     out.maxPointParams = m_scene.maxPointParams;
+    const size_t most = size_t(out.maxPointParams);
+    // (per surface and displacement call: its offsets, warned about once)
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<int32_t>> displacementOffsets;
     for (Material& m : out.materials) {
         uint32_t r = m.shader;
+        const uint32_t d =
+            (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT;
         m.shader = r < surfaces.shader.size() ? surfaces.shader[r] : 0;
         m.params = r < surfaces.block.size() ? surfaces.block[r] : 0;
-        if (out.maxPointParams > 0) {
-            std::vector<int32_t> lay(size_t(1 + out.maxPointParams), -1);
-            const std::vector<int32_t> none;
-            const std::vector<int32_t>& given =
-                r < surfaces.pointParams.size() ? surfaces.pointParams[r] : none;
-            lay[0] = int32_t(given.size());
-            std::copy(given.begin(), given.end(), lay.begin() + 1);
-            out.pointParamLayout.insert(out.pointParamLayout.end(), lay.begin(),
-                                        lay.end());
+        if (most == 0) continue;
+        std::vector<int32_t> lay(pointParamLayoutStride(most), -1);
+        const std::vector<int32_t> none;
+        const std::vector<int32_t>& given =
+            r < surfaces.pointParams.size() ? surfaces.pointParams[r] : none;
+        lay[0] = int32_t(std::min(given.size(), most));
+        std::copy_n(given.begin(), size_t(lay[0]), lay.begin() + 1);
+        const bool carried =
+            r < m_scene.surfaceRefs.size() && !m_scene.surfaceRefs[r].pointParams.empty();
+        if (carried && d > 0 && d <= volumes.displacements.size() &&
+            volumes.displacements[d - 1].first) {
+            auto [it, fresh] = displacementOffsets.try_emplace({r, d});
+            if (fresh) {
+                ShaderRef call = m_scene.displacements[d - 1];
+                call.pointParams = m_scene.surfaceRefs[r].pointParams;
+                it->second =
+                    pointParamOffsets(*volumes.displacements[d - 1].first, call, m_diag);
+            }
+            std::copy_n(it->second.begin(), std::min(it->second.size(), most),
+                        lay.begin() + 1 + std::ptrdiff_t(most));
         }
+        out.pointParamLayout.insert(out.pointParamLayout.end(), lay.begin(), lay.end());
     }
 }
 
@@ -565,7 +585,7 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
             out.imager = true;
         }
     }
-    bindMaterials(out, surfaces);
+    bindMaterials(out, surfaces, volumes);
     // Each light shader is inlined at its one call site (RD_SPECIALISED_LIGHTS). Light
     // parameters were compiled-in constants, each of the first 32 instances inlined with
     // its own, until the light's uniform work (a cone's cosine, its axis) was prepared

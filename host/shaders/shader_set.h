@@ -31,6 +31,12 @@ namespace rd {
 // lights, one float4 a light for Ci and for each light-dependent variable.
 constexpr uint32_t kLightCoefLimit = 64;
 
+// The ints a material takes in ShadingSetup::pointParamLayout (shade_common.clh reads
+// them): the count, the surface shader's slots, the displacement shader's.
+inline size_t pointParamLayoutStride(size_t maxPointParams) {
+    return 1 + 2 * maxPointParams;
+}
+
 struct ShadingSetup {
     // Extra OpenCL sources by name (generated), and the kernel files to assemble.
     std::map<std::string, std::string> generated;
@@ -42,8 +48,10 @@ struct ShadingSetup {
     // RslGlobals::scene_params), then every surface instance's block
     std::vector<float> params;
     // Parameters given per point (ShaderRef::pointParams), when some surface has them:
-    // per material, 1 + maxPointParams ints: how many its primitives give, then the
-    // offset in its block of each (-1: its shader has no float or triple of that name)
+    // per material, pointParamLayoutStride(maxPointParams) ints: how many its primitives
+    // give, then the offset of each in its surface shader's block, then in its
+    // displacement shader's (maxPointParams each; -1: the shader has no float or triple
+    // of that name, or there is none)
     int maxPointParams = 0;
     std::vector<int32_t> pointParamLayout;
     uint32_t lightCount = 0;                // LightSource instances (ambient included)
@@ -120,7 +128,8 @@ private:
     BoundSurfaces bindSurfaces(ShadingSetup& out, const std::vector<std::string>& aovs,
                                bool lightCoefs, std::ostream& shaders,
                                std::ostream& kernels);
-    void bindMaterials(ShadingSetup& out, const BoundSurfaces& surfaces) const;
+    void bindMaterials(ShadingSetup& out, const BoundSurfaces& surfaces,
+                       const BoundVolumes& volumes);
     ShaderBlocks shaderBlocks(const ShadingSetup& out, const BoundSurfaces& surfaces,
                               const BoundVolumes& volumes, bool used) const;
     std::set<std::string> spaceNames() const;

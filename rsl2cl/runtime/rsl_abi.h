@@ -87,6 +87,9 @@
  * or triple parameter after reading the block; other slots are ignored. While
  * pv_count > 0 it also computes its hoisted declarations (hoist.h) at the point
  * instead of reading the prepared slots, since they may depend on those parameters.
+ * Displacement shaders take the same values where the renderer also defines
+ * RSL_DISPLACEMENT_PRIMVARS: pv_dslot[k] is then value k's offset in the displacement
+ * shader's block (-1: not one of its parameters), read as pv_slot is by a surface.
  *
  * RANDOM. random() at call site k (numbered in the shader from 0; a point takes k, k + 1
  * and k + 2, a colour k .. k + max(3, n) - 1) hashes the shading point P and k, unless
@@ -301,6 +304,9 @@ typedef struct RslGlobals {
     int pv_count;
     int pv_slot[RSL_MAX_PARAM_PRIMVARS];
     float4 pv_value[RSL_MAX_PARAM_PRIMVARS];
+#ifdef RSL_DISPLACEMENT_PRIMVARS
+    int pv_dslot[RSL_MAX_PARAM_PRIMVARS];
+#endif
 #endif
 } RslGlobals;
 

@@ -320,11 +320,24 @@ std::string Emitter::coneCos(const Stmt& s) {
     return "rsl_cone_cos(" + exprAs(angle, BaseType::Float) + ")";
 }
 
-// A surface instance whose primitives give some parameters per vertex: the renderer puts
-// the values interpolated at the point in g->pv_value, keyed by the parameter's offset
-// in the block; they replace what was read from the block. Compiled only into scenes
-// that have such parameters (the renderer defines RSL_MAX_PARAM_PRIMVARS).
+// The directive that opens a shader's use of per-point parameters (rsl_abi.h, PER-POINT
+// PARAMETERS): surfaces take them in scenes that have them, displacements where the
+// renderer also says some displacement shader does; other kinds never (null).
+const char* Emitter::pointParamsGuard() const {
+    return m_sh.kind == ShaderKind::Surface ? "#ifdef RSL_MAX_PARAM_PRIMVARS"
+           : m_sh.kind == ShaderKind::Displacement
+               ? "#if defined(RSL_MAX_PARAM_PRIMVARS) && "
+                 "defined(RSL_DISPLACEMENT_PRIMVARS)"
+               : nullptr;
+}
+
+// A surface or displacement instance whose primitives give some parameters per vertex:
+// the renderer puts the values interpolated at the point in g->pv_value, keyed by the
+// parameter's offset in the block (pv_slot for the surface, pv_dslot for the
+// displacement); they replace what was read from the block.
 void Emitter::emitPointParams() {
+    const char* guard = pointParamsGuard();
+    if (!guard) return;
     std::string cases;
     for (size_t i = 0; i < m_sh.params.size(); ++i) {
         const VarDecl& p = m_sh.params[i];
@@ -341,9 +354,10 @@ void Emitter::emitPointParams() {
                  "; break; ";
     }
     if (cases.empty()) return;
-    line("#ifdef RSL_MAX_PARAM_PRIMVARS");
-    line("for (int _k = 0; _k < g->pv_count; ++_k) switch (g->pv_slot[_k]) { " + cases +
-         "default: break; }");
+    const char* slots = m_sh.kind == ShaderKind::Surface ? "g->pv_slot" : "g->pv_dslot";
+    line(guard);
+    line(std::string("for (int _k = 0; _k < g->pv_count; ++_k) switch (") + slots +
+         "[_k]) { " + cases + "default: break; }");
     line("#endif");
 }
 
@@ -372,7 +386,7 @@ void Emitter::emitShader() {
     m_body.str("");
     m_usesSpaces = false;
     emitParamReads(true);
-    if (m_sh.kind == ShaderKind::Surface) emitPointParams();
+    emitPointParams();
     for (const StmtPtr& s : m_sh.body->stmts) stmt(*s);
     if (!light) writeOutputs();
     m_body << "}\n";
@@ -391,10 +405,10 @@ void Emitter::decl(const VarDecl& d) {
     std::string t = clType(d.type), name = "v_" + d.name;
     if (auto h = m_hoist.slot.find(&d); h != m_hoist.slot.end() && !m_func) {
         std::string once = blockRead(d.type.base, std::to_string(m_out.prepOffset + h->second));
-        if (m_sh.kind == ShaderKind::Surface) {
+        if (const char* guard = pointParamsGuard()) {
             // an instance whose parameters vary per point: the prepared value was made
             // from the block's values, not the point's, so compute it here instead
-            line("#ifdef RSL_MAX_PARAM_PRIMVARS");
+            line(guard);
             line(t + " " + name + " = g->pv_count > 0 ? " + exprAs(*d.init, d.type) + " : " +
                  once + ";");
             line("#else");

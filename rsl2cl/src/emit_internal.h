@@ -102,6 +102,7 @@ private:
     void emitPrepare();  // the uniform work of one instance (hoist.h)
     std::string coneCos(const Stmt& s);  // a cone statement's cosine (rsl_cone_cos)
     void emitPointParams();  // per-point parameter values (rsl_abi.h, PER-POINT PARAMETERS)
+    const char* pointParamsGuard() const;  // their #if line; null: the kind takes none
     std::string blockRead(BaseType base, const std::string& offset) const;
     void stmt(const Stmt& s);
     void decl(const VarDecl& d);

@@ -157,4 +157,21 @@ TEST(Hoist, PerPointParametersReplaceTheBlockValueAndTheHoistedWork) {
     rsl::EmittedShader light = emit("light l(float intensity = 1;) {\n"
                                     "    illuminate(point(0, 0, 0)) { Cl = intensity; }\n}\n");
     EXPECT_EQ(light.source.find("pv_"), std::string::npos) << light.source;
+    // a displacement takes them by its own slots, where the renderer says some does
+    rsl::EmittedShader disp = emit(
+        "displacement d(float h = 0.5;) {\n"
+        "    uniform float k = pow(h, 2);\n"
+        "    P += k * normalize(N);\n}\n");
+    ASSERT_TRUE(hoisted(disp, "k"));
+    const std::string both =
+        "#if defined(RSL_MAX_PARAM_PRIMVARS) && defined(RSL_DISPLACEMENT_PRIMVARS)";
+    EXPECT_NE(
+        disp.source.find(both + "\n  for (int _k = 0; _k < g->pv_count; ++_k) switch "
+                                "(g->pv_dslot[_k]) { case 0: p_h = g->pv_value[_k].x;"),
+        std::string::npos)
+        << disp.source;
+    EXPECT_NE(disp.source.find(both + "\n  float v_k = g->pv_count > 0 ?"),
+              std::string::npos)
+        << disp.source;
+    EXPECT_EQ(disp.source.find("pv_slot"), std::string::npos) << disp.source;
 }
