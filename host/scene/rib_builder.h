@@ -17,6 +17,7 @@
 #include "quadric_shapes.h"
 #include "rib/target.h"
 #include "scene.h"
+#include "tessellate_blobby.h"
 #include "tessellate_curves_points.h"
 #include "tessellate_nurbs.h"
 #include "tessellate_patches.h"
@@ -340,6 +341,9 @@ private:
                            const std::vector<glm::vec2>& uv, const std::vector<int>& faceIndex,
                            VertexData& mesh);
     // Points: each disc (faceIndex: its point) has its point's value all over.
+    // A Blobby's per-leaf values blended at its vertices (BlobbyLeafWeights).
+    void blobbyPointParams(const rib::ParamList& params, const BlobbyLeafWeights& weights,
+                           VertexData& mesh);
     void pointsPointParams(const rib::ParamList& params, const std::vector<int>& faceIndex,
                            VertexData& mesh);
     // General polygons (their tessellation's vertices are the points of P; faceIndex

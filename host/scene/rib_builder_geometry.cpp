@@ -577,22 +577,22 @@ void RibBuilder::points(L loc, P params) {
 }
 
 // Blobby: the implicit surface polygonised in object space (tessellate_blobby.h), up to
-// 128 cells a side. Per-blob (vertex, varying) values are not blended yet: a warning.
+// 128 cells a side; per-blob (vertex, varying) values blended over it as the blobs are.
 void RibBuilder::blobby(L loc, int, const std::vector<int>& code,
                         const std::vector<float>& floats, const std::vector<std::string>&,
                         const rib::ParamList& params) {
     if (!shown(loc, "Blobby")) return;
-    for (const rib::Param& p : params.params)
-        if (p.storage != rib::StorageClass::Constant &&
-            p.storage != rib::StorageClass::Uniform)
-            m_diag.warning(loc,
-                           "Blobby: per-blob \"" + p.name + "\" is not blended; ignored");
+    const bool perBlob = !pointParamsOf(&params, /*withStandard=*/true).empty();
     SurfaceMesh m;
+    BlobbyLeafWeights weights;
     std::string err, note;
-    const bool ok = tessellateBlobby(code, floats, 128, m, &err, &note);
+    const bool ok =
+        tessellateBlobby(code, floats, 128, m, &err, &note, perBlob ? &weights : nullptr);
     if (!note.empty()) m_diag.warning(loc, "Blobby: " + note);
     if (ok && m.mesh.tris.empty()) return;
-    addSurface(loc, "Blobby", ok, m, err, nullptr);
+    addSurface(loc, "Blobby", ok, m, err, [&](VertexData& mesh) {
+        if (perBlob) blobbyPointParams(params, weights, mesh);
+    });
 }
 
 }  // namespace rd

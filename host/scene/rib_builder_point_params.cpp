@@ -399,6 +399,17 @@ void RibBuilder::patchPointParams(const rib::ParamList& params, const PatchGrid&
     });
 }
 
+void RibBuilder::blobbyPointParams(const rib::ParamList& params,
+                                   const BlobbyLeafWeights& weights, VertexData& mesh) {
+    appendPointParams(pointParamsOf(&params, true), mesh, [&](const Piece& p, size_t i) {
+        glm::vec3 v(0.0f);
+        if (i + 1 < weights.start.size())
+            for (size_t k = weights.start[i]; k < weights.start[i + 1]; ++k)
+                v += weights.weight[k] * valueAt(p, size_t(weights.leaf[k]));
+        return v;
+    });
+}
+
 void RibBuilder::pointsPointParams(const rib::ParamList& params,
                                    const std::vector<int>& faceIndex, VertexData& mesh) {
     for (const Piece& p : piecesOf(pointParamsOf(&params, true))) {

@@ -163,6 +163,24 @@ public:
         const float f = m_v.empty() ? 0.0f : m_v.back();
         return std::isfinite(f) ? f : 0.0f;
     }
+    // Calls visit(instruction, field) for each ellipsoid and segment blob whose field is
+    // positive at p: of a sum or maximum, those its bins list (an operand given twice,
+    // twice); of another program, every one.
+    template <class Visit>
+    void reaching(glm::vec3 p, Visit visit) const {
+        auto one = [&](int k) {
+            const Instruction& in = m_code[size_t(k)];
+            if (in.op != 1001 && in.op != 1002) return;
+            const float f = primitiveAt(in, p);
+            if (f > 0.0f) visit(k, f);
+        };
+        if (m_flat) {
+            const glm::ivec3 c = binOf(p);
+            for (int k : m_bins[index(c.x, c.y, c.z)]) one(k);
+        } else {
+            for (size_t k = 0; k < m_code.size(); ++k) one(int(k));
+        }
+    }
 
 private:
     glm::ivec3 binOf(glm::vec3 p) const {
@@ -182,17 +200,50 @@ private:
     std::vector<std::vector<int>> m_bins;
 };
 
+// The weights of vertices (BlobbyLeafWeights), from the field's primitives that reach
+// each; leafOf: an instruction's leaf number.
+void weighLeaves(const Field& field, const std::vector<int>& leafOf,
+                 const std::vector<glm::vec3>& points, BlobbyLeafWeights& out) {
+    const int leaves =
+        int(std::count_if(leafOf.begin(), leafOf.end(), [](int l) { return l >= 0; }));
+    out.start.assign(1, 0);
+    out.leaf.clear(), out.weight.clear();
+    for (const glm::vec3& p : points) {
+        const size_t first = out.leaf.size();
+        float sum = 0.0f;
+        field.reaching(p, [&](int k, float f) {
+            out.leaf.push_back(leafOf[size_t(k)]);
+            out.weight.push_back(f);
+            sum += f;
+        });
+        if (sum > 0.0f && std::isfinite(sum)) {
+            for (size_t k = first; k < out.weight.size(); ++k) out.weight[k] /= sum;
+        } else {
+            out.leaf.resize(first), out.weight.resize(first);
+            for (int l = 0; l < leaves; ++l) {
+                out.leaf.push_back(l);
+                out.weight.push_back(1.0f / float(leaves));
+            }
+        }
+        out.start.push_back(out.leaf.size());
+    }
+}
+
 }  // namespace
 
 bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& floats,
-                      int cells, SurfaceMesh& out, std::string* err, std::string* note) {
+                      int cells, SurfaceMesh& out, std::string* err, std::string* note,
+                      BlobbyLeafWeights* weights) {
     // Decode (the reader checked every index) and bound the primitives.
     std::vector<Instruction> program;
+    std::vector<int> leafOf;  // per instruction: its leaf number, or -1 (an operator)
+    int leaves = 0;
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     float smallest = INFINITY;  // the narrowest blob: what the grid must resolve
     for (size_t pc = 0; pc < code.size();) {
         Instruction in;
         in.op = code[pc++];
+        leafOf.push_back(in.op >= 1000 ? leaves++ : -1);
         if (in.op == 1000) {
             in.value = floats[size_t(code[pc++])];
         } else if (in.op == 1001 || in.op == 1002) {
@@ -347,6 +398,7 @@ bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& fl
                     return false;
                 }
             }
+    if (weights) weighLeaves(field, leafOf, out.mesh.p, *weights);
     return true;
 }
 

@@ -18,8 +18,23 @@ namespace rd {
 // plane (opcode 1003) needs a depth file RayDrive does not read: its field is 0 and
 // `note` says so, as it does when no primitive reaches anywhere (an empty surface).
 // `cells` bounds the grid's cells per axis. Returns false with `err` when the surface
-// would pass the vertex cap.
+// would pass the vertex cap. With `weights`, also where each vertex's values come from
+// (BlobbyLeafWeights).
+struct BlobbyLeafWeights;
 bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& floats,
-                      int cells, SurfaceMesh& out, std::string* err, std::string* note);
+                      int cells, SurfaceMesh& out, std::string* err, std::string* note,
+                      BlobbyLeafWeights* weights = nullptr);
+
+// RI gives a Blobby's vertex and varying values one a leaf (its primitive fields, in code
+// order from 0, constants and repelling planes counted). A surface point's value is
+// their mean weighted by each ellipsoid's and segment blob's own field there (as the
+// blobs blend, so do their values; PRMan's appnote 31): for vertex i, the leaves
+// leaf[start[i] .. start[i + 1]) with weights summing to 1. A point no blob reaches (a
+// surface of constants alone) takes the plain mean of every leaf.
+struct BlobbyLeafWeights {
+    std::vector<size_t> start;
+    std::vector<int> leaf;
+    std::vector<float> weight;
+};
 
 }  // namespace rd

@@ -293,6 +293,46 @@ TEST(Geometry, BlobbyImplicitSurfaces) {
     EXPECT_LT(two, 16.0);
 }
 
+// Per-blob colours (RI: "varying color Cs", one a leaf) blend over a Blobby as its blobs
+// do: two blobs under a scale of 1.5 at x = -0.9 and 0.9, red and blue, under the
+// constant shader. Every fully covered pixel has red + blue = 1 and no green (the
+// weights sum to one); where only the left blob reaches (x < -0.6) it is red alone; the
+// two middle columns' fully covered pixels are half and half (symmetric, within 0.01).
+// Before, per-blob values were a warning and the surface white.
+TEST(Geometry, BlobbyPerBlobColoursBlend) {
+    const std::string scale = "1.5 0 0 0 0 1.5 0 0 0 0 1.5 0 ";
+    Rendered img = renderRib(
+        "Format 64 64 1\nPixelSamples 4 4\n"
+        "Option \"render\" \"float pixelerror\" [1e-9]\n"
+        "Projection \"orthographic\"\nScreenWindow -2 2 -2 2\n"
+        "Translate 0 0 5\nWorldBegin\nSurface \"constant\"\n"
+        "Blobby 2 [1001 0 1001 16 0 2 0 1] [" +
+        scale + "-0.9 0 0 1 " + scale +
+        "0.9 0 0 1] [] \"varying color Cs\" [1 0 0  0 0 1]\n"
+        "WorldEnd\n");
+    int full = 0, redAlone = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const auto& p = img.at(x, y);
+            if (p.a < 1.0f) continue;
+            ++full;
+            EXPECT_NEAR(p.r + p.b, 1.0, 1e-4) << x << " " << y;
+            EXPECT_NEAR(p.g, 0.0, 1e-6);
+            if (-2.0 + (x + 1) / 16.0 < -0.6) {  // the pixel's right edge
+                EXPECT_NEAR(p.r, 1.0, 1e-6) << x << " " << y;
+                ++redAlone;
+            }
+        }
+    EXPECT_GT(full, 600);
+    EXPECT_GT(redAlone, 100);
+    double red = 0, blue = 0;  // the two middle columns' fully covered pixels
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 31; x <= 32; ++x)
+            if (img.at(x, y).a >= 1.0f) red += img.at(x, y).r, blue += img.at(x, y).b;
+    ASSERT_GT(red + blue, 4.0);
+    EXPECT_NEAR(red / (red + blue), 0.5, 0.01);
+}
+
 TEST(Geometry, CurvesAndPoints) {
     // A straight linear curve of length 3 and width 0.5.
     EXPECT_NEAR(coverage("Curves \"linear\" [2] \"nonperiodic\" \"P\" [-1.5 0 0  1.5 0 0] "

@@ -1,6 +1,7 @@
 // blobby_test.cpp: RiBlobby polygonised (tessellate_blobby.h): a lone blob is a sphere of
 // radius 0.5 under its matrix, blobs near each other blend under add and not under
-// maximum, and a segment blob is a capsule of half its radius.
+// maximum, a segment blob is a capsule of half its radius, and per-blob values blend by
+// the blobs' fields.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -116,4 +117,49 @@ TEST(Blobby, DegenerateBlobsAreLeftOut) {
         << err;
     ASSERT_FALSE(m.mesh.p.empty());
     for (const glm::vec3& p : m.mesh.p) EXPECT_NEAR(glm::length(p), 0.5f, 0.005f);
+}
+
+// Per-blob values (BlobbyLeafWeights): two unit blobs at x = -0.6 and 0.6 added, behind a
+// constant leaf (leaf 0: counted, never weighted). At each vertex the weights are the
+// blobs' own fields over their sum (Wyvill's falloff of the squared distance; within
+// 1e-6), they sum to 1, and a vertex the second blob does not reach (x < -0.4) takes the
+// first's value alone.
+TEST(Blobby, LeafWeightsAreTheBlobsFieldsShares) {
+    std::vector<float> f = {0.0f};
+    for (float x : {-0.6f, 0.6f}) {
+        const std::vector<float> m = matrix(1, 1, 1, x, 0, 0);
+        f.insert(f.end(), m.begin(), m.end());
+    }
+    SurfaceMesh m;
+    BlobbyLeafWeights w;
+    std::string err, note;
+    ASSERT_TRUE(tessellateBlobby({1000, 0, 1001, 1, 1001, 17, 0, 3, 0, 1, 2}, f, 128, m,
+                                 &err, &note, &w))
+        << err;
+    ASSERT_EQ(w.start.size(), m.mesh.p.size() + 1);
+    auto falloff = [](double r2) {
+        return r2 >= 1 ? 0.0 : 1 + r2 * (-22.0 / 9 + r2 * (17.0 / 9 - r2 * 4.0 / 9));
+    };
+    int alone = 0, shared = 0;
+    for (size_t i = 0; i < m.mesh.p.size(); ++i) {
+        const glm::dvec3 p(m.mesh.p[i]);
+        const double f1 =
+            falloff(glm::dot(p - glm::dvec3(-0.6, 0, 0), p - glm::dvec3(-0.6, 0, 0)));
+        const double f2 =
+            falloff(glm::dot(p - glm::dvec3(0.6, 0, 0), p - glm::dvec3(0.6, 0, 0)));
+        double share[3] = {0, 0, 0}, sum = 0;
+        for (size_t k = w.start[i]; k < w.start[i + 1]; ++k) {
+            ASSERT_GE(w.leaf[k], 1);  // the constant is never weighted
+            ASSERT_LE(w.leaf[k], 2);
+            share[w.leaf[k]] += w.weight[k];
+            sum += w.weight[k];
+        }
+        EXPECT_NEAR(sum, 1.0, 1e-6);
+        EXPECT_NEAR(share[1], f1 / (f1 + f2), 1e-6) << p.x;
+        EXPECT_NEAR(share[2], f2 / (f1 + f2), 1e-6) << p.x;
+        if (p.x < -0.4) alone += share[1] == 1.0;
+        if (std::fabs(p.x) < 0.05) shared += std::fabs(share[1] - 0.5) < 0.1;
+    }
+    EXPECT_GT(alone, 100);
+    EXPECT_GT(shared, 10);
 }
