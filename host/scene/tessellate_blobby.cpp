@@ -12,6 +12,8 @@ namespace rd {
 namespace {
 
 constexpr float kThreshold = 0.5f;
+// A vertex no blob reaches takes the mean of at most this many leaves (else 0).
+constexpr int kMeanOfLeavesUpTo = 64;
 
 // Wyvill's soft-object falloff of r^2 (1 at 0, 0.5 at r = 0.5, 0 from r = 1 on).
 float falloff(float r2) {
@@ -218,9 +220,9 @@ void weighLeaves(const Field& field, const std::vector<int>& leafOf,
         });
         if (sum > 0.0f && std::isfinite(sum)) {
             for (size_t k = first; k < out.weight.size(); ++k) out.weight[k] /= sum;
-        } else {
+        } else {  // (every leaf, where there are few: a bound on the lists)
             out.leaf.resize(first), out.weight.resize(first);
-            for (int l = 0; l < leaves; ++l) {
+            for (int l = 0; l < leaves && leaves <= kMeanOfLeavesUpTo; ++l) {
                 out.leaf.push_back(l);
                 out.weight.push_back(1.0f / float(leaves));
             }
@@ -229,176 +231,219 @@ void weighLeaves(const Field& field, const std::vector<int>& leafOf,
     }
 }
 
+// An ellipsoid (1001) or segment blob (1002) whose floats start at `at`, with its reach;
+// one that reaches nothing (a singular or non-finite matrix, a segment of radius 0) is
+// the constant 0.
+Instruction primitiveOf(int op, const std::vector<float>& floats, size_t at) {
+    Instruction in;
+    in.op = op;
+    const glm::mat4 m = matrixAt(floats, op == 1001 ? at : at + 7);
+    in.toUnit = glm::inverse(m);
+    glm::vec3 blo(-1.0f), bhi(1.0f);
+    if (op == 1002) {
+        in.a = glm::vec3(floats[at], floats[at + 1], floats[at + 2]);
+        in.b = glm::vec3(floats[at + 3], floats[at + 4], floats[at + 5]);
+        in.value = std::fabs(floats[at + 6]);
+        blo = glm::min(in.a, in.b) - glm::vec3(in.value);
+        bhi = glm::max(in.a, in.b) + glm::vec3(in.value);
+    }
+    boxOf(m, blo, bhi, in);
+    const glm::mat4& u = in.toUnit;
+    bool finite = true;
+    for (int k = 0; k < 16; ++k) finite = finite && std::isfinite((&u[0][0])[k]);
+    in.bounded = in.bounded && finite && (op == 1001 || in.value > 0.0f) &&
+                 glm::all(glm::greaterThan(in.hi - in.lo, glm::vec3(0.0f)));
+    if (!in.bounded) in.op = 1000, in.value = 0.0f;
+    return in;
+}
+
+// A Blobby's code decoded (the reader checked every index), its primitives bounded.
+struct Program {
+    std::vector<Instruction> code;
+    std::vector<int> leafOf;  // per instruction: its leaf number, or -1 (an operator)
+    glm::vec3 lo{INFINITY}, hi{-INFINITY};  // what the bounded primitives reach
+    float smallest = INFINITY;              // the narrowest reach: what the grid resolves
+    bool repeller = false;                  // a repelling plane (its field 0)
+};
+
+Program decode(const std::vector<int>& code, const std::vector<float>& floats) {
+    Program out;
+    int leaves = 0;
+    for (size_t pc = 0; pc < code.size();) {
+        Instruction in;
+        in.op = code[pc++];
+        out.leafOf.push_back(in.op >= 1000 ? leaves++ : -1);
+        if (in.op == 1000) {
+            in.value = floats[size_t(code[pc++])];
+        } else if (in.op == 1001 || in.op == 1002) {
+            in = primitiveOf(in.op, floats, size_t(code[pc++]));
+            if (in.bounded) {
+                out.lo = glm::min(out.lo, in.lo), out.hi = glm::max(out.hi, in.hi);
+                const glm::vec3 e = in.hi - in.lo;
+                out.smallest = std::min(out.smallest, std::min(e.x, std::min(e.y, e.z)));
+            }
+        } else if (in.op == 1003) {
+            pc += 2;
+            out.repeller = true;
+        } else {
+            const int n = in.op <= 3 ? code[pc++] : in.op <= 5 ? 2 : 1;
+            for (int k = 0; k < n; ++k) in.operands.push_back(code[pc++]);
+        }
+        out.code.push_back(std::move(in));
+    }
+    return out;
+}
+
+// Marching tetrahedra over the field's samples at the grid points: each cell is six
+// tetrahedra about its diagonal, each cut by the level set in one or two triangles
+// whose vertices, on the grid's edges, the cells around an edge share.
+class Polygoniser {
+public:
+    Polygoniser(Field& field, glm::vec3 lo, float h, glm::ivec3 cells, SurfaceMesh& out)
+        : m_field(field),
+          m_lo(lo),
+          m_h(h),
+          m_nx(size_t(cells.x) + 1),
+          m_ny(size_t(cells.y) + 1),
+          m_nz(size_t(cells.z) + 1),
+          m_out(out) {
+        m_value.resize(m_nx * m_ny * m_nz);
+        for (size_t i = 0; i < m_value.size(); ++i)
+            m_value[i] = field(at(i)) - kThreshold;
+    }
+    // Returns false once the mesh passes the vertex cap.
+    bool run() {
+        for (size_t z = 0; z + 1 < m_nz; ++z)
+            for (size_t y = 0; y + 1 < m_ny; ++y)
+                for (size_t x = 0; x + 1 < m_nx; ++x) {
+                    cell(x, y, z);
+                    if (long(m_out.mesh.p.size()) > kMaxMeshVertices) return false;
+                }
+        return true;
+    }
+
+private:
+    size_t index(size_t x, size_t y, size_t z) const { return (z * m_ny + y) * m_nx + x; }
+    glm::vec3 at(size_t i) const {
+        const size_t x = i % m_nx, y = (i / m_nx) % m_ny, z = i / (m_nx * m_ny);
+        return m_lo + m_h * glm::vec3(float(x), float(y), float(z));
+    }
+    void cell(size_t x, size_t y, size_t z) {
+        // six tetrahedra about the diagonal from corner 0 to corner 7
+        static const int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7},
+                                        {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+        size_t corner[8];
+        bool in = false, outside = false;
+        for (int c = 0; c < 8; ++c) {
+            corner[c] = index(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
+            (m_value[corner[c]] > 0.0f ? in : outside) = true;
+        }
+        if (!in || !outside) return;
+        for (const auto& tet : kTets) {
+            size_t inside[4], away[4];
+            int ni = 0, no = 0;
+            for (int k = 0; k < 4; ++k) {
+                const size_t v = corner[tet[k]];
+                if (m_value[v] > 0.0f)
+                    inside[ni++] = v;
+                else
+                    away[no++] = v;
+            }
+            if (ni == 1 || ni == 3) {
+                const size_t apex = ni == 1 ? inside[0] : away[0];
+                const size_t* rest = ni == 1 ? away : inside;
+                triangle(vertex(apex, rest[0]), vertex(apex, rest[1]),
+                         vertex(apex, rest[2]));
+            } else if (ni == 2) {
+                const int a = vertex(inside[0], away[0]), b = vertex(inside[0], away[1]),
+                          c = vertex(inside[1], away[1]), d = vertex(inside[1], away[0]);
+                triangle(a, b, c);
+                triangle(a, c, d);
+            }
+        }
+    }
+    // The vertex where the level set crosses grid edge (i, j).
+    int vertex(size_t i, size_t j) {
+        if (i > j) std::swap(i, j);
+        const uint64_t key = uint64_t(i) * uint64_t(m_value.size()) + uint64_t(j);
+        auto [it, added] = m_onEdge.emplace(key, int(m_out.mesh.p.size()));
+        if (!added) return it->second;
+        // on the edge by regula falsi: the linear guess alone is off by up to a hundredth
+        // of a blob's radius
+        const glm::vec3 pi = at(i), pj = at(j);
+        float a = 0.0f, b = 1.0f, fa = m_value[i], fb = m_value[j];
+        float t = fa / (fa - fb);
+        for (int step = 0; step < 4 && fa != fb; ++step) {
+            const float ft = m_field(pi + t * (pj - pi)) - kThreshold;
+            if ((ft > 0.0f) == (fa > 0.0f))
+                a = t, fa = ft;
+            else
+                b = t, fb = ft;
+            if (fa == fb) break;
+            t = a + (b - a) * fa / (fa - fb);
+        }
+        const glm::vec3 p = pi + t * (pj - pi);
+        const float e = 0.25f * m_h;
+        const glm::vec3 grad(
+            m_field(p + glm::vec3(e, 0, 0)) - m_field(p - glm::vec3(e, 0, 0)),
+            m_field(p + glm::vec3(0, e, 0)) - m_field(p - glm::vec3(0, e, 0)),
+            m_field(p + glm::vec3(0, 0, e)) - m_field(p - glm::vec3(0, 0, e)));
+        const float g = glm::length(grad);
+        m_out.mesh.p.push_back(p);
+        m_out.st.push_back(glm::vec2(0.0f));  // (no global u, v: RI 3.2 5.6)
+        m_out.mesh.n.push_back(g > 0.0f ? -grad / g : glm::vec3(0.0f, 0.0f, 1.0f));
+        return it->second;
+    }
+    // Outward (down the field): the winding follows the vertices' normals.
+    void triangle(int a, int b, int c) {
+        const std::vector<glm::vec3>& p = m_out.mesh.p;
+        const glm::vec3 ng =
+            glm::cross(p[size_t(b)] - p[size_t(a)], p[size_t(c)] - p[size_t(a)]);
+        if (!(glm::dot(ng, ng) > 0.0f)) return;
+        const std::vector<glm::vec3>& n = m_out.mesh.n;
+        if (glm::dot(ng, n[size_t(a)] + n[size_t(b)] + n[size_t(c)]) < 0.0f)
+            std::swap(b, c);
+        m_out.mesh.tris.insert(m_out.mesh.tris.end(), {a, b, c});
+        m_out.faceIndex.push_back(0);
+    }
+    Field& m_field;
+    glm::vec3 m_lo;
+    float m_h;
+    size_t m_nx, m_ny, m_nz;
+    std::vector<float> m_value;  // the field less the threshold at each grid point
+    std::unordered_map<uint64_t, int> m_onEdge;
+    SurfaceMesh& m_out;
+};
+
 }  // namespace
 
 bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& floats,
                       int cells, SurfaceMesh& out, std::string* err, std::string* note,
                       BlobbyLeafWeights* weights) {
-    // Decode (the reader checked every index) and bound the primitives.
-    std::vector<Instruction> program;
-    std::vector<int> leafOf;  // per instruction: its leaf number, or -1 (an operator)
-    int leaves = 0;
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    float smallest = INFINITY;  // the narrowest blob: what the grid must resolve
-    for (size_t pc = 0; pc < code.size();) {
-        Instruction in;
-        in.op = code[pc++];
-        leafOf.push_back(in.op >= 1000 ? leaves++ : -1);
-        if (in.op == 1000) {
-            in.value = floats[size_t(code[pc++])];
-        } else if (in.op == 1001 || in.op == 1002) {
-            const size_t at = size_t(code[pc++]);
-            const glm::mat4 m = matrixAt(floats, in.op == 1001 ? at : at + 7);
-            in.toUnit = glm::inverse(m);
-            glm::vec3 blo(-1.0f), bhi(1.0f);
-            if (in.op == 1002) {
-                in.a = glm::vec3(floats[at], floats[at + 1], floats[at + 2]);
-                in.b = glm::vec3(floats[at + 3], floats[at + 4], floats[at + 5]);
-                in.value = std::fabs(floats[at + 6]);
-                blo = glm::min(in.a, in.b) - glm::vec3(in.value);
-                bhi = glm::max(in.a, in.b) + glm::vec3(in.value);
-            }
-            boxOf(m, blo, bhi, in);
-            // (a singular or non-finite matrix, or a segment of radius 0, reaches
-            // nothing)
-            const glm::mat4& u = in.toUnit;
-            bool finite = true;
-            for (int k = 0; k < 16; ++k) finite = finite && std::isfinite((&u[0][0])[k]);
-            in.bounded = in.bounded && finite && (in.op == 1001 || in.value > 0.0f) &&
-                         glm::all(glm::greaterThan(in.hi - in.lo, glm::vec3(0.0f)));
-            if (!in.bounded) in.op = 1000, in.value = 0.0f;
-            if (in.bounded) {
-                lo = glm::min(lo, in.lo), hi = glm::max(hi, in.hi);
-                const glm::vec3 e = in.hi - in.lo;
-                smallest = std::min(smallest, std::min(e.x, std::min(e.y, e.z)));
-            }
-        } else if (in.op == 1003) {
-            pc += 2;
-            if (note)
-                *note =
-                    "a repelling plane (opcode 1003) needs a depth file; its field is 0";
-        } else {
-            const int n = in.op <= 3 ? code[pc++] : in.op <= 5 ? 2 : 1;
-            for (int k = 0; k < n; ++k) in.operands.push_back(code[pc++]);
-        }
-        program.push_back(std::move(in));
-    }
+    Program program = decode(code, floats);
+    if (program.repeller && note)
+        *note = "a repelling plane (opcode 1003) needs a depth file; its field is 0";
+    const float smallest = program.smallest;
     if (!(smallest > 0.0f) || !std::isfinite(smallest)) {  // (valid, but no surface)
         if (note) *note = "no ellipsoid or segment blob reaches anywhere: nothing drawn";
         return true;
     }
     // Cells: about 32 across the narrowest blob's reach (16 across its surface), within
     // `cells` a side; one cell of margin so the surface closes inside the grid.
+    glm::vec3 lo = program.lo, hi = program.hi;
     const glm::vec3 extent = hi - lo;
-    float h = smallest / 32.0f;
     const float longest = std::max(extent.x, std::max(extent.y, extent.z));
-    h = std::max(h, longest / float(std::max(cells, 4)));
+    const float h = std::max(smallest / 32.0f, longest / float(std::max(cells, 4)));
     // (the grid set off by an odd fraction of a cell, so that a level set through round
     // numbers, as a lone blob's 0.5, meets no grid point and no triangle degenerates)
     lo -= glm::vec3(1.3183099f * h), hi += glm::vec3(h);
-    Field field(std::move(program), lo, hi);
+    Field field(std::move(program.code), lo, hi);
     const glm::ivec3 n = glm::max(glm::ivec3(glm::ceil((hi - lo) / h)), glm::ivec3(1));
-    const size_t nx = size_t(n.x) + 1, ny = size_t(n.y) + 1, nz = size_t(n.z) + 1;
-    std::vector<float> value(nx * ny * nz);
-    auto index = [&](size_t x, size_t y, size_t z) { return (z * ny + y) * nx + x; };
-    auto at = [&](size_t i) {
-        const size_t x = i % nx, y = (i / nx) % ny, z = i / (nx * ny);
-        return lo + h * glm::vec3(float(x), float(y), float(z));
-    };
-    for (size_t i = 0; i < value.size(); ++i) value[i] = field(at(i)) - kThreshold;
-    // A vertex where the level set crosses grid edge (i, j), shared by the cells around
-    // it.
-    std::unordered_map<uint64_t, int> onEdge;
-    auto vertex = [&](size_t i, size_t j) {
-        if (i > j) std::swap(i, j);
-        const uint64_t key = uint64_t(i) * uint64_t(value.size()) + uint64_t(j);
-        auto [it, added] = onEdge.emplace(key, int(out.mesh.p.size()));
-        if (added) {
-            // on the edge by regula falsi: the linear guess alone is off by up to a
-            // hundredth of a blob's radius
-            const glm::vec3 pi = at(i), pj = at(j);
-            float a = 0.0f, b = 1.0f, fa = value[i], fb = value[j];
-            float t = fa / (fa - fb);
-            for (int step = 0; step < 4 && fa != fb; ++step) {
-                const float ft = field(pi + t * (pj - pi)) - kThreshold;
-                if ((ft > 0.0f) == (fa > 0.0f))
-                    a = t, fa = ft;
-                else
-                    b = t, fb = ft;
-                if (fa == fb) break;
-                t = a + (b - a) * fa / (fa - fb);
-            }
-            const glm::vec3 p = pi + t * (pj - pi);
-            const float e = 0.25f * h;
-            const glm::vec3 grad(
-                field(p + glm::vec3(e, 0, 0)) - field(p - glm::vec3(e, 0, 0)),
-                field(p + glm::vec3(0, e, 0)) - field(p - glm::vec3(0, e, 0)),
-                field(p + glm::vec3(0, 0, e)) - field(p - glm::vec3(0, 0, e)));
-            const float g = glm::length(grad);
-            out.mesh.p.push_back(p);
-            out.st.push_back(glm::vec2(0.0f));  // (no global u, v: RI 3.2 5.6)
-            out.mesh.n.push_back(g > 0.0f ? -grad / g : glm::vec3(0.0f, 0.0f, 1.0f));
-        }
-        return it->second;
-    };
-    // Outward (down the field): the winding follows the vertices' normals.
-    auto triangle = [&](int a, int b, int c) {
-        const glm::vec3 pa = out.mesh.p[size_t(a)], pb = out.mesh.p[size_t(b)],
-                        pc = out.mesh.p[size_t(c)];
-        const glm::vec3 ng = glm::cross(pb - pa, pc - pa);
-        if (!(glm::dot(ng, ng) > 0.0f)) return;
-        const glm::vec3 ns =
-            out.mesh.n[size_t(a)] + out.mesh.n[size_t(b)] + out.mesh.n[size_t(c)];
-        if (glm::dot(ng, ns) < 0.0f) std::swap(b, c);
-        out.mesh.tris.insert(out.mesh.tris.end(), {a, b, c});
-        out.faceIndex.push_back(0);
-    };
-    // Six tetrahedra a cell about its diagonal from corner 0 to corner 7.
-    static const int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7},
-                                    {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
-    for (size_t z = 0; z + 1 < nz; ++z)
-        for (size_t y = 0; y + 1 < ny; ++y)
-            for (size_t x = 0; x + 1 < nx; ++x) {
-                size_t corner[8];
-                bool in = false, outside = false;
-                for (int c = 0; c < 8; ++c) {
-                    corner[c] =
-                        index(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
-                    (value[corner[c]] > 0.0f ? in : outside) = true;
-                }
-                if (!in || !outside) continue;
-                for (const auto& tet : kTets) {
-                    size_t inside[4], away[4];
-                    int ni = 0, no = 0;
-                    for (int k = 0; k < 4; ++k) {
-                        const size_t v = corner[tet[k]];
-                        if (value[v] > 0.0f)
-                            inside[ni++] = v;
-                        else
-                            away[no++] = v;
-                    }
-                    if (ni == 1 || ni == 3) {
-                        const size_t apex = ni == 1 ? inside[0] : away[0];
-                        const size_t* rest = ni == 1 ? away : inside;
-                        triangle(vertex(apex, rest[0]), vertex(apex, rest[1]),
-                                 vertex(apex, rest[2]));
-                    } else if (ni == 2) {
-                        const int a = vertex(inside[0], away[0]),
-                                  b = vertex(inside[0], away[1]),
-                                  c = vertex(inside[1], away[1]),
-                                  d = vertex(inside[1], away[0]);
-                        triangle(a, b, c);
-                        triangle(a, c, d);
-                    }
-                }
-                if (long(out.mesh.p.size()) > kMaxMeshVertices) {
-                    if (err)
-                        *err =
-                            "more than " + std::to_string(kMaxMeshVertices) + " vertices";
-                    return false;
-                }
-            }
-    if (weights) weighLeaves(field, leafOf, out.mesh.p, *weights);
+    if (!Polygoniser(field, lo, h, n, out).run()) {
+        if (err) *err = "more than " + std::to_string(kMaxMeshVertices) + " vertices";
+        return false;
+    }
+    if (weights) weighLeaves(field, program.leafOf, out.mesh.p, *weights);
     return true;
 }
 

@@ -30,7 +30,8 @@ bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& fl
 // their mean weighted by each ellipsoid's and segment blob's own field there (as the
 // blobs blend, so do their values; PRMan's appnote 31): for vertex i, the leaves
 // leaf[start[i] .. start[i + 1]) with weights summing to 1. A point no blob reaches (a
-// surface of constants alone) takes the plain mean of every leaf.
+// level set at the very edge of their reach) takes the plain mean of every leaf, or 0
+// past 64 leaves.
 struct BlobbyLeafWeights {
     std::vector<size_t> start;
     std::vector<int> leaf;
