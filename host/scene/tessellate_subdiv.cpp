@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #ifdef RD_HAVE_OPENSUBDIV
@@ -87,24 +88,34 @@ bool validateSubdiv(const SubdivInput& in, std::string* err) {
 }
 
 #ifdef RD_HAVE_OPENSUBDIV
-bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
-                               std::string* err, std::vector<std::vector<glm::vec3>>* values) {
-    using namespace OpenSubdiv;
-    if (!validateSubdiv(in, err)) return false;
+namespace {
+
+using namespace OpenSubdiv;
+
+// The refinement level, lowered until the refined vertices (about 4x a level: one quad
+// per n-gon corner at level 1) fit under the cap beside the `already` there.
+int levelWithinCap(const SubdivInput& in, int level, size_t already) {
     level = std::clamp(level, 0, kMaxSubdivLevel);
-    // Refined vertex count grows ~4x per level (one quad per n-gon corner at level 1).
     double estimate = double(in.vertices.size()) + in.P.size();
     for (int l = 1; l <= level; ++l) estimate *= 4.0;
-    while (level > 0 && estimate + double(out.mesh.p.size()) > double(kMaxMeshVertices)) {
+    while (level > 0 && estimate + double(already) > double(kMaxMeshVertices)) {
         --level;
         estimate /= 4.0;
     }
+    return level;
+}
 
+// The tags as OpenSubdiv's topology takes them (others are ignored).
+struct Tags {
     Sdc::Options opts;
-    opts.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_NONE);
-    opts.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_ALL);
     std::vector<int> creasePairs, corners, holes;
     std::vector<float> creaseW, cornerW;
+};
+
+Tags readTags(const SubdivInput& in) {
+    Tags out;
+    out.opts.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_NONE);
+    out.opts.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_ALL);
     size_t ni = 0, nf = 0;
     for (size_t t = 0; t < in.tags.size(); ++t) {
         int a = in.nargs[2 * t], b = in.nargs[2 * t + 1];
@@ -113,183 +124,181 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         const std::string& tag = in.tags[t];
         if (tag == "crease") {
             for (int k = 0; k + 1 < a; ++k) {
-                creasePairs.insert(creasePairs.end(), {ia[k], ia[k + 1]});
-                creaseW.push_back(fa[std::min(k, b - 1)]);
+                out.creasePairs.insert(out.creasePairs.end(), {ia[k], ia[k + 1]});
+                out.creaseW.push_back(fa[std::min(k, b - 1)]);
             }
         } else if (tag == "corner") {
             for (int k = 0; k < a; ++k) {
-                corners.push_back(ia[k]);
-                cornerW.push_back(fa[std::min(k, b - 1)]);
+                out.corners.push_back(ia[k]);
+                out.cornerW.push_back(fa[std::min(k, b - 1)]);
             }
         } else if (tag == "hole") {
-            holes.insert(holes.end(), ia, ia + a);
+            out.holes.insert(out.holes.end(), ia, ia + a);
         } else if (tag == "interpolateboundary") {
-            opts.SetVtxBoundaryInterpolation(a >= 1 && ia[0] == 2
-                                                 ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                                 : a >= 1 && ia[0] == 0
-                                                       ? Sdc::Options::VTX_BOUNDARY_NONE
-                                                       : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-        }  // other tags are ignored
+            out.opts.SetVtxBoundaryInterpolation(
+                a >= 1 && ia[0] == 2   ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                : a >= 1 && ia[0] == 0 ? Sdc::Options::VTX_BOUNDARY_NONE
+                                       : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+        }
         ni += size_t(a);
         nf += size_t(b);
     }
-    std::sort(holes.begin(), holes.end());
-    holes.erase(std::unique(holes.begin(), holes.end()), holes.end());
+    std::sort(out.holes.begin(), out.holes.end());
+    out.holes.erase(std::unique(out.holes.begin(), out.holes.end()), out.holes.end());
+    return out;
+}
 
+// Facevarying values: a channel each, whose values are the corners', one value for the
+// corners of a control vertex that agree, so that a seam is where faces disagree.
+struct FaceVarying {
+    std::vector<std::vector<int>> index;         // per channel: each corner's value
+    std::vector<std::vector<glm::vec3>> values;  // per channel
+    std::vector<Far::TopologyDescriptor::FVarChannel> channel;
+};
+
+FaceVarying faceVaryingChannels(const SubdivInput& in) {
+    const size_t channels = in.faceVaryingValues.size();
+    FaceVarying out;
+    out.index.resize(channels), out.values.resize(channels), out.channel.resize(channels);
+    for (size_t ch = 0; ch < channels; ++ch) {
+        const std::vector<glm::vec3>& given = in.faceVaryingValues[ch];
+        std::vector<std::vector<int>> ofVertex(in.P.size());  // each vertex's values
+        std::vector<glm::vec3>& values = out.values[ch];
+        out.index[ch].resize(in.vertices.size());
+        for (size_t c = 0; c < in.vertices.size(); ++c) {
+            std::vector<int>& mine = ofVertex[size_t(in.vertices[c])];
+            auto same = std::find_if(mine.begin(), mine.end(), [&](int v) {
+                return values[size_t(v)] == given[c];
+            });
+            if (same == mine.end()) {
+                mine.push_back(int(values.size()));
+                values.push_back(given[c]);
+                same = mine.end() - 1;
+            }
+            out.index[ch][c] = *same;
+        }
+        out.channel[ch].numValues = int(values.size());
+        out.channel[ch].valueIndices = out.index[ch].data();
+    }
+    return out;
+}
+
+std::unique_ptr<Far::TopologyRefiner> refinerFor(const SubdivInput& in, const Tags& tags,
+                                                 FaceVarying& fvar) {
     Far::TopologyDescriptor desc;
     desc.numVertices = int(in.P.size());
     desc.numFaces = int(in.nvertices.size());
     desc.numVertsPerFace = in.nvertices.data();
     desc.vertIndicesPerFace = in.vertices.data();
-    desc.numCreases = int(creaseW.size());
-    desc.creaseVertexIndexPairs = creasePairs.data();
-    desc.creaseWeights = creaseW.data();
-    desc.numCorners = int(cornerW.size());
-    desc.cornerVertexIndices = corners.data();
-    desc.cornerWeights = cornerW.data();
-    desc.numHoles = int(holes.size());
-    desc.holeIndices = holes.data();
-    // Facevarying values: a channel each, whose values are the corners', one value for
-    // the corners of a control vertex that agree, so that a seam is where faces disagree.
-    const std::vector<std::vector<glm::vec3>>& fvarGiven = in.faceVaryingValues;
-    const int channels = int(fvarGiven.size());
-    std::vector<std::vector<int>> fvarIndex(static_cast<size_t>(channels));
-    std::vector<std::vector<glm::vec3>> fvarValues(static_cast<size_t>(channels));
-    std::vector<Far::TopologyDescriptor::FVarChannel> channel(
-        static_cast<size_t>(channels));
-    for (size_t ch = 0; ch < size_t(channels); ++ch) {
-        std::vector<std::vector<int>> ofVertex(in.P.size());  // each vertex's values
-        std::vector<glm::vec3>& values = fvarValues[ch];
-        fvarIndex[ch].resize(in.vertices.size());
-        for (size_t c = 0; c < in.vertices.size(); ++c) {
-            std::vector<int>& mine = ofVertex[size_t(in.vertices[c])];
-            auto same = std::find_if(mine.begin(), mine.end(), [&](int v) {
-                return values[size_t(v)] == fvarGiven[ch][c];
-            });
-            if (same == mine.end()) {
-                mine.push_back(int(values.size()));
-                values.push_back(fvarGiven[ch][c]);
-                same = mine.end() - 1;
-            }
-            fvarIndex[ch][c] = *same;
-        }
-        channel[ch].numValues = int(values.size());
-        channel[ch].valueIndices = fvarIndex[ch].data();
-    }
-    desc.numFVarChannels = channels;
-    desc.fvarChannels = channels > 0 ? channel.data() : nullptr;
+    desc.numCreases = int(tags.creaseW.size());
+    desc.creaseVertexIndexPairs = tags.creasePairs.data();
+    desc.creaseWeights = tags.creaseW.data();
+    desc.numCorners = int(tags.cornerW.size());
+    desc.cornerVertexIndices = tags.corners.data();
+    desc.cornerWeights = tags.cornerW.data();
+    desc.numHoles = int(tags.holes.size());
+    desc.holeIndices = tags.holes.data();
+    desc.numFVarChannels = int(fvar.channel.size());
+    desc.fvarChannels = fvar.channel.empty() ? nullptr : fvar.channel.data();
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    const bool loop = in.scheme == "loop", bilinear = in.scheme == "bilinear";
-    const Sdc::SchemeType type = loop       ? Sdc::SCHEME_LOOP
-                                 : bilinear ? Sdc::SCHEME_BILINEAR
-                                            : Sdc::SCHEME_CATMARK;
-    Far::TopologyRefiner* refiner = Factory::Create(desc, Factory::Options(type, opts));
-    if (!refiner) return fail(err, "SubdivisionMesh: OpenSubdiv rejected the topology");
-    // Level 0 has no limit projection for n-gons: always refine at least once.
-    level = std::max(level, 1);
-    Far::TopologyRefiner::UniformOptions uniform(level);
-    uniform.fullTopologyInLastLevel = true;  // needed by PrimvarRefiner::Limit
-    refiner->RefineUniform(uniform);
+    const Sdc::SchemeType type = in.scheme == "loop"       ? Sdc::SCHEME_LOOP
+                                 : in.scheme == "bilinear" ? Sdc::SCHEME_BILINEAR
+                                                           : Sdc::SCHEME_CATMARK;
+    return std::unique_ptr<Far::TopologyRefiner>(
+        Factory::Create(desc, Factory::Options(type, tags.opts)));
+}
 
-    std::vector<Vtx> buf(refiner->GetNumVerticesTotal());
-    for (size_t i = 0; i < in.P.size(); ++i) buf[i].p = in.P[i];
-    Far::PrimvarRefiner primvar(*refiner);
-    Vtx* src = buf.data();
+// Values given per control vertex, refined to one per vertex of the last level: vertex
+// ones to the limit like P, varying ones linearly.
+std::vector<glm::vec3> refinedValues(const Far::TopologyRefiner& refiner,
+                                     const Far::PrimvarRefiner& primvar, int level,
+                                     const std::vector<glm::vec3>& given, size_t controls,
+                                     bool vertex) {
+    std::vector<Vtx> v(size_t(refiner.GetNumVerticesTotal()));
+    for (size_t i = 0; i < given.size() && i < controls; ++i) v[i].p = given[i];
+    Vtx* s = v.data();
     for (int l = 1; l <= level; ++l) {
-        Vtx* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
-        primvar.Interpolate(l, src, dst);
-        src = dst;
-    }
-    const Far::TopologyLevel& last = refiner->GetLevel(level);
-    int nv = last.GetNumVertices();
-    std::vector<Vtx> lim(nv), t1(nv), t2(nv);
-    primvar.Limit(src, lim, t1, t2);
-    // Other values given per control vertex, refined to one per vertex of the last
-    // level: vertex ones to the limit like P, varying ones linearly.
-    auto refined = [&](const std::vector<glm::vec3>& given, bool vertex) {
-        std::vector<Vtx> v(refiner->GetNumVerticesTotal());
-        for (size_t i = 0; i < given.size() && i < in.P.size(); ++i) v[i].p = given[i];
-        Vtx* s = v.data();
-        for (int l = 1; l <= level; ++l) {
-            Vtx* d = s + refiner->GetLevel(l - 1).GetNumVertices();
-            if (vertex)
-                primvar.Interpolate(l, s, d);
-            else
-                primvar.InterpolateVarying(l, s, d);
-            s = d;
-        }
-        std::vector<Vtx> atLimit(nv);
+        Vtx* d = s + refiner.GetLevel(l - 1).GetNumVertices();
         if (vertex)
-            primvar.Limit(s, atLimit);
+            primvar.Interpolate(l, s, d);
         else
-            std::copy(s, s + nv, atLimit.begin());
-        std::vector<glm::vec3> out(static_cast<size_t>(nv));
-        for (int i = 0; i < nv; ++i) out[size_t(i)] = atLimit[size_t(i)].p;
-        return out;
-    };
-    std::vector<std::vector<glm::vec3>> perVertex;
-    if (values) {
-        for (const std::vector<glm::vec3>& v : in.vertexValues)
-            perVertex.push_back(refined(v, true));
-        for (const std::vector<glm::vec3>& v : in.varyingValues)
-            perVertex.push_back(refined(v, false));
+            primvar.InterpolateVarying(l, s, d);
+        s = d;
     }
-    // facevarying values, per channel and value of the last level
-    std::vector<std::vector<Vtx>> fvarLimit(static_cast<size_t>(channels));
-    for (int ch = 0; ch < channels; ++ch) {
-        std::vector<Vtx> fv(size_t(refiner->GetNumFVarValuesTotal(ch)));
-        for (size_t i = 0; i < fvarValues[size_t(ch)].size(); ++i)
-            fv[i].p = fvarValues[size_t(ch)][i];
-        Vtx* s = fv.data();
-        for (int l = 1; l <= level; ++l) {
-            Vtx* d = s + refiner->GetLevel(l - 1).GetNumFVarValues(ch);
-            primvar.InterpolateFaceVarying(l, s, d, ch);
-            s = d;
-        }
-        fvarLimit[size_t(ch)].resize(size_t(last.GetNumFVarValues(ch)));
-        primvar.LimitFaceVarying(s, fvarLimit[size_t(ch)], ch);
-    }
+    const int nv = refiner.GetLevel(level).GetNumVertices();
+    std::vector<Vtx> atLimit(static_cast<size_t>(nv));
+    if (vertex)
+        primvar.Limit(s, atLimit);
+    else
+        std::copy(s, s + nv, atLimit.begin());
+    std::vector<glm::vec3> out(static_cast<size_t>(nv));
+    for (int i = 0; i < nv; ++i) out[size_t(i)] = atLimit[size_t(i)].p;
+    return out;
+}
 
-    // Parent base face of each refined face: uniform refinement emits a face's children
-    // consecutively (Catmull-Clark and bilinear: n for an n-gon at level 1, then 4 per
-    // quad; Loop: 4 per triangle).
+// A facevarying channel's values at the limit, per value of the last level.
+std::vector<Vtx> faceVaryingLimit(const Far::TopologyRefiner& refiner,
+                                  const Far::PrimvarRefiner& primvar, int level, int ch,
+                                  const std::vector<glm::vec3>& values) {
+    std::vector<Vtx> fv(size_t(refiner.GetNumFVarValuesTotal(ch)));
+    for (size_t i = 0; i < values.size(); ++i) fv[i].p = values[i];
+    Vtx* s = fv.data();
+    for (int l = 1; l <= level; ++l) {
+        Vtx* d = s + refiner.GetLevel(l - 1).GetNumFVarValues(ch);
+        primvar.InterpolateFaceVarying(l, s, d, ch);
+        s = d;
+    }
+    std::vector<Vtx> out(size_t(refiner.GetLevel(level).GetNumFVarValues(ch)));
+    primvar.LimitFaceVarying(s, out, ch);
+    return out;
+}
+
+// The base face of each refined face: uniform refinement emits a face's children
+// consecutively (Catmull-Clark and bilinear: n for an n-gon at level 1, then 4 per quad;
+// Loop: 4 per triangle).
+std::vector<int> parentFaces(const SubdivInput& in, int level) {
     std::vector<int> parent;
     for (size_t f = 0; f < in.nvertices.size(); ++f)
-        parent.insert(parent.end(), loop ? 4 : size_t(in.nvertices[f]), int(f));
+        parent.insert(parent.end(), in.scheme == "loop" ? 4 : size_t(in.nvertices[f]),
+                      int(f));
     for (int l = 2; l <= level; ++l) {
         std::vector<int> next(parent.size() * 4);
         for (size_t f = 0; f < parent.size(); ++f)
             std::fill_n(next.begin() + 4 * f, 4, parent[f]);
         parent.swap(next);
     }
-    if (int(parent.size()) != last.GetNumFaces()) {
-        delete refiner;
-        return fail(err, "SubdivisionMesh: unexpected refined face count");
-    }
+    return parent;
+}
 
-    // The output's vertices: the last level's, or with facevarying values one for each
-    // of its vertices' combinations of values (a vertex on a seam has one a side);
-    // vertexOf: each one's vertex, fvarOf: its value in each channel.
+// The output's vertices and triangles from the last level: its vertices, or with
+// facevarying values one for each of its vertices' combinations of values (a vertex on
+// a seam has one a side). vertexOf: each output vertex's vertex, fvarOf: its value in
+// each channel.
+struct LimitSurface {
+    const std::vector<Vtx>&lim, &t1, &t2;
+    bool normals;  // the limit tangents' normal at each vertex
+};
+
+void emitSurface(const Far::TopologyLevel& last, const LimitSurface& limit,
+                 const std::vector<int>& parent, int channels, SurfaceMesh& out,
+                 std::vector<int>& vertexOf, std::vector<std::vector<int>>& fvarOf) {
     const int base = int(out.mesh.p.size());
-    // (a bilinear surface is its patches, shaded with their own normals: the limit
-    // tangents at a vertex are one face's, which its other faces do not share)
-    const bool wantN = out.mesh.n.size() == out.mesh.p.size() && !bilinear;
-    std::vector<int> vertexOf;
-    std::vector<std::vector<int>> fvarOf(static_cast<size_t>(channels));
+    fvarOf.assign(size_t(channels), {});
     auto emit = [&](int v) {
-        out.mesh.p.push_back(lim[size_t(v)].p);
-        const glm::vec3 c = glm::cross(t1[size_t(v)].p, t2[size_t(v)].p);
-        if (wantN)
+        out.mesh.p.push_back(limit.lim[size_t(v)].p);
+        const glm::vec3 c = glm::cross(limit.t1[size_t(v)].p, limit.t2[size_t(v)].p);
+        if (limit.normals)
             out.mesh.n.push_back(glm::length(c) > 0.0f ? glm::normalize(c)
                                                        : glm::vec3(0, 0, 1));
         out.st.emplace_back(0.0f);  // (st given per point comes as values)
         vertexOf.push_back(v);
     };
     if (channels == 0)
-        for (int i = 0; i < nv; ++i) emit(i);
+        for (int i = 0; i < last.GetNumVertices(); ++i) emit(i);
     // The output vertices made for each value of the first channel (a value belongs to
     // one vertex): usually one, more where another channel has a seam the first has not.
-    std::vector<std::vector<int>> outOf(channels > 0 ? fvarLimit[0].size() : 0);
+    std::vector<std::vector<int>> outOf(channels > 0 ? size_t(last.GetNumFVarValues(0))
+                                                     : 0);
     std::vector<int> corner, key(static_cast<size_t>(channels));
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         if (last.IsFaceHole(f)) continue;
@@ -316,9 +325,64 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
         for (size_t k = 1; k + 1 < corner.size(); ++k) {
             out.mesh.tris.insert(out.mesh.tris.end(), {base + corner[0], base + corner[k],
                                                        base + corner[k + 1]});
-            out.faceIndex.push_back(parent[f]);
+            out.faceIndex.push_back(parent[size_t(f)]);
         }
     }
+}
+
+}  // namespace
+
+bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& out,
+                               std::string* err,
+                               std::vector<std::vector<glm::vec3>>* values) {
+    if (!validateSubdiv(in, err)) return false;
+    // (level 0 has no limit projection for n-gons: always refine at least once)
+    level = std::max(levelWithinCap(in, level, out.mesh.p.size()), 1);
+    const Tags tags = readTags(in);
+    FaceVarying fvar = faceVaryingChannels(in);
+    const int channels = int(fvar.channel.size());
+    const std::unique_ptr<Far::TopologyRefiner> refiner = refinerFor(in, tags, fvar);
+    if (!refiner) return fail(err, "SubdivisionMesh: OpenSubdiv rejected the topology");
+    Far::TopologyRefiner::UniformOptions uniform(level);
+    uniform.fullTopologyInLastLevel = true;  // needed by PrimvarRefiner::Limit
+    refiner->RefineUniform(uniform);
+
+    std::vector<Vtx> buf(size_t(refiner->GetNumVerticesTotal()));
+    for (size_t i = 0; i < in.P.size(); ++i) buf[i].p = in.P[i];
+    Far::PrimvarRefiner primvar(*refiner);
+    Vtx* src = buf.data();
+    for (int l = 1; l <= level; ++l) {
+        Vtx* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
+        primvar.Interpolate(l, src, dst);
+        src = dst;
+    }
+    const Far::TopologyLevel& last = refiner->GetLevel(level);
+    const size_t nv = size_t(last.GetNumVertices());
+    std::vector<Vtx> lim(nv), t1(nv), t2(nv);
+    primvar.Limit(src, lim, t1, t2);
+    std::vector<std::vector<glm::vec3>> perVertex;
+    if (values) {
+        for (const std::vector<glm::vec3>& v : in.vertexValues)
+            perVertex.push_back(
+                refinedValues(*refiner, primvar, level, v, in.P.size(), true));
+        for (const std::vector<glm::vec3>& v : in.varyingValues)
+            perVertex.push_back(
+                refinedValues(*refiner, primvar, level, v, in.P.size(), false));
+    }
+    std::vector<std::vector<Vtx>> fvarLimit;
+    for (int ch = 0; ch < channels; ++ch)
+        fvarLimit.push_back(
+            faceVaryingLimit(*refiner, primvar, level, ch, fvar.values[size_t(ch)]));
+    const std::vector<int> parent = parentFaces(in, level);
+    if (int(parent.size()) != last.GetNumFaces())
+        return fail(err, "SubdivisionMesh: unexpected refined face count");
+    // (a bilinear surface is its patches, shaded with their own normals: the limit
+    // tangents at a vertex are one face's, which its other faces do not share)
+    const bool normals =
+        out.mesh.n.size() == out.mesh.p.size() && in.scheme != "bilinear";
+    std::vector<int> vertexOf;
+    std::vector<std::vector<int>> fvarOf;
+    emitSurface(last, {lim, t1, t2, normals}, parent, channels, out, vertexOf, fvarOf);
     if (values) {
         for (const std::vector<glm::vec3>& v : perVertex) {
             std::vector<glm::vec3> atOutput(vertexOf.size());
@@ -333,7 +397,6 @@ bool tessellateSubdivisionMesh(const SubdivInput& in, int level, SurfaceMesh& ou
             values->push_back(std::move(atOutput));
         }
     }
-    delete refiner;
     return true;
 }
 #else
