@@ -3,8 +3,10 @@
 #include "dice_displaced.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "triangle_motion.h"
 
@@ -268,15 +270,11 @@ private:
     std::vector<Vertex> m_vertices;
 };
 
-}  // namespace
-
-DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
-                                    size_t maxTriangles) {
-    DicedSurfaces out;
-    out.budget = maxTriangles;
-    const size_t n = s.triangles.size();
+// The triangles to dice (truly displaced, not yet diced, not in a solid: isDiced); the
+// others that would be and stay whole are counted in out.skipped.
+std::vector<size_t> trianglesToDice(const Scene& s, DicedSurfaces& out) {
     std::vector<size_t> diced;
-    for (size_t t = 0; t < n; ++t) {
+    for (size_t t = 0; t < s.triangles.size(); ++t) {
         if (isDiced(s, t))
             diced.push_back(t);
         else if (s.attrs[t].material < s.materials.size() &&
@@ -285,26 +283,32 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
                  !(s.attrs[t].flags & RT_QF_DICED))
             ++out.skipped;
     }
-    out.firstTriangle = uint32_t(n);
-    if (diced.empty()) return out;
-    auto limitOf = [&](size_t t) {
-        const uint32_t m = s.attrs[t].material;
-        const float d = m < s.materialDicing.size() ? s.materialDicing[m] : 1.0f;
-        return (d > 0.0f ? d : 1.0f) * out.coarsening;
-    };
-    auto cornersOf = [&](size_t t) {
-        const Triangle& tr = s.triangles[t];
-        return std::array<Corner, 3>{Corner{v3(tr.v0), {0, 0}}, Corner{v3(tr.v1), {1, 0}},
-                                     Corner{v3(tr.v2), {0, 1}}};
-    };
-    // A moving piece counts three against the budget: its motion record, box and last
-    // key cost twice a still piece's arrays again.
-    auto weightOf = [&](size_t t) -> size_t {
-        return s.attrs[t].flags & RT_QF_MOVING ? 3 : 1;
-    };
-    // Count first, coarser while over the budget (a bounded number of tries: each
-    // doubles the edge limit).
-    size_t counted = 0, weighed = 0;  // the pieces of the dicing that fits, and weighted
+    return diced;
+}
+
+// The dicing of one source triangle: its corners and its edge limit in pixels.
+std::array<Corner, 3> cornersOf(const Scene& s, size_t t) {
+    const Triangle& tr = s.triangles[t];
+    return {Corner{v3(tr.v0), {0, 0}}, Corner{v3(tr.v1), {1, 0}},
+            Corner{v3(tr.v2), {0, 1}}};
+}
+float limitOf(const Scene& s, size_t t, float coarsening) {
+    const uint32_t m = s.attrs[t].material;
+    const float d = m < s.materialDicing.size() ? s.materialDicing[m] : 1.0f;
+    return (d > 0.0f ? d : 1.0f) * coarsening;
+}
+// A moving piece counts three against the budget: its motion record, box and last key
+// cost twice a still piece's arrays again.
+size_t weightOf(const Scene& s, size_t t) {
+    return s.attrs[t].flags & RT_QF_MOVING ? 3 : 1;
+}
+
+// Counts the pieces, coarser while over the budget (a bounded number of tries: each
+// doubles the edge limit, out.coarsening). Returns the pieces of the dicing that fits.
+size_t countWithinBudget(const Scene& s, const DicingView& view,
+                         const std::vector<size_t>& diced, size_t maxTriangles,
+                         DicedSurfaces& out) {
+    size_t counted = 0, weighed = 0;  // the pieces, and weighted
     for (int tries = 0;; ++tries) {
         counted = weighed = 0;
         size_t weight = 1;
@@ -314,130 +318,185 @@ DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
         };
         bool fits = true;
         for (size_t t : diced) {
-            const auto c = cornersOf(t);
-            weight = weightOf(t);
-            if (!dice(view, limitOf(t), c[0], c[1], c[2], counter)) {
+            const auto c = cornersOf(s, t);
+            weight = weightOf(s, t);
+            if (!dice(view, limitOf(s, t, out.coarsening), c[0], c[1], c[2], counter)) {
                 fits = false;
                 break;
             }
         }
-        if (fits || tries >= 40) break;
+        if (fits || tries >= 40) return counted;
         out.coarsening *= 2.0f;
     }
+}
 
-    // Every per-triangle array takes the diced pieces after the scene's triangles.
-    counted = std::min(counted, maxTriangles);
-    s.triangles.reserve(n + counted);
-    s.attrs.reserve(n + counted);
-    s.normals.reserve(3 * (n + counted));
-    s.vertexSt.reserve(3 * (n + counted));
-    out.cornerVertex.reserve(3 * counted);
-    s.normals.resize(3 * n, rt_float4{0, 0, 0, 0});
-    if (s.vertexSt.empty()) s.vertexSt.assign(3 * n, rt_float4{0, 0, 0, 0});
-    s.primvarsUsed |= RT_PRIMVAR_ST;
-    s.anySmoothNormals = true;  // the pieces carry the moved surface's normals
-    const size_t csChunks = s.vertexCs.size() / (3 * std::max<size_t>(n, 1));
-    const size_t osChunks = s.vertexOs.size() / (3 * std::max<size_t>(n, 1));
-    const bool params = !s.triangleParams.empty();
-    if (params) s.triangleParams.resize(n, RT_NO_POINT_PARAMS);
-    // the weld's tolerance: a millionth of the diced surfaces' extent
+// The weld's tolerance: a millionth of the diced surfaces' extent.
+float weldTolerance(const Scene& s, const std::vector<size_t>& diced) {
     glm::vec3 lo(std::numeric_limits<float>::max()),
         hi(-std::numeric_limits<float>::max());
     for (size_t t : diced)
         for (const rt_float4* v :
              {&s.triangles[t].v0, &s.triangles[t].v1, &s.triangles[t].v2})
             lo = glm::min(lo, v3(*v)), hi = glm::max(hi, v3(*v));
-    VertexWeld weld(glm::length(hi - lo) * 1e-6f, counted / 2 + 16);
-    // the motion records of moving triangles, which their pieces' records replace
-    std::vector<uint32_t> motionRecord(n, ~0u);
-    for (size_t q = 0; q < s.quadrics.size(); ++q)
-        if (s.quadrics[q].kind == RT_Q_MOVING_TRIANGLE && s.quadrics[q].first_member < n)
-            motionRecord[s.quadrics[q].first_member] = uint32_t(q);
-    size_t used = 0;  // weighted, as counted
-    for (size_t t : diced) {
-        const size_t weight = weightOf(t);
-        const TriangleAttr attr = s.attrs[t];
-        const Triangle tr = s.triangles[t];
-        const bool moving = (attr.flags & RT_QF_MOVING) && t < s.trianglesEnd.size();
-        const TriangleKeys motion = moving ? triangleKeys(s, t) : TriangleKeys{};
-        rt_float4 nrm[3], st[3];
+    return glm::length(hi - lo) * 1e-6f;
+}
+
+// Writes the pieces of the source triangles after the scene's triangles, in every
+// per-triangle array (normals, st, per-point colours and shader parameters, motion),
+// and the vertices to displace: begin(t) for each source, then the pieces dice() gives.
+class PieceWriter {
+public:
+    PieceWriter(Scene& s, DicedSurfaces& out, size_t n, size_t counted, float tolerance)
+        : m_s(s),
+          m_out(out),
+          m_csChunks(s.vertexCs.size() / (3 * std::max<size_t>(n, 1))),
+          m_osChunks(s.vertexOs.size() / (3 * std::max<size_t>(n, 1))),
+          m_params(!s.triangleParams.empty()),
+          m_weld(tolerance, counted / 2 + 16) {
+        s.triangles.reserve(n + counted);
+        s.attrs.reserve(n + counted);
+        s.normals.reserve(3 * (n + counted));
+        s.vertexSt.reserve(3 * (n + counted));
+        out.cornerVertex.reserve(3 * counted);
+        s.normals.resize(3 * n, rt_float4{0, 0, 0, 0});
+        if (s.vertexSt.empty()) s.vertexSt.assign(3 * n, rt_float4{0, 0, 0, 0});
+        s.primvarsUsed |= RT_PRIMVAR_ST;
+        s.anySmoothNormals = true;  // the pieces carry the moved surface's normals
+        if (m_params) s.triangleParams.resize(n, RT_NO_POINT_PARAMS);
+        // the motion records of moving triangles, which their pieces' records replace
+        m_motionRecord.assign(n, ~0u);
+        for (size_t q = 0; q < s.quadrics.size(); ++q)
+            if (s.quadrics[q].kind == RT_Q_MOVING_TRIANGLE &&
+                s.quadrics[q].first_member < n)
+                m_motionRecord[s.quadrics[q].first_member] = uint32_t(q);
+    }
+    // The source triangle t's values at its corners, which its pieces blend.
+    void begin(size_t t) {
+        m_t = t;
+        m_attr = m_s.attrs[t];
+        const Triangle tr = m_s.triangles[t];
+        m_moving = (m_attr.flags & RT_QF_MOVING) && t < m_s.trianglesEnd.size();
+        m_motion = m_moving ? triangleKeys(m_s, t) : TriangleKeys{};
         const glm::vec3 face =
             glm::normalize(glm::cross(v3(tr.v1) - v3(tr.v0), v3(tr.v2) - v3(tr.v0)));
-        bool smooth = attr.has_normals != 0;
+        bool smooth = m_attr.has_normals != 0;
         for (int k = 0; k < 3; ++k) {
-            nrm[k] = s.normals[3 * t + size_t(k)];
-            smooth = smooth && (nrm[k].x != 0.0f || nrm[k].y != 0.0f || nrm[k].z != 0.0f);
-            st[k] = (attr.primvars & RT_PRIMVAR_ST)
-                        ? s.vertexSt[3 * t + size_t(k)]
-                        : rt_float4{k == 1 ? 1.0f : 0.0f, k == 2 ? 1.0f : 0.0f, 0, 0};
+            const rt_float4 nk = m_nrm[k] = m_s.normals[3 * t + size_t(k)];
+            smooth = smooth && (nk.x != 0.0f || nk.y != 0.0f || nk.z != 0.0f);
+            m_st[k] = (m_attr.primvars & RT_PRIMVAR_ST)
+                          ? m_s.vertexSt[3 * t + size_t(k)]
+                          : rt_float4{k == 1 ? 1.0f : 0.0f, k == 2 ? 1.0f : 0.0f, 0, 0};
         }
         if (!smooth)
-            for (rt_float4& v : nrm) v = f4(face);
+            for (rt_float4& v : m_nrm) v = f4(face);
         // per-point shader parameters: K values a corner
-        size_t paramCount = 0;
-        const uint32_t firstParam = params ? s.triangleParams[t] : RT_NO_POINT_PARAMS;
-        if (firstParam != RT_NO_POINT_PARAMS) {
-            const uint32_t shader = s.materials[attr.material].shader;
-            if (shader < s.surfaceRefs.size())
-                for (const auto& [name, floats] : s.surfaceRefs[shader].pointParams)
-                    paramCount += size_t(pointParamEntries(floats));
+        m_paramCount = 0;
+        m_firstParam = m_params ? m_s.triangleParams[t] : RT_NO_POINT_PARAMS;
+        if (m_firstParam != RT_NO_POINT_PARAMS) {
+            const uint32_t shader = m_s.materials[m_attr.material].shader;
+            if (shader < m_s.surfaceRefs.size())
+                for (const auto& [name, floats] : m_s.surfaceRefs[shader].pointParams)
+                    m_paramCount += size_t(pointParamEntries(floats));
         }
+    }
+    // Marks the source diced (and its motion record).
+    void end() {
+        m_s.attrs[m_t].flags |= RT_QF_DICED;
+        if (m_moving && m_motionRecord[m_t] != ~0u)
+            m_s.quadrics[m_motionRecord[m_t]].flags |= RT_QF_DICED;
+    }
+    void piece(const Corner& a, const Corner& b, const Corner& c) {
+        const uint32_t index = uint32_t(m_s.triangles.size());
+        m_s.triangles.push_back({f4(a.p), f4(b.p), f4(c.p)});
+        m_s.attrs.push_back({m_attr.material, 1u, m_attr.primvars | RT_PRIMVAR_ST,
+                             (m_attr.flags & ~uint32_t(RT_QF_MOVING)) | RT_QF_DISPLACED});
+        m_out.pieceSource.push_back(uint32_t(m_t));
+        if (m_moving)
+            addTriangleMotion(m_s, keysAt(m_motion.keys, a.b, b.b, c.b), m_motion.times);
+        int k = 0;
+        for (const Corner* q : {&a, &b, &c}) corner(*q, index, k++);
+        if (m_params) params(a, b, c);
+    }
+
+private:
+    void corner(const Corner& q, uint32_t index, int k) {
+        rt_float4 nq = blend(m_nrm, q.b);
+        const float len = std::sqrt(nq.x * nq.x + nq.y * nq.y + nq.z * nq.z);
+        // (w: 0, not the source's blended key-normal index, shade_common.clh)
+        nq = len > 0.0f ? rt_float4{nq.x / len, nq.y / len, nq.z / len, 0.0f}
+                        : rt_float4{nq.x, nq.y, nq.z, 0.0f};
+        m_s.normals.push_back(nq);
+        m_s.vertexSt.push_back(blend(m_st, q.b));
+        for (auto [buf, chunks, bit] :
+             {std::make_tuple(&m_s.vertexCs, m_csChunks, RT_PRIMVAR_CS),
+              std::make_tuple(&m_s.vertexOs, m_osChunks, RT_PRIMVAR_OS)})
+            for (size_t ch = 0; ch < chunks; ++ch) {
+                rt_float4 c3[3];
+                for (size_t j = 0; j < 3; ++j)
+                    c3[j] = (*buf)[(3 * m_t + j) * chunks + ch];
+                buf->push_back((m_attr.primvars & bit) ? blend(c3, q.b)
+                                                       : rt_float4{0, 0, 0, 0});
+            }
+        const uint32_t fresh = uint32_t(m_out.vertexCorner.size());
+        const uint32_t v = m_weld.find(q.p, v3(nq), m_attr.material, fresh);
+        if (v == fresh) m_out.vertexCorner.push_back({index, uint32_t(k)});
+        m_out.cornerVertex.push_back(v);
+    }
+    void params(const Corner& a, const Corner& b, const Corner& c) {
+        if (m_firstParam == RT_NO_POINT_PARAMS) {
+            m_s.triangleParams.push_back(RT_NO_POINT_PARAMS);
+            return;
+        }
+        m_s.triangleParams.push_back(uint32_t(m_s.pointParamValues.size()));
+        for (const Corner* q : {&a, &b, &c})
+            for (size_t e = 0; e < m_paramCount; ++e) {
+                rt_float4 p3[3];
+                for (size_t j = 0; j < 3; ++j)
+                    p3[j] = m_s.pointParamValues[m_firstParam + j * m_paramCount + e];
+                m_s.pointParamValues.push_back(blend(p3, q->b));
+            }
+    }
+    Scene& m_s;
+    DicedSurfaces& m_out;
+    size_t m_csChunks, m_osChunks;
+    bool m_params;
+    VertexWeld m_weld;
+    std::vector<uint32_t> m_motionRecord;
+    // the source triangle
+    size_t m_t = 0;
+    TriangleAttr m_attr{};
+    bool m_moving = false;
+    TriangleKeys m_motion;
+    rt_float4 m_nrm[3]{}, m_st[3]{};
+    uint32_t m_firstParam = RT_NO_POINT_PARAMS;
+    size_t m_paramCount = 0;
+};
+
+}  // namespace
+
+DicedSurfaces diceDisplacedSurfaces(Scene& s, const DicingView& view,
+                                    size_t maxTriangles) {
+    DicedSurfaces out;
+    out.budget = maxTriangles;
+    const size_t n = s.triangles.size();
+    const std::vector<size_t> diced = trianglesToDice(s, out);
+    out.firstTriangle = uint32_t(n);
+    if (diced.empty()) return out;
+    const size_t counted =
+        std::min(countWithinBudget(s, view, diced, maxTriangles, out), maxTriangles);
+    PieceWriter writer(s, out, n, counted, weldTolerance(s, diced));
+    size_t used = 0;  // weighted, as counted
+    for (size_t t : diced) {
+        const size_t weight = weightOf(s, t);
+        writer.begin(t);
         auto emit = [&](const Corner& a, const Corner& b, const Corner& c) {
-            const uint32_t index = uint32_t(s.triangles.size());
-            s.triangles.push_back({f4(a.p), f4(b.p), f4(c.p)});
-            s.attrs.push_back({attr.material, 1u, attr.primvars | RT_PRIMVAR_ST,
-                               (attr.flags & ~uint32_t(RT_QF_MOVING)) | RT_QF_DISPLACED});
-            out.pieceSource.push_back(uint32_t(t));
-            if (moving)
-                addTriangleMotion(s, keysAt(motion.keys, a.b, b.b, c.b), motion.times);
-            int k = 0;
-            for (const Corner* q : {&a, &b, &c}) {
-                rt_float4 nq = blend(nrm, q->b);
-                const float len = std::sqrt(nq.x * nq.x + nq.y * nq.y + nq.z * nq.z);
-                // (w: 0, not the source's blended key-normal index, shade_common.clh)
-                nq = len > 0.0f ? rt_float4{nq.x / len, nq.y / len, nq.z / len, 0.0f}
-                                : rt_float4{nq.x, nq.y, nq.z, 0.0f};
-                s.normals.push_back(nq);
-                const rt_float4 sq = blend(st, q->b);
-                s.vertexSt.push_back(sq);
-                for (auto [buf, chunks, bit] :
-                     {std::make_tuple(&s.vertexCs, csChunks, RT_PRIMVAR_CS),
-                      std::make_tuple(&s.vertexOs, osChunks, RT_PRIMVAR_OS)})
-                    for (size_t ch = 0; ch < chunks; ++ch) {
-                        rt_float4 c3[3];
-                        for (size_t j = 0; j < 3; ++j)
-                            c3[j] = (*buf)[(3 * t + j) * chunks + ch];
-                        buf->push_back((attr.primvars & bit) ? blend(c3, q->b)
-                                                             : rt_float4{0, 0, 0, 0});
-                    }
-                const uint32_t fresh = uint32_t(out.vertexCorner.size());
-                const uint32_t v = weld.find(q->p, v3(nq), attr.material, fresh);
-                if (v == fresh) out.vertexCorner.push_back({index, uint32_t(k)});
-                out.cornerVertex.push_back(v);
-                ++k;
-            }
-            if (params) {
-                if (firstParam == RT_NO_POINT_PARAMS) {
-                    s.triangleParams.push_back(RT_NO_POINT_PARAMS);
-                } else {
-                    s.triangleParams.push_back(uint32_t(s.pointParamValues.size()));
-                    for (const Corner* q : {&a, &b, &c})
-                        for (size_t e = 0; e < paramCount; ++e) {
-                            rt_float4 p3[3];
-                            for (size_t j = 0; j < 3; ++j)
-                                p3[j] =
-                                    s.pointParamValues[firstParam + j * paramCount + e];
-                            s.pointParamValues.push_back(blend(p3, q->b));
-                        }
-                }
-            }
+            writer.piece(a, b, c);
             return (used += weight) < maxTriangles;
         };
-        const auto c = cornersOf(t);
-        const bool whole = dice(view, limitOf(t), c[0], c[1], c[2], emit);
-        s.attrs[t].flags |= RT_QF_DICED;
-        if (moving && motionRecord[t] != ~0u)
-            s.quadrics[motionRecord[t]].flags |= RT_QF_DICED;
+        const auto c = cornersOf(s, t);
+        const bool whole =
+            dice(view, limitOf(s, t, out.coarsening), c[0], c[1], c[2], emit);
+        writer.end();
         ++out.diced;
         if (!whole) {  // (only where even the coarsest limit could not fit)
             out.truncated = true;
