@@ -68,6 +68,82 @@ void markCoincident(const std::vector<int>& tris, const std::vector<glm::vec3>& 
     }
 }
 
+// What is wrong with each triangle of a mesh at world points wp: a moving one (`keys`,
+// else null) must be finite at every key and not degenerate at all of them; later copies
+// of a kept triangle are Coincident.
+std::vector<Defect> triangleDefects(const std::vector<int>& tris,
+                                    const std::vector<glm::vec3>& wp,
+                                    const std::vector<std::vector<glm::vec3>>* keys) {
+    const size_t count = tris.size() / 3;
+    std::vector<Defect> defects(count, Defect::None);
+    for (size_t k = 0; k < count; ++k) {
+        const int i0 = tris[3 * k], i1 = tris[3 * k + 1], i2 = tris[3 * k + 2];
+        const glm::vec3 &a = wp[size_t(i0)], &b = wp[size_t(i1)], &c = wp[size_t(i2)];
+        glm::vec3 cr = glm::cross(b - a, c - a);
+        if (keys) {
+            bool finite = true;
+            for (const std::vector<glm::vec3>& key : *keys) {
+                const glm::vec3 &ea = key[size_t(i0)], &eb = key[size_t(i1)],
+                                &ec = key[size_t(i2)];
+                glm::vec3 ce = glm::cross(eb - ea, ec - ea);
+                finite = finite && finite3(ea) && finite3(eb) && finite3(ec);
+                if (glm::dot(ce, ce) > 0.0f && !(glm::dot(cr, cr) > 0.0f)) cr = ce;
+            }
+            if (!finite) {
+                defects[k] = Defect::NonfiniteEnd;
+                continue;
+            }
+        }
+        if (!finite3(a) || !finite3(b) || !finite3(c))
+            defects[k] = Defect::Nonfinite;
+        else if (!(glm::dot(cr, cr) > 0.0f))
+            defects[k] = Defect::ZeroArea;
+    }
+    markCoincident(tris, wp, defects);
+    return defects;
+}
+
+// The triangles a request left out or patched, as its warning says them ("" if none).
+struct DefectCounts {
+    int nonfinite = 0, zeroArea = 0, duplicate = 0, badNormal = 0;
+};
+std::string describeDefects(const DefectCounts& d) {
+    std::string what;
+    auto add = [&](int n, const char* text) {
+        if (n) what += (what.empty() ? "" : ", ") + std::to_string(n) + text;
+    };
+    add(d.nonfinite, " triangle(s) with a NaN or Inf vertex left out");
+    add(d.zeroArea, " zero-area (collinear) triangle(s) left out");
+    add(d.duplicate, " coincident (duplicate) triangle(s) left out");
+    add(d.badNormal,
+        " triangle(s) with a zero or non-finite normal shaded with the geometric normal");
+    return what;
+}
+
+// A corner's colour, `chunks` float4s: more than three channels fill 8 or 16 floats
+// (RSL_COLOR_LANES), zero past the channels; zero where the mesh gives none.
+void pushCornerColor(std::vector<rt_float4>& buf, size_t chunks, bool given,
+                     const std::vector<glm::vec3>& rgb,
+                     const std::vector<VertexData::Channels>& channels, int k) {
+    if (chunks == 1) {
+        buf.push_back(given ? f4(rgb[size_t(k)]) : f4(0, 0, 0));
+        return;
+    }
+    float c[16] = {};
+    if (given) std::copy(channels[size_t(k)].begin(), channels[size_t(k)].end(), c);
+    for (size_t q = 0; q < chunks; ++q)
+        buf.push_back(f4(c[4 * q], c[4 * q + 1], c[4 * q + 2], c[4 * q + 3]));
+}
+
+// A primitive variable (bit) first seen now: the earlier triangles get placeholders.
+void startPrimvar(Scene& w, uint32_t primvars, uint32_t bit, std::vector<rt_float4>& buf,
+                  size_t per) {
+    if ((primvars & bit) && !(w.primvarsUsed & bit)) {
+        buf.assign(3 * w.triangles.size() * per, f4(0, 0, 0));
+        w.primvarsUsed |= bit;
+    }
+}
+
 }  // namespace
 
 void RibBuilder::addMesh(L loc, const VertexData& mesh) {
@@ -193,65 +269,30 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh,
     uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
                         (cs ? RT_PRIMVAR_CS : 0u) | (os ? RT_PRIMVAR_OS : 0u);
     if (smooth) m_world.anySmoothNormals = true;
-    // A corner's colour takes `chunks` float4s: more than three channels fill 8 or 16
-    // floats (RSL_COLOR_LANES), zero past the channels
-    const size_t chunks = size_t(m_world.colors.lanes() / 4);
-    auto pushColor = [&](std::vector<rt_float4>& buf, bool given,
-                         const std::vector<glm::vec3>& rgb,
-                         const std::vector<VertexData::Channels>& channels, int k) {
-        if (chunks == 1) {
-            buf.push_back(given ? f4(rgb[size_t(k)]) : f4(0, 0, 0));
-            return;
-        }
-        float c[16] = {};
-        if (given) std::copy(channels[size_t(k)].begin(), channels[size_t(k)].end(), c);
-        for (size_t q = 0; q < chunks; ++q)
-            buf.push_back(f4(c[4 * q], c[4 * q + 1], c[4 * q + 2], c[4 * q + 3]));
-    };
-    // A primitive variable first seen now: earlier triangles get placeholder entries.
-    auto start = [&](uint32_t bit, std::vector<rt_float4>& buf, size_t per) {
-        if ((primvars & bit) && !(m_world.primvarsUsed & bit)) {
-            buf.assign(3 * m_world.triangles.size() * per, f4(0, 0, 0));
-            m_world.primvarsUsed |= bit;
-        }
-    };
-    start(RT_PRIMVAR_ST, m_world.vertexSt, 1);
-    start(RT_PRIMVAR_CS, m_world.vertexCs, chunks);
-    start(RT_PRIMVAR_OS, m_world.vertexOs, chunks);
+    const size_t chunks = size_t(m_world.colors.lanes() / 4);  // float4s a colour
+    startPrimvar(m_world, primvars, RT_PRIMVAR_ST, m_world.vertexSt, 1);
+    startPrimvar(m_world, primvars, RT_PRIMVAR_CS, m_world.vertexCs, chunks);
+    startPrimvar(m_world, primvars, RT_PRIMVAR_OS, m_world.vertexOs, chunks);
     // Degenerate input is left out (or, for normals, replaced by the geometric normal)
     // and reported once per request, at its file:line.
-    int nonfinite = 0, zeroArea = 0, duplicate = 0, badNormal = 0;
-    const size_t count = mesh.tris.size() / 3;
-    std::vector<Defect> defects(count, Defect::None);
-    for (size_t k = 0; k < count; ++k) {
-        const int i0 = mesh.tris[3 * k], i1 = mesh.tris[3 * k + 1], i2 = mesh.tris[3 * k + 2];
-        const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
-        glm::vec3 cr = glm::cross(b - a, c - a);
-        if (motion) {  // moving: finite at every key, not degenerate at all of them
-            bool finite = true;
-            for (const std::vector<glm::vec3>& key : motion->keys) {
-                const glm::vec3 &ea = key[size_t(i0)], &eb = key[size_t(i1)],
-                                &ec = key[size_t(i2)];
-                glm::vec3 ce = glm::cross(eb - ea, ec - ea);
-                finite = finite && finite3(ea) && finite3(eb) && finite3(ec);
-                if (glm::dot(ce, ce) > 0.0f && !(glm::dot(cr, cr) > 0.0f)) cr = ce;
-            }
-            if (!finite) {
-                defects[k] = Defect::NonfiniteEnd;
-                continue;
-            }
-        }
-        if (!finite3(a) || !finite3(b) || !finite3(c)) defects[k] = Defect::Nonfinite;
-        else if (!(glm::dot(cr, cr) > 0.0f)) defects[k] = Defect::ZeroArea;
-    }
-    markCoincident(mesh.tris, wp, defects);
-    for (size_t k = 0; k < count; ++k) {
+    DefectCounts counts;
+    const std::vector<Defect> defects =
+        triangleDefects(mesh.tris, wp, motion ? &motion->keys : nullptr);
+    for (size_t k = 0; k < defects.size(); ++k) {
         switch (defects[k]) {
             case Defect::None: break;
-            case Defect::NonfiniteEnd: ++nonfinite; continue;
-            case Defect::Nonfinite: ++m_degenerate, ++nonfinite; continue;
-            case Defect::ZeroArea: ++m_degenerate, ++zeroArea; continue;
-            case Defect::Coincident: ++duplicate; continue;
+            case Defect::NonfiniteEnd:
+                ++counts.nonfinite;
+                continue;
+            case Defect::Nonfinite:
+                ++m_degenerate, ++counts.nonfinite;
+                continue;
+            case Defect::ZeroArea:
+                ++m_degenerate, ++counts.zeroArea;
+                continue;
+            case Defect::Coincident:
+                ++counts.duplicate;
+                continue;
         }
         const size_t t = 3 * k;
         const int i0 = mesh.tris[t], i1 = mesh.tris[t + 1], i2 = mesh.tris[t + 2];
@@ -298,26 +339,17 @@ void RibBuilder::appendTriangles(L loc, const VertexData& mesh,
                                                ? f4(mesh.st[k].x, mesh.st[k].y, 0)
                                                : f4(0, 0, 0));
             if (m_world.primvarsUsed & RT_PRIMVAR_CS)
-                pushColor(m_world.vertexCs, cs, mesh.cs, mesh.csN, k);
+                pushCornerColor(m_world.vertexCs, chunks, cs, mesh.cs, mesh.csN, k);
             if (m_world.primvarsUsed & RT_PRIMVAR_OS)
-                pushColor(m_world.vertexOs, os, mesh.os, mesh.osN, k);
+                pushCornerColor(m_world.vertexOs, chunks, os, mesh.os, mesh.osN, k);
         }
-        if (!normalsOk) ++badNormal;
+        if (!normalsOk) ++counts.badNormal;
         if (motion && smooth && normalsOk && !motion->normals.empty())
             addKeyNormals(*motion, {i0, i1, i2});
     }
-    if (nonfinite + zeroArea + duplicate + badNormal == 0 ||
-        !m_warnedAt.insert({loc.file, loc.line}).second)
-        return;
-    std::string what;
-    auto add = [&](int n, const char* text) {
-        if (n) what += (what.empty() ? "" : ", ") + std::to_string(n) + text;
-    };
-    add(nonfinite, " triangle(s) with a NaN or Inf vertex left out");
-    add(zeroArea, " zero-area (collinear) triangle(s) left out");
-    add(duplicate, " coincident (duplicate) triangle(s) left out");
-    add(badNormal, " triangle(s) with a zero or non-finite normal shaded with the geometric normal");
-    m_diag.warning(loc, "degenerate geometry: " + what);
+    const std::string what = describeDefects(counts);
+    if (!what.empty() && m_warnedAt.insert({loc.file, loc.line}).second)
+        m_diag.warning(loc, "degenerate geometry: " + what);
 }
 
 std::optional<std::vector<std::pair<std::string, int>>> RibBuilder::sharedPointParams(
