@@ -68,6 +68,18 @@ void markCoincident(const std::vector<int>& tris, const std::vector<glm::vec3>& 
     }
 }
 
+// Whether m is a rotation (or reflection) times a uniform scale: m^T m = s^2 I, to
+// 1e-5 of s^2.
+bool isSimilarity(const glm::mat3& m) {
+    const glm::mat3 g = glm::transpose(m) * m;
+    const float s2 = (g[0][0] + g[1][1] + g[2][2]) / 3.0f;
+    if (!(s2 > 0.0f) || !std::isfinite(s2)) return false;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (std::fabs(g[i][j] - (i == j ? s2 : 0.0f)) > 1e-5f * s2) return false;
+    return true;
+}
+
 // What is wrong with each triangle of a mesh at world points wp: a moving one (`keys`,
 // else null) must be finite at every key and not degenerate at all of them; later copies
 // of a kept triangle are Coincident.
@@ -190,12 +202,28 @@ void RibBuilder::addMovingMesh(L loc, const std::vector<VertexData>& keys,
     if (keys.size() == 1) {  // still points under the transform's keys
         motion.times.push_back(at.t0);
         first = worldPoints(at.ctm, keys[0].p);
+        std::vector<glm::mat4> later;  // the keys after the first
         for (const auto& [t, key] : at.between) {
-            motion.keys.push_back(worldPoints(key, keys[0].p));
+            later.push_back(key);
             motion.times.push_back(t);
         }
-        motion.keys.push_back(worldPoints(at.ctmEnd, keys[0].p));
+        later.push_back(at.ctmEnd);
         motion.times.push_back(at.t1);
+        for (const glm::mat4& key : later)
+            motion.keys.push_back(worldPoints(key, keys[0].p));
+        // Vertex normals under keys that are not similarities of the first: each key's
+        // own, by its inverse transpose. (A triangle's motion carries them exactly only
+        // through similarities: it cannot tell how the map shears its normal.)
+        const bool similar =
+            std::all_of(later.begin(), later.end(), [&](const glm::mat4& k) {
+                return isSimilarity(glm::mat3(k) * glm::inverse(glm::mat3(at.ctm)));
+            });
+        if (keys[0].n.size() == keys[0].p.size() && !similar)
+            for (const glm::mat4& key : later) {
+                const glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(key)));
+                std::vector<glm::vec3>& n = motion.normals.emplace_back(keys[0].n);
+                for (glm::vec3& v : n) v = nm * v;
+            }
     } else {  // a deformation: each key placed by the transform at its time
         first = worldPoints(ctmAt(at, times[0]), keys[0].p);
         motion.times = times;

@@ -285,6 +285,39 @@ TEST(Motion, VertexNormalsTurnWithTheMesh) {
     }
 }
 
+// A mesh under a moving transform that is not a similarity takes each key's normals by
+// that key's inverse transpose: a square in the plane z = x with vertex normals
+// (0, 0.6, -0.8), squashed along z to a quarter (Scale 1 1 1, then 1 1 0.25), is shaded
+// at the shutter's end with (0, 0.6, -3.2) normalised, as the same square standing
+// still under Scale 1 1 0.25 is. Before, the triangles' own motion carried them, which
+// cannot tell how the squash shears a normal: (-0.54, 0.53, -0.65) at the end.
+TEST(Motion, NormalsUnderANonSimilarMotionAreEachKeys) {
+    const std::string dir =
+        rd::test::shaderFolder("raydrive_squash_normals", kShowNormal);
+    const std::string square =
+        "Polygon \"P\" [-0.6 -0.6 -0.6  0.6 -0.6 0.6  0.6 0.6 0.6  "
+        "-0.6 0.6 -0.6] \"N\" [0 0.6 -0.8  0 0.6 -0.8  0 0.6 -0.8  "
+        "0 0.6 -0.8]\n";
+    const std::string moving =
+        "MotionBegin [0 1]\nScale 1 1 1\nScale 1 1 0.25\nMotionEnd\n";
+    const double len = std::sqrt(0.36 + 3.2 * 3.2);
+    const struct {
+        const char* time;
+        double g, b;
+    } cases[] = {{"0", 0.8, 0.1}, {"1", 0.5 + 0.5 * 0.6 / len, 0.5 - 0.5 * 3.2 / len}};
+    for (const auto& c : cases) {
+        const Rendered r = showNormalsAt(dir, 16, c.time, moving + square);
+        EXPECT_NEAR(r.mean(0, 6, 6, 10, 10), 0.5, 1e-4) << "time " << c.time;
+        EXPECT_NEAR(r.mean(1, 6, 6, 10, 10), c.g, 1e-4) << "time " << c.time;
+        EXPECT_NEAR(r.mean(2, 6, 6, 10, 10), c.b, 1e-4) << "time " << c.time;
+    }
+    // the same as the square standing still under each key's transform
+    const Rendered still = showNormalsAt(dir, 16, "1", "Scale 1 1 0.25\n" + square);
+    const Rendered end = showNormalsAt(dir, 16, "1", moving + square);
+    for (int ch = 0; ch < 3; ++ch)
+        EXPECT_NEAR(end.mean(ch, 6, 6, 10, 10), still.mean(ch, 6, 6, 10, 10), 1e-5);
+}
+
 // A deforming mesh whose keys each give N: its normals at a time are the keys' own,
 // between the two keys around it (before, the first key's, carried by the triangles'
 // motion: here the keys' points are the same, so always the first key's).
