@@ -87,6 +87,21 @@ TEST(TrueDisplacement, SilhouetteMovesWithTheSurface) {
                 2.0, 0.1);
 }
 
+// Per-point amounts reach the displacement shader of a diced sphere: a unit sphere whose
+// four (u, v) corners each give "amount" 0.5 (the call's own 0) is pushed out to radius
+// 1.5, 2.25 pi of the view (rsl_abi.h, PER-POINT PARAMETERS: pv_dslot; before, the
+// call's 0: pi).
+TEST(TrueDisplacement, PerPointAmountsPushTheSilhouette) {
+    const std::string attributes =
+        "Attribute \"displacementbound\" \"float sphere\" [0.5]\n"
+        "Displacement \"push\" \"float amount\" [0]\n";
+    EXPECT_NEAR(coverage(attributes, "Sphere 1 -1 1 360\n"), kPi, 0.1);
+    EXPECT_NEAR(
+        coverage(attributes,
+                 "Sphere 1 -1 1 360 \"varying float amount\" [0.5 0.5 0.5 0.5]\n"),
+        2.25 * kPi, 0.1);
+}
+
 // From inside a rippled sphere no eye ray gets out: the moved surface is closed at its
 // seam and its poles (the tessellator computes their vertices twice; the dicing welds
 // them), and between the pieces of differently diced triangles.
