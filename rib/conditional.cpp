@@ -1,9 +1,10 @@
 // conditional.cpp: conditional RIB expressions (conditional.h), by recursive descent.
 #include "conditional.h"
 
+#include <re2/re2.h>
+
 #include <cctype>
 #include <cstdlib>
-#include <regex>
 #include <vector>
 
 namespace rib {
@@ -117,17 +118,21 @@ private:
         return s;
     }
     bool matches(const std::string& pattern, const std::string& subject, CondValue& out) {
-        // (std::regex recurses per character and backtracks without bound: a long
-        // subject or a hostile pattern could exhaust the stack or hang the reader)
+        // RE2: time linear in the subject and memory bounded whatever the pattern
+        // (std::regex backtracked without bound and recursed per character; a hostile
+        // pattern could hang the reader or exhaust its stack). Its syntax is Perl's
+        // without back-references.
         if (pattern.size() > kMaxRegex || subject.size() > kMaxRegex)
             return fail("a regular expression match longer than " +
                         std::to_string(kMaxRegex) + " characters");
-        try {
-            out = boolean(std::regex_search(subject, std::regex(pattern)));
-            return true;
-        } catch (const std::regex_error&) {
-            return fail("bad regular expression '" + pattern + "'");
-        }
+        RE2::Options options;
+        options.set_log_errors(false);
+        options.set_max_mem(kRegexMemory);
+        const RE2 re(pattern, options);
+        if (!re.ok())
+            return fail("bad regular expression '" + pattern + "': " + re.error());
+        out = boolean(RE2::PartialMatch(subject, re));
+        return true;
     }
     bool name(std::string& out) {
         const size_t start = m_i;
@@ -221,6 +226,7 @@ private:
     }
 
     static constexpr size_t kMaxRegex = 256;
+    static constexpr int64_t kRegexMemory = int64_t(1) << 20;  // bytes
     static constexpr int kMaxDepth = 200;
     const std::string& m_s;
     const CondLookup& m_lookup;

@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 packages=(cmake g++ make pkg-config pocl-opencl-icd ocl-icd-opencl-dev opencl-headers
           opencl-clhpp-headers clinfo libopenexr-dev libglm-dev zlib1g-dev libgtest-dev
           nlohmann-json3-dev libcli11-dev libfmt-dev libosd-dev libopenimageio-dev python3
-          clang libclang-rt-14-dev oclgrind mesa-opencl-icd)
+          clang libclang-rt-14-dev oclgrind mesa-opencl-icd libre2-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -82,6 +82,19 @@ TEST(RibConditional, HostileExpressionsNeitherCrashNorHang) {
     EXPECT_FALSE(eval("concat('" + std::string(300, 'a') + "') =~ '(a*)*b'", &why));
     EXPECT_NE(why.find("longer than 256"), std::string::npos) << why;
     EXPECT_FALSE(eval("'" + std::string(30, 'a') + "' =~ '^(a|aa)*$' && 0"));
+    // patterns that backtrack exponentially in std::regex (as the reader used): RE2
+    // matches in time linear in the subject
+    EXPECT_FALSE(eval("'" + std::string(250, 'a') + "' =~ '(a*)*b'"));
+    EXPECT_TRUE(eval("'" + std::string(250, 'a') + "' =~ '^(a|aa)*$'"));
+    EXPECT_FALSE(eval("'" + std::string(40, 'a') + "!' =~ '^(a+)+$'"));
+    // a back-reference is an error; a backslash and 19 digits (found by fuzzing:
+    // std::regex overflowed a signed integer reading them as one) an octal escape and
+    // digits, which 'a' does not match
+    EXPECT_FALSE(eval("'aa' =~ '(a)\\1'", &why));
+    EXPECT_NE(why.find("bad regular expression"), std::string::npos) << why;
+    why.clear();
+    EXPECT_FALSE(eval("'a' =~ '\\5555555555555555555'", &why));
+    EXPECT_EQ(why, "");
     EXPECT_LT(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10);
 }
