@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <unordered_map>
 
 namespace rd {
@@ -12,8 +13,10 @@ namespace rd {
 namespace {
 
 constexpr float kThreshold = 0.5f;
-// A vertex no blob reaches takes the mean of at most this many leaves (else 0).
-constexpr int kMeanOfLeavesUpTo = 64;
+// The most leaves a vertex's value blends: the strongest fields where more blobs reach
+// it (dense blobs would otherwise list hundreds a vertex); a vertex no blob reaches
+// takes the mean of at most this many leaves (else 0).
+constexpr size_t kLeavesAVertex = 8;
 
 // Wyvill's soft-object falloff of r^2 (1 at 0, 0.5 at r = 0.5, 0 from r = 1 on).
 float falloff(float r2) {
@@ -210,19 +213,25 @@ void weighLeaves(const Field& field, const std::vector<int>& leafOf,
         int(std::count_if(leafOf.begin(), leafOf.end(), [](int l) { return l >= 0; }));
     out.start.assign(1, 0);
     out.leaf.clear(), out.weight.clear();
+    std::vector<std::pair<float, int>> near;  // (field, leaf) of the blobs reaching p
     for (const glm::vec3& p : points) {
-        const size_t first = out.leaf.size();
+        near.clear();
+        field.reaching(p,
+                       [&](int k, float f) { near.emplace_back(f, leafOf[size_t(k)]); });
+        if (near.size() > kLeavesAVertex) {  // the strongest: a bound on the lists
+            std::nth_element(near.begin(), near.begin() + kLeavesAVertex - 1, near.end(),
+                             std::greater<>());
+            near.resize(kLeavesAVertex);
+        }
         float sum = 0.0f;
-        field.reaching(p, [&](int k, float f) {
-            out.leaf.push_back(leafOf[size_t(k)]);
-            out.weight.push_back(f);
-            sum += f;
-        });
+        for (const auto& [f, leaf] : near) sum += f;
         if (sum > 0.0f && std::isfinite(sum)) {
-            for (size_t k = first; k < out.weight.size(); ++k) out.weight[k] /= sum;
-        } else {  // (every leaf, where there are few: a bound on the lists)
-            out.leaf.resize(first), out.weight.resize(first);
-            for (int l = 0; l < leaves && leaves <= kMeanOfLeavesUpTo; ++l) {
+            for (const auto& [f, leaf] : near) {
+                out.leaf.push_back(leaf);
+                out.weight.push_back(f / sum);
+            }
+        } else if (leaves <= int(kLeavesAVertex)) {
+            for (int l = 0; l < leaves; ++l) {
                 out.leaf.push_back(l);
                 out.weight.push_back(1.0f / float(leaves));
             }

@@ -28,10 +28,10 @@ bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& fl
 // RI gives a Blobby's vertex and varying values one a leaf (its primitive fields, in code
 // order from 0, constants and repelling planes counted). A surface point's value is
 // their mean weighted by each ellipsoid's and segment blob's own field there (as the
-// blobs blend, so do their values; PRMan's appnote 31): for vertex i, the leaves
-// leaf[start[i] .. start[i + 1]) with weights summing to 1. A point no blob reaches (a
-// level set at the very edge of their reach) takes the plain mean of every leaf, or 0
-// past 64 leaves.
+// blobs blend, so do their values; PRMan's appnote 31), the eight strongest where more
+// reach it: for vertex i, the leaves leaf[start[i] .. start[i + 1]) with weights summing
+// to 1. A point no blob reaches (a level set at the very edge of their reach) takes the
+// plain mean of every leaf, or 0 past eight leaves.
 struct BlobbyLeafWeights {
     std::vector<size_t> start;
     std::vector<int> leaf;

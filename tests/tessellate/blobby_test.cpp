@@ -117,6 +117,17 @@ TEST(Blobby, DegenerateBlobsAreLeftOut) {
         << err;
     ASSERT_FALSE(m.mesh.p.empty());
     for (const glm::vec3& p : m.mesh.p) EXPECT_NEAR(glm::length(p), 0.5f, 0.005f);
+    // per-blob values come from the one blob that reaches anything (leaf 0) alone
+    SurfaceMesh w;
+    BlobbyLeafWeights weights;
+    ASSERT_TRUE(tessellateBlobby({1001, 0, 1001, 16, 1001, 32, 0, 3, 0, 1, 2}, f, 128, w,
+                                 &err, &note, &weights));
+    ASSERT_EQ(weights.start.size(), w.mesh.p.size() + 1);
+    for (size_t i = 0; i < w.mesh.p.size(); ++i) {
+        ASSERT_EQ(weights.start[i + 1] - weights.start[i], 1u);
+        EXPECT_EQ(weights.leaf[weights.start[i]], 0);
+        EXPECT_EQ(weights.weight[weights.start[i]], 1.0f);
+    }
 }
 
 // Per-blob values (BlobbyLeafWeights): two unit blobs at x = -0.6 and 0.6 added, behind a
@@ -162,4 +173,25 @@ TEST(Blobby, LeafWeightsAreTheBlobsFieldsShares) {
     }
     EXPECT_GT(alone, 100);
     EXPECT_GT(shared, 10);
+    // twenty blobs in one place (a surface of radius about 0.95): each vertex blends the
+    // eight strongest, a bound on the lists, with weights summing to 1
+    std::vector<int> code;
+    std::vector<float> same;
+    for (int i = 0; i < 20; ++i) {
+        code.insert(code.end(), {1001, 16 * i});
+        const std::vector<float> unit = matrix(1, 1, 1, 0, 0, 0);
+        same.insert(same.end(), unit.begin(), unit.end());
+    }
+    code.insert(code.end(), {0, 20});
+    for (int i = 0; i < 20; ++i) code.push_back(i);
+    SurfaceMesh dense;
+    ASSERT_TRUE(tessellateBlobby(code, same, 64, dense, &err, &note, &w)) << err;
+    ASSERT_FALSE(dense.mesh.p.empty());
+    ASSERT_EQ(w.start.size(), dense.mesh.p.size() + 1);
+    for (size_t i = 0; i < dense.mesh.p.size(); ++i) {
+        ASSERT_EQ(w.start[i + 1] - w.start[i], 8u);
+        double sum = 0;
+        for (size_t k = w.start[i]; k < w.start[i + 1]; ++k) sum += w.weight[k];
+        EXPECT_NEAR(sum, 1.0, 1e-6);
+    }
 }
