@@ -340,10 +340,10 @@ private:
     void curvesPointParams(const rib::ParamList& params, const CurvesInput& in,
                            const std::vector<glm::vec2>& uv, const std::vector<int>& faceIndex,
                            VertexData& mesh);
-    // Points: each disc (faceIndex: its point) has its point's value all over.
     // A Blobby's per-leaf values blended at its vertices (BlobbyLeafWeights).
     void blobbyPointParams(const rib::ParamList& params, const BlobbyLeafWeights& weights,
                            VertexData& mesh);
+    // Points: each disc (faceIndex: its point) has its point's value all over.
     void pointsPointParams(const rib::ParamList& params, const std::vector<int>& faceIndex,
                            VertexData& mesh);
     // General polygons (their tessellation's vertices are the points of P; faceIndex
