@@ -2,8 +2,8 @@
 // what is truly displaced, compile its shaders, pick the features its kernels need),
 // build the BVH and the specialised programs, upload; then the passes of the sample plan
 // stream through the ray pool in rounds (render_loop.h), and the frame's figures are
-// gathered for --stats. The first pass is planned, and the programs built, on other
-// threads while the BVH is built.
+// gathered for --stats (frame_finish.h). The first pass is planned, and the programs
+// built, on other threads while the BVH is built.
 #include "renderer.h"
 
 #include <algorithm>
@@ -19,13 +19,12 @@
 #include "device_film_sums.h"
 #include "device_pixel_tests.h"
 #include "device_scene.h"
-#include "imager_stage.h"
+#include "frame_finish.h"
 #include "pass_planning.h"
 #include "ray_pool.h"
 #include "refill.h"
 #include "render_loop.h"
 #include "render_programs.h"
-#include "render_summary.h"
 #include "sample_ring.h"
 #include "scene_bvh.h"
 #include "shaders/shader_aovs.h"
@@ -151,6 +150,190 @@ void clearFilm(Film& film, const Camera& cam, const Scene& scene,
     film.colours = scene.colors;
 }
 
+// The scene a frame renders: the input, or a copy of it whose truly displaced surfaces
+// are diced (dice_displaced.h), their micropolygons moved once the shading program is
+// built.
+struct FrameScene {
+    std::optional<Scene> diced;
+    DicedSurfaces surfaces;
+    DicingView view;
+};
+
+FrameScene diceTrueDisplacement(const Scene& input, rib::Diagnostics& diag) {
+    FrameScene fs;
+    if (!hasTrueDisplacement(input)) return fs;
+    fs.view = dicingViewOf(input.deviceCamera());
+    fs.diced.emplace(input);
+    fs.surfaces = diceDisplacedSurfaces(*fs.diced, fs.view,
+                                        input.render.dicedTriangles > 0
+                                            ? size_t(input.render.dicedTriangles)
+                                            : kMaxDicedTriangles);
+    reportDicing(fs.surfaces, input, diag);
+    return fs;
+}
+
+// When the frame stops besides its samples: the command line wins over Option "render".
+struct FrameBudgets {
+    double time = 0;   // seconds; 0: none
+    double error = 0;  // the film's relative error; 0: none
+};
+
+FrameBudgets frameBudgets(const RenderSettings& settings, const Scene& scene) {
+    return {settings.timeBudget > 0 ? settings.timeBudget : scene.render.time,
+            settings.errorTarget > 0 ? settings.errorTarget : scene.render.error};
+}
+
+// The ray pool's shape (RayPool::capacityFor): what each ray carries, the rays a round.
+struct PoolShape {
+    uint32_t shadowSlots = 0;  // shadow rays a shaded ray may send
+    size_t spawn = 0;          // rays a shaded ray may spawn
+    cl_uint shaderCount = 0;   // shade kernels: the sort's keys, less the misses'
+    size_t weightFloats = 0, aovFloats = 0, rayAovFloats = 0;
+    bool shaderShadows = false;
+    size_t capacity = 0;
+    size_t bytesPerRay() const {
+        return RayPool::bytesPerRay(spawn, shadowSlots, weightFloats, aovFloats,
+                                    rayAovFloats, shaderShadows);
+    }
+    // Pixel jobs at most a quarter of the pool, so that several pixels share a round.
+    uint32_t maxJob() const { return uint32_t(std::max<size_t>(1, capacity / 4)); }
+};
+
+PoolShape poolShapeOf(const Features& f, const ShadingSetup& shading,
+                      const ClContext& ctx, size_t wanted) {
+    PoolShape p;
+    p.shadowSlots = f.shadowSlots();
+    p.spawn = size_t(f.spawnSlots());
+    p.shaderCount = cl_uint(shading.shadeKernels.size());
+    p.weightFloats = RayPool::weightFloatsOf(f.colors.n);
+    p.aovFloats = size_t(f.shaderAovFloats);
+    p.rayAovFloats = size_t(f.rayAovFloats());
+    p.shaderShadows = f.shaderShadows;
+    p.capacity =
+        RayPool::capacityFor(wanted, ctx.info(), p.spawn, p.shadowSlots, p.weightFloats,
+                             p.aovFloats, p.rayAovFloats, p.shaderShadows);
+    return p;
+}
+
+// The first pass, planned (with its first refill staged: the ring is empty and the round
+// cap the pool until then) on another thread while the BVH and the programs are built,
+// as it needs no film (on a small frame it costs as much as a round); with the memory
+// the device's tests of every pixel answer in (devicePixelTests).
+struct FirstPass {
+    std::deque<PlannedJob> jobs;
+    RefillStage refill;
+    std::optional<PixelTestMemory> testMemory;
+    double planMs = 0;
+};
+
+FirstPass planFirstPass(std::optional<SamplePlanner>& planner, const Camera& cam,
+                        const Film& film, const SamplingSettings& ss, double errorTarget,
+                        const PoolShape& pool, SampleRing& ring, bool testsOnDevice) {
+    const auto tp = Clock::now();
+    const size_t pixels = size_t(cam.width) * size_t(cam.height);
+    planner.emplace(cam.width, cam.height, film.cropX0, film.cropX1, film.cropY0,
+                    film.cropY1, ss);
+    // (a first pass without blocks reads the film: all zeros yet)
+    const FilmPixels none(ss.firstPassBlock > 1 ? 0 : pixels);
+    FirstPass first;
+    first.jobs = planJobs(
+        planner->nextPass(none, errorTarget > 0 ? float(errorTarget) : ss.pixelError),
+        pool.maxJob(), pixels);
+    stageRefill(ring, first.jobs, pool.capacity, first.refill);
+    if (testsOnDevice) first.testMemory.emplace(*planner, cam.width, cam.height);
+    first.planMs = secondsSince(tp) * 1e3;
+    return first;
+}
+
+// The device's texture tiles: the command line's, else Option "limits" "texturememory",
+// else (0) every tile when they fit in 256 MiB.
+size_t textureCacheTiles(const RenderSettings& settings, const Scene& scene) {
+    if (settings.textureCacheTiles > 0 || scene.render.textureMemoryKB <= 0)
+        return settings.textureCacheTiles;
+    return size_t(scene.render.textureMemoryKB) * 1024 /
+           (sizeof(rt_float4) * RT_TEX_TILE_TEXELS);
+}
+
+// Truly displaced surfaces are moved before their tree is built, by the shading
+// program: this waits for it, which is then returned.
+std::optional<RenderPrograms> displaceBeforeTheTree(
+    const ClContext& ctx, std::future<RenderPrograms>& programBuild, FrameScene& fs,
+    const Features& f, const ShadingSetup& shading, TextureSet& textures, Profiler& prof,
+    RenderStats& st, rib::Diagnostics& diag) {
+    std::optional<RenderPrograms> built;
+    if (fs.diced && !fs.surfaces.vertexCorner.empty()) {
+        built.emplace(programBuild.get());
+        const auto td = Clock::now();
+        const DisplacementReport dr = displaceDicedSurfaces(
+            ctx, built->shade->get(), prof, *fs.diced, fs.surfaces, f, shading, textures,
+            fs.view, fs.view.perspective ? 0.0f : fs.view.pixelWidth);
+        st.displacedVertices = dr.vertices;
+        st.displaceMs = secondsSince(td) * 1e3;
+        reportDisplacement(dr, *fs.diced, diag);
+    }
+    st.dicedTriangles = fs.surfaces.cornerVertex.size() / 3;
+    return built;
+}
+
+// Every ray of the pool in pool order: the one shader's run, which is never sorted.
+std::vector<uint32_t> poolOrder(size_t pool) {
+    std::vector<uint32_t> order(pool);
+    for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
+    return order;
+}
+
+// The shaders' uniform work, once per instance, into the parameter blocks.
+void prepareUniforms(const ClContext& ctx, const RenderPrograms& programs,
+                     const ShadingSetup& shading, DeviceScene& ds, Profiler& prof) {
+    if (shading.prepares.empty()) return;
+    Kernel prepare(ctx, programs.shade->get(), "rd_prepare_uniforms", prof);
+    prepare.launch(shading.prepares.size(), cl_uint(shading.prepares.size()), ds.params);
+    prepare.collectActive();
+}
+
+// The treelet tracer, cut from the tree the program walks, where the features chose it
+// (instead of the two intersect launches).
+std::unique_ptr<TreeletTracer> treeletTracer(const ClContext& ctx,
+                                             const RenderSettings& settings,
+                                             const Scene& scene, const SceneBvh& bvh,
+                                             cl_program trace, Profiler& prof,
+                                             size_t treeletBudget, size_t pool,
+                                             TreeletStats& stats) {
+    const size_t sceneMemory = settings.sceneMemoryBytes > 0
+                                   ? settings.sceneMemoryBytes
+                                   : size_t(scene.render.sceneMemoryKB) << 10;
+    return withTree(bvh, [&](const auto& tree) {
+        return std::make_unique<TreeletTracer>(ctx, trace, prof, tree, treeletBudget,
+                                               sceneMemory, pool, stats);
+    });
+}
+
+PassTargets passTargets(const SamplingSettings& ss, const FrameBudgets& budgets,
+                        const Features& f, const RenderSettings& settings,
+                        uint32_t maxJob) {
+    PassTargets t;
+    t.pixelError = ss.pixelError;
+    t.errorTarget = budgets.error;
+    t.timeBudget = budgets.time;
+    t.sobol = f.sobol;
+    t.errorSeriesSec = settings.errorSeriesSec;
+    t.maxJob = maxJob;
+    return t;
+}
+
+FrameLimits frameLimits(const SamplingSettings& ss, const FrameBudgets& budgets,
+                        const RenderSettings& settings, const Film& film, size_t pool) {
+    FrameLimits l;
+    l.pool = pool;
+    l.timeBudget = budgets.time;
+    l.errorTarget = budgets.error;
+    // Passes overlap when a pass can follow the first.
+    l.overlapPasses =
+        settings.overlapPasses && (ss.maxSamples > ss.minSamples || budgets.error > 0);
+    l.plannedSamples = double(film.cropPixelCount() * ss.maxSamples);
+    return l;
+}
+
 }  // namespace
 
 Renderer::Renderer(const ClContext& ctx, const RenderSettings& settings)
@@ -159,30 +342,15 @@ Renderer::Renderer(const ClContext& ctx, const RenderSettings& settings)
 RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& diag) {
     const auto t0 = Clock::now();
     RenderStats st;
-    // Truly displaced surfaces are diced first (dice_displaced.h): the render is of a
-    // copy of the scene with their micropolygons, moved once the shading program is
-    // built.
-    std::optional<Scene> dicedScene;
-    DicedSurfaces diced;
-    const bool dicing = hasTrueDisplacement(input);
-    const DicingView dicingView =
-        dicing ? dicingViewOf(input.deviceCamera()) : DicingView{};
-    if (dicing) {
-        dicedScene.emplace(input);
-        diced = diceDisplacedSurfaces(*dicedScene, dicingView,
-                                      input.render.dicedTriangles > 0
-                                          ? size_t(input.render.dicedTriangles)
-                                          : kMaxDicedTriangles);
-        reportDicing(diced, input, diag);
-    }
-    const Scene& scene = dicedScene ? *dicedScene : input;
+    FrameScene frameScene = diceTrueDisplacement(input, diag);
+    const Scene& scene = frameScene.diced ? *frameScene.diced : input;
     st.device = m_ctx.name();
     st.platform = m_ctx.info().platformName;
     st.threadsPinned = m_ctx.info().isPocl() && poclThreadsPinned();
-    // The scene's RSL shaders, compiled and bound: they decide lights, trace and more.
+    // The scene's RSL shaders, compiled and bound: they decide lights, trace and more;
+    // the textures they may ask for; the features the kernels need.
     const std::vector<std::string> aovNames = frameAovNames(scene, m_settings);
     ShadingSetup shading = ShaderSet(scene, diag).prepare(aovNames);
-    // The textures those shaders may ask for.
     TextureSet textures(texturePathOf(scene), textureCacheDir(), diag,
                         rib::SourceLoc{scene.sourceFile, 0});
     if (shading.textures)
@@ -193,64 +361,25 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     const Features f = frameFeatures(scene, shading, textures, aovNames, m_settings,
                                      m_ctx, treeletBudget, st, diag);
     st.features = f;
+    const FrameBudgets budgets = frameBudgets(m_settings, scene);
 
-    // Budgets: the command line wins over Option "render".
-    const double timeBudget = m_settings.timeBudget > 0 ? m_settings.timeBudget
-                                                        : scene.render.time;
-    const double errorTarget = m_settings.errorTarget > 0 ? m_settings.errorTarget
-                                                          : scene.render.error;
-
-    const uint32_t nl = f.shadowSlots();
-    const size_t spawn = size_t(f.spawnSlots());
-    const cl_uint shaderCount = cl_uint(shading.shadeKernels.size());
-    // The pool (RayPool::capacityFor); the sample slots kSlotsPerRay times it, pixel jobs
-    // at most a quarter of it so several pixels share a round.
-    const size_t weightFloats = RayPool::weightFloatsOf(f.colors.n);
-    const size_t aovFloats = size_t(f.shaderAovFloats);
-    const size_t rayAovFloats = size_t(f.rayAovFloats());
-    const size_t pool = RayPool::capacityFor(m_settings.poolCapacity, m_ctx.info(), spawn,
-                                             nl, weightFloats, aovFloats, rayAovFloats,
-                                             f.shaderShadows);
-    st.poolCapacity = pool;
-    st.poolBytesPerRay =
-        RayPool::bytesPerRay(spawn, nl, weightFloats, aovFloats, rayAovFloats, f.shaderShadows);
-    SampleRing ring(RayPool::kSlotsPerRay * pool);
-    const uint32_t maxJob = uint32_t(std::max<size_t>(1, pool / 4));
-    // Sampling: the first pass needs no film, so it is planned on another thread while
-    // the BVH and the program are built (on a small frame it costs as much as a round).
+    // The pool and its sample slots (kSlotsPerRay a ray); the first pass planned on
+    // another thread while the programs and the BVH are built.
+    const PoolShape shape = poolShapeOf(f, shading, m_ctx, m_settings.poolCapacity);
+    st.poolCapacity = shape.capacity;
+    st.poolBytesPerRay = shape.bytesPerRay();
+    SampleRing ring(RayPool::kSlotsPerRay * shape.capacity);
     const Camera cam0 = scene.deviceCamera();
     scene.camera.cropPixels(film.cropX0, film.cropX1, film.cropY0, film.cropY1);
-    const SamplingSettings ss =
-        frameSampling(scene, m_settings, cam0, film, timeBudget > 0 || errorTarget > 0);
+    const SamplingSettings ss = frameSampling(scene, m_settings, cam0, film,
+                                              budgets.time > 0 || budgets.error > 0);
     std::optional<SamplePlanner> planner;
-    double firstPlanMs = 0;
-    // (and its first refill staged: the ring is empty and the round cap the pool until then)
-    // (and the memory the device's tests of every pixel answer in: devicePixelTests)
     const bool testsOnDevice =
         m_settings.devicePixelTests && m_ctx.info().fp64 &&
         size_t(cam0.width) * size_t(cam0.height) >= m_settings.devicePixelTestsFrom;
-    struct FirstPass {
-        std::deque<PlannedJob> jobs;
-        RefillStage refill;
-        std::optional<PixelTestMemory> testMemory;
-    };
     std::future<FirstPass> firstPass = std::async(std::launch::async, [&] {
-        const auto tp = Clock::now();
-        planner.emplace(cam0.width, cam0.height, film.cropX0, film.cropX1, film.cropY0,
-                        film.cropY1, ss);
-        // (a first pass without blocks reads the film: all zeros yet)
-        const FilmPixels none(
-            ss.firstPassBlock > 1 ? 0 : size_t(cam0.width) * size_t(cam0.height));
-        std::deque<PlannedJob> jobs = planJobs(
-            planner->nextPass(none, errorTarget > 0 ? float(errorTarget) : ss.pixelError),
-            maxJob, size_t(cam0.width) * size_t(cam0.height));
-        RefillStage stage;
-        stageRefill(ring, jobs, pool, stage);
-        std::optional<PixelTestMemory> testMemory;
-        if (testsOnDevice)
-            testMemory.emplace(*planner, cam0.width, cam0.height);
-        firstPlanMs = secondsSince(tp) * 1e3;
-        return FirstPass{std::move(jobs), std::move(stage), std::move(testMemory)};
+        return planFirstPass(planner, cam0, film, ss, budgets.error, shape, ring,
+                             testsOnDevice);
     });
 
     // Scene -> BVH -> specialised programs (trace, shading) -> device arrays. The programs
@@ -258,29 +387,11 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     // build is a second or more of the compiler, a warm one 40-60 ms on PoCL).
     std::future<RenderPrograms> programBuild = std::async(
         std::launch::async, [&] { return RenderPrograms(m_ctx, shading, buildOptions(f)); });
-    // Textures: the device tile cache (Option "limits" "texturememory" or the command
-    // line; else every tile when they fit in 256 MiB).
-    size_t cacheTiles = m_settings.textureCacheTiles;
-    if (cacheTiles == 0 && scene.render.textureMemoryKB > 0)
-        cacheTiles = size_t(scene.render.textureMemoryKB) * 1024 /
-                     (sizeof(rt_float4) * RT_TEX_TILE_TEXELS);
-    textures.createDevice(m_ctx, f.textures ? cacheTiles : 1);
+    textures.createDevice(m_ctx, f.textures ? textureCacheTiles(m_settings, scene) : 1);
     Profiler prof(m_ctx);
     if (m_settings.timeline) prof.keepTimeline();
-    // Displacement moves the diced surfaces before their tree is built: it waits for
-    // the program.
-    std::optional<RenderPrograms> builtEarly;
-    if (dicedScene && !diced.vertexCorner.empty()) {
-        builtEarly.emplace(programBuild.get());
-        const auto td = Clock::now();
-        const DisplacementReport dr = displaceDicedSurfaces(
-            m_ctx, builtEarly->shade->get(), prof, *dicedScene, diced, f, shading,
-            textures, dicingView, dicingView.perspective ? 0.0f : dicingView.pixelWidth);
-        st.displacedVertices = dr.vertices;
-        st.displaceMs = secondsSince(td) * 1e3;
-        reportDisplacement(dr, scene, diag);
-    }
-    st.dicedTriangles = diced.cornerVertex.size() / 3;
+    std::optional<RenderPrograms> builtEarly = displaceBeforeTheTree(
+        m_ctx, programBuild, frameScene, f, shading, textures, prof, st, diag);
     auto tb = Clock::now();
     SceneBvh sceneBvh = buildSceneBvh(scene, f.bvhWidth);
     st.bvhBuildMs = secondsSince(tb) * 1e3;
@@ -288,13 +399,10 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     // The device's arrays and the ray pool while the programs build (a warm build of the
     // two is 60-70 ms on PoCL, most of it its preprocessor)
     DeviceScene ds(m_ctx, scene, sceneBvh, f, shading);
-    RayPool rp(m_ctx, pool, spawn, nl, ring.slotCapacity(), f.aovs, f.motion, f.instances,
-               shaderCount + 1, weightFloats, aovFloats, rayAovFloats, f.shaderShadows);
-    if (shaderCount == 1) {  // the one shader's run: every ray in pool order
-        std::vector<uint32_t> order(pool);
-        for (size_t i = 0; i < pool; ++i) order[i] = uint32_t(i);
-        rp.sorted.upload(order);
-    }
+    RayPool rp(m_ctx, shape.capacity, shape.spawn, shape.shadowSlots, ring.slotCapacity(),
+               f.aovs, f.motion, f.instances, shape.shaderCount + 1, shape.weightFloats,
+               shape.aovFloats, shape.rayAovFloats, shape.shaderShadows);
+    if (shape.shaderCount == 1) rp.sorted.upload(poolOrder(shape.capacity));
     const RenderPrograms programs =
         builtEarly ? std::move(*builtEarly) : programBuild.get();
     st.program = programs.info();
@@ -304,35 +412,29 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
                     shading.shadeKernels);
     if (f.shadowPackets) k.intersectShadow.setLanesPerItem(RT_PACKET_RAYS);
     if (f.closestPackets) k.intersectClosest.setLanesPerItem(RT_PACKET_RAYS);
-    if (!shading.prepares.empty()) {  // the shaders' uniform work, once per instance
-        Kernel prepare(m_ctx, programs.shade->get(), "rd_prepare_uniforms", prof);
-        prepare.launch(shading.prepares.size(), cl_uint(shading.prepares.size()), ds.params);
-        prepare.collectActive();
-    }
-    const Camera& cam = ds.camera;
-    std::unique_ptr<TreeletTracer> treelets;  // instead of the two intersect launches
-    if (f.treelets) {  // cut from the tree the program walks
-        const size_t sceneMemory = m_settings.sceneMemoryBytes > 0
-                                       ? m_settings.sceneMemoryBytes
-                                       : size_t(scene.render.sceneMemoryKB) << 10;
-        treelets = withTree(sceneBvh, [&](const auto& tree) {
-            return std::make_unique<TreeletTracer>(m_ctx, programs.trace->get(), prof, tree,
-                                                   treeletBudget, sceneMemory, pool, st.treelets);
-        });
-    }
+    prepareUniforms(m_ctx, programs, shading, ds, prof);
+    const std::unique_ptr<TreeletTracer> treelets =
+        f.treelets
+            ? treeletTracer(m_ctx, m_settings, scene, sceneBvh, programs.trace->get(),
+                            prof, treeletBudget, shape.capacity, st.treelets)
+            : nullptr;
     const TraceScene traceScene{ds.quadrics,      ds.csg,    ds.triangles, ds.quadricMotion,
                                 ds.trianglesEnd, rp.sample, rp.sampleTime};
     const ShadowSurfaces shadowSurfaces{ds.attrs,  ds.materials,          ds.materialChannels,
                                         rp.shAov,  f.maxTransparentDepth, rp.slotRays};
     // The lists of points to shade again once the tiles they missed are there.
-    TextureReshade reshade(m_ctx, textures, pool, shaderCount, f.textures);
+    TextureReshade reshade(m_ctx, textures, shape.capacity, shape.shaderCount,
+                           f.textures);
+
+    // The film, zeroed. Its buffers are the film's own memory (on a CPU device; a GPU
+    // copies it at each sync). The host reads them after syncToHost only, when no kernel
+    // that writes them is in flight: the round's finish precedes every sync, and planning
+    // runs between passes.
+    const Camera& cam = ds.camera;
     clearFilm(film, cam, scene, shading, f);
-    // The film buffer is the film's own memory (on a CPU device; a GPU copies it at each
-    // sync). The host reads it after syncToHost only, when no kernel that writes it is in
-    // flight: the round's finish precedes every sync, and planning runs between passes.
     DeviceBuffer<PixelAccum> filmBuf(m_ctx, film.pixels);
-    DeviceBuffer<AovAccum> aovBuf(m_ctx, film.aovs);              // likewise
-    DeviceBuffer<float> shaderAovBuf(m_ctx, film.shaderAovSums);  // likewise
+    DeviceBuffer<AovAccum> aovBuf(m_ctx, film.aovs);
+    DeviceBuffer<float> shaderAovBuf(m_ctx, film.shaderAovSums);
     // numerics.clh RT_NUM_* counters, then a flag per archive not loaded yet
     DeviceBuffer<uint32_t> numerics(m_ctx, kProceduralFlags + scene.procedurals.size());
     numerics.fillZero();
@@ -347,68 +449,27 @@ RenderStats Renderer::render(const Scene& input, Film& film, rib::Diagnostics& d
     if (testsOnDevice) filmSums.emplace(m_ctx, programs.trace->get(), prof, filmBuf, film);
     st.sceneSetupMs = secondsSince(t0) * 1e3;
 
-    PassTargets targets;
-    targets.pixelError = ss.pixelError;
-    targets.errorTarget = errorTarget;
-    targets.timeBudget = timeBudget;
-    targets.sobol = f.sobol;
-    targets.errorSeriesSec = m_settings.errorSeriesSec;
-    targets.maxJob = maxJob;
-    PassPlanning planning(targets, film, filmBuf, planner, ring, prof, st, t0, [&] {
-        return uint64_t(k.intersectClosest.peekActive() + k.intersectShadow.peekActive() +
-                        (treelets ? treelets->peekRays() : 0));
-    });
+    // The passes, streamed through the pool in rounds (render_loop.h), then the end of
+    // the frame (frame_finish.h).
+    PassPlanning planning(passTargets(ss, budgets, f, m_settings, shape.maxJob()), film,
+                          filmBuf, planner, ring, prof, st, t0, [&] {
+                              return uint64_t(k.intersectClosest.peekActive() +
+                                              k.intersectShadow.peekActive() +
+                                              (treelets ? treelets->peekRays() : 0));
+                          });
     const FrameDevice device{
         m_ctx, scene,          f,          shading,        ds,           rp,
         k,     treelets.get(), traceScene, shadowSurfaces, textures,     reshade,
         prof,  ring,           filmBuf,    aovBuf,         shaderAovBuf, numerics};
-    FrameLimits limits;
-    limits.pool = pool;
-    limits.timeBudget = timeBudget;
-    limits.errorTarget = errorTarget;
-    // Passes overlap when a pass can follow the first.
-    limits.overlapPasses =
-        m_settings.overlapPasses && (ss.maxSamples > ss.minSamples || errorTarget > 0);
-    limits.plannedSamples = double(film.cropPixelCount() * ss.maxSamples);
-    RenderLoop loop(device, m_settings, limits, planning, *planner, st, t0);
-    loop.run(std::move(first->jobs), std::move(first->refill), firstPlanMs);
+    RenderLoop loop(device, m_settings,
+                    frameLimits(ss, budgets, m_settings, film, shape.capacity), planning,
+                    *planner, st, t0);
+    loop.run(std::move(first->jobs), std::move(first->refill), first->planMs);
     first.reset();
-    if (shading.imager) {  // the Imager shader on the finished image (also a stopped one)
-        filmBuf.syncToHost();
-        film.imaged = applyImager(m_ctx, programs.shade->get(), prof, film, ds.params);
-    } else {  // the film's sync overlaps the profiler's reads; collectActive waits for it
-        filmBuf.syncToHost(/*blocking=*/false);
-    }
-    if (filmSums) filmSums->launch();
-    aovBuf.syncToHost(/*blocking=*/false);
-    shaderAovBuf.syncToHost(/*blocking=*/false);
-    std::vector<uint32_t> num, texCounts;
-    numerics.downloadInto(num, /*blocking=*/false);
-    if (f.textures) textures.counterBuf.downloadInto(texCounts, /*blocking=*/false);
-    prof.collect();
-    std::vector<Kernel*> kernels = k.all();
-    if (pixelTests) {
-        for (Kernel* t : pixelTests->kernels()) kernels.push_back(t);
-    }
-    if (filmSums) kernels.push_back(&filmSums->kernel());
-    Kernel::collectActive(kernels);
-    if (treelets) treelets->collectActive();
-    m_ctx.finish();  // the copies above
-    st.kernels = prof.stats();
-    st.timeline = prof.timeline();
-    if (f.textures) {
-        textures.stats().lookups = texCounts[1];
-        textures.stats().missedLookups = texCounts[2];
-        st.textures = textures.stats();
-    }
-    summariseRays(st, num, f.maxTransparentDepth, diag, rib::SourceLoc{scene.sourceFile, 0});
-    const std::optional<FilmSummary> filmSummary =
-        filmSums ? std::optional<FilmSummary>(filmSums->summary()) : std::nullopt;
-    summariseFilm(st, film, f.sobol, ss.maxSamples >= 2, filmSummary ? &*filmSummary : nullptr);
-    st.passes = planner->passes();
-    st.elapsedSec = secondsSince(t0);
-    summariseOccupancy(st, treelets != nullptr, prof.launchGapsMs());
-    st.errorVsTime.push_back({st.elapsedSec, st.totalRays(), st.estimatedError});
+    finishFrame(device,
+                FrameEnd{film, programs.shade->get(), pixelTests ? &*pixelTests : nullptr,
+                         filmSums ? &*filmSums : nullptr, *planner, ss.maxSamples >= 2},
+                st, diag, t0);
     return st;
 }
 
