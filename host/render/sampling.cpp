@@ -140,10 +140,8 @@ std::vector<uint32_t> SamplePlanner::testSetInTileOrder() const {
     return visit;
 }
 
-const std::vector<PixelRequest>& SamplePlanner::nextPass(const FilmPixels& film,
-                                                         float pixelError,
-                                                         const std::vector<uint8_t>& busy) {
-    std::vector<PixelRequest>& out = m_out;
+const std::vector<PixelRequest>& SamplePlanner::nextPass(
+    const FilmPixels& film, float pixelError, const std::vector<uint8_t>& busy) {
     if (m_pass == 0 && m_settings.firstPassBlock > 1) return firstBlockPass();
     // A pixel's answer depends on its own samples, its neighbours' means and its relative
     // error against the pass's pixel error. A pixel that answered "no" when last tested (a
@@ -164,84 +162,93 @@ const std::vector<PixelRequest>& SamplePlanner::nextPass(const FilmPixels& film,
     // (visiting the test set alone, every pixel visited is in it)
     const std::vector<uint8_t> test = pixelsToTest(all || testedOnly);
     if (all && m_tester) return passFromTester(film, floor, pixelError, busy);
-    // The pixels of `order` in [begin, end): their requests, the pixels sampled and those
-    // left busy (deferred: tested next pass, with their neighbours).
-    struct Part {
-        std::vector<PixelRequest> out;
-        std::vector<uint32_t> sampled, deferred;
-    };
+    const PassVisit v{film, busy, test, floor, pixelError, floorFell};
     const std::vector<uint32_t>& order = testedOnly ? visit : m_tileOrder;
-    // A batch of pixels is measured before any is decided: with no branch between them
-    // the core overlaps their loads and divisions (a 512x512 full test on one thread took
-    // 8-9 ms measured and decided pixel by pixel).
-    auto request = [&](uint32_t pixel, Part& part) {
-        const PixelAccum& p = film[pixel];
-        const uint32_t n = p.count;
-        // Sequence indices already used include samples dropped as NaN/Inf: never reuse.
-        const uint32_t used = n + p.nonfinite;
-        uint32_t target = std::max(m_settings.minSamples, std::max(1u, 2 * n));
-        target = std::min(target, m_settings.maxSamples);
-        if (target > n) part.out.push_back({pixel, used, target - n}), part.sampled.push_back(pixel);
-    };
-    auto plan = [&](size_t begin, size_t end, Part& part) {
-        uint32_t batch[kPixelBatch];
-        float relErr[kPixelBatch];
-        uint8_t edge[kPixelBatch];
-        size_t k = begin;
-        while (k < end) {
-            // The next batch of pixels to measure. Busy ones are set aside (SPD teapot at 9
-            // samples a pixel: 20-28k of the 30k pixels a pass visits), and so are those
-            // that answer "no" as before without a test.
-            size_t count = 0;
-            for (; k < end && count < kPixelBatch; ++k) {
-                const uint32_t pixel = order[k];
-                if (!busy.empty() && busy[pixel]) {
-                    part.deferred.push_back(pixel);
-                    continue;
-                }
-                if (!test.empty() && !test[pixel] && m_relErr[pixel] <= pixelError) {
-                    const PixelAccum& p = film[pixel];
-                    if (!floorFell || m_meanOf[pixel] >= m_lastFloor) continue;
-                    if (p.sum_sq.x == 0.0f && p.sum_sq.y == 0.0f && p.sum_sq.z == 0.0f) continue;  // black
-                    // Under the fallen floor its error grew by at most the floors' ratio:
-                    // while that bound stays within the pixel error it answers "no" again,
-                    // and the bound is kept as its error (an upper bound from here on).
-                    const float bound = m_relErr[pixel] * (m_lastFloor / floor);
-                    if (bound <= pixelError) {
-                        m_relErr[pixel] = bound;
-                        continue;
-                    }
-                }
-                __builtin_prefetch(&film[pixel]);  // (measured once the batch is full)
-                batch[count++] = pixel;
-            }
-            measure(film, batch, count, floor, relErr, edge);
-            for (size_t j = 0; j < count; ++j) {
-                const uint32_t pixel = batch[j];
-                if (needsMore(film[pixel].count, relErr[j], edge[j], pixelError, &m_relErr[pixel]))
-                    request(pixel, part);
-            }
-        }
-    };
     // A large visit is cut into contiguous parts on the host's cores (threadsFor), joined
     // in order: the same pass whatever the number of threads.
-    std::vector<Part> parts(threadsFor(order.size()));
+    std::vector<PassPart> parts(threadsFor(order.size()));
     runInParts(order.size(), parts.size(), [&](size_t begin, size_t end, size_t t) {
-        plan(begin, end, parts[t]);
+        planPart(v, order.data() + begin, order.data() + end, parts[t]);
     });
+    joinParts(parts);
+    return endPass(film, floor, pixelError);
+}
+
+// A batch of pixels is measured before any is decided: with no branch between them the
+// core overlaps their loads and divisions (a 512x512 full test on one thread took 8-9 ms
+// measured and decided pixel by pixel).
+void SamplePlanner::planPart(const PassVisit& v, const uint32_t* begin,
+                             const uint32_t* end, PassPart& part) {
+    uint32_t batch[kPixelBatch];
+    float relErr[kPixelBatch];
+    uint8_t edge[kPixelBatch];
+    const uint32_t* next = begin;
+    while (next < end) {
+        // The next batch of pixels to measure. Busy ones are set aside (SPD teapot at 9
+        // samples a pixel: 20-28k of the 30k pixels a pass visits), and so are those that
+        // answer "no" as before without a test.
+        size_t count = 0;
+        for (; next < end && count < kPixelBatch; ++next) {
+            const uint32_t pixel = *next;
+            if (!v.busy.empty() && v.busy[pixel]) {
+                part.deferred.push_back(pixel);
+                continue;
+            }
+            if (answersNoAgain(v, pixel)) continue;
+            __builtin_prefetch(&v.film[pixel]);  // (measured once the batch is full)
+            batch[count++] = pixel;
+        }
+        measure(v.film, batch, count, v.floor, relErr, edge);
+        for (size_t j = 0; j < count; ++j) {
+            const uint32_t pixel = batch[j];
+            if (needsMore(v.film[pixel].count, relErr[j], edge[j], v.pixelError,
+                          &m_relErr[pixel]))
+                requestMore(v.film[pixel], pixel, part);
+        }
+    }
+}
+
+bool SamplePlanner::answersNoAgain(const PassVisit& v, uint32_t pixel) {
+    if (v.test.empty() || v.test[pixel] || !(m_relErr[pixel] <= v.pixelError))
+        return false;
+    if (!v.floorFell || m_meanOf[pixel] >= m_lastFloor) return true;
+    const PixelAccum& p = v.film[pixel];
+    if (p.sum_sq.x == 0.0f && p.sum_sq.y == 0.0f && p.sum_sq.z == 0.0f)
+        return true;  // black
+    // Under the fallen floor its error grew by at most the floors' ratio: while that
+    // bound stays within the pixel error it answers "no" again, and the bound is kept as
+    // its error (an upper bound from here on).
+    const float bound = m_relErr[pixel] * (m_lastFloor / v.floor);
+    if (!(bound <= v.pixelError)) return false;
+    m_relErr[pixel] = bound;
+    return true;
+}
+
+void SamplePlanner::requestMore(const PixelAccum& p, uint32_t pixel,
+                                PassPart& part) const {
+    const uint32_t n = p.count;
+    // Sequence indices already used include samples dropped as NaN/Inf: never reuse.
+    const uint32_t used = n + p.nonfinite;
+    const uint32_t target = std::min(std::max(m_settings.minSamples, std::max(1u, 2 * n)),
+                                     m_settings.maxSamples);
+    if (target > n)
+        part.out.push_back({pixel, used, target - n}), part.sampled.push_back(pixel);
+}
+
+void SamplePlanner::joinParts(const std::vector<PassPart>& parts) {
     m_lastPass.clear();
     size_t requests = 0, lastPass = 0;
-    for (const Part& part : parts)
+    for (const PassPart& part : parts)
         requests += part.out.size(), lastPass += part.sampled.size() + part.deferred.size();
-    out.clear();  // (m_out: its memory kept from pass to pass)
-    out.reserve(requests);
+    m_out.clear();  // (its memory kept from pass to pass)
+    m_out.reserve(requests);
     m_lastPass.reserve(lastPass);
-    for (Part& part : parts) {
-        out.insert(out.end(), part.out.begin(), part.out.end());
+    for (const PassPart& part : parts) {
+        m_out.insert(m_out.end(), part.out.begin(), part.out.end());
         m_lastPass.insert(m_lastPass.end(), part.sampled.begin(), part.sampled.end());
     }
-    for (Part& part : parts) m_lastPass.insert(m_lastPass.end(), part.deferred.begin(), part.deferred.end());
-    return endPass(film, floor, pixelError);
+    for (const PassPart& part : parts)
+        m_lastPass.insert(m_lastPass.end(), part.deferred.begin(), part.deferred.end());
 }
 
 const std::vector<PixelRequest>& SamplePlanner::endPass(const FilmPixels& film, float floor,

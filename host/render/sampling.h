@@ -146,6 +146,32 @@ private:
         return mq >= 0.0f &&
                std::fabs(m - mq) > m_settings.contrast * std::max(0.1f, 0.5f * (m + mq));
     }
+    // What decides each pixel's answer in a pass's visit of its pixels (nextPass).
+    struct PassVisit {
+        const FilmPixels& film;
+        const std::vector<uint8_t>& busy;  // samples in flight: not tested, deferred
+        const std::vector<uint8_t>& test;  // pixelsToTest; empty: every pixel is tested
+        float floor, pixelError;
+        bool floorFell;  // the brightness floor fell below the last pass's
+    };
+    // One thread's share of a visit: its requests, the pixels sampled and those left busy
+    // (deferred: tested next pass, with their neighbours).
+    struct PassPart {
+        std::vector<PixelRequest> out;
+        std::vector<uint32_t> sampled, deferred;
+    };
+    // Plans the pixels [begin, end) of a visit into `part`.
+    void planPart(const PassVisit& v, const uint32_t* begin, const uint32_t* end,
+                  PassPart& part);
+    // Whether a pixel off the test set answers "no" again without a test: its error is
+    // within the pass's pixel error and has not grown (or, under a fallen floor, grown by
+    // at most the floors' ratio: that bound is then kept as its error).
+    bool answersNoAgain(const PassVisit& v, uint32_t pixel);
+    // Requests twice the pixel's samples, at least the minimum, at most the maximum.
+    void requestMore(const PixelAccum& p, uint32_t pixel, PassPart& part) const;
+    // The parts' requests into m_out and their pixels into m_lastPass, in order (sampled
+    // ones first, then the deferred).
+    void joinParts(const std::vector<PassPart>& parts);
     const std::vector<PixelRequest>& firstBlockPass();
     std::vector<uint32_t> testSetInTileOrder() const;
     // The pass the tester's test of every pixel gives.
