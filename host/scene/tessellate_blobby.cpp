@@ -8,6 +8,8 @@
 #include <functional>
 #include <unordered_map>
 
+#include "host/film/run_in_parts.h"
+
 namespace rd {
 
 namespace {
@@ -52,11 +54,18 @@ void boxOf(const glm::mat4& m, glm::vec3 lo, glm::vec3 hi, Instruction& in) {
     in.bounded = std::isfinite(in.lo.x + in.lo.y + in.lo.z + in.hi.x + in.hi.y + in.hi.z);
 }
 
+// m * (p, 1) as glm computes it, bit for bit ((c0 x + c1 y) + (c2 z + c3)), inline: as
+// glm's call it took half of a dense blobby's polygonisation.
+inline glm::vec3 transformPoint(const glm::mat4& m, glm::vec3 p) {
+    return (glm::vec3(m[0]) * p.x + glm::vec3(m[1]) * p.y) +
+           (glm::vec3(m[2]) * p.z + glm::vec3(m[3]));
+}
+
 // A bounded primitive's field at p (0 outside its box).
 float primitiveAt(const Instruction& in, glm::vec3 p) {
     if (glm::any(glm::lessThan(p, in.lo)) || glm::any(glm::greaterThan(p, in.hi)))
         return 0.0f;
-    const glm::vec3 q = glm::vec3(in.toUnit * glm::vec4(p, 1.0f));
+    const glm::vec3 q = transformPoint(in.toUnit, p);
     if (in.op == 1001) return falloff(glm::dot(q, q));
     const glm::vec3 ab = in.b - in.a;
     const float len2 = glm::dot(ab, ab);
@@ -65,6 +74,19 @@ float primitiveAt(const Instruction& in, glm::vec3 p) {
     const glm::vec3 d = q - (in.a + t * ab);
     return falloff(glm::dot(d, d) / (in.value * in.value));
 }
+
+// The grid the field is sampled on: points lo + h (x, y, z), x fastest.
+struct Grid {
+    glm::vec3 lo;
+    float h;
+    size_t nx, ny, nz;
+    size_t points() const { return nx * ny * nz; }
+    size_t index(size_t x, size_t y, size_t z) const { return (z * ny + y) * nx + x; }
+    glm::vec3 at(size_t x, size_t y, size_t z) const {
+        return lo + h * glm::vec3(float(x), float(y), float(z));
+    }
+    glm::vec3 at(size_t i) const { return at(i % nx, (i / nx) % ny, i / (nx * ny)); }
+};
 
 // The field of a program. The usual one, the sum (or maximum) of its primitives, is
 // evaluated from a coarse grid of bins listing the bounded primitives that reach each:
@@ -108,65 +130,90 @@ public:
                     for (int w = a.z; w <= z.z; ++w) m_bins[index(x, y, w)].push_back(k);
         }
     }
-    float operator()(glm::vec3 p) {
+    float operator()(glm::vec3 p) { return at(p, m_v); }
+    // The field at p; `v` (one float an instruction) holds a program's partial results,
+    // so that threads may each evaluate with their own.
+    float at(glm::vec3 p, std::vector<float>& v) const {
         if (m_flat) {
-            float v = m_rest;
+            float sum = m_rest;
             const glm::ivec3 c = binOf(p);
             for (int k : m_bins[index(c.x, c.y, c.z)]) {
                 const float f = primitiveAt(m_code[size_t(k)], p);
-                v = m_max ? std::max(v, f) : v + f;
+                sum = m_max ? std::max(sum, f) : sum + f;
             }
-            return std::isfinite(v) ? v : 0.0f;
+            return std::isfinite(sum) ? sum : 0.0f;
         }
+        v.resize(m_code.size());
         for (size_t i = 0; i < m_code.size(); ++i) {
             const Instruction& in = m_code[i];
-            float& v = m_v[i];
-            auto arg = [&](size_t k) { return m_v[size_t(in.operands[k])]; };
+            float& r = v[i];
+            auto arg = [&](size_t k) { return v[size_t(in.operands[k])]; };
             switch (in.op) {
                 case 1000:
-                    v = in.value;
+                    r = in.value;
                     break;
                 case 1001:
                 case 1002:
-                    v = primitiveAt(in, p);
+                    r = primitiveAt(in, p);
                     break;
                 case 1003:
-                    v = 0.0f;
+                    r = 0.0f;
                     break;  // (a repelling plane: no depth file read)
                 case 0:
-                    v = 0.0f;
-                    for (size_t k = 0; k < in.operands.size(); ++k) v += arg(k);
+                    r = 0.0f;
+                    for (size_t k = 0; k < in.operands.size(); ++k) r += arg(k);
                     break;
                 case 1:
-                    v = 1.0f;
-                    for (size_t k = 0; k < in.operands.size(); ++k) v *= arg(k);
+                    r = 1.0f;
+                    for (size_t k = 0; k < in.operands.size(); ++k) r *= arg(k);
                     break;
                 case 2:
-                    v = -INFINITY;
+                    r = -INFINITY;
                     for (size_t k = 0; k < in.operands.size(); ++k)
-                        v = std::max(v, arg(k));
+                        r = std::max(r, arg(k));
                     break;
                 case 3:
-                    v = INFINITY;
+                    r = INFINITY;
                     for (size_t k = 0; k < in.operands.size(); ++k)
-                        v = std::min(v, arg(k));
+                        r = std::min(r, arg(k));
                     break;
                 case 4:
-                    v = arg(0) - arg(1);
+                    r = arg(0) - arg(1);
                     break;
                 case 5:
-                    v = arg(1) != 0.0f ? arg(0) / arg(1) : 0.0f;
+                    r = arg(1) != 0.0f ? arg(0) / arg(1) : 0.0f;
                     break;
                 case 6:
-                    v = -arg(0);
+                    r = -arg(0);
                     break;
                 default:
-                    v = arg(0);
+                    r = arg(0);
                     break;  // 7: identity
             }
         }
-        const float f = m_v.empty() ? 0.0f : m_v.back();
+        const float f = v.empty() ? 0.0f : v.back();
         return std::isfinite(f) ? f : 0.0f;
+    }
+    // The field at every point of `grid` (at(), the same values), on the host's cores.
+    // A sum or maximum of primitives adds each primitive over the points in its box
+    // rather than looking each point's primitives up: in the same order, so the same
+    // sums (a maximum may differ where every field there is below 0 by a rounding).
+    void sample(const Grid& grid, std::vector<float>& out) const {
+        out.resize(grid.points());
+        const size_t slab = grid.nx * grid.ny;
+        const size_t parts = grid.points() >= (size_t(1) << 16) ? hostThreads() : 1;
+        runInParts(grid.nz, parts, [&](size_t z0, size_t z1, size_t) {
+            if (!m_flat) {
+                std::vector<float> v;
+                for (size_t i = z0 * slab; i < z1 * slab; ++i) out[i] = at(grid.at(i), v);
+                return;
+            }
+            std::fill(out.begin() + ptrdiff_t(z0 * slab),
+                      out.begin() + ptrdiff_t(z1 * slab), m_rest);
+            for (int k : m_bounded) add(m_code[size_t(k)], grid, z0, z1, out);
+            for (size_t i = z0 * slab; i < z1 * slab; ++i)
+                if (!std::isfinite(out[i])) out[i] = 0.0f;
+        });
     }
     // Calls visit(instruction, field) for each ellipsoid and segment blob whose field is
     // positive at p: of a sum or maximum, those its bins list (an operand given twice,
@@ -188,6 +235,28 @@ public:
     }
 
 private:
+    // A bounded primitive's field added (or maxed) into the grid's points in its box
+    // whose z index is in [z0, z1).
+    void add(const Instruction& in, const Grid& grid, size_t z0, size_t z1,
+             std::vector<float>& out) const {
+        // (a point more each way than the box's own: primitiveAt tests the box itself)
+        auto span = [&](float a, float b, float origin, size_t n) {
+            const float first = std::floor((a - origin) / grid.h) - 1.0f;
+            const float last = std::floor((b - origin) / grid.h) + 2.0f;
+            return std::pair<size_t, size_t>(size_t(std::clamp(first, 0.0f, float(n))),
+                                             size_t(std::clamp(last, 0.0f, float(n))));
+        };
+        const auto [x0, x1] = span(in.lo.x, in.hi.x, grid.lo.x, grid.nx);
+        const auto [y0, y1] = span(in.lo.y, in.hi.y, grid.lo.y, grid.ny);
+        const auto [za, zb] = span(in.lo.z, in.hi.z, grid.lo.z, grid.nz);
+        for (size_t z = std::max(za, z0); z < std::min(zb, z1); ++z)
+            for (size_t y = y0; y < y1; ++y)
+                for (size_t x = x0; x < x1; ++x) {
+                    const float f = primitiveAt(in, grid.at(x, y, z));
+                    float& v = out[grid.index(x, y, z)];
+                    v = m_max ? std::max(v, f) : v + f;
+                }
+    }
     glm::ivec3 binOf(glm::vec3 p) const {
         return glm::clamp(glm::ivec3(glm::floor((p - m_lo) / m_size)), glm::ivec3(0),
                           m_n - 1);
@@ -305,38 +374,31 @@ Program decode(const std::vector<int>& code, const std::vector<float>& floats) {
 
 // Marching tetrahedra over the field's samples at the grid points: each cell is six
 // tetrahedra about its diagonal, each cut by the level set in one or two triangles
-// whose vertices, on the grid's edges, the cells around an edge share.
+// whose vertices, on the grid's edges, the cells around an edge share. The cells are
+// walked first, naming each vertex by its edge; the vertices are then placed on the
+// host's cores, and the triangles kept, in the walk's order.
 class Polygoniser {
 public:
-    Polygoniser(Field& field, glm::vec3 lo, float h, glm::ivec3 cells, SurfaceMesh& out)
-        : m_field(field),
-          m_lo(lo),
-          m_h(h),
-          m_nx(size_t(cells.x) + 1),
-          m_ny(size_t(cells.y) + 1),
-          m_nz(size_t(cells.z) + 1),
-          m_out(out) {
-        m_value.resize(m_nx * m_ny * m_nz);
-        for (size_t i = 0; i < m_value.size(); ++i)
-            m_value[i] = field(at(i)) - kThreshold;
+    Polygoniser(const Field& field, const Grid& grid, SurfaceMesh& out)
+        : m_field(field), m_grid(grid), m_out(out), m_base(out.mesh.p.size()) {
+        field.sample(grid, m_value);
+        for (float& v : m_value) v -= kThreshold;
     }
     // Returns false once the mesh passes the vertex cap.
     bool run() {
-        for (size_t z = 0; z + 1 < m_nz; ++z)
-            for (size_t y = 0; y + 1 < m_ny; ++y)
-                for (size_t x = 0; x + 1 < m_nx; ++x) {
+        for (size_t z = 0; z + 1 < m_grid.nz; ++z)
+            for (size_t y = 0; y + 1 < m_grid.ny; ++y)
+                for (size_t x = 0; x + 1 < m_grid.nx; ++x) {
                     cell(x, y, z);
-                    if (long(m_out.mesh.p.size()) > kMaxMeshVertices) return false;
+                    if (long(m_base + m_edges.size()) > kMaxMeshVertices) return false;
                 }
+        placeVertices();
+        for (size_t t = 0; t < m_tris.size(); t += 3)
+            triangle(m_tris[t], m_tris[t + 1], m_tris[t + 2]);
         return true;
     }
 
 private:
-    size_t index(size_t x, size_t y, size_t z) const { return (z * m_ny + y) * m_nx + x; }
-    glm::vec3 at(size_t i) const {
-        const size_t x = i % m_nx, y = (i / m_nx) % m_ny, z = i / (m_nx * m_ny);
-        return m_lo + m_h * glm::vec3(float(x), float(y), float(z));
-    }
     void cell(size_t x, size_t y, size_t z) {
         // six tetrahedra about the diagonal from corner 0 to corner 7
         static const int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7},
@@ -344,7 +406,7 @@ private:
         size_t corner[8];
         bool in = false, outside = false;
         for (int c = 0; c < 8; ++c) {
-            corner[c] = index(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
+            corner[c] = m_grid.index(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
             (m_value[corner[c]] > 0.0f ? in : outside) = true;
         }
         if (!in || !outside) return;
@@ -361,29 +423,45 @@ private:
             if (ni == 1 || ni == 3) {
                 const size_t apex = ni == 1 ? inside[0] : away[0];
                 const size_t* rest = ni == 1 ? away : inside;
-                triangle(vertex(apex, rest[0]), vertex(apex, rest[1]),
-                         vertex(apex, rest[2]));
+                m_tris.insert(m_tris.end(), {vertex(apex, rest[0]), vertex(apex, rest[1]),
+                                             vertex(apex, rest[2])});
             } else if (ni == 2) {
                 const int a = vertex(inside[0], away[0]), b = vertex(inside[0], away[1]),
                           c = vertex(inside[1], away[1]), d = vertex(inside[1], away[0]);
-                triangle(a, b, c);
-                triangle(a, c, d);
+                m_tris.insert(m_tris.end(), {a, b, c, a, c, d});
             }
         }
     }
-    // The vertex where the level set crosses grid edge (i, j).
+    // The vertex where the level set crosses grid edge (i, j), placed later.
     int vertex(size_t i, size_t j) {
         if (i > j) std::swap(i, j);
         const uint64_t key = uint64_t(i) * uint64_t(m_value.size()) + uint64_t(j);
-        auto [it, added] = m_onEdge.emplace(key, int(m_out.mesh.p.size()));
-        if (!added) return it->second;
-        // on the edge by regula falsi: the linear guess alone is off by up to a hundredth
-        // of a blob's radius
-        const glm::vec3 pi = at(i), pj = at(j);
+        auto [it, added] = m_onEdge.emplace(key, int(m_base + m_edges.size()));
+        if (added) m_edges.emplace_back(i, j);
+        return it->second;
+    }
+    void placeVertices() {
+        const size_t n = m_base + m_edges.size();
+        m_out.mesh.p.resize(n);
+        m_out.mesh.n.resize(n);
+        m_out.st.resize(n, glm::vec2(0.0f));  // (no global u, v: RI 3.2 5.6)
+        const size_t parts = m_edges.size() >= 4096 ? hostThreads() : 1;
+        runInParts(m_edges.size(), parts, [&](size_t begin, size_t end, size_t) {
+            std::vector<float> scratch;
+            for (size_t e = begin; e < end; ++e)
+                place(m_edges[e].first, m_edges[e].second, m_base + e, scratch);
+        });
+    }
+    // Vertex v on grid edge (i, j): on the level set by regula falsi (the linear guess
+    // alone is off by up to a hundredth of a blob's radius), its normal down the field's
+    // gradient.
+    void place(size_t i, size_t j, size_t v, std::vector<float>& scratch) const {
+        auto field = [&](glm::vec3 p) { return m_field.at(p, scratch); };
+        const glm::vec3 pi = m_grid.at(i), pj = m_grid.at(j);
         float a = 0.0f, b = 1.0f, fa = m_value[i], fb = m_value[j];
         float t = fa / (fa - fb);
         for (int step = 0; step < 4 && fa != fb; ++step) {
-            const float ft = m_field(pi + t * (pj - pi)) - kThreshold;
+            const float ft = field(pi + t * (pj - pi)) - kThreshold;
             if ((ft > 0.0f) == (fa > 0.0f))
                 a = t, fa = ft;
             else
@@ -392,16 +470,14 @@ private:
             t = a + (b - a) * fa / (fa - fb);
         }
         const glm::vec3 p = pi + t * (pj - pi);
-        const float e = 0.25f * m_h;
+        const float e = 0.25f * m_grid.h;
         const glm::vec3 grad(
-            m_field(p + glm::vec3(e, 0, 0)) - m_field(p - glm::vec3(e, 0, 0)),
-            m_field(p + glm::vec3(0, e, 0)) - m_field(p - glm::vec3(0, e, 0)),
-            m_field(p + glm::vec3(0, 0, e)) - m_field(p - glm::vec3(0, 0, e)));
+            field(p + glm::vec3(e, 0, 0)) - field(p - glm::vec3(e, 0, 0)),
+            field(p + glm::vec3(0, e, 0)) - field(p - glm::vec3(0, e, 0)),
+            field(p + glm::vec3(0, 0, e)) - field(p - glm::vec3(0, 0, e)));
         const float g = glm::length(grad);
-        m_out.mesh.p.push_back(p);
-        m_out.st.push_back(glm::vec2(0.0f));  // (no global u, v: RI 3.2 5.6)
-        m_out.mesh.n.push_back(g > 0.0f ? -grad / g : glm::vec3(0.0f, 0.0f, 1.0f));
-        return it->second;
+        m_out.mesh.p[v] = p;
+        m_out.mesh.n[v] = g > 0.0f ? -grad / g : glm::vec3(0.0f, 0.0f, 1.0f);
     }
     // Outward (down the field): the winding follows the vertices' normals.
     void triangle(int a, int b, int c) {
@@ -415,13 +491,14 @@ private:
         m_out.mesh.tris.insert(m_out.mesh.tris.end(), {a, b, c});
         m_out.faceIndex.push_back(0);
     }
-    Field& m_field;
-    glm::vec3 m_lo;
-    float m_h;
-    size_t m_nx, m_ny, m_nz;
+    const Field& m_field;
+    Grid m_grid;
+    SurfaceMesh& m_out;
+    size_t m_base;               // the mesh's vertices before the blobby's
     std::vector<float> m_value;  // the field less the threshold at each grid point
     std::unordered_map<uint64_t, int> m_onEdge;
-    SurfaceMesh& m_out;
+    std::vector<std::pair<size_t, size_t>> m_edges;  // each new vertex's grid edge
+    std::vector<int> m_tris;                         // the walk's triangles, by vertex
 };
 
 }  // namespace
@@ -448,7 +525,8 @@ bool tessellateBlobby(const std::vector<int>& code, const std::vector<float>& fl
     lo -= glm::vec3(1.3183099f * h), hi += glm::vec3(h);
     Field field(std::move(program.code), lo, hi);
     const glm::ivec3 n = glm::max(glm::ivec3(glm::ceil((hi - lo) / h)), glm::ivec3(1));
-    if (!Polygoniser(field, lo, h, n, out).run()) {
+    const Grid grid{lo, h, size_t(n.x) + 1, size_t(n.y) + 1, size_t(n.z) + 1};
+    if (!Polygoniser(field, grid, out).run()) {
         if (err) *err = "more than " + std::to_string(kMaxMeshVertices) + " vertices";
         return false;
     }

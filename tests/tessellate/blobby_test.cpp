@@ -103,6 +103,50 @@ TEST(Blobby, SegmentBlobIsACapsule) {
 
 // A blob under a singular matrix (or with non-finite numbers) reaches nothing: the others
 // are polygonised as without it.
+// A sum or maximum of blobs is sampled on its grid blob by blob, over each blob's box
+// and on the host's cores; any other program point by point. Wrapped in an identity (op
+// 7) the same blobs take the second way: the meshes must be the same, bit for bit, with
+// 60 ellipsoids and segments of several sizes overlapping at random (boxes of a few
+// grid points to many, partly off the grid's slabs).
+TEST(Blobby, BlobByBlobSamplingIsThePointwiseField) {
+    std::vector<int> code;
+    std::vector<float> f;
+    uint32_t state = 12345u;
+    auto uniform = [&](float lo, float hi) {
+        state = state * 1664525u + 1013904223u;
+        return lo + (hi - lo) * float(state >> 8) / float(1u << 24);
+    };
+    const int blobs = 60;
+    for (int b = 0; b < blobs; ++b) {
+        const float s = uniform(0.2f, 1.5f);
+        std::vector<float> m = matrix(s * uniform(0.5f, 2.0f), s, s * uniform(0.5f, 2.0f),
+                                      uniform(-2, 2), uniform(-2, 2), uniform(-2, 2));
+        if (b % 5 == 0) {  // a segment: its ends and radius, then its matrix
+            code.insert(code.end(), {1002, int(f.size())});
+            f.insert(f.end(), {0, 0, 0, uniform(0.2f, 1.0f), 0, 0, uniform(0.5f, 1.0f)});
+        } else {
+            code.insert(code.end(), {1001, int(f.size())});
+        }
+        f.insert(f.end(), m.begin(), m.end());
+    }
+    for (int op : {0, 2}) {  // sum, maximum
+        std::vector<int> flat = code;
+        flat.insert(flat.end(), {op, blobs});
+        for (int b = 0; b < blobs; ++b) flat.push_back(b);
+        std::vector<int> wrapped = flat;
+        wrapped.insert(wrapped.end(), {7, blobs});
+        SurfaceMesh byBlob, byPoint;
+        std::string err, note;
+        ASSERT_TRUE(tessellateBlobby(flat, f, 96, byBlob, &err, &note)) << err;
+        ASSERT_TRUE(tessellateBlobby(wrapped, f, 96, byPoint, &err, &note)) << err;
+        EXPECT_GT(byBlob.mesh.tris.size(), 30000u) << "op " << op;
+        EXPECT_TRUE(byBlob.mesh.p == byPoint.mesh.p) << "op " << op;
+        EXPECT_TRUE(byBlob.mesh.n == byPoint.mesh.n) << "op " << op;
+        EXPECT_TRUE(byBlob.mesh.tris == byPoint.mesh.tris) << "op " << op;
+        test::expectWellFormed(byBlob);
+    }
+}
+
 TEST(Blobby, DegenerateBlobsAreLeftOut) {
     std::vector<float> f = matrix(1, 1, 1, 0, 0, 0);
     const std::vector<float> flat = matrix(0, 0, 0, 0.2f, 0, 0);
