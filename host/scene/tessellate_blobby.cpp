@@ -392,7 +392,9 @@ public:
                     cell(x, y, z);
                     if (long(m_base + m_edges.size()) > kMaxMeshVertices) return false;
                 }
+        m_onEdge = {};  // (its memory back before the mesh grows)
         placeVertices();
+        m_out.mesh.tris.reserve(m_out.mesh.tris.size() + m_tris.size());
         for (size_t t = 0; t < m_tris.size(); t += 3)
             triangle(m_tris[t], m_tris[t + 1], m_tris[t + 2]);
         return true;
