@@ -52,100 +52,90 @@ bool Reader::basisMatrix(const std::string& name, const double* nums, float m[16
 void Reader::dispatch(const RequestInfo& info, const Args& a, const SourceLoc& loc) {
     if (dispatchBlock(info, a, loc)) return;
     if (dispatchGeometry(info, a, loc)) return;
-    dispatchOptionOrAttribute(info, a, loc);
+    if (dispatchOption(info, a, loc)) return;
+    if (dispatchShading(info, a, loc)) return;
+    if (dispatchAttribute(info, a, loc)) return;
+    dispatchTransformOrTexture(info, a, loc);
 }
 
-bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
-                                       const SourceLoc& loc) {
-    // parseArgs guarantees the counts; the accessors are checked anyway so a table typo
-    // can never index out of range.
-    auto f = [&](size_t i) {
-        return i < a.nums.size() ? static_cast<float>(a.nums[i]) : 0.f;
-    };
-    auto n = [&](size_t i) {
-        return i < a.nums.size() ? static_cast<int>(a.nums[i]) : 0;
-    };
-    auto s = [&](size_t i) { return i < a.strs.size() ? a.strs[i] : std::string(); };
-    auto fa = [&](size_t i) {
-        return i < a.floatArrays.size() ? a.floatArrays[i] : std::vector<float>();
-    };
-    const std::string req = info.name;
+// Options: the camera, the image, the display, Option itself.
+bool Reader::dispatchOption(const RequestInfo& info, const Args& a,
+                            const SourceLoc& loc) {
+    const ArgAt v{a};
     const ParamList& P = a.params;
     Target& t = m_target;
-    float m[16], m2[16];
     switch (info.req) {
-        // Options
         case Req::Format:
             // (a pixel aspect of -1 is the default, 1: RI 3.2, the RenderMan Companion)
-            if (n(0) < 1 || n(1) < 1 || n(0) > m_opts.maxResolution ||
-                n(1) > m_opts.maxResolution || !(f(2) > 0 || f(2) == -1.0f)) {
-                error(loc, "Format " + std::to_string(n(0)) + "x" + std::to_string(n(1)) +
-                               " is out of range (1.." +
+            if (v.n(0) < 1 || v.n(1) < 1 || v.n(0) > m_opts.maxResolution ||
+                v.n(1) > m_opts.maxResolution || !(v.f(2) > 0 || v.f(2) == -1.0f)) {
+                error(loc, "Format " + std::to_string(v.n(0)) + "x" +
+                               std::to_string(v.n(1)) + " is out of range (1.." +
                                std::to_string(m_opts.maxResolution) +
                                " pixels, positive pixel aspect or -1)");
                 break;
             }
-            t.format(loc, n(0), n(1), f(2));
+            t.format(loc, v.n(0), v.n(1), v.f(2));
             break;
         case Req::FrameAspectRatio:
-            t.frameAspectRatio(loc, f(0));
+            t.frameAspectRatio(loc, v.f(0));
             break;
         case Req::ScreenWindow:
-            t.screenWindow(loc, f(0), f(1), f(2), f(3));
+            t.screenWindow(loc, v.f(0), v.f(1), v.f(2), v.f(3));
             break;
         case Req::CropWindow:
-            t.cropWindow(loc, f(0), f(1), f(2), f(3));
+            t.cropWindow(loc, v.f(0), v.f(1), v.f(2), v.f(3));
             break;
         case Req::Projection:
-            t.projection(loc, s(0), P);
+            t.projection(loc, v.s(0), P);
             break;
         case Req::Clipping:
-            t.clipping(loc, f(0), f(1));
+            t.clipping(loc, v.f(0), v.f(1));
             break;
         case Req::ClippingPlane:
-            t.clippingPlane(loc, f(0), f(1), f(2), f(3), f(4), f(5));
+            t.clippingPlane(loc, v.f(0), v.f(1), v.f(2), v.f(3), v.f(4), v.f(5));
             break;
         case Req::Camera:
-            t.camera(loc, s(0), P);
+            t.camera(loc, v.s(0), P);
             break;
         case Req::DepthOfField:
             if (a.optionalMissing)
                 t.depthOfField(loc, HUGE_VALF, 0.f, 0.f);
             else
-                t.depthOfField(loc, f(0), f(1), f(2));
+                t.depthOfField(loc, v.f(0), v.f(1), v.f(2));
             break;
         case Req::Shutter:
-            t.shutter(loc, f(0), f(1));
+            t.shutter(loc, v.f(0), v.f(1));
             break;
         case Req::PixelVariance:
-            t.pixelVariance(loc, f(0));
+            t.pixelVariance(loc, v.f(0));
             break;
         case Req::PixelSamples:
-            t.pixelSamples(loc, f(0), f(1));
+            t.pixelSamples(loc, v.f(0), v.f(1));
             break;
         case Req::PixelFilter:
-            t.pixelFilter(loc, s(0), f(0), f(1));
+            t.pixelFilter(loc, v.s(0), v.f(0), v.f(1));
             break;
         case Req::Exposure:
-            t.exposure(loc, f(0), f(1));
+            t.exposure(loc, v.f(0), v.f(1));
             break;
         case Req::Imager:
-            t.imager(loc, s(0), P);
+            t.imager(loc, v.s(0), P);
             break;
         case Req::Quantize:
-            t.quantize(loc, s(0), n(0), n(1), n(2), f(3));
+            t.quantize(loc, v.s(0), v.n(0), v.n(1), v.n(2), v.f(3));
             break;
         case Req::Display:
-            t.display(loc, s(0), s(1), s(2), P);
+            t.display(loc, v.s(0), v.s(1), v.s(2), P);
             break;
         case Req::DisplayChannel:
-            t.displayChannel(loc, s(0), P);
+            t.displayChannel(loc, v.s(0), P);
             break;
         case Req::Hider:
-            t.hider(loc, s(0), P);
+            t.hider(loc, v.s(0), P);
             break;
         case Req::ColorSamples: {
-            const std::vector<float> nRGB = fa(0), RGBn = fa(1);
+            const std::vector<float> nRGB = v.fa(0), RGBn = v.fa(1);
             if (nRGB.empty() || nRGB.size() % 3 != 0 || nRGB.size() != RGBn.size()) {
                 error(loc, "ColorSamples needs two arrays of 3n numbers (nRGB, RGBn), got " +
                                std::to_string(nRGB.size()) + " and " +
@@ -158,15 +148,15 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
             break;
         }
         case Req::RelativeDetail:
-            t.relativeDetail(loc, f(0));
+            t.relativeDetail(loc, v.f(0));
             break;
         case Req::Option:
-            noteOption(s(0), P);
-            noteCondValues(false, s(0), P);
-            t.option(loc, s(0), P);
+            noteOption(v.s(0), P);
+            noteCondValues(false, v.s(0), P);
+            t.option(loc, v.s(0), P);
             break;
         case Req::ErrorHandler: {
-            const std::string h = s(0);
+            const std::string h = v.s(0);
             if (h == "print" || h == "ignore" || h == "abort") {
                 t.errorHandler(loc, h);
                 m_diag.setMode(h == "print"    ? ErrorMode::Print
@@ -180,95 +170,123 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
         }
         case Req::ReadArchive:
             if (m_opts.expandArchives)
-                readArchive(s(0), P, loc);
+                readArchive(v.s(0), P, loc);
             else
-                t.readArchive(loc, s(0), P);
+                t.readArchive(loc, v.s(0), P);
             break;
+        default:
+            return false;
+    }
+    return true;
+}
 
-        // Attributes
+// The shading attributes: colours, shaders and lights.
+bool Reader::dispatchShading(const RequestInfo& info, const Args& a,
+                             const SourceLoc& loc) {
+    const ArgAt v{a};
+    const ParamList& P = a.params;
+    Target& t = m_target;
+    switch (info.req) {
+        case Req::Color:
+            t.color(loc, v.fa(0));
+            break;
+        case Req::Opacity:
+            t.opacity(loc, v.fa(0));
+            break;
+        case Req::TextureCoordinates:
+            t.textureCoordinates(loc, v.f(0), v.f(1), v.f(2), v.f(3), v.f(4), v.f(5),
+                                 v.f(6), v.f(7));
+            break;
+        case Req::Surface:
+            t.surface(loc, v.s(0), P);
+            break;
+        case Req::Displacement:
+            t.displacement(loc, v.s(0), P);
+            break;
+        case Req::Atmosphere:
+            t.atmosphere(loc, v.s(0), P);
+            break;
+        case Req::Interior:
+            t.interior(loc, v.s(0), P);
+            break;
+        case Req::Exterior:
+            t.exterior(loc, v.s(0), P);
+            break;
+        case Req::Deformation:
+            t.deformation(loc, v.s(0), P);
+            break;
+        case Req::LightSource:
+            t.lightSource(loc, v.s(0), v.s(1), P);
+            break;
+        case Req::AreaLightSource:
+            t.areaLightSource(loc, v.s(0), v.s(1), P);
+            break;
+        case Req::Illuminate:
+            t.illuminate(loc, v.s(0), v.n(0) != 0);
+            break;
+        case Req::ShadingRate:
+            t.shadingRate(loc, v.f(0));
+            break;
+        case Req::ShadingInterpolation:
+            if (v.s(0) != "constant" && v.s(0) != "smooth") {
+                error(
+                    loc,
+                    "ShadingInterpolation: expected \"constant\" or \"smooth\", got \"" +
+                        v.s(0) + "\"");
+                break;
+            }
+            t.shadingInterpolation(loc, v.s(0));
+            break;
+        case Req::Matte:
+            t.matte(loc, v.n(0) != 0);
+            break;
+        default:
+            return false;
+    }
+    return true;
+}
+
+// The other attributes, and declarations.
+bool Reader::dispatchAttribute(const RequestInfo& info, const Args& a,
+                               const SourceLoc& loc) {
+    const ArgAt v{a};
+    const ParamList& P = a.params;
+    Target& t = m_target;
+    float m[16], m2[16];
+    switch (info.req) {
         case Req::Resource:
             resource(a, loc);
             break;
         case Req::Attribute:
-            noteCondValues(true, s(0), P);
-            t.attribute(loc, s(0), P);
-            break;
-        case Req::Color:
-            t.color(loc, fa(0));
-            break;
-        case Req::Opacity:
-            t.opacity(loc, fa(0));
-            break;
-        case Req::TextureCoordinates:
-            t.textureCoordinates(loc, f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7));
-            break;
-        case Req::Surface:
-            t.surface(loc, s(0), P);
-            break;
-        case Req::Displacement:
-            t.displacement(loc, s(0), P);
-            break;
-        case Req::Atmosphere:
-            t.atmosphere(loc, s(0), P);
-            break;
-        case Req::Interior:
-            t.interior(loc, s(0), P);
-            break;
-        case Req::Exterior:
-            t.exterior(loc, s(0), P);
-            break;
-        case Req::Deformation:
-            t.deformation(loc, s(0), P);
-            break;
-        case Req::LightSource:
-            t.lightSource(loc, s(0), s(1), P);
-            break;
-        case Req::AreaLightSource:
-            t.areaLightSource(loc, s(0), s(1), P);
-            break;
-        case Req::Illuminate:
-            t.illuminate(loc, s(0), n(0) != 0);
-            break;
-        case Req::ShadingRate:
-            t.shadingRate(loc, f(0));
-            break;
-        case Req::ShadingInterpolation:
-            if (s(0) != "constant" && s(0) != "smooth") {
-                error(loc, "ShadingInterpolation: expected \"constant\" or \"smooth\", got \"" +
-                               s(0) + "\"");
-                break;
-            }
-            t.shadingInterpolation(loc, s(0));
-            break;
-        case Req::Matte:
-            t.matte(loc, n(0) != 0);
+            noteCondValues(true, v.s(0), P);
+            t.attribute(loc, v.s(0), P);
             break;
         case Req::GeometricRepresentation:
-            t.geometricRepresentation(loc, s(0));
+            t.geometricRepresentation(loc, v.s(0));
             break;
         case Req::Bound:
         case Req::Detail:
-            for (size_t i = 0; i < 6; ++i) m[i] = f(i);
+            for (size_t i = 0; i < 6; ++i) m[i] = v.f(i);
             if (info.req == Req::Bound)
                 t.bound(loc, m);
             else
                 t.detail(loc, m);
             break;
         case Req::DetailRange:
-            t.detailRange(loc, f(0), f(1), f(2), f(3));
+            t.detailRange(loc, v.f(0), v.f(1), v.f(2), v.f(3));
             break;
         case Req::GeometricApproximation:
-            t.geometricApproximation(loc, s(0), f(0));
+            t.geometricApproximation(loc, v.s(0), v.f(0));
             break;
         case Req::Sides:
-            if (n(0) != 1 && n(0) != 2) {
-                error(loc, "Sides must be 1 or 2, got " + std::to_string(n(0)));
+            if (v.n(0) != 1 && v.n(0) != 2) {
+                error(loc, "Sides must be 1 or 2, got " + std::to_string(v.n(0)));
                 break;
             }
-            t.sides(loc, n(0));
+            t.sides(loc, v.n(0));
             break;
         case Req::Orientation:
-            t.orientation(loc, s(0));
+            t.orientation(loc, v.s(0));
             break;
         case Req::ReverseOrientation:
             t.reverseOrientation(loc);
@@ -276,84 +294,98 @@ bool Reader::dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
         case Req::Basis: {
             // nums: 16 (u basis), ustep, 16 (v basis), vstep; strs: the two names.
             if (a.nums.size() != 34 || a.strs.size() != 2) break;
-            if (!basisMatrix(s(0), &a.nums[0], m, loc) ||
-                !basisMatrix(s(1), &a.nums[17], m2, loc))
+            if (!basisMatrix(v.s(0), &a.nums[0], m, loc) ||
+                !basisMatrix(v.s(1), &a.nums[17], m2, loc))
                 break;
-            if (n(16) < 1 || n(33) < 1) {
+            if (v.n(16) < 1 || v.n(33) < 1) {
                 error(loc, "Basis steps must be at least 1");
                 break;
             }
-            m_ustep = n(16);
-            m_vstep = n(33);
-            t.basis(loc, s(0), m, n(16), s(1), m2, n(33));
+            m_ustep = v.n(16);
+            m_vstep = v.n(33);
+            t.basis(loc, v.s(0), m, v.n(16), v.s(1), m2, v.n(33));
             break;
         }
         case Req::Declare: {
             ParamDecl decl;
             std::string unused;
-            if (!parseParamDecl(s(1), false, decl, unused)) {
-                error(loc, "Declare: bad declaration \"" + s(1) + "\" for \"" + s(0) +
+            if (!parseParamDecl(v.s(1), false, decl, unused)) {
+                error(loc, "Declare: bad declaration \"" + v.s(1) + "\" for \"" + v.s(0) +
                                "\"");
                 break;
             }
-            m_declared[s(0)] = decl;
-            t.declare(loc, s(0), s(1));
+            m_declared[v.s(0)] = decl;
+            t.declare(loc, v.s(0), v.s(1));
             break;
         }
+        default:
+            return false;
+    }
+    return true;
+}
 
-        // Transformations
+// Transformations and coordinate systems; texture making (strs and nums in signature
+// order).
+bool Reader::dispatchTransformOrTexture(const RequestInfo& info, const Args& a,
+                                        const SourceLoc& loc) {
+    const ArgAt v{a};
+    const ParamList& P = a.params;
+    Target& t = m_target;
+    float m[16];
+    switch (info.req) {
         case Req::Identity:
             t.identity(loc);
             break;
         case Req::Transform:
         case Req::ConcatTransform:
-            for (size_t i = 0; i < 16; ++i) m[i] = f(i);
+            for (size_t i = 0; i < 16; ++i) m[i] = v.f(i);
             if (info.req == Req::Transform)
                 t.transform(loc, m);
             else
                 t.concatTransform(loc, m);
             break;
         case Req::Perspective:
-            t.perspective(loc, f(0));
+            t.perspective(loc, v.f(0));
             break;
         case Req::Translate:
-            t.translate(loc, f(0), f(1), f(2));
+            t.translate(loc, v.f(0), v.f(1), v.f(2));
             break;
         case Req::Rotate:
-            t.rotate(loc, f(0), f(1), f(2), f(3));
+            t.rotate(loc, v.f(0), v.f(1), v.f(2), v.f(3));
             break;
         case Req::Scale:
-            t.scale(loc, f(0), f(1), f(2));
+            t.scale(loc, v.f(0), v.f(1), v.f(2));
             break;
         case Req::Skew:
-            t.skew(loc, f(0), f(1), f(2), f(3), f(4), f(5), f(6));
+            t.skew(loc, v.f(0), v.f(1), v.f(2), v.f(3), v.f(4), v.f(5), v.f(6));
             break;
         case Req::CoordinateSystem:
-            t.coordinateSystem(loc, s(0));
+            t.coordinateSystem(loc, v.s(0));
             break;
         case Req::ScopedCoordinateSystem:
-            t.scopedCoordinateSystem(loc, s(0));
+            t.scopedCoordinateSystem(loc, v.s(0));
             break;
         case Req::CoordSysTransform:
-            t.coordSysTransform(loc, s(0));
+            t.coordSysTransform(loc, v.s(0));
             break;
 
-        // Texture making: strs and nums in signature order
+        // Texture making
         case Req::MakeTexture:
-            t.makeTexture(loc, s(0), s(1), s(2), s(3), s(4), f(0), f(1), P);
+            t.makeTexture(loc, v.s(0), v.s(1), v.s(2), v.s(3), v.s(4), v.f(0), v.f(1), P);
             break;
         case Req::MakeBump:
-            t.makeBump(loc, s(0), s(1), s(2), s(3), s(4), f(0), f(1), P);
+            t.makeBump(loc, v.s(0), v.s(1), v.s(2), v.s(3), v.s(4), v.f(0), v.f(1), P);
             break;
         case Req::MakeLatLongEnvironment:
-            t.makeLatLongEnvironment(loc, s(0), s(1), s(2), f(0), f(1), P);
+            t.makeLatLongEnvironment(loc, v.s(0), v.s(1), v.s(2), v.f(0), v.f(1), P);
             break;
         case Req::MakeCubeFaceEnvironment:
-            t.makeCubeFaceEnvironment(loc, {s(0), s(1), s(2), s(3), s(4), s(5)}, s(6), f(0),
-                                      s(7), f(1), f(2), P);
+            t.makeCubeFaceEnvironment(loc,
+                                      {v.s(0), v.s(1), v.s(2), v.s(3), v.s(4), v.s(5)},
+                                      v.s(6), v.f(0), v.s(7), v.f(1), v.f(2), P);
             break;
         case Req::MakeShadow:
-            t.makeShadow(loc, s(0), s(1), P);
+            t.makeShadow(loc, v.s(0), v.s(1), P);
             break;
         default:
             return false;

@@ -226,13 +226,7 @@ bool Reader::checkNuPatch(const Args& a, const SourceLoc& loc) {
 }
 
 bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const SourceLoc& loc) {
-    auto f = [&](size_t i) {
-        return i < a.nums.size() ? static_cast<float>(a.nums[i]) : 0.f;
-    };
-    auto n = [&](size_t i) {
-        return i < a.nums.size() ? static_cast<int>(a.nums[i]) : 0;
-    };
-    auto s = [&](size_t i) { return i < a.strs.size() ? a.strs[i] : std::string(); };
+    const ArgAt v{a};
     static const std::vector<int> noInts;
     static const std::vector<float> noFloats;
     static const std::vector<std::string> noStrings;
@@ -284,28 +278,30 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
                                         P);
             break;
         case Req::Patch: {
-            bool cubic = s(0) == "bicubic";
-            if (!cubic && s(0) != "bilinear") {
-                error(loc, "Patch: unknown type \"" + s(0) + "\" (bilinear, bicubic)");
+            bool cubic = v.s(0) == "bicubic";
+            if (!cubic && v.s(0) != "bilinear") {
+                error(loc, "Patch: unknown type \"" + v.s(0) + "\" (bilinear, bicubic)");
                 break;
             }
             np = countPoints(req, P, loc);
             if (np < 0) break;
             if (np != (cubic ? 16 : 4)) {
-                error(loc, std::string("Patch \"") + s(0) + "\" needs " +
-                               (cubic ? "16" : "4") + " points, got " + std::to_string(np));
+                error(loc, std::string("Patch \"") + v.s(0) + "\" needs " +
+                               (cubic ? "16" : "4") + " points, got " +
+                               std::to_string(np));
                 break;
             }
-            if (checkVaryingCounts(req, P, 1, 4, np, 4, loc)) t.patch(loc, s(0), P);
+            if (checkVaryingCounts(req, P, 1, 4, np, 4, loc)) t.patch(loc, v.s(0), P);
             break;
         }
         case Req::PatchMesh:
-            if (checkPatchMesh(a, loc)) t.patchMesh(loc, s(0), n(0), s(1), n(1), s(2), P);
+            if (checkPatchMesh(a, loc))
+                t.patchMesh(loc, v.s(0), v.n(0), v.s(1), v.n(1), v.s(2), P);
             break;
         case Req::NuPatch:
             if (checkNuPatch(a, loc))
-                t.nuPatch(loc, n(0), n(1), a.floatArrays[0], f(2), f(3), n(4), n(5),
-                          a.floatArrays[1], f(6), f(7), P);
+                t.nuPatch(loc, v.n(0), v.n(1), a.floatArrays[0], v.f(2), v.f(3), v.n(4),
+                          v.n(5), a.floatArrays[1], v.f(6), v.f(7), P);
             break;
         case Req::TrimCurve:
             if (checkTrimCurve(a, loc))
@@ -316,11 +312,12 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
         case Req::SubdivisionMesh:
             if (!checkSubdivisionMesh(a, loc)) break;
             if (a.optionalMissing)
-                t.subdivisionMesh(loc, s(0), a.intArrays[0], a.intArrays[1], noStrings, noInts,
-                                  noInts, noFloats, P);
+                t.subdivisionMesh(loc, v.s(0), a.intArrays[0], a.intArrays[1], noStrings,
+                                  noInts, noInts, noFloats, P);
             else
-                t.subdivisionMesh(loc, s(0), a.intArrays[0], a.intArrays[1], a.strArrays[0],
-                                  a.intArrays[2], a.intArrays[3], a.floatArrays[0], P);
+                t.subdivisionMesh(loc, v.s(0), a.intArrays[0], a.intArrays[1],
+                                  a.strArrays[0], a.intArrays[2], a.intArrays[3],
+                                  a.floatArrays[0], P);
             break;
         case Req::Sphere:
         case Req::Cylinder:
@@ -330,38 +327,42 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
         case Req::Paraboloid:
         case Req::Hyperboloid: {
             if (!checkVaryingCounts(req, P, 1, 4, 4, 4, loc)) break;
-            if (info.req == Req::Sphere) t.sphere(loc, f(0), f(1), f(2), f(3), P);
-            if (info.req == Req::Cylinder) t.cylinder(loc, f(0), f(1), f(2), f(3), P);
-            if (info.req == Req::Cone) t.cone(loc, f(0), f(1), f(2), P);
-            if (info.req == Req::Disk) t.disk(loc, f(0), f(1), f(2), P);
-            if (info.req == Req::Torus) t.torus(loc, f(0), f(1), f(2), f(3), f(4), P);
-            if (info.req == Req::Paraboloid) t.paraboloid(loc, f(0), f(1), f(2), f(3), P);
+            if (info.req == Req::Sphere) t.sphere(loc, v.f(0), v.f(1), v.f(2), v.f(3), P);
+            if (info.req == Req::Cylinder)
+                t.cylinder(loc, v.f(0), v.f(1), v.f(2), v.f(3), P);
+            if (info.req == Req::Cone) t.cone(loc, v.f(0), v.f(1), v.f(2), P);
+            if (info.req == Req::Disk) t.disk(loc, v.f(0), v.f(1), v.f(2), P);
+            if (info.req == Req::Torus)
+                t.torus(loc, v.f(0), v.f(1), v.f(2), v.f(3), v.f(4), P);
+            if (info.req == Req::Paraboloid)
+                t.paraboloid(loc, v.f(0), v.f(1), v.f(2), v.f(3), P);
             if (info.req == Req::Hyperboloid) {
-                float p1[3] = {f(0), f(1), f(2)}, p2[3] = {f(3), f(4), f(5)};
-                t.hyperboloid(loc, p1, p2, f(6), P);
+                float p1[3] = {v.f(0), v.f(1), v.f(2)}, p2[3] = {v.f(3), v.f(4), v.f(5)};
+                t.hyperboloid(loc, p1, p2, v.f(6), P);
             }
             break;
         }
         case Req::Curves:
-            if (checkCurves(a, loc)) t.curves(loc, s(0), a.intArrays[0], s(1), P);
+            if (checkCurves(a, loc)) t.curves(loc, v.s(0), a.intArrays[0], v.s(1), P);
             break;
         case Req::Points:
             np = countPoints(req, P, loc);
             if (np >= 0 && checkVaryingCounts(req, P, -1, np, np, np, loc)) t.points(loc, P);
             break;
         case Req::Blobby:
-            if (n(0) < 0) {
+            if (v.n(0) < 0) {
                 error(loc, "Blobby nleaf must not be negative");
                 break;
             }
             if (checkBlobby(a, loc))
-                t.blobby(loc, n(0), a.intArrays[0], a.floatArrays[0], a.strArrays[0], P);
+                t.blobby(loc, v.n(0), a.intArrays[0], a.floatArrays[0], a.strArrays[0],
+                         P);
             break;
         case Req::Geometry:
-            t.geometry(loc, s(0), P);
+            t.geometry(loc, v.s(0), P);
             break;
         case Req::Procedural: {
-            const std::string name = s(0);
+            const std::string name = v.s(0);
             size_t want = name == "DelayedReadArchive" ? 1
                           : name == "RunProgram" || name == "DynamicLoad" ? 2
                                                                           : 0;
@@ -376,7 +377,7 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
                 break;
             }
             float bound[6];
-            for (size_t i = 0; i < 6; ++i) bound[i] = f(i);
+            for (size_t i = 0; i < 6; ++i) bound[i] = v.f(i);
             if (m_opts.expandArchives && name == "DelayedReadArchive") {
                 std::string file = resolveArchive(a.strArrays[0][0]);
                 if (t.deferProcedural(loc, name, a.strArrays[0], bound,
@@ -391,11 +392,11 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
             break;
         }
         case Req::ObjectInstance:
-            if (!m_objects.count(s(0))) {
-                error(loc, "ObjectInstance of undefined object \"" + s(0) + "\"");
+            if (!m_objects.count(v.s(0))) {
+                error(loc, "ObjectInstance of undefined object \"" + v.s(0) + "\"");
                 break;
             }
-            t.objectInstance(loc, s(0));
+            t.objectInstance(loc, v.s(0));
             break;
         default:
             return false;

@@ -60,6 +60,22 @@ struct Args {
     ParamList params;
 };
 
+// A request's positional arguments by index. parseArgs guarantees their counts; these
+// check anyway (0 or empty past the end), so that a table typo never reads out of range.
+struct ArgAt {
+    const Args& a;
+    float f(size_t i) const {
+        return i < a.nums.size() ? static_cast<float>(a.nums[i]) : 0.f;
+    }
+    int n(size_t i) const { return i < a.nums.size() ? static_cast<int>(a.nums[i]) : 0; }
+    std::string s(size_t i) const {
+        return i < a.strs.size() ? a.strs[i] : std::string();
+    }
+    std::vector<float> fa(size_t i) const {
+        return i < a.floatArrays.size() ? a.floatArrays[i] : std::vector<float>();
+    }
+};
+
 // Attribute and Option values by "group:name" (their first value), for conditional RIB.
 using CondValues = std::unordered_map<std::string, CondValue>;
 
@@ -147,8 +163,12 @@ private:
 
     // reader_dispatch.cpp
     void dispatch(const RequestInfo& info, const Args& a, const SourceLoc& loc);
-    bool dispatchOptionOrAttribute(const RequestInfo& info, const Args& a,
-                                   const SourceLoc& loc);
+    // Each returns false for a request not of its family.
+    bool dispatchOption(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    bool dispatchShading(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    bool dispatchAttribute(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    bool dispatchTransformOrTexture(const RequestInfo& info, const Args& a,
+                                    const SourceLoc& loc);
     bool basisMatrix(const std::string& name, const double* nums, float m[16],
                      const SourceLoc& loc);
 

@@ -109,9 +109,9 @@ bool Reader::checkScope(const RequestInfo& info, const SourceLoc& loc) {
 }
 
 bool Reader::dispatchBlock(const RequestInfo& info, const Args& a, const SourceLoc& loc) {
+    const ArgAt v{a};
     Target& t = m_target;
     const std::string req = info.name;
-    auto s = [&](size_t i) { return i < a.strs.size() ? a.strs[i] : std::string(); };
     bool world = has(Req::WorldBegin), object = has(Req::ObjectBegin);
     switch (info.req) {
         case Req::FrameBegin:
@@ -159,7 +159,7 @@ bool Reader::dispatchBlock(const RequestInfo& info, const Args& a, const SourceL
             break;
         }
         case Req::SolidBegin: {
-            const std::string op = s(0);
+            const std::string op = v.s(0);
             if (op != "primitive" && op != "union" && op != "intersection" &&
                 op != "difference") {
                 error(loc, "SolidBegin: unknown operation \"" + op +
@@ -190,16 +190,16 @@ bool Reader::dispatchBlock(const RequestInfo& info, const Args& a, const SourceL
                 break;
             }
             beginBlock(Req::ObjectBegin, info.name, loc);
-            m_objects.insert(s(0));
-            t.objectBegin(loc, s(0));
+            m_objects.insert(v.s(0));
+            t.objectBegin(loc, v.s(0));
             break;
         case Req::ArchiveBegin:
             if (m_opts.expandArchives) {
-                recordInlineArchive(s(0), loc);
+                recordInlineArchive(v.s(0), loc);
                 break;
             }
             beginBlock(Req::ArchiveBegin, info.name, loc);
-            t.archiveBegin(loc, s(0), a.params);
+            t.archiveBegin(loc, v.s(0), a.params);
             break;
         case Req::FrameEnd:
             if (endBlock(Req::FrameBegin, "FrameBegin", info.name, loc)) t.frameEnd(loc);
