@@ -359,62 +359,59 @@ std::string Emitter::textureInfo(const Expr& e) {
            ", &" + lvalue(var) + ")";
 }
 
-std::string Emitter::builtin(const Expr& e) {
-    const std::string& n = e.text;
-    const BuiltinSig* sig = e.sig;
-    if (!sig) {
-        error(e.loc, "unresolved builtin '" + n + "'");
-        return "0";
-    }
-    const std::string& code = sig->code;
-    TypeSpec ret = sig->ret;
-    bool vret = ret.isTriple();
-    std::string vf = ret.isColor() ? "_c" : vret ? "_v" : "_f";
-    auto argType = [&](size_t i) -> TypeSpec {
-        if (i < sig->args.size()) return sig->args[i].anyType ? e.args[i]->type : sig->args[i].type;
-        if (sig->repeatLast && !sig->args.empty()) return sig->args.back().type;
-        return e.args[i]->type;
-    };
-    auto A = [&](size_t i) { return exprAs(*e.args[i], argType(i)); };
-    auto I = [&](size_t i) { return "(int)(" + A(i) + ")"; };
-    auto call = [&](const std::string& fn, size_t from = 0, size_t to = size_t(-1)) {
-        std::string s = fn + "(";
-        for (size_t i = from; i < e.args.size() && i < to; ++i) s += (i > from ? ", " : "") + A(i);
-        return s + ")";
-    };
-    size_t na = e.args.size();
-    // argument codes only (after the return code, without & markers)
-    std::string ac;
-    for (size_t i = 1; i < code.size(); ++i)
-        if (code[i] != '&') ac += code[i];
+std::string Emitter::arg(const BuiltinCall& c, size_t i) {
+    const BuiltinSig& sig = c.sig;
+    const TypeSpec t = i < sig.args.size()
+                           ? (sig.args[i].anyType ? c.e.args[i]->type : sig.args[i].type)
+                       : sig.repeatLast && !sig.args.empty() ? sig.args.back().type
+                                                             : c.e.args[i]->type;
+    return exprAs(*c.e.args[i], t);
+}
 
-    // ---- math ----
+std::string Emitter::intArg(const BuiltinCall& c, size_t i) {
+    return "(int)(" + arg(c, i) + ")";
+}
+
+std::string Emitter::callOf(const BuiltinCall& c, const std::string& fn, size_t from,
+                            size_t to) {
+    std::string s = fn + "(";
+    for (size_t i = from; i < c.count && i < to; ++i)
+        s += (i > from ? ", " : "") + arg(c, i);
+    return s + ")";
+}
+
+// Arithmetic, interpolation, derivatives, noise and random numbers; empty when `c` is
+// none of them.
+std::string Emitter::mathBuiltin(const BuiltinCall& c) {
+    const Expr& e = c.e;
+    const std::string& n = e.text;
     static const std::set<std::string> direct = {"sin", "asin", "cos", "acos", "tan", "exp",
                                                  "sqrt", "floor", "ceil", "round"};
-    if (direct.count(n)) return call(n);
-    if (n == "pow") return call("rsl_pow");
-    if (n == "abs") return call("fabs");
-    if (n == "inversesqrt") return call("rsqrt");
+    if (direct.count(n)) return callOf(c, n);
+    if (n == "pow") return callOf(c, "rsl_pow");
+    if (n == "abs") return callOf(c, "fabs");
+    if (n == "inversesqrt") return callOf(c, "rsqrt");
     if (n == "radians" || n == "degrees" || n == "mod" || n == "sign" || n == "step" ||
         n == "smoothstep")
-        return call("rsl_" + n);
-    if (n == "atan") return call(na == 2 ? "atan2" : "atan");
-    if (n == "log") return call(na == 2 ? "rsl_log2b" : "log");
+        return callOf(c, "rsl_" + n);
+    if (n == "atan") return callOf(c, c.count == 2 ? "atan2" : "atan");
+    if (n == "log") return callOf(c, c.count == 2 ? "rsl_log2b" : "log");
     if (n == "min" || n == "max") {
-        std::string s = A(0);
-        for (size_t i = 1; i < na; ++i) s = "rsl_" + n + vf + "(" + s + ", " + A(i) + ")";
+        std::string s = arg(c, 0);
+        for (size_t i = 1; i < c.count; ++i)
+            s = "rsl_" + n + c.vf + "(" + s + ", " + arg(c, i) + ")";
         return s;
     }
-    if (n == "clamp" || n == "mix") return call("rsl_" + n + vf);
+    if (n == "clamp" || n == "mix") return callOf(c, "rsl_" + n + c.vf);
     if (n == "filterstep") {
         // filterstep(edge, s1[, s2][, "width", w]): the optional pairs start at the
         // first string argument
         m_out.usesDerivatives = true;
         size_t pairs = 2;
-        while (pairs < na && !e.args[pairs]->type.isString()) ++pairs;
+        while (pairs < c.count && !e.args[pairs]->type.isString()) ++pairs;
         std::string s2 = pairs > 2 ? exprAs(*e.args[2], BaseType::Float) : "NAN";
         std::string width = "1.0f";
-        for (size_t i = pairs; i + 1 < na; i += 2) {
+        for (size_t i = pairs; i + 1 < c.count; i += 2) {
             const Expr& name = *e.args[i];
             if (name.kind == ExprKind::String && name.text == "width")
                 width = exprAs(*e.args[i + 1], BaseType::Float);
@@ -437,48 +434,56 @@ std::string Emitter::builtin(const Expr& e) {
                                       "is evaluated as catmull-rom");
         }
         std::string t = exprAs(*e.args[k], BaseType::Float);  // the def types t loosely
-        std::string fn = "rsl_spline" + vf + "(" + basis + ", " + t + ", ";
-        if (na == k + 2 && e.args[k + 1]->type.isArray())
+        std::string fn = "rsl_spline" + c.vf + "(" + basis + ", " + t + ", ";
+        if (c.count == k + 2 && e.args[k + 1]->type.isArray())
             return fn + expr(*e.args[k + 1]) + ", " + std::to_string(e.args[k + 1]->type.arraySize) + ")";
         // the knots go into a temporary array declared before the statement
         std::string tmp = "_knots" + std::to_string(m_tmp++);
-        std::string lst = std::string(clType(ret)) + " " + tmp + "[] = {";
-        for (size_t i = k + 1; i < na; ++i) lst += (i > k + 1 ? ", " : "") + A(i);
+        std::string lst = std::string(clType(c.ret)) + " " + tmp + "[] = {";
+        for (size_t i = k + 1; i < c.count; ++i)
+            lst += (i > k + 1 ? ", " : "") + arg(c, i);
         m_pre.push_back(lst + "};");
-        return fn + tmp + ", " + std::to_string(na - k - 1) + ")";
+        return fn + tmp + ", " + std::to_string(c.count - k - 1) + ")";
     }
     // finite differences over the point's neighbours (rsl_abi.h, DERIVATIVES)
     if (n == "Du" || n == "Dv" || n == "Deriv") {
         m_out.usesDerivatives = true;
-        std::string s = "rsl_" + n + vf + "(g, ev, " + A(0);
-        return s + (n == "Deriv" ? ", " + A(1) : std::string()) + ")";
+        std::string s = "rsl_" + n + c.vf + "(g, ev, " + arg(c, 0);
+        return s + (n == "Deriv" ? ", " + arg(c, 1) : std::string()) + ")";
     }
     if (n == "area" || n == "calculatenormal") {
         m_out.usesDerivatives = true;
-        return "rsl_" + n + "(g, ev, " + A(0) + ")";
+        return "rsl_" + n + "(g, ev, " + arg(c, 0) + ")";
     }
     if (n == "random") m_out.usesRandom = true;
     // (a point takes three sites, a colour max(3, n): rsl_abi.h RANDOM)
     if (n == "random") {
         const int site = m_randomSite;
-        m_randomSite += vf == "_f" ? 1 : vf == "_c" ? m_colorSlots : 3;
-        return "rsl_random" + vf + "(g, " + std::to_string(site) + ")";
+        m_randomSite += c.vf == "_f" ? 1 : c.vf == "_c" ? m_colorSlots : 3;
+        return "rsl_random" + c.vf + "(g, " + std::to_string(site) + ")";
     }
     if (n == "noise" || n == "pnoise" || n == "cellnoise") {
-        std::string dims = n == "pnoise" ? ac.substr(0, ac.size() / 2) : ac;
+        std::string dims =
+            n == "pnoise" ? c.codes.substr(0, c.codes.size() / 2) : c.codes;
         int d = dims == "f" ? 1 : dims == "ff" ? 2 : (dims == "p" || dims == "v") ? 3 : 4;
-        return call("rsl_" + n + std::to_string(d) + vf);
+        return callOf(c, "rsl_" + n + std::to_string(d) + c.vf);
     }
-    // ---- geometry ----
-    if (n == "xcomp") return "(" + A(0) + ").x";
-    if (n == "ycomp") return "(" + A(0) + ").y";
-    if (n == "zcomp") return "(" + A(0) + ").z";
+    return {};
+}
+
+// Points, vectors, normals and their spaces; empty when `c` is none of them.
+std::string Emitter::geometryBuiltin(const BuiltinCall& c) {
+    const Expr& e = c.e;
+    const std::string& n = e.text;
+    if (n == "xcomp") return "(" + arg(c, 0) + ").x";
+    if (n == "ycomp") return "(" + arg(c, 0) + ").y";
+    if (n == "zcomp") return "(" + arg(c, 0) + ").z";
     if (n == "setxcomp" || n == "setycomp" || n == "setzcomp")
-        return "(" + lvalue(*e.args[0]) + "." + n.substr(3, 1) + " = " + A(1) + ")";
+        return "(" + lvalue(*e.args[0]) + "." + n.substr(3, 1) + " = " + arg(c, 1) + ")";
     if (n == "length" || n == "normalize" || n == "distance" || n == "ptlined" ||
         n == "reflect" || n == "refract" || n == "determinant" ||
         n == "translate" || n == "scale")
-        return call("rsl_" + n);
+        return callOf(c, "rsl_" + n);
     // BMRT's and PRMan's: the ray's depth, and whether a shadow ray runs the shader
     // (never: shadows take the surface's constant Os, rsl_abi.h TRACE)
     if (n == "raylevel") return "((float)(g->ray_depth & ~RSL_SHADOW_RAY))";
@@ -489,16 +494,17 @@ std::string Emitter::builtin(const Expr& e) {
     }
     if (n == "depth") {  // (camera space and clipping come through the spaces)
         m_usesSpaces = true;
-        return "rsl_depth(sp, " + A(0) + ")";
+        return "rsl_depth(sp, " + arg(c, 0) + ")";
     }
-    if (n == "specularbrdf") return "rsl_f2c(" + call("rsl_" + n) + ")";
-    if (n == "rotate") return call(ret.isMatrix() ? "rsl_mrotate" : "rsl_rotate");
+    if (n == "specularbrdf") return "rsl_f2c(" + callOf(c, "rsl_" + n) + ")";
+    if (n == "rotate") return callOf(c, c.ret.isMatrix() ? "rsl_mrotate" : "rsl_rotate");
     if (n == "faceforward")
-        return "rsl_faceforward(" + A(0) + ", " + A(1) + ", " + (na > 2 ? A(2) : "g->Ng") + ")";
+        return "rsl_faceforward(" + arg(c, 0) + ", " + arg(c, 1) + ", " +
+               (c.count > 2 ? arg(c, 2) : "g->Ng") + ")";
     if (n == "fresnel") {
-        std::string s = std::string(na > 5 ? "rsl_fresnel(" : "rsl_fresnel5(") + A(0) + ", " +
-                        A(1) + ", " + A(2);
-        for (size_t i = 3; i < na; ++i) s += ", &" + lvalue(*e.args[i]);
+        std::string s = std::string(c.count > 5 ? "rsl_fresnel(" : "rsl_fresnel5(") +
+                        arg(c, 0) + ", " + arg(c, 1) + ", " + arg(c, 2);
+        for (size_t i = 3; i < c.count; ++i) s += ", &" + lvalue(*e.args[i]);
         return s + ")";
     }
     if (n == "transform" || n == "vtransform" || n == "ntransform") {
@@ -506,42 +512,57 @@ std::string Emitter::builtin(const Expr& e) {
         std::string fn = std::string("rsl_transform_") + kc;
         std::string xf = kc == 'p' ? "rsl_xpoint" : kc == 'v' ? "rsl_xvector" : "rsl_xnormal";
         m_usesSpaces = true;
-        if (ac.size() == 2 && ac[0] == 's')
-            return fn + "(sp, RSL_SPACE_CURRENT, " + spaceArg(*e.args[0]) + ", " + A(1) + ")";
-        if (ac.size() == 3 && ac[0] == 's' && ac[1] == 's')
-            return fn + "(sp, " + spaceArg(*e.args[0]) + ", " + spaceArg(*e.args[1]) + ", " + A(2) + ")";
-        if (ac.size() == 2 && ac[0] == 'm') return xf + "(" + A(0) + ", " + A(1) + ")";
-        if (ac.size() == 3 && ac[0] == 's' && ac[1] == 'm')
-            return xf + "(" + A(1) + ", " + fn + "(sp, " + spaceArg(*e.args[0]) +
-                   ", RSL_SPACE_CURRENT, " + A(2) + "))";
+        if (c.codes.size() == 2 && c.codes[0] == 's')
+            return fn + "(sp, RSL_SPACE_CURRENT, " + spaceArg(*e.args[0]) + ", " +
+                   arg(c, 1) + ")";
+        if (c.codes.size() == 3 && c.codes[0] == 's' && c.codes[1] == 's')
+            return fn + "(sp, " + spaceArg(*e.args[0]) + ", " + spaceArg(*e.args[1]) +
+                   ", " + arg(c, 2) + ")";
+        if (c.codes.size() == 2 && c.codes[0] == 'm')
+            return xf + "(" + arg(c, 0) + ", " + arg(c, 1) + ")";
+        if (c.codes.size() == 3 && c.codes[0] == 's' && c.codes[1] == 'm')
+            return xf + "(" + arg(c, 1) + ", " + fn + "(sp, " + spaceArg(*e.args[0]) +
+                   ", RSL_SPACE_CURRENT, " + arg(c, 2) + "))";
     }
-    // ---- colour and matrix components ----
+    return {};
+}
+
+// Colour and matrix components, colour spaces, strings; empty when `c` is none of them.
+std::string Emitter::componentOrStringBuiltin(const BuiltinCall& c) {
+    const Expr& e = c.e;
+    const std::string& n = e.text;
     if (n == "comp") {
-        if (ac == "mff") return "rsl_mget(" + A(0) + ", " + I(1) + ", " + I(2) + ")";
-        return "rsl_comp(" + A(0) + ", " + I(1) + ")";
+        if (c.codes == "mff")
+            return "rsl_mget(" + arg(c, 0) + ", " + intArg(c, 1) + ", " + intArg(c, 2) +
+                   ")";
+        return "rsl_comp(" + arg(c, 0) + ", " + intArg(c, 1) + ")";
     }
     if (n == "setcomp") {
-        if (ac == "mfff")
-            return "rsl_mset(&" + lvalue(*e.args[0]) + ", " + I(1) + ", " + I(2) + ", " + A(3) + ")";
-        return "rsl_setcomp(&" + lvalue(*e.args[0]) + ", " + I(1) + ", " + A(2) + ")";
+        if (c.codes == "mfff")
+            return "rsl_mset(&" + lvalue(*e.args[0]) + ", " + intArg(c, 1) + ", " +
+                   intArg(c, 2) + ", " + arg(c, 3) + ")";
+        return "rsl_setcomp(&" + lvalue(*e.args[0]) + ", " + intArg(c, 1) + ", " +
+               arg(c, 2) + ")";
     }
     if (n == "ctransform") {
         const std::string fn = ctransformFn();
-        if (na == 2) return fn + "RSL_COLOR_RGB, " + colorSpaceArg(*e.args[0]) + ", " + A(1) + ")";
-        return fn + colorSpaceArg(*e.args[0]) + ", " + colorSpaceArg(*e.args[1]) +
-               ", " + A(2) + ")";
+        if (c.count == 2)
+            return fn + "RSL_COLOR_RGB, " + colorSpaceArg(*e.args[0]) + ", " + arg(c, 1) +
+                   ")";
+        return fn + colorSpaceArg(*e.args[0]) + ", " + colorSpaceArg(*e.args[1]) + ", " +
+               arg(c, 2) + ")";
     }
     // ---- strings (uniform, minimal) ----
     if (n == "concat" || n == "format") {
         std::string all;
         bool literal = true;
-        for (size_t i = 0; i < (n == "format" ? size_t(1) : na); ++i) {
+        for (size_t i = 0; i < (n == "format" ? size_t(1) : c.count); ++i) {
             literal = literal && e.args[i]->kind == ExprKind::String;
             all += e.args[i]->text;
         }
-        if (literal && (n == "concat" || na == 1)) return stringLiteral(all);
+        if (literal && (n == "concat" || c.count == 1)) return stringLiteral(all);
         m_diag.warning(e.loc, n + "() of non-literal strings returns its first argument");
-        return A(0);
+        return arg(c, 0);
     }
     if (n == "match") {
         if (e.args[0]->kind == ExprKind::String && e.args[1]->kind == ExprKind::String)
@@ -549,7 +570,13 @@ std::string Emitter::builtin(const Expr& e) {
         return "0.0f";
     }
     if (n == "printf") return "((void)0)";
-    // ---- shading and lighting ----
+    return {};
+}
+
+// Lighting, rays, textures and messages; empty when `c` is none of them.
+std::string Emitter::shadingBuiltin(const BuiltinCall& c) {
+    const Expr& e = c.e;
+    const std::string& n = e.text;
     if (n == "ambient") {
         m_out.usesLighting = true;
         return "rsl_cw0(rsl_ambient(g))";
@@ -557,12 +584,12 @@ std::string Emitter::builtin(const Expr& e) {
     if (n == "diffuse" || n == "specular" || n == "phong") {
         m_out.usesLighting = true;
         std::string s = "rsl_" + n + "(g, ev";
-        for (size_t i = 0; i < na; ++i) s += ", " + A(i);
+        for (size_t i = 0; i < c.count; ++i) s += ", " + arg(c, i);
         return s + ")";
     }
     if (n == "trace") {
         traceSite(e);
-        return "rsl_trace(ev, " + A(0) + ", " + A(1) + ")";
+        return "rsl_trace(ev, " + arg(c, 0) + ", " + arg(c, 1) + ")";
     }
     if (n == "transmission") {
         // In a light shader it is 1: RayDrive traces a shadow ray for every light (but
@@ -571,16 +598,32 @@ std::string Emitter::builtin(const Expr& e) {
         if (m_sh.kind != ShaderKind::Surface) return "rsl_f2c(1.0f)";
         traceSite(e);
         m_out.usesVisibility = true;
-        return "rsl_transmission(ev, " + A(0) + ", " + A(1) + ")";
+        return "rsl_transmission(ev, " + arg(c, 0) + ", " + arg(c, 1) + ")";
     }
     if (n == "occlusion" || n == "indirectdiffuse") return hemisphereCall(e);
     if (n.rfind("__gather_", 0) == 0) return gatherCall(e);
     if (n == "texture" || n == "environment" || n == "shadow" || n == "bump")
-        return textureCall(e, vret);
+        return textureCall(e, c.ret.isTriple());
     if (n == "textureinfo") return textureInfo(e);
     if (e.builtin->flags & BF_MESSAGE) return message(e);
-    error(e.loc, "builtin '" + n + "' is not supported by the code generator yet");
-    return clZero(ret);
+    return {};
+}
+
+std::string Emitter::builtin(const Expr& e) {
+    if (!e.sig) {
+        error(e.loc, "unresolved builtin '" + e.text + "'");
+        return "0";
+    }
+    BuiltinCall c{e, *e.sig, e.sig->ret, "", "", e.args.size()};
+    c.vf = c.ret.isColor() ? "_c" : c.ret.isTriple() ? "_v" : "_f";
+    // argument codes only (after the return code, without & markers)
+    for (size_t i = 1; i < c.sig.code.size(); ++i)
+        if (c.sig.code[i] != '&') c.codes += c.sig.code[i];
+    for (auto family : {&Emitter::mathBuiltin, &Emitter::geometryBuiltin,
+                        &Emitter::componentOrStringBuiltin, &Emitter::shadingBuiltin})
+        if (std::string code = (this->*family)(c); !code.empty()) return code;
+    error(e.loc, "builtin '" + e.text + "' is not supported by the code generator yet");
+    return clZero(c.ret);
 }
 
 }  // namespace rsl

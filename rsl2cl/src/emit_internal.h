@@ -56,6 +56,24 @@ public:
     std::string stringLiteral(const std::string& s);
     // ---- builtins (emit_builtins.cpp) ----
     std::string builtin(const Expr& e);
+    // A builtin call being emitted, with what its families read of its signature.
+    struct BuiltinCall {
+        const Expr& e;
+        const BuiltinSig& sig;
+        TypeSpec ret;
+        std::string vf;     // the return's suffix of the runtime's names: _f, _v, _c
+        std::string codes;  // the signature's argument codes, without & markers
+        size_t count;       // the call's arguments
+    };
+    std::string arg(const BuiltinCall& c, size_t i);  // as its signature types it
+    std::string intArg(const BuiltinCall& c, size_t i);
+    // fn(its arguments [from, to))
+    std::string callOf(const BuiltinCall& c, const std::string& fn, size_t from = 0,
+                       size_t to = size_t(-1));
+    std::string mathBuiltin(const BuiltinCall& c);
+    std::string geometryBuiltin(const BuiltinCall& c);
+    std::string componentOrStringBuiltin(const BuiltinCall& c);
+    std::string shadingBuiltin(const BuiltinCall& c);
     std::string spaceArg(const Expr& e);
     std::string spaceOfName(const std::string& name);
     std::string colorSpaceArg(const Expr& e);
