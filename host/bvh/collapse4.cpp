@@ -55,10 +55,13 @@ namespace {
 // Packs a leaf's primitives into blocks of four, triangles first, then objects (quadrics
 // and CSG solids: prim lanes with RT_OBJECT_BIT, v0 = box minimum, v1 = box maximum);
 // returns the first block's index.
+// `triangles` and `objects`: the leaf's slots of each kind (their memory kept from leaf
+// to leaf: two allocations a leaf were a tenth of a 1M-triangle collapse).
 int packLeaf(const Bvh& bvh, const std::vector<Triangle>& tris, const BvhPrimitives* prims,
-             int first, int count, std::vector<Triangle4>& blocks, int& blockCount) {
+             int first, int count, std::vector<Triangle4>& blocks, int& blockCount,
+             std::vector<uint32_t>& triangles, std::vector<uint32_t>& objects) {
     int start = int(blocks.size());
-    std::vector<uint32_t> triangles, objects;  // leaf slots
+    triangles.clear(), objects.clear();
     for (int j = first; j < first + count; ++j) {
         uint32_t slot = bvh.primIndices[size_t(j)];
         uint32_t id = prims ? prims->ids[slot] : slot;
@@ -126,6 +129,7 @@ struct SahCollapse {
     std::vector<std::array<int8_t, W + 1>> split;
     std::vector<int8_t> nodeSplit;  // a wide node at n: its left child's share of W
     std::vector<uint8_t> leaf;      // cost[n][1] is n as one leaf
+    size_t blockBound = 0;          // the binary leaves' blocks: at least the wide tree's
 };
 
 template <int W>
@@ -150,6 +154,7 @@ SahCollapse<W> sahCollapse(const Bvh& bvh, const BvhPrimitives* prims) {
             cost.fill(a * kBlockCost * blocksOf(n));
             split.fill(0);
             c.leaf[n] = 1;
+            c.blockBound += size_t(blocksOf(n));
             continue;
         }
         const size_t l = size_t(b[n].left_or_first), r = l + 1;
@@ -213,14 +218,17 @@ BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
     for (int k = 0; k < W; ++k) clearSlot(out[0], k);
     if (bvh.empty()) return result;
     const std::vector<BvhNode>& b = bvh.nodes;
+    std::vector<uint32_t> triangles, objects;  // packLeaf's
     if (b[0].count > 0) {
         // A single leaf: the root holds it in slot 0.
         setSlot(out[0], 0, b[0]);
-        out[0].child[0] = packLeaf(bvh, tris, prims, b[0].left_or_first, b[0].count, result.blocks,
-                                   out[0].count[0]);
+        out[0].child[0] = packLeaf(bvh, tris, prims, b[0].left_or_first, b[0].count,
+                                   result.blocks, out[0].count[0], triangles, objects);
         return result;
     }
     const SahCollapse<W> sah = sahCollapse<W>(bvh, prims);
+    // (merged leaves pack no more blocks than their binary leaves: no reallocation)
+    result.blocks.reserve(sah.blockBound);
     // Work list: (wide node index, binary node whose subtree it lays out).
     std::vector<std::pair<size_t, int>> work{{0, 0}};
     std::vector<int> kids;
@@ -239,8 +247,9 @@ BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
             setSlot(out[wi], slot, b[size_t(kids[size_t(slot)])]);
             if (sah.leaf[size_t(kids[size_t(slot)])]) {
                 const auto [first, count] = primRange(bvh, kids[size_t(slot)]);
-                out[wi].child[slot] = packLeaf(bvh, tris, prims, first, count,
-                                               result.blocks, out[wi].count[slot]);
+                out[wi].child[slot] =
+                    packLeaf(bvh, tris, prims, first, count, result.blocks,
+                             out[wi].count[slot], triangles, objects);
             } else {
                 out[wi].child[slot] = int(out.size());
                 out[wi].count[slot] = 0;
