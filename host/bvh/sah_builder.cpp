@@ -5,6 +5,7 @@
 #include "host/bvh/sah_builder.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <exception>
@@ -223,13 +224,34 @@ public:
         // An axis with scale 0 puts everything in bin 0; cheaper than a branch, and the
         // sweep below skips it.
         const PrimRef* refs = refs_.data();
-        for (uint32_t i = t.begin; i < t.end; ++i) {
-            const PrimRef& r = refs[i];
-            for (int a = 0; a < 3; ++a) {
-                Bin& bin = bins_[a][binOf(r.c[a], lo[a], scale[a], lastBin)];
-                bin.box.grow(r.box);
-                ++bin.count;
+        auto binRange = [&](uint32_t begin, uint32_t end, auto& bins) {
+            for (uint32_t i = begin; i < end; ++i) {
+                const PrimRef& r = refs[i];
+                for (int a = 0; a < 3; ++a) {
+                    Bin& bin =
+                        bins[size_t(a)][size_t(binOf(r.c[a], lo[a], scale[a], lastBin))];
+                    bin.box.grow(r.box);
+                    ++bin.count;
+                }
             }
+        };
+        const uint32_t n = t.end - t.begin;
+        if (binThreads_ > 1 && n >= kParallelBinning) {
+            // The top levels' large ranges on the host's cores, each part into bins of
+            // its own, merged after: boxes by min and max and counts by sums, exactly
+            // what one pass gives, so the same tree.
+            std::vector<std::array<std::array<Bin, kMaxBins>, 3>> parts(binThreads_);
+            runInParts(n, parts.size(), [&](size_t begin, size_t end, size_t part) {
+                binRange(t.begin + uint32_t(begin), t.begin + uint32_t(end), parts[part]);
+            });
+            for (const auto& part : parts)
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < k; ++b) {
+                        bins_[a][b].box.grow(part[size_t(a)][size_t(b)].box);
+                        bins_[a][b].count += part[size_t(a)][size_t(b)].count;
+                    }
+        } else {
+            binRange(t.begin, t.end, bins_);
         }
         bool found = false;
         for (int a = 0; a < 3; ++a) {
@@ -290,6 +312,13 @@ public:
         return i;
     }
 
+public:
+    // Threads that bin a range of kParallelBinning primitives or more (the top levels'
+    // builder only: the subtrees below are built on the host's cores already).
+    size_t binThreads_ = 1;
+    static constexpr uint32_t kParallelBinning = 1u << 16;
+
+private:
     std::vector<PrimRef>& refs_;  // shared: each build partitions its own range
     int binCount_ = 16, maxLeaf_ = 4, leafCap_ = kBvhMaxLeafCap;
     float ct_ = 1.0f, ci_ = 1.0f;
@@ -343,6 +372,9 @@ Bvh buildBvh(const std::vector<Aabb>& primBounds, const BvhBuildSettings& settin
             // on the host's cores, into nodes of their own, appended in the order they
             // were set aside: the same tree whatever the number of threads.
             std::vector<BuildTask> parts;
+            const size_t threads =
+                settings.threads > 0 ? settings.threads : hostThreads();
+            builder->binThreads_ = threads;
             builder->buildSubtree(root, bvh.nodes, bvh.depth, uint32_t(refs.size() / 16),
                                   &parts);
             std::vector<std::vector<BvhNode>> partNodes(parts.size());
@@ -366,8 +398,6 @@ Bvh buildBvh(const std::vector<Aabb>& primBounds, const BvhBuildSettings& settin
                 }
             };
             std::vector<std::thread> pool;
-            const size_t threads =
-                settings.threads > 0 ? settings.threads : hostThreads();
             for (size_t t = 1; t < std::min(threads, parts.size()); ++t)
                 pool.emplace_back(work);
             work();

@@ -166,9 +166,10 @@ TEST(BvhBuild, IsDeterministic) {
 }
 
 // A large tree's subtrees are built in parallel into nodes of their own and appended in
-// a fixed order: the same nodes for any number of threads, and the same tree as one
-// thread builds depth first (the same splits and primitive order; only the nodes' places
-// differ).
+// a fixed order, and its top levels' ranges of 65536 primitives or more (here the root
+// and its children) are binned in parallel: the same nodes for any number of threads,
+// and the same tree as one thread builds depth first (the same splits and primitive
+// order; only the nodes' places differ).
 TEST(BvhBuild, ParallelBuildIsTheSameTreeOnAnyThreads) {
     std::vector<Aabb> boxes = randomBoxes(150000, 12);
     BvhBuildSettings s;
