@@ -3,8 +3,13 @@
 #include "collapse4.h"
 
 #include <array>
+#include <atomic>
 #include <cfloat>
 #include <cmath>
+#include <exception>
+#include <thread>
+
+#include "host/film/run_in_parts.h"
 
 namespace rd {
 namespace {
@@ -113,6 +118,7 @@ namespace {
 // holds at most two blocks (three: no faster); a binary leaf stays whole, however many it
 // has.
 constexpr double kNodeCost = 1.5, kBlockCost = 1.0;
+
 constexpr int kMaxMergedLeafBlocks = 2;
 
 // SAH-optimal collapse (Ylitie, Karras and Laine 2017, section 4.1). For every binary
@@ -209,32 +215,25 @@ std::pair<int, int> primRange(const Bvh& bvh, int n) {
     return {first.left_or_first, last.left_or_first + last.count - first.left_or_first};
 }
 
+// Lays out wide nodes from the work list `work` ((wide node, binary node whose subtree it
+// lays out); the wide node is out[first of the pair]) depth first into `out` and
+// `blocks`. With `deferred`, a work item whose subtree holds at most `defer` primitives
+// is set aside there instead, its wide node left to be filled by its own lay-out.
 template <class Node, int W>
-BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
-                           const BvhPrimitives* prims) {
-    BvhWide<Node> result;
-    std::vector<Node>& out = result.nodes;
-    out.resize(1);
-    for (int k = 0; k < W; ++k) clearSlot(out[0], k);
-    if (bvh.empty()) return result;
+void layOut(const Bvh& bvh, const std::vector<Triangle>& tris, const BvhPrimitives* prims,
+            const SahCollapse<W>& sah, std::vector<std::pair<size_t, int>> work,
+            std::vector<Node>& out, std::vector<Triangle4>& blocks, int defer = 0,
+            std::vector<std::pair<size_t, int>>* deferred = nullptr) {
     const std::vector<BvhNode>& b = bvh.nodes;
-    std::vector<uint32_t> triangles, objects;  // packLeaf's
-    if (b[0].count > 0) {
-        // A single leaf: the root holds it in slot 0.
-        setSlot(out[0], 0, b[0]);
-        out[0].child[0] = packLeaf(bvh, tris, prims, b[0].left_or_first, b[0].count,
-                                   result.blocks, out[0].count[0], triangles, objects);
-        return result;
-    }
-    const SahCollapse<W> sah = sahCollapse<W>(bvh, prims);
-    // (merged leaves pack no more blocks than their binary leaves: no reallocation)
-    result.blocks.reserve(sah.blockBound);
-    // Work list: (wide node index, binary node whose subtree it lays out).
-    std::vector<std::pair<size_t, int>> work{{0, 0}};
     std::vector<int> kids;
+    std::vector<uint32_t> triangles, objects;  // packLeaf's
     while (!work.empty()) {
         auto [wi, bi] = work.back();
         work.pop_back();
+        if (deferred && primRange(bvh, bi).second <= defer) {
+            deferred->push_back({wi, bi});
+            continue;
+        }
         kids.clear();
         const int l = b[size_t(bi)].left_or_first, k = sah.nodeSplit[size_t(bi)];
         slotsOf(bvh, sah, l, k, kids);
@@ -247,9 +246,8 @@ BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
             setSlot(out[wi], slot, b[size_t(kids[size_t(slot)])]);
             if (sah.leaf[size_t(kids[size_t(slot)])]) {
                 const auto [first, count] = primRange(bvh, kids[size_t(slot)]);
-                out[wi].child[slot] =
-                    packLeaf(bvh, tris, prims, first, count, result.blocks,
-                             out[wi].count[slot], triangles, objects);
+                out[wi].child[slot] = packLeaf(bvh, tris, prims, first, count, blocks,
+                                               out[wi].count[slot], triangles, objects);
             } else {
                 out[wi].child[slot] = int(out.size());
                 out[wi].count[slot] = 0;
@@ -258,24 +256,86 @@ BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
             }
         }
     }
+}
+
+template <class Node, int W>
+BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
+                           const BvhPrimitives* prims, size_t parallelFrom) {
+    BvhWide<Node> result;
+    std::vector<Node>& out = result.nodes;
+    out.resize(1);
+    for (int k = 0; k < W; ++k) clearSlot(out[0], k);
+    if (bvh.empty()) return result;
+    const std::vector<BvhNode>& b = bvh.nodes;
+    if (b[0].count > 0) {
+        // A single leaf: the root holds it in slot 0.
+        std::vector<uint32_t> triangles, objects;
+        setSlot(out[0], 0, b[0]);
+        out[0].child[0] = packLeaf(bvh, tris, prims, b[0].left_or_first, b[0].count,
+                                   result.blocks, out[0].count[0], triangles, objects);
+        return result;
+    }
+    const SahCollapse<W> sah = sahCollapse<W>(bvh, prims);
+    const int primCount = int(bvh.primIndices.size());
+    if (size_t(primCount) < parallelFrom) {
+        // (merged leaves pack no more blocks than their binary leaves: no reallocation)
+        result.blocks.reserve(sah.blockBound);
+        layOut<Node, W>(bvh, tris, prims, sah, {{0, 0}}, out, result.blocks);
+        return result;
+    }
+    // The top levels here; the subtrees of at most a 16th of the primitives each on the
+    // host's cores, into nodes and blocks of their own, appended in the order they were
+    // set aside: the same tree and layout whatever the number of threads (the nodes and
+    // blocks in another order than one thread's depth-first walk, the same traversals).
+    std::vector<std::pair<size_t, int>> parts;
+    layOut<Node, W>(bvh, tris, prims, sah, {{0, 0}}, out, result.blocks, primCount / 16,
+                    &parts);
+    std::vector<BvhWide<Node>> laid(parts.size());
+    std::atomic<size_t> next{0};
+    std::vector<std::exception_ptr> failed(parts.size());
+    auto work = [&] {
+        for (size_t i; (i = next++) < parts.size();) {
+            try {
+                laid[i].nodes.resize(1);
+                layOut<Node, W>(bvh, tris, prims, sah, {{0, parts[i].second}},
+                                laid[i].nodes, laid[i].blocks);
+            } catch (...) {
+                failed[i] = std::current_exception();
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < std::min(hostThreads(), parts.size()); ++t)
+        pool.emplace_back(work);
+    work();
+    for (std::thread& th : pool) th.join();
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
+    size_t nodes = out.size(), blocks = result.blocks.size();
+    for (const BvhWide<Node>& p : laid)
+        nodes += p.nodes.size() - 1, blocks += p.blocks.size();
+    out.reserve(nodes);
+    result.blocks.reserve(blocks);
+    for (size_t i = 0; i < parts.size(); ++i)
+        appendWideTree(result, laid[i], int(parts[i].first));
     return result;
 }
 
 }  // namespace
 
 Bvh4 collapseToBvh4(const Bvh& bvh, const std::vector<Triangle>& tris,
-                    const BvhPrimitives* prims) {
-    return collapseWide<Bvh4Node, 4>(bvh, tris, prims);
+                    const BvhPrimitives* prims, size_t parallelFrom) {
+    return collapseWide<Bvh4Node, 4>(bvh, tris, prims, parallelFrom);
 }
 
 Bvh8 collapseToBvh8(const Bvh& bvh, const std::vector<Triangle>& tris,
-                    const BvhPrimitives* prims) {
-    return collapseWide<Bvh8Node, 8>(bvh, tris, prims);
+                    const BvhPrimitives* prims, size_t parallelFrom) {
+    return collapseWide<Bvh8Node, 8>(bvh, tris, prims, parallelFrom);
 }
 
 Bvh16 collapseToBvh16(const Bvh& bvh, const std::vector<Triangle>& tris,
-                      const BvhPrimitives* prims) {
-    return collapseWide<Bvh16Node, 16>(bvh, tris, prims);
+                      const BvhPrimitives* prims, size_t parallelFrom) {
+    return collapseWide<Bvh16Node, 16>(bvh, tris, prims, parallelFrom);
 }
 
 }  // namespace rd

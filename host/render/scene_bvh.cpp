@@ -9,25 +9,11 @@ namespace rd {
 
 namespace {
 
-template <class Node, int W>
-int appendWide(BvhWide<Node>& into, const BvhWide<Node>& part) {
-    const int nodeOffset = int(into.nodes.size()), blockOffset = int(into.blocks.size());
-    for (Node n : part.nodes) {
-        for (int k = 0; k < W; ++k) {
-            if (n.count[k] > 0) n.child[k] += blockOffset;       // a leaf: its first block
-            else if (n.count[k] == 0) n.child[k] += nodeOffset;  // an interior child
-        }
-        into.nodes.push_back(n);
-    }
-    into.blocks.insert(into.blocks.end(), part.blocks.begin(), part.blocks.end());
-    return nodeOffset;
-}
-
 // The top level, then each prototype's tree appended, in the layout of width W.
 template <class Node, int W, class Collapse>
 BvhWide<Node> buildWide(const Scene& scene, const BvhPrimitives& top, const Bvh& bvh,
                         Collapse collapse, std::vector<int>& roots) {
-    BvhWide<Node> out = collapse(bvh, scene.triangles, &top);
+    BvhWide<Node> out = collapse(bvh, scene.triangles, &top, kParallelCollapse);
     for (const Scene::Prototype& p : scene.prototypes) {
         BvhPrimitives prims;
         for (uint32_t t = p.firstTriangle; t < p.firstTriangle + p.triangleCount; ++t) {
@@ -41,7 +27,8 @@ BvhWide<Node> buildWide(const Scene& scene, const BvhPrimitives& top, const Bvh&
             prims.bounds.push_back(b);
         }
         Bvh pb = buildBvh(prims.bounds, sceneBvhSettings());
-        roots.push_back(appendWide<Node, W>(out, collapse(pb, scene.triangles, &prims)));
+        roots.push_back(appendWideTree(
+            out, collapse(pb, scene.triangles, &prims, kParallelCollapse)));
     }
     return out;
 }

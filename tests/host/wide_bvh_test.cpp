@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <type_traits>
 
@@ -113,6 +114,51 @@ TEST(WideBvh, CollapsesKeepEveryTriangleOnceAndFillTheNodes) {
             tris.size(), b8.blocks.size(), b4.nodes.size(), usedSlots(b4),
             b8.nodes.size(), usedSlots(b8), b16.nodes.size(), usedSlots(b16));
     }
+}
+
+// Whether the subtrees under a's node i and b's node j are the same: the same boxes,
+// child kinds and counts slot by slot, the same blocks under each leaf, the same
+// subtrees under each interior child (wherever each tree keeps them).
+template <class Node>
+bool sameSubtree(const BvhWide<Node>& a, int i, const BvhWide<Node>& b, int j) {
+    constexpr int W = int(sizeof(Node::count) / sizeof(Node::count[0]));
+    const Node &x = a.nodes[size_t(i)], &y = b.nodes[size_t(j)];
+    if (std::memcmp(x.planes, y.planes, sizeof x.planes) != 0 ||
+        std::memcmp(x.count, y.count, sizeof x.count) != 0)
+        return false;
+    for (int k = 0; k < W; ++k) {
+        if (x.count[k] > 0) {
+            if (std::memcmp(&a.blocks[size_t(x.child[k])], &b.blocks[size_t(y.child[k])],
+                            sizeof(Triangle4) * size_t(x.count[k])) != 0)
+                return false;
+        } else if (x.count[k] == 0 && !sameSubtree(a, x.child[k], b, y.child[k])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// A tree of kParallelCollapse primitives or more is laid out on the host's cores, its
+// subtrees in nodes and blocks of their own appended after the top levels: the nodes and
+// blocks in another order than the depth-first walk, the same tree.
+TEST(WideBvh, ParallelLayOutIsTheDepthFirstTree) {
+    const std::vector<Triangle> tris = soup(150000, 9);
+    Scene s;
+    s.triangles = tris;
+    const Bvh bvh = buildBvh(triangleBounds(s), sceneBvhSettings());
+    ASSERT_GE(tris.size(), kParallelCollapse);
+    const Bvh8 parallel = collapseToBvh8(bvh, tris);
+    const Bvh8 depthFirst = collapseToBvh8(bvh, tris, nullptr, tris.size() + 1);
+    ASSERT_EQ(parallel.nodes.size(), depthFirst.nodes.size());
+    ASSERT_EQ(parallel.blocks.size(), depthFirst.blocks.size());
+    EXPECT_TRUE(sameSubtree(parallel, 0, depthFirst, 0));
+    EXPECT_NE(0, std::memcmp(parallel.nodes.data(), depthFirst.nodes.data(),
+                             sizeof(Bvh8Node) * parallel.nodes.size()))
+        << "the same layout: this test no longer tests the parallel one";
+    const Bvh16 parallel16 = collapseToBvh16(bvh, tris);
+    const Bvh16 depthFirst16 = collapseToBvh16(bvh, tris, nullptr, tris.size() + 1);
+    ASSERT_EQ(parallel16.nodes.size(), depthFirst16.nodes.size());
+    EXPECT_TRUE(sameSubtree(parallel16, 0, depthFirst16, 0));
 }
 
 // Random rays through the eight- or sixteen-wide tree of a triangle soup, traced by the
