@@ -3,11 +3,8 @@
 #include "collapse4.h"
 
 #include <array>
-#include <atomic>
 #include <cfloat>
 #include <cmath>
-#include <exception>
-#include <thread>
 
 #include "host/film/run_in_parts.h"
 
@@ -118,7 +115,6 @@ namespace {
 // holds at most two blocks (three: no faster); a binary leaf stays whole, however many it
 // has.
 constexpr double kNodeCost = 1.5, kBlockCost = 1.0;
-
 constexpr int kMaxMergedLeafBlocks = 2;
 
 // SAH-optimal collapse (Ylitie, Karras and Laine 2017, section 4.1). For every binary
@@ -291,26 +287,11 @@ BvhWide<Node> collapseWide(const Bvh& bvh, const std::vector<Triangle>& tris,
     layOut<Node, W>(bvh, tris, prims, sah, {{0, 0}}, out, result.blocks, primCount / 16,
                     &parts);
     std::vector<BvhWide<Node>> laid(parts.size());
-    std::atomic<size_t> next{0};
-    std::vector<std::exception_ptr> failed(parts.size());
-    auto work = [&] {
-        for (size_t i; (i = next++) < parts.size();) {
-            try {
-                laid[i].nodes.resize(1);
-                layOut<Node, W>(bvh, tris, prims, sah, {{0, parts[i].second}},
-                                laid[i].nodes, laid[i].blocks);
-            } catch (...) {
-                failed[i] = std::current_exception();
-            }
-        }
-    };
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < std::min(hostThreads(), parts.size()); ++t)
-        pool.emplace_back(work);
-    work();
-    for (std::thread& th : pool) th.join();
-    for (const std::exception_ptr& e : failed)
-        if (e) std::rethrow_exception(e);
+    runTasks(parts.size(), hostThreads(), [&](size_t i, size_t) {
+        laid[i].nodes.resize(1);
+        layOut<Node, W>(bvh, tris, prims, sah, {{0, parts[i].second}}, laid[i].nodes,
+                        laid[i].blocks);
+    });
     size_t nodes = out.size(), blocks = result.blocks.size();
     for (const BvhWide<Node>& p : laid)
         nodes += p.nodes.size() - 1, blocks += p.blocks.size();

@@ -6,13 +6,10 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <memory>
 #include <stdexcept>
-#include <thread>
 
 #include "host/film/run_in_parts.h"
 
@@ -78,7 +75,11 @@ double sahMeasure(const Box4& b, bool useLength) {
 
 class Builder {
 public:
-    Builder(const BvhBuildSettings& s, std::vector<PrimRef>& refs) : refs_(refs) {
+    // `binThreads`: the threads that bin a range of kParallelBinning primitives or more
+    // (the top levels' builder only: the subtrees below are built on the host's cores
+    // already).
+    Builder(const BvhBuildSettings& s, std::vector<PrimRef>& refs, size_t binThreads = 1)
+        : refs_(refs), binThreads_(binThreads) {
         binCount_ = std::clamp(s.binCount, 2, kMaxBins);
         maxLeaf_ = std::max(1, s.maxLeafSize);
         leafCap_ = std::max(kBvhMaxLeafCap, maxLeaf_);
@@ -312,14 +313,9 @@ public:
         return i;
     }
 
-public:
-    // Threads that bin a range of kParallelBinning primitives or more (the top levels'
-    // builder only: the subtrees below are built on the host's cores already).
-    size_t binThreads_ = 1;
     static constexpr uint32_t kParallelBinning = 1u << 16;
-
-private:
     std::vector<PrimRef>& refs_;  // shared: each build partitions its own range
+    size_t binThreads_;
     int binCount_ = 16, maxLeaf_ = 4, leafCap_ = kBvhMaxLeafCap;
     float ct_ = 1.0f, ci_ = 1.0f;
     uint32_t block_ = 1;
@@ -362,48 +358,31 @@ Bvh buildBvh(const std::vector<Aabb>& primBounds, const BvhBuildSettings& settin
             bounds.cbox.grow(r.c);
         }
         const BuildTask root{0, 0, uint32_t(refs.size()), 1, bounds};
-        // The builders hold ~45 KiB of bins each; keep them off the caller's stack.
-        auto builder = std::make_unique<Builder>(settings, refs);
+        const size_t threads = settings.threads > 0 ? settings.threads : hostThreads();
         // (at least 16 primitives: a part holds at least one)
-        if (refs.size() < std::max<size_t>(settings.parallelPrims, 16)) {
+        const bool parallel = refs.size() >= std::max<size_t>(settings.parallelPrims, 16);
+        // The builders hold ~45 KiB of bins each; keep them off the caller's stack.
+        auto builder = std::make_unique<Builder>(settings, refs, parallel ? threads : 1);
+        if (!parallel) {
             builder->buildSubtree(root, bvh.nodes, bvh.depth);
         } else {
             // The top levels here; the subtrees of at most a 16th of the primitives each
             // on the host's cores, into nodes of their own, appended in the order they
             // were set aside: the same tree whatever the number of threads.
             std::vector<BuildTask> parts;
-            const size_t threads =
-                settings.threads > 0 ? settings.threads : hostThreads();
-            builder->binThreads_ = threads;
             builder->buildSubtree(root, bvh.nodes, bvh.depth, uint32_t(refs.size() / 16),
                                   &parts);
             std::vector<std::vector<BvhNode>> partNodes(parts.size());
             std::vector<int> partDepth(parts.size(), 0);
-            std::atomic<size_t> next{0};
-            // (a failure on a thread, such as running out of memory, reaches the caller)
-            std::vector<std::exception_ptr> failed(parts.size());
-            auto work = [&] {
-                std::unique_ptr<Builder> own;
-                for (size_t i; (i = next++) < parts.size();) {
-                    try {
-                        if (!own) own = std::make_unique<Builder>(settings, refs);
-                        BuildTask t = parts[i];
-                        t.node = 0;
-                        partNodes[i].reserve(2 * (t.end - t.begin) - 1);
-                        partNodes[i].push_back(Builder::emptyLeaf());
-                        own->buildSubtree(t, partNodes[i], partDepth[i]);
-                    } catch (...) {
-                        failed[i] = std::current_exception();
-                    }
-                }
-            };
-            std::vector<std::thread> pool;
-            for (size_t t = 1; t < std::min(threads, parts.size()); ++t)
-                pool.emplace_back(work);
-            work();
-            for (std::thread& th : pool) th.join();
-            for (const std::exception_ptr& e : failed)
-                if (e) std::rethrow_exception(e);
+            std::vector<std::unique_ptr<Builder>> own(threads);  // a builder a thread
+            runTasks(parts.size(), threads, [&](size_t i, size_t thread) {
+                if (!own[thread]) own[thread] = std::make_unique<Builder>(settings, refs);
+                BuildTask t = parts[i];
+                t.node = 0;
+                partNodes[i].reserve(2 * (t.end - t.begin) - 1);
+                partNodes[i].push_back(Builder::emptyLeaf());
+                own[thread]->buildSubtree(t, partNodes[i], partDepth[i]);
+            });
             for (size_t i = 0; i < parts.size(); ++i) {
                 // a part's node j > 0 lands at offset + j; its root in the node set aside
                 const int32_t offset = int32_t(bvh.nodes.size()) - 1;

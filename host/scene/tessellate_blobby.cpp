@@ -94,7 +94,7 @@ struct Grid {
 class Field {
 public:
     Field(std::vector<Instruction> code, glm::vec3 lo, glm::vec3 hi)
-        : m_code(std::move(code)), m_v(m_code.size()) {
+        : m_code(std::move(code)) {
         if (m_code.empty()) return;
         const Instruction& last = m_code.back();
         m_flat = last.op == 0 || last.op == 2;
@@ -130,7 +130,6 @@ public:
                     for (int w = a.z; w <= z.z; ++w) m_bins[index(x, y, w)].push_back(k);
         }
     }
-    float operator()(glm::vec3 p) { return at(p, m_v); }
     // The field at p; `v` (one float an instruction) holds a program's partial results,
     // so that threads may each evaluate with their own.
     float at(glm::vec3 p, std::vector<float>& v) const {
@@ -265,7 +264,6 @@ private:
         return (size_t(z) * size_t(m_n.y) + size_t(y)) * size_t(m_n.x) + size_t(x);
     }
     std::vector<Instruction> m_code;
-    std::vector<float> m_v;
     bool m_flat = false, m_max = false;  // a sum (maximum) of primitives
     float m_rest = 0.0f;                 // of the unbounded ones (constants)
     std::vector<int> m_bounded;
