@@ -478,6 +478,16 @@ private:
     // them move), reporting degenerate ones once per request.
     void appendTriangles(L, const VertexData& mesh, const std::vector<glm::vec3>& wp,
                          const MeshMotion* motion, uint32_t extraFlags = 0);
+    // What a mesh request's triangles share (appendTriangles' set-up)
+    struct MeshSetUp;
+    MeshSetUp meshSetUp(L, const VertexData& mesh, uint32_t extraFlags);
+    // One kept triangle of the mesh (its corners' indices); false where its vertex
+    // normals were bad and left zero (the device then shades it with Ng)
+    bool appendTriangle(L, const MeshSetUp& m, const VertexData& mesh,
+                        const std::vector<glm::vec3>& wp, const MeshMotion* motion,
+                        const std::array<int, 3>& corners);
+    bool appendCorners(const MeshSetUp& m, const VertexData& mesh,
+                       const std::array<int, 3>& corners);
     void addKeyNormals(const MeshMotion& motion, const std::array<int, 3>& corners);
     std::vector<Scene> m_scenes;
     // Make* requests read after a frame was built: run before the next frame renders

@@ -132,6 +132,28 @@ std::string describeDefects(const DefectCounts& d) {
     return what;
 }
 
+// Whether a triangle with this defect is left out, counted in `counts` (and, where it
+// is degenerate, in `degenerate`, the builder's count over the frame).
+bool leftOut(Defect d, DefectCounts& counts, int& degenerate) {
+    switch (d) {
+        case Defect::None:
+            return false;
+        case Defect::NonfiniteEnd:
+            ++counts.nonfinite;
+            break;
+        case Defect::Nonfinite:
+            ++degenerate, ++counts.nonfinite;
+            break;
+        case Defect::ZeroArea:
+            ++degenerate, ++counts.zeroArea;
+            break;
+        case Defect::Coincident:
+            ++counts.duplicate;
+            break;
+    }
+    return true;
+}
+
 // A corner's colour, `chunks` float4s: more than three channels fill 8 or 16 floats
 // (RSL_COLOR_LANES), zero past the channels; zero where the mesh gives none.
 void pushCornerColor(std::vector<rt_float4>& buf, size_t chunks, bool given,
@@ -268,116 +290,137 @@ void RibBuilder::addKeyNormals(const MeshMotion& motion,
     m_world.normals[m_world.normals.size() - 3].w = float(at + 1);
 }
 
-void RibBuilder::appendTriangles(L loc, const VertexData& mesh,
-                                 const std::vector<glm::vec3>& wp,
-                                 const MeshMotion* motion, uint32_t extraFlags) {
+struct RibBuilder::MeshSetUp {
+    bool prototype = false;
+    int leaf = -1;       // the solid leaf its triangles belong to, else -1
+    glm::mat3 nm{1.0f};  // object-to-world for normals
+    // per-point shader parameters, in the order its surface variant takes them
+    std::vector<std::vector<glm::vec3>> pointParams;
+    uint32_t material = 0;
+    bool flipNormals = false, smooth = false, cs = false, os = false;
+    uint32_t primvars = 0;
+    size_t chunks = 1;   // float4s a colour
+    uint32_t flags = 0;  // the attribute record's flags
+};
+
+RibBuilder::MeshSetUp RibBuilder::meshSetUp(L loc, const VertexData& mesh,
+                                            uint32_t extraFlags) {
+    MeshSetUp m;
     const size_t np = mesh.p.size();
     // a prototype stays in its object space (normals too) and belongs to no solid
-    const bool prototype = extraFlags & RT_QF_PROTOTYPE;
-    const int leaf = prototype ? -1 : solidLeafForSurface(loc);
+    m.prototype = extraFlags & RT_QF_PROTOTYPE;
+    m.leaf = m.prototype ? -1 : solidLeafForSurface(loc);
     const glm::mat4& ctm = m_attrStack.back().ctm;
-    glm::mat3 nm = prototype ? glm::mat3(1.0f) : glm::transpose(glm::inverse(glm::mat3(ctm)));
+    m.nm = m.prototype ? glm::mat3(1.0f) : glm::transpose(glm::inverse(glm::mat3(ctm)));
     // Per-point shader parameters: their surface variant gets them in the same order
     // (a prototype's, in its object space, are laid out for its instances' surfaces)
-    std::vector<std::vector<glm::vec3>> pointParams;
     for (const VertexData::PointParam& p : mesh.params) {
-        pointParams.push_back(prototype ? p.v : pointParamToWorld(ctm, p));
-        if (p.piece == 0 && !prototype)
+        m.pointParams.push_back(m.prototype ? p.v : pointParamToWorld(ctm, p));
+        if (p.piece == 0 && !m.prototype)
             m_carriedPointParams.push_back({p.name, p.floats});
     }
-    if (!pointParams.empty()) startTrianglePointParams();
-    uint32_t material = currentMaterial();
+    if (!m.pointParams.empty()) startTrianglePointParams();
+    m.material = currentMaterial();
     m_carriedPointParams.clear();
     // RI's geometric normal: the world-space cross product, reversed for inside-out
     // primitives and mirrored transforms (prototypes: their object space, unmirrored)
-    const bool flipNormals = prototype ? m_attrStack.back().insideOut : flipWorldNormals();
-    const bool smooth = mesh.n.size() == np;
-    const bool cs = mesh.cs.size() == np || mesh.csN.size() == np;
-    const bool os = mesh.os.size() == np || mesh.osN.size() == np;
-    uint32_t primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
-                        (cs ? RT_PRIMVAR_CS : 0u) | (os ? RT_PRIMVAR_OS : 0u);
-    if (smooth) m_world.anySmoothNormals = true;
-    const size_t chunks = size_t(m_world.colors.lanes() / 4);  // float4s a colour
-    startPrimvar(m_world, primvars, RT_PRIMVAR_ST, m_world.vertexSt, 1);
-    startPrimvar(m_world, primvars, RT_PRIMVAR_CS, m_world.vertexCs, chunks);
-    startPrimvar(m_world, primvars, RT_PRIMVAR_OS, m_world.vertexOs, chunks);
+    m.flipNormals = m.prototype ? m_attrStack.back().insideOut : flipWorldNormals();
+    m.smooth = mesh.n.size() == np;
+    m.cs = mesh.cs.size() == np || mesh.csN.size() == np;
+    m.os = mesh.os.size() == np || mesh.osN.size() == np;
+    m.primvars = (mesh.st.size() == np ? RT_PRIMVAR_ST : 0u) |
+                 (m.cs ? RT_PRIMVAR_CS : 0u) | (m.os ? RT_PRIMVAR_OS : 0u);
+    if (m.smooth) m_world.anySmoothNormals = true;
+    m.chunks = size_t(m_world.colors.lanes() / 4);
+    startPrimvar(m_world, m.primvars, RT_PRIMVAR_ST, m_world.vertexSt, 1);
+    startPrimvar(m_world, m.primvars, RT_PRIMVAR_CS, m_world.vertexCs, m.chunks);
+    startPrimvar(m_world, m.primvars, RT_PRIMVAR_OS, m_world.vertexOs, m.chunks);
+    m.flags = (m.leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u) | extraFlags |
+              (m.flipNormals ? uint32_t(RT_QF_FLIP) : 0u);
+    return m;
+}
+
+void RibBuilder::appendTriangles(L loc, const VertexData& mesh,
+                                 const std::vector<glm::vec3>& wp,
+                                 const MeshMotion* motion, uint32_t extraFlags) {
+    const MeshSetUp m = meshSetUp(loc, mesh, extraFlags);
     // Degenerate input is left out (or, for normals, replaced by the geometric normal)
     // and reported once per request, at its file:line.
     DefectCounts counts;
     const std::vector<Defect> defects =
         triangleDefects(mesh.tris, wp, motion ? &motion->keys : nullptr);
     for (size_t k = 0; k < defects.size(); ++k) {
-        switch (defects[k]) {
-            case Defect::None: break;
-            case Defect::NonfiniteEnd:
-                ++counts.nonfinite;
-                continue;
-            case Defect::Nonfinite:
-                ++m_degenerate, ++counts.nonfinite;
-                continue;
-            case Defect::ZeroArea:
-                ++m_degenerate, ++counts.zeroArea;
-                continue;
-            case Defect::Coincident:
-                ++counts.duplicate;
-                continue;
-        }
-        const size_t t = 3 * k;
-        const int i0 = mesh.tris[t], i1 = mesh.tris[t + 1], i2 = mesh.tris[t + 2];
-        const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
-        if (leaf >= 0) {
-            m_solidNodes[leaf].members.push_back(uint32_t(m_world.triangles.size()));
-            m_solidNodes[leaf].memberWhat.push_back("mesh at " + loc.str());
-        }
-        m_world.triangles.push_back({f4(a), f4(b), f4(c)});
-        if (!m_world.triangleParams.empty() || !pointParams.empty()) {
-            startTrianglePointParams();
-            m_world.triangleParams.back() = pointParams.empty()
-                                                ? RT_NO_POINT_PARAMS
-                                                : uint32_t(m_world.pointParamValues.size());
-            for (int k : {i0, i1, i2})
-                for (const std::vector<glm::vec3>& v : pointParams)
-                    m_world.pointParamValues.push_back(f4(v[size_t(k)]));
-        }
-        if (int light = m_attrStack.back().areaLight; light >= 0 && !prototype)
-            m_world.areaLightTriangles[uint32_t(light)].push_back(
-                flipNormals ? std::array<glm::vec3, 3>{a, c, b} : std::array<glm::vec3, 3>{a, b, c});
-        m_world.attrs.push_back({material, smooth ? 1u : 0u, primvars,
-                                 (leaf >= 0 ? uint32_t(RT_QF_CSG_MEMBER) : 0u) | extraFlags |
-                                     (flipNormals ? uint32_t(RT_QF_FLIP) : 0u)});
-        if (motion) {
-            std::vector<Triangle> keys;
-            for (const std::vector<glm::vec3>& key : motion->keys)
-                keys.push_back(
-                    {f4(key[size_t(i0)]), f4(key[size_t(i1)]), f4(key[size_t(i2)])});
-            addTriangleMotion(m_world, keys, motion->times);
-        }
-        // A zero or non-finite vertex normal: all three stored as zero, the device uses Ng.
-        bool normalsOk = true;
-        for (int k : {i0, i1, i2}) {
-            glm::vec3 n = smooth ? nm * mesh.n[k] : glm::vec3(1.0f);
-            normalsOk = normalsOk && finite3(n) && glm::dot(n, n) > 0.0f &&
-                        std::isfinite(glm::dot(n, n));
-        }
-        for (int k : {i0, i1, i2}) {
-            m_world.normals.push_back(smooth && normalsOk ? f4(glm::normalize(nm * mesh.n[k]))
-                                                          : f4(0, 0, 0));
-            if (m_world.primvarsUsed & RT_PRIMVAR_ST)
-                m_world.vertexSt.push_back((primvars & RT_PRIMVAR_ST)
-                                               ? f4(mesh.st[k].x, mesh.st[k].y, 0)
-                                               : f4(0, 0, 0));
-            if (m_world.primvarsUsed & RT_PRIMVAR_CS)
-                pushCornerColor(m_world.vertexCs, chunks, cs, mesh.cs, mesh.csN, k);
-            if (m_world.primvarsUsed & RT_PRIMVAR_OS)
-                pushCornerColor(m_world.vertexOs, chunks, os, mesh.os, mesh.osN, k);
-        }
-        if (!normalsOk) ++counts.badNormal;
-        if (motion && smooth && normalsOk && !motion->normals.empty())
-            addKeyNormals(*motion, {i0, i1, i2});
+        if (leftOut(defects[k], counts, m_degenerate)) continue;
+        const std::array<int, 3> corners{mesh.tris[3 * k], mesh.tris[3 * k + 1],
+                                         mesh.tris[3 * k + 2]};
+        if (!appendTriangle(loc, m, mesh, wp, motion, corners)) ++counts.badNormal;
     }
     const std::string what = describeDefects(counts);
     if (!what.empty() && m_warnedAt.insert({loc.file, loc.line}).second)
         m_diag.warning(loc, "degenerate geometry: " + what);
+}
+
+bool RibBuilder::appendTriangle(L loc, const MeshSetUp& m, const VertexData& mesh,
+                                const std::vector<glm::vec3>& wp,
+                                const MeshMotion* motion,
+                                const std::array<int, 3>& corners) {
+    const auto [i0, i1, i2] = corners;
+    const glm::vec3 &a = wp[i0], &b = wp[i1], &c = wp[i2];
+    if (m.leaf >= 0) {
+        m_solidNodes[m.leaf].members.push_back(uint32_t(m_world.triangles.size()));
+        m_solidNodes[m.leaf].memberWhat.push_back("mesh at " + loc.str());
+    }
+    m_world.triangles.push_back({f4(a), f4(b), f4(c)});
+    if (!m_world.triangleParams.empty() || !m.pointParams.empty()) {
+        startTrianglePointParams();
+        m_world.triangleParams.back() = m.pointParams.empty()
+                                            ? RT_NO_POINT_PARAMS
+                                            : uint32_t(m_world.pointParamValues.size());
+        for (int k : corners)
+            for (const std::vector<glm::vec3>& v : m.pointParams)
+                m_world.pointParamValues.push_back(f4(v[size_t(k)]));
+    }
+    if (int light = m_attrStack.back().areaLight; light >= 0 && !m.prototype)
+        m_world.areaLightTriangles[uint32_t(light)].push_back(
+            m.flipNormals ? std::array<glm::vec3, 3>{a, c, b}
+                          : std::array<glm::vec3, 3>{a, b, c});
+    m_world.attrs.push_back({m.material, m.smooth ? 1u : 0u, m.primvars, m.flags});
+    if (motion) {
+        std::vector<Triangle> keys;
+        for (const std::vector<glm::vec3>& key : motion->keys)
+            keys.push_back(
+                {f4(key[size_t(i0)]), f4(key[size_t(i1)]), f4(key[size_t(i2)])});
+        addTriangleMotion(m_world, keys, motion->times);
+    }
+    const bool normalsOk = appendCorners(m, mesh, corners);
+    if (motion && m.smooth && normalsOk && !motion->normals.empty())
+        addKeyNormals(*motion, corners);
+    return normalsOk;
+}
+
+// The corners' normals (all three zero where one is zero or not finite: the device then
+// uses Ng) and primitive variables.
+bool RibBuilder::appendCorners(const MeshSetUp& m, const VertexData& mesh,
+                               const std::array<int, 3>& corners) {
+    bool normalsOk = true;
+    for (int k : corners) {
+        glm::vec3 n = m.smooth ? m.nm * mesh.n[k] : glm::vec3(1.0f);
+        normalsOk = normalsOk && finite3(n) && glm::dot(n, n) > 0.0f &&
+                    std::isfinite(glm::dot(n, n));
+    }
+    for (int k : corners) {
+        m_world.normals.push_back(
+            m.smooth && normalsOk ? f4(glm::normalize(m.nm * mesh.n[k])) : f4(0, 0, 0));
+        if (m_world.primvarsUsed & RT_PRIMVAR_ST)
+            m_world.vertexSt.push_back((m.primvars & RT_PRIMVAR_ST)
+                                           ? f4(mesh.st[k].x, mesh.st[k].y, 0)
+                                           : f4(0, 0, 0));
+        if (m_world.primvarsUsed & RT_PRIMVAR_CS)
+            pushCornerColor(m_world.vertexCs, m.chunks, m.cs, mesh.cs, mesh.csN, k);
+        if (m_world.primvarsUsed & RT_PRIMVAR_OS)
+            pushCornerColor(m_world.vertexOs, m.chunks, m.os, mesh.os, mesh.osN, k);
+    }
+    return normalsOk;
 }
 
 std::optional<std::vector<std::pair<std::string, int>>> RibBuilder::sharedPointParams(
