@@ -58,6 +58,13 @@ private:
     Token binaryNumber(double v, bool isInt, int line);
     Token binaryString(size_t length, int line);
     Token nextBinaryArrayElement();
+    Token binaryFixed(int c, int line);
+    Token binaryLongString(int c, int line);
+    Token binaryIeee(int c, int line);
+    Token binaryRequestReference(int line);
+    Token binaryArrayStart(int c, int line);
+    bool binaryDefinition(int c, int line, Token& out);
+    Token binaryStringReference(int c, int line);
 
     std::string m_name;
     Diagnostics& m_diag;

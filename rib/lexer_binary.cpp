@@ -94,126 +94,122 @@ Token Lexer::nextBinaryArrayElement() {
 }
 
 bool Lexer::lexBinary(int c, int line, Token& out) {
-    if (c <= 0217) {  // 0200 + 4d + w: w+1 bytes, d of them after the binary point
-        size_t bytes = static_cast<size_t>(c & 3) + 1;
-        int d = (c >> 2) & 3;
-        uint32_t u = 0;
-        if (!rawUint(bytes, u)) {
-            out = error(line, "truncated binary number");
-            return true;
-        }
-        // Sign-extend from `bytes` bytes.
-        int64_t v = u;
-        if (u & (1u << (8 * bytes - 1))) v -= int64_t(1) << (8 * bytes);
-        out = binaryNumber(static_cast<double>(v) / std::ldexp(1.0, 8 * d), d == 0, line);
-        return true;
-    }
-    if (c <= 0237) {  // short string, 0..15 bytes
-        out = binaryString(static_cast<size_t>(c - 0220), line);
-        return true;
-    }
-    if (c <= 0243) {  // long string: 1-4 byte length, then the bytes
-        uint32_t n = 0;
-        if (!rawUint(static_cast<size_t>(c - 0240) + 1, n)) {
-            out = error(line, "truncated binary string");
-            return true;
-        }
-        out = binaryString(n, line);
-        return true;
-    }
-    if (c == 0244 || c == 0245) {  // IEEE float / double, big-endian
-        uint8_t b[8];
-        size_t n = c == 0244 ? 4 : 8;
-        if (!rawBytes(n, b)) {
-            out = error(line, "truncated binary number");
-            return true;
-        }
-        uint64_t bits = 0;
-        for (size_t i = 0; i < n; ++i) bits = (bits << 8) | b[i];
-        double v;
-        if (n == 4) {
-            uint32_t b32 = static_cast<uint32_t>(bits);
-            float f;
-            std::memcpy(&f, &b32, 4);
-            v = f;
-        } else {
-            std::memcpy(&v, &bits, 8);
-            if (std::isfinite(v) && std::fabs(v) > FLT_MAX) {
-                out = error(line, "binary double out of range");
-                return true;
-            }
-        }
-        out = binaryNumber(v, false, line);
-        return true;
-    }
-    if (c == 0246) {  // encoded request reference
-        uint8_t code = 0;
-        if (!rawBytes(1, &code)) {
-            out = error(line, "truncated encoded request");
-            return true;
-        }
-        if (m_binRequests[code].empty()) {
-            out = error(line, "encoded request " + std::to_string(code) + " was not defined");
-            return true;
-        }
-        out.kind = TokenKind::Word;
-        out.text = m_binRequests[code];
-        out.line = line;
-        return true;
-    }
-    if (c >= 0310 && c <= 0313) {  // float array: 1-4 byte count, then the floats
-        uint32_t n = 0;
-        if (!rawUint(static_cast<size_t>(c - 0310) + 1, n)) {
-            out = error(line, "truncated binary float array");
-            return true;
-        }
-        m_inBinArray = true;
-        m_binArrayLeft = n;
-        out.kind = TokenKind::LBracket;
-        out.text = "[";
-        out.line = line;
-        return true;
-    }
-    if (c == 0314 || c == 0315 || c == 0316) {  // request / string definitions
-        uint32_t code = 0;
-        if (!rawUint(c == 0316 ? 2 : 1, code)) {
-            out = error(line, "truncated binary definition");
-            return true;
-        }
-        Token name = next();
-        if (name.kind == TokenKind::Error) {
-            out = name;
-            return true;
-        }
-        if (name.kind != TokenKind::String || (c == 0314 && name.text.empty())) {
-            out = error(line, std::string(c == 0314 ? "encoded request" : "encoded string") +
-                                  " definition without a string");
-            return true;
-        }
-        if (c == 0314)
-            m_binRequests[code] = name.text;
-        else
-            m_binStrings[code] = name.text;
-        return false;
-    }
-    if (c == 0317 || c == 0320) {  // encoded string reference
-        uint32_t code = 0;
-        if (!rawUint(c == 0320 ? 2 : 1, code)) {
-            out = error(line, "truncated encoded string");
-            return true;
-        }
-        auto it = m_binStrings.find(code);
-        if (it == m_binStrings.end()) {
-            out = error(line, "encoded string " + std::to_string(code) + " was not defined");
-            return true;
-        }
-        out.kind = TokenKind::String;
-        out.text = it->second;
-        out.line = line;
-        return true;
-    }
-    out = error(line, "reserved binary RIB byte " + hexByte(c));
+    if (c == 0314 || c == 0315 || c == 0316) return binaryDefinition(c, line, out);
+    out = c <= 0217                ? binaryFixed(c, line)
+          : c <= 0237              ? binaryString(static_cast<size_t>(c - 0220), line)
+          : c <= 0243              ? binaryLongString(c, line)
+          : c <= 0245              ? binaryIeee(c, line)
+          : c == 0246              ? binaryRequestReference(line)
+          : c >= 0310 && c <= 0313 ? binaryArrayStart(c, line)
+          : c == 0317 || c == 0320
+              ? binaryStringReference(c, line)
+              : error(line, "reserved binary RIB byte " + hexByte(c));
     return true;
+}
+
+// 0200 + 4d + w: w+1 bytes, d of them after the binary point
+Token Lexer::binaryFixed(int c, int line) {
+    size_t bytes = static_cast<size_t>(c & 3) + 1;
+    int d = (c >> 2) & 3;
+    uint32_t u = 0;
+    if (!rawUint(bytes, u)) return error(line, "truncated binary number");
+    // Sign-extend from `bytes` bytes.
+    int64_t v = u;
+    if (u & (1u << (8 * bytes - 1))) v -= int64_t(1) << (8 * bytes);
+    return binaryNumber(static_cast<double>(v) / std::ldexp(1.0, 8 * d), d == 0, line);
+}
+
+// 0240-0243: a 1-4 byte length, then the bytes
+Token Lexer::binaryLongString(int c, int line) {
+    uint32_t n = 0;
+    if (!rawUint(static_cast<size_t>(c - 0240) + 1, n))
+        return error(line, "truncated binary string");
+    return binaryString(n, line);
+}
+
+// 0244 an IEEE float, 0245 a double (within float's range), big-endian
+Token Lexer::binaryIeee(int c, int line) {
+    uint8_t b[8];
+    size_t n = c == 0244 ? 4 : 8;
+    if (!rawBytes(n, b)) return error(line, "truncated binary number");
+    uint64_t bits = 0;
+    for (size_t i = 0; i < n; ++i) bits = (bits << 8) | b[i];
+    double v;
+    if (n == 4) {
+        uint32_t b32 = static_cast<uint32_t>(bits);
+        float f;
+        std::memcpy(&f, &b32, 4);
+        v = f;
+    } else {
+        std::memcpy(&v, &bits, 8);
+        if (std::isfinite(v) && std::fabs(v) > FLT_MAX)
+            return error(line, "binary double out of range");
+    }
+    return binaryNumber(v, false, line);
+}
+
+Token Lexer::binaryRequestReference(int line) {
+    uint8_t code = 0;
+    if (!rawBytes(1, &code)) return error(line, "truncated encoded request");
+    if (m_binRequests[code].empty())
+        return error(line,
+                     "encoded request " + std::to_string(code) + " was not defined");
+    Token t;
+    t.kind = TokenKind::Word;
+    t.text = m_binRequests[code];
+    t.line = line;
+    return t;
+}
+
+// 0310-0313: a 1-4 byte count; the floats follow as tokens (nextBinaryArrayElement)
+Token Lexer::binaryArrayStart(int c, int line) {
+    uint32_t n = 0;
+    if (!rawUint(static_cast<size_t>(c - 0310) + 1, n))
+        return error(line, "truncated binary float array");
+    m_inBinArray = true;
+    m_binArrayLeft = n;
+    Token t;
+    t.kind = TokenKind::LBracket;
+    t.text = "[";
+    t.line = line;
+    return t;
+}
+
+// 0314 defines an encoded request, 0315-0316 an encoded string: no token, unless an error
+bool Lexer::binaryDefinition(int c, int line, Token& out) {
+    uint32_t code = 0;
+    if (!rawUint(c == 0316 ? 2 : 1, code)) {
+        out = error(line, "truncated binary definition");
+        return true;
+    }
+    Token name = next();
+    if (name.kind == TokenKind::Error) {
+        out = name;
+        return true;
+    }
+    if (name.kind != TokenKind::String || (c == 0314 && name.text.empty())) {
+        out = error(line, std::string(c == 0314 ? "encoded request" : "encoded string") +
+                              " definition without a string");
+        return true;
+    }
+    if (c == 0314)
+        m_binRequests[code] = name.text;
+    else
+        m_binStrings[code] = name.text;
+    return false;
+}
+
+Token Lexer::binaryStringReference(int c, int line) {
+    uint32_t code = 0;
+    if (!rawUint(c == 0320 ? 2 : 1, code)) return error(line, "truncated encoded string");
+    auto it = m_binStrings.find(code);
+    if (it == m_binStrings.end())
+        return error(line, "encoded string " + std::to_string(code) + " was not defined");
+    Token t;
+    t.kind = TokenKind::String;
+    t.text = it->second;
+    t.line = line;
+    return t;
 }
 
 }  // namespace rib

@@ -214,144 +214,168 @@ bool Reader::readArray(const Token& open, Value& v) {
     return false;
 }
 
+// A bracketed numeric array, or else a run of bare numbers (`limit` at most).
+void ArgCursor::numbers(size_t limit, std::vector<double>& got) {
+    if (vi < vals.size() && vals[vi].array && !vals[vi].isString) {
+        got = vals[vi++].nums;
+        return;
+    }
+    while (got.size() < limit && vi < vals.size() && !vals[vi].array &&
+           !vals[vi].isString)
+        got.push_back(vals[vi++].nums.front());
+}
+
 bool Reader::parseArgs(const RequestInfo& info, const std::vector<Value>& vals,
                        Args& args, const SourceLoc& loc) {
     std::string sig;
     for (const char* c = info.sig; *c; ++c)
         sig += *c == 'm' ? std::string(16, 'f') : std::string(1, *c);
-    const std::string req = info.name;
     auto numeric = [](char c) { return c == 'f' || c == 'i'; };
-    auto isNumberValue = [](const Value& v) { return !v.isString; };
-    auto bareNumber = [&](size_t i) {
-        return i < vals.size() && !vals[i].array && isNumberValue(vals[i]);
-    };
-    // A bracketed numeric array, or else a run of bare numbers (`limit` at most).
-    auto numbers = [&](size_t& vi, size_t limit, std::vector<double>& got) {
-        if (vi < vals.size() && vals[vi].array && isNumberValue(vals[vi])) {
-            got = vals[vi++].nums;
-            return;
-        }
-        while (got.size() < limit && bareNumber(vi)) got.push_back(vals[vi++].nums.front());
-    };
-    size_t vi = 0;
+    ArgCursor at{vals, info.name, loc};
     bool takesParams = false;
     for (size_t si = 0; si < sig.size();) {
-        char c = sig[si];
-        std::string argNo = std::to_string(si + 1);
+        const char c = sig[si];
         if (c == 'p') {
             takesParams = true;
             ++si;
         } else if (c == '?') {
             ++si;
-            if (vi >= vals.size() || (!vals[vi].array && vals[vi].isString)) {
+            if (at.vi >= vals.size() || (!vals[at.vi].array && vals[at.vi].isString)) {
                 args.optionalMissing = true;
                 while (si < sig.size() && sig[si] != 'p') ++si;
             }
         } else if (numeric(c)) {
             size_t run = 0;
             while (si + run < sig.size() && numeric(sig[si + run])) ++run;
-            std::vector<double> got;
-            numbers(vi, SIZE_MAX, got);  // greedy, so a surplus is reported as such
-            if (got.size() != run) {
-                error(loc, req + " expects " + plural(run, "number") + ", got " +
-                               std::to_string(got.size()));
-                return false;
-            }
-            for (size_t k = 0; k < run; ++k) {
-                if (sig[si + k] == 'i' && !isIntegral(got[k])) {
-                    error(loc, req + " expects an integer as argument " +
-                                   std::to_string(si + k + 1));
-                    return false;
-                }
-                args.nums.push_back(got[k]);
-            }
+            if (!argNumbers(at, sig.substr(si, run), si, args)) return false;
             si += run;
-        } else if (c == 'F' || c == 'C') {
-            std::vector<double> got;
-            size_t start = vi;
-            numbers(vi, SIZE_MAX, got);
-            if (c == 'C' && got.size() != static_cast<size_t>(m_nColor)) {
-                error(loc, req + " expects " + plural(m_nColor, "number") +
-                               " (ColorSamples), got " + std::to_string(got.size()));
-                return false;
-            }
-            if (c == 'F' && vi == start) {
-                error(loc, req + " expects a numeric array as argument " + argNo);
-                return false;
-            }
-            args.floatArrays.emplace_back(got.begin(), got.end());
-            if (c == 'C')
-                args.floatArrays.back() =
-                    targetColors(args.floatArrays.back());
-            ++si;
-        } else if (c == 'B') {
-            if (vi < vals.size() && !vals[vi].array && vals[vi].isString) {
-                args.strs.push_back(vals[vi++].strs.front());
-                args.nums.insert(args.nums.end(), 16, 0.0);
-            } else {
-                std::vector<double> got;
-                numbers(vi, 16, got);
-                if (got.size() != 16) {
-                    error(loc, req + " expects a basis name or 16 numbers as argument " +
-                                   argNo);
-                    return false;
-                }
-                args.strs.emplace_back();
-                args.nums.insert(args.nums.end(), got.begin(), got.end());
-            }
-            ++si;
-        } else if (c == 's' || c == 'h') {
-            const Value* v = vi < vals.size() ? &vals[vi] : nullptr;
-            if (v && v->isString && v->strs.size() == 1) {
-                args.strs.push_back(v->strs.front());
-            } else if (v && c == 'h' && !v->isString && v->nums.size() == 1 &&
-                       isIntegral(v->nums.front())) {
-                args.strs.push_back(std::to_string(static_cast<int>(v->nums.front())));
-            } else {
-                error(loc, req +
-                               (c == 's' ? " expects a string as argument "
-                                         : " expects a handle as argument ") +
-                               argNo);
-                return false;
-            }
-            ++vi;
-            ++si;
-        } else if (c == 'S') {
-            const Value* v = vi < vals.size() ? &vals[vi] : nullptr;
-            if (!v || !v->array || (!v->isString && !v->nums.empty())) {
-                error(loc, req + " expects a string array as argument " + argNo);
-                return false;
-            }
-            args.strArrays.push_back(v->strs);
-            ++vi;
-            ++si;
-        } else if (c == 'I') {
-            const Value* v = vi < vals.size() ? &vals[vi] : nullptr;
-            if (!v || !v->array || v->isString) {
-                error(loc, req + " expects an integer array as argument " + argNo);
-                return false;
-            }
-            std::vector<int> ints;
-            ints.reserve(v->nums.size());
-            for (double d : v->nums) {
-                if (!isIntegral(d)) {
-                    error(loc, req + " expects integers in argument " + argNo);
-                    return false;
-                }
-                ints.push_back(static_cast<int>(d));
-            }
-            args.intArrays.push_back(std::move(ints));
-            ++vi;
-            ++si;
         } else {
-            ++si;  // unknown signature letter: a bug in requests.def, not in the input
+            const std::string argNo = std::to_string(si + 1);
+            bool ok = true;  // an unknown letter: a bug in requests.def, not in the input
+            if (c == 'F' || c == 'C') ok = argFloatArray(at, c, argNo, args);
+            if (c == 'B') ok = argBasis(at, argNo, args);
+            if (c == 's' || c == 'h') ok = argString(at, c, argNo, args);
+            if (c == 'S') ok = argStringArray(at, argNo, args);
+            if (c == 'I') ok = argIntArray(at, argNo, args);
+            if (!ok) return false;
+            ++si;
         }
     }
-    if (takesParams) return parseParams(info, vals, vi, args.params, loc);
-    if (vi < vals.size()) {
-        error(loc, req + " has too many arguments");
+    if (takesParams) return parseParams(info, vals, at.vi, args.params, loc);
+    if (at.vi < vals.size()) {
+        error(loc, at.req + " has too many arguments");
         return false;
     }
+    return true;
+}
+
+// A run of numbers ('f' and 'i' letters of `run`), the first being argument first + 1.
+bool Reader::argNumbers(ArgCursor& at, const std::string& run, size_t first, Args& args) {
+    std::vector<double> got;
+    at.numbers(SIZE_MAX, got);  // greedy, so a surplus is reported as such
+    if (got.size() != run.size()) {
+        error(at.loc, at.req + " expects " + plural(run.size(), "number") + ", got " +
+                          std::to_string(got.size()));
+        return false;
+    }
+    for (size_t k = 0; k < run.size(); ++k) {
+        if (run[k] == 'i' && !isIntegral(got[k])) {
+            error(at.loc, at.req + " expects an integer as argument " +
+                              std::to_string(first + k + 1));
+            return false;
+        }
+        args.nums.push_back(got[k]);
+    }
+    return true;
+}
+
+// 'F' a numeric array; 'C' a colour, ColorSamples numbers made the target's channels.
+bool Reader::argFloatArray(ArgCursor& at, char c, const std::string& argNo, Args& args) {
+    std::vector<double> got;
+    const size_t start = at.vi;
+    at.numbers(SIZE_MAX, got);
+    if (c == 'C' && got.size() != static_cast<size_t>(m_nColor)) {
+        error(at.loc, at.req + " expects " + plural(m_nColor, "number") +
+                          " (ColorSamples), got " + std::to_string(got.size()));
+        return false;
+    }
+    if (c == 'F' && at.vi == start) {
+        error(at.loc, at.req + " expects a numeric array as argument " + argNo);
+        return false;
+    }
+    args.floatArrays.emplace_back(got.begin(), got.end());
+    if (c == 'C') args.floatArrays.back() = targetColors(args.floatArrays.back());
+    return true;
+}
+
+// 'B' a basis: its name, or 16 numbers (and "" for the name).
+bool Reader::argBasis(ArgCursor& at, const std::string& argNo, Args& args) {
+    const Value* v = at.next();
+    if (v && !v->array && v->isString) {
+        args.strs.push_back(v->strs.front());
+        args.nums.insert(args.nums.end(), 16, 0.0);
+        ++at.vi;
+        return true;
+    }
+    std::vector<double> got;
+    at.numbers(16, got);
+    if (got.size() != 16) {
+        error(at.loc,
+              at.req + " expects a basis name or 16 numbers as argument " + argNo);
+        return false;
+    }
+    args.strs.emplace_back();
+    args.nums.insert(args.nums.end(), got.begin(), got.end());
+    return true;
+}
+
+// 's' a string; 'h' a handle: a string or an integer (RI 3.2's light handles).
+bool Reader::argString(ArgCursor& at, char c, const std::string& argNo, Args& args) {
+    const Value* v = at.next();
+    if (v && v->isString && v->strs.size() == 1) {
+        args.strs.push_back(v->strs.front());
+    } else if (v && c == 'h' && !v->isString && v->nums.size() == 1 &&
+               isIntegral(v->nums.front())) {
+        args.strs.push_back(std::to_string(static_cast<int>(v->nums.front())));
+    } else {
+        error(at.loc, at.req +
+                          (c == 's' ? " expects a string as argument "
+                                    : " expects a handle as argument ") +
+                          argNo);
+        return false;
+    }
+    ++at.vi;
+    return true;
+}
+
+bool Reader::argStringArray(ArgCursor& at, const std::string& argNo, Args& args) {
+    const Value* v = at.next();
+    if (!v || !v->array || (!v->isString && !v->nums.empty())) {
+        error(at.loc, at.req + " expects a string array as argument " + argNo);
+        return false;
+    }
+    args.strArrays.push_back(v->strs);
+    ++at.vi;
+    return true;
+}
+
+bool Reader::argIntArray(ArgCursor& at, const std::string& argNo, Args& args) {
+    const Value* v = at.next();
+    if (!v || !v->array || v->isString) {
+        error(at.loc, at.req + " expects an integer array as argument " + argNo);
+        return false;
+    }
+    std::vector<int> ints;
+    ints.reserve(v->nums.size());
+    for (double d : v->nums) {
+        if (!isIntegral(d)) {
+            error(at.loc, at.req + " expects integers in argument " + argNo);
+            return false;
+        }
+        ints.push_back(static_cast<int>(d));
+    }
+    args.intArrays.push_back(std::move(ints));
+    ++at.vi;
     return true;
 }
 

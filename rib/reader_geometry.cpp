@@ -225,92 +225,108 @@ bool Reader::checkNuPatch(const Args& a, const SourceLoc& loc) {
                               n[0] * n[1], (up + 1) * (vp + 1), loc);
 }
 
+bool Reader::checkGeneralPolygon(const Args& a, const SourceLoc& loc) {
+    const std::vector<int>& nv = a.intArrays[0];
+    for (int k : nv) {
+        if (k < 3) {
+            error(loc, "GeneralPolygon loop with " + std::to_string(k) +
+                           " vertices (needs at least 3)");
+            return false;
+        }
+    }
+    if (nv.empty()) {
+        error(loc, "GeneralPolygon needs at least one loop");
+        return false;
+    }
+    const long long np = countPoints("GeneralPolygon", a.params, loc);
+    if (np < 0) return false;
+    if (np != sum(nv)) {
+        error(loc, "GeneralPolygon nverts add up to " + std::to_string(sum(nv)) +
+                       " but \"P\" has " + plural(static_cast<size_t>(np), "point"));
+        return false;
+    }
+    return checkVaryingCounts("GeneralPolygon", a.params, -1, np, np, np, loc);
+}
+
+bool Reader::checkPatch(const Args& a, const SourceLoc& loc) {
+    const std::string& type = ArgAt{a}.s(0);
+    const bool cubic = type == "bicubic";
+    if (!cubic && type != "bilinear") {
+        error(loc, "Patch: unknown type \"" + type + "\" (bilinear, bicubic)");
+        return false;
+    }
+    const long long np = countPoints("Patch", a.params, loc);
+    if (np < 0) return false;
+    if (np != (cubic ? 16 : 4)) {
+        error(loc, std::string("Patch \"") + type + "\" needs " + (cubic ? "16" : "4") +
+                       " points, got " + std::to_string(np));
+        return false;
+    }
+    return checkVaryingCounts("Patch", a.params, 1, 4, np, 4, loc);
+}
+
+// A primitive whose vertex and varying values are one a point: Polygon, Points.
+bool Reader::checkPointwise(const char* req, const ParamList& P, const SourceLoc& loc) {
+    const long long np = countPoints(req, P, loc);
+    return np >= 0 && checkVaryingCounts(req, P, -1, np, np, np, loc);
+}
+
 bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const SourceLoc& loc) {
-    const ArgAt v{a};
+    struct PrimitiveScope {  // the request's primitive variables, for its duration
+        Target& t;
+        PrimitiveScope(Target& target, const ParamList& p) : t(target) {
+            t.primitiveVariables(&p);
+        }
+        ~PrimitiveScope() { t.primitiveVariables(nullptr); }
+    } primitiveScope(m_target, a.params);
+    return dispatchPolygonsOrPatches(info, a, loc) || dispatchQuadric(info, a, loc) ||
+           dispatchOtherGeometry(info, a, loc);
+}
+
+bool Reader::dispatchPolygonsOrPatches(const RequestInfo& info, const Args& a,
+                                       const SourceLoc& loc) {
     static const std::vector<int> noInts;
     static const std::vector<float> noFloats;
     static const std::vector<std::string> noStrings;
+    const ArgAt v{a};
     const ParamList& P = a.params;
-    const char* req = info.name;
     Target& t = m_target;
-    struct PrimitiveScope {  // the request's primitive variables, for its duration
-        Target& t;
-        PrimitiveScope(Target& target, const ParamList& p) : t(target) { t.primitiveVariables(&p); }
-        ~PrimitiveScope() { t.primitiveVariables(nullptr); }
-    } primitiveScope(t, P);
-    long long np = 0;
     switch (info.req) {
         case Req::Polygon:
-            np = countPoints(req, P, loc);
-            if (np >= 0 && checkVaryingCounts(req, P, -1, np, np, np, loc))
-                t.polygon(loc, P);
-            break;
-        case Req::GeneralPolygon: {
-            const std::vector<int>& nv = a.intArrays[0];
-            for (int k : nv) {
-                if (k < 3) {
-                    error(loc, "GeneralPolygon loop with " + std::to_string(k) +
-                                   " vertices (needs at least 3)");
-                    return true;
-                }
-            }
-            if (nv.empty()) {
-                error(loc, "GeneralPolygon needs at least one loop");
-                break;
-            }
-            np = countPoints(req, P, loc);
-            if (np < 0) break;
-            if (np != sum(nv)) {
-                error(loc, "GeneralPolygon nverts add up to " + std::to_string(sum(nv)) +
-                               " but \"P\" has " + plural(static_cast<size_t>(np), "point"));
-                break;
-            }
-            if (checkVaryingCounts(req, P, -1, np, np, np, loc)) t.generalPolygon(loc, nv, P);
-            break;
-        }
+            if (checkPointwise(info.name, P, loc)) t.polygon(loc, P);
+            return true;
+        case Req::GeneralPolygon:
+            if (checkGeneralPolygon(a, loc)) t.generalPolygon(loc, a.intArrays[0], P);
+            return true;
         case Req::PointsPolygons:
             if (checkPointsPolygons(a, loc))
                 t.pointsPolygons(loc, a.intArrays[0], a.intArrays[1], P);
-            break;
+            return true;
         case Req::PointsGeneralPolygons:
             if (checkPointsGeneralPolygons(a, loc))
                 t.pointsGeneralPolygons(loc, a.intArrays[0], a.intArrays[1], a.intArrays[2],
                                         P);
-            break;
-        case Req::Patch: {
-            bool cubic = v.s(0) == "bicubic";
-            if (!cubic && v.s(0) != "bilinear") {
-                error(loc, "Patch: unknown type \"" + v.s(0) + "\" (bilinear, bicubic)");
-                break;
-            }
-            np = countPoints(req, P, loc);
-            if (np < 0) break;
-            if (np != (cubic ? 16 : 4)) {
-                error(loc, std::string("Patch \"") + v.s(0) + "\" needs " +
-                               (cubic ? "16" : "4") + " points, got " +
-                               std::to_string(np));
-                break;
-            }
-            if (checkVaryingCounts(req, P, 1, 4, np, 4, loc)) t.patch(loc, v.s(0), P);
-            break;
-        }
+            return true;
+        case Req::Patch:
+            if (checkPatch(a, loc)) t.patch(loc, v.s(0), P);
+            return true;
         case Req::PatchMesh:
             if (checkPatchMesh(a, loc))
                 t.patchMesh(loc, v.s(0), v.n(0), v.s(1), v.n(1), v.s(2), P);
-            break;
+            return true;
         case Req::NuPatch:
             if (checkNuPatch(a, loc))
                 t.nuPatch(loc, v.n(0), v.n(1), a.floatArrays[0], v.f(2), v.f(3), v.n(4),
                           v.n(5), a.floatArrays[1], v.f(6), v.f(7), P);
-            break;
+            return true;
         case Req::TrimCurve:
             if (checkTrimCurve(a, loc))
                 t.trimCurve(loc, a.intArrays[0], a.intArrays[1], a.floatArrays[0],
                             a.floatArrays[1], a.floatArrays[2], a.intArrays[2],
                             a.floatArrays[3], a.floatArrays[4], a.floatArrays[5]);
-            break;
+            return true;
         case Req::SubdivisionMesh:
-            if (!checkSubdivisionMesh(a, loc)) break;
+            if (!checkSubdivisionMesh(a, loc)) return true;
             if (a.optionalMissing)
                 t.subdivisionMesh(loc, v.s(0), a.intArrays[0], a.intArrays[1], noStrings,
                                   noInts, noInts, noFloats, P);
@@ -318,90 +334,126 @@ bool Reader::dispatchGeometry(const RequestInfo& info, const Args& a, const Sour
                 t.subdivisionMesh(loc, v.s(0), a.intArrays[0], a.intArrays[1],
                                   a.strArrays[0], a.intArrays[2], a.intArrays[3],
                                   a.floatArrays[0], P);
-            break;
+            return true;
+        default:
+            return false;
+    }
+}
+
+bool Reader::dispatchQuadric(const RequestInfo& info, const Args& a,
+                             const SourceLoc& loc) {
+    const ArgAt v{a};
+    const ParamList& P = a.params;
+    Target& t = m_target;
+    switch (info.req) {
         case Req::Sphere:
         case Req::Cylinder:
         case Req::Cone:
         case Req::Disk:
         case Req::Torus:
         case Req::Paraboloid:
-        case Req::Hyperboloid: {
-            if (!checkVaryingCounts(req, P, 1, 4, 4, 4, loc)) break;
-            if (info.req == Req::Sphere) t.sphere(loc, v.f(0), v.f(1), v.f(2), v.f(3), P);
-            if (info.req == Req::Cylinder)
-                t.cylinder(loc, v.f(0), v.f(1), v.f(2), v.f(3), P);
-            if (info.req == Req::Cone) t.cone(loc, v.f(0), v.f(1), v.f(2), P);
-            if (info.req == Req::Disk) t.disk(loc, v.f(0), v.f(1), v.f(2), P);
-            if (info.req == Req::Torus)
-                t.torus(loc, v.f(0), v.f(1), v.f(2), v.f(3), v.f(4), P);
-            if (info.req == Req::Paraboloid)
-                t.paraboloid(loc, v.f(0), v.f(1), v.f(2), v.f(3), P);
-            if (info.req == Req::Hyperboloid) {
-                float p1[3] = {v.f(0), v.f(1), v.f(2)}, p2[3] = {v.f(3), v.f(4), v.f(5)};
-                t.hyperboloid(loc, p1, p2, v.f(6), P);
-            }
-            break;
-        }
-        case Req::Curves:
-            if (checkCurves(a, loc)) t.curves(loc, v.s(0), a.intArrays[0], v.s(1), P);
-            break;
-        case Req::Points:
-            np = countPoints(req, P, loc);
-            if (np >= 0 && checkVaryingCounts(req, P, -1, np, np, np, loc)) t.points(loc, P);
-            break;
-        case Req::Blobby:
-            if (v.n(0) < 0) {
-                error(loc, "Blobby nleaf must not be negative");
-                break;
-            }
-            if (checkBlobby(a, loc))
-                t.blobby(loc, v.n(0), a.intArrays[0], a.floatArrays[0], a.strArrays[0],
-                         P);
-            break;
-        case Req::Geometry:
-            t.geometry(loc, v.s(0), P);
-            break;
-        case Req::Procedural: {
-            const std::string name = v.s(0);
-            size_t want = name == "DelayedReadArchive" ? 1
-                          : name == "RunProgram" || name == "DynamicLoad" ? 2
-                                                                          : 0;
-            if (want == 0) {
-                error(loc, "Procedural: unknown procedural \"" + name +
-                               "\" (DelayedReadArchive, RunProgram, DynamicLoad)");
-                break;
-            }
-            if (a.strArrays[0].size() != want) {
-                error(loc, "Procedural \"" + name + "\" needs " + plural(want, "argument") +
-                               ", got " + std::to_string(a.strArrays[0].size()));
-                break;
-            }
-            float bound[6];
-            for (size_t i = 0; i < 6; ++i) bound[i] = v.f(i);
-            if (m_opts.expandArchives && name == "DelayedReadArchive") {
-                std::string file = resolveArchive(a.strArrays[0][0]);
-                if (t.deferProcedural(loc, name, a.strArrays[0], bound,
-                                      file.empty() ? a.strArrays[0][0] : file))
-                    break;
-            }
-            if (m_opts.expandArchives &&
-                (name != "DynamicLoad" || (dynamicLoader() && t.runsDynamicLoad())))
-                expandProcedural(name, a.strArrays[0], loc);
-            else
-                t.procedural(loc, name, a.strArrays[0], bound);
-            break;
-        }
-        case Req::ObjectInstance:
-            if (!m_objects.count(v.s(0))) {
-                error(loc, "ObjectInstance of undefined object \"" + v.s(0) + "\"");
-                break;
-            }
-            t.objectInstance(loc, v.s(0));
+        case Req::Hyperboloid:
             break;
         default:
             return false;
     }
+    if (!checkVaryingCounts(info.name, P, 1, 4, 4, 4, loc)) return true;
+    switch (info.req) {
+        case Req::Sphere:
+            t.sphere(loc, v.f(0), v.f(1), v.f(2), v.f(3), P);
+            break;
+        case Req::Cylinder:
+            t.cylinder(loc, v.f(0), v.f(1), v.f(2), v.f(3), P);
+            break;
+        case Req::Cone:
+            t.cone(loc, v.f(0), v.f(1), v.f(2), P);
+            break;
+        case Req::Disk:
+            t.disk(loc, v.f(0), v.f(1), v.f(2), P);
+            break;
+        case Req::Torus:
+            t.torus(loc, v.f(0), v.f(1), v.f(2), v.f(3), v.f(4), P);
+            break;
+        case Req::Paraboloid:
+            t.paraboloid(loc, v.f(0), v.f(1), v.f(2), v.f(3), P);
+            break;
+        default: {  // Hyperboloid
+            float p1[3] = {v.f(0), v.f(1), v.f(2)}, p2[3] = {v.f(3), v.f(4), v.f(5)};
+            t.hyperboloid(loc, p1, p2, v.f(6), P);
+        }
+    }
     return true;
+}
+
+bool Reader::dispatchOtherGeometry(const RequestInfo& info, const Args& a,
+                                   const SourceLoc& loc) {
+    const ArgAt v{a};
+    const ParamList& P = a.params;
+    Target& t = m_target;
+    switch (info.req) {
+        case Req::Curves:
+            if (checkCurves(a, loc)) t.curves(loc, v.s(0), a.intArrays[0], v.s(1), P);
+            return true;
+        case Req::Points:
+            if (checkPointwise(info.name, P, loc)) t.points(loc, P);
+            return true;
+        case Req::Blobby:
+            if (v.n(0) < 0)
+                error(loc, "Blobby nleaf must not be negative");
+            else if (checkBlobby(a, loc))
+                t.blobby(loc, v.n(0), a.intArrays[0], a.floatArrays[0], a.strArrays[0],
+                         P);
+            return true;
+        case Req::Geometry:
+            t.geometry(loc, v.s(0), P);
+            return true;
+        case Req::Procedural:
+            dispatchProcedural(a, loc);
+            return true;
+        case Req::ObjectInstance:
+            if (!m_objects.count(v.s(0)))
+                error(loc, "ObjectInstance of undefined object \"" + v.s(0) + "\"");
+            else
+                t.objectInstance(loc, v.s(0));
+            return true;
+        default:
+            return false;
+    }
+}
+
+// Procedural: a DelayedReadArchive deferred until a ray reaches its bound where the
+// target can, else expanded here (RunProgram, DynamicLoad where there is a loader) or
+// handed on as a request.
+void Reader::dispatchProcedural(const Args& a, const SourceLoc& loc) {
+    const ArgAt v{a};
+    Target& t = m_target;
+    const std::string name = v.s(0);
+    const std::vector<std::string>& args = a.strArrays[0];
+    size_t want = name == "DelayedReadArchive"                    ? 1
+                  : name == "RunProgram" || name == "DynamicLoad" ? 2
+                                                                  : 0;
+    if (want == 0) {
+        error(loc, "Procedural: unknown procedural \"" + name +
+                       "\" (DelayedReadArchive, RunProgram, DynamicLoad)");
+        return;
+    }
+    if (args.size() != want) {
+        error(loc, "Procedural \"" + name + "\" needs " + plural(want, "argument") +
+                       ", got " + std::to_string(args.size()));
+        return;
+    }
+    float bound[6];
+    for (size_t i = 0; i < 6; ++i) bound[i] = v.f(i);
+    if (m_opts.expandArchives && name == "DelayedReadArchive") {
+        std::string file = resolveArchive(args[0]);
+        if (t.deferProcedural(loc, name, args, bound, file.empty() ? args[0] : file))
+            return;
+    }
+    if (m_opts.expandArchives &&
+        (name != "DynamicLoad" || (dynamicLoader() && t.runsDynamicLoad())))
+        expandProcedural(name, args, loc);
+    else
+        t.procedural(loc, name, args, bound);
 }
 
 }  // namespace detail

@@ -60,6 +60,16 @@ struct Args {
     ParamList params;
 };
 
+// A request's values being read as its positional arguments (Reader::parseArgs).
+struct ArgCursor {
+    const std::vector<Value>& vals;
+    const std::string req;  // the request's name, for messages
+    const SourceLoc& loc;
+    size_t vi = 0;  // the next value
+    const Value* next() const { return vi < vals.size() ? &vals[vi] : nullptr; }
+    void numbers(size_t limit, std::vector<double>& got);
+};
+
 // A request's positional arguments by index. parseArgs guarantees their counts; these
 // check anyway (0 or empty past the end), so that a table typo never reads out of range.
 struct ArgAt {
@@ -155,6 +165,12 @@ private:
     bool readArray(const Token& open, Value& v);
     bool parseArgs(const RequestInfo& info, const std::vector<Value>& vals, Args& args,
                    const SourceLoc& loc);
+    bool argNumbers(ArgCursor& at, const std::string& run, size_t first, Args& args);
+    bool argFloatArray(ArgCursor& at, char c, const std::string& argNo, Args& args);
+    bool argBasis(ArgCursor& at, const std::string& argNo, Args& args);
+    bool argString(ArgCursor& at, char c, const std::string& argNo, Args& args);
+    bool argStringArray(ArgCursor& at, const std::string& argNo, Args& args);
+    bool argIntArray(ArgCursor& at, const std::string& argNo, Args& args);
     bool parseParams(const RequestInfo& info, const std::vector<Value>& vals, size_t vi,
                      ParamList& out, const SourceLoc& loc);
     bool buildParam(const RequestInfo& info, const std::string& token, const Value& v,
@@ -174,6 +190,15 @@ private:
 
     // reader_geometry.cpp
     bool dispatchGeometry(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    bool dispatchPolygonsOrPatches(const RequestInfo& info, const Args& a,
+                                   const SourceLoc& loc);
+    bool dispatchQuadric(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    bool dispatchOtherGeometry(const RequestInfo& info, const Args& a,
+                               const SourceLoc& loc);
+    void dispatchProcedural(const Args& a, const SourceLoc& loc);
+    bool checkGeneralPolygon(const Args& a, const SourceLoc& loc);
+    bool checkPatch(const Args& a, const SourceLoc& loc);
+    bool checkPointwise(const char* req, const ParamList& P, const SourceLoc& loc);
     long long countPoints(const char* req, const ParamList& params, const SourceLoc& loc);
     bool checkVaryingCounts(const char* req, const ParamList& params, long long uniform,
                             long long varying, long long vertex, long long faceVarying,
@@ -192,6 +217,11 @@ private:
     // reader_scope.cpp
     bool checkScope(const RequestInfo& info, const SourceLoc& loc);
     bool dispatchBlock(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    bool dispatchBegin(const RequestInfo& info, const Args& a, const SourceLoc& loc);
+    bool dispatchEnd(const RequestInfo& info, const SourceLoc& loc);
+    void motionBegin(const std::vector<float>& times, const SourceLoc& loc);
+    void solidBegin(const std::string& op, const SourceLoc& loc);
+    void motionEnd(const SourceLoc& loc);
     bool has(Req begin) const;
     void beginBlock(Req begin, const char* name, const SourceLoc& loc);
     bool endBlock(Req begin, const char* beginName, const char* endName,

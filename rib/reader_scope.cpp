@@ -109,6 +109,10 @@ bool Reader::checkScope(const RequestInfo& info, const SourceLoc& loc) {
 }
 
 bool Reader::dispatchBlock(const RequestInfo& info, const Args& a, const SourceLoc& loc) {
+    return dispatchBegin(info, a, loc) || dispatchEnd(info, loc);
+}
+
+bool Reader::dispatchBegin(const RequestInfo& info, const Args& a, const SourceLoc& loc) {
     const ArgAt v{a};
     Target& t = m_target;
     const std::string req = info.name;
@@ -141,49 +145,12 @@ bool Reader::dispatchBlock(const RequestInfo& info, const Args& a, const SourceL
             beginBlock(Req::TransformBegin, info.name, loc);
             t.transformBegin(loc);
             break;
-        case Req::MotionBegin: {
-            const std::vector<float>& times = a.floatArrays.at(0);
-            if (times.empty()) {
-                error(loc, "MotionBegin needs at least one time");
-                break;
-            }
-            for (size_t i = 1; i < times.size(); ++i) {
-                if (!(times[i] >= times[i - 1])) {
-                    error(loc, "MotionBegin times must not decrease");
-                    return true;
-                }
-            }
-            beginBlock(Req::MotionBegin, info.name, loc);
-            m_blocks.back().motionTimes = times.size();
-            t.motionBegin(loc, times);
+        case Req::MotionBegin:
+            motionBegin(a.floatArrays.at(0), loc);
             break;
-        }
-        case Req::SolidBegin: {
-            const std::string op = v.s(0);
-            if (op != "primitive" && op != "union" && op != "intersection" &&
-                op != "difference") {
-                error(loc, "SolidBegin: unknown operation \"" + op +
-                               "\" (primitive, union, intersection, difference)");
-                break;
-            }
-            if (!world && !object && !has(Req::ArchiveBegin)) {
-                error(loc, req + " outside WorldBegin/WorldEnd");
-                break;
-            }
-            for (auto it = m_blocks.rbegin(); it != m_blocks.rend(); ++it) {
-                if (it->begin != Req::SolidBegin) continue;
-                if (it->solidOp == "primitive") {
-                    error(loc, "SolidBegin inside a primitive solid (at " +
-                                   it->loc.str() + ")");
-                    return true;
-                }
-                break;
-            }
-            beginBlock(Req::SolidBegin, info.name, loc);
-            m_blocks.back().solidOp = op;
-            t.solidBegin(loc, op);
+        case Req::SolidBegin:
+            solidBegin(v.s(0), loc);
             break;
-        }
         case Req::ObjectBegin:
             if (object) {
                 error(loc, "ObjectBegin is not allowed inside ObjectBegin");
@@ -201,59 +168,113 @@ bool Reader::dispatchBlock(const RequestInfo& info, const Args& a, const SourceL
             beginBlock(Req::ArchiveBegin, info.name, loc);
             t.archiveBegin(loc, v.s(0), a.params);
             break;
-        case Req::FrameEnd:
-            if (endBlock(Req::FrameBegin, "FrameBegin", info.name, loc)) t.frameEnd(loc);
-            break;
-        case Req::WorldEnd:
-            if (endBlock(Req::WorldBegin, "WorldBegin", info.name, loc)) t.worldEnd(loc);
-            break;
-        case Req::AttributeEnd:
-            if (endBlock(Req::AttributeBegin, "AttributeBegin", info.name, loc))
-                t.attributeEnd(loc);
-            break;
-        case Req::TransformEnd:
-            if (endBlock(Req::TransformBegin, "TransformBegin", info.name, loc))
-                t.transformEnd(loc);
-            break;
-        case Req::MotionEnd: {
-            if (m_blocks.empty() || m_blocks.back().begin != Req::MotionBegin) {
-                endBlock(Req::MotionBegin, "MotionBegin", info.name, loc);
-                break;
-            }
-            OpenBlock mb = m_blocks.back();
-            endBlock(Req::MotionBegin, "MotionBegin", info.name, loc);
-            if (mb.motionCount != mb.motionTimes)
-                error(loc, "MotionBegin at " + mb.loc.str() + " has " +
-                               plural(mb.motionTimes, "time") + " but " +
-                               plural(mb.motionCount, "request"));
-            t.motionEnd(loc);  // still closed, so the target's nesting stays balanced
-            break;
-        }
-        case Req::SolidEnd:
-            if (endBlock(Req::SolidBegin, "SolidBegin", info.name, loc)) t.solidEnd(loc);
-            break;
         case Req::ResourceBegin:
             beginBlock(Req::ResourceBegin, info.name, loc);
             m_resources.emplace_back();
             t.resourceBegin(loc);
             break;
+        default:
+            return false;
+    }
+    return true;
+}
+
+void Reader::motionBegin(const std::vector<float>& times, const SourceLoc& loc) {
+    if (times.empty()) {
+        error(loc, "MotionBegin needs at least one time");
+        return;
+    }
+    for (size_t i = 1; i < times.size(); ++i) {
+        if (!(times[i] >= times[i - 1])) {
+            error(loc, "MotionBegin times must not decrease");
+            return;
+        }
+    }
+    beginBlock(Req::MotionBegin, "MotionBegin", loc);
+    m_blocks.back().motionTimes = times.size();
+    m_target.motionBegin(loc, times);
+}
+
+void Reader::solidBegin(const std::string& op, const SourceLoc& loc) {
+    if (op != "primitive" && op != "union" && op != "intersection" &&
+        op != "difference") {
+        error(loc, "SolidBegin: unknown operation \"" + op +
+                       "\" (primitive, union, intersection, difference)");
+        return;
+    }
+    if (!has(Req::WorldBegin) && !has(Req::ObjectBegin) && !has(Req::ArchiveBegin)) {
+        error(loc, "SolidBegin outside WorldBegin/WorldEnd");
+        return;
+    }
+    for (auto it = m_blocks.rbegin(); it != m_blocks.rend(); ++it) {
+        if (it->begin != Req::SolidBegin) continue;
+        if (it->solidOp == "primitive") {
+            error(loc, "SolidBegin inside a primitive solid (at " + it->loc.str() + ")");
+            return;
+        }
+        break;
+    }
+    beginBlock(Req::SolidBegin, "SolidBegin", loc);
+    m_blocks.back().solidOp = op;
+    m_target.solidBegin(loc, op);
+}
+
+bool Reader::dispatchEnd(const RequestInfo& info, const SourceLoc& loc) {
+    Target& t = m_target;
+    const char* end = info.name;
+    switch (info.req) {
+        case Req::FrameEnd:
+            if (endBlock(Req::FrameBegin, "FrameBegin", end, loc)) t.frameEnd(loc);
+            break;
+        case Req::WorldEnd:
+            if (endBlock(Req::WorldBegin, "WorldBegin", end, loc)) t.worldEnd(loc);
+            break;
+        case Req::AttributeEnd:
+            if (endBlock(Req::AttributeBegin, "AttributeBegin", end, loc))
+                t.attributeEnd(loc);
+            break;
+        case Req::TransformEnd:
+            if (endBlock(Req::TransformBegin, "TransformBegin", end, loc))
+                t.transformEnd(loc);
+            break;
+        case Req::MotionEnd:
+            motionEnd(loc);
+            break;
+        case Req::SolidEnd:
+            if (endBlock(Req::SolidBegin, "SolidBegin", end, loc)) t.solidEnd(loc);
+            break;
         case Req::ResourceEnd:
-            if (endBlock(Req::ResourceBegin, "ResourceBegin", info.name, loc)) {
+            if (endBlock(Req::ResourceBegin, "ResourceBegin", end, loc)) {
                 m_resources.pop_back();
                 t.resourceEnd(loc);
             }
             break;
         case Req::ObjectEnd:
-            if (endBlock(Req::ObjectBegin, "ObjectBegin", info.name, loc)) t.objectEnd(loc);
+            if (endBlock(Req::ObjectBegin, "ObjectBegin", end, loc)) t.objectEnd(loc);
             break;
         case Req::ArchiveEnd:
-            if (endBlock(Req::ArchiveBegin, "ArchiveBegin", info.name, loc))
-                t.archiveEnd(loc);
+            if (endBlock(Req::ArchiveBegin, "ArchiveBegin", end, loc)) t.archiveEnd(loc);
             break;
         default:
             return false;
     }
     return true;
+}
+
+// MotionEnd: closed even when its count of requests is wrong, so that the target's
+// nesting stays balanced.
+void Reader::motionEnd(const SourceLoc& loc) {
+    if (m_blocks.empty() || m_blocks.back().begin != Req::MotionBegin) {
+        endBlock(Req::MotionBegin, "MotionBegin", "MotionEnd", loc);
+        return;
+    }
+    OpenBlock mb = m_blocks.back();
+    endBlock(Req::MotionBegin, "MotionBegin", "MotionEnd", loc);
+    if (mb.motionCount != mb.motionTimes)
+        error(loc, "MotionBegin at " + mb.loc.str() + " has " +
+                       plural(mb.motionTimes, "time") + " but " +
+                       plural(mb.motionCount, "request"));
+    m_target.motionEnd(loc);
 }
 
 }  // namespace detail
