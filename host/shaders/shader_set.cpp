@@ -279,6 +279,26 @@ std::string volumeDispatcher(const char* kind, const std::string& cases) {
            "    switch (a) {\n" +
            cases + "    default: break;\n    }\n}\n";
 }
+
+// The generated sources: the shaders and their services (rd_shading.cl), the shade
+// kernels (rd_shade_kernels.cl), and the order the program takes them in.
+void writeSources(ShadingSetup& out, bool lightCoefs, const std::string& shading,
+                  const std::string& kernels) {
+    out.generated["rd_shading.cl"] =
+        shadingDefines(out.lightCount, lightCoefs) +
+        "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
+        "inline __attribute__((always_inline))\n#endif\n"
+        "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"
+        "#include \"sample_random.clh\"\n"
+        "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n"
+        "#include \"area_light.clh\"\n" +
+        shading;
+    out.generated["rd_shade_kernels.cl"] =
+        "#include \"counters.clh\"\n#include \"shade_common.clh\"\n#include "
+        "\"volume.clh\"\n" +
+        kernels;
+    out.sourceOrder = {"rd_shading.cl", "rd_textures.cl", "rd_shade_kernels.cl"};
+}
 }  // namespace
 
 // Light instances: their parameters in the params buffer (with their uniform work
@@ -423,92 +443,6 @@ bool ShaderSet::someShaderCalls(const char* service) const {
     });
 }
 
-// surface(), displacement(), atmosphere(), incident(), opposite(): per material, each
-// kind's shader and block (message_services.h ShaderBlocks), when `used`.
-ShaderBlocks ShaderSet::shaderBlocks(const ShadingSetup& out,
-                                     const BoundSurfaces& surfaces,
-                                     const BoundVolumes& volumes, bool used) const {
-    ShaderBlocks blocks;
-    blocks.shaders[0] = surfaces.shaders;
-    auto kindIndex = [&](int kind, const rsl::EmittedShader* sh) {
-        auto& list = blocks.shaders[kind];
-        auto it = std::find(list.begin(), list.end(), sh);
-        if (it != list.end()) return int32_t(it - list.begin());
-        list.push_back(sh);
-        return int32_t(list.size() - 1);
-    };
-    for (size_t mi = 0; used && mi < out.materials.size(); ++mi) {
-        const Material& m = out.materials[mi];
-        const uint32_t r = m_scene.materials[mi].shader;
-        std::array<int32_t, 2 * ShaderBlocks::kKinds> e{};
-        for (int kind = 0; kind < ShaderBlocks::kKinds; ++kind) e[2 * kind] = -1;
-        if (r < surfaces.shader.size() && !surfaces.shaders.empty())
-            e[0] = int32_t(m.shader), e[1] = int32_t(m.params);
-        // a kind's shader by its index among the kind's bound calls (1-based, 0: none)
-        auto boundAs = [&](int kind, uint32_t index, const auto& bound) {
-            if (index == 0 || index > bound.size() || !bound[index - 1].first) return;
-            e[2 * kind] = kindIndex(kind, bound[index - 1].first);
-            e[2 * kind + 1] = bound[index - 1].second;
-        };
-        boundAs(
-            1,
-            (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT,
-            volumes.displacements);
-        boundAs(2,
-                (m.flags & RT_MATERIAL_ATMOSPHERE_MASK) >> RT_MATERIAL_ATMOSPHERE_SHIFT,
-                volumes.atmospheres);
-        boundAs(3, (m.flags & RT_MATERIAL_INTERIOR_MASK) >> RT_MATERIAL_INTERIOR_SHIFT,
-                volumes.interiors);
-        boundAs(4,
-                mi < m_scene.materialExterior.size() ? m_scene.materialExterior[mi] : 0,
-                volumes.exteriors);
-        blocks.materials.push_back(e);
-    }
-    return blocks;
-}
-
-// The scene's materials with their surface shader's index and block, and where each
-// one's per-point parameters go in its surface's and its displacement's blocks
-// (ShadingSetup::pointParamLayout). The values are those its primitives carry
-// (ShaderRef::pointParams of its surface call), whichever shader takes them.
-void ShaderSet::bindMaterials(ShadingSetup& out, const BoundSurfaces& surfaces,
-                              const BoundVolumes& volumes) {
-    out.materials = m_scene.materials;
-    out.maxPointParams = m_scene.maxPointParams;
-    const size_t most = size_t(out.maxPointParams);
-    // (per surface and displacement call: its offsets, warned about once)
-    std::map<std::pair<uint32_t, uint32_t>, std::vector<int32_t>> displacementOffsets;
-    for (Material& m : out.materials) {
-        uint32_t r = m.shader;
-        const uint32_t d =
-            (m.flags & RT_MATERIAL_DISPLACEMENT_MASK) >> RT_MATERIAL_DISPLACEMENT_SHIFT;
-        m.shader = r < surfaces.shader.size() ? surfaces.shader[r] : 0;
-        m.params = r < surfaces.block.size() ? surfaces.block[r] : 0;
-        if (most == 0) continue;
-        std::vector<int32_t> lay(pointParamLayoutStride(most), -1);
-        const std::vector<int32_t> none;
-        const std::vector<int32_t>& given =
-            r < surfaces.pointParams.size() ? surfaces.pointParams[r] : none;
-        lay[0] = int32_t(std::min(given.size(), most));
-        std::copy_n(given.begin(), size_t(lay[0]), lay.begin() + 1);
-        const bool carried =
-            r < m_scene.surfaceRefs.size() && !m_scene.surfaceRefs[r].pointParams.empty();
-        if (carried && d > 0 && d <= volumes.displacements.size() &&
-            volumes.displacements[d - 1].first) {
-            auto [it, fresh] = displacementOffsets.try_emplace({r, d});
-            if (fresh) {
-                ShaderRef call = m_scene.displacements[d - 1];
-                call.pointParams = m_scene.surfaceRefs[r].pointParams;
-                it->second =
-                    pointParamOffsets(*volumes.displacements[d - 1].first, call, m_diag);
-            }
-            std::copy_n(it->second.begin(), std::min(it->second.size(), most),
-                        lay.begin() + 1 + std::ptrdiff_t(most));
-        }
-        out.pointParamLayout.insert(out.pointParamLayout.end(), lay.begin(), lay.end());
-    }
-}
-
 ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     ShadingSetup out;
     std::ostringstream shaders, svc, kernels;
@@ -526,65 +460,10 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
     const BoundSurfaces surfaces = bindSurfaces(out, aovs, lightCoefs, shaders, kernels);
     std::set<std::string> emitted;
     BoundVolumes volumes;
-    // A volume kind's calls bound, and its dispatcher (the kernel's evaluation: every
-    // light, or under RT_VOLUME_SHADOWS one light's evaluations counted or picked; no
-    // traces, no derivatives).
-    auto bindVolumes = [&](const std::vector<ShaderRef>& calls, const char* kind,
-                           BoundCalls& bound) {
-        std::ostringstream cases;
-        if (!bindCases(calls, "volume", "ev", out, cases, shaders, emitted, bound))
-            return false;
-        svc << volumeDispatcher(kind, cases.str());
-        for (const auto& b : bound) out.volumeLights |= b.first && b.first->usesLighting;
-        return true;
-    };
-    // --- atmospheres, interiors (what comes back from inside a surface), exteriors (from
-    // outside the surface a ray left; a table by material: its flag bits are taken)
-    out.atmosphere = bindVolumes(m_scene.atmospheres, "atmosphere", volumes.atmospheres);
-    out.interior = bindVolumes(m_scene.interiors, "interior", volumes.interiors);
-    out.exterior = bindVolumes(m_scene.exteriors, "exterior", volumes.exteriors);
-    if (out.exterior) {
-        out.params[kSceneExteriors] = intBits(int64_t(out.params.size()));
-        for (size_t mi = 0; mi < m_scene.materials.size(); ++mi) {
-            const uint32_t e =
-                mi < m_scene.materialExterior.size() ? m_scene.materialExterior[mi] : 0;
-            const bool bound =
-                e > 0 && e <= volumes.exteriors.size() && volumes.exteriors[e - 1].first;
-            out.params.push_back(bound ? float(e) : 0.0f);
-        }
-    }
-    // --- objects' own trace() depth limits, when they differ and some shader traces
-    const auto& depths = m_scene.materialSpecularDepth;
-    out.materialDepths = out.usesTrace && depths.size() == m_scene.materials.size() &&
-                         std::any_of(depths.begin(), depths.end(), [&](int d) {
-                             return d != m_scene.maxSpecularDepth;
-                         });
-    if (out.materialDepths) {
-        out.params[kSceneDepths] = intBits(int64_t(out.params.size()));
-        for (int d : depths) out.params.push_back(float(d));
-    }
-    // --- displacements: bump shaders run before the surface (shade_common.clh)
-    std::ostringstream disp;
-    out.displacement = bindCases(m_scene.displacements, "displacement", "ev", out, disp,
-                                 shaders, emitted, volumes.displacements);
-    if (out.displacement)
-        svc << "static void rd_displace(int d, RslGlobals* g, __global const float* params, "
-               "RslEval* ev) {\n    switch (d) {\n" << disp.str()
-            << "    default: break;\n    }\n}\n";
-    // --- the imager: a kernel over the resolved pixels (host/render/imager_stage)
-    std::string imager;
-    if (!m_scene.imager.name.empty()) {
-        const ShaderRef& ref = m_scene.imager;
-        if (const rsl::EmittedShader* sh = find(ref.name, "imager", ref.loc)) {
-            std::vector<float> block = bindParameters(*sh, ref, m_diag, m_scene.colors);
-            addPrepare(out, *sh);
-            noteTextures(out, *sh, ref);
-            imager = imagerKernel(sh->functionName, out.params.size());
-            out.params.insert(out.params.end(), block.begin(), block.end());
-            shaders << sh->source << "\n";
-            out.imager = true;
-        }
-    }
+    bindVolumes(out, shaders, svc, emitted, volumes);
+    appendMaterialDepths(out);
+    bindDisplacements(out, shaders, svc, emitted, volumes);
+    const std::string imager = bindImager(out, shaders);
     bindMaterials(out, surfaces, volumes);
     // Each light shader is inlined at its one call site (RD_SPECIALISED_LIGHTS). Light
     // parameters were compiled-in constants, each of the first 32 instances inlined with
@@ -608,23 +487,83 @@ ShadingSetup ShaderSet::prepare(const std::vector<std::string>& aovs) {
         m_scene, someShaderCalls("rsl_attribute(g"),
         MessageSlots{kSceneFormat, kSceneFormat + 3, kSceneAttributes, kSceneOptions},
         out.params, m_diag);
-    out.generated["rd_shading.cl"] =
-        shadingDefines(out.lightCount, lightCoefs) +
-        "#ifdef RD_SPECIALISED_LIGHTS\n#define RSL_LIGHT_FUNCTION "
-        "inline __attribute__((always_inline))\n#endif\n"
-        "#define RSL_SHADER_FUNCTION inline __attribute__((always_inline))\n"
-        "#include \"sample_random.clh\"\n"
-        "#include \"rsl_abi.h\"\n#include \"rsl_stdlib.clh\"\n"
-        "#include \"area_light.clh\"\n" +
-        shaders.str() + svc.str();
-    out.generated["rd_shade_kernels.cl"] =
-        "#include \"counters.clh\"\n#include \"shade_common.clh\"\n#include "
-        "\"volume.clh\"\n" +
-        kernels.str() + imager + prepareKernel(out.prepares);
-    out.sourceOrder = {"rd_shading.cl", "rd_textures.cl", "rd_shade_kernels.cl"};
+    writeSources(out, lightCoefs, shaders.str() + svc.str(),
+                 kernels.str() + imager + prepareKernel(out.prepares));
     if (out.displacement && hasTrueDisplacement(m_scene))  // (true_displacement.h)
         out.sourceOrder.push_back("displace_vertices.cl");
     return out;
+}
+
+// Atmospheres, interiors (what comes back from inside a surface) and exteriors (from
+// outside the surface a ray left; a table by material: its flag bits are taken). Each
+// kind's calls bound, and its dispatcher (the kernel's evaluation: every light, or under
+// RT_VOLUME_SHADOWS one light's evaluations counted or picked; no traces, no
+// derivatives).
+void ShaderSet::bindVolumes(ShadingSetup& out, std::ostream& shaders, std::ostream& svc,
+                            std::set<std::string>& emitted, BoundVolumes& volumes) {
+    auto bindKind = [&](const std::vector<ShaderRef>& calls, const char* kind,
+                        BoundCalls& bound) {
+        std::ostringstream cases;
+        if (!bindCases(calls, "volume", "ev", out, cases, shaders, emitted, bound))
+            return false;
+        svc << volumeDispatcher(kind, cases.str());
+        for (const auto& b : bound) out.volumeLights |= b.first && b.first->usesLighting;
+        return true;
+    };
+    out.atmosphere = bindKind(m_scene.atmospheres, "atmosphere", volumes.atmospheres);
+    out.interior = bindKind(m_scene.interiors, "interior", volumes.interiors);
+    out.exterior = bindKind(m_scene.exteriors, "exterior", volumes.exteriors);
+    if (!out.exterior) return;
+    out.params[kSceneExteriors] = intBits(int64_t(out.params.size()));
+    for (size_t mi = 0; mi < m_scene.materials.size(); ++mi) {
+        const uint32_t e =
+            mi < m_scene.materialExterior.size() ? m_scene.materialExterior[mi] : 0;
+        const bool bound =
+            e > 0 && e <= volumes.exteriors.size() && volumes.exteriors[e - 1].first;
+        out.params.push_back(bound ? float(e) : 0.0f);
+    }
+}
+
+// Objects' own trace() depth limits, when they differ and some shader traces
+void ShaderSet::appendMaterialDepths(ShadingSetup& out) const {
+    const auto& depths = m_scene.materialSpecularDepth;
+    out.materialDepths = out.usesTrace && depths.size() == m_scene.materials.size() &&
+                         std::any_of(depths.begin(), depths.end(), [&](int d) {
+                             return d != m_scene.maxSpecularDepth;
+                         });
+    if (!out.materialDepths) return;
+    out.params[kSceneDepths] = intBits(int64_t(out.params.size()));
+    for (int d : depths) out.params.push_back(float(d));
+}
+
+// Displacements: bump shaders run before the surface (shade_common.clh rd_displace)
+void ShaderSet::bindDisplacements(ShadingSetup& out, std::ostream& shaders,
+                                  std::ostream& svc, std::set<std::string>& emitted,
+                                  BoundVolumes& volumes) {
+    std::ostringstream disp;
+    out.displacement = bindCases(m_scene.displacements, "displacement", "ev", out, disp,
+                                 shaders, emitted, volumes.displacements);
+    if (out.displacement)
+        svc << "static void rd_displace(int d, RslGlobals* g, __global const float* "
+               "params, "
+               "RslEval* ev) {\n    switch (d) {\n"
+            << disp.str() << "    default: break;\n    }\n}\n";
+}
+
+// The imager: a kernel over the resolved pixels (host/render/imager_stage); "" if none
+std::string ShaderSet::bindImager(ShadingSetup& out, std::ostream& shaders) {
+    if (m_scene.imager.name.empty()) return "";
+    const ShaderRef& ref = m_scene.imager;
+    const rsl::EmittedShader* sh = find(ref.name, "imager", ref.loc);
+    if (!sh) return "";
+    std::vector<float> block = bindParameters(*sh, ref, m_diag, m_scene.colors);
+    addPrepare(out, *sh);
+    noteTextures(out, *sh, ref);
+    std::string imager = imagerKernel(sh->functionName, out.params.size());
+    out.params.insert(out.params.end(), block.begin(), block.end());
+    shaders << sh->source << "\n";
+    out.imager = true;
+    return imager;
 }
 
 }  // namespace rd

@@ -130,6 +130,12 @@ private:
                                std::ostream& kernels);
     void bindMaterials(ShadingSetup& out, const BoundSurfaces& surfaces,
                        const BoundVolumes& volumes);
+    void bindVolumes(ShadingSetup& out, std::ostream& shaders, std::ostream& svc,
+                     std::set<std::string>& emitted, BoundVolumes& volumes);
+    void appendMaterialDepths(ShadingSetup& out) const;
+    void bindDisplacements(ShadingSetup& out, std::ostream& shaders, std::ostream& svc,
+                           std::set<std::string>& emitted, BoundVolumes& volumes);
+    std::string bindImager(ShadingSetup& out, std::ostream& shaders);
     ShaderBlocks shaderBlocks(const ShadingSetup& out, const BoundSurfaces& surfaces,
                               const BoundVolumes& volumes, bool used) const;
     std::set<std::string> spaceNames() const;

@@ -7,19 +7,105 @@
 namespace rd {
 
 namespace {
+using nlohmann::json;
+
 // One of a render's two programs (render_programs.h): its own options (the trace
 // program's, only those its source reads), whether it was cached, its build time.
-nlohmann::json programPart(const ProgramBuildInfo& p) {
+json programPart(const ProgramBuildInfo& p) {
     return {{"build_options", p.options},
             {"cache_hit", p.cacheHit},
             {"cache_key", p.cacheKey},
             {"build_ms", p.buildMs}};
 }
-}  // namespace
 
-nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
-                           const std::string& output) {
-    using nlohmann::json;
+json programSection(const RenderStats& st) {
+    return {
+        {"build_options", st.program.options},    {"cache_hit", st.program.cacheHit},
+        {"cache_key", st.program.cacheKey},       {"cache_file", st.program.cacheFile},
+        {"build_ms", st.program.buildMs},         {"trace", programPart(st.traceProgram)},
+        {"shading", programPart(st.shadeProgram)}};
+}
+
+// The scene, its tree and the ray pool over the frame
+json sceneSection(const RenderStats& st) {
+    json fillSeries = json::array();  // [seconds, fill] every 50 ms or so
+    for (const PoolFillSample& p : st.poolFillSeries)
+        fillSeries.push_back({p.seconds, p.fill});
+    return {{"triangles", st.triangles},
+            {"quadrics", st.quadrics},
+            {"csg_solids", st.csgSolids},
+            {"instances", st.instances},
+            {"geometry_bytes", st.sceneBytes},
+            {"bvh_nodes", st.bvhNodes},
+            {"dropped_primitives", st.droppedPrims},
+            {"bvh_build_ms", st.bvhBuildMs},
+            {"diced_triangles", st.dicedTriangles},
+            {"displaced_vertices", st.displacedVertices},
+            {"displace_ms", st.displaceMs},
+            {"setup_ms", st.sceneSetupMs},
+            {"pool_capacity", st.poolCapacity},
+            {"pool_bytes_per_ray", st.poolBytesPerRay},
+            {"pool_fill", st.poolFill},
+            {"pool_fill_series", fillSeries},
+            {"rounds", st.iterations},
+            {"spilled_rays", st.spilledRays},
+            {"device_busy", st.deviceBusy},
+            {"host_overhead", st.hostOverhead},
+            {"host_sync_overhead", st.hostSyncOverhead},
+            {"launch_gaps_ms", st.launchGapsMs},
+            {"plan_ms", st.planMs}};
+}
+
+json numericsSection(const RenderStats& st) {
+    return {{"shader_nonfinite", st.shadeNonfinite},
+            {"shader_negative", st.shadeNegative},
+            {"shader_huge", st.shadeHuge},
+            {"shader_denormal", st.shadeDenormal},
+            {"transparent_depth_cut", st.transparentDepthCut},
+            {"specular_depth_cut", st.specularDepthCut},
+            {"roulette_ended", st.rouletteEnded},
+            {"trace_calls_ignored", st.traceCallsIgnored},
+            {"shader_loops_cut", st.shaderLoopsCut},
+            {"pool_overflow_rays", st.overflowRays}};
+}
+
+json samplingSection(const RenderStats& st) {
+    return {{"passes", st.passes},
+            {"overlapped_passes", st.overlappedPasses},
+            {"retired_samples", st.retiredSamples},
+            {"reissued_samples", st.reissuedSamples},
+            {"stop_reason", st.stopReason},
+            {"estimated_error", st.estimatedError},
+            {"unsampled_pixels", st.unsampledPixels},
+            {"aborted_samples", st.abortedSamples}};
+}
+
+json treeletSection(const TreeletStats& ts) {
+    json rounds = json::array();
+    for (const TreeletRoundStats& r : ts.byRound)
+        rounds.push_back({{"pairs", r.pairs},
+                          {"treelets_with_rays", r.treeletsWithRays},
+                          {"uploads", r.uploads}});
+    return {{"used", ts.used},
+            {"streamed", ts.streamed},
+            {"not_used_because", ts.why},
+            {"budget_bytes", ts.budgetBytes},
+            {"count", ts.treelets},
+            {"bytes", ts.treeletBytes},
+            {"cache_slots", ts.cacheSlots},
+            {"slot_bytes", ts.slotBytes},
+            {"traces", ts.traces},
+            {"rounds", ts.rounds},
+            {"pairs", ts.pairs},
+            {"launches", ts.launches},
+            {"uploads", ts.uploads},
+            {"uploaded_bytes", ts.uploadedBytes},
+            {"reruns", ts.reruns},
+            {"by_round", rounds}};
+}
+
+// Each kernel that ran: its launches, device time and occupancy
+json kernelSection(const RenderStats& st) {
     json kernels = json::object();
     for (const auto& [name, k] : st.kernels) {
         if (k.launches == 0) continue;
@@ -29,17 +115,29 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
                          {"work_items_active", k.activeItems},
                          {"occupancy", k.occupancy()}};
     }
-    json rounds = json::array();
-    for (const TreeletRoundStats& r : st.treelets.byRound)
-        rounds.push_back({{"pairs", r.pairs},
-                          {"treelets_with_rays", r.treeletsWithRays},
-                          {"uploads", r.uploads}});
-    const TreeletStats& ts = st.treelets;
+    return kernels;
+}
+
+json textureSection(const TextureStats& t) {
+    return {{"files", t.textures},
+            {"resident", t.resident},
+            {"cache_tiles", t.cacheTiles},
+            {"total_tiles", t.totalTiles},
+            {"lookups", t.lookups},
+            {"missed_lookups", t.missedLookups},
+            {"tile_hit_rate", t.hitRate()},
+            {"tiles_uploaded", t.tilesUploaded},
+            {"bytes_uploaded", t.bytesUploaded},
+            {"reshade_passes", t.retryPasses},
+            {"unresolved_points", t.unresolved}};
+}
+}  // namespace
+
+nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
+                           const std::string& output) {
     json series = json::array();
     for (const ErrorSample& e : st.errorVsTime)
         series.push_back({e.seconds, e.rays, e.estimatedError});
-    json fillSeries = json::array();  // [seconds, fill] every 50 ms or so
-    for (const PoolFillSample& p : st.poolFillSeries) fillSeries.push_back({p.seconds, p.fill});
     return json{
         {"scene", scene},
         {"output", output},
@@ -53,92 +151,16 @@ nlohmann::json statsToJson(const RenderStats& st, const std::string& scene,
           {"continuation", st.continuationRays},
           {"shadow", st.shadowRays},
           {"total", st.eyeRays + st.continuationRays + st.shadowRays}}},
-        {"scene_stats",
-         {{"triangles", st.triangles},
-          {"quadrics", st.quadrics},
-          {"csg_solids", st.csgSolids},
-          {"instances", st.instances},
-          {"geometry_bytes", st.sceneBytes},
-          {"bvh_nodes", st.bvhNodes},
-          {"dropped_primitives", st.droppedPrims},
-          {"bvh_build_ms", st.bvhBuildMs},
-          {"diced_triangles", st.dicedTriangles},
-          {"displaced_vertices", st.displacedVertices},
-          {"displace_ms", st.displaceMs},
-          {"setup_ms", st.sceneSetupMs},
-
-          {"pool_capacity", st.poolCapacity},
-          {"pool_bytes_per_ray", st.poolBytesPerRay},
-          {"pool_fill", st.poolFill},
-          {"pool_fill_series", fillSeries},
-          {"rounds", st.iterations},
-          {"spilled_rays", st.spilledRays},
-          {"device_busy", st.deviceBusy},
-          {"host_overhead", st.hostOverhead},
-          {"host_sync_overhead", st.hostSyncOverhead},
-          {"launch_gaps_ms", st.launchGapsMs},
-          {"plan_ms", st.planMs}}},
+        {"scene_stats", sceneSection(st)},
         {"features", st.features.names()},
-        {"program",
-         {{"build_options", st.program.options},
-          {"cache_hit", st.program.cacheHit},
-          {"cache_key", st.program.cacheKey},
-          {"cache_file", st.program.cacheFile},
-          {"build_ms", st.program.buildMs},
-          {"trace", programPart(st.traceProgram)},
-          {"shading", programPart(st.shadeProgram)}}},
+        {"program", programSection(st)},
         {"nonfinite_samples", st.nonfiniteSamples},
-        {"numerics",
-         {{"shader_nonfinite", st.shadeNonfinite},
-          {"shader_negative", st.shadeNegative},
-          {"shader_huge", st.shadeHuge},
-          {"shader_denormal", st.shadeDenormal},
-          {"transparent_depth_cut", st.transparentDepthCut},
-          {"specular_depth_cut", st.specularDepthCut},
-          {"roulette_ended", st.rouletteEnded},
-          {"trace_calls_ignored", st.traceCallsIgnored},
-          {"shader_loops_cut", st.shaderLoopsCut},
-          {"pool_overflow_rays", st.overflowRays}}},
-        {"sampling",
-         {{"passes", st.passes},
-          {"overlapped_passes", st.overlappedPasses},
-          {"retired_samples", st.retiredSamples},
-          {"reissued_samples", st.reissuedSamples},
-          {"stop_reason", st.stopReason},
-          {"estimated_error", st.estimatedError},
-          {"unsampled_pixels", st.unsampledPixels},
-          {"aborted_samples", st.abortedSamples}}},
-        {"treelets",
-         {{"used", ts.used},
-          {"streamed", ts.streamed},
-          {"not_used_because", ts.why},
-          {"budget_bytes", ts.budgetBytes},
-          {"count", ts.treelets},
-          {"bytes", ts.treeletBytes},
-          {"cache_slots", ts.cacheSlots},
-          {"slot_bytes", ts.slotBytes},
-          {"traces", ts.traces},
-          {"rounds", ts.rounds},
-          {"pairs", ts.pairs},
-          {"launches", ts.launches},
-          {"uploads", ts.uploads},
-          {"uploaded_bytes", ts.uploadedBytes},
-          {"reruns", ts.reruns},
-          {"by_round", rounds}}},
+        {"numerics", numericsSection(st)},
+        {"sampling", samplingSection(st)},
+        {"treelets", treeletSection(st.treelets)},
         {"error_vs_time", series},
-        {"kernels", kernels},
-        {"textures",
-         {{"files", st.textures.textures},
-          {"resident", st.textures.resident},
-          {"cache_tiles", st.textures.cacheTiles},
-          {"total_tiles", st.textures.totalTiles},
-          {"lookups", st.textures.lookups},
-          {"missed_lookups", st.textures.missedLookups},
-          {"tile_hit_rate", st.textures.hitRate()},
-          {"tiles_uploaded", st.textures.tilesUploaded},
-          {"bytes_uploaded", st.textures.bytesUploaded},
-          {"reshade_passes", st.textures.retryPasses},
-          {"unresolved_points", st.textures.unresolved}}},
+        {"kernels", kernelSection(st)},
+        {"textures", textureSection(st.textures)},
     };
 }
 
