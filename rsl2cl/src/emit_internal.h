@@ -123,6 +123,10 @@ private:
     const char* pointParamsGuard() const;  // their #if line; null: the kind takes none
     std::string blockRead(BaseType base, const std::string& offset) const;
     void stmt(const Stmt& s);
+    void exprStatement(const Expr& e);
+    void loop(const Stmt& s);  // while, for
+    void jump(const Stmt& s);  // break N, continue N
+    void returnStatement(const Stmt& s);
     void decl(const VarDecl& d);
     void arrayAssign(const Expr& e);  // `a = b;` of whole arrays
     void lightLoop(const Stmt& s);
