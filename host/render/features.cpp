@@ -9,9 +9,11 @@
 
 namespace rd {
 
-Features analyse(const Scene& scene, const ShadingSetup& shading) {
-    Features f;
-    f.smoothNormals = scene.anySmoothNormals;
+namespace {
+
+// What the materials, the vertices' Os and the quadrics' Os ask for: transparency, one
+// sided surfaces, invisibility, transparent or shader-made shadows.
+void opacityFeatures(const Scene& scene, Features& f) {
     for (const Material& m : scene.materials) {
         if (m.os.x < 1.0f || m.os.y < 1.0f || m.os.z < 1.0f) f.transparency = true;
         // a one-sided surface's back continues the ray, as a transparent surface does
@@ -39,7 +41,47 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
         for (size_t j = 0; j < 4 && first + j < channels; ++j)
             if (lanes[j] < 1.0f) f.transparency = true;
     }
-    f.primvars = scene.primvarsUsed;
+    for (size_t i = 0; i < scene.quadricPrimvars.size(); ++i) {
+        const rt_float4& o =
+            scene.quadricPrimvars[i];  // of each 8: Cs corners, Os corners
+        if (i % 8 >= 4 && (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f)) f.transparency = true;
+    }
+}
+
+// The largest coordinate of the scene's geometry (triangles; quadrics', solids' and
+// archives' bounds), which the ray offsets scale with.
+float sceneExtent(const Scene& scene) {
+    float extent = 0.0f;
+    for (const Triangle& t : scene.triangles)
+        for (const rt_float4& v : {t.v0, t.v1, t.v2})
+            extent = std::fmax(
+                extent,
+                std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))));
+    for (const Aabb& b : scene.quadricBounds)
+        for (int k = 0; k < 3; ++k)
+            if (b.lo[k] <= b.hi[k])
+                extent =
+                    std::fmax(extent, std::fmax(std::fabs(b.lo[k]), std::fabs(b.hi[k])));
+    return extent;
+}
+
+// Primitive variables that feed shader parameters per point (the scene's data is only
+// used when some shader has such a parameter)
+void pointParamFeatures(const ShadingSetup& shading, Features& f) {
+    const std::vector<int32_t>& layout = shading.pointParamLayout;
+    const size_t most = size_t(shading.maxPointParams),
+                 stride = pointParamLayoutStride(most);
+    for (size_t k = 0; k + stride <= layout.size(); k += stride)
+        for (size_t i = 1; i <= size_t(layout[k]) && i <= most; ++i) {
+            const bool surface = layout[k + i] >= 0,
+                       displacement = layout[k + most + i] >= 0;
+            if (surface || displacement) f.pointParams = shading.maxPointParams;
+            f.displacementPointParams |= displacement;
+        }
+}
+
+// What the shaders' code asks of the kernels: lights, shadows, traces, volumes
+void shadingFeatures(const ShadingSetup& shading, Features& f) {
     f.lightCount = shading.lightCount;
     f.specialisedLights = f.lightCount > 0;  // (shader_set.cpp: rd_run_light)
     f.shadowRays = shading.shadowRays;
@@ -51,22 +93,33 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
     f.sampledTrace = shading.sampledTrace;
     f.visibilityRays = shading.visibilityRays;
     f.transparency |= shading.shaderOpacity;  // (a cut-out leaf: its shader's Oi)
-    f.maxSpecularDepth = scene.maxSpecularDepth;
     f.materialDepths = shading.materialDepths;
+    f.atmosphere = shading.atmosphere;
+    f.interior = shading.interior;
+    f.exterior = shading.exterior;
+    f.volumeShadows = f.shadowRays && shading.volumeLights &&
+                      (f.atmosphere || f.interior || f.exterior);
+    f.displacement = shading.displacement;
+    f.derivatives = shading.derivatives || shading.displacement;
+    pointParamFeatures(shading, f);
+}
+
+}  // namespace
+
+Features analyse(const Scene& scene, const ShadingSetup& shading) {
+    Features f;
+    f.smoothNormals = scene.anySmoothNormals;
+    opacityFeatures(scene, f);
+    f.primvars = scene.primvarsUsed;
+    shadingFeatures(shading, f);
+    f.maxSpecularDepth = scene.maxSpecularDepth;
     if (scene.maxDiffuseDepth == 0 || scene.maxDiffuseDepth == 1)
         f.maxDiffuseDepth = scene.maxDiffuseDepth;
     f.maxTransparentDepth = scene.maxTransparentDepth;
     f.rouletteDepth = scene.rouletteDepth;
     f.seed = uint32_t(std::max(0, scene.render.seed));
     f.sobol = scene.render.sobol;
-    float extent = 0.0f;
-    for (const Triangle& t : scene.triangles)
-        for (const rt_float4& v : {t.v0, t.v1, t.v2})
-            extent = std::fmax(extent, std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))));
-    for (const Aabb& b : scene.quadricBounds)  // quadrics, solids, archives' bounds too
-        for (int k = 0; k < 3; ++k)
-            if (b.lo[k] <= b.hi[k])
-                extent = std::fmax(extent, std::fmax(std::fabs(b.lo[k]), std::fabs(b.hi[k])));
+    const float extent = sceneExtent(scene);
     while (f.sceneScale > 1e-30f && f.sceneScale * 0.5f >= extent) f.sceneScale *= 0.5f;
     f.colors = scene.colors;
     const Camera camera = scene.deviceCamera();
@@ -81,40 +134,16 @@ Features analyse(const Scene& scene, const ShadingSetup& shading) {
                scene.camera.moving;
     f.instances = !scene.prototypes.empty();
     f.procedurals = !scene.procedurals.empty();
-    // primitive variables that feed shader parameters per point (the scene's data is
-    // only used when some shader has such a parameter)
-    const std::vector<int32_t>& layout = shading.pointParamLayout;
-    const size_t most = size_t(shading.maxPointParams),
-                 stride = pointParamLayoutStride(most);
-    for (size_t k = 0; k + stride <= layout.size(); k += stride)
-        for (size_t i = 1; i <= size_t(layout[k]) && i <= most; ++i) {
-            const bool surface = layout[k + i] >= 0,
-                       displacement = layout[k + most + i] >= 0;
-            if (surface || displacement) f.pointParams = shading.maxPointParams;
-            f.displacementPointParams |= displacement;
-        }
-    f.atmosphere = shading.atmosphere;
-    f.interior = shading.interior;
-    f.exterior = shading.exterior;
-    f.volumeShadows = f.shadowRays && shading.volumeLights &&
-                      (f.atmosphere || f.interior || f.exterior);
     // clipped camera rays go on past what they meet, as through a transparent surface
     f.clipPlanes = int(std::min(scene.clipPlanes.size(), kMaxClipPlanes));
     if (f.clipPlanes > 0) f.transparency = true;
-    f.displacement = shading.displacement;
-    f.derivatives = shading.derivatives || shading.displacement;
-    if (f.derivatives) {
-        // a pixel's width at unit distance along a perspective eye ray (0 orthographic:
-        // the ray's width stays the pixel's)
+    // a pixel's width at unit distance along a perspective eye ray (0 orthographic: the
+    // ray's width stays the pixel's)
+    if (f.derivatives)
         f.pixelSpread = camera.perspective
                             ? std::fabs(camera.screen[1] - camera.screen[0]) /
                                   float(camera.width) * camera.tan_half_fov
                             : 0.0f;
-    }
-    for (size_t i = 0; i < scene.quadricPrimvars.size(); ++i) {
-        const rt_float4& o = scene.quadricPrimvars[i];  // of each 8: Cs corners, Os corners
-        if (i % 8 >= 4 && (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f)) f.transparency = true;
-    }
     return f;
 }
 
