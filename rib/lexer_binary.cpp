@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 
 #include "lexer.h"
 
@@ -19,6 +20,15 @@ std::string hexByte(int c) {
     char buf[8];
     std::snprintf(buf, sizeof buf, "0%03o", c & 0xff);
     return buf;
+}
+
+// A token of `kind` whose text is `text`
+Token textToken(TokenKind kind, std::string text, int line) {
+    Token t;
+    t.kind = kind;
+    t.text = std::move(text);
+    t.line = line;
+    return t;
 }
 
 std::string spell(double v) {
@@ -76,11 +86,7 @@ Token Lexer::nextBinaryArrayElement() {
     int line = m_line;
     if (m_binArrayLeft == 0) {
         m_inBinArray = false;
-        Token t;
-        t.kind = TokenKind::RBracket;
-        t.text = "]";
-        t.line = line;
-        return t;
+        return textToken(TokenKind::RBracket, "]", line);
     }
     --m_binArrayLeft;
     uint32_t bits = 0;
@@ -154,11 +160,7 @@ Token Lexer::binaryRequestReference(int line) {
     if (m_binRequests[code].empty())
         return error(line,
                      "encoded request " + std::to_string(code) + " was not defined");
-    Token t;
-    t.kind = TokenKind::Word;
-    t.text = m_binRequests[code];
-    t.line = line;
-    return t;
+    return textToken(TokenKind::Word, m_binRequests[code], line);
 }
 
 // 0310-0313: a 1-4 byte count; the floats follow as tokens (nextBinaryArrayElement)
@@ -168,11 +170,7 @@ Token Lexer::binaryArrayStart(int c, int line) {
         return error(line, "truncated binary float array");
     m_inBinArray = true;
     m_binArrayLeft = n;
-    Token t;
-    t.kind = TokenKind::LBracket;
-    t.text = "[";
-    t.line = line;
-    return t;
+    return textToken(TokenKind::LBracket, "[", line);
 }
 
 // 0314 defines an encoded request, 0315-0316 an encoded string: no token, unless an error
@@ -205,11 +203,7 @@ Token Lexer::binaryStringReference(int c, int line) {
     auto it = m_binStrings.find(code);
     if (it == m_binStrings.end())
         return error(line, "encoded string " + std::to_string(code) + " was not defined");
-    Token t;
-    t.kind = TokenKind::String;
-    t.text = it->second;
-    t.line = line;
-    return t;
+    return textToken(TokenKind::String, it->second, line);
 }
 
 }  // namespace rib
