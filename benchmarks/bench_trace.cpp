@@ -138,6 +138,185 @@ std::optional<int> parseOptions(int argc, char** argv, BenchOptions& o) {
     return std::nullopt;
 }
 
+bool anyVariant(const BenchOptions& o, const char* macro) {
+    return std::any_of(o.variants.begin(), o.variants.end(), [&](const std::string& v) {
+        return v.find(macro) != std::string::npos;
+    });
+}
+
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count() * 1e3;
+}
+
+// One mesh's trees: binary SAH, collapsed four-wide, and eight- and sixteen-wide where
+// the options time them, with their build times.
+struct MeshTrees {
+    BvhBuildSettings bs = sceneBvhSettings();
+    Bvh bvh;
+    Bvh4 bvh4;
+    Bvh8 bvh8;
+    Bvh16 bvh16;
+    double binaryMs = 0, collapseMs = 0, collapse16Ms = 0;
+    bool need8 = false, need16 = false;
+
+    void describe(const std::string& name, double embreeBuildMs) const {
+        if (need16)
+            std::printf(
+                "%s: %zu sixteen-wide nodes (%.0f%% of slots used), collapse %.0f ms\n",
+                name.c_str(), bvh16.nodes.size(), 100 * usedSlots(bvh16), collapse16Ms);
+        std::printf(
+            "%s: SAH cost %.2f, %zu four-wide nodes (%.0f%% of slots used), %zu "
+            "eight-wide nodes (%.0f%%), %zu blocks\n",
+            name.c_str(), bvhSahCost(bvh, bs.traversalCost, bs.intersectionCost),
+            bvh4.nodes.size(), 100 * usedSlots(bvh4), bvh8.nodes.size(),
+            100 * usedSlots(bvh8), bvh4.blocks.size());
+        if (need8)  // (one build each: a rough figure on a noisy machine)
+            std::printf(
+                "%s: build %.0f ms (binary SAH %.0f + eight-wide collapse %.0f), "
+                "Embree's %.0f ms (rtcCommitScene)\n",
+                name.c_str(), binaryMs + collapseMs, binaryMs, collapseMs, embreeBuildMs);
+    }
+};
+
+MeshTrees buildTrees(const Mesh& mesh, const BenchOptions& o) {
+    MeshTrees t;
+    if (o.sahBlock > 0) t.bs.blockSize = o.sahBlock;
+    if (o.sahBins > 0) t.bs.binCount = o.sahBins;
+    if (o.sahLeaf > 0) t.bs.maxLeafSize = o.sahLeaf;
+    if (o.sahTraversal > 0) t.bs.traversalCost = o.sahTraversal;
+    Scene s;
+    s.triangles = mesh.tris;
+    const std::vector<Aabb> bounds = triangleBounds(s);
+    auto t0 = Clock::now();
+    t.bvh = buildBvh(bounds, t.bs);
+    t.binaryMs = msSince(t0);
+    t.bvh4 = collapseToBvh4(t.bvh, mesh.tris);
+    // the eight-wide tree for --wide8 and for variants built with -DRT_BVH8
+    t.need8 = o.wide8 || anyVariant(o, "RT_BVH8");
+    t0 = Clock::now();
+    if (t.need8) t.bvh8 = collapseToBvh8(t.bvh, mesh.tris);
+    t.collapseMs = msSince(t0);
+    t.need16 = anyVariant(o, "RT_BVH16");
+    t0 = Clock::now();
+    if (t.need16) t.bvh16 = collapseToBvh16(t.bvh, mesh.tris);
+    t.collapse16Ms = msSince(t0);
+    return t;
+}
+
+// The trees' nodes and blocks on the device (those not timed: empty)
+struct DeviceTrees {
+    DeviceBuffer<Bvh4Node> nodes;
+    DeviceBuffer<Triangle4> blocks;
+    DeviceBuffer<Bvh8Node> nodes8;
+    DeviceBuffer<Triangle4> blocks8;
+    DeviceBuffer<Bvh16Node> nodes16;
+    DeviceBuffer<Triangle4> blocks16;
+    DeviceTrees(ClContext& ctx, const MeshTrees& t)
+        : nodes(ctx, t.bvh4.nodes),
+          blocks(ctx, t.bvh4.blocks),
+          nodes8(ctx, t.bvh8.nodes.size()),
+          blocks8(ctx, t.bvh8.blocks.size()),
+          nodes16(ctx, std::max<size_t>(1, t.bvh16.nodes.size())),
+          blocks16(ctx, std::max<size_t>(1, t.bvh16.blocks.size())) {
+        if (t.need8) nodes8.upload(t.bvh8.nodes), blocks8.upload(t.bvh8.blocks);
+        if (t.need16) nodes16.upload(t.bvh16.nodes), blocks16.upload(t.bvh16.blocks);
+    }
+};
+
+// One ray kind's rays on one mesh, and what the resident kernels made of them
+struct TreeletRays {
+    const std::string& mesh;
+    const char* kind;
+    bool shadow;
+    size_t n;
+    DeviceBuffer<rt_float4>&org, &dir;
+    DeviceBuffer<RayState>& state;
+    const std::vector<RayState>& initialState;
+    DeviceBuffer<RayHit>& hits;
+    std::vector<RayHit> residentHits;
+    std::vector<rt_float4> residentShadow;
+    double residentMrays, embreeMrays;
+};
+
+// The rays through the treelet-streamed traversal at each budget, streamed through a
+// cache of --stream-fraction of the tree, and on the eight-wide tree's cut (where
+// `treelet8`): a row each for the table printed after the resident one. "agree" is
+// bit-for-bit agreement with the resident kernels (hit, t, u, v; occlusion).
+void timeTreelets(ClContext& ctx, Profiler& prof, const BenchOptions& o, Program& treelet,
+                  Program* treelet8, const Bvh4& bvh4, const Bvh8& bvh8,
+                  const TraceScene& sc, const TreeletRays& r,
+                  std::vector<std::string>& rows) {
+    struct Mode {
+        size_t budget, memory;  // scene memory: 0, resident
+        bool eight;             // the eight-wide tree's cut
+    };
+    std::vector<Mode> modes;
+    for (size_t b : o.budgets) modes.push_back({b, 0, false});
+    if (o.streamFraction > 0)
+        modes.push_back(
+            {size_t(64) << 10,
+             std::max<size_t>(1, size_t(o.streamFraction *
+                                        double(bvh4.nodes.size() * sizeof(Bvh4Node) +
+                                               bvh4.blocks.size() * sizeof(Triangle4)))),
+             false});
+    if (treelet8)
+        for (size_t b : o.budgets) modes.push_back({b, 0, true});
+    const size_t n = r.n;
+    for (auto [budget, memory, eight] : modes) {
+        TreeletStats ts;
+        std::unique_ptr<TreeletTracer> tracerOf =
+            eight ? std::make_unique<TreeletTracer>(ctx, treelet8->get(), prof, bvh8,
+                                                    budget, memory, n, ts)
+                  : std::make_unique<TreeletTracer>(ctx, treelet.get(), prof, bvh4,
+                                                    budget, memory, n, ts);
+        TreeletTracer& tracer = *tracerOf;
+        const std::vector<float> onesFlat(4 * n, 1.0f);  // RGB weights: 4 floats a ray
+        DeviceBuffer<float> treeletWeight(ctx, onesFlat, CL_MEM_READ_WRITE);
+        auto runTreelets = [&] {
+            r.state.upload(r.initialState);
+            treeletWeight.upload(onesFlat);
+            ctx.finish();
+            auto t0 = Clock::now();
+            if (r.shadow)
+                tracer.shadow(cl_uint(n), r.org, r.dir, r.state, treeletWeight, sc, 1);
+            else
+                tracer.closest(cl_uint(n), r.org, r.dir, r.state, r.hits, sc);
+            ctx.finish();
+            return std::chrono::duration<double>(Clock::now() - t0).count();
+        };
+        runTreelets();
+        const TreeletStats once = ts;
+        std::vector<double> tt;
+        for (int i = 0; i < o.runs; ++i) tt.push_back(runTreelets());
+        size_t agree = 0;
+        if (r.shadow) {
+            auto w2 = treeletWeight.download();
+            for (size_t i = 0; i < n; ++i)
+                agree += (w2[4 * i] == 0.0f) == (r.residentShadow[i].x == 0.0f);
+        } else {
+            auto h2 = r.hits.download();
+            const std::vector<RayHit>& rh = r.residentHits;
+            for (size_t i = 0; i < n; ++i)
+                agree += h2[i].prim == rh[i].prim && h2[i].t == rh[i].t &&
+                         h2[i].u == rh[i].u && h2[i].v == rh[i].v;
+        }
+        double mt = n / median(tt) * 1e-6;
+        char label[64], row[320];
+        if (budget >= (size_t(1) << 30))
+            std::snprintf(label, sizeof label, "whole%s", eight ? " 8" : "");
+        else
+            std::snprintf(label, sizeof label, "%zuK%s%s", budget >> 10,
+                          memory ? " stream" : "", eight ? " 8" : "");
+        std::snprintf(
+            row, sizeof row,
+            "%-14s %-8s %-11s %8zu %7llu %10llu %8llu %10.2f %8.3f %8.3f %8.4f%%",
+            r.mesh.c_str(), r.kind, label, ts.treelets, (unsigned long long)once.rounds,
+            (unsigned long long)once.pairs, (unsigned long long)once.uploads, mt,
+            mt / r.embreeMrays, mt / r.residentMrays, 100.0 * double(agree) / double(n));
+        rows.push_back(row);
+    }
+}
+
 }  // namespace
 
 int benchMain(int argc, char** argv) {
@@ -196,63 +375,12 @@ int benchMain(int argc, char** argv) {
     std::vector<Mesh> meshes{sphereField(300, 250, "75k-tris"), sphereField(2000, 500, "1M-tris")};
     for (const std::string& f : o.meshFiles) meshes.push_back(loadOff(f));
     for (const Mesh& mesh : meshes) {
-        BvhBuildSettings bs = sceneBvhSettings();
-        if (o.sahBlock > 0) bs.blockSize = o.sahBlock;
-        if (o.sahBins > 0) bs.binCount = o.sahBins;
-        if (o.sahLeaf > 0) bs.maxLeafSize = o.sahLeaf;
-        if (o.sahTraversal > 0) bs.traversalCost = o.sahTraversal;
-        const std::vector<Aabb> bounds = [&] {
-            Scene s;
-            s.triangles = mesh.tris;
-            return triangleBounds(s);
-        }();
-        const auto tBuild = Clock::now();
-        Bvh bvh = buildBvh(bounds, bs);
-        const double binaryMs =
-            std::chrono::duration<double>(Clock::now() - tBuild).count() * 1e3;
+        const MeshTrees host = buildTrees(mesh, o);
         EmbreeScene emb(mesh), embRobust(mesh, true);
-        Bvh4 bvh4 = collapseToBvh4(bvh, mesh.tris);
-        DeviceBuffer<Bvh4Node> nodes(ctx, bvh4.nodes);
-        DeviceBuffer<Triangle4> blocks(ctx, bvh4.blocks);
-        // the eight-wide tree for --wide8 and for variants built with -DRT_BVH8
-        const bool need8 =
-            o.wide8 || std::any_of(o.variants.begin(), o.variants.end(), [](auto& v) {
-                return v.find("RT_BVH8") != std::string::npos;
-            });
-        const auto tCollapse = Clock::now();
-        Bvh8 bvh8 = need8 ? collapseToBvh8(bvh, mesh.tris) : Bvh8{};
-        const double collapseMs =
-            std::chrono::duration<double>(Clock::now() - tCollapse).count() * 1e3;
-        DeviceBuffer<Bvh8Node> nodes8(ctx, bvh8.nodes.size());
-        DeviceBuffer<Triangle4> blocks8(ctx, bvh8.blocks.size());
-        if (need8) nodes8.upload(bvh8.nodes), blocks8.upload(bvh8.blocks);
-        const bool need16 =
-            std::any_of(o.variants.begin(), o.variants.end(),
-                        [](auto& v) { return v.find("RT_BVH16") != std::string::npos; });
-        const auto tCollapse16 = Clock::now();
-        Bvh16 bvh16 = need16 ? collapseToBvh16(bvh, mesh.tris) : Bvh16{};
-        const double collapse16Ms =
-            std::chrono::duration<double>(Clock::now() - tCollapse16).count() * 1e3;
-        DeviceBuffer<Bvh16Node> nodes16(ctx, std::max<size_t>(1, bvh16.nodes.size()));
-        DeviceBuffer<Triangle4> blocks16(ctx, std::max<size_t>(1, bvh16.blocks.size()));
-        if (need16) {
-            nodes16.upload(bvh16.nodes), blocks16.upload(bvh16.blocks);
-            std::printf("%s: %zu sixteen-wide nodes (%.0f%% of slots used), collapse %.0f ms\n",
-                        mesh.name.c_str(), bvh16.nodes.size(), 100 * usedSlots(bvh16),
-                        collapse16Ms);
-        }
-        std::printf(
-            "%s: SAH cost %.2f, %zu four-wide nodes (%.0f%% of slots used), %zu "
-            "eight-wide nodes (%.0f%%), %zu blocks\n",
-            mesh.name.c_str(), bvhSahCost(bvh, bs.traversalCost, bs.intersectionCost),
-            bvh4.nodes.size(), 100 * usedSlots(bvh4), bvh8.nodes.size(),
-            100 * usedSlots(bvh8), bvh4.blocks.size());
-        if (need8)  // (one build each: a rough figure on a noisy machine)
-            std::printf(
-                "%s: build %.0f ms (binary SAH %.0f + eight-wide collapse %.0f), "
-                "Embree's %.0f ms (rtcCommitScene)\n",
-                mesh.name.c_str(), binaryMs + collapseMs, binaryMs, collapseMs,
-                emb.buildMs);
+        host.describe(mesh.name, emb.buildMs);
+        const DeviceTrees trees(ctx, host);
+        const Bvh4& bvh4 = host.bvh4;
+        const Bvh8& bvh8 = host.bvh8;
         // the object, motion and sample buffers the kernels take; unused for a triangle
         // scene built without RT_HAS_QUADRICS and RT_HAS_MOTION
         DeviceBuffer<Quadric> noQuadrics(ctx, 1);
@@ -326,8 +454,9 @@ int benchMain(int argc, char** argv) {
                     ctx.finish();
                     return std::chrono::duration<double>(Clock::now() - t0).count();
                 };
-                if (sixteenWide(p)) return run(nodes16, blocks16);
-                return eightWide(p) ? run(nodes8, blocks8) : run(nodes, blocks);
+                if (sixteenWide(p)) return run(trees.nodes16, trees.blocks16);
+                return eightWide(p) ? run(trees.nodes8, trees.blocks8)
+                                    : run(trees.nodes, trees.blocks);
             };
             std::unique_ptr<Kernel> kc8, ks8;
             DeviceBuffer<RayHit> hits8(ctx, n);
@@ -342,15 +471,15 @@ int benchMain(int argc, char** argv) {
                 auto t0 = Clock::now();
                 if (k.shadow)
                     ks8->launch(items(n, options8, "RT_SHADOW_PACKETS"), cl_uint(n),
-                                nodes8, blocks8, org, dir, state8, weight8, noQuadrics,
-                                noCsg, noTris, noMotion, noTris, noSample, noTime,
-                                cl_uint(1), noNumerics, noNumerics, noNumerics,
+                                trees.nodes8, trees.blocks8, org, dir, state8, weight8,
+                                noQuadrics, noCsg, noTris, noMotion, noTris, noSample,
+                                noTime, cl_uint(1), noNumerics, noNumerics, noNumerics,
                                 noNumerics, noNumerics, noNumerics);  // (opaque shadows)
                 else
-                    kc8->launch(items(n, options8, "RT_CLOSEST_PACKETS"), cl_uint(n), nodes8,
-                                blocks8, org, dir, state8, hits8,
-                                noQuadrics, noCsg, noTris, noMotion, noTris, noSample, noTime,
-                                noSample);
+                    kc8->launch(items(n, options8, "RT_CLOSEST_PACKETS"), cl_uint(n),
+                                trees.nodes8, trees.blocks8, org, dir, state8, hits8,
+                                noQuadrics, noCsg, noTris, noMotion, noTris, noSample,
+                                noTime, noSample);
                 ctx.finish();
                 return std::chrono::duration<double>(Clock::now() - t0).count();
             };
@@ -443,77 +572,14 @@ int benchMain(int argc, char** argv) {
                             median(tes) / median(tv[p]), median(ter) / median(tv[p]));
             }
             std::fflush(stdout);
-            // The treelet path on the same rays; "agree" is bit-for-bit agreement with the
-            // resident kernels (hit, t, u, v; occlusion).
-            std::vector<RayHit> residentHits = hits.download();
-            std::vector<rt_float4> residentShadow = weight.download();
-            struct Mode {
-                size_t budget, memory;  // scene memory: 0, resident
-                bool eight;             // the eight-wide tree's cut
-            };
-            std::vector<Mode> modes;
-            for (size_t b : o.budgets) modes.push_back({b, 0, false});
-            if (o.streamFraction > 0)
-                modes.push_back(
-                    {size_t(64) << 10,
-                     std::max<size_t>(
-                         1, size_t(o.streamFraction *
-                                   double(bvh4.nodes.size() * sizeof(Bvh4Node) +
-                                          bvh4.blocks.size() * sizeof(Triangle4)))),
-                     false});
-            if (treeletProgram8)
-                for (size_t b : o.budgets) modes.push_back({b, 0, true});
+            // The treelet path on the same rays
             DeviceBuffer<Triangle> tris(ctx, mesh.tris);
             const TraceScene sc{noQuadrics, noCsg, tris, noMotion, tris, noSample, noTime};
-            for (auto [budget, memory, eight] : modes) {
-                TreeletStats ts;
-                std::unique_ptr<TreeletTracer> tracerOf =
-                    eight ? std::make_unique<TreeletTracer>(ctx, treeletProgram8->get(), prof,
-                                                            bvh8, budget, memory, n, ts)
-                          : std::make_unique<TreeletTracer>(ctx, treeletProgram.get(), prof,
-                                                            bvh4, budget, memory, n, ts);
-                TreeletTracer& tracer = *tracerOf;
-                const std::vector<float> onesFlat(4 * n, 1.0f);  // RGB weights: 4 floats a ray
-                DeviceBuffer<float> treeletWeight(ctx, onesFlat, CL_MEM_READ_WRITE);
-                auto runTreelets = [&] {
-                    state.upload(st);
-                    treeletWeight.upload(onesFlat);
-                    ctx.finish();
-                    auto t0 = Clock::now();
-                    if (k.shadow) tracer.shadow(cl_uint(n), org, dir, state, treeletWeight, sc, 1);
-                    else tracer.closest(cl_uint(n), org, dir, state, hits, sc);
-                    ctx.finish();
-                    return std::chrono::duration<double>(Clock::now() - t0).count();
-                };
-                runTreelets();
-                const TreeletStats once = ts;
-                std::vector<double> tt;
-                for (int r = 0; r < o.runs; ++r) tt.push_back(runTreelets());
-                size_t agree = 0;
-                if (k.shadow) {
-                    auto w2 = treeletWeight.download();
-                    for (size_t i = 0; i < n; ++i)
-                        agree += (w2[4 * i] == 0.0f) == (residentShadow[i].x == 0.0f);
-                } else {
-                    auto h2 = hits.download();
-                    for (size_t i = 0; i < n; ++i)
-                        agree += h2[i].prim == residentHits[i].prim && h2[i].t == residentHits[i].t &&
-                                 h2[i].u == residentHits[i].u && h2[i].v == residentHits[i].v;
-                }
-                double mt = n / median(tt) * 1e-6;
-                char label[64], row[320];
-                if (budget >= (size_t(1) << 30))
-                    std::snprintf(label, sizeof label, "whole%s", eight ? " 8" : "");
-                else std::snprintf(label, sizeof label, "%zuK%s%s", budget >> 10,
-                                   memory ? " stream" : "", eight ? " 8" : "");
-                std::snprintf(row, sizeof row,
-                              "%-14s %-8s %-11s %8zu %7llu %10llu %8llu %10.2f %8.3f %8.3f %8.4f%%",
-                              mesh.name.c_str(), k.name, label, ts.treelets,
-                              (unsigned long long)once.rounds, (unsigned long long)once.pairs,
-                              (unsigned long long)once.uploads, mt, mt / me, mt / md,
-                              100.0 * double(agree) / double(n));
-                treeletRows.push_back(row);
-            }
+            const TreeletRays tr{
+                mesh.name, k.name,          k.shadow,          n,  org, dir, state, st,
+                hits,      hits.download(), weight.download(), md, me};
+            timeTreelets(ctx, prof, o, treeletProgram, treeletProgram8.get(), bvh4, bvh8,
+                         sc, tr, treeletRows);
         }
     }
     std::printf("(Mrays/s, wall time of one launch over all rays incl. launch overhead;\n"
