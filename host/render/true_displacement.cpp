@@ -132,6 +132,102 @@ void refitMotionBounds(Scene& s, const DicedSurfaces& d) {
             s.quadricBounds[q] = triangleMotionBounds(s, s.quadrics[q].first_member);
 }
 
+// The displacement shaders' passes over the diced vertices: each pass runs the vertices
+// still pending, and those whose texture tiles missed run again once the tiles are in
+// (a vertex whose tiles keep missing, a cache too small for one vertex's lookups, is
+// given up after kMaxPasses). Leaves each vertex's moved place and shader normal; the
+// ones given up on are listed in `unresolved`.
+struct DisplacementPasses {
+    std::vector<rt_float4> moved, shaderN;
+    std::vector<uint32_t> unresolved;
+    size_t passes = 0;
+};
+
+DisplacementPasses runDisplacementPasses(const ClContext& ctx, cl_program program,
+                                         Profiler& prof, const DeviceScene& ds,
+                                         const DicedSurfaces& diced, const Features& f,
+                                         TextureSet& textures, const DicingView& view,
+                                         float eyeWidth) {
+    constexpr size_t kMaxPasses = 256;
+    DisplacementPasses out;
+    const size_t nv = diced.vertexCorner.size();
+    std::vector<cl_uint2> corners(nv);
+    std::vector<uint32_t> pending(nv);
+    for (size_t i = 0; i < nv; ++i) {
+        corners[i] = {{diced.vertexCorner[i][0], diced.vertexCorner[i][1]}};
+        pending[i] = uint32_t(i);
+    }
+    DeviceBuffer<cl_uint2> cornerBuf(ctx, corners);
+    DeviceBuffer<rt_float4> movedBuf(ctx, nv), normalBuf(ctx, nv);
+    DeviceBuffer<uint32_t> listA(ctx, pending), listB(ctx, nv + 1);
+    Kernel displace(ctx, program, "displace_vertices", prof);
+    const rt_float4 eye = {view.eye.x, view.eye.y, view.eye.z, 0.0f};
+    const std::vector<std::string> names = {"displacement"};
+    size_t count = nv;
+    while (count > 0) {
+        const uint32_t zero = 0;
+        listB.uploadRange(0, &zero, 1);
+        displace.launch(count, cl_uint(count), listA, cornerBuf, movedBuf, normalBuf, eye,
+                        eyeWidth, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
+                        ds.vertexCs, ds.vertexOs, ds.materials, ds.materialChannels,
+                        ds.quadrics, ds.quadricPrimvars, ds.quadricMotion,
+                        ds.trianglesEnd, ds.params, ds.triangleParams,
+                        ds.pointParamValues, ds.pointParamLayout, textures.infoBuf,
+                        textures.pageBuf, textures.tileBuf, textures.requestBuf,
+                        textures.counterBuf, textures.usedBuf, listB);
+        ++out.passes;
+        count = listB.downloadFirst(1)[0];
+        if (f.textures) {
+            const uint32_t asked = textures.counterBuf.downloadFirst(1)[0];
+            if (asked > 0) {
+                std::vector<TexRequest> req = textures.requestBuf.downloadFirst(
+                    std::min<size_t>(asked, TextureSet::kMaxRequests));
+                textures.counterBuf.uploadRange(0, &zero, 1);
+                textures.serve(req, names);
+            }
+        }
+        if (count == 0) break;
+        // the vertices to run again, from the list's second entry on
+        std::vector<uint32_t> again = listB.downloadFirst(count + 1);
+        if (out.passes >= kMaxPasses) {
+            out.unresolved.assign(again.begin() + 1, again.end());
+            break;
+        }
+        listA.uploadRange(0, again.data() + 1, count);
+    }
+    displace.collectActive();
+    out.moved = movedBuf.download();
+    out.shaderN = normalBuf.download();
+    return out;
+}
+
+// Vertices given up on (and never written) or moved to NaN stay where they were: marked
+// in the result (1), counted in the report by their displacement shader.
+std::vector<uint8_t> keepBadVertices(const Scene& scene, const DicedSurfaces& diced,
+                                     DisplacementPasses& d, DisplacementReport& r) {
+    const size_t nv = diced.vertexCorner.size();
+    std::vector<uint8_t> left(nv, 0);
+    for (uint32_t v : d.unresolved) left[v] = 1;
+    for (size_t i = 0; i < nv; ++i) {
+        const Triangle& t = scene.triangles[diced.vertexCorner[i][0]];
+        const uint32_t k = diced.vertexCorner[i][1];
+        const rt_float4& p = k == 0 ? t.v0 : k == 1 ? t.v1 : t.v2;
+        const rt_float4& m = d.moved[i];
+        if (!left[i] &&
+            !(std::isfinite(m.x) && std::isfinite(m.y) && std::isfinite(m.z))) {
+            ++r.nonFinite;
+            const Material& mat =
+                scene.materials[scene.attrs[diced.vertexCorner[i][0]].material];
+            ++r.nonFiniteBy[((mat.flags & RT_MATERIAL_DISPLACEMENT_MASK) >>
+                             RT_MATERIAL_DISPLACEMENT_SHIFT) -
+                            1];
+            left[i] = 1;
+        }
+        if (left[i]) d.moved[i] = {p.x, p.y, p.z, 0.0f}, d.shaderN[i] = {0, 0, 0, 0};
+    }
+    return left;
+}
+
 }  // namespace
 
 DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program program,
@@ -151,89 +247,20 @@ DisplacementReport displaceDicedSurfaces(const ClContext& ctx, cl_program progra
                        ds.params);
         prepare.collectActive();
     }
-    std::vector<cl_uint2> corners(nv);
-    std::vector<uint32_t> pending(nv);
-    for (size_t i = 0; i < nv; ++i) {
-        corners[i] = {{diced.vertexCorner[i][0], diced.vertexCorner[i][1]}};
-        pending[i] = uint32_t(i);
-    }
-    DeviceBuffer<cl_uint2> cornerBuf(ctx, corners);
-    DeviceBuffer<rt_float4> movedBuf(ctx, nv), normalBuf(ctx, nv);
-    DeviceBuffer<uint32_t> listA(ctx, pending), listB(ctx, nv + 1);
-    Kernel displace(ctx, program, "displace_vertices", prof);
-    const rt_float4 eye = {view.eye.x, view.eye.y, view.eye.z, 0.0f};
-    const std::vector<std::string> names = {"displacement"};
-    size_t count = nv;
-    DeviceBuffer<uint32_t>* src = &listA;
-    // a vertex whose tiles keep missing (a cache too small for one vertex's lookups) is
-    // given up after this many passes
-    constexpr size_t kMaxPasses = 256;
-    while (count > 0) {
-        const uint32_t zero = 0;
-        listB.uploadRange(0, &zero, 1);
-        displace.launch(count, cl_uint(count), *src, cornerBuf, movedBuf, normalBuf, eye,
-                        eyeWidth, ds.triangles, ds.attrs, ds.normals, ds.vertexSt,
-                        ds.vertexCs, ds.vertexOs, ds.materials, ds.materialChannels,
-                        ds.quadrics, ds.quadricPrimvars, ds.quadricMotion,
-                        ds.trianglesEnd, ds.params, ds.triangleParams,
-                        ds.pointParamValues, ds.pointParamLayout, textures.infoBuf,
-                        textures.pageBuf, textures.tileBuf, textures.requestBuf,
-                        textures.counterBuf, textures.usedBuf, listB);
-        ++r.passes;
-        count = listB.downloadFirst(1)[0];
-        if (f.textures) {
-            const uint32_t asked = textures.counterBuf.downloadFirst(1)[0];
-            if (asked > 0) {
-                std::vector<TexRequest> req = textures.requestBuf.downloadFirst(
-                    std::min<size_t>(asked, TextureSet::kMaxRequests));
-                textures.counterBuf.uploadRange(0, &zero, 1);
-                textures.serve(req, names);
-            }
-        }
-        if (count == 0) break;
-        if (r.passes >= kMaxPasses) {
-            r.unresolved = count;
-            break;
-        }
-        // the vertices to run again, from the list's second entry on, to the front
-        std::vector<uint32_t> again = listB.downloadFirst(count + 1);
-        src->uploadRange(0, again.data() + 1, count);
-    }
-    displace.collectActive();
-    std::vector<rt_float4> moved = movedBuf.download();
-    std::vector<rt_float4> shaderN = normalBuf.download();
-    // Vertices given up on (and never written) or moved to NaN stay where they were.
-    std::vector<uint8_t> left(nv, 0);
-    if (r.unresolved > 0) {
-        std::vector<uint32_t> again = listB.downloadFirst(r.unresolved + 1);
-        for (size_t i = 1; i <= r.unresolved; ++i) left[again[i]] = 1;
-    }
-    for (size_t i = 0; i < nv; ++i) {
-        const Triangle& t = scene.triangles[diced.vertexCorner[i][0]];
-        const uint32_t k = diced.vertexCorner[i][1];
-        const rt_float4& p = k == 0 ? t.v0 : k == 1 ? t.v1 : t.v2;
-        const rt_float4& m = moved[i];
-        if (!left[i] &&
-            !(std::isfinite(m.x) && std::isfinite(m.y) && std::isfinite(m.z))) {
-            ++r.nonFinite;
-            const Material& mat =
-                scene.materials[scene.attrs[diced.vertexCorner[i][0]].material];
-            ++r.nonFiniteBy[((mat.flags & RT_MATERIAL_DISPLACEMENT_MASK) >>
-                             RT_MATERIAL_DISPLACEMENT_SHIFT) -
-                            1];
-            left[i] = 1;
-        }
-        if (left[i]) moved[i] = {p.x, p.y, p.z, 0.0f}, shaderN[i] = {0, 0, 0, 0};
-    }
+    DisplacementPasses d =
+        runDisplacementPasses(ctx, program, prof, ds, diced, f, textures, view, eyeWidth);
+    r.passes = d.passes;
+    r.unresolved = d.unresolved.size();
+    const std::vector<uint8_t> left = keepBadVertices(scene, diced, d, r);
     r.vertices = nv - size_t(std::count(left.begin(), left.end(), uint8_t(1)));
-    moveKeys(scene, diced, moved, left);
+    moveKeys(scene, diced, d.moved, left);
     for (size_t i = 0; i < diced.cornerVertex.size() / 3; ++i) {
         Triangle& t = scene.triangles[diced.firstTriangle + i];
-        t.v0 = moved[diced.cornerVertex[3 * i]];
-        t.v1 = moved[diced.cornerVertex[3 * i + 1]];
-        t.v2 = moved[diced.cornerVertex[3 * i + 2]];
+        t.v0 = d.moved[diced.cornerVertex[3 * i]];
+        t.v1 = d.moved[diced.cornerVertex[3 * i + 1]];
+        t.v2 = d.moved[diced.cornerVertex[3 * i + 2]];
     }
-    remakeNormals(scene, diced, moved, shaderN);
+    remakeNormals(scene, diced, d.moved, d.shaderN);
     refitMotionBounds(scene, diced);
     return r;
 }
