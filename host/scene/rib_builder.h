@@ -419,6 +419,10 @@ private:
         return !m_forceTessellate && (m_inWorld ? m_world : m_options).render.exactQuadrics;
     }
     void finishSolid(int root);
+    struct SolidProgram;
+    Aabb writeSolid(int i, bool negative, int depth, SolidProgram& p);
+    Aabb solidMemberBounds(uint32_t prim) const;
+    bool solidsClosed(const Aabb& bounds);
 
     rib::Diagnostics& m_diag;
     std::set<std::string> m_loadProcedurals;  // DelayedReadArchive keys read at once

@@ -158,101 +158,118 @@ std::string RibBuilder::whyNotClosed(const SolidNode& n, float tol) const {
     return open;
 }
 
-void RibBuilder::finishSolid(int root) {
-    std::vector<SolidNode>& nodes = m_solidNodes;
-    // Which nodes hold any surface at all: empty operands drop out of unions and
-    // differences, and empty an intersection.
-    const std::vector<char> empty = emptySolidNodes(nodes);
-    auto memberBounds = [&](uint32_t prim) {
-        if (prim & RT_OBJECT_BIT) return m_world.quadricBounds[prim & RT_OBJECT_MASK];
-        Aabb b;
-        const Triangle& t = m_world.triangles[prim];
-        for (const rt_float4* v : {&t.v0, &t.v1, &t.v2}) {
-            const float p[3] = {v->x, v->y, v->z};
-            b.grow(p);
-        }
-        return b;
-    };
-    if (empty[root]) {
-        m_diag.warning(nodes[root].loc, "SolidBegin \"" + nodes[root].op + "\" is empty");
-        return;
-    }
-
-    // Leaves, the program, polarity (a member subtracted an odd number of times shows its
-    // inside: its shading normal is reversed) and bounds, in one walk.
+// A solid's tree being written as its members (primitive, leaf) and its program.
+struct RibBuilder::SolidProgram {
+    const std::vector<char>& empty;  // (emptySolidNodes)
     std::vector<uint32_t> members, program;
-    std::vector<int> leafOf;
     int maxDepth = 0, leaves = 0;
     bool ok = true;
-    std::function<Aabb(int, bool, int)> emit = [&](int i, bool negative, int depth) -> Aabb {
-        const SolidNode& n = nodes[i];
-        maxDepth = std::max(maxDepth, depth + 1);
-        if (n.op == "primitive") {
-            int leaf = leaves++;
-            if (leaf >= RT_CSG_MAX_LEAVES) {
-                if (ok) m_diag.error(n.loc, "SolidBegin: more than 32 primitive solids in one tree");
-                ok = false;
-            }
-            Aabb b;
-            for (uint32_t prim : n.members) {
-                members.push_back(prim);
-                members.push_back(uint32_t(leaf & 31));
-                if (negative) {
-                    if (prim & RT_OBJECT_BIT) m_world.quadrics[prim & RT_OBJECT_MASK].flags ^= RT_QF_FLIP;
-                    else m_world.attrs[prim].flags ^= RT_QF_FLIP;
-                }
-                b.grow(memberBounds(prim));
-            }
-            program.push_back(RT_CSG_LEAF | uint32_t(leaf & 31));
-            return b;
-        }
-        uint32_t op = n.op == "intersection" ? RT_CSG_INTERSECTION
-                      : n.op == "difference" ? RT_CSG_DIFFERENCE : RT_CSG_UNION;
-        Aabb b;
-        bool first = true;
-        for (int c : n.children) {
-            if (empty[c]) continue;
-            bool sub = op == RT_CSG_DIFFERENCE && !first;
-            Aabb cb = emit(c, negative != sub, first ? depth : depth + 1);
-            if (first) b = cb;
-            else {
-                program.push_back(op);
-                if (op == RT_CSG_UNION) b.grow(cb);
-                else if (op == RT_CSG_INTERSECTION) b = intersectBoxes(b, cb);
-            }
-            first = false;
-        }
-        return b;
-    };
-    Aabb bounds = emit(root, false, 0);
-    if (maxDepth > 32) {
-        m_diag.error(nodes[root].loc, "SolidBegin: tree deeper than 32");
-        ok = false;
-    }
+};
 
-    // Closedness of every primitive solid.
+Aabb RibBuilder::solidMemberBounds(uint32_t prim) const {
+    if (prim & RT_OBJECT_BIT) return m_world.quadricBounds[prim & RT_OBJECT_MASK];
+    Aabb b;
+    const Triangle& t = m_world.triangles[prim];
+    for (const rt_float4* v : {&t.v0, &t.v1, &t.v2}) {
+        const float p[3] = {v->x, v->y, v->z};
+        b.grow(p);
+    }
+    return b;
+}
+
+// Node i's leaves, its part of the program and polarity (a member subtracted an odd
+// number of times shows its inside: its shading normal is reversed), in one walk; its
+// bounds.
+Aabb RibBuilder::writeSolid(int i, bool negative, int depth, SolidProgram& p) {
+    const SolidNode& n = m_solidNodes[i];
+    p.maxDepth = std::max(p.maxDepth, depth + 1);
+    if (n.op == "primitive") {
+        int leaf = p.leaves++;
+        if (leaf >= RT_CSG_MAX_LEAVES) {
+            if (p.ok)
+                m_diag.error(n.loc,
+                             "SolidBegin: more than 32 primitive solids in one tree");
+            p.ok = false;
+        }
+        Aabb b;
+        for (uint32_t prim : n.members) {
+            p.members.push_back(prim);
+            p.members.push_back(uint32_t(leaf & 31));
+            if (negative) {
+                if (prim & RT_OBJECT_BIT)
+                    m_world.quadrics[prim & RT_OBJECT_MASK].flags ^= RT_QF_FLIP;
+                else
+                    m_world.attrs[prim].flags ^= RT_QF_FLIP;
+            }
+            b.grow(solidMemberBounds(prim));
+        }
+        p.program.push_back(RT_CSG_LEAF | uint32_t(leaf & 31));
+        return b;
+    }
+    uint32_t op = n.op == "intersection" ? RT_CSG_INTERSECTION
+                  : n.op == "difference" ? RT_CSG_DIFFERENCE
+                                         : RT_CSG_UNION;
+    Aabb b;
+    bool first = true;
+    for (int c : n.children) {
+        if (p.empty[c]) continue;
+        bool sub = op == RT_CSG_DIFFERENCE && !first;
+        Aabb cb = writeSolid(c, negative != sub, first ? depth : depth + 1, p);
+        if (first)
+            b = cb;
+        else {
+            p.program.push_back(op);
+            if (op == RT_CSG_UNION)
+                b.grow(cb);
+            else if (op == RT_CSG_INTERSECTION)
+                b = intersectBoxes(b, cb);
+        }
+        first = false;
+    }
+    return b;
+}
+
+// Whether every primitive solid is closed (its inside defined), reporting those not
+bool RibBuilder::solidsClosed(const Aabb& bounds) {
     const float tol = 1e-4f * std::max(boxDiagonal(bounds), 1e-30f);
-    for (size_t i = 0; i < nodes.size() && ok; ++i) {
-        const SolidNode& n = nodes[i];
+    for (const SolidNode& n : m_solidNodes) {
         if (n.op != "primitive" || n.members.empty()) continue;
         const std::string open = whyNotClosed(n, tol);
         if (!open.empty()) {
             m_diag.error(n.loc, "SolidBegin \"primitive\" is not closed, so its inside is "
                                 "undefined: " + open);
-            ok = false;
+            return false;
         }
     }
-    if (!ok) return;
+    return true;
+}
+
+void RibBuilder::finishSolid(int root) {
+    const SolidNode& top = m_solidNodes[root];
+    // Which nodes hold any surface at all: empty operands drop out of unions and
+    // differences, and empty an intersection.
+    const std::vector<char> empty = emptySolidNodes(m_solidNodes);
+    if (empty[root]) {
+        m_diag.warning(top.loc, "SolidBegin \"" + top.op + "\" is empty");
+        return;
+    }
+    SolidProgram p{empty, {}, {}};
+    const Aabb bounds = writeSolid(root, false, 0, p);
+    if (p.maxDepth > 32) {
+        m_diag.error(top.loc, "SolidBegin: tree deeper than 32");
+        p.ok = false;
+    }
+    if (!p.ok || !solidsClosed(bounds)) return;
 
     Quadric solid{};
     solid.kind = RT_Q_CSG;
     solid.point_params = RT_NO_POINT_PARAMS;
     solid.first_member = uint32_t(m_world.csg.size());
-    solid.member_count = uint32_t(members.size() / 2);
-    m_world.csg.insert(m_world.csg.end(), members.begin(), members.end());
+    solid.member_count = uint32_t(p.members.size() / 2);
+    m_world.csg.insert(m_world.csg.end(), p.members.begin(), p.members.end());
     solid.first_op = uint32_t(m_world.csg.size());
-    solid.op_count = uint32_t(program.size());
-    m_world.csg.insert(m_world.csg.end(), program.begin(), program.end());
+    solid.op_count = uint32_t(p.program.size());
+    m_world.csg.insert(m_world.csg.end(), p.program.begin(), p.program.end());
     if (bounds.isEmpty()) return;  // an intersection of disjoint boxes: nothing to see
     m_world.quadrics.push_back(solid);
     m_world.quadricBounds.push_back(bounds);
