@@ -29,19 +29,19 @@ std::vector<TreeletRef> TreeletsOf<Node>::residentRefs() const {
     return refs;
 }
 
+namespace {
+
+// Which nodes root a treelet, bottom up (collapse4 appends children after their parent,
+// so reverse index order visits children first): a node's open bytes are its own plus
+// its children's that were not cut off; while they exceed the budget, the child subtree
+// with the most open bytes is cut off as a treelet of its own. Every treelet but the
+// root's is then at least a quarter full (the cut child was the largest). A greedy
+// top-down growth was tried first: the root treelet takes a wide slab of the tree and
+// every node on its boundary starts a treelet, so 64 KiB gave more, smaller treelets
+// than 4 KiB.
 template <class Node>
-TreeletsOf<Node> cutTreelets(const BvhWide<Node>& bvh, size_t budgetBytes) {
-    TreeletsOf<Node> out;
+std::vector<char> treeletRoots(const BvhWide<Node>& bvh, size_t budgetBytes) {
     const size_t nodeCount = bvh.nodes.size();
-    out.treeletOfNode.assign(nodeCount, ~0u);
-    if (budgetBytes == 0) budgetBytes = ~size_t(0);
-    // Bottom up (collapse4 appends children after their parent, so reverse index order
-    // visits children first): a node's open bytes are its own plus its children's that
-    // were not cut off; while they exceed the budget, the child subtree with the most
-    // open bytes is cut off as a treelet of its own. Every treelet but the root's is then
-    // at least a quarter full (the cut child was the largest). A greedy top-down growth
-    // was tried first: the root treelet takes a wide slab of the tree and every node on
-    // its boundary starts a treelet, so 64 KiB gave more, smaller treelets than 4 KiB.
     std::vector<size_t> open(nodeCount, 0);
     std::vector<char> isRoot(nodeCount, 0);
     isRoot[0] = 1;
@@ -64,8 +64,16 @@ TreeletsOf<Node> cutTreelets(const BvhWide<Node>& bvh, size_t budgetBytes) {
             open[i] -= open[c];
         }
     }
-    // Treelets numbered breadth first from the root's (a parent's treelet comes first);
-    // a treelet's nodes in depth-first order from its root (local node 0).
+    return isRoot;
+}
+
+// Each treelet's nodes: treelets numbered breadth first from the root's (a parent's
+// treelet comes first), a treelet's nodes in depth-first order from its root (local node
+// 0). Fills treeletOfNode.
+template <class Node>
+std::vector<std::vector<uint32_t>> treeletMembers(const BvhWide<Node>& bvh,
+                                                  const std::vector<char>& isRoot,
+                                                  std::vector<uint32_t>& treeletOfNode) {
     std::vector<std::vector<uint32_t>> members;
     std::deque<uint32_t> roots{0};
     while (!roots.empty()) {
@@ -77,19 +85,29 @@ TreeletsOf<Node> cutTreelets(const BvhWide<Node>& bvh, size_t budgetBytes) {
             uint32_t node = stack.back();
             stack.pop_back();
             members[id].push_back(node);
-            out.treeletOfNode[node] = id;
+            treeletOfNode[node] = id;
             const Node& n = bvh.nodes[node];
             for (int k = kWidth<Node> - 1; k >= 0; --k) {
                 if (n.count[k] != 0) continue;
                 const uint32_t c = uint32_t(n.child[k]);
-                if (isRoot[c]) roots.push_back(c);
-                else stack.push_back(c);
+                if (isRoot[c])
+                    roots.push_back(c);
+                else
+                    stack.push_back(c);
             }
         }
     }
-    // Layout: each treelet's nodes in joining order, the blocks its leaf children
-    // reference right after, indices rewritten local to the treelet.
-    std::vector<uint32_t> localIndex(nodeCount, 0);
+    return members;
+}
+
+// Layout: each treelet's nodes in joining order, the blocks its leaf children reference
+// right after, indices rewritten local to the treelet (a child in another treelet: that
+// treelet's number, RT_TREELET_LINK).
+template <class Node>
+void layOutTreelets(const BvhWide<Node>& bvh,
+                    const std::vector<std::vector<uint32_t>>& members,
+                    TreeletsOf<Node>& out) {
+    std::vector<uint32_t> localIndex(bvh.nodes.size(), 0);
     for (const std::vector<uint32_t>& mine : members)
         for (size_t j = 0; j < mine.size(); ++j) localIndex[mine[j]] = uint32_t(j);
     for (size_t t = 0; t < members.size(); ++t) {
@@ -123,6 +141,17 @@ TreeletsOf<Node> cutTreelets(const BvhWide<Node>& bvh, size_t budgetBytes) {
         out.maxBlocks = std::max(out.maxBlocks, r.blockCount);
         out.ranges.push_back(r);
     }
+}
+
+}  // namespace
+
+template <class Node>
+TreeletsOf<Node> cutTreelets(const BvhWide<Node>& bvh, size_t budgetBytes) {
+    TreeletsOf<Node> out;
+    out.treeletOfNode.assign(bvh.nodes.size(), ~0u);
+    if (budgetBytes == 0) budgetBytes = ~size_t(0);
+    const std::vector<char> isRoot = treeletRoots(bvh, budgetBytes);
+    layOutTreelets(bvh, treeletMembers(bvh, isRoot, out.treeletOfNode), out);
     return out;
 }
 
