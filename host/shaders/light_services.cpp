@@ -41,23 +41,11 @@ void table(std::ostream& out, const char* name, const std::vector<T>& values) {
     if (values.empty()) out << "0";
     out << "};\n";
 }
-}  // namespace
 
-std::string lightServices(const BoundLights& lights) {
-    std::ostringstream svc;
-    const uint32_t count = lights.count();
-    svc << "int rsl_light_count(void) { return " << count << "; }\n";
-    const bool areas = std::any_of(lights.areaCount.begin(), lights.areaCount.end(),
-                                   [](size_t n) { return n > 0; });
-    table(svc, "rd_light_shader", lights.shaderOf);
-    table(svc, "rd_light_block", lights.block);
-    table(svc, "rd_light_place", lights.place);
-    if (areas) {
-        table(svc, "rd_light_area_at", lights.areaAt);
-        table(svc, "rd_light_area_count", lights.areaCount);
-    }
-    // lightsource("name", var): the light instance's parameter, matched by name id and
-    // size.
+// lightsource("name", var): the light instance's parameter, matched by name id and
+// size.
+void lightSourceParamService(std::ostream& svc, const BoundLights& lights,
+                             uint32_t count) {
     svc << "int rsl_lightsource_param(const RslGlobals* g, int light, int nameId, float* "
            "out, "
            "int n) {\n"
@@ -76,6 +64,11 @@ std::string lightServices(const BoundLights& lights) {
         svc << "        return 0;\n";
     }
     svc << "    default: return 0;\n    }\n}\n";
+}
+
+// rd_run_light: light instance l run at Ps (an area light at a point on its geometry).
+void runLightService(std::ostream& svc, const BoundLights& lights, uint32_t count,
+                     bool areas) {
     svc << "/* Runs light instance l at Ps: light-side L, Cl; returns 1 for a solar "
            "light */\n"
            "static int rd_run_light(int l, const RslGlobals* g, float4 Ps, RslGlobals* "
@@ -101,6 +94,11 @@ std::string lightServices(const BoundLights& lights) {
             << "(&lg, d + rd_light_block[l]); break;\n";
     svc << "    default: break;\n    }\n    *out = lg;\n    return RSL_CW(lg.Ol) == "
            "1.0f;\n}\n";
+}
+
+// Which lights trace no shadow rays (their shadow maps shadow them) and which are
+// ambient.
+void lightKindServices(std::ostream& svc, const BoundLights& lights) {
     svc << "static int rd_light_traces_shadows(int l) {\n    switch (l) {\n";
     for (size_t i = 0; i < lights.mapShadowed.size(); ++i)
         if (lights.mapShadowed[i]) svc << "    case " << i << ": return 0;\n";
@@ -109,6 +107,9 @@ std::string lightServices(const BoundLights& lights) {
     for (size_t i = 0; i < lights.ambient.size(); ++i)
         if (lights.ambient[i]) svc << "    case " << i << ": return 1;\n";
     svc << "    default: return 0;\n    }\n}\n";
+}
+
+void lightCacheService(std::ostream& svc) {
     // The light cache (rsl_abi.h): each light runs once per shading point, not once per
     // evaluation mode and illuminance loop.
     // The cache lookup is inlined where lights are read (each shading point reads every
@@ -145,6 +146,26 @@ std::string lightServices(const BoundLights& lights) {
            "        rd_light_at(l, g, g->P, &L, &Cl);\n        sum += Cl;\n    }\n"
            "    return rsl_cw0(sum);\n}\n";
     // clang-format on
+}
+}  // namespace
+
+std::string lightServices(const BoundLights& lights) {
+    std::ostringstream svc;
+    const uint32_t count = lights.count();
+    svc << "int rsl_light_count(void) { return " << count << "; }\n";
+    const bool areas = std::any_of(lights.areaCount.begin(), lights.areaCount.end(),
+                                   [](size_t n) { return n > 0; });
+    table(svc, "rd_light_shader", lights.shaderOf);
+    table(svc, "rd_light_block", lights.block);
+    table(svc, "rd_light_place", lights.place);
+    if (areas) {
+        table(svc, "rd_light_area_at", lights.areaAt);
+        table(svc, "rd_light_area_count", lights.areaCount);
+    }
+    lightSourceParamService(svc, lights, count);
+    runLightService(svc, lights, count, areas);
+    lightKindServices(svc, lights);
+    lightCacheService(svc);
     return svc.str();
 }
 
