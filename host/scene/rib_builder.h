@@ -397,6 +397,10 @@ private:
     // definition's space for instances).
     void addQuadric(L, const char* what, QuadricShape shape, const rib::ParamList& params,
                     const glm::mat4& placement = glm::mat4(1.0f));
+    void quadricTextureCoordinates(Quadric& q, const rib::ParamList& params,
+                                   const glm::mat4& placement) const;
+    void quadricMaterial(Quadric& q, const rib::ParamList& params,
+                         const glm::mat4& placement);
     // The eye-relative world placement of `placement` under `ctm`.
     glm::mat4 eyeRelative(const glm::mat4& ctm, const glm::mat4& placement) const;
     // Appends an object record (quadric or instance) already placed at the current

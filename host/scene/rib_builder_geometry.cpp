@@ -94,22 +94,7 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
                        std::string(what) +
                            " in a solid stays exact: its displacement is a bump map");
     Quadric& q = shape.q;
-    if (placement == glm::mat4(1.0f)) {  // not an instance's copy: TextureCoordinates apply
-        const Attributes& current = m_attrStack.back();
-        q.st_s = {current.texS[0], current.texS[1], current.texS[2], current.texS[3]};
-        q.st_t = {current.texT[0], current.texT[1], current.texT[2], current.texT[3]};
-    }
-    // varying s, t: one value per (u, v) corner
-    const rib::Param* st = params.find("st");
-    const rib::Param* ps = params.find("s");
-    const rib::Param* pt = params.find("t");
-    if (st && st->floats.size() == 8) {
-        q.st_s = {st->floats[0], st->floats[2], st->floats[4], st->floats[6]};
-        q.st_t = {st->floats[1], st->floats[3], st->floats[5], st->floats[7]};
-    } else if (ps && pt && ps->floats.size() == 4 && pt->floats.size() == 4) {
-        q.st_s = {ps->floats[0], ps->floats[1], ps->floats[2], ps->floats[3]};
-        q.st_t = {pt->floats[0], pt->floats[1], pt->floats[2], pt->floats[3]};
-    }
+    quadricTextureCoordinates(q, params, placement);
     if (m_motion.active && m_motion.count++ > 0) {
         // a quadric's keys with other parameters: only the first is used
         if (m_motion.count == 2)
@@ -132,8 +117,44 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
         m_diag.warning(loc, std::string(what) + ": singular or non-finite transform, left out");
         return;
     }
-    // Cs, Os: constant or uniform (one colour) set the material; varying (one per
-    // corner) go to the quadric primvar buffer.
+    quadricMaterial(q, params, placement);
+    const int leaf = solidLeafForSurface(loc);
+    uint32_t index = uint32_t(m_world.quadrics.size());
+    if (leaf >= 0) {
+        q.flags |= RT_QF_CSG_MEMBER;
+        m_solidNodes[leaf].members.push_back(RT_OBJECT_BIT | index);
+        m_solidNodes[leaf].memberWhat.push_back(std::string(what) + " at " + loc.str());
+    }
+    addObjectRecord(loc, what, q, shape.lo, shape.hi, placement);
+}
+
+// s and t at a quadric's (u, v) corners: TextureCoordinates (not for an instance's copy),
+// else varying "st" or "s" and "t" given with the request.
+void RibBuilder::quadricTextureCoordinates(Quadric& q, const rib::ParamList& params,
+                                           const glm::mat4& placement) const {
+    if (placement ==
+        glm::mat4(1.0f)) {  // not an instance's copy: TextureCoordinates apply
+        const Attributes& current = m_attrStack.back();
+        q.st_s = {current.texS[0], current.texS[1], current.texS[2], current.texS[3]};
+        q.st_t = {current.texT[0], current.texT[1], current.texT[2], current.texT[3]};
+    }
+    // varying s, t: one value per (u, v) corner
+    const rib::Param* st = params.find("st");
+    const rib::Param* ps = params.find("s");
+    const rib::Param* pt = params.find("t");
+    if (st && st->floats.size() == 8) {
+        q.st_s = {st->floats[0], st->floats[2], st->floats[4], st->floats[6]};
+        q.st_t = {st->floats[1], st->floats[3], st->floats[5], st->floats[7]};
+    } else if (ps && pt && ps->floats.size() == 4 && pt->floats.size() == 4) {
+        q.st_s = {ps->floats[0], ps->floats[1], ps->floats[2], ps->floats[3]};
+        q.st_t = {pt->floats[0], pt->floats[1], pt->floats[2], pt->floats[3]};
+    }
+}
+
+// A quadric's material (constant or uniform Cs and Os, its per-point shader parameters)
+// and its varying Cs and Os, one per corner, in the quadric primvar buffer.
+void RibBuilder::quadricMaterial(Quadric& q, const rib::ParamList& params,
+                                 const glm::mat4& placement) {
     // (in the scene's colour channels, k floats a colour)
     Attributes& attrs = m_attrStack.back();
     const size_t k = size_t(m_world.colors.slots());
@@ -170,14 +191,6 @@ void RibBuilder::addQuadric(L loc, const char* what, QuadricShape shape,
     }
     std::copy_n(saved.color, ColorSamples::kMaxChannels, attrs.color);
     std::copy_n(saved.opacity, ColorSamples::kMaxChannels, attrs.opacity);
-    const int leaf = solidLeafForSurface(loc);
-    uint32_t index = uint32_t(m_world.quadrics.size());
-    if (leaf >= 0) {
-        q.flags |= RT_QF_CSG_MEMBER;
-        m_solidNodes[leaf].members.push_back(RT_OBJECT_BIT | index);
-        m_solidNodes[leaf].memberWhat.push_back(std::string(what) + " at " + loc.str());
-    }
-    addObjectRecord(loc, what, q, shape.lo, shape.hi, placement);
 }
 
 glm::mat4 RibBuilder::eyeRelative(const glm::mat4& ctm, const glm::mat4& placement) const {
