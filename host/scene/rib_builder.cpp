@@ -134,95 +134,108 @@ void RibBuilder::worldEnd(L loc) {
 void RibBuilder::attribute(L loc, const std::string& name, const rib::ParamList& params) {
     setMessageValues(loc, name, params, m_attrStack.back().messages,
                      &m_attrStack.back().ctm);
-    if (name == "visibility") {
-        // PRMan: "int camera", "int trace" (or, later, "int diffuse" and "int specular"
-        // together), "int transmission" / "string transmission"
-        uint32_t& v = m_attrStack.back().visibility;
-        auto set = [&](uint32_t flag, int on) {
-            if (on == 0)
-                v |= flag;
-            else if (on > 0)
-                v &= ~flag;
-        };
-        set(RT_MATERIAL_NO_CAMERA, params.getInt("camera", -1));
-        // "trace": both kinds of traced rays; "specular": trace() and gather()'s,
-        // "diffuse": occlusion()'s and indirectdiffuse()'s
-        set(RT_MATERIAL_NO_TRACE | RT_MATERIAL_NO_DIFFUSE, params.getInt("trace", -1));
-        set(RT_MATERIAL_NO_TRACE, params.getInt("specular", -1));
-        set(RT_MATERIAL_NO_DIFFUSE, params.getInt("diffuse", -1));
-        // transmission: 0 or "transparent" cast no shadow; 1 or "Os" one by their
-        // opacity Os (their shader's Oi under "shade" "transmissionhitmode" "shader");
-        // "opaque" a full one whatever their Os; "shader" one by their shader's Oi
-        const std::string transmission = params.getString("transmission", "");
-        const int on = transmission.empty() ? params.getInt("transmission", -1) : -1;
-        if (transmission == "transparent" || on == 0)
-            setShadowMode(RT_MATERIAL_NO_TRANSMISSION);
-        else if (transmission == "opaque")
-            setShadowMode(RT_MATERIAL_OPAQUE_SHADOW);
-        else if (transmission == "shader")
-            setShadowMode(RT_MATERIAL_SHADER_SHADOW);
-        else if (!transmission.empty() || on > 0)
-            setShadowMode(m_attrStack.back().shadowHitShader ? RT_MATERIAL_SHADER_SHADOW : 0u);
-        if (!transmission.empty() && transmission != "transparent" &&
-            transmission != "opaque" && transmission != "Os" && transmission != "shader")
-            m_diag.warning(loc,
-                           "Attribute \"visibility\" \"string transmission\" \"" +
-                               transmission +
-                               "\": not transparent, opaque, Os or shader; taken as Os");
-        return;
+    if (name == "visibility") visibilityAttribute(loc, params);
+    if (name == "shade") shadeAttribute(loc, params);
+    if (name == "displacementbound") displacementBoundAttribute(loc, params);
+    if (name == "render") renderAttribute(loc, params);
+    if (name == "trace") traceAttribute(params);
+}
+
+// PRMan: "int camera", "int trace" (or, later, "int diffuse" and "int specular"
+// together), "int transmission" / "string transmission"
+void RibBuilder::visibilityAttribute(L loc, const rib::ParamList& params) {
+    uint32_t& v = m_attrStack.back().visibility;
+    auto set = [&](uint32_t flag, int on) {
+        if (on == 0)
+            v |= flag;
+        else if (on > 0)
+            v &= ~flag;
+    };
+    set(RT_MATERIAL_NO_CAMERA, params.getInt("camera", -1));
+    // "trace": both kinds of traced rays; "specular": trace() and gather()'s,
+    // "diffuse": occlusion()'s and indirectdiffuse()'s
+    set(RT_MATERIAL_NO_TRACE | RT_MATERIAL_NO_DIFFUSE, params.getInt("trace", -1));
+    set(RT_MATERIAL_NO_TRACE, params.getInt("specular", -1));
+    set(RT_MATERIAL_NO_DIFFUSE, params.getInt("diffuse", -1));
+    // transmission: 0 or "transparent" cast no shadow; 1 or "Os" one by their
+    // opacity Os (their shader's Oi under "shade" "transmissionhitmode" "shader");
+    // "opaque" a full one whatever their Os; "shader" one by their shader's Oi
+    const std::string transmission = params.getString("transmission", "");
+    const int on = transmission.empty() ? params.getInt("transmission", -1) : -1;
+    if (transmission == "transparent" || on == 0)
+        setShadowMode(RT_MATERIAL_NO_TRANSMISSION);
+    else if (transmission == "opaque")
+        setShadowMode(RT_MATERIAL_OPAQUE_SHADOW);
+    else if (transmission == "shader")
+        setShadowMode(RT_MATERIAL_SHADER_SHADOW);
+    else if (!transmission.empty() || on > 0)
+        setShadowMode(m_attrStack.back().shadowHitShader ? RT_MATERIAL_SHADER_SHADOW
+                                                         : 0u);
+    if (!transmission.empty() && transmission != "transparent" &&
+        transmission != "opaque" && transmission != "Os" && transmission != "shader")
+        m_diag.warning(loc, "Attribute \"visibility\" \"string transmission\" \"" +
+                                transmission +
+                                "\": not transparent, opaque, Os or shader; taken as Os");
+}
+
+// PRMan: what a shadow ray's hit sees, the shader or Os
+void RibBuilder::shadeAttribute(L loc, const rib::ParamList& params) {
+    const std::string mode = params.getString("transmissionhitmode", "");
+    const uint32_t now = m_attrStack.back().visibility & RT_MATERIAL_SHADOW_MASK;
+    if (mode == "shader" || mode == "primitive") {
+        m_attrStack.back().shadowHitShader = mode == "shader";
+        if (now == 0u || now == RT_MATERIAL_SHADER_SHADOW)
+            setShadowMode(mode == "shader" ? RT_MATERIAL_SHADER_SHADOW : 0u);
+    } else if (!mode.empty())
+        m_diag.warning(loc, "Attribute \"shade\" \"transmissionhitmode\" \"" + mode +
+                                "\": not shader or primitive; ignored");
+}
+
+// PRMan: "float sphere", "string coordinatesystem"
+void RibBuilder::displacementBoundAttribute(L loc, const rib::ParamList& params) {
+    const float r = params.getFloat("sphere", 0.0f);
+    if (!(r >= 0.0f) || !std::isfinite(r))
+        m_diag.warning(loc,
+                       "Attribute \"displacementbound\" \"sphere\" must be finite "
+                       "and not negative; ignored");
+    else
+        m_attrStack.back().displacementBound = r;
+}
+
+// BMRT: "int truedisplacement" 1 moves the surface; "string casts_shadows" is what
+// shadow rays see of it
+void RibBuilder::renderAttribute(L loc, const rib::ParamList& params) {
+    const int on = params.getInt("truedisplacement", -1);
+    if (on >= 0) m_attrStack.back().trueDisplacement = on > 0 ? 1 : 0;
+    const std::string casts = params.getString("casts_shadows", "");
+    if (casts == "none")
+        setShadowMode(RT_MATERIAL_NO_TRANSMISSION);
+    else if (casts == "opaque")
+        setShadowMode(RT_MATERIAL_OPAQUE_SHADOW);
+    else if (casts == "Os")
+        setShadowMode(0u);
+    else if (casts == "shade")
+        setShadowMode(RT_MATERIAL_SHADER_SHADOW);
+    else if (!casts.empty())
+        m_diag.warning(loc, "Attribute \"render\" \"casts_shadows\" \"" + casts +
+                                "\": not none, opaque, Os or shade; ignored");
+}
+
+// Each object's own limit on the trace() depth of the rays its shader sends
+// (Scene::materialSpecularDepth); outside the world also the default.
+void RibBuilder::traceAttribute(const rib::ParamList& params) {
+    int depth = std::min(params.getInt("maxspeculardepth", -1), 4096);
+    if (depth >= 0) {
+        m_attrStack.back().maxSpecularDepth = depth;
+        if (!m_inWorld) m_options.maxSpecularDepth = depth;
     }
-    if (name == "shade") {  // PRMan: what a shadow ray's hit sees, the shader or Os
-        const std::string mode = params.getString("transmissionhitmode", "");
-        const uint32_t now = m_attrStack.back().visibility & RT_MATERIAL_SHADOW_MASK;
-        if (mode == "shader" || mode == "primitive") {
-            m_attrStack.back().shadowHitShader = mode == "shader";
-            if (now == 0u || now == RT_MATERIAL_SHADER_SHADOW)
-                setShadowMode(mode == "shader" ? RT_MATERIAL_SHADER_SHADOW : 0u);
-        } else if (!mode.empty())
-            m_diag.warning(loc, "Attribute \"shade\" \"transmissionhitmode\" \"" + mode +
-                                    "\": not shader or primitive; ignored");
+    // diffuse bounces along a path: the largest any object gives holds for all
+    const int diffuse = std::min(params.getInt("maxdiffusedepth", -1), 4096);
+    if (diffuse >= 0) {
+        Scene& s = m_inWorld ? m_world : m_options;
+        s.maxDiffuseDepth = std::max(s.maxDiffuseDepth, diffuse);
     }
-    if (name ==
-        "displacementbound") {  // PRMan: "float sphere", "string coordinatesystem"
-        const float r = params.getFloat("sphere", 0.0f);
-        if (!(r >= 0.0f) || !std::isfinite(r))
-            m_diag.warning(loc,
-                           "Attribute \"displacementbound\" \"sphere\" must be finite "
-                           "and not negative; ignored");
-        else
-            m_attrStack.back().displacementBound = r;
-        return;
-    }
-    if (name == "render") {
-        // BMRT: "int truedisplacement" 1 moves the surface; "string casts_shadows" is
-        // what shadow rays see of it
-        const int on = params.getInt("truedisplacement", -1);
-        if (on >= 0) m_attrStack.back().trueDisplacement = on > 0 ? 1 : 0;
-        const std::string casts = params.getString("casts_shadows", "");
-        if (casts == "none") setShadowMode(RT_MATERIAL_NO_TRANSMISSION);
-        else if (casts == "opaque") setShadowMode(RT_MATERIAL_OPAQUE_SHADOW);
-        else if (casts == "Os") setShadowMode(0u);
-        else if (casts == "shade") setShadowMode(RT_MATERIAL_SHADER_SHADOW);
-        else if (!casts.empty())
-            m_diag.warning(loc, "Attribute \"render\" \"casts_shadows\" \"" + casts +
-                                    "\": not none, opaque, Os or shade; ignored");
-    }
-    if (name == "trace") {
-        // Each object's own limit on the trace() depth of the rays its shader sends
-        // (Scene::materialSpecularDepth); outside the world also the default.
-        int depth = std::min(params.getInt("maxspeculardepth", -1), 4096);
-        if (depth >= 0) {
-            m_attrStack.back().maxSpecularDepth = depth;
-            if (!m_inWorld) m_options.maxSpecularDepth = depth;
-        }
-        // diffuse bounces along a path: the largest any object gives holds for all
-        const int diffuse = std::min(params.getInt("maxdiffusedepth", -1), 4096);
-        if (diffuse >= 0) {
-            Scene& s = m_inWorld ? m_world : m_options;
-            s.maxDiffuseDepth = std::max(s.maxDiffuseDepth, diffuse);
-        }
-        traceDepthOption(params);
-    }
+    traceDepthOption(params);
 }
 
 // What a shadow ray sees of the surfaces from here on (RT_MATERIAL_SHADOW_MASK).

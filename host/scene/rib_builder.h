@@ -67,6 +67,11 @@ public:
     void worldEnd(L) override;
     void attributeBegin(L) override;
     void attribute(L, const std::string& name, const rib::ParamList&) override;
+    void visibilityAttribute(L, const rib::ParamList& params);
+    void shadeAttribute(L, const rib::ParamList& params);
+    void displacementBoundAttribute(L, const rib::ParamList& params);
+    void renderAttribute(L, const rib::ParamList& params);
+    void traceAttribute(const rib::ParamList& params);
     void attributeEnd(L) override;
     // Resource "attributes": the current attributes saved by name, or restored whole or
     // in part (the transform, or the shading: all but the transform).

@@ -274,85 +274,103 @@ private:
         if (cur().kind == TokKind::Ident) {
             const std::string& w = cur().text;
             if (w == "if") return ifStmt();
-            if (w == "while") {
-                next();
-                auto s = std::make_unique<Stmt>(StmtKind::While, loc);
-                expect("(");
-                s->expr = expression();
-                expect(")");
-                s->body = statement();
-                return s;
-            }
+            if (w == "while") return whileStmt(loc);
             if (w == "for") return forStmt();
-            if (w == "break" || w == "continue") {
-                auto s = std::make_unique<Stmt>(
-                    w == "break" ? StmtKind::Break : StmtKind::Continue, loc);
-                next();
-                if (cur().kind == TokKind::Number) {
-                    if (cur().number < 1 || cur().number != static_cast<int>(cur().number))
-                        fail("a positive integer loop level");
-                    s->level = static_cast<int>(cur().number);
-                    next();
-                }
-                expect(";");
-                return s;
-            }
-            if (w == "return") {
-                next();
-                auto s = std::make_unique<Stmt>(StmtKind::Return, loc);
-                if (!cur().is(";")) s->expr = expression();
-                expect(";");
-                return s;
-            }
-            if (w == "gather") {
-                next();
-                expect("(");
-                std::vector<ExprPtr> args;
-                if (!cur().is(")")) {
-                    args.push_back(assignment());
-                    while (accept(",")) args.push_back(assignment());
-                }
-                expect(")");
-                StmtPtr hit = statement(), miss;
-                if (cur().isIdent("else")) {
-                    next();
-                    miss = statement();
-                }
-                return desugarGather(loc, std::move(args), std::move(hit),
-                                     std::move(miss), m_gathers++, m_diag);
-            }
-            if (w == "illuminance" || w == "illuminate" || w == "solar") {
-                StmtKind k = w == "illuminance"  ? StmtKind::Illuminance
-                             : w == "illuminate" ? StmtKind::Illuminate
-                                                 : StmtKind::Solar;
-                next();
-                auto s = std::make_unique<Stmt>(k, loc);
-                expect("(");
-                if (!cur().is(")")) {
-                    s->args.push_back(assignment());
-                    while (accept(",")) s->args.push_back(assignment());
-                }
-                expect(")");
-                s->body = statement();
-                return s;
-            }
-            if (atDeclStart()) {
-                // nested function: [uniform | varying] type name (
-                const int at = cur().isIdent("uniform") || cur().isIdent("varying") ? 1 : 0;
-                if ((isTypeName(peek(at).text) && peek(at + 1).kind == TokKind::Ident &&
-                     peek(at + 2).is("(")) ||
-                    (cur().isIdent("void"))) {
-                    auto s = std::make_unique<Stmt>(StmtKind::Function, loc);
-                    s->function = functionDef();
-                    return s;
-                }
-                auto s = declaration();
-                expect(";");
-                return s;
-            }
+            if (w == "break" || w == "continue") return jumpStmt(loc);
+            if (w == "return") return returnStmt(loc);
+            if (w == "gather") return gatherStmt(loc);
+            if (w == "illuminance" || w == "illuminate" || w == "solar")
+                return lightStmt(loc);
+            if (atDeclStart()) return declarationOrFunction(loc);
         }
         auto s = std::make_unique<Stmt>(StmtKind::Expr, loc);
         s->expr = expression();
+        expect(";");
+        return s;
+    }
+
+    // ( [assignment {, assignment}] )
+    std::vector<ExprPtr> parenthesisedArgs() {
+        std::vector<ExprPtr> args;
+        expect("(");
+        if (!cur().is(")")) {
+            args.push_back(assignment());
+            while (accept(",")) args.push_back(assignment());
+        }
+        expect(")");
+        return args;
+    }
+
+    StmtPtr whileStmt(const SourceLoc& loc) {
+        next();
+        auto s = std::make_unique<Stmt>(StmtKind::While, loc);
+        expect("(");
+        s->expr = expression();
+        expect(")");
+        s->body = statement();
+        return s;
+    }
+
+    // break [N]; continue [N];
+    StmtPtr jumpStmt(const SourceLoc& loc) {
+        auto s = std::make_unique<Stmt>(
+            cur().text == "break" ? StmtKind::Break : StmtKind::Continue, loc);
+        next();
+        if (cur().kind == TokKind::Number) {
+            if (cur().number < 1 || cur().number != static_cast<int>(cur().number))
+                fail("a positive integer loop level");
+            s->level = static_cast<int>(cur().number);
+            next();
+        }
+        expect(";");
+        return s;
+    }
+
+    StmtPtr returnStmt(const SourceLoc& loc) {
+        next();
+        auto s = std::make_unique<Stmt>(StmtKind::Return, loc);
+        if (!cur().is(";")) s->expr = expression();
+        expect(";");
+        return s;
+    }
+
+    // gather(...) statement [else statement]: written as a loop (gather.cpp)
+    StmtPtr gatherStmt(const SourceLoc& loc) {
+        next();
+        std::vector<ExprPtr> args = parenthesisedArgs();
+        StmtPtr hit = statement(), miss;
+        if (cur().isIdent("else")) {
+            next();
+            miss = statement();
+        }
+        return desugarGather(loc, std::move(args), std::move(hit), std::move(miss),
+                             m_gathers++, m_diag);
+    }
+
+    // illuminance, illuminate or solar (...) statement
+    StmtPtr lightStmt(const SourceLoc& loc) {
+        const std::string& w = cur().text;
+        StmtKind k = w == "illuminance"  ? StmtKind::Illuminance
+                     : w == "illuminate" ? StmtKind::Illuminate
+                                         : StmtKind::Solar;
+        next();
+        auto s = std::make_unique<Stmt>(k, loc);
+        s->args = parenthesisedArgs();
+        s->body = statement();
+        return s;
+    }
+
+    // A declaration, or a nested function: [uniform | varying] type name (
+    StmtPtr declarationOrFunction(const SourceLoc& loc) {
+        const int at = cur().isIdent("uniform") || cur().isIdent("varying") ? 1 : 0;
+        if ((isTypeName(peek(at).text) && peek(at + 1).kind == TokKind::Ident &&
+             peek(at + 2).is("(")) ||
+            (cur().isIdent("void"))) {
+            auto s = std::make_unique<Stmt>(StmtKind::Function, loc);
+            s->function = functionDef();
+            return s;
+        }
+        auto s = declaration();
         expect(";");
         return s;
     }

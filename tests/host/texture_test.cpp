@@ -426,6 +426,51 @@ TEST(Textures, TrueDisplacementByAMap) {
     EXPECT_EQ(differ, 0u);
 }
 
+// A true displacement whose every vertex looks up more tiles than the texture cache can
+// hold at once (80 scattered level-0 lookups, a cache of 64 tiles): its passes cannot
+// finish, so after the last one the vertices are given up, left where they were, and
+// said so at the Displacement's line; the render goes on (the surface undisplaced).
+TEST(Textures, DisplacementOutgrowingTheCacheIsLeftInPlace) {
+    std::string tex = texture("scatter", 1024, 64, false);
+    std::ofstream(dir() + "/depthlook.sl")
+        << "surface depthlook() {\n    Ci = abs(zcomp(transform(\"camera\", P)) - 5);\n"
+           "    Oi = 1;\n}\n";
+    std::ofstream(dir() + "/scatterbump.sl")
+        << "displacement scatterbump(string map = \"\") {\n    float h = 0, i;\n"
+           "    for (i = 0; i < 80; i += 1)\n"
+           "        h += texture(map, mod(s + i * 0.0123, 1), mod(t + i * 0.0371, 1), "
+           "\"width\", 0);\n"
+           "    P += normalize(N) * 0.004 * (1 + h);\n    N = calculatenormal(P);\n}\n";
+    const std::string rib =
+        searchPath() +
+        "Format 16 16 1\nPixelSamples 1 1\nProjection \"orthographic\"\n"
+        "ScreenWindow -0.8 0.8 -0.8 0.8\nWorldBegin\nSurface \"depthlook\"\n"
+        "Attribute \"render\" \"int truedisplacement\" [1]\n"
+        "Attribute \"displacementbound\" \"float sphere\" [0.5]\n"
+        "Displacement \"scatterbump\" \"map\" \"" +
+        tex +
+        "\"\n"
+        "Patch \"bilinear\" \"P\" [-1 1 5  1 1 5  -1 -1 5  1 -1 5]\nWorldEnd\n";
+    // every tile resident: each vertex moves at least 0.004 toward the eye or away
+    Rendered resident = renderRib(rib);
+    EXPECT_GT(resident.stats.displacedVertices, 100u);
+    EXPECT_GT(resident.mean(0, 0, 0, 16, 16), 0.003);
+    rd::RenderSettings small;
+    small.textureCacheTiles = 64;
+    ::testing::internal::CaptureStderr();
+    Rendered streamed = renderRib(rib, small);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_FALSE(streamed.stats.textures.resident);
+    EXPECT_EQ(streamed.stats.displacedVertices, 0u);
+    EXPECT_NE(err.find("warning: displacement: the texture cache could not hold what "),
+              std::string::npos)
+        << err;
+    EXPECT_NE(err.find("vertices look up; they are left in place"), std::string::npos)
+        << err;
+    EXPECT_NEAR(streamed.mean(0, 0, 0, 16, 16), 0.0, 1e-4)
+        << "the surface stays at z = 5";
+}
+
 // MakeBump makes a height map that bump() reads as MakeTexture's: the same image (before,
 // MakeBump was ignored, the map never made, and bump() left N alone with a warning).
 TEST(Textures, MakeBumpMakesAHeightMapForBump) {
