@@ -41,9 +41,9 @@ void opacityFeatures(const Scene& scene, Features& f) {
         for (size_t j = 0; j < 4 && first + j < channels; ++j)
             if (lanes[j] < 1.0f) f.transparency = true;
     }
+    // (a quadric's primvars: of each 8 float4s, the Cs corners then the Os corners)
     for (size_t i = 0; i < scene.quadricPrimvars.size(); ++i) {
-        const rt_float4& o =
-            scene.quadricPrimvars[i];  // of each 8: Cs corners, Os corners
+        const rt_float4& o = scene.quadricPrimvars[i];
         if (i % 8 >= 4 && (o.x < 1.0f || o.y < 1.0f || o.z < 1.0f)) f.transparency = true;
     }
 }
